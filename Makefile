@@ -1,0 +1,51 @@
+# Thin front door over CMake + CTest. See README.md.
+BUILD      ?= build
+ASAN_BUILD ?= build-asan
+PREFIX     ?= /usr/local
+JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+PYTHON     ?= /usr/bin/python3
+CMAKE_ARGS ?=
+
+.PHONY: all deps configure test test-asan demo figs bench install clean
+
+all: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+deps:
+	scripts/deps.sh
+
+configure:
+	@test -f $(BUILD)/CMakeCache.txt || cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_ARGS)
+
+# Release build: fast + medium labels; then the same fast tests under ASan+UBSan.
+test: deps all
+	cd $(BUILD) && ctest --output-on-failure -L 'fast|medium' -j $(JOBS)
+	$(MAKE) test-asan
+
+test-asan:
+	@test -f $(ASAN_BUILD)/CMakeCache.txt || cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DICS_SANITIZE=ON $(CMAKE_ARGS)
+	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	cd $(ASAN_BUILD) && ctest --output-on-failure -L 'fast' -j $(JOBS)
+
+demo: deps all
+	@mkdir -p out
+	@echo "== lookup-table error against size and evaluation time (icshadow lut --report)"
+	$(BUILD)/bin/icshadow lut --report
+	@echo "== example GLSL header (icshadow lut --size 64 --lang glsl)"
+	$(BUILD)/bin/icshadow lut --size 64 --lang glsl -o out/icshadow_lut_64.glsl
+	@echo "wrote out/icshadow_lut_64.glsl"
+	@echo "== 2-sample elliptical kernel for a light with variances (0.8, 0.2) rotated 30 degrees"
+	$(BUILD)/bin/icshadow kernel ellipse --varx 0.8 --vary 0.2 --angle 30 --samples 2
+
+figs: deps all
+	$(PYTHON) paper_figs/patel_fig23.py --cli $(BUILD)/bin/icshadow --out out/figs
+
+bench: deps all
+	cmake --build $(BUILD) --target benchmarks -j $(JOBS)
+	$(BUILD)/bin/bench_ellint
+
+install: all
+	cmake --install $(BUILD) --prefix $(PREFIX)
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD) out

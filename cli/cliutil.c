@@ -1,0 +1,95 @@
+/* cliutil.c — helpers shared by the icshadow subcommands: strict number parsing, --help
+ * detection, and atomic output files (temporary name + rename). */
+#define _POSIX_C_SOURCE 200809L
+#include "commands.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+int cli_parse_double(const char *s, double *out) {
+  if (!s) return -1;
+  while (isspace((unsigned char)*s)) s++;
+  if (!*s) return -1;
+  char *end;
+  errno = 0;
+  double v = strtod(s, &end);
+  if (end == s) return -1;
+  while (isspace((unsigned char)*end)) end++;
+  if (*end) return -1;
+  *out = v; /* overflow gives +-inf, underflow a subnormal or 0: both are honest values */
+  return 0;
+}
+
+int cli_parse_int(const char *s, long lo, long hi, int *out) {
+  if (!s) return -1;
+  char *end;
+  errno = 0;
+  long v = strtol(s, &end, 10);
+  if (end == s || errno) return -1;
+  while (isspace((unsigned char)*end)) end++;
+  if (*end || v < lo || v > hi) return -1;
+  *out = (int)v;
+  return 0;
+}
+
+int cli_wants_help(int argc, char **argv) {
+  for (int i = 1; i < argc; i++)
+    if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) return 1;
+  return 0;
+}
+
+int cli_output_open(cli_output *out, const char *path) {
+  out->fp = NULL;
+  out->tmp_path = NULL;
+  out->path = path;
+  if (!path || !strcmp(path, "-")) {
+    out->fp = stdout;
+    return 0;
+  }
+  size_t n = strlen(path) + 16;
+  out->tmp_path = malloc(n);
+  if (!out->tmp_path) return -1;
+  snprintf(out->tmp_path, n, "%s.tmpXXXXXX", path);
+  int fd = mkstemp(out->tmp_path);
+  if (fd < 0) {
+    fprintf(stderr, "icshadow: cannot create %s: %s\n", path, strerror(errno));
+    free(out->tmp_path);
+    out->tmp_path = NULL;
+    return -1;
+  }
+  out->fp = fdopen(fd, "w");
+  if (!out->fp) {
+    close(fd);
+    cli_output_abort(out);
+    return -1;
+  }
+  return 0;
+}
+
+void cli_output_abort(cli_output *out) {
+  if (out->fp && out->fp != stdout) fclose(out->fp);
+  if (out->tmp_path) {
+    remove(out->tmp_path);
+    free(out->tmp_path);
+  }
+  out->fp = NULL;
+  out->tmp_path = NULL;
+}
+
+int cli_output_commit(cli_output *out) {
+  if (out->fp == stdout) return fflush(stdout) ? -1 : 0;
+  int bad = ferror(out->fp);
+  bad |= fclose(out->fp) != 0;
+  out->fp = NULL;
+  if (!bad && rename(out->tmp_path, out->path) != 0) bad = 1;
+  if (bad) {
+    fprintf(stderr, "icshadow: cannot write %s: %s\n", out->path, strerror(errno));
+    remove(out->tmp_path);
+  }
+  free(out->tmp_path);
+  out->tmp_path = NULL;
+  return bad ? -1 : 0;
+}

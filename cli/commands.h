@@ -1,0 +1,33 @@
+/* commands.h — the icshadow subcommands (one file each) and the helpers they share. */
+#ifndef ICS_CLI_COMMANDS_H
+#define ICS_CLI_COMMANDS_H
+
+#include <stdio.h>
+
+/* Each subcommand gets argv[0] = its own name; returns the process exit status
+ * (0 ok, 1 runtime failure, 2 usage / bad input). */
+int cmd_eval(int argc, char **argv);
+int cmd_kernel(int argc, char **argv);
+int cmd_lut(int argc, char **argv);
+
+/* Strict number parsing: the whole string must be a number (leading/trailing blanks allowed).
+ * Return 0 on success, -1 otherwise. */
+int cli_parse_double(const char *s, double *out);
+int cli_parse_int(const char *s, long lo, long hi, int *out);
+
+/* True when argv holds -h or --help. */
+int cli_wants_help(int argc, char **argv);
+
+/* Atomic output: write to a temporary file beside `path`, then rename on commit; abort (or a
+ * failed commit) removes the temporary file, so no partial output is ever left behind.
+ * path "-" means stdout (commit just flushes). */
+typedef struct cli_output {
+  FILE *fp;
+  char *tmp_path; /* NULL for stdout */
+  const char *path;
+} cli_output;
+int cli_output_open(cli_output *out, const char *path);
+int cli_output_commit(cli_output *out); /* 0 on success; reports errors on stderr */
+void cli_output_abort(cli_output *out);
+
+#endif

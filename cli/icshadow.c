@@ -1,0 +1,49 @@
+/* icshadow.c — the command-line tool: dispatches to one subcommand per job (cmd_*.c),
+ * each a thin layer over libicshadow. */
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+
+#ifndef ICS_VERSION_STRING
+#define ICS_VERSION_STRING "unknown"
+#endif
+
+static const struct {
+  const char *name;
+  int (*run)(int, char **);
+  const char *summary;
+} commands[] = {
+    {"eval", cmd_eval, "evaluate a function on numbers read from stdin, one per line"},
+    {"kernel", cmd_kernel, "print the taps of a kernel for a light (JSON)"},
+    {"lut", cmd_lut, "write lookup-table headers (C, GLSL, OpenCL) or report their error"},
+};
+
+static void usage(FILE *f) {
+  fprintf(f,
+          "usage: icshadow COMMAND [OPTIONS]   (icshadow COMMAND --help for details)\n"
+          "libicshadow %s: the theory of convolution soft shadows.\n\ncommands:\n",
+          ICS_VERSION_STRING);
+  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+    fprintf(f, "  %-8s %s\n", commands[i].name, commands[i].summary);
+}
+
+int main(int argc, char **argv) {
+  if (argc < 2) {
+    usage(stderr);
+    return 2;
+  }
+  if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
+    usage(stdout);
+    return 0;
+  }
+  if (!strcmp(argv[1], "--version")) {
+    printf("icshadow %s\n", ICS_VERSION_STRING);
+    return 0;
+  }
+  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+    if (!strcmp(argv[1], commands[i].name)) return commands[i].run(argc - 1, argv + 1);
+  fprintf(stderr, "icshadow: unknown command '%s'\n", argv[1]);
+  usage(stderr);
+  return 2;
+}

@@ -1,0 +1,29 @@
+/* icshadow/ellint.h — complete elliptic integrals of the first and second kind.
+ *
+ * CONVENTION: m is the PARAMETER, m = k^2 (k = modulus), as in mpmath ellipk(m), scipy.special
+ * ellipk(m) and Mathematica EllipticK[m]:
+ *   K(m) = int_0^{pi/2} (1 - m sin^2 t)^{-1/2} dt,   E(m) = int_0^{pi/2} (1 - m sin^2 t)^{1/2} dt.
+ * The *_m1 entry points take the complementary parameter m1 = 1 - m directly, so that
+ * near-degenerate arguments (m1 down to the smallest subnormal) keep full accuracy.
+ *
+ * Domain: any m <= 1 (large negative m included). K(1) = +inf, E(1) = 1.
+ * m > 1 (m1 < 0) or NaN gives NaN; m = -inf gives K = 0, E = +inf. errno is never touched.
+ * Accuracy bounds (measured against MPFR, see docs/ellint.md): stated in ellint.c. */
+#ifndef ICSHADOW_ELLINT_H
+#define ICSHADOW_ELLINT_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+double ics_ellipk(double m);
+double ics_ellipe(double m);
+double ics_ellipk_m1(double m1);
+double ics_ellipe_m1(double m1);
+/* Both at once from the complementary parameter m1 = 1 - m; either pointer may be NULL. */
+void ics_ellipke_m1(double m1, double *K, double *E);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

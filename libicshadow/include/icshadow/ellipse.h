@@ -1,0 +1,51 @@
+/* icshadow/ellipse.h — ellipse variance functions and the N-sample elliptical kernel
+ * (Patel et al. 2013, Sec. 3.4 and Appendix A.7).
+ *
+ * Points equidistant in arc length on an ellipse, averaged over a uniform rotational offset,
+ * are distributed uniformly in arc length; their x-variance is what the functions below give.
+ *   ics_ellipse_varx(b): ellipse with x-radius 1 and y-radius b >= 0 (b > 1 allowed).
+ *   ics_ellipse_vx(t)  : unit ellipse a = 1 - t, b = t, t in [0, 1]  (paper's abToVarx).
+ *   ics_ellipse_vy(t)  : its y-variance, = vx(1 - t).
+ *   ics_ellipse_ratio(t)      = vy(t) / vx(t), increasing from 0 (t = 0) to +inf (t = 1).
+ *   ics_ellipse_ratio_to_t(r) : inverse of ratio for r in [0, +inf] (paper's ratioToab).
+ * Outside the domain (or NaN) they return NaN. Accuracy: see ellipse.c and docs/ellipse.md. */
+#ifndef ICSHADOW_ELLIPSE_H
+#define ICSHADOW_ELLIPSE_H
+
+#include "icshadow/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+double ics_ellipse_varx(double b);
+double ics_ellipse_vx(double t);
+double ics_ellipse_vy(double t);
+double ics_ellipse_ratio(double t);
+double ics_ellipse_ratio_to_t(double rat);
+
+#define ICS_ELLIPSE_MAX_SAMPLES 4096
+
+/* Shape of an elliptical kernel for a target covariance (sigma_x^2, sigma_y^2, rotation alpha). */
+typedef struct ics_ellipse_shape {
+  double a;         /* radius along the kernel's rotated x axis */
+  double b;         /* radius along the kernel's rotated y axis */
+  double angle_deg; /* rotation alpha of the x axis, degrees counter-clockwise from +x */
+  double t;         /* unit-ellipse parameter: a = (1 - t) s, b = t s */
+  int nsamples;     /* taps actually produced: 1 for a point light (both variances 0) */
+} ics_ellipse_shape;
+
+/* The N-sample elliptical kernel of covariance R(alpha) diag(varx, vary) R(alpha)^T:
+ * N points equidistant in arc length on the ellipse with radii a, b, the first at arc-length
+ * fraction `offset` (in [0, 1)) of the perimeter measured from (a, 0) counter-clockwise in the
+ * kernel's own frame. Averaged over a uniform offset the taps have exactly that covariance
+ * (zero mean). Writes 2 * shape->nsamples doubles (x0, y0, x1, y1, ...) to xy when xy != NULL.
+ * Errors: ICS_ERR_NAN, ICS_ERR_NEGATIVE_VARIANCE, ICS_ERR_INFINITE, ICS_ERR_RANGE (nsamples
+ * outside 1..ICS_ELLIPSE_MAX_SAMPLES, offset not finite), ICS_ERR_INVALID_ARG (shape NULL). */
+ics_status ics_ellipse_kernel(double varx, double vary, double angle_deg, int nsamples,
+                              double offset, ics_ellipse_shape *shape, double *xy);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages that libicshadow's build, tests, benchmarks and figures need.
+# Checks with dpkg first, so a second run costs nothing. As root it runs apt-get; otherwise it
+# prints the exact apt-get line and exits non-zero.
+set -euo pipefail
+
+packages=(
+  # build
+  build-essential cmake pkg-config
+  # tests: MPFR references, GLSL and OpenCL compile checks of the generated LUT headers
+  libmpfr-dev libgmp-dev glslang-tools pocl-opencl-icd ocl-icd-opencl-dev opencl-headers
+  # benchmarks: Boost.Math as a peer for the elliptic integrals
+  libboost-dev
+  # figures and table generators (Debian's python3, not a runtime dependency)
+  python3 python3-numpy python3-matplotlib python3-mpmath
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [ "$status" = "install ok installed" ] || missing+=("$p")
+done
+
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+cmd="apt-get install -y --no-install-recommends ${missing[*]}"
+if [ "$(id -u)" -ne 0 ]; then
+  echo "deps.sh: missing Debian packages: ${missing[*]}" >&2
+  echo "deps.sh: run as root:  apt-get update && $cmd" >&2
+  exit 1
+fi
+echo "deps.sh: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+$cmd
