@@ -1,0 +1,345 @@
+#!/usr/bin/python3
+"""gen_ellint_coeffs.py - generate libicshadow/src/ellint_data.{c,h} (tables for ellint.c).
+
+Parameter convention: m = k^2, x = m1 = 1 - m (complementary parameter).
+
+Two tables, both built at 256-bit precision with mpmath:
+
+1. LOG region, 0 < x < X0 (DLMF 19.12.1, 19.12.2 with L = ln(16/x)):
+       K(1-x) = (L/2) A(x) + B(x),            A(x) = 1 + x Pa(x),  B(x) = x Pb(x)
+       E(1-x) = 1 + x ((L/2) C(x) + D(x)),    C(x) = 1/2 + x Pc(x), D(x) = -1/4 + x Pd(x)
+   so that E(1-x) = 1 + x ((L - 1)/4 + x ((L/2) Pc(x) + Pd(x))), whose leading part (L_hi - 1)/4
+   is exact in C.
+   A, B, C, D are the power series with EXACT rational coefficients
+       A = sum a_n x^n,           a_n = ((1/2)_n / n!)^2
+       B = sum a_n (d_n - d_0) x^n,   d_n - d_0 = H_n - sum_{j<n} 2/(2j+1)   (psi differences)
+       C = sum c_n x^n,           c_n = (1/2) (1/2)_n (3/2)_n / ((2)_n n!)
+       D = sum c_n (d_n - d_0 - 1/((2n+1)(2n+2))) x^n
+   (summed with exact fractions, 400 terms).  The formulas are first checked against
+   mpmath.ellipk / mpmath.ellipe at many points (an independent algorithm); then Pa, Pb, Pc, Pd
+   are replaced by their Chebyshev interpolants on [0, X0] (near-minimax, lower degree than the
+   truncated Taylor series), written in the monomial basis and rounded to double.
+
+2. PIECES, X0 <= x <= 1: each binade [2^-j, 2^(1-j)) is cut into 2^S equal pieces of half-width
+   h around a dyadic centre c.  On each piece
+       K(1-x) = k0_hi + (k0_lo + t Pk(t)),   t = x - c,   k0_hi + k0_lo = K(1-c) (double-double)
+   and the same for E; Pk, Pe are Chebyshev interpolants of (K(1-c-t) - K(1-c))/t on [-h, h].
+
+For every table the maximum approximation error (double coefficients evaluated exactly, against
+mpmath.ellipk/ellipe at dense points) is measured, written into the output, and asserted to be
+below the target.  The error is in units of the last place of the result (ulp of K or E).
+
+Usage: /usr/bin/python3 scripts/gen_ellint_coeffs.py [OUTDIR]   (default libicshadow/src)
+Running it again must reproduce the checked-in files byte for byte.
+"""
+import os
+import sys
+from fractions import Fraction
+
+import mpmath
+from mpmath import mp, mpf
+
+mp.prec = 256
+
+X0_LOG2 = -5          # log region is 0 < x < X0 = 2^-5 = 1/32
+X0 = mpf(2) ** X0_LOG2
+S = 3                 # 2^S pieces per binade
+NLOG = 7              # degree of Pa, Pb, Pc, Pd
+NK = 10               # degree of Pk (pieces)
+NE = 9                # degree of Pe (pieces)
+TARGET_ULP = 0.02     # approximation error target per table (ulp of the result)
+NSERIES = 400
+
+
+def ulp_of(v):
+    """ulp of the double nearest to v (v > 0 normal)."""
+    e = mpmath.floor(mpmath.log(abs(v), 2))
+    return mpf(2) ** (int(e) - 52)
+
+
+def d(v):
+    """nearest double"""
+    return float(v)
+
+
+# ---------------------------------------------------------------- exact series coefficients
+def series_coeffs(n_terms):
+    a, b, c, dd = [], [], [], []
+    an = Fraction(1)          # ((1/2)_n/n!)^2
+    poch_half = Fraction(1)   # (1/2)_n
+    poch_3half = Fraction(1)  # (3/2)_n
+    poch_2 = Fraction(1)      # (2)_n
+    fact = Fraction(1)        # n!
+    dn = Fraction(0)          # d_n - d_0
+    for n in range(n_terms):
+        if n > 0:
+            poch_half *= Fraction(2 * n - 1, 2)
+            poch_3half *= Fraction(2 * n + 1, 2)
+            poch_2 *= n + 1
+            fact *= n
+            dn += Fraction(1, n) - Fraction(2, 2 * n - 1)
+        an = (poch_half / fact) ** 2
+        cn = Fraction(1, 2) * poch_half * poch_3half / (poch_2 * fact)
+        a.append(an)
+        b.append(an * dn)
+        c.append(cn)
+        dd.append(cn * (dn - Fraction(1, (2 * n + 1) * (2 * n + 2))))
+    return a, b, c, dd
+
+
+A_Q, B_Q, C_Q, D_Q = series_coeffs(NSERIES)
+A_M = [mpf(q.numerator) / q.denominator for q in A_Q]
+B_M = [mpf(q.numerator) / q.denominator for q in B_Q]
+C_M = [mpf(q.numerator) / q.denominator for q in C_Q]
+D_M = [mpf(q.numerator) / q.denominator for q in D_Q]
+
+
+def pser(coeffs, x):
+    s = mpf(0)
+    for q in reversed(coeffs):
+        s = s * x + q
+    return s
+
+
+def fPa(x):
+    return pser(A_M[1:], x)
+
+
+def fPb(x):
+    return pser(B_M[1:], x)
+
+
+def fPc(x):
+    return pser(C_M[1:], x)
+
+
+def fPd(x):
+    return pser(D_M[1:], x)
+
+
+def _extra(x):
+    """working precision that keeps m = 1 - x exact for x >= 2^-1074"""
+    x = mpf(x)
+    return mp.prec + max(0, -int(mpmath.floor(mpmath.log(x, 2)))) + 16
+
+
+def Kx(x):
+    with mpmath.workprec(_extra(x)):
+        r = mpmath.ellipk(1 - mpf(x))
+    return +r
+
+
+def Ex(x):
+    with mpmath.workprec(_extra(x)):
+        r = mpmath.ellipe(1 - mpf(x))
+    return +r
+
+
+def check_series():
+    """The series formulas against mpmath's own K and E (independent algorithm)."""
+    worst = mpf(0)
+    for i in range(1, 41):
+        x = X0 * mpf(i) / 40 * mpf(0.999)
+        if i % 4 == 0:
+            x = mpf(2) ** (-7 * i)
+        L = mpmath.log(16 / x)
+        k = L / 2 * (1 + x * fPa(x)) + x * fPb(x)
+        e = 1 + x * ((L - 1) / 4 + x * (L / 2 * fPc(x) + fPd(x)))
+        rk = abs(k / Kx(x) - 1)
+        re = abs(e / Ex(x) - 1)
+        worst = max(worst, rk, re)
+    assert worst < mpf(2) ** -200, "series does not reproduce mpmath ellipk/ellipe: %s" % worst
+    return worst
+
+
+# ---------------------------------------------------------------- Chebyshev interpolation
+def cheb_fit(f, lo, hi, n):
+    """monomial coefficients (in the variable itself, not scaled) of the degree-n polynomial
+    interpolating f at the n+1 Chebyshev nodes of [lo, hi]"""
+    mid = (lo + hi) / 2
+    hw = (hi - lo) / 2
+    nodes = [mid + hw * mpmath.cospi((j + mpf(0.5)) / (n + 1)) for j in range(n + 1)]
+    V = mpmath.matrix(n + 1, n + 1)
+    y = mpmath.matrix(n + 1, 1)
+    for i, z in enumerate(nodes):
+        for j in range(n + 1):
+            V[i, j] = z ** j
+        y[i] = f(z)
+    sol = mpmath.lu_solve(V, y)
+    return [sol[j] for j in range(n + 1)]
+
+
+def peval(coeffs, x):
+    s = mpf(0)
+    for q in reversed(coeffs):
+        s = s * x + q
+    return s
+
+
+# ---------------------------------------------------------------- log region
+def log_tables():
+    pa = [d(v) for v in cheb_fit(fPa, mpf(0), X0, NLOG)]
+    pb = [d(v) for v in cheb_fit(fPb, mpf(0), X0, NLOG)]
+    pc = [d(v) for v in cheb_fit(fPc, mpf(0), X0, NLOG)]
+    pd = [d(v) for v in cheb_fit(fPd, mpf(0), X0, NLOG)]
+    errk = mpf(0)
+    erre = mpf(0)
+    npts = 400
+    for i in range(npts + 1):
+        x = X0 * mpf(i) / npts
+        if i == 0:
+            x = mpf(2) ** -1074
+        if i % 10 == 5:
+            x = X0 * mpf(2) ** (-i // 8)
+        L = mpmath.log(16 / x)
+        kt, et = Kx(x), Ex(x)
+        k = L / 2 * (1 + x * peval(pa, x)) + x * peval(pb, x)
+        e = 1 + x * ((L - 1) / 4 + x * (L / 2 * peval(pc, x) + peval(pd, x)))
+        errk = max(errk, abs(k - kt) / ulp_of(kt))
+        erre = max(erre, abs(e - et) / ulp_of(et))
+    assert errk < TARGET_ULP and erre < TARGET_ULP, (errk, erre)
+    return pa, pb, pc, pd, float(errk), float(erre)
+
+
+# ---------------------------------------------------------------- pieces
+def pieces():
+    out = []
+    errk_all = mpf(0)
+    erre_all = mpf(0)
+    for j in range(-X0_LOG2, 0, -1):          # binades [2^-j, 2^(1-j)), j = 4, 3, 2, 1
+        a = mpf(2) ** -j
+        w = a / 2 ** S
+        for s in range(2 ** S):
+            lo = a + s * w
+            hi = lo + w
+            c = (lo + hi) / 2
+            h = w / 2
+            kc, ec = Kx(c), Ex(c)
+            m = 1 - c
+            # derivatives in x (= -d/dm): dK/dm = (E - x K)/(2 m x), dE/dm = (E - K)/(2 m)
+            dk = -(ec - c * kc) / (2 * m * c)
+            de = -(ec - kc) / (2 * m)
+
+            def hk(t):
+                return dk if t == 0 else (Kx(c + t) - kc) / t
+
+            def he(t):
+                return de if t == 0 else (Ex(c + t) - ec) / t
+
+            pk = [d(v) for v in cheb_fit(hk, -h, h, NK)]
+            pe = [d(v) for v in cheb_fit(he, -h, h, NE)]
+            k0h = d(kc)
+            k0l = d(kc - mpf(k0h))
+            e0h = d(ec)
+            e0l = d(ec - mpf(e0h))
+            errk = mpf(0)
+            erre = mpf(0)
+            npts = 64
+            for i in range(npts + 1):
+                t = -h + 2 * h * mpf(i) / npts
+                kt, et = Kx(c + t), Ex(c + t)
+                k = mpf(k0h) + (mpf(k0l) + t * peval(pk, t))
+                e = mpf(e0h) + (mpf(e0l) + t * peval(pe, t))
+                errk = max(errk, abs(k - kt) / ulp_of(kt))
+                erre = max(erre, abs(e - et) / ulp_of(et))
+            errk_all = max(errk_all, errk)
+            erre_all = max(erre_all, erre)
+            out.append((d(c), k0h, k0l, pk, e0h, e0l, pe))
+    assert errk_all < TARGET_ULP and erre_all < TARGET_ULP, (errk_all, erre_all)
+    return out, float(errk_all), float(erre_all)
+
+
+def hexs(v):
+    return float(v).hex()
+
+
+def main():
+    outdir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
+        os.path.dirname(os.path.abspath(__file__)), "..", "libicshadow", "src")
+    serr = check_series()
+    pa, pb, pc, pd, lek, lee = log_tables()
+    pcs, pek, pee = pieces()
+    npieces = len(pcs)
+    cmd = "/usr/bin/python3 scripts/gen_ellint_coeffs.py"
+    stamp = ("generated by scripts/gen_ellint_coeffs.py - do not edit.\n"
+             " * Command: %s   (mpmath %s, %d-bit arithmetic)" % (cmd, mpmath.__version__, mp.prec))
+
+    h = []
+    h.append("/* ellint_data.h - coefficient tables for ellint.c: %s */" % stamp)
+    h.append("#ifndef ICS_ELLINT_DATA_H")
+    h.append("#define ICS_ELLINT_DATA_H")
+    h.append("")
+    h.append("#define ICS_ELLINT_X0 0x1p%d /* log series below x = m1 = X0 */" % X0_LOG2)
+    h.append("#define ICS_ELLINT_X0_LOG2 (%d)" % X0_LOG2)
+    h.append("#define ICS_ELLINT_S %d /* 2^S pieces per binade of x in [X0, 1] */" % S)
+    h.append("#define ICS_ELLINT_NPIECES %d" % npieces)
+    h.append("#define ICS_ELLINT_NLOG %d /* degree of Pa, Pb, Pc, Pd */" % NLOG)
+    h.append("#define ICS_ELLINT_NK %d /* degree of the K piece polynomials */" % NK)
+    h.append("#define ICS_ELLINT_NE %d /* degree of the E piece polynomials */" % NE)
+    h.append("")
+    h.append("/* Log region 0 < x < X0, L = ln(16/x):")
+    h.append(" *   K = (L/2)(1 + x Pa(x)) + x Pb(x),   E = 1 + x ((L - 1)/4 + x ((L/2) Pc(x) + Pd(x))).")
+    h.append(" * Coefficients in increasing degree. */")
+    h.append("struct ics_ellint_log_table {")
+    h.append("  double pa[ICS_ELLINT_NLOG + 1], pb[ICS_ELLINT_NLOG + 1];")
+    h.append("  double pc[ICS_ELLINT_NLOG + 1], pd[ICS_ELLINT_NLOG + 1];")
+    h.append("};")
+    h.append("")
+    h.append("/* Piece i covers x in [c - w/2, c + w/2]; t = x - c:")
+    h.append(" *   K = k0h + (k0l + t Pk(t)),   E = e0h + (e0l + t Pe(t)). */")
+    h.append("struct ics_ellint_piece {")
+    h.append("  double c, k0h, k0l, e0h, e0l;")
+    h.append("  double pk[ICS_ELLINT_NK + 1];")
+    h.append("  double pe[ICS_ELLINT_NE + 1];")
+    h.append("};")
+    h.append("struct ics_ellint_piece_table {")
+    h.append("  struct ics_ellint_piece p[ICS_ELLINT_NPIECES];")
+    h.append("};")
+    h.append("")
+    h.append("extern const struct ics_ellint_log_table ics_ellint_log;")
+    h.append("extern const struct ics_ellint_piece_table ics_ellint_pieces;")
+    h.append("")
+    h.append("#endif")
+    htext = "\n".join(h) + "\n"
+
+    c = []
+    c.append("/* ellint_data.c - coefficient tables for ellint.c: %s" % stamp)
+    c.append(" * Maximum approximation error (double coefficients evaluated exactly, against mpmath")
+    c.append(" * ellipk/ellipe at dense points), in ulps of the result; the rounding errors of the")
+    c.append(" * double evaluation come on top and are measured by tests/test_ellint.c:")
+    c.append(" *   ics_ellint_log    (x in (0, 2^%d], degree %d):  K %.4f ulp, E %.4f ulp"
+             % (X0_LOG2, NLOG, lek, lee))
+    c.append(" *   ics_ellint_pieces (x in [2^%d, 1], %d pieces, degree %d/%d):  K %.4f ulp, E %.4f ulp"
+             % (X0_LOG2, npieces, NK, NE, pek, pee))
+    c.append(" * Series check (DLMF 19.12.1/2 vs mpmath ellipk/ellipe, 40 points): rel. diff %.2e"
+             % float(serr))
+    c.append(" */")
+    c.append('#include "ellint_data.h"')
+    c.append("")
+    c.append("const struct ics_ellint_log_table ics_ellint_log = {")
+    for name, arr in (("pa", pa), ("pb", pb), ("pc", pc), ("pd", pd)):
+        c.append("  .%s = {" % name)
+        for v in arr:
+            c.append("    %s," % hexs(v))
+        c.append("  },")
+    c.append("};")
+    c.append("")
+    c.append("const struct ics_ellint_piece_table ics_ellint_pieces = {.p = {")
+    for (cc, k0h, k0l, pk, e0h, e0l, pe) in pcs:
+        c.append("  {.c = %s, /* %.17g */" % (hexs(cc), cc))
+        c.append("   .k0h = %s, .k0l = %s," % (hexs(k0h), hexs(k0l)))
+        c.append("   .e0h = %s, .e0l = %s," % (hexs(e0h), hexs(e0l)))
+        c.append("   .pk = {%s}," % ", ".join(hexs(v) for v in pk))
+        c.append("   .pe = {%s}}," % ", ".join(hexs(v) for v in pe))
+    c.append("}};")
+    ctext = "\n".join(c) + "\n"
+
+    with open(os.path.join(outdir, "ellint_data.h"), "w") as f:
+        f.write(htext)
+    with open(os.path.join(outdir, "ellint_data.c"), "w") as f:
+        f.write(ctext)
+    print("log table: K %.4f ulp, E %.4f ulp; pieces: K %.4f ulp, E %.4f ulp" % (lek, lee, pek, pee))
+
+
+if __name__ == "__main__":
+    main()
