@@ -1,0 +1,324 @@
+/* ellipse.c — variances of points uniform in arc length on an ellipse, and the N-sample
+ * elliptical kernel (Patel et al. 2013, Sec. 3.4 and Appendix A.7). See docs/ellipse.md.
+ *
+ * CONVENTION (settled, see docs/ellipse.md): in Patel's Appendix A.7
+ *   var_x(b) = (2b^2 - 1 - b^2 K(.)/E(.)) / (3b^2 - 3),  argument sqrt(1 - b^2),
+ * sqrt(1 - b^2) is the MODULUS k, i.e. the parameter is m = k^2 = 1 - b^2 (complementary
+ * parameter m1 = b^2). Direct quadrature of the arc-length density agrees to the last digit with
+ * that reading and disagrees already in the 3rd digit with m = sqrt(1 - b^2); for b > 1 the same
+ * formula holds with the negative parameter m = 1 - b^2 (tests/test_ellipse.c checks all three).
+ *
+ * METHOD. For an ellipse with major radius A and minor radius beta A (0 <= beta <= 1), parameter
+ * m = 1 - beta^2, write K = B + D and E = B + beta^2 D with the (cancellation-free, positive)
+ *   B(m) = int_0^{pi/2} cos^2 / Delta,  D(m) = int_0^{pi/2} sin^2 / Delta,  Delta = sqrt(1-m sin^2).
+ * Then, with rho = beta^2 D / B in [0, 1] (rho = 0 for a segment, 1 for a circle),
+ *   variance along the major axis  = A^2     (1 + 2 rho) / (3 (1 + rho)) = A^2     (1/3 + w),
+ *   variance along the minor axis  = (beta A)^2 (2 + rho) / (3 (1 + rho)) = (beta A)^2 (2/3 - w),
+ *   w = rho / (3 (1 + rho)) in [0, 1/6].
+ * This is Patel's formula rearranged: no 0/0 at b = 1, no cancellation as b -> 1, and b > 1 is
+ * the same function with the axes swapped (var_x(b) = 2/3 - w(1/b) for b > 1, so var_x -> 2/3 as
+ * b -> inf, not 0: the x-radius stays 1 while the ellipse becomes a segment along y).
+ * rho needs no K at all: with S = D/K = 1/2 + p and T = B/K = 1/2 - p,
+ *   p = sum_{n>=1} 2^(n-1) r_n,  r_n = c_n^2 / (1 - beta^2)   (Gauss AGM: a_0 = 1, b_0 = beta,
+ *   c_1 = (1 - beta)/2, c_{n+1} = c_n^2 / (4 a_{n+1}), so r_1 = (1-beta)/(4(1+beta)) and
+ *   r_{n+1} = r_n (c_n / (4 a_{n+1}))^2: products only, all terms positive, no 1 - beta^2 formed,
+ *   exact at beta = 1 where r_1 = 0). With X, Y the squared major and minor radii (double-double,
+ *   never rounding beta = sqrt(Y/X)):  w = Y S / (3 (X T + Y S)), every term positive.
+ *   T = 1/2 - p is exact while p <= 1/4; beyond (beta small) T = (1 + 3 beta)/(4 (1 + beta)) -
+ *   sum_{n>=2} cancels by ~log2 K bits, but there rho ~ beta^2 K is small and the results'
+ *   sensitivity to rho is at most 1/3, so the loss does not show (measured, below).
+ *   V_x(t): unit ellipse a = 1 - t, b = t. For t <= 1/2 the x axis is the major one (beta =
+ *   t/(1-t), X = (1-t)^2, Y = t^2), for t > 1/2 the minor one (beta = (1-t)/t, 1 - t exact).
+ *   V_y is the same with the roles swapped, so V_y(t) = t^2 (2/3 - w) for small t is accurate
+ *   down to t ~ 1e-154 (below, the square is taken on the mantissa and the exponent applied last)
+ *   and never forms 1 - t on the small side. (1 - t)^2, t^2, w, 1/3 + w and 2/3 - w are kept in
+ *   double-double; each result is rounded once at the end.
+ *   ratio(t) = Y (2/3 - w) / (X (1/3 + w)) (for t > 1/2 with the roles swapped: ratio(1 - t) =
+ *   1/ratio(t) holds by construction).
+ *   ratio_to_t(r): r < 1 solves beta^2 g(beta) = r, g = (2/3 - w)/(1/3 + w) in [1, 2], by secant
+ *   iteration on the residual of the contraction beta = sqrt(r / g(beta)), one polishing step and
+ *   a double-double Newton correction of the square root; t = beta/(1 + beta) in double-double.
+ *   r > 1 solves the mirrored problem for beta' = (1 - t)/t with 1/r: t = 1/(1 + beta').
+ *   r < 2^-600: t = sqrt(r/2) (rho < 2^-590 is negligible), by exact power-of-2 scaling so that
+ *   subnormal r keep all their bits; r > 2^600: t = 1 (1 - t < 2^-300).
+ * SWITCH POINTS: b = 1 (var_x: x axis major below, minor above), t = 1/2 (V_x, V_y, ratio),
+ *   p = 1/4 (T formula, beta ~ 0.24), r = 1 and r = 2^-600 / 2^600 (ratio_to_t); t = 2^-480 (the
+ *   scaled square). Both sides of each are tested.
+ * ACCURACY (max error against Patel's closed form in MPFR at 320 bits, tests/test_ellipse.c,
+ *   which asserts these same numbers; worst inputs in docs/ellipse.md):
+ *   ics_ellipse_varx        <= 0.75 ulp    ics_ellipse_vx      <= 0.75 ulp
+ *   ics_ellipse_vy          <= 0.75 ulp    ics_ellipse_ratio   <= 1.0 ulp
+ *   ics_ellipse_ratio_to_t  <= 1.0 ulp     (ulp floored at 2^-1074 for subnormal results)
+ *
+ * KERNEL: t, scale and radii as in Patel Sec. 3.4 but with the roles of x and y swapped when
+ * vary > varx (so the minor radius keeps full relative accuracy for ratios up to 1e300 either
+ * way); taps are placed at equal arc-length fractions by inverting the incomplete elliptic integral
+ * of the second kind (Carlson R_F/R_D, Newton + bisection), ~1e-15 relative. */
+#include "icshadow/ellipse.h"
+
+#include <float.h>
+#include <math.h>
+#include <stddef.h>
+
+/* ---- double-double helpers ---------------------------------------------------------------- */
+typedef struct {
+  double hi, lo;
+} dd;
+
+static dd dd_two_sum(double a, double b) {
+  dd r;
+  r.hi = a + b;
+  double bb = r.hi - a;
+  r.lo = (a - (r.hi - bb)) + (b - bb);
+  return r;
+}
+
+static dd dd_sqr(double a) { /* exact a^2 */
+  dd r;
+  r.hi = a * a;
+  r.lo = fma(a, a, -r.hi);
+  return r;
+}
+
+static dd dd_mul(dd a, dd b) {
+  dd r;
+  double p = a.hi * b.hi;
+  double e = fma(a.hi, b.hi, -p);
+  e += a.hi * b.lo + a.lo * b.hi;
+  r.hi = p + e;
+  r.lo = e - (r.hi - p);
+  return r;
+}
+
+static double dd_div_d(dd a, dd b) { /* (a.hi + a.lo) / (b.hi + b.lo), one final rounding */
+  double q = a.hi / b.hi;
+  double r = fma(-q, b.hi, a.hi); /* exact remainder */
+  r += a.lo - q * b.lo;
+  return q + r / b.hi;
+}
+
+static dd dd_div_dd(dd a, dd b) { /* quotient to ~2^-100 relative */
+  double q = a.hi / b.hi;
+  double r = fma(-q, b.hi, a.hi);
+  r += a.lo - q * b.lo;
+  return dd_two_sum(q, r / b.hi);
+}
+
+/* 1/3 and 2/3 as double-double */
+static const double THIRD_HI = 0x1.5555555555555p-2, THIRD_LO = 0x1.5555555555555p-56;
+static const double TWO3_HI = 0x1.5555555555555p-1, TWO3_LO = 0x1.5555555555555p-55;
+
+static dd dd_add(dd a, dd b) {
+  dd s = dd_two_sum(a.hi, b.hi);
+  s.lo += a.lo + b.lo;
+  return dd_two_sum(s.hi, s.lo);
+}
+
+/* ---- the core: w = rho / (3 (1 + rho)), rho = beta^2 D/B ------------------------------------
+ * beta in [0, 1] is minor/major radius; dm = 1 - beta and sp = 1 + beta are passed in (callers
+ * form them more accurately than from the rounded beta). X and Y are the squared major and
+ * minor radii (any common scale, double-double), so that Y/X = beta^2 without rounding beta:
+ *   w = Y S / (3 (X T + Y S)),  S = D/K = 1/2 + p,  T = B/K = 1/2 - p,
+ * every term positive. p = sum_{n>=1} 2^(n-1) r_n from the AGM (see the file header). */
+static dd ellipse_w(double beta, double dm, double sp, dd X, dd Y) {
+  if (beta == 0.0 || Y.hi == 0.0) return (dd){0.0, 0.0};
+  double r1 = dm / (4.0 * sp); /* r_1 = c_1^2 / (1 - beta^2), c_1 = (1 - beta)/2 */
+  double sum = 0.0;            /* sum_{n>=2} 2^(n-1) r_n */
+  if (dm != 0.0) {
+    double a = 0.5 * sp;  /* a_1 */
+    double b = sqrt(beta); /* b_1 = sqrt(a_0 b_0) */
+    double c = 0.5 * dm;  /* c_1 */
+    double r = r1, pw = 1.0;
+    for (int n = 1; n < 64; n++) {
+      double an = 0.5 * (a + b); /* a_{n+1} */
+      double q = c / (4.0 * an);
+      double cn = c * q; /* c_{n+1} = c_n^2 / (4 a_{n+1}) */
+      r = r * q * q;     /* r_{n+1} = r_n (c_n / (4 a_{n+1}))^2 */
+      pw *= 2.0;
+      double term = pw * r;
+      sum += term;
+      if (term <= 0x1p-70 * sum || term == 0.0) break;
+      b = sqrt(a * b);
+      a = an;
+      c = cn;
+    }
+  }
+  double p = r1 + sum;
+  dd S = dd_two_sum(0.5, p);
+  dd T;
+  if (p <= 0.25) {
+    T = dd_two_sum(0.5, -p);
+  } else { /* beta small: T = 1/2 - r_1 - sum = (1 + 3 beta)/(4 (1 + beta)) - sum, rho small */
+    dd num = {3.0 * beta, fma(3.0, beta, -3.0 * beta)};
+    num = dd_add((dd){1.0, 0.0}, num);
+    T = dd_add(dd_div_dd(num, (dd){4.0 * sp, 0.0}), (dd){-sum, 0.0});
+  }
+  dd ys = dd_mul(Y, S);
+  dd den = dd_add(dd_mul(X, T), ys);
+  double h3 = 3.0 * den.hi; /* times 3 in double-double (3 den.hi is not exact) */
+  den = dd_two_sum(h3, fma(3.0, den.hi, -h3) + 3.0 * den.lo);
+  return dd_div_dd(ys, den);
+}
+
+/* 1/3 + w and 2/3 - w in double-double */
+static dd third_plus(dd w) { return dd_add((dd){THIRD_HI, THIRD_LO}, w); }
+static dd two3_minus(dd w) { return dd_add((dd){TWO3_HI, TWO3_LO}, (dd){-w.hi, -w.lo}); }
+
+/* (1 - t)^2 exactly enough as double-double, t in [0, 1] */
+static dd one_minus_sq(double t) {
+  double h = 1.0 - t;
+  double l = (1.0 - h) - t; /* exact: 1 - t = h + l */
+  dd s = dd_sqr(h);
+  s.lo += 2.0 * h * l;
+  return dd_two_sum(s.hi, s.lo);
+}
+
+/* Parameters of the unit ellipse (1 - t, t), t in [0, 1/2]: beta = t / (1 - t). */
+static dd unit_w_small(double t) {
+  double om = 1.0 - t;
+  return ellipse_w(t / om, (1.0 - 2.0 * t) / om, 1.0 / om, one_minus_sq(t), dd_sqr(t));
+}
+/* t in [1/2, 1]: beta = (1 - t)/t, 1 - t exact. */
+static dd unit_w_large(double t) {
+  double u = 1.0 - t;
+  return ellipse_w(u / t, (2.0 * t - 1.0) / t, 1.0 / t, dd_sqr(t), dd_sqr(u));
+}
+
+double ics_ellipse_varx(double b) {
+  if (isnan(b) || b < 0.0) return NAN;
+  if (b == 0.0) return THIRD_HI;
+  if (isinf(b)) return TWO3_HI;
+  if (b <= 1.0) {
+    dd one = {1.0, 0.0};
+    dd w = ellipse_w(b, 1.0 - b, 1.0 + b, one, dd_sqr(b));
+    dd v = third_plus(w);
+    return v.hi + v.lo;
+  }
+  dd one = {1.0, 0.0};
+  double bi = 1.0 / b;
+  dd w = b < 0x1p500 ? ellipse_w(bi, (b - 1.0) / b, (b + 1.0) / b, dd_sqr(b), one)
+                         : ellipse_w(bi, 1.0 - bi, 1.0 + bi, one, dd_sqr(bi));
+  dd v = two3_minus(w);
+  return v.hi + v.lo;
+}
+
+double ics_ellipse_vx(double t) {
+  if (isnan(t) || t < 0.0 || t > 1.0) return NAN;
+  if (t == 1.0) return 0.0;
+  if (t <= 0.5) {
+    dd v = dd_mul(one_minus_sq(t), third_plus(unit_w_small(t)));
+    return v.hi + v.lo;
+  }
+  double u = 1.0 - t;
+  dd v = dd_mul(dd_sqr(u), two3_minus(unit_w_large(t)));
+  return v.hi + v.lo;
+}
+
+/* t^2 * f for f in double-double. Below t = 2^-480 the square is formed on the mantissa of t
+ * and the exponent applied last, so every normal result is rounded once (subnormal results
+ * twice: <= 1 ulp of 2^-1074). */
+static double sq_times(double t, dd f) {
+  if (t >= 0x1p-480) {
+    dd v = dd_mul(dd_sqr(t), f);
+    return v.hi + v.lo;
+  }
+  int e;
+  double m = frexp(t, &e);
+  dd v = dd_mul(dd_sqr(m), f);
+  return ldexp(v.hi + v.lo, 2 * e);
+}
+
+double ics_ellipse_vy(double t) {
+  if (isnan(t) || t < 0.0 || t > 1.0) return NAN;
+  if (t == 0.0) return 0.0;
+  if (t <= 0.5) return sq_times(t, two3_minus(unit_w_small(t)));
+  dd v = dd_mul(dd_sqr(t), third_plus(unit_w_large(t)));
+  return v.hi + v.lo;
+}
+
+double ics_ellipse_ratio(double t) {
+  if (isnan(t) || t < 0.0 || t > 1.0) return NAN;
+  if (t == 0.0) return 0.0;
+  if (t == 1.0) return INFINITY;
+  if (t <= 0.5) {
+    dd w = unit_w_small(t);
+    dd g_num = two3_minus(w), g_den = third_plus(w);
+    if (t < 0x1p-480) { /* 1 - t rounds to 1 (relative 2^-479): ratio = t^2 g, t^2 may underflow */
+      return sq_times(t, dd_div_dd(g_num, g_den));
+    }
+    return dd_div_d(dd_mul(dd_sqr(t), g_num), dd_mul(one_minus_sq(t), g_den));
+  }
+  dd w = unit_w_large(t);
+  double u = 1.0 - t;
+  return dd_div_d(dd_mul(dd_sqr(t), third_plus(w)), dd_mul(dd_sqr(u), two3_minus(w)));
+}
+
+/* g(beta) = (2/3 - w)/(1/3 + w) */
+static dd g_of_beta(double beta) {
+  dd one = {1.0, 0.0};
+  dd w = ellipse_w(beta, 1.0 - beta, 1.0 + beta, one, dd_sqr(beta));
+  return dd_div_dd(two3_minus(w), third_plus(w));
+}
+
+/* Solve beta^2 g(beta) = r for beta in (0, 1], r = fr 2^(2 e2) <= 1 (fr in [1/4, 1)):
+ * secant iteration on the residual of the contraction beta = G(beta) = sqrt(r / g(beta)),
+ * then one polishing step G and a Newton correction of the square root in double-double
+ * (so the result's error is that of g alone, halved). */
+static dd solve_beta(double fr, int e2) {
+  dd gl;
+#define G_OF(bt) (gl = g_of_beta(bt), ldexp(sqrt(fr / gl.hi), e2))
+  double x0 = ldexp(sqrt(fr * 0.5), e2);
+  if (x0 > 1.0) x0 = 1.0;
+  double x1 = G_OF(x0);
+  if (x1 > 1.0) x1 = 1.0;
+  double f0 = x1 - x0;
+  double f1 = G_OF(x1) - x1;
+  for (int it = 0; it < 60 && f1 != 0.0 && f1 != f0; it++) {
+    double x2 = x1 - f1 * (x1 - x0) / (f1 - f0);
+    if (!(x2 > 0.0)) x2 = 0.5 * x1;
+    if (x2 > 1.0) x2 = 1.0;
+    x0 = x1;
+    f0 = f1;
+    x1 = x2;
+    f1 = G_OF(x1) - x1;
+    if (fabs(x1 - x0) <= 0x1p-60 * x1) break;
+  }
+  double y = G_OF(x1); /* y ~ sqrt(r / g), g = gl */
+#undef G_OF
+  /* Newton for the square root on the scaled mantissas: ys^2 gl = fr, ys = y 2^-e2 */
+  double ys = ldexp(y, -e2);
+  dd y2 = dd_sqr(ys);
+  dd y2g = dd_mul(y2, gl);
+  double res = (fr - y2g.hi) - y2g.lo; /* fr - y2g.hi is exact (Sterbenz) near the root */
+  double corr = res / (2.0 * ys * gl.hi);
+  dd beta = dd_two_sum(ys, corr);
+  beta.hi = ldexp(beta.hi, e2);
+  beta.lo = ldexp(beta.lo, e2);
+  if (beta.hi >= 1.0) beta = (dd){1.0, 0.0};
+  return beta;
+}
+
+double ics_ellipse_ratio_to_t(double rat) {
+  if (isnan(rat) || rat < 0.0) return NAN;
+  if (rat == 0.0) return 0.0;
+  if (isinf(rat)) return 1.0;
+  if (rat == 1.0) return 0.5;
+  if (rat > 0x1p600) return 1.0; /* 1 - t < 2^-300 */
+  int inverse = rat > 1.0;
+  /* r > 1: beta' = (1 - t)/t solves beta'^2 g(beta') = 1/r (ratio(1 - t) = 1/ratio(t)) */
+  double r = inverse ? 1.0 / rat : rat;
+  int e;
+  double fr = frexp(r, &e); /* r = fr 2^e, fr in [1/2, 1) */
+  if (e & 1) {
+    fr *= 0.5;
+    e += 1;
+  }
+  if (r < 0x1p-600) /* beta = sqrt(r/2) (rho < 2^-590), t = beta/(1 + beta) = beta */
+    return ldexp(sqrt(fr * 0.5), e / 2);
+  dd beta = solve_beta(fr, e / 2);
+  dd den = dd_two_sum(1.0, beta.hi);
+  den.lo += beta.lo;
+  den = dd_two_sum(den.hi, den.lo);
+  if (inverse) return dd_div_d((dd){1.0, 0.0}, den); /* t = 1 / (1 + beta') */
+  return dd_div_d(beta, den);                          /* t = beta / (1 + beta) */
+}
