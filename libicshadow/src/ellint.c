@@ -24,11 +24,12 @@
  *     because K's derivative grows like 1/x.
  *  3. m < 0 (m1 > 1): imaginary-modulus transformation (DLMF 19.7.5 / A&S 17.4.17-18)
  *       K(m) = K(m') / sqrt(m1),   E(m) = sqrt(m1) E(m'),   m' = m/(m - 1), 1 - m' = 1/m1,
- *     done in double-double: m1 = 1 - m exactly (two-sum), 1/m1, sqrt(m1), the quotient and the
- *     product (Dekker/Veltkamp products, or fma() where the target has a fast one).  When
- *     1/m1 < X0 the log series takes L = ln(16 m1) straight from m1 (no 1/m1 rounding);
- *     above m1 = 2^512 the square-root correction is computed on a scaled copy (no overflow),
- *     so m down to -DBL_MAX works.
+ *     done in double-double: m1 = 1 - m exactly (two-sum), x' = 1/m1 (one division, then a
+ *     Newton correction), sqrt(x') = 1/sqrt(m1) and sqrt(m1), and the two final products
+ *     (Dekker/Veltkamp products, or fma() where the target has a fast one).  When x' < X0 the
+ *     log series takes L = ln(16 m1) straight from m1 (no rounding of 1/m1 inside the log);
+ *     above m1 = 2^512 the square roots are taken of m1 2^-600 (exact scaling: no overflow,
+ *     no subnormal 1/m1), so m down to -DBL_MAX works.
  *
  * ERROR BOUND (measured against a 320-bit MPFR AGM, tests/test_ellint.c; docs/ellint.md):
  *   K: 0.60 ulp,  E: 0.60 ulp  over the whole domain, for every entry point
@@ -52,6 +53,13 @@
 typedef struct {
   double hi, lo;
 } ics_dd;
+
+/* The routes are specialised per entry point (K only, E only, both): force inlining. */
+#if defined(__GNUC__) || defined(__clang__)
+#define ICS_INLINE static inline __attribute__((always_inline))
+#else
+#define ICS_INLINE static inline
+#endif
 
 /* ---- error-free transformations ------------------------------------------------------- */
 static inline ics_dd fast_two_sum(double a, double b) { /* |a| >= |b| or a == 0 */
@@ -84,6 +92,19 @@ static inline ics_dd two_prod(double a, double b) { /* |a|, |b| < 2^995 */
   return r;
 }
 
+static inline ics_dd two_sqr(double a) { /* |a| < 2^995 */
+  ics_dd r;
+  r.hi = a * a;
+#ifdef FP_FAST_FMA
+  r.lo = fma(a, a, -r.hi);
+#else
+  double ca = 134217729.0 * a;
+  double ah = ca - (ca - a), al = a - ah;
+  r.lo = ((ah * ah - r.hi) + 2.0 * ah * al) + al * al;
+#endif
+  return r;
+}
+
 /* ---- small helpers --------------------------------------------------------------------- */
 static inline uint64_t as_u64(double x) {
   uint64_t u;
@@ -112,42 +133,60 @@ static inline double split_log2(double x, int *k) {
   return as_f64(u - ((uint64_t)(int64_t)e << 52));
 }
 
-static inline double horner(const double *p, int n, double t) {
-  double s = p[n];
-  for (int i = n - 1; i >= 0; i--) s = s * t + p[i];
-  return s;
+/* Estrin's scheme (shorter dependency chains than Horner; n is a compile-time constant). */
+static inline double poly(const double *p, int n, double t) {
+  double t2 = t * t, t4 = t2 * t2;
+  double a = (p[0] + p[1] * t) + t2 * (p[2] + p[3] * t);
+  double b = (p[4] + p[5] * t) + t2 * (p[6] + (n >= 7 ? p[7] * t : 0.0));
+  if (n <= 7) return a + t4 * b;
+  double c = n == 8 ? p[8] : n == 9 ? p[8] + p[9] * t : (p[8] + p[9] * t) + t2 * p[10];
+  return a + t4 * (b + t4 * c);
 }
 
-/* L = ln(16/x) (sign = -1) or ln(16 x) (sign = +1), as a double-double; x > 0 finite.
- * xl is a small correction to x (x + xl), used only for sign = +1. */
-static inline ics_dd ln16(double x, double xl, int sign) {
+/* L = ln(16/x) as a double-double; x > 0 finite. */
+static inline ics_dd ln16_over(double x) {
   int k;
   double f = split_log2(x, &k);
-  double n = 4.0 + sign * k;
-  double lo = n * LN2_LO + sign * (log(f) + xl / x);
-  return fast_two_sum(n * LN2_HI, lo);
+  double n = 4.0 - k;
+  return fast_two_sum(n * LN2_HI, n * LN2_LO - log(f));
+}
+
+/* L = ln(16 (x + xl)) as a double-double; x > 1 finite, |xl| <= ulp(x)/2, xinv ~ 1/x. */
+static inline ics_dd ln16_times(double x, double xl, double xinv) {
+  int k;
+  double f = split_log2(x, &k);
+  double n = 4.0 + k;
+  return fast_two_sum(n * LN2_HI, n * LN2_LO + (log(f) + xl * xinv));
 }
 
 /* ---- the two approximations in x = complementary parameter ----------------------------- */
-/* Log region, 0 < x < X0, L = ln(16/x) (or ln(16 m1) for the transformed argument). */
+/* Log region, 0 < x < X0, L = ln(16/x) (or ln(16 m1) for the transformed argument).
+ * log_k, log_e, piece_k, piece_e return {leading term, correction}: the leading term is exact
+ * (a table double or L_hi/2 or 1), the correction is at most 4 % of the result, and the caller
+ * adds them in one final rounding (or keeps them apart for the m < 0 products). */
 /* The argument is x + xl (xl = 0 except for the transformed argument 1/m1 of m < 0). */
+/* The polynomials get xp = 0 below 2^-64 (their x-dependence is then far below an ulp): this
+ * keeps x^8 in Estrin's scheme from going subnormal, which is very slow on x86. */
+static inline double poly_arg(double x) { return x > 0x1p-64 ? x : 0.0; }
+
 static inline ics_dd log_k(double x, double xl, ics_dd L) {
   const struct ics_ellint_log_table *T = &ics_ellint_log;
-  double hl = 0.5 * L.hi;
-  double corr = 0.5 * L.lo + x * (hl * horner(T->pa, ICS_ELLINT_NLOG, x) +
-                                  horner(T->pb, ICS_ELLINT_NLOG, x));
+  double hl = 0.5 * L.hi, xp = poly_arg(x);
+  double corr = 0.5 * L.lo + x * (hl * poly(T->pa, ICS_ELLINT_NLOG, xp) +
+                                  poly(T->pb, ICS_ELLINT_NLOG, xp));
   corr += xl * (0.125 * L.hi - 0.25); /* first-order term of the xl correction */
-  return fast_two_sum(hl, corr);
+  return (ics_dd){hl, corr};
 }
 
 /* E = 1 + x ((L - 1)/4 + x ((L/2) Pc(x) + Pd(x))); (L_hi - 1)/4 is exact (L_hi > 4). */
 static inline ics_dd log_e(double x, double xl, ics_dd L) {
   const struct ics_ellint_log_table *T = &ics_ellint_log;
-  double r = 0.25 * L.lo + x * (0.5 * L.hi * horner(T->pc, ICS_ELLINT_NLOG, x) +
-                                horner(T->pd, ICS_ELLINT_NLOG, x));
+  double xp = poly_arg(x);
+  double r = 0.25 * L.lo + x * (0.5 * L.hi * poly(T->pc, ICS_ELLINT_NLOG, xp) +
+                                poly(T->pd, ICS_ELLINT_NLOG, xp));
   double b = 0.25 * (L.hi - 1.0);
   double corr = x * (b + r) + xl * b;
-  return fast_two_sum(1.0, corr);
+  return (ics_dd){1.0, corr};
 }
 
 /* Piece index for x in [X0, 1]. */
@@ -160,40 +199,62 @@ static inline const struct ics_ellint_piece *piece_of(double x) {
 }
 
 static inline ics_dd piece_k(const struct ics_ellint_piece *P, double t) {
-  return fast_two_sum(P->k0h, P->k0l + t * horner(P->pk, ICS_ELLINT_NK, t));
+  return (ics_dd){P->k0h, P->k0l + t * poly(P->pk, ICS_ELLINT_NK, t)};
 }
 
 static inline ics_dd piece_e(const struct ics_ellint_piece *P, double t) {
-  return fast_two_sum(P->e0h, P->e0l + t * horner(P->pe, ICS_ELLINT_NE, t));
+  return (ics_dd){P->e0h, P->e0l + t * poly(P->pe, ICS_ELLINT_NE, t)};
 }
 
 /* ---- routes ---------------------------------------------------------------------------- */
 /* 0 <= m < 1, x = 1 - m; from_m: t is formed from m (x may be rounded), else x is exact. */
-static inline void route_pos(double x, double m, int from_m, int wk, int we, double *K,
+ICS_INLINE void route_pos(double x, double m, int from_m, int wk, int we, double *K,
                              double *E) {
   if (x < ICS_ELLINT_X0) {
-    ics_dd L = ln16(x, 0.0, -1);
-    if (wk) *K = log_k(x, 0.0, L).hi;
-    if (we) *E = log_e(x, 0.0, L).hi;
+    ics_dd L = ln16_over(x);
+    if (wk) {
+      ics_dd k = log_k(x, 0.0, L);
+      *K = k.hi + k.lo;
+    }
+    if (we) {
+      ics_dd e = log_e(x, 0.0, L);
+      *E = e.hi + e.lo;
+    }
   } else {
     const struct ics_ellint_piece *P = piece_of(x);
     double t = from_m ? (1.0 - P->c) - m : x - P->c;
-    if (wk) *K = piece_k(P, t).hi;
-    if (we) *E = piece_e(P, t).hi;
+    if (wk) {
+      ics_dd k = piece_k(P, t);
+      *K = k.hi + k.lo;
+    }
+    if (we) {
+      ics_dd e = piece_e(P, t);
+      *E = e.hi + e.lo;
+    }
   }
 }
 
-/* m < 0: m1 = m1h + m1l > 1 (double-double), finite. */
-static inline void route_neg(double m1h, double m1l, int wk, int we, double *K, double *E) {
+/* m < 0: m1 = m1h + m1l > 1 (double-double), finite.
+ * With x' = 1/m1 (the complementary parameter of m' = m/(m-1)) and r = sqrt(x') = 1/sqrt(m1):
+ *   K(m) = K(m') r,   E(m) = E(m') sqrt(m1),
+ * all as double-double products (no division but 1/m1).  Above m1 = 2^512 the square roots are
+ * taken of m1 2^-600 (exact scaling) so that no product overflows and 1/m1 stays normal. */
+ICS_INLINE void route_neg(double m1h, double m1l, int wk, int we, double *K, double *E) {
   ics_dd kt = {0, 0}, et = {0, 0};
-  double q = 1.0 / m1h, ql = 0.0; /* 1/m1 = q + ql */
-  if (m1h < 0x1p512) { /* else ql is far below an ulp of the result (and the split overflows) */
-    ics_dd p = two_prod(q, m1h);
-    double r = (1.0 - p.hi) - p.lo; /* exact: 1 - q m1h */
-    ql = q * (r - q * m1l);
+  double sc = 1.0, rsc = 1.0, ssc = 1.0;
+  if (m1h > 0x1p512) {
+    sc = 0x1p-600;
+    rsc = 0x1p-300;
+    ssc = 0x1p300;
   }
+  double ms = m1h * sc, mls = m1l * sc; /* exact */
+  double qs = 1.0 / ms;
+  ics_dd p = two_prod(qs, ms);
+  double qsl = qs * (((1.0 - p.hi) - p.lo) - qs * mls); /* 1/(ms + mls) = qs + qsl */
+  double q = qs * sc, ql = qsl * sc;                     /* x' = q + ql (exact scaling) */
+  double sh = sqrt(ms), rh = sh * qs; /* rh ~ 1/sqrt(ms) within 2 ulps: corrected below */
   if (q < ICS_ELLINT_X0) {
-    ics_dd L = ln16(m1h, m1l, +1);
+    ics_dd L = ln16_times(m1h, m1l, q);
     if (wk) kt = log_k(q, ql, L);
     if (we) et = log_e(q, ql, L);
   } else {
@@ -202,30 +263,23 @@ static inline void route_neg(double m1h, double m1l, int wk, int we, double *K, 
     if (wk) kt = piece_k(P, t);
     if (we) et = piece_e(P, t);
   }
-  /* s = sqrt(m1) as a double-double; scaled above 2^512 so that s^2 cannot overflow */
-  double sh = sqrt(m1h), ss = sh, ms = m1h, mls = m1l, back = 1.0;
-  if (m1h > 0x1p512) {
-    ss = sh * 0x1p-256;
-    ms = m1h * 0x1p-512;
-    mls = m1l * 0x1p-512;
-    back = 0x1p256;
+  if (wk) { /* r = sqrt(qs + qsl) = rh + rl;  K = kt r 2^-300 (or 1) */
+    ics_dd r2 = two_sqr(rh); /* one Newton step: rl absorbs rh's error and qsl */
+    double rl = (((qs - r2.hi) - r2.lo) + qsl) * (0.5 * sh);
+    ics_dd pk = two_prod(kt.hi, rh); /* kt.hi is the exact leading term, kt.lo < 1.2 % */
+    *K = (pk.hi + (pk.lo + (kt.hi * rl + kt.lo * rh))) * rsc;
   }
-  ics_dd s2 = two_prod(ss, ss);
-  double sl = (((ms - s2.hi) - s2.lo) + mls) / (2.0 * ss) * back;
-  if (wk) { /* K = kt / s */
-    double q1 = kt.hi / sh;
-    ics_dd p = two_prod(q1, sh);
-    double r = (((kt.hi - p.hi) - p.lo) + kt.lo) - q1 * sl;
-    *K = q1 + r / sh;
-  }
-  if (we) { /* E = et * s */
-    ics_dd p = two_prod(et.hi, sh);
-    *E = p.hi + (p.lo + (et.hi * sl + et.lo * sh));
+  if (we) { /* s = sqrt(ms + mls) = sh + sl;  E = et s 2^300 (or 1) */
+    et = fast_two_sum(et.hi, et.lo);
+    ics_dd s2 = two_sqr(sh);
+    double sl = (((ms - s2.hi) - s2.lo) + mls) * (0.5 * rh);
+    ics_dd pe = two_prod(et.hi, sh);
+    *E = (pe.hi + (pe.lo + (et.hi * sl + et.lo * sh))) * ssc;
   }
 }
 
 /* ---- public entry points ----------------------------------------------------------------- */
-static inline void ke_m(double m, int wk, int we, double *K, double *E) {
+ICS_INLINE void ke_m(double m, int wk, int we, double *K, double *E) {
   if (!(m < 1.0)) { /* m >= 1 or NaN */
     double k = (m == 1.0) ? INFINITY : NAN, e = (m == 1.0) ? 1.0 : NAN;
     if (wk) *K = k;
@@ -241,7 +295,7 @@ static inline void ke_m(double m, int wk, int we, double *K, double *E) {
   }
 }
 
-static inline void ke_m1(double m1, int wk, int we, double *K, double *E) {
+ICS_INLINE void ke_m1(double m1, int wk, int we, double *K, double *E) {
   if (!(m1 > 0.0)) { /* m1 <= 0 or NaN */
     double k = (m1 == 0.0) ? INFINITY : NAN, e = (m1 == 0.0) ? 1.0 : NAN;
     if (wk) *K = k;
