@@ -1,0 +1,12 @@
+# CLI tests for `icshadow eval`: help, domain handling, and bad input (line numbers, exit 2).
+set(ICS_CLI $<TARGET_FILE:icshadow_cli>)
+add_test(NAME cli_eval_help COMMAND ${ICS_CLI} eval --help)
+set_tests_properties(cli_eval_help PROPERTIES LABELS fast PASS_REGULAR_EXPRESSION "ratio_to_t")
+add_test(NAME cli_eval_unknown_function COMMAND ${ICS_CLI} eval no_such_function)
+set_tests_properties(cli_eval_unknown_function PROPERTIES LABELS fast WILL_FAIL ON)
+add_test(NAME cli_eval_bad_line COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/eval_bad_line.sh ${ICS_CLI})
+set_tests_properties(cli_eval_bad_line PROPERTIES LABELS fast)
+add_test(NAME cli_unknown_command COMMAND ${ICS_CLI} frobnicate)
+set_tests_properties(cli_unknown_command PROPERTIES LABELS fast WILL_FAIL ON)
+add_test(NAME cli_help COMMAND ${ICS_CLI} --help)
+set_tests_properties(cli_help PROPERTIES LABELS fast PASS_REGULAR_EXPRESSION "eval.*kernel.*lut")
