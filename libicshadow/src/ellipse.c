@@ -322,3 +322,182 @@ double ics_ellipse_ratio_to_t(double rat) {
   if (inverse) return dd_div_d((dd){1.0, 0.0}, den); /* t = 1 / (1 + beta') */
   return dd_div_d(beta, den);                          /* t = beta / (1 + beta) */
 }
+
+/* ==== the elliptical kernel ================================================================= */
+
+/* Carlson's symmetric integrals by duplication (Carlson 1995, Numer. Algorithms 10:13-26),
+ * stopping rule with r = 2^-53: truncation error below the rounding error. x, y, z >= 0, at most
+ * one of them zero (R_D: z > 0). */
+static double carlson_rf(double x, double y, double z) {
+  double A0 = (x + y + z) / 3.0;
+  double Q = 0x1.4p+8 * fmax(fabs(A0 - x), fmax(fabs(A0 - y), fabs(A0 - z))); /* (3r)^(-1/6) */
+  double A = A0, x0 = x, y0 = y, pw = 1.0;
+  for (int n = 0; n < 200 && pw * Q >= fabs(A); n++) {
+    double sx = sqrt(x), sy = sqrt(y), sz = sqrt(z);
+    double lam = sx * sy + sx * sz + sy * sz;
+    x = 0.25 * (x + lam);
+    y = 0.25 * (y + lam);
+    z = 0.25 * (z + lam);
+    A = 0.25 * (A + lam);
+    pw *= 0.25;
+  }
+  double X = pw * (A0 - x0) / A, Y = pw * (A0 - y0) / A, Z = -(X + Y);
+  double E2 = X * Y - Z * Z, E3 = X * Y * Z;
+  return (1.0 - E2 / 10.0 + E3 / 14.0 + E2 * E2 / 24.0 - 3.0 * E2 * E3 / 44.0) / sqrt(A);
+}
+
+static double carlson_rd(double x, double y, double z) {
+  double A0 = (x + y + 3.0 * z) / 5.0;
+  double Q = 0x1.cp+9 * fmax(fabs(A0 - x), fmax(fabs(A0 - y), fabs(A0 - z))); /* (r/4)^(-1/6) */
+  double A = A0, x0 = x, y0 = y, pw = 1.0, sum = 0.0;
+  for (int n = 0; n < 200 && pw * Q >= fabs(A); n++) {
+    double sx = sqrt(x), sy = sqrt(y), sz = sqrt(z);
+    double lam = sx * sy + sx * sz + sy * sz;
+    sum += pw / (sz * (z + lam));
+    x = 0.25 * (x + lam);
+    y = 0.25 * (y + lam);
+    z = 0.25 * (z + lam);
+    A = 0.25 * (A + lam);
+    pw *= 0.25;
+  }
+  double X = pw * (A0 - x0) / A, Y = pw * (A0 - y0) / A, Z = -(X + Y) / 3.0;
+  double XY = X * Y, Z2 = Z * Z;
+  double E2 = XY - 6.0 * Z2, E3 = (3.0 * XY - 8.0 * Z2) * Z, E4 = 3.0 * (XY - Z2) * Z2,
+         E5 = XY * Z2 * Z;
+  double s = 1.0 - 3.0 * E2 / 14.0 + E3 / 6.0 + 9.0 * E2 * E2 / 88.0 - 3.0 * E4 / 22.0 -
+             9.0 * E2 * E3 / 52.0 + 3.0 * E5 / 26.0;
+  return pw * s / (A * sqrt(A)) + 3.0 * sum;
+}
+
+/* Arc length on the ellipse (cos psi, beta sin psi), 0 < beta <= 1, from the major-axis end
+ * (psi = 0) to psi in [0, pi/2]:
+ *   int_0^psi sqrt(sin^2 + beta^2 cos^2) = beta^2 [ s R_F(X, Y, Z) + (1 - beta^2)/3 s^3 R_D(X, Y, Z) ]
+ * with s = sin psi, c = cos psi, X = beta^2 c^2, Y = beta^2 c^2 + s^2, Z = beta^2: both terms
+ * positive (measured from the major end there is no cancellation), relative error ~1e-16. */
+static double arc_from_major(double beta, double psi) {
+  double s = sin(psi), c = cos(psi);
+  double b2 = beta * beta;
+  double X = b2 * c * c, Y = X + s * s;
+  if (s == 0.0) return 0.0;
+  return b2 * (s * carlson_rf(X, Y, b2) + (1.0 - b2) / 3.0 * s * s * s * carlson_rd(X, Y, b2));
+}
+
+/* psi in [0, pi/2] with arc_from_major(beta, psi) = sigma, 0 <= sigma <= Q (quarter arc).
+ * f(psi) = arc - sigma is increasing and convex, so Newton from an upper bound converges
+ * monotonically; upper bounds: arc >= 1 - cos psi and arc >= beta psi. */
+static double arc_invert(double beta, double sigma, double Q) {
+  const double half_pi = 1.5707963267948966;
+  if (sigma <= 0.0) return 0.0;
+  if (sigma >= Q) return half_pi;
+  double psi = half_pi;
+  if (sigma < 2.0) psi = fmin(psi, 2.0 * asin(sqrt(0.5 * sigma))); /* 1 - cos psi = sigma */
+  psi = fmin(psi, sigma / beta);
+  double lo = 0.0, hi = psi; /* the root is in [lo, hi] */
+  for (int it = 0; it < 100; it++) {
+    double f = arc_from_major(beta, psi) - sigma;
+    if (f == 0.0) break;
+    if (f > 0.0)
+      hi = fmin(hi, psi);
+    else
+      lo = fmax(lo, psi);
+    double sn = sin(psi), cs = cos(psi);
+    double d = sqrt(sn * sn + beta * beta * cs * cs);
+    double next = psi - f / d;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi); /* roundoff: safeguard */
+    if (fabs(next - psi) <= 0x1p-52 * psi) {
+      psi = next;
+      break;
+    }
+    psi = next;
+  }
+  return psi;
+}
+
+/* cos and sin of an angle in degrees, exact at multiples of 90 */
+static void sincos_deg(double deg, double *s, double *c) {
+  double r = fmod(deg, 360.0); /* exact */
+  double q = nearbyint(r / 90.0);
+  double rem = r - 90.0 * q; /* exact: |rem| <= 45 */
+  double x = rem * (3.14159265358979323846 / 180.0);
+  double sx = sin(x), cx = cos(x);
+  int k = ((int)q % 4 + 4) % 4;
+  switch (k) {
+  case 0: *s = sx, *c = cx; break;
+  case 1: *s = cx, *c = -sx; break;
+  case 2: *s = -sx, *c = -cx; break;
+  default: *s = -cx, *c = sx; break;
+  }
+}
+
+ics_status ics_ellipse_kernel(double varx, double vary, double angle_deg, int nsamples,
+                              double offset, ics_ellipse_shape *shape, double *xy) {
+  if (!shape) return ICS_ERR_INVALID_ARG;
+  if (isnan(varx) || isnan(vary) || isnan(angle_deg) || isnan(offset)) return ICS_ERR_NAN;
+  if (varx < 0.0 || vary < 0.0) return ICS_ERR_NEGATIVE_VARIANCE;
+  if (isinf(varx) || isinf(vary) || isinf(angle_deg)) return ICS_ERR_INFINITE;
+  if (isinf(offset) || nsamples < 1 || nsamples > ICS_ELLIPSE_MAX_SAMPLES) return ICS_ERR_RANGE;
+
+  shape->angle_deg = angle_deg;
+  if (varx == 0.0 && vary == 0.0) { /* point light: one tap at the origin */
+    shape->a = shape->b = 0.0;
+    shape->t = 0.5;
+    shape->nsamples = 1;
+    if (xy) xy[0] = xy[1] = 0.0;
+    return ICS_OK;
+  }
+  /* major variance vM along axis "maj" (x if varx >= vary), minor vm; s = unit-ellipse parameter
+   * of the minor radius: minor = s sqrt(sc), major = (1 - s) sqrt(sc), sc = vM / V_x(s) */
+  int x_major = varx >= vary;
+  double vM = x_major ? varx : vary, vm = x_major ? vary : varx;
+  double r = vm / vM, s;
+  if (r < 0x1p-600) /* ratio_to_t(r) = sqrt(r/2) here; formed without underflow */
+    s = sqrt(0.5 * vm) / sqrt(vM);
+  else
+    s = ics_ellipse_ratio_to_t(r);
+  double root = sqrt(vM) / sqrt(ics_ellipse_vx(s)); /* sqrt(sc), no overflow for vM ~ DBL_MAX */
+  double rmaj = (1.0 - s) * root, rmin = s * root;
+  shape->a = x_major ? rmaj : rmin;
+  shape->b = x_major ? rmin : rmaj;
+  shape->t = x_major ? s : 1.0 - s;
+  shape->nsamples = nsamples;
+  if (!xy) return ICS_OK;
+
+  /* taps: arc fraction u_j = offset + j/N (mod 1) of the perimeter from (a, 0), counter-
+   * clockwise. Quadrant k = floor(4u) by symmetry; within a quadrant, the arc is measured from
+   * the major-axis end (no cancellation, see arc_from_major) on the normalised ellipse. */
+  double beta = s / (1.0 - s); /* minor / major */
+  int segment = beta < 0x1p-500; /* beta^2 would underflow: a segment to O(beta^2) relative */
+  double Q = segment ? 1.0 : arc_from_major(beta, 1.5707963267948966);
+  double sa, ca;
+  sincos_deg(angle_deg, &sa, &ca);
+  double u0 = offset - floor(offset);
+  for (int j = 0; j < nsamples; j++) {
+    double u = u0 + (double)j / nsamples;
+    u -= floor(u);
+    double q4 = 4.0 * u;
+    int k = (int)q4;
+    if (k > 3) k = 3;
+    double lam = (q4 - k) * Q; /* arc within the quadrant, from its start */
+    /* quadrants 1 and 3 run from the y axis to the x axis: mirror to "from the x axis" */
+    double from_x = (k & 1) ? Q - lam : lam;
+    /* arc from the major end: from the x axis if x is major, else from the y axis */
+    double sigma = x_major ? from_x : Q - from_x;
+    double pm, pn; /* coordinates along the major and minor axes (normalised), first quadrant */
+    if (segment) { /* |major| = 1 - sigma (arc = 1 - cos psi to O(beta^2)), on the ellipse */
+      pm = 1.0 - sigma;
+      pn = beta * sqrt(sigma * (2.0 - sigma));
+    } else {
+      double psi = arc_invert(beta, sigma, Q);
+      pm = cos(psi);
+      pn = beta * sin(psi);
+    }
+    double px = x_major ? pm : pn, py = x_major ? pn : pm;
+    px *= rmaj;
+    py *= rmaj;
+    if (k == 1 || k == 2) px = -px;
+    if (k >= 2) py = -py;
+    xy[2 * j] = px * ca - py * sa;
+    xy[2 * j + 1] = px * sa + py * ca;
+  }
+  return ICS_OK;
+}
