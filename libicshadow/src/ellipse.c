@@ -496,8 +496,8 @@ ics_status ics_ellipse_kernel(double varx, double vary, double angle_deg, int ns
     py *= rmaj;
     if (k == 1 || k == 2) px = -px;
     if (k >= 2) py = -py;
-    xy[2 * j] = px * ca - py * sa;
-    xy[2 * j + 1] = px * sa + py * ca;
+    xy[2 * j] = (px * ca - py * sa) + 0.0; /* + 0.0: no negative zeros */
+    xy[2 * j + 1] = (px * sa + py * ca) + 0.0;
   }
   return ICS_OK;
 }
