@@ -58,7 +58,8 @@ extern "C" {
 typedef struct ics_lut_tables {
   int n;
   const double *s; /* s(w) = t / w at w_i = i / (2 (n - 1)) */
-  const double *g; /* g(t) = V_x(t) / (1 - t)^2 at t_i = i / (n - 1) */
+  const double *g; /* g(t) = V_x(t) / (1 - t)^2 at t_i in [0, 1/2] with u(t_i) = i u(1/2) / (n - 1),
+                      u(t) = sqrt(t (t + 1/5)) */
 } ics_lut_tables;
 
 /* Fill s[0..n-1] and g[0..n-1] from the exact functions (ellipse.c). n in
@@ -105,8 +106,10 @@ void ics_lut_builtin_stamp(double *ratio_err, double *vx_err, double *radii_err,
  * over [0, 1] with `per_interval` points per table interval of a table of `n` entries (offset
  * so no point falls on a node), plus rat = 10^(k/8) for |k| <= 8 * 37, plus 0, +inf, the
  * smallest and largest normal floats; the varx points likewise in t over [0, 1] plus
- * t = 10^-k and 1 - 10^-k (k = 1..15) and t = 0, 1. All points are float-representable so
- * the same grid measures the float evaluators. */
+ * t = 10^-k and 1 - 10^-k (k = 1..15) and t = 0, 1. These points are float-representable, so
+ * the same grid measures the float evaluators; a few more are for double evaluation only:
+ * rat = DBL_MIN, DBL_MAX, 1e-300, 1e300, t = 1e-300, 1 - 2^-53, and 1 - 10^-k for k > 7.
+ * Radii points are (varx, vary) = (1, rat) for finite rat <= DBL_MAX / 4 (float: FLT_MAX / 4). */
 typedef struct ics_lut_grid ics_lut_grid;
 ics_status ics_lut_grid_new(int n, int per_interval, ics_lut_grid **grid);
 void ics_lut_grid_free(ics_lut_grid *grid);
