@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 int cli_parse_double(const char *s, double *out) {
@@ -60,6 +61,11 @@ int cli_output_open(cli_output *out, const char *path) {
     out->tmp_path = NULL;
     return -1;
   }
+  /* mkstemp creates mode 0600: give the file the mode a plain fopen would have */
+  mode_t mask = umask(0);
+  umask(mask);
+  if (fchmod(fd, 0666 & ~mask) != 0)
+    fprintf(stderr, "icshadow: warning: cannot set the mode of %s: %s\n", path, strerror(errno));
   out->fp = fdopen(fd, "w");
   if (!out->fp) {
     close(fd);
