@@ -22,6 +22,7 @@
 #define BOUND_VY 0.75
 #define BOUND_RATIO 1.0
 #define BOUND_RATIO_TO_T 1.0
+#define BOUND_SUBNORMAL 1.0 /* vy and ratio when the result is subnormal (ulp = 2^-1074) */
 /* round trips, in ulps of t (see docs/ellipse.md, "Round trips") */
 #define BOUND_RT_R 1.5 /* ratio(ratio_to_t(r)) vs r, error expressed as an error in t */
 #define BOUND_RT_T 2.0 /* ratio_to_t(ratio(t)) vs t */
@@ -265,6 +266,7 @@ static void check_varx(double b, worst_t *w) {
   mpfr_clears(bm, v, (mpfr_ptr)0);
 }
 
+static worst_t wsub = {"vy, ratio (subnormal)", 0, 0};
 static void check_t(double t, worst_t *wx, worst_t *wy, worst_t *wr, worst_t *wrt) {
   mpfr_t tm, v, r;
   mpfr_inits2(P, tm, v, r, (mpfr_ptr)0);
@@ -275,15 +277,16 @@ static void check_t(double t, worst_t *wx, worst_t *wy, worst_t *wr, worst_t *wr
   CHECK(e <= BOUND_VX, "ics_ellipse_vx(%a = %.17g) = %.17g, %.3f ulp", t, t, y, e);
   ref_vy_m(v, tm);
   y = ics_ellipse_vy(t), e = ref_ulp_error(y, v);
-  note(wy, e, t);
-  CHECK(e <= BOUND_VY, "ics_ellipse_vy(%a = %.17g) = %.17g, %.3f ulp", t, t, y, e);
+  note(fabs(y) < DBL_MIN && y != 0 ? &wsub : wy, e, t);
+  /* subnormal results are rounded twice (exponent applied last): 1 ulp of 2^-1074 there */
+  CHECK(e <= (fabs(y) < DBL_MIN ? BOUND_SUBNORMAL : BOUND_VY), "ics_ellipse_vy(%a = %.17g) = %.17g, %.3f ulp", t, t, y, e);
   if (t == 0.5)
     mpfr_set_ui(r, 1, MPFR_RNDN);
   else
     ref_ratio_m(r, tm);
   double rr = ics_ellipse_ratio(t);
   e = ref_ulp_error(rr, r);
-  note(wr, e, t);
+  note(fabs(rr) < DBL_MIN && rr != 0 ? &wsub : wr, e, t);
   CHECK(e <= BOUND_RATIO, "ics_ellipse_ratio(%a = %.17g) = %.17g, %.3f ulp", t, t, rr, e);
   /* round trip t -> ratio -> t */
   if (t > 0.0 && t < 1.0 && rr > 0.0 && isfinite(rr) && rr >= DBL_MIN) {
@@ -382,6 +385,14 @@ int main(int argc, char **argv) {
                             0.25, 0.5, 0.75, 0.999, 1.0, 1.001, 1.5, 2, 4, 1e3, 1e8, 1e20, 1e100,
                             1.3e154, 1e150, 1e200, 1e300, DBL_MAX};
   for (size_t i = 0; i < sizeof fixed_b / sizeof fixed_b[0]; i++) check_varx(fixed_b[i], &wvarx);
+  /* both sides of the T-formula switch p = 1/4 (beta = 0.0757001907631720..., see ellipse.c) */
+  for (int k = -8; k <= 8; k++) check_varx(0.075700190763172030 + k * 0x1p-56, &wvarx);
+  /* var_x(b) + var_x(1/b) = 1 (1/3 + w and 2/3 - w): exact 1/b for b = 2^k */
+  for (int k = -60; k <= 60; k += 3) {
+    double b = ldexp(1.0, k), s = ics_ellipse_varx(b) + ics_ellipse_varx(1.0 / b);
+    CHECK(fabs(s - 1.0) <= 2 * BOUND_VARX * 0x1p-53 + 0x1p-53, "varx(2^%d) + varx(2^%d) - 1 = %.3g",
+          k, -k, s - 1.0);
+  }
   for (int k = 1; k <= 53; k++) { /* both sides of b = 1 */
     check_varx(1.0 - ldexp(1.0, -k), &wvarx);
     check_varx(1.0 + ldexp(1.0, -k), &wvarx);
@@ -401,6 +412,12 @@ int main(int argc, char **argv) {
   for (size_t i = 0; i < sizeof fixed_t / sizeof fixed_t[0]; i++)
     check_t(fixed_t[i], &wvx, &wvy, &wr, &wrtt);
   for (int k = -60; k <= 60; k++) check_t(0.5 + k * 0x1p-54, &wvx, &wvy, &wr, &wrtt);
+  /* both sides of p = 1/4 (t = 0.0703729453738084...) and of the scaled square (t = 2^-480) */
+  for (int k = -8; k <= 8; k++) {
+    check_t(0.070372945373808446 + k * 0x1p-57, &wvx, &wvy, &wr, &wrtt);
+    check_t(1.0 - 0.070372945373808446 + k * 0x1p-53, &wvx, &wvy, &wr, &wrtt);
+    check_t(0x1p-480 + k * 0x1p-532, &wvx, &wvy, &wr, &wrtt);
+  }
   for (int i = 0; i < n; i++) {
     check_t(log_uniform(1e-300, 0.5), &wvx, &wvy, &wr, &wrtt);
     check_t(1.0 - log_uniform(0x1p-53, 0.5), &wvx, &wvy, &wr, &wrtt);
@@ -423,7 +440,7 @@ int main(int argc, char **argv) {
     check_r(log_uniform(1e-4, 1e4), &wrt, &wrtr);
   }
 
-  worst_t *all[] = {&wvarx, &wvx, &wvy, &wr, &wrt, &wrtt, &wrtr};
+  worst_t *all[] = {&wvarx, &wvx, &wvy, &wr, &wsub, &wrt, &wrtt, &wrtr};
   for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
     printf("%-22s max %.3f ulp at %a (%.17g)\n", all[i]->name, all[i]->worst, all[i]->at,
            all[i]->at);

@@ -8,7 +8,11 @@
  *   ics_ellipse_vy(t)  : its y-variance, = vx(1 - t).
  *   ics_ellipse_ratio(t)      = vy(t) / vx(t), increasing from 0 (t = 0) to +inf (t = 1).
  *   ics_ellipse_ratio_to_t(r) : inverse of ratio for r in [0, +inf] (paper's ratioToab).
- * Outside the domain (or NaN) they return NaN. Accuracy: see ellipse.c and docs/ellipse.md. */
+ * Outside the domain (or NaN) they return NaN. Accuracy: see ellipse.c and docs/ellipse.md
+ * (<= 0.75 ulp for varx, vx, vy; <= 1 ulp for ratio and ratio_to_t).
+ * Patel's closed form (Appendix A.7) takes EllipticK/E of the MODULUS sqrt(1 - b^2), i.e. the
+ * parameter m = 1 - b^2 (settled by quadrature, docs/ellipse.md). var_x(0) = 1/3, var_x(1) = 1/2,
+ * var_x(b) + var_x(1/b) = 1, var_x(+inf) = 2/3. */
 #ifndef ICSHADOW_ELLIPSE_H
 #define ICSHADOW_ELLIPSE_H
 
@@ -37,11 +41,15 @@ typedef struct ics_ellipse_shape {
 
 /* The N-sample elliptical kernel of covariance R(alpha) diag(varx, vary) R(alpha)^T:
  * N points equidistant in arc length on the ellipse with radii a, b, the first at arc-length
- * fraction `offset` (in [0, 1)) of the perimeter measured from (a, 0) counter-clockwise in the
- * kernel's own frame. Averaged over a uniform offset the taps have exactly that covariance
- * (zero mean). Writes 2 * shape->nsamples doubles (x0, y0, x1, y1, ...) to xy when xy != NULL.
- * Errors: ICS_ERR_NAN, ICS_ERR_NEGATIVE_VARIANCE, ICS_ERR_INFINITE, ICS_ERR_RANGE (nsamples
- * outside 1..ICS_ELLIPSE_MAX_SAMPLES, offset not finite), ICS_ERR_INVALID_ARG (shape NULL). */
+ * fraction `offset` (in [0, 1); any finite value is reduced mod 1) of the perimeter measured from
+ * (a, 0) counter-clockwise in the kernel's own frame, then rotated by alpha. Averaged over a
+ * uniform offset the taps have exactly that covariance (zero mean). vary = 0 gives a segment
+ * (t = 0, b = 0, a = sqrt(3 varx)), varx = 0 the segment along y (t = 1); both 0 a point light:
+ * one tap at the origin, shape->nsamples = 1, a = b = 0, t = 1/2. xy must hold 2 * nsamples
+ * doubles; 2 * shape->nsamples are written (x0, y0, x1, y1, ...) when xy != NULL.
+ * Errors: ICS_ERR_NAN (any argument NaN), ICS_ERR_NEGATIVE_VARIANCE, ICS_ERR_INFINITE (variance
+ * or angle infinite), ICS_ERR_RANGE (nsamples outside 1..ICS_ELLIPSE_MAX_SAMPLES, offset not
+ * finite), ICS_ERR_INVALID_ARG (shape NULL). */
 ics_status ics_ellipse_kernel(double varx, double vary, double angle_deg, int nsamples,
                               double offset, ics_ellipse_shape *shape, double *xy);
 
