@@ -267,7 +267,44 @@ static void test_degenerate(void) {
         "ratio 1e-600: b %.17g vs sqrt(3/2 vary) %.17g", sh.b, sqrt(1.5e-300));
 }
 
+/* random extreme inputs (variances 1e-321 .. 1e308, zeros, any angle, offsets outside [0, 1)):
+ * status OK, finite taps inside the ellipse's bounding circle, and radii whose unit ellipse has
+ * the target variance ratio minor/major */
+static void test_random(void) {
+  unsigned long long st = 0x2545F4914F6CDD1Dull;
+  double xy[2 * 16];
+  for (int i = 0; i < 3000; i++) {
+    st ^= st << 13, st ^= st >> 7, st ^= st << 17;
+    double u1 = (double)(st >> 11) * 0x1p-53;
+    st ^= st << 13, st ^= st >> 7, st ^= st << 17;
+    double u2 = (double)(st >> 11) * 0x1p-53;
+    double vx = exp(-740 + 1450 * u1), vy = exp(-740 + 1450 * u2);
+    if (i % 7 == 0) vy = 0;
+    if (i % 11 == 0) vx = 0;
+    int N = 1 + i % 16;
+    double alpha = 720 * u1 - 360, off = 3 * u2 - 1;
+    ics_ellipse_shape sh;
+    ics_status r = ics_ellipse_kernel(vx, vy, alpha, N, off, &sh, xy);
+    CHECK(r == ICS_OK, "kernel(%g, %g, %g, %d, %g): %s", vx, vy, alpha, N, off, ics_status_str(r));
+    if (r != ICS_OK) continue;
+    double R = fmax(sh.a, sh.b);
+    for (int j = 0; j < sh.nsamples; j++) {
+      double d = hypot(xy[2 * j], xy[2 * j + 1]);
+      CHECK(isfinite(d) && d <= R * (1 + 1e-15), "kernel(%g, %g, %g, %d, %g): tap %d at %g, R %g",
+            vx, vy, alpha, N, off, j, d, R);
+    }
+    double mn = fmin(vx, vy), mx = fmax(vx, vy);
+    if (mn > 0 && mn / mx >= 1e-250) {
+      /* the unit ellipse (minor/(a+b) = s) reproduces the variance ratio minor/major */
+      double s = fmin(sh.a, sh.b) / (sh.a + sh.b), rat = ics_ellipse_ratio(s), want = mn / mx;
+      CHECK(fabs(rat / want - 1) <= 1e-14, "kernel(%g, %g): ratio(s = %.17g) = %.17g vs %.17g", vx,
+            vy, s, rat, want);
+    }
+  }
+}
+
 int main(void) {
+  test_random();
   test_status();
   test_degenerate();
   const double cfg[][3] = {

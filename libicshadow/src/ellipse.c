@@ -459,8 +459,9 @@ ics_status ics_ellipse_kernel(double varx, double vary, double angle_deg, int ns
   int x_major = varx >= vary;
   double vM = x_major ? varx : vary, vm = x_major ? vary : varx;
   double r = vm / vM, s;
-  if (r < 0x1p-600) /* ratio_to_t(r) = sqrt(r/2) here; formed without underflow */
-    s = sqrt(0.5 * vm) / sqrt(vM);
+  if (r < 0x1p-600) /* ratio_to_t(r) = sqrt(r/2) here; formed without underflow, and without
+                     * halving a subnormal vm (exact scaling: vm 2^199 is normal, < 2^623) */
+    s = ldexp(sqrt(ldexp(vm, 199)) / sqrt(vM), -100);
   else
     s = ics_ellipse_ratio_to_t(r);
   double root = sqrt(vM) / sqrt(ics_ellipse_vx(s)); /* sqrt(sc), no overflow for vM ~ DBL_MAX */
