@@ -37,12 +37,14 @@ demo: deps all
 	@echo "== 2-sample elliptical kernel for a light with variances (0.8, 0.2) rotated 30 degrees"
 	$(BUILD)/bin/icshadow kernel ellipse --varx 0.8 --vary 0.2 --angle 30 --samples 2
 
+# Every paper_figs/*.py takes --cli and --out and writes PNG + CSV.
 figs: deps all
-	$(PYTHON) paper_figs/patel_fig23.py --cli $(BUILD)/bin/icshadow --out out/figs
+	@set -e; for f in paper_figs/*.py; do echo "== $$f"; $(PYTHON) $$f --cli $(BUILD)/bin/icshadow --out out/figs; done
 
+# Every bench/*.cmake adds a bench_* program to the `benchmarks` target; each prints CSV.
 bench: deps all
 	cmake --build $(BUILD) --target benchmarks -j $(JOBS)
-	$(BUILD)/bin/bench_ellint
+	@set -e; for b in $(BUILD)/bin/bench_*; do echo "== $$b"; $$b; done
 
 install: all
 	cmake --install $(BUILD) --prefix $(PREFIX)

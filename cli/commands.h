@@ -9,6 +9,15 @@
 int cmd_eval(int argc, char **argv);
 int cmd_kernel(int argc, char **argv);
 int cmd_lut(int argc, char **argv);
+int cmd_isoline(int argc, char **argv);
+int cmd_clt(int argc, char **argv);
+int cmd_bench(int argc, char **argv);
+
+/* `icshadow bench KIND`: one function per peer primitive (bench_<kind>.c), argv[0] = KIND. */
+int bench_sat2d(int argc, char **argv);
+int bench_sat3d(int argc, char **argv);
+int bench_minmax(int argc, char **argv);
+int bench_occtex(int argc, char **argv);
 
 /* Strict number parsing: the whole string must be a number (leading/trailing blanks allowed).
  * Return 0 on success, -1 otherwise. */

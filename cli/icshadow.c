@@ -17,6 +17,9 @@ static const struct {
     {"eval", cmd_eval, "evaluate a function on numbers read from stdin, one per line"},
     {"kernel", cmd_kernel, "print the taps of a kernel for a light (JSON)"},
     {"lut", cmd_lut, "write lookup-table headers (C, GLSL, OpenCL) or report their error"},
+    {"isoline", cmd_isoline, "x position of a shadow isoline behind an edge (correct/iterative/CLT)"},
+    {"clt", cmd_clt, "CLT convergence of iterated kernels: sup error against steps (CSV)"},
+    {"bench", cmd_bench, "benchmark a peer primitive (sat2d, sat3d, minmax, occtex): CSV"},
 };
 
 static void usage(FILE *f) {

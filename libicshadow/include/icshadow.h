@@ -19,5 +19,13 @@
 #include "icshadow/ellint.h"
 #include "icshadow/ellipse.h"
 #include "icshadow/lut.h"
+#include "icshadow/rng.h"
+#include "icshadow/kernel.h"
+#include "icshadow/light.h"
+#include "icshadow/conv.h"
+#include "icshadow/shadow1d.h"
+#include "icshadow/sat.h"
+#include "icshadow/minmax.h"
+#include "icshadow/occtex.h"
 
 #endif

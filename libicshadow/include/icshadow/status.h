@@ -16,7 +16,10 @@ extern "C" {
   X(ICS_ERR_INFINITE, "argument is infinite")                                          \
   X(ICS_ERR_RANGE, "argument out of range")                                            \
   X(ICS_ERR_NOMEM, "out of memory")                                                    \
-  X(ICS_ERR_IO, "input/output error")
+  X(ICS_ERR_IO, "input/output error")                                                 \
+  X(ICS_ERR_SIZE, "size out of range (empty or too large)")                            \
+  X(ICS_ERR_PARSE, "cannot parse input")                                               \
+  X(ICS_ERR_UNSUPPORTED, "unsupported option or missing component")
 
 typedef enum ics_status {
 #define ICS_STATUS_ENUM_(name, msg) name,
