@@ -1,0 +1,32 @@
+# expect.cmake — CTest driver for CLI tests (run with `cmake -P`, see ics_cli_test in
+# tests/CMakeLists.txt). Runs the CLI once and checks: the exit status (RC), a regular
+# expression on stdout (OUT) and on stderr (ERR); a failed run must write nothing to stdout;
+# NOFILE names an output file that must not exist afterwards (nor its temporary siblings).
+# Arguments come '|'-separated in ARGS (';' would be split by add_test).
+string(REPLACE "|" ";" args "${ARGS}")
+if(DEFINED NOFILE)
+  file(GLOB stale "${NOFILE}" "${NOFILE}.tmp*")
+  if(stale)
+    file(REMOVE ${stale})
+  endif()
+endif()
+execute_process(COMMAND ${CLI} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message(STATUS "icshadow ${args}\n  exit ${rc}\n  stdout: ${out}\n  stderr: ${err}")
+if(NOT "${rc}" STREQUAL "${RC}")
+  message(FATAL_ERROR "exit status ${rc}, expected ${RC}")
+endif()
+if(DEFINED OUT AND NOT out MATCHES "${OUT}")
+  message(FATAL_ERROR "stdout does not match '${OUT}'")
+endif()
+if(DEFINED ERR AND NOT err MATCHES "${ERR}")
+  message(FATAL_ERROR "stderr does not match '${ERR}'")
+endif()
+if(NOT "${RC}" STREQUAL "0" AND NOT "${out}" STREQUAL "")
+  message(FATAL_ERROR "a failed run wrote to stdout")
+endif()
+if(DEFINED NOFILE)
+  file(GLOB left "${NOFILE}" "${NOFILE}.tmp*")
+  if(left)
+    message(FATAL_ERROR "output left behind: ${left}")
+  endif()
+endif()
