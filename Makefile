@@ -6,7 +6,7 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 PYTHON     ?= /usr/bin/python3
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure test test-asan demo figs bench install clean
+.PHONY: all deps configure test test-asan demo figs bench analysis install clean
 
 all: configure
 	cmake --build $(BUILD) -j $(JOBS)
@@ -45,6 +45,13 @@ figs: deps all
 bench: deps all
 	cmake --build $(BUILD) --target benchmarks -j $(JOBS)
 	@set -e; for b in $(BUILD)/bin/bench_*; do echo "== $$b"; $$b; done
+
+# Stability sweep of the exact functions: max ulp error vs MPFR and ns per call per region.
+analysis: deps all
+	@mkdir -p out/analysis
+	$(BUILD)/bin/stability_sweep --progress > out/analysis/stability.csv.tmp
+	mv out/analysis/stability.csv.tmp out/analysis/stability.csv
+	@echo "wrote out/analysis/stability.csv"
 
 install: all
 	cmake --install $(BUILD) --prefix $(PREFIX)

@@ -1,5 +1,6 @@
 # CLI tests for `icshadow lut`: help, report, atomic output, and bad input (exit 2, a clear
-# message on stderr, no output file and no temporary file left behind).
+# message on stderr, nothing on stdout, no output file and no temporary file left behind;
+# ics_cli_test in tests/CMakeLists.txt checks all of that).
 set(ics_lut_cli $<TARGET_FILE:icshadow_cli>)
 set(ics_lut_cli_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_lut)
 file(MAKE_DIRECTORY ${ics_lut_cli_dir})
@@ -8,56 +9,29 @@ add_test(NAME cli_lut_help COMMAND ${ics_lut_cli} lut --help)
 set_tests_properties(cli_lut_help PROPERTIES LABELS fast
   PASS_REGULAR_EXPRESSION "icshadow lut --size N --lang c\\|glsl\\|opencl\\|c-data \\[-o FILE\\]")
 
-# expect.sh STATUS REGEX OUT CLI ARGS...: run `CLI lut ARGS...`; require exit STATUS, stderr
-# matching REGEX, and (when STATUS != 0) neither OUT nor OUT.tmp* existing afterwards.
-file(WRITE ${ics_lut_cli_dir}/expect.sh [=[
-want=$1; re=$2; out=$3; cli=$4; shift 4
-rm -f "$out" "$out".tmp*
-"$cli" lut "$@" 2> "$out.err" > "$out.stdout"; st=$?
-cat "$out.err"
-if [ "$st" -ne "$want" ]; then echo "FAIL: exit status $st, expected $want"; exit 1; fi
-if ! grep -Eq -- "$re" "$out.err"; then echo "FAIL: stderr does not match /$re/"; exit 1; fi
-if [ "$want" -ne 0 ]; then
-  for f in "$out" "$out".tmp*; do
-    if [ -e "$f" ]; then echo "FAIL: $f left behind"; exit 1; fi
-  done
-fi
-echo "OK: exit $st"
-]=])
-function(ics_lut_cli_expect name status regex)
-  set(out ${ics_lut_cli_dir}/${name}.out)
-  string(REPLACE "@OUT@" "${out}" args "${ARGN}")
-  add_test(NAME cli_lut_${name}
-    COMMAND sh ${ics_lut_cli_dir}/expect.sh ${status} ${regex} ${out} ${ics_lut_cli} ${args})
-  set_tests_properties(cli_lut_${name} PROPERTIES LABELS fast)
-endfunction()
-
-ics_lut_cli_expect(size_not_number 2 "--size must be an integer in 4\\.\\.65536, got 'abc'"
-  --size abc --lang glsl -o @OUT@)
-ics_lut_cli_expect(size_trailing_junk 2 "--size must be an integer" --size 64x --lang glsl -o @OUT@)
-ics_lut_cli_expect(size_fraction 2 "--size must be an integer" --size 64.0 --lang c -o @OUT@)
-ics_lut_cli_expect(size_empty 2 "--size must be an integer" --size "" --lang c -o @OUT@)
-ics_lut_cli_expect(size_too_small 2 "--size must be an integer in 4\\.\\.65536, got '3'"
-  --size 3 --lang glsl -o @OUT@)
-ics_lut_cli_expect(size_negative 2 "--size must be an integer" --size -64 --lang glsl -o @OUT@)
-ics_lut_cli_expect(size_huge 2 "--size must be an integer in 4\\.\\.65536, got '65537'"
-  --size 65537 --lang opencl -o @OUT@)
-ics_lut_cli_expect(size_overflow 2 "--size must be an integer"
-  --size 99999999999999999999999 --lang opencl -o @OUT@)
-ics_lut_cli_expect(lang_unknown 2 "unknown language 'hlsl'" --size 64 --lang hlsl -o @OUT@)
-ics_lut_cli_expect(lang_case 2 "unknown language 'GLSL'" --size 64 --lang GLSL -o @OUT@)
-ics_lut_cli_expect(lang_missing 2 "missing --lang" --size 64 -o @OUT@)
-ics_lut_cli_expect(size_missing 2 "missing --size" --lang glsl -o @OUT@)
-ics_lut_cli_expect(value_missing 2 "missing value after '--lang'" --size 64 -o @OUT@ --lang)
-ics_lut_cli_expect(unknown_option 2 "unknown argument '--frobnicate'"
-  --size 64 --lang glsl --frobnicate -o @OUT@)
-ics_lut_cli_expect(report_with_output 2 "--report takes no" --report -o @OUT@)
-ics_lut_cli_expect(report_bad_sizes 2 "--sizes must be increasing integers" --report --sizes 8,abc)
-ics_lut_cli_expect(report_unsorted_sizes 2 "--sizes must be increasing" --report --sizes 16,8)
-ics_lut_cli_expect(sizes_without_report 2 "--sizes goes with --report" --sizes 8 --size 8 --lang c)
+ics_cli_test(NAME cli_lut_size_not_number RC 2 ARGS "lut|--size|abc|--lang|glsl|-o|${ics_lut_cli_dir}/size_not_number.out" ERR "--size must be an integer in 4\\.\\.65536, got 'abc'" NOFILE ${ics_lut_cli_dir}/size_not_number.out)
+ics_cli_test(NAME cli_lut_size_trailing_junk RC 2 ARGS "lut|--size|64x|--lang|glsl|-o|${ics_lut_cli_dir}/size_trailing_junk.out" ERR "--size must be an integer" NOFILE ${ics_lut_cli_dir}/size_trailing_junk.out)
+ics_cli_test(NAME cli_lut_size_fraction RC 2 ARGS "lut|--size|64.0|--lang|c|-o|${ics_lut_cli_dir}/size_fraction.out" ERR "--size must be an integer" NOFILE ${ics_lut_cli_dir}/size_fraction.out)
+# an empty --size value (the expect driver cannot pass empty arguments)
+add_test(NAME cli_lut_size_empty COMMAND ${ics_lut_cli} lut --size "" --lang c)
+set_tests_properties(cli_lut_size_empty PROPERTIES LABELS fast
+  PASS_REGULAR_EXPRESSION "--size must be an integer")
+ics_cli_test(NAME cli_lut_size_too_small RC 2 ARGS "lut|--size|3|--lang|glsl|-o|${ics_lut_cli_dir}/size_too_small.out" ERR "--size must be an integer in 4\\.\\.65536, got '3'" NOFILE ${ics_lut_cli_dir}/size_too_small.out)
+ics_cli_test(NAME cli_lut_size_negative RC 2 ARGS "lut|--size|-64|--lang|glsl|-o|${ics_lut_cli_dir}/size_negative.out" ERR "--size must be an integer" NOFILE ${ics_lut_cli_dir}/size_negative.out)
+ics_cli_test(NAME cli_lut_size_huge RC 2 ARGS "lut|--size|65537|--lang|opencl|-o|${ics_lut_cli_dir}/size_huge.out" ERR "--size must be an integer in 4\\.\\.65536, got '65537'" NOFILE ${ics_lut_cli_dir}/size_huge.out)
+ics_cli_test(NAME cli_lut_size_overflow RC 2 ARGS "lut|--size|99999999999999999999999|--lang|opencl|-o|${ics_lut_cli_dir}/size_overflow.out" ERR "--size must be an integer" NOFILE ${ics_lut_cli_dir}/size_overflow.out)
+ics_cli_test(NAME cli_lut_lang_unknown RC 2 ARGS "lut|--size|64|--lang|hlsl|-o|${ics_lut_cli_dir}/lang_unknown.out" ERR "unknown language 'hlsl'" NOFILE ${ics_lut_cli_dir}/lang_unknown.out)
+ics_cli_test(NAME cli_lut_lang_case RC 2 ARGS "lut|--size|64|--lang|GLSL|-o|${ics_lut_cli_dir}/lang_case.out" ERR "unknown language 'GLSL'" NOFILE ${ics_lut_cli_dir}/lang_case.out)
+ics_cli_test(NAME cli_lut_lang_missing RC 2 ARGS "lut|--size|64|-o|${ics_lut_cli_dir}/lang_missing.out" ERR "missing --lang" NOFILE ${ics_lut_cli_dir}/lang_missing.out)
+ics_cli_test(NAME cli_lut_size_missing RC 2 ARGS "lut|--lang|glsl|-o|${ics_lut_cli_dir}/size_missing.out" ERR "missing --size" NOFILE ${ics_lut_cli_dir}/size_missing.out)
+ics_cli_test(NAME cli_lut_value_missing RC 2 ARGS "lut|--size|64|-o|${ics_lut_cli_dir}/value_missing.out|--lang" ERR "missing value after '--lang'" NOFILE ${ics_lut_cli_dir}/value_missing.out)
+ics_cli_test(NAME cli_lut_unknown_option RC 2 ARGS "lut|--size|64|--lang|glsl|--frobnicate|-o|${ics_lut_cli_dir}/unknown_option.out" ERR "unknown argument '--frobnicate'" NOFILE ${ics_lut_cli_dir}/unknown_option.out)
+ics_cli_test(NAME cli_lut_report_with_output RC 2 ARGS "lut|--report|-o|${ics_lut_cli_dir}/report_with_output.out" ERR "--report takes no" NOFILE ${ics_lut_cli_dir}/report_with_output.out)
+ics_cli_test(NAME cli_lut_report_bad_sizes RC 2 ARGS "lut|--report|--sizes|8,abc" ERR "--sizes must be increasing integers")
+ics_cli_test(NAME cli_lut_report_unsorted_sizes RC 2 ARGS "lut|--report|--sizes|16,8" ERR "--sizes must be increasing")
+ics_cli_test(NAME cli_lut_sizes_without_report RC 2 ARGS "lut|--sizes|8|--size|8|--lang|c" ERR "--sizes goes with --report")
 # a write that cannot happen: runtime failure (exit 1), nothing left behind
-ics_lut_cli_expect(unwritable 1 "cannot create"
-  --size 16 --lang glsl -o ${ics_lut_cli_dir}/no/such/dir/x.glsl)
+ics_cli_test(NAME cli_lut_unwritable RC 1 ARGS "lut|--size|16|--lang|glsl|-o|${ics_lut_cli_dir}/no/such/dir/x.glsl" ERR "cannot create" NOFILE ${ics_lut_cli_dir}/no/such/dir/x.glsl)
 
 # A good run: exit 0, the file in place, stamped with the command, no temporary file left.
 file(WRITE ${ics_lut_cli_dir}/good.sh [=[

@@ -17,4 +17,17 @@ void ref_ellipke_m1(mpfr_ptr K, mpfr_ptr E, mpfr_srcptr m1);
  * equal infinities or both NaN give 0; anything else involving them gives +inf. */
 double ref_ulp_error(double x, mpfr_srcptr ref);
 
+/* Ellipse variance functions (Patel 2013, Appendix A.7) from the closed form with parameter
+ * m = 1 - b^2 evaluated through ref_ellipke_m1 (the 0/0 at b = 1 is harmless at this precision
+ * except at b = 1 exactly, where the circle's 1/2 is returned). Arguments are exact MPFR values.
+ *   ref_varx: var_x(b);  ref_vx / ref_vy: V_x(t), V_y(t) of the ellipse (1 - t, t);
+ *   ref_ratio: V_y/V_x;  ref_dlnratio: d ln(ratio)/dt (central difference, step 2^-100 min(t,1-t));
+ *   ref_ratio_to_t: t with ratio(t) = r for finite r > 0 (Newton on ln ratio from t_guess). */
+void ref_varx(mpfr_ptr out, mpfr_srcptr b);
+void ref_vx(mpfr_ptr out, mpfr_srcptr t);
+void ref_vy(mpfr_ptr out, mpfr_srcptr t);
+void ref_ratio(mpfr_ptr out, mpfr_srcptr t);
+void ref_dlnratio(mpfr_ptr out, mpfr_srcptr t);
+void ref_ratio_to_t(mpfr_ptr t, double r, double t_guess);
+
 #endif

@@ -39,125 +39,6 @@ static double urand(void) { /* uniform in [0, 1) */
 }
 static double log_uniform(double lo, double hi) { return exp(log(lo) + urand() * (log(hi) - log(lo))); }
 
-/* ---- MPFR reference: Patel's formula with parameter m = 1 - b^2 (m1 = b^2) ------------------ */
-static void ref_varx_m(mpfr_t out, const mpfr_t b) {
-  if (mpfr_cmp_ui(b, 1) == 0) { /* 0/0: the circle */
-    mpfr_set_d(out, 0.5, MPFR_RNDN);
-    return;
-  }
-  mpfr_t m1, K, E, num, den;
-  mpfr_inits2(P, m1, K, E, num, den, (mpfr_ptr)0);
-  mpfr_sqr(m1, b, MPFR_RNDN); /* exact for a double b */
-  if (mpfr_zero_p(m1)) {
-    mpfr_set_d(out, 1.0, MPFR_RNDN);
-    mpfr_div_ui(out, out, 3, MPFR_RNDN);
-  } else {
-    ref_ellipke_m1(K, E, m1);
-    mpfr_div(num, K, E, MPFR_RNDN);
-    mpfr_mul(num, num, m1, MPFR_RNDN);  /* b^2 K/E */
-    mpfr_mul_2ui(den, m1, 1, MPFR_RNDN); /* 2 b^2 */
-    mpfr_sub_ui(den, den, 1, MPFR_RNDN);
-    mpfr_sub(num, den, num, MPFR_RNDN);  /* 2b^2 - 1 - b^2 K/E */
-    mpfr_sub_ui(den, m1, 1, MPFR_RNDN);
-    mpfr_mul_ui(den, den, 3, MPFR_RNDN); /* 3b^2 - 3 */
-    mpfr_div(out, num, den, MPFR_RNDN);
-  }
-  mpfr_clears(m1, K, E, num, den, (mpfr_ptr)0);
-}
-
-/* V_x(t) = (1-t)^2 var_x(t/(1-t)), V_y(t) = t^2 var_x((1-t)/t) (= V_x(1 - t)): t in MPFR */
-static void ref_vx_m(mpfr_t out, const mpfr_t t) {
-  mpfr_t om, q;
-  mpfr_inits2(P, om, q, (mpfr_ptr)0);
-  mpfr_ui_sub(om, 1, t, MPFR_RNDN);
-  if (mpfr_zero_p(om)) {
-    mpfr_set_ui(out, 0, MPFR_RNDN);
-  } else {
-    mpfr_div(q, t, om, MPFR_RNDN);
-    ref_varx_m(out, q);
-    mpfr_sqr(om, om, MPFR_RNDN);
-    mpfr_mul(out, out, om, MPFR_RNDN);
-  }
-  mpfr_clears(om, q, (mpfr_ptr)0);
-}
-static void ref_vy_m(mpfr_t out, const mpfr_t t) {
-  mpfr_t om, q;
-  mpfr_inits2(P, om, q, (mpfr_ptr)0);
-  if (mpfr_zero_p(t)) {
-    mpfr_set_ui(out, 0, MPFR_RNDN);
-  } else {
-    mpfr_ui_sub(om, 1, t, MPFR_RNDN);
-    mpfr_div(q, om, t, MPFR_RNDN); /* b = (1-t)/t: > 1 for t < 1/2, negative parameter */
-    ref_varx_m(out, q);
-    mpfr_sqr(om, t, MPFR_RNDN);
-    mpfr_mul(out, out, om, MPFR_RNDN);
-  }
-  mpfr_clears(om, q, (mpfr_ptr)0);
-}
-static void ref_ratio_m(mpfr_t out, const mpfr_t t) {
-  mpfr_t vx;
-  mpfr_init2(vx, P);
-  ref_vx_m(vx, t);
-  ref_vy_m(out, t);
-  mpfr_div(out, out, vx, MPFR_RNDN);
-  mpfr_clear(vx);
-}
-
-/* d ln ratio / dt at t (0 < t < 1), central difference at relative step 2^-100 */
-static void ref_dlnratio_m(mpfr_t out, const mpfr_t t) {
-  mpfr_t h, tp, tm, rp, rm;
-  mpfr_inits2(P, h, tp, tm, rp, rm, (mpfr_ptr)0);
-  mpfr_ui_sub(h, 1, t, MPFR_RNDN);
-  if (mpfr_cmp(h, t) > 0) mpfr_set(h, t, MPFR_RNDN); /* min(t, 1-t) */
-  mpfr_mul_2si(h, h, -100, MPFR_RNDN);
-  mpfr_add(tp, t, h, MPFR_RNDN);
-  mpfr_sub(tm, t, h, MPFR_RNDN);
-  ref_ratio_m(rp, tp);
-  ref_ratio_m(rm, tm);
-  mpfr_div(rp, rp, rm, MPFR_RNDN);
-  mpfr_log(rp, rp, MPFR_RNDN);
-  mpfr_mul_2ui(h, h, 1, MPFR_RNDN);
-  mpfr_div(out, rp, h, MPFR_RNDN);
-  mpfr_clears(h, tp, tm, rp, rm, (mpfr_ptr)0);
-}
-
-/* t in (0, 1/2] with ratio(t) = r, r in (0, 1]: Newton on ln ratio from the guess t0 */
-static void ref_inverse_small(mpfr_t t, const mpfr_t r, double t0) {
-  mpfr_t f, d, lr;
-  mpfr_inits2(P, f, d, lr, (mpfr_ptr)0);
-  mpfr_log(lr, r, MPFR_RNDN);
-  mpfr_set_d(t, t0, MPFR_RNDN);
-  for (int it = 0; it < 12; it++) {
-    ref_ratio_m(f, t);
-    mpfr_log(f, f, MPFR_RNDN);
-    mpfr_sub(f, f, lr, MPFR_RNDN);
-    ref_dlnratio_m(d, t);
-    mpfr_div(f, f, d, MPFR_RNDN); /* Newton step */
-    mpfr_sub(t, t, f, MPFR_RNDN);
-    mpfr_div(f, f, t, MPFR_RNDN);
-    if (mpfr_zero_p(f) || mpfr_get_exp(f) < -(mpfr_exp_t)(REF_PREC - 40)) break;
-  }
-  mpfr_clears(f, d, lr, (mpfr_ptr)0);
-}
-
-/* reference t for ratio_to_t(r), r > 0 finite; t_out is the library's answer (used as guess) */
-static void ref_ratio_to_t_m(mpfr_t t, double r, double t_out) {
-  mpfr_t rm;
-  mpfr_init2(rm, P);
-  mpfr_set_d(rm, r, MPFR_RNDN);
-  if (r <= 1.0) {
-    double t0 = (t_out > 0.0 && t_out <= 0.5) ? t_out : sqrt(r / 2.0);
-    if (!(t0 > 0.0)) t0 = 0x1p-600;
-    ref_inverse_small(t, rm, t0);
-  } else {
-    mpfr_ui_div(rm, 1, rm, MPFR_RNDN); /* ratio(1 - t) = 1 / ratio(t) */
-    double u0 = (t_out >= 0.5 && t_out < 1.0) ? 1.0 - t_out : sqrt(0.5 / r);
-    ref_inverse_small(t, rm, u0);
-    mpfr_ui_sub(t, 1, t, MPFR_RNDN);
-  }
-  mpfr_clear(rm);
-}
-
 static double ulp_of(double x) {
   x = fabs(x);
   if (x < DBL_MIN) return 0x1p-1074;
@@ -202,7 +83,7 @@ static void test_convention(void) {
     quad_var(1.0, bb, 4000, &qx, &qy);
     /* reading 1: sqrt(1-b^2) is the modulus k, parameter m = 1 - b^2 (m1 = b^2) */
     mpfr_set_d(b, bb, MPFR_RNDN);
-    ref_varx_m(v, b);
+    ref_varx(v, b);
     double rel = fabs(mpfr_get_d(v, MPFR_RNDN) - qx) / qx;
     if (rel > worst_param) worst_param = rel;
     CHECK(rel < 1e-15, "b=%g: quadrature %.17g vs closed form with m = 1-b^2: rel %.3g", bb, qx,
@@ -258,7 +139,7 @@ static void check_varx(double b, worst_t *w) {
   mpfr_t bm, v;
   mpfr_inits2(P, bm, v, (mpfr_ptr)0);
   mpfr_set_d(bm, b, MPFR_RNDN);
-  ref_varx_m(v, bm);
+  ref_varx(v, bm);
   double y = ics_ellipse_varx(b);
   double e = ref_ulp_error(y, v);
   note(w, e, b);
@@ -271,11 +152,11 @@ static void check_t(double t, worst_t *wx, worst_t *wy, worst_t *wr, worst_t *wr
   mpfr_t tm, v, r;
   mpfr_inits2(P, tm, v, r, (mpfr_ptr)0);
   mpfr_set_d(tm, t, MPFR_RNDN);
-  ref_vx_m(v, tm);
+  ref_vx(v, tm);
   double y = ics_ellipse_vx(t), e = ref_ulp_error(y, v);
   note(wx, e, t);
   CHECK(e <= BOUND_VX, "ics_ellipse_vx(%a = %.17g) = %.17g, %.3f ulp", t, t, y, e);
-  ref_vy_m(v, tm);
+  ref_vy(v, tm);
   y = ics_ellipse_vy(t), e = ref_ulp_error(y, v);
   note(fabs(y) < DBL_MIN && y != 0 ? &wsub : wy, e, t);
   /* subnormal results are rounded twice (exponent applied last): 1 ulp of 2^-1074 there */
@@ -283,7 +164,7 @@ static void check_t(double t, worst_t *wx, worst_t *wy, worst_t *wr, worst_t *wr
   if (t == 0.5)
     mpfr_set_ui(r, 1, MPFR_RNDN);
   else
-    ref_ratio_m(r, tm);
+    ref_ratio(r, tm);
   double rr = ics_ellipse_ratio(t);
   e = ref_ulp_error(rr, r);
   note(fabs(rr) < DBL_MIN && rr != 0 ? &wsub : wr, e, t);
@@ -302,7 +183,7 @@ static void check_r(double r, worst_t *w, worst_t *wrt) {
   double t = ics_ellipse_ratio_to_t(r);
   mpfr_t tm, d;
   mpfr_inits2(P, tm, d, (mpfr_ptr)0);
-  ref_ratio_to_t_m(tm, r, t);
+  ref_ratio_to_t(tm, r, t);
   double e = ref_ulp_error(t, tm);
   note(w, e, r);
   CHECK(e <= BOUND_RATIO_TO_T, "ics_ellipse_ratio_to_t(%a = %.17g) = %.17g (ref %.17g), %.3f ulp",
@@ -311,7 +192,7 @@ static void check_r(double r, worst_t *w, worst_t *wrt) {
   if (t > 0.0 && t < 1.0 && r >= DBL_MIN) {
     double r2 = ics_ellipse_ratio(t);
     mpfr_set_d(tm, t, MPFR_RNDN);
-    ref_dlnratio_m(d, tm);
+    ref_dlnratio(d, tm);
     double dl = mpfr_get_d(d, MPFR_RNDN);
     double er = fabs(log(r2 / r)) / (dl * ulp_of(t));
     /* log(r2/r) is itself only good to ~1e-16 absolute: allow for that in the measure */
