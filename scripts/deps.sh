@@ -11,8 +11,11 @@ packages=(
   libmpfr-dev libgmp-dev glslang-tools pocl-opencl-icd ocl-icd-opencl-dev opencl-headers
   # benchmarks: Boost.Math as a peer for the elliptic integrals
   libboost-dev
-  # figures and table generators (Debian's python3, not a runtime dependency)
+  # optional components: OpenEXR environment maps, jansson for lights/scene JSON
+  libopenexr-dev libjansson-dev
+  # figures, notebooks and table generators (Debian's python3, not a runtime dependency)
   python3 python3-numpy python3-matplotlib python3-mpmath
+  jupyter-nbconvert python3-ipykernel python3-nbformat
 )
 
 missing=()
