@@ -50,15 +50,7 @@ static double ulp_of(double x) {
 /* ---- independent quadrature of the arc-length density ------------------------------------
  * Ellipse x = A cos th, y = B sin th; ds = sqrt(A^2 sin^2 + B^2 cos^2) dth. The periodic
  * trapezoid rule with n nodes converges geometrically (singularities off the real axis). */
-/* compensated (Kahan-Babuska) accumulation, so the rule's result is not drowned in roundoff */
-typedef struct {
-  double s, c;
-} ksum;
-static void kadd(ksum *k, double x) {
-  double t = k->s + x;
-  k->c += fabs(k->s) >= fabs(x) ? (k->s - t) + x : (x - t) + k->s;
-  k->s = t;
-}
+/* compensated accumulation (ksum, testutil.h), so the rule's result is not drowned in roundoff */
 static void quad_var(double A, double B, int n, double *vx, double *vy) {
   ksum s = {0, 0}, sx = {0, 0}, sy = {0, 0};
   for (int i = 0; i < n; i++) {

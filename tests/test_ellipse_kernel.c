@@ -32,15 +32,6 @@
 #endif
 static const double PI = 3.14159265358979323846;
 
-typedef struct {
-  double s, c;
-} ksum;
-static void kadd(ksum *k, double x) {
-  double t = k->s + x;
-  k->c += fabs(k->s) >= fabs(x) ? (k->s - t) + x : (x - t) + k->s;
-  k->s = t;
-}
-static double kval(const ksum *k) { return k->s + k->c; }
 
 static int cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;

@@ -4,6 +4,7 @@
 #ifndef ICS_TESTUTIL_H
 #define ICS_TESTUTIL_H
 
+#include <math.h>
 #include <stdio.h>
 
 static int test_passes_, test_failures_;
@@ -19,6 +20,17 @@ static int test_passes_, test_failures_;
       fputc('\n', stderr);                                                                 \
     }                                                                                      \
   } while (0)
+
+/* Compensated (Kahan-Babuska-Neumaier) summation, for quadrature references in tests. */
+typedef struct {
+  double s, c;
+} ksum;
+static inline void kadd(ksum *k, double x) {
+  double t = k->s + x;
+  k->c += fabs(k->s) >= fabs(x) ? (k->s - t) + x : (x - t) + k->s;
+  k->s = t;
+}
+static inline double kval(const ksum *k) { return k->s + k->c; }
 
 static inline int test_summary(const char *name) {
   printf("%s: %d passed, %d failed\n", name, test_passes_, test_failures_);
