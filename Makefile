@@ -51,7 +51,8 @@ analysis: deps all
 	@mkdir -p out/analysis
 	$(BUILD)/bin/stability_sweep --progress > out/analysis/stability.csv.tmp
 	mv out/analysis/stability.csv.tmp out/analysis/stability.csv
-	@echo "wrote out/analysis/stability.csv"
+	$(PYTHON) analysis/peer_accuracy.py --cli $(BUILD)/bin/icshadow --out out/analysis/peer_accuracy.csv
+	@echo "wrote out/analysis/stability.csv and out/analysis/peer_accuracy.csv"
 
 install: all
 	cmake --install $(BUILD) --prefix $(PREFIX)

@@ -14,7 +14,7 @@ packages=(
   # optional components: OpenEXR environment maps, jansson for lights/scene JSON
   libopenexr-dev libjansson-dev
   # figures, notebooks and table generators (Debian's python3, not a runtime dependency)
-  python3 python3-numpy python3-matplotlib python3-mpmath
+  python3 python3-numpy python3-matplotlib python3-mpmath python3-scipy
   jupyter-nbconvert python3-ipykernel python3-nbformat
 )
 
