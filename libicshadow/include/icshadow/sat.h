@@ -22,23 +22,27 @@
  * the number of cells times the mean value, so a float table of 4096^2 values near 1000 holds
  * numbers near 1.7e10 whose ulp is 2048 — a small box sum is then pure cancellation noise.
  *   ICS_SAT_FLOAT        float accumulation, float storage (4 bytes/cell).
- *   ICS_SAT_FLOAT_OFFSET float, but the double mean m of the data is subtracted before summing
- *                        and m * (box cells) is added back in double (Hensley's offset/bias):
+ *   ICS_SAT_FLOAT_OFFSET float, but an offset m (the float-rounded mean of an evenly spaced
+ *                        sample of <= 65536 cells) is subtracted before summing and
+ *                        m * (box cells) is added back in double (Hensley's offset/bias):
  *                        the table holds a random walk instead of a ramp (4 bytes/cell).
  *   ICS_SAT_COMPENSATED  float arithmetic only, each entry a double-float pair hi + lo
  *                        (error-free TwoSum, ~48-bit significand) (8 bytes/cell).
  *   ICS_SAT_DOUBLE       double accumulation and storage (8 bytes/cell).
  * ERROR BOUND (the same number is in sat.c's header, docs/sat.md and tests/test_sat.c):
- *   |box_sum computed - exact| <= ics_sat_error_factor(mode) * (x1 + y1 [+ z1]) * P
- * where P is the sum of |a - m| over the prefix box [0, x1) x [0, y1) [x [0, z1)] (m = the
- * offset for ICS_SAT_FLOAT_OFFSET, 0 otherwise). The factor is 4 * 1.01 * u with u = 2^-24
- * (float, float offset), 2^-44 (compensated) and 2^-53 (double). For clamped boxes the
- * clamped coordinates count. ics_sat*_integral adds the rounding of the interpolation weights
- * (a few ulps of the double result).
- *
+ *   |box_sum computed - exact| <= ics_sat_error_factor(mode, dims) * (x1 + y1 [+ z1] + 2^dims) * P
+ * where dims is 2 or 3 and P is the sum of |a - m| over the prefix box [0, x1) x [0, y1)
+ * [x [0, z1)] (m = the offset for ICS_SAT_FLOAT_OFFSET, 0 otherwise). The factor is
+ * 2^dims * 1.01 * u with u = 2^-24 (float, float offset), 2^-44 (compensated: 16 u_float^2)
+ * and 2^-53 (double): each of the 2^dims corner entries is a sum of depth <= x1 + y1 [+ z1]
+ * (recursive-summation bound gamma_n), the 2^dims term covers the corner combination in double.
+ * For clamped boxes the clamped coordinates count. ics_sat*_integral adds the rounding of the
+ * interpolation weights (a few ulps of the double result).
  * LIMITS: every dimension >= 1, the cell count <= 2^31 (2D and 3D) and the table size <=
  * ICS_SAT_MAX_BYTES; otherwise ICS_ERR_SIZE. NaN or infinite data -> ICS_ERR_NAN /
- * ICS_ERR_INFINITE (checked before anything is summed). NULL pointers -> ICS_ERR_INVALID_ARG.
+ * ICS_ERR_INFINITE, float sums that overflow -> ICS_ERR_RANGE (detected after the pass; on
+ * such an error from _rebuild the table is invalid and its box sums return
+ * ICS_ERR_INVALID_ARG until a successful rebuild). NULL pointers -> ICS_ERR_INVALID_ARG.
  * Allocation failure -> ICS_ERR_NOMEM. Objects are opaque; free with the matching _free
  * (NULL is fine). The library is single-threaded; a built table may be read from several
  * threads at once. */
@@ -67,8 +71,8 @@ typedef enum ics_sat_precision {
 const char *ics_sat_precision_name(ics_sat_precision mode);
 /* Parse one of the names above; ICS_ERR_PARSE when unknown. */
 ics_status ics_sat_precision_parse(const char *name, ics_sat_precision *mode);
-/* The error factor of the bound above (NaN for an unknown mode). */
-double ics_sat_error_factor(ics_sat_precision mode);
+/* The error factor of the bound above for dims = 2 or 3 (NaN for an unknown mode or dims). */
+double ics_sat_error_factor(ics_sat_precision mode, int dims);
 /* Bytes per table cell of a mode (4 or 8; 0 for an unknown mode). */
 size_t ics_sat_cell_bytes(ics_sat_precision mode);
 
@@ -78,6 +82,9 @@ typedef struct ics_sat2d ics_sat2d;
 /* Build the SAT of a width x height float image (row stride in elements, >= width). */
 ics_status ics_sat2d_build(ics_sat2d **out, const float *data, size_t width, size_t height,
                            size_t stride, ics_sat_precision mode);
+/* Recompute an existing table from new data of the same size (no allocation: the steady
+ * state of a renderer whose transfer function or time step changes). */
+ics_status ics_sat2d_rebuild(ics_sat2d *sat, const float *data, size_t stride);
 void ics_sat2d_free(ics_sat2d *sat);
 void ics_sat2d_size(const ics_sat2d *sat, size_t *width, size_t *height);
 ics_sat_precision ics_sat2d_precision(const ics_sat2d *sat);
@@ -107,6 +114,7 @@ typedef struct ics_sat3d ics_sat3d;
 /* Build the SAT of a width x height x depth float volume (tightly packed, x fastest). */
 ics_status ics_sat3d_build(ics_sat3d **out, const float *data, size_t width, size_t height,
                            size_t depth, ics_sat_precision mode);
+ics_status ics_sat3d_rebuild(ics_sat3d *sat, const float *data);
 void ics_sat3d_free(ics_sat3d *sat);
 void ics_sat3d_size(const ics_sat3d *sat, size_t *width, size_t *height, size_t *depth);
 ics_sat_precision ics_sat3d_precision(const ics_sat3d *sat);
