@@ -1,4 +1,528 @@
-/* bench_minmax.c — (placeholder: being written by the minmax work). */
+/* bench_minmax.c — `icshadow bench minmax`: Chen et al. 2011 1D min-max mipmaps against
+ * brute-force ray marching at the same resolution, on the synthetic height-field scene of
+ * libicshadow (boxes and spherical caps on a plane, directional light, eye outside the scene).
+ *
+ * Per depth-sample count d: render a d x d orthographic shadow map, rectify it into `rows`
+ * epipolar rows of d samples, take the N-term SVD of the in-scattering integrand (Chen Eq. 3-5)
+ * sampled on a 64 x 64 (beta, gamma) grid, then integrate `rays` camera rays per row both ways:
+ * tree traversal with prefix sums, and the per-sample march over the same N terms. Both compute
+ * the same sum, so "equal error" holds by construction; the max difference is printed. Times
+ * are the minimum over --reps repetitions, tree and march interleaved in each repetition.
+ * --svd-table prints the low-rank error against N instead; --fig4-csv writes the data of
+ * Chen's Fig. 4 (one row, its tree, one ray's traversal). */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
 #include "commands.h"
-int bench_minmax(int argc, char **argv) { (void)argc; (void)argv; fprintf(stderr, "not built yet\n"); return 1; }
+#include "icshadow.h"
+
+#define GRID 64
+#define MAX_TERMS 10 /* beyond, s_N / s_1 < 1e-13 and the Nystrom factors are noise */
+
+static void help(FILE *f) {
+  fprintf(f,
+          "usage: icshadow bench minmax [--samples LIST] [--rows N] [--rays N] [--terms N] "
+          "[--reps N]\n"
+          "                             [--scene hf|noise] [--svd-table] [--fig4-csv FILE]\n"
+          "\n"
+          "1D min-max mipmaps (Chen et al. 2011) vs brute-force ray marching at the same\n"
+          "resolution, on the built-in height-field scene. One CSV line per depth-sample count:\n"
+          "  samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,speedup,\n"
+          "  speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err\n"
+          "(times: seconds, min over --reps; speedup = march_s / traverse_s; speedup_with_build\n"
+          "adds build_s + prefix_s to the tree side; max_rel_err = max |tree - march| / max |march|).\n"
+          "\n"
+          "  --samples LIST  comma-separated depth-sample counts d, each 1..16384 (default\n"
+          "                  1024,2048,4096); the shadow map is min(d, 4096)^2; rows x d <= 2^25\n"
+          "  --rows N        epipolar rows (slices), 1..8192 (default 256)\n"
+          "  --rays N        camera rays per row, 1..4096 (default 128)\n"
+          "  --terms N       SVD terms N of the integrand, 1..10 (default 4, as the paper)\n"
+          "  --reps N        repetitions, 1..100 (default 5)\n"
+          "  --scene S       hf: the height-field scene (default); noise: stress rows (random walks\n"
+          "                  with jumps, ~sqrt(d) lit runs per ray; same integrand)\n"
+          "  --svd-table     print instead: N,sigma_rel,grid_fro_rel,grid_max_rel,\n"
+          "                  fullres_max_rel,inscatter_max_rel for N = 1..10 at the first d\n"
+          "  --fig4-csv FILE write Chen Fig. 4 data at the first --samples value and exit\n"
+          "                  (paper_figs/chen_fig4.py passes --samples 64)\n");
+}
+
+static double now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* ---- the scene set-up shared by all modes ---- */
+typedef struct setup {
+  size_t d, rows, rays, nterms;
+  ics_epi_frame f;
+  ics_hf_scene sc;
+  float *rect;           /* rows x d */
+  double beta_lo, beta_hi;
+  double grid[GRID * GRID], U[GRID * GRID], s[GRID], V[GRID * GRID];
+  double *terms;          /* nterms x d : Gamma_i(gamma) * dgamma */
+  double *prefix;         /* nterms x (d+1) */
+  double *B;              /* rows*rays x nterms */
+  ics_minmax_ray *ray;    /* rows*rays */
+  double *beta;           /* rows*rays */
+} setup;
+
+static const double sigma_t = 0.08, sigma_s = 0.05, hg_g = 0.6;
+
+/* In-scattering integrand per unit gamma sample (Chen Eq. 3 for a directional light, no
+ * extinction toward the light): ray at angle beta from L; the sample at radial distance
+ * rho = gamma dgamma lies at distance s = rho / sin(beta) from the eye; ds/dgamma = dgamma/sin.
+ * Henyey-Greenstein phase with scattering angle beta. */
+static double integrand(double beta, double gamma, double dgamma) {
+  double sb = sin(beta);
+  double ph = (1 - hg_g * hg_g) / (4 * 3.14159265358979323846 *
+                                   pow(1 + hg_g * hg_g - 2 * hg_g * cos(beta), 1.5));
+  return sigma_s * ph * exp(-sigma_t * gamma * dgamma / sb) * dgamma / sb;
+}
+
+static double grid_beta(const setup *S, size_t j) {
+  return S->beta_lo + (S->beta_hi - S->beta_lo) * (double)j / (GRID - 1);
+}
+static double grid_gamma(const setup *S, size_t k) { return (double)(S->d - 1) * (double)k / (GRID - 1); }
+
+/* The factors at full resolution by Nystrom extension of the grid SVD A = U S V^T:
+ *   Gamma_i(gamma) = sum_j U_ji I(beta_j, gamma) / s_i   (= V_i on the grid)
+ *   B_i(beta)      = sum_k I(beta, gamma_k) V_ki         (= s_i U_i on the grid)
+ * so sum_{i<N} B_i Gamma_i reproduces the rank-N truncation A_N on the grid and extends it
+ * smoothly between grid points without interpolation error. Gamma_i includes the sample
+ * width (the integrand is per sample). */
+static int nystrom_gamma(const setup *S, size_t nterms, double *terms) {
+  size_t d = S->d;
+  double *col = malloc(GRID * sizeof(double));
+  if (!col) return 1;
+  for (size_t g = 0; g < d; g++) {
+    for (size_t j = 0; j < GRID; j++) col[j] = integrand(grid_beta(S, j), (double)g, S->f.dgamma);
+    for (size_t i = 0; i < nterms; i++) {
+      double acc = 0;
+      for (size_t j = 0; j < GRID; j++) acc += S->U[j * GRID + i] * col[j];
+      terms[i * d + g] = acc / S->s[i];
+    }
+  }
+  free(col);
+  return 0;
+}
+
+static void nystrom_beta(const setup *S, double beta, size_t nterms, double *B) {
+  double row[GRID];
+  for (size_t k = 0; k < GRID; k++) row[k] = integrand(beta, grid_gamma(S, k), S->f.dgamma);
+  for (size_t i = 0; i < nterms; i++) {
+    double acc = 0;
+    for (size_t k = 0; k < GRID; k++) acc += row[k] * S->V[k * GRID + i];
+    B[i] = acc;
+  }
+}
+
+static void setup_free(setup *S) {
+  free(S->rect);
+  free(S->terms);
+  free(S->prefix);
+  free(S->B);
+  free(S->ray);
+  free(S->beta);
+}
+
+/* returns 0, or 1 on a runtime failure (message printed) */
+static int setup_init(setup *S, size_t d, size_t rows, size_t rays, size_t nterms, int noise) {
+  memset(S, 0, sizeof *S);
+  S->d = d;
+  S->rows = rows;
+  S->rays = rays;
+  S->nterms = nterms;
+  ics_hf_scene_default(&S->sc);
+  const double eye[3] = {0.3, 3.0, 9.0}, L[3] = {0.8, 0.45, -0.5};
+  ics_status st = ics_epi_frame_init(&S->f, eye, L, rows, d, 1.0);
+  /* radius: the farthest light-plane projection of the scene's bounding box from the epipole */
+  double R = 0;
+  for (int c = 0; c < 8 && st == ICS_OK; c++) {
+    double p[3] = {c & 1 ? 6.0 : -6.0, c & 2 ? 2.5 : 0.0, c & 4 ? 6.0 : -6.0}, a, g, dep;
+    ics_epi_locate(&S->f, p, &a, &g, &dep);
+    if (g > R) R = g;
+  }
+  R *= 1.05;
+  if (st == ICS_OK) st = ics_epi_frame_init(&S->f, eye, L, rows, d, R / (double)d);
+  S->rect = malloc(rows * d * sizeof(float));
+  size_t W = d < 4096 ? d : 4096; /* shadow map W x W */
+  float *smap = malloc(W * W * sizeof(float));
+  S->terms = malloc(nterms * d * sizeof(double));
+  S->prefix = malloc(nterms * (d + 1) * sizeof(double));
+  S->B = malloc(rows * rays * nterms * sizeof(double));
+  S->ray = malloc(rows * rays * sizeof(ics_minmax_ray));
+  S->beta = malloc(rows * rays * sizeof(double));
+  if (!S->rect || !smap || !S->terms || !S->prefix || !S->B || !S->ray || !S->beta) {
+    fprintf(stderr, "icshadow bench minmax: out of memory at d = %zu\n", d);
+    free(smap);
+    return 1;
+  }
+  if (st == ICS_OK) st = ics_hf_shadow_map(&S->sc, &S->f, W, R, smap);
+  if (st == ICS_OK)
+    st = ics_epi_rectify(&S->f, smap, W, W, S->f.eu - R, S->f.ev - R, 2 * R / (double)W, S->rect);
+  free(smap);
+  /* low-rank integrand on a GRID x GRID (beta, gamma) grid */
+  S->beta_lo = 0.12 * 3.14159265358979323846;
+  S->beta_hi = 0.88 * 3.14159265358979323846;
+  for (size_t j = 0; j < GRID; j++)
+    for (size_t k = 0; k < GRID; k++)
+      S->grid[j * GRID + k] = integrand(grid_beta(S, j), grid_gamma(S, k), S->f.dgamma);
+  if (st == ICS_OK) st = ics_svd(S->grid, GRID, GRID, S->U, S->s, S->V);
+  if (st != ICS_OK) {
+    fprintf(stderr, "icshadow bench minmax: scene set-up failed: %s\n", ics_status_str(st));
+    return 1;
+  }
+  if (nystrom_gamma(S, nterms, S->terms)) {
+    fprintf(stderr, "icshadow bench minmax: out of memory at d = %zu\n", d);
+    return 1;
+  }
+  st = ics_minmax_prefix(S->terms, nterms, d, d, S->prefix, d + 1);
+  /* camera rays: `rays` angles per row, each ending at its first surface */
+  for (size_t r = 0; r < rows && st == ICS_OK; r++)
+    for (size_t k = 0; k < rays; k++) {
+      size_t q = r * rays + k;
+      double beta = S->beta_lo + (S->beta_hi - S->beta_lo) * ((double)k + 0.5) / (double)rays;
+      double dir[3], alpha;
+      size_t row;
+      ics_epi_ray_dir(&S->f, r, beta, dir);
+      st = ics_epi_ray(&S->f, dir, &alpha, &row, &S->ray[q]);
+      double hit = ics_hf_scene_hit(&S->sc, S->f.eye, dir, 0.0);
+      double gend = isinf(hit) ? (double)d : ceil(hit * sin(beta) / S->f.dgamma);
+      S->ray[q].gamma_end = gend >= (double)d ? d : (size_t)gend;
+      S->beta[q] = beta;
+      nystrom_beta(S, beta, nterms, S->B + q * nterms);
+    }
+  if (st != ICS_OK) {
+    fprintf(stderr, "icshadow bench minmax: scene set-up failed: %s\n", ics_status_str(st));
+    return 1;
+  }
+  if (noise) { /* stress rows: random walks (steps uniform in +-1/2, then +-8 jumps 1 in 16),
+                * rays: lines through the walk's range over the whole row */
+    uint64_t x = 0x2545F4914F6CDD1Dull;
+    for (size_t r = 0; r < rows; r++) {
+      double w = 0;
+      for (size_t g = 0; g < d; g++) {
+        x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+        double u = (double)(x >> 11) * 0x1p-53;
+        w += (x & 15) == 0 ? (u - 0.5) * 16 : u - 0.5;
+        S->rect[r * d + g] = (float)w;
+      }
+      float lo = S->rect[r * d], hi = lo;
+      for (size_t g = 0; g < d; g++) {
+        lo = S->rect[r * d + g] < lo ? S->rect[r * d + g] : lo;
+        hi = S->rect[r * d + g] > hi ? S->rect[r * d + g] : hi;
+      }
+      for (size_t k = 0; k < rays; k++) {
+        size_t q = r * rays + k;
+        double a = lo + (hi - lo) * ((double)k + 0.5) / (double)rays;
+        double b = lo + (hi - lo) * ((double)((k * 7 + 3) % rays) + 0.5) / (double)rays;
+        S->ray[q].beta0 = a;
+        S->ray[q].slope = (b - a) / (double)d;
+        S->ray[q].gamma_end = d;
+      }
+    }
+  }
+  return 0;
+}
+
+static int bench_one(const setup *S, int reps) {
+  size_t d = S->d, nr = S->rows * S->rays, N = S->nterms;
+  double *Lt = malloc(nr * sizeof(double)), *Lm = malloc(nr * sizeof(double));
+  double *pre = malloc(N * (d + 1) * sizeof(double));
+  if (!Lt || !Lm || !pre) {
+    free(Lt);
+    free(Lm);
+    free(pre);
+    fprintf(stderr, "icshadow bench minmax: out of memory\n");
+    return 1;
+  }
+  double tb = INFINITY, tp = INFINITY, tt = INFINITY, tm = INFINITY;
+  ics_status st = ICS_OK;
+  double runs = 0;
+  for (int rep = 0; rep < reps && st == ICS_OK; rep++) {
+    ics_minmax *t = NULL;
+    double t0 = now();
+    st = ics_minmax_create(&t, S->rect, S->rows, d, d);
+    double t1 = now();
+    if (st == ICS_OK) st = ics_minmax_prefix(S->terms, N, d, d, pre, d + 1);
+    double t2 = now();
+    double out[MAX_TERMS];
+    for (size_t q = 0; q < nr && st == ICS_OK; q++) {
+      st = ics_minmax_integrate(t, q / S->rays, &S->ray[q], pre, N, d + 1, out);
+      double L = 0;
+      for (size_t i = 0; i < N; i++) L += S->B[q * N + i] * out[i];
+      Lt[q] = L;
+    }
+    double t3 = now();
+    for (size_t q = 0; q < nr && st == ICS_OK; q++) {
+      st = ics_minmax_march(S->rect + (q / S->rays) * d, d, &S->ray[q], S->terms, N, d, out);
+      double L = 0;
+      for (size_t i = 0; i < N; i++) L += S->B[q * N + i] * out[i];
+      Lm[q] = L;
+    }
+    double t4 = now();
+    if (rep == 0 && st == ICS_OK)
+      for (size_t q = 0; q < nr; q++) {
+        size_t ns = 0;
+        ics_minmax_segments(t, q / S->rays, &S->ray[q], NULL, 0, &ns, NULL);
+        runs += (double)ns;
+      }
+    ics_minmax_destroy(t);
+    tb = fmin(tb, t1 - t0);
+    tp = fmin(tp, t2 - t1);
+    tt = fmin(tt, t3 - t2);
+    tm = fmin(tm, t4 - t3);
+  }
+  if (st != ICS_OK) {
+    fprintf(stderr, "icshadow bench minmax: %s\n", ics_status_str(st));
+    free(Lt);
+    free(Lm);
+    free(pre);
+    return 1;
+  }
+  double maxL = 0, maxe = 0;
+  for (size_t q = 0; q < nr; q++) {
+    maxL = fmax(maxL, fabs(Lm[q]));
+    maxe = fmax(maxe, fabs(Lt[q] - Lm[q]));
+  }
+  printf("%zu,%zu,%zu,%zu,%.6g,%.6g,%.6g,%.6g,%.4g,%.4g,%.4g,%.3g,%.3g\n", d, S->rows, S->rays, N,
+         tb, tp, tt, tm, tm / tt, tm / (tb + tp + tt), runs / (double)nr, maxe,
+         maxL > 0 ? maxe / maxL : 0.0);
+  free(Lt);
+  free(Lm);
+  free(pre);
+  return fflush(stdout) != 0;
+}
+
+/* Low-rank error against N: on the grid, at full resolution, and on the in-scattering. */
+static int svd_table(setup *S) {
+  size_t d = S->d, nr = S->rows * S->rays;
+  double fa = 0, ma = 0;
+  for (size_t i = 0; i < GRID * GRID; i++) {
+    fa += S->grid[i] * S->grid[i];
+    ma = fmax(ma, fabs(S->grid[i]));
+  }
+  fa = sqrt(fa);
+  double *AN = malloc(GRID * GRID * sizeof(double));
+  double *terms = S->terms, *Lx = malloc(nr * sizeof(double));
+  if (!AN || !Lx) {
+    free(AN);
+    free(Lx);
+    fprintf(stderr, "icshadow bench minmax: out of memory\n");
+    return 1;
+  }
+  /* reference in-scattering: the exact integrand at every lit sample */
+  double maxL = 0;
+  for (size_t q = 0; q < nr; q++) {
+    const float *row = S->rect + (q / S->rays) * d;
+    const ics_minmax_ray *ry = &S->ray[q];
+    double acc = 0;
+    for (size_t g = 0; g < ry->gamma_end; g++)
+      if ((double)row[g] > ry->beta0 + ry->slope * (double)g) acc += integrand(S->beta[q], (double)g, S->f.dgamma);
+    Lx[q] = acc;
+    maxL = fmax(maxL, fabs(acc));
+  }
+  printf("N,sigma_rel,grid_fro_rel,grid_max_rel,fullres_max_rel,inscatter_max_rel\n");
+  for (size_t N = 1; N <= MAX_TERMS; N++) {
+    ics_svd_truncate(S->U, S->s, S->V, GRID, GRID, N, AN);
+    double fe = 0, me = 0;
+    for (size_t i = 0; i < GRID * GRID; i++) {
+      fe += (S->grid[i] - AN[i]) * (S->grid[i] - AN[i]);
+      me = fmax(me, fabs(S->grid[i] - AN[i]));
+    }
+    /* full resolution: every ray's beta x every sample, with the interpolated factors */
+    double fr = 0, frmax = 0, le = 0;
+    for (size_t q = 0; q < nr; q += S->rays > 8 ? S->rays / 8 : 1) {
+      const double *Bq = S->B + q * S->nterms;
+      for (size_t g = 0; g < d; g += 7) {
+        double ex = integrand(S->beta[q], (double)g, S->f.dgamma), ap = 0;
+        for (size_t i = 0; i < N; i++) ap += Bq[i] * terms[i * d + g];
+        fr = fmax(fr, fabs(ex - ap));
+        frmax = fmax(frmax, fabs(ex));
+      }
+    }
+    for (size_t q = 0; q < nr; q++) {
+      const float *row = S->rect + (q / S->rays) * d;
+      double out[MAX_TERMS], L = 0;
+      ics_minmax_march(row, d, &S->ray[q], terms, N, d, out);
+      for (size_t i = 0; i < N; i++) L += S->B[q * S->nterms + i] * out[i];
+      le = fmax(le, fabs(L - Lx[q]));
+    }
+    printf("%zu,%.3g,%.3g,%.3g,%.3g,%.3g\n", N, S->s[N - 1] / S->s[0], sqrt(fe) / fa, me / ma,
+           fr / frmax, maxL > 0 ? le / maxL : 0.0);
+  }
+  free(AN);
+  free(Lx);
+  return fflush(stdout) != 0;
+}
+
+/* Chen Fig. 4: the row with the most lit runs for the middle ray; all its samples, its tree
+ * nodes with their class for that ray, the ray, and the lit runs. */
+static int fig4(setup *S, const char *path) {
+  size_t d = S->d, P = 1;
+  while (P < d) P <<= 1;
+  ics_minmax *t = NULL;
+  ics_status st = ics_minmax_create(&t, S->rect, S->rows, d, d);
+  if (st != ICS_OK) {
+    fprintf(stderr, "icshadow bench minmax: %s\n", ics_status_str(st));
+    return 1;
+  }
+  size_t best = 0, bestn = 0;
+  for (size_t q = 0; q < S->rows * S->rays; q++) {
+    size_t ns = 0;
+    ics_minmax_segments(t, q / S->rays, &S->ray[q], NULL, 0, &ns, NULL);
+    if (ns > bestn) {
+      bestn = ns;
+      best = q;
+    }
+  }
+  size_t row = best / S->rays;
+  const ics_minmax_ray *ry = &S->ray[best];
+  unsigned char *cls = calloc(2 * P, 1);
+  size_t *seg = malloc(2 * (d + 1) * sizeof(size_t)), nseg = 0;
+  cli_output out;
+  if (!cls || !seg || cli_output_open(&out, path) != 0) {
+    free(cls);
+    free(seg);
+    ics_minmax_destroy(t);
+    if (!cls || !seg) fprintf(stderr, "icshadow bench minmax: out of memory\n");
+    return 1;
+  }
+  ics_minmax_segments(t, row, ry, seg, d + 1, &nseg, cls);
+  FILE *fp = out.fp;
+  fprintf(fp, "kind,index,level,g0,g1,lo,hi,class\n");
+  for (size_t g = 0; g < d; g++)
+    fprintf(fp, "sample,%zu,,%zu,%zu,%.9g,%.9g,%d\n", g, g, g + 1, S->rect[row * d + g],
+            S->rect[row * d + g], g < ry->gamma_end && (double)S->rect[row * d + g] > ry->beta0 + ry->slope * (double)g);
+  for (size_t k = 1; k < 2 * P; k++) {
+    size_t g0, g1, level = 0;
+    float lo, hi;
+    while (((size_t)2 << level) <= k) level++;
+    ics_minmax_node_range(t, k, &g0, &g1);
+    ics_minmax_node(t, row, k, &lo, &hi);
+    if (g0 < g1) fprintf(fp, "node,%zu,%zu,%zu,%zu,%.9g,%.9g,%d\n", k, level, g0, g1, lo, hi, cls[k]);
+  }
+  fprintf(fp, "ray,%zu,,0,%zu,%.17g,%.17g,\n", row, ry->gamma_end, ry->beta0, ry->slope);
+  for (size_t j = 0; j < nseg; j++) fprintf(fp, "run,%zu,,%zu,%zu,,,\n", j, seg[2 * j], seg[2 * j + 1]);
+  free(cls);
+  free(seg);
+  ics_minmax_destroy(t);
+  return cli_output_commit(&out) != 0;
+}
+
+static int parse_count(const char *opt, const char *val, long lo, long hi, int *out) {
+  if (cli_parse_int(val, lo, hi, out) != 0) {
+    fprintf(stderr, "icshadow bench minmax: %s: expected an integer in %ld..%ld, got '%s'\n", opt, lo,
+            hi, val);
+    return 1;
+  }
+  return 0;
+}
+
+int bench_minmax(int argc, char **argv) {
+  if (cli_wants_help(argc, argv)) {
+    help(stdout);
+    return 0;
+  }
+  int dlist[16], nd = 3, rows = 256, rays = 128, terms = 4, reps = 5, table = 0, noise = 0;
+  dlist[0] = 1024;
+  dlist[1] = 2048;
+  dlist[2] = 4096;
+  const char *figpath = NULL;
+  for (int i = 1; i < argc; i++) {
+    const char *opt = argv[i];
+    if (!strcmp(opt, "--svd-table")) {
+      table = 1;
+      continue;
+    }
+    int known = !strcmp(opt, "--samples") || !strcmp(opt, "--rows") || !strcmp(opt, "--rays") ||
+                !strcmp(opt, "--terms") || !strcmp(opt, "--reps") || !strcmp(opt, "--fig4-csv") ||
+                !strcmp(opt, "--scene");
+    if (!known) {
+      fprintf(stderr, "icshadow bench minmax: unknown option '%s' (see icshadow bench minmax --help)\n", opt);
+      return 2;
+    }
+    if (i + 1 >= argc) {
+      fprintf(stderr, "icshadow bench minmax: %s: missing value\n", opt);
+      return 2;
+    }
+    const char *val = argv[++i];
+    if (!strcmp(opt, "--samples")) {
+      nd = 0;
+      char buf[256];
+      if (strlen(val) >= sizeof buf) {
+        fprintf(stderr, "icshadow bench minmax: --samples: list too long\n");
+        return 2;
+      }
+      strcpy(buf, val);
+      char *save = NULL;
+      if (!*buf) {
+        fprintf(stderr, "icshadow bench minmax: --samples: expected integers in 1..16384, got ''\n");
+        return 2;
+      }
+      for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        if (nd == 16) {
+          fprintf(stderr, "icshadow bench minmax: --samples: at most 16 values\n");
+          return 2;
+        }
+        if (parse_count("--samples", tok, 1, 16384, &dlist[nd])) return 2;
+        nd++;
+      }
+      if (nd == 0) {
+        fprintf(stderr, "icshadow bench minmax: --samples: expected integers in 1..16384, got '%s'\n", val);
+        return 2;
+      }
+    } else if (!strcmp(opt, "--rows")) {
+      if (parse_count(opt, val, 1, 8192, &rows)) return 2;
+    } else if (!strcmp(opt, "--rays")) {
+      if (parse_count(opt, val, 1, 4096, &rays)) return 2;
+    } else if (!strcmp(opt, "--terms")) {
+      if (parse_count(opt, val, 1, MAX_TERMS, &terms)) return 2;
+    } else if (!strcmp(opt, "--reps")) {
+      if (parse_count(opt, val, 1, 100, &reps)) return 2;
+    } else if (!strcmp(opt, "--scene")) {
+      if (!strcmp(val, "hf"))
+        noise = 0;
+      else if (!strcmp(val, "noise"))
+        noise = 1;
+      else {
+        fprintf(stderr, "icshadow bench minmax: --scene: expected 'hf' or 'noise', got '%s'\n", val);
+        return 2;
+      }
+    } else {
+      if (!*val) {
+        fprintf(stderr, "icshadow bench minmax: --fig4-csv: empty file name\n");
+        return 2;
+      }
+      figpath = val;
+    }
+  }
+  for (int k = 0; k < nd; k++)
+    if ((size_t)rows * (size_t)dlist[k] > ((size_t)1 << 25)) {
+      fprintf(stderr, "icshadow bench minmax: --rows %d x --samples %d exceeds 2^25 samples\n", rows,
+              dlist[k]);
+      return 2;
+    }
+  setup S;
+  if (figpath || table) {
+    int rc = setup_init(&S, (size_t)dlist[0], (size_t)rows, (size_t)rays, figpath ? (size_t)terms : MAX_TERMS, noise);
+    if (rc == 0) rc = figpath ? fig4(&S, figpath) : svd_table(&S);
+    setup_free(&S);
+    return rc;
+  }
+  printf("samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,speedup,speedup_with_build,"
+         "lit_runs_per_ray,max_abs_err,max_rel_err\n");
+  for (int k = 0; k < nd; k++) {
+    int rc = setup_init(&S, (size_t)dlist[k], (size_t)rows, (size_t)rays, (size_t)terms, noise);
+    if (rc == 0) rc = bench_one(&S, reps);
+    setup_free(&S);
+    if (rc) return rc;
+  }
+  return 0;
+}
