@@ -1,0 +1,649 @@
+/* conv.c — iterative convolution engine, CPU reference path (conventions in icshadow/conv.h).
+ *
+ * A step turns the taps into integer taps (floor/fraction split, then linear/bilinear weights,
+ * or the variance-compensated integer taps), then sums shifted copies of the input:
+ * out[x] = sum_j v_j in[x - k_j], reads outside the buffer clamped to the edge or a constant.
+ * 1D in double; 2D float images accumulated per row in double, rounded once per pixel.
+ *
+ * Compensation (ics_taps1d_compensate): the discrete variance of the shrunk taps
+ * D(s) = sum w [s^2 (x - m)^2 + f(1 - f)] / sum w, f = frac(m + s (x - m)), is continuous in s,
+ * D(1) >= V (interpolation only adds) and D(0) = f_m (1 - f_m). If D(0) <= V a root exists and
+ * is found by bisection to the last bit of s; otherwise no non-negative integer taps reach V
+ * (f_m (1 - f_m) is the least variance of any distribution on the integers with mean m).
+ * 2D: A = T^(1/2) Sigma^(-1/2), T = Sigma - D(A) by a damped fixed-point iteration; falls back to
+ * an isotropic shrink matching the trace (residual reported) when Sigma is singular or T leaves
+ * the PSD cone. */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "icshadow/conv.h"
+
+#define MAX_OFFSET 0x1p30
+
+ics_conv_opts ics_conv_opts_default(void) {
+  ics_conv_opts o = {ICS_BOUNDARY_CLAMP, 0.0, ICS_COMP_NONE};
+  return o;
+}
+
+static ics_status check_taps1d(const ics_tap1d *t, int n) {
+  if (!t || n <= 0) return ICS_ERR_INVALID_ARG;
+  if (n > 4 * ICS_KERNEL_MAX_TAPS) return ICS_ERR_SIZE;
+  for (int j = 0; j < n; j++) {
+    if (isnan(t[j].x) || isnan(t[j].w)) return ICS_ERR_NAN;
+    if (isinf(t[j].x) || isinf(t[j].w)) return ICS_ERR_INFINITE;
+    if (fabs(t[j].x) > MAX_OFFSET) return ICS_ERR_RANGE;
+  }
+  return ICS_OK;
+}
+
+static ics_status check_taps2d(const ics_tap2d *t, int n) {
+  if (!t || n <= 0) return ICS_ERR_INVALID_ARG;
+  if (n > 4 * ICS_KERNEL_MAX_TAPS) return ICS_ERR_SIZE;
+  for (int j = 0; j < n; j++) {
+    if (isnan(t[j].x) || isnan(t[j].y) || isnan(t[j].w)) return ICS_ERR_NAN;
+    if (isinf(t[j].x) || isinf(t[j].y) || isinf(t[j].w)) return ICS_ERR_INFINITE;
+    if (fabs(t[j].x) > MAX_OFFSET || fabs(t[j].y) > MAX_OFFSET) return ICS_ERR_RANGE;
+  }
+  return ICS_OK;
+}
+
+double ics_interp_var1d(const ics_tap1d *t, int n) {
+  if (!t || n <= 0) return NAN;
+  double s = 0, sw = 0;
+  for (int j = 0; j < n; j++) {
+    double f = t[j].x - floor(t[j].x);
+    s += t[j].w * f * (1 - f);
+    sw += t[j].w;
+  }
+  return s / sw;
+}
+
+void ics_interp_var2d(const ics_tap2d *t, int n, double out[2]) {
+  if (!out) return;
+  if (!t || n <= 0) {
+    out[0] = out[1] = NAN;
+    return;
+  }
+  double sx = 0, sy = 0, sw = 0;
+  for (int j = 0; j < n; j++) {
+    double fx = t[j].x - floor(t[j].x), fy = t[j].y - floor(t[j].y);
+    sx += t[j].w * fx * (1 - fx);
+    sy += t[j].w * fy * (1 - fy);
+    sw += t[j].w;
+  }
+  out[0] = sx / sw;
+  out[1] = sy / sw;
+}
+
+static int cmp1(const void *a, const void *b) {
+  double x = ((const ics_tap1d *)a)->x, y = ((const ics_tap1d *)b)->x;
+  return (x > y) - (x < y);
+}
+
+static int cmp2(const void *a, const void *b) {
+  const ics_tap2d *p = a, *q = b;
+  if (p->x != q->x) return (p->x > q->x) - (p->x < q->x);
+  return (p->y > q->y) - (p->y < q->y);
+}
+
+/* sort, merge equal offsets, drop zero weights; returns new count */
+static int merge1(ics_tap1d *t, int n) {
+  qsort(t, (size_t)n, sizeof *t, cmp1);
+  int m = 0;
+  for (int j = 0; j < n; j++) {
+    if (m > 0 && t[m - 1].x == t[j].x)
+      t[m - 1].w += t[j].w;
+    else
+      t[m++] = t[j];
+  }
+  int k = 0;
+  for (int j = 0; j < m; j++)
+    if (t[j].w != 0) t[k++] = t[j];
+  return k;
+}
+
+static int merge2(ics_tap2d *t, int n) {
+  qsort(t, (size_t)n, sizeof *t, cmp2);
+  int m = 0;
+  for (int j = 0; j < n; j++) {
+    if (m > 0 && t[m - 1].x == t[j].x && t[m - 1].y == t[j].y)
+      t[m - 1].w += t[j].w;
+    else
+      t[m++] = t[j];
+  }
+  int k = 0;
+  for (int j = 0; j < m; j++)
+    if (t[j].w != 0) t[k++] = t[j];
+  return k;
+}
+
+/* split without the capacity check: out must hold 2 n */
+static int split1(const ics_tap1d *in, int n, ics_tap1d *out) {
+  int m = 0;
+  for (int j = 0; j < n; j++) {
+    double i = floor(in[j].x), f = in[j].x - i;
+    out[m].x = i, out[m].w = in[j].w * (1 - f), m++;
+    if (f > 0) out[m].x = i + 1, out[m].w = in[j].w * f, m++;
+  }
+  return merge1(out, m);
+}
+
+static int split2(const ics_tap2d *in, int n, ics_tap2d *out) {
+  int m = 0;
+  for (int j = 0; j < n; j++) {
+    double ix = floor(in[j].x), fx = in[j].x - ix;
+    double iy = floor(in[j].y), fy = in[j].y - iy;
+    double w = in[j].w;
+    out[m++] = (ics_tap2d){ix, iy, w * (1 - fx) * (1 - fy)};
+    if (fx > 0) out[m++] = (ics_tap2d){ix + 1, iy, w * fx * (1 - fy)};
+    if (fy > 0) out[m++] = (ics_tap2d){ix, iy + 1, w * (1 - fx) * fy};
+    if (fx > 0 && fy > 0) out[m++] = (ics_tap2d){ix + 1, iy + 1, w * fx * fy};
+  }
+  return merge2(out, m);
+}
+
+ics_status ics_taps1d_discretize(const ics_tap1d *in, int n, ics_tap1d *out, int cap, int *nout) {
+  ics_status st = check_taps1d(in, n);
+  if (st != ICS_OK) return st;
+  if (!out || !nout) return ICS_ERR_INVALID_ARG;
+  ics_tap1d *tmp = malloc(sizeof *tmp * 2 * (size_t)n);
+  if (!tmp) return ICS_ERR_NOMEM;
+  int m = split1(in, n, tmp);
+  if (m > cap) {
+    free(tmp);
+    return ICS_ERR_SIZE;
+  }
+  memcpy(out, tmp, sizeof *tmp * (size_t)m);
+  free(tmp);
+  *nout = m;
+  return ICS_OK;
+}
+
+ics_status ics_taps2d_discretize(const ics_tap2d *in, int n, ics_tap2d *out, int cap, int *nout) {
+  ics_status st = check_taps2d(in, n);
+  if (st != ICS_OK) return st;
+  if (!out || !nout) return ICS_ERR_INVALID_ARG;
+  ics_tap2d *tmp = malloc(sizeof *tmp * 4 * (size_t)n);
+  if (!tmp) return ICS_ERR_NOMEM;
+  int m = split2(in, n, tmp);
+  if (m > cap) {
+    free(tmp);
+    return ICS_ERR_SIZE;
+  }
+  memcpy(out, tmp, sizeof *tmp * (size_t)m);
+  free(tmp);
+  *nout = m;
+  return ICS_OK;
+}
+
+/* ---------------------------------------------------------------- compensation, 1D */
+/* discrete variance of taps m + s (x - m) after linear interpolation */
+static double dvar1(const ics_tap1d *t, int n, double m, double s, double W) {
+  double acc = 0, c = 0;
+  for (int j = 0; j < n; j++) {
+    double d = s * (t[j].x - m), p = m + d, f = p - floor(p);
+    double term = t[j].w * (d * d + f * (1 - f));
+    double y = term - c, z = acc + y; /* Kahan */
+    c = (z - acc) - y;
+    acc = z;
+  }
+  return acc / W;
+}
+
+ics_status ics_taps1d_compensate(const ics_tap1d *in, int n, ics_comp_mode mode, ics_tap1d *out,
+                                 int cap, int *nout, double *residual) {
+  ics_status st = check_taps1d(in, n);
+  if (st != ICS_OK) return st;
+  if (!out || !nout) return ICS_ERR_INVALID_ARG;
+  if (mode != ICS_COMP_NONE && mode != ICS_COMP_NONNEG && mode != ICS_COMP_SIGNED)
+    return ICS_ERR_RANGE;
+  double W, m, V;
+  ics_taps1d_moments(in, n, &W, &m, &V);
+  if (!(W > 0)) return ICS_ERR_RANGE; /* weights must sum to a positive total */
+  ics_tap1d *tmp = malloc(sizeof *tmp * (2 * (size_t)n + 3));
+  if (!tmp) return ICS_ERR_NOMEM;
+  double fm = m - floor(m), vmin = fm * (1 - fm);
+  int cnt;
+  if (mode == ICS_COMP_NONE) {
+    cnt = split1(in, n, tmp);
+  } else if (vmin > V && mode == ICS_COMP_SIGNED) {
+    /* three integer taps k-1, k, k+1 around k = round(m), d = m - k in [-1/2, 1/2]:
+     * w+ - w- = d, w+ + w- = V + d^2, w0 = 1 - V - d^2 (times the total weight) */
+    double k = floor(m + 0.5), d = m - k;
+    tmp[0] = (ics_tap1d){k - 1, W * 0.5 * (V + d * d - d)};
+    tmp[1] = (ics_tap1d){k, W * (1 - V - d * d)};
+    tmp[2] = (ics_tap1d){k + 1, W * 0.5 * (V + d * d + d)};
+    cnt = merge1(tmp, 3);
+  } else {
+    double s;
+    if (vmin >= V) {
+      s = 0; /* collapse onto floor / ceil of the mean: the least variance reachable */
+    } else if (dvar1(in, n, m, 1, W) <= V) {
+      s = 1; /* already on the grid */
+    } else {
+      double lo = 0, hi = 1;
+      for (int it = 0; it < 200; it++) {
+        double mid = 0.5 * (lo + hi);
+        if (mid <= lo || mid >= hi) break;
+        if (dvar1(in, n, m, mid, W) < V)
+          lo = mid;
+        else
+          hi = mid;
+      }
+      s = fabs(dvar1(in, n, m, lo, W) - V) < fabs(dvar1(in, n, m, hi, W) - V) ? lo : hi;
+    }
+    for (int j = 0; j < n; j++) tmp[j] = (ics_tap1d){m + s * (in[j].x - m), in[j].w};
+    ics_tap1d *tmp2 = malloc(sizeof *tmp2 * 2 * (size_t)n);
+    if (!tmp2) {
+      free(tmp);
+      return ICS_ERR_NOMEM;
+    }
+    cnt = split1(tmp, n, tmp2);
+    memcpy(tmp, tmp2, sizeof *tmp * (size_t)cnt);
+    free(tmp2);
+  }
+  if (cnt > cap) {
+    free(tmp);
+    return ICS_ERR_SIZE;
+  }
+  if (residual) {
+    double v2;
+    ics_taps1d_moments(tmp, cnt, NULL, NULL, &v2);
+    *residual = v2 - V;
+  }
+  memcpy(out, tmp, sizeof *tmp * (size_t)cnt);
+  *nout = cnt;
+  free(tmp);
+  return ICS_OK;
+}
+
+/* ---------------------------------------------------------------- compensation, 2D */
+static void eig2(double a, double b, double c, double *l1, double *l2) {
+  double h = 0.5 * (a + c), d = hypot(0.5 * (a - c), b);
+  *l1 = h + d;
+  *l2 = h - d;
+  if (*l1 > 0 && fabs(*l2) < 4 * DBL_EPSILON * *l1) *l2 = (a * c - b * b) / *l1;
+}
+
+static int sqrtm2(double a, double b, double c, double out[3]) {
+  double l1, l2;
+  eig2(a, b, c, &l1, &l2);
+  if (l2 < 0) return 0;
+  double s = sqrt(l1) * sqrt(l2), t = sqrt(l1) + sqrt(l2);
+  if (t == 0) {
+    out[0] = out[1] = out[2] = 0;
+    return 1;
+  }
+  out[0] = (a + s) / t;
+  out[1] = b / t;
+  out[2] = (c + s) / t;
+  return 1;
+}
+
+/* apply x -> m + A (x - m) (A symmetric or general 2x2 {a00, a01, a10, a11}) */
+static void shrink2(const ics_tap2d *in, int n, const double m[2], const double A[4],
+                    ics_tap2d *out) {
+  for (int j = 0; j < n; j++) {
+    double dx = in[j].x - m[0], dy = in[j].y - m[1];
+    out[j].x = m[0] + A[0] * dx + A[1] * dy;
+    out[j].y = m[1] + A[2] * dx + A[3] * dy;
+    out[j].w = in[j].w;
+  }
+}
+
+/* covariance of the bilinearly discretized taps (exact identity: shape cov + diag(interp)) */
+static void dcov2(const ics_tap2d *t, int n, double cov[3]) {
+  double W, mm[2], c[3], iv[2];
+  ics_taps2d_moments(t, n, &W, mm, c);
+  ics_interp_var2d(t, n, iv);
+  cov[0] = c[0] + iv[0];
+  cov[1] = c[1];
+  cov[2] = c[2] + iv[1];
+}
+
+ics_status ics_taps2d_compensate(const ics_tap2d *in, int n, ics_comp_mode mode, ics_tap2d *out,
+                                 int cap, int *nout, double residual[3]) {
+  ics_status st = check_taps2d(in, n);
+  if (st != ICS_OK) return st;
+  if (!out || !nout) return ICS_ERR_INVALID_ARG;
+  if (mode != ICS_COMP_NONE && mode != ICS_COMP_NONNEG && mode != ICS_COMP_SIGNED)
+    return ICS_ERR_RANGE;
+  double W, m[2], S[3];
+  ics_taps2d_moments(in, n, &W, m, S);
+  if (!(W > 0)) return ICS_ERR_RANGE;
+  ics_tap2d *sh = malloc(sizeof *sh * (size_t)n);
+  ics_tap2d *tmp = malloc(sizeof *tmp * (4 * (size_t)n + 9));
+  if (!sh || !tmp) {
+    free(sh);
+    free(tmp);
+    return ICS_ERR_NOMEM;
+  }
+  int cnt = 0, done = 0;
+  double scale = (S[0] + S[2]) + 1.0;
+  if (mode == ICS_COMP_NONE) {
+    cnt = split2(in, n, tmp);
+    done = 1;
+  }
+  /* exact route: fixed point for A = T^(1/2) S^(-1/2) */
+  double l1, l2;
+  eig2(S[0], S[1], S[2], &l1, &l2);
+  if (!done && l2 > 1e-9 * l1 && l2 > 0) {
+    double R[3], Ri[3];
+    sqrtm2(S[0], S[1], S[2], R);
+    double det = R[0] * R[2] - R[1] * R[1];
+    Ri[0] = R[2] / det, Ri[1] = -R[1] / det, Ri[2] = R[0] / det;
+    double T[3] = {S[0], S[1], S[2]}, beta = 1.0, prev = INFINITY;
+    for (int it = 0; it < 400; it++) {
+      double Th[3];
+      if (!sqrtm2(T[0], T[1], T[2], Th)) break;
+      double A[4] = {Th[0] * Ri[0] + Th[1] * Ri[1], Th[0] * Ri[1] + Th[1] * Ri[2],
+                     Th[1] * Ri[0] + Th[2] * Ri[1], Th[1] * Ri[1] + Th[2] * Ri[2]};
+      shrink2(in, n, m, A, sh);
+      double C[3];
+      dcov2(sh, n, C);
+      double e[3] = {C[0] - S[0], C[1] - S[1], C[2] - S[2]};
+      double err = fabs(e[0]) + fabs(e[1]) + fabs(e[2]);
+      if (err <= 4 * DBL_EPSILON * scale) {
+        cnt = split2(sh, n, tmp);
+        done = 1;
+        break;
+      }
+      if (err > prev) beta *= 0.5;
+      if (beta < 1e-6) break;
+      prev = err;
+      T[0] -= beta * e[0], T[1] -= beta * e[1], T[2] -= beta * e[2];
+    }
+  }
+  if (!done && mode == ICS_COMP_SIGNED) {
+    /* 3 x 3 signed taps around k = round(m): product of the 1D three-tap solutions for x and y
+     * (cross moment d_x d_y) plus +-c/4 on the corners for the covariance c_xy. */
+    double k[2], d[2], wm[2][3];
+    for (int a = 0; a < 2; a++) {
+      k[a] = floor(m[a] + 0.5), d[a] = m[a] - k[a];
+      double V = a ? S[2] : S[0];
+      wm[a][0] = 0.5 * (V + d[a] * d[a] - d[a]);
+      wm[a][1] = 1 - V - d[a] * d[a];
+      wm[a][2] = 0.5 * (V + d[a] * d[a] + d[a]);
+    }
+    int c = 0;
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) {
+        double corner = (i != 1 && j != 1) ? ((i == j) ? 0.25 : -0.25) * S[1] : 0;
+        tmp[c++] = (ics_tap2d){k[0] + j - 1, k[1] + i - 1, W * (wm[0][j] * wm[1][i] + corner)};
+      }
+    cnt = merge2(tmp, c);
+    done = 1;
+  }
+  if (!done) {
+    /* best effort: isotropic shrink s in [0, 1] matching the trace */
+    double lo = 0, hi = 1, target = S[0] + S[2];
+    double A1[4] = {1, 0, 0, 1}, C[3];
+    shrink2(in, n, m, A1, sh);
+    dcov2(sh, n, C);
+    if (C[0] + C[2] > target) {
+      for (int it = 0; it < 200; it++) {
+        double mid = 0.5 * (lo + hi);
+        if (mid <= lo || mid >= hi) break;
+        double A[4] = {mid, 0, 0, mid};
+        shrink2(in, n, m, A, sh);
+        dcov2(sh, n, C);
+        if (C[0] + C[2] < target)
+          lo = mid;
+        else
+          hi = mid;
+      }
+      double A[4] = {lo, 0, 0, lo};
+      shrink2(in, n, m, A, sh);
+    }
+    cnt = split2(sh, n, tmp);
+  }
+  free(sh);
+  if (cnt > cap) {
+    free(tmp);
+    return ICS_ERR_SIZE;
+  }
+  if (residual) {
+    double c2[3];
+    ics_taps2d_moments(tmp, cnt, NULL, NULL, c2);
+    residual[0] = c2[0] - S[0];
+    residual[1] = c2[1] - S[1];
+    residual[2] = c2[2] - S[2];
+  }
+  memcpy(out, tmp, sizeof *tmp * (size_t)cnt);
+  *nout = cnt;
+  free(tmp);
+  return ICS_OK;
+}
+
+/* ---------------------------------------------------------------- engine */
+static ics_status prepare1d(const ics_tap1d *taps, int ntaps, const ics_conv_opts *o,
+                            ics_tap1d **out, int *nout, double *resid) {
+  ics_tap1d *t = malloc(sizeof *t * (2 * (size_t)(ntaps > 0 ? ntaps : 1) + 3));
+  if (!t) return ICS_ERR_NOMEM;
+  ics_status st = ics_taps1d_compensate(taps, ntaps, o->compensate, t, 2 * ntaps + 3, nout, resid);
+  if (st != ICS_OK) {
+    free(t);
+    return st;
+  }
+  *out = t;
+  return ICS_OK;
+}
+
+static ics_status check_opts(const ics_conv_opts *o) {
+  if (o->boundary != ICS_BOUNDARY_CLAMP && o->boundary != ICS_BOUNDARY_CONSTANT)
+    return ICS_ERR_RANGE;
+  if (isnan(o->constant)) return ICS_ERR_NAN;
+  if (o->compensate != ICS_COMP_NONE && o->compensate != ICS_COMP_NONNEG &&
+      o->compensate != ICS_COMP_SIGNED)
+    return ICS_ERR_RANGE;
+  return ICS_OK;
+}
+
+static void apply1d(const double *in, double *out, size_t n, const ics_tap1d *t, int nt,
+                    const ics_conv_opts *o) {
+  for (size_t x = 0; x < n; x++) out[x] = 0;
+  long long N = (long long)n;
+  for (int j = 0; j < nt; j++) {
+    long long k = (long long)t[j].x;
+    double w = t[j].w;
+    /* valid x: 0 <= x - k < N */
+    long long lo = k < 0 ? 0 : k, hi = k + N < N ? k + N : N;
+    if (lo > N) lo = N;
+    if (hi < 0) hi = 0;
+    if (hi < lo) hi = lo;
+    double left = o->boundary == ICS_BOUNDARY_CLAMP ? in[0] : o->constant;
+    double right = o->boundary == ICS_BOUNDARY_CLAMP ? in[n - 1] : o->constant;
+    for (long long x = 0; x < lo; x++) out[x] += w * (x - k < 0 ? left : right);
+    for (long long x = lo; x < hi; x++) out[x] += w * in[x - k];
+    for (long long x = hi; x < N; x++) out[x] += w * (x - k < 0 ? left : right);
+  }
+}
+
+ics_status ics_conv1d_step(const double *in, double *out, size_t n, const ics_tap1d *taps,
+                           int ntaps, const ics_conv_opts *opts) {
+  ics_conv_opts o = opts ? *opts : ics_conv_opts_default();
+  if (!in || !out || !taps || ntaps <= 0 || in == out) return ICS_ERR_INVALID_ARG;
+  if (n == 0 || n > ICS_CONV_MAX_LEN) return ICS_ERR_SIZE;
+  ics_status st = check_opts(&o);
+  if (st != ICS_OK) return st;
+  ics_tap1d *t;
+  int nt;
+  st = prepare1d(taps, ntaps, &o, &t, &nt, NULL);
+  if (st != ICS_OK) return st;
+  apply1d(in, out, n, t, nt, &o);
+  free(t);
+  return ICS_OK;
+}
+
+static void apply2d(const float *in, float *out, size_t w, size_t h, const ics_tap2d *t, int nt,
+                    const ics_conv_opts *o, double *row) {
+  long long W = (long long)w, H = (long long)h;
+  for (long long y = 0; y < H; y++) {
+    for (long long x = 0; x < W; x++) row[x] = 0;
+    for (int j = 0; j < nt; j++) {
+      long long kx = (long long)t[j].x, ky = (long long)t[j].y;
+      double wt = t[j].w;
+      long long sy = y - ky;
+      const float *src = NULL;
+      if (sy < 0 || sy >= H) {
+        if (o->boundary == ICS_BOUNDARY_CONSTANT) {
+          for (long long x = 0; x < W; x++) row[x] += wt * o->constant;
+          continue;
+        }
+        sy = sy < 0 ? 0 : H - 1;
+      }
+      src = in + sy * W;
+      double left = o->boundary == ICS_BOUNDARY_CLAMP ? src[0] : o->constant;
+      double right = o->boundary == ICS_BOUNDARY_CLAMP ? src[W - 1] : o->constant;
+      long long lo = kx < 0 ? 0 : kx, hi = kx + W < W ? kx + W : W;
+      if (lo > W) lo = W;
+      if (hi < 0) hi = 0;
+      if (hi < lo) hi = lo;
+      for (long long x = 0; x < lo; x++) row[x] += wt * (x - kx < 0 ? left : right);
+      for (long long x = lo; x < hi; x++) row[x] += wt * src[x - kx];
+      for (long long x = hi; x < W; x++) row[x] += wt * (x - kx < 0 ? left : right);
+    }
+    for (long long x = 0; x < W; x++) out[y * W + x] = (float)row[x];
+  }
+}
+
+static ics_status prepare2d(const ics_tap2d *taps, int ntaps, const ics_conv_opts *o,
+                            ics_tap2d **out, int *nout, double *resid) {
+  ics_tap2d *t = malloc(sizeof *t * (4 * (size_t)(ntaps > 0 ? ntaps : 1) + 9));
+  if (!t) return ICS_ERR_NOMEM;
+  ics_status st = ics_taps2d_compensate(taps, ntaps, o->compensate, t, 4 * ntaps + 9, nout, resid);
+  if (st != ICS_OK) {
+    free(t);
+    return st;
+  }
+  *out = t;
+  return ICS_OK;
+}
+
+static int bad_size2d(size_t w, size_t h) {
+  return w == 0 || h == 0 || w > ICS_CONV_MAX_LEN || h > ICS_CONV_MAX_LEN / w;
+}
+
+ics_status ics_conv2d_step(const float *in, float *out, size_t w, size_t h, const ics_tap2d *taps,
+                           int ntaps, const ics_conv_opts *opts) {
+  ics_conv_opts o = opts ? *opts : ics_conv_opts_default();
+  if (!in || !out || !taps || ntaps <= 0 || in == out) return ICS_ERR_INVALID_ARG;
+  if (bad_size2d(w, h)) return ICS_ERR_SIZE;
+  ics_status st = check_opts(&o);
+  if (st != ICS_OK) return st;
+  ics_tap2d *t;
+  int nt;
+  st = prepare2d(taps, ntaps, &o, &t, &nt, NULL);
+  if (st != ICS_OK) return st;
+  double *row = malloc(sizeof *row * w);
+  if (!row) {
+    free(t);
+    return ICS_ERR_NOMEM;
+  }
+  apply2d(in, out, w, h, t, nt, &o, row);
+  free(row);
+  free(t);
+  return ICS_OK;
+}
+
+ics_status ics_conv1d_run(double *buf, size_t n, const ics_schedule1d *s, uint64_t first_step,
+                          int nsteps, const ics_conv_opts *opts, ics_conv_stats *stats) {
+  ics_conv_opts o = opts ? *opts : ics_conv_opts_default();
+  if (!buf || !s || nsteps < 0) return ICS_ERR_INVALID_ARG;
+  if (n == 0 || n > ICS_CONV_MAX_LEN) return ICS_ERR_SIZE;
+  ics_status st = check_opts(&o);
+  if (st != ICS_OK) return st;
+  int cap = ics_schedule1d_max_taps(s);
+  if (cap <= 0) return s->members && s->nmembers > 0 ? ics_kernel1d_taps(s->members, 0, NULL, 0, NULL)
+                                                     : ICS_ERR_INVALID_ARG;
+  if (stats) memset(stats, 0, sizeof *stats);
+  ics_tap1d *taps = malloc(sizeof *taps * (size_t)cap);
+  double *tmp = malloc(sizeof *tmp * n);
+  if (!taps || !tmp) {
+    free(taps);
+    free(tmp);
+    return ICS_ERR_NOMEM;
+  }
+  for (int k = 0; k < nsteps && st == ICS_OK; k++) {
+    int nt;
+    st = ics_schedule1d_taps(s, first_step + (uint64_t)k, taps, cap, &nt);
+    if (st != ICS_OK) break;
+    ics_tap1d *d;
+    int nd;
+    double resid;
+    st = prepare1d(taps, nt, &o, &d, &nd, &resid);
+    if (st != ICS_OK) break;
+    apply1d(buf, tmp, n, d, nd, &o);
+    free(d);
+    memcpy(buf, tmp, sizeof *tmp * n);
+    if (stats) {
+      double v;
+      ics_taps1d_moments(taps, nt, NULL, NULL, &v);
+      stats->steps++;
+      stats->kernel_var[0] += v;
+      if (o.compensate == ICS_COMP_NONE)
+        stats->interp_var[0] += resid;
+      else
+        stats->residual[0] += resid;
+    }
+  }
+  free(taps);
+  free(tmp);
+  return st;
+}
+
+ics_status ics_conv2d_run(float *buf, size_t w, size_t h, const ics_schedule2d *s,
+                          uint64_t first_step, int nsteps, const ics_conv_opts *opts,
+                          ics_conv_stats *stats) {
+  ics_conv_opts o = opts ? *opts : ics_conv_opts_default();
+  if (!buf || !s || nsteps < 0) return ICS_ERR_INVALID_ARG;
+  if (bad_size2d(w, h)) return ICS_ERR_SIZE;
+  ics_status st = check_opts(&o);
+  if (st != ICS_OK) return st;
+  int cap = ics_schedule2d_max_taps(s);
+  if (cap <= 0) return s->members && s->nmembers > 0 ? ics_kernel2d_taps(s->members, 0, NULL, 0, NULL)
+                                                     : ICS_ERR_INVALID_ARG;
+  if (stats) memset(stats, 0, sizeof *stats);
+  ics_tap2d *taps = malloc(sizeof *taps * (size_t)cap);
+  float *tmp = malloc(sizeof *tmp * w * h);
+  double *row = malloc(sizeof *row * w);
+  if (!taps || !tmp || !row) {
+    free(taps);
+    free(tmp);
+    free(row);
+    return ICS_ERR_NOMEM;
+  }
+  for (int k = 0; k < nsteps && st == ICS_OK; k++) {
+    int nt;
+    st = ics_schedule2d_taps(s, first_step + (uint64_t)k, taps, cap, &nt);
+    if (st != ICS_OK) break;
+    ics_tap2d *d;
+    int nd;
+    double resid[3];
+    st = prepare2d(taps, nt, &o, &d, &nd, resid);
+    if (st != ICS_OK) break;
+    apply2d(buf, tmp, w, h, d, nd, &o, row);
+    free(d);
+    memcpy(buf, tmp, sizeof *tmp * w * h);
+    if (stats) {
+      double c[3];
+      ics_taps2d_moments(taps, nt, NULL, NULL, c);
+      stats->steps++;
+      stats->kernel_var[0] += c[0];
+      stats->kernel_var[1] += c[2];
+      if (o.compensate == ICS_COMP_NONE) {
+        stats->interp_var[0] += resid[0];
+        stats->interp_var[1] += resid[2];
+      } else {
+        stats->residual[0] += resid[0];
+        stats->residual[1] += resid[2];
+      }
+    }
+  }
+  free(taps);
+  free(tmp);
+  free(row);
+  return st;
+}
