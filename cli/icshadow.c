@@ -19,6 +19,8 @@ static const struct {
     {"lut", cmd_lut, "write lookup-table headers (C, GLSL, OpenCL) or report their error"},
     {"isoline", cmd_isoline, "x position of a shadow isoline behind an edge (correct/iterative/CLT)"},
     {"clt", cmd_clt, "CLT convergence of iterated kernels: sup error against steps (CSV)"},
+    {"iterate", cmd_iterate, "iterate a Heaviside edge with a 1D kernel member: profile after N steps (CSV)"},
+    {"kernel-table", cmd_kernel_table, "Table I measured: moments, width, taps and cost of each 1D kernel member (CSV)"},
     {"bench", cmd_bench, "benchmark a peer primitive (sat2d, sat3d, minmax, occtex): CSV"},
 };
 
@@ -28,7 +30,7 @@ static void usage(FILE *f) {
           "libicshadow %s: the theory of convolution soft shadows.\n\ncommands:\n",
           ICS_VERSION_STRING);
   for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-    fprintf(f, "  %-8s %s\n", commands[i].name, commands[i].summary);
+    fprintf(f, "  %-12s %s\n", commands[i].name, commands[i].summary);
 }
 
 int main(int argc, char **argv) {

@@ -1,0 +1,369 @@
+/* cmd_iterate.c — `icshadow iterate --kernel K --var V --steps N[,N2,...] [options]`: the 1D
+ * profile of a Heaviside edge after N steps of iterative convolution with kernel member K
+ * (Patel et al. 2013, Eq. 5 and Fig. 3), computed by the library's engine (icshadow/conv.h),
+ * as CSV: steps,x,value,gauss_cdf.
+ *
+ * Grid: pixel i has centre x_i = i - W/2 + 1/2 (W even), so the edge x = 0 lies half-way between
+ * two pixels; r_0(x_i) = H(x_i) = 1 for x_i > 0, else 0. After n steps the nodal values are the
+ * cdf of the applied integer-tap distribution S_n at x_i: r_n(x_i) = P(S_n < x_i).
+ * gauss_cdf is the Gaussian cdf with the same moments as what was applied: mean = the sum of
+ * the step means, variance = the sum of the taps' own variances plus the variance the linear
+ * interpolation added (ics_conv_stats), plus the grid's 1/12 px^2 (the linear interpolation of
+ * the nodes is the cdf of S_n + U(-1/2, 1/2)); the same convention as `icshadow clt`.
+ * Bad input: a message naming the problem on stderr, exit status 2, nothing on stdout. */
+#define _POSIX_C_SOURCE 200809L /* strdup */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "commands.h"
+#include "icshadow.h"
+
+#define MAX_MEMBERS 16
+#define MAX_STEPS 1000000
+#define MAX_WIDTH (1 << 24)
+
+static void help(FILE *f) {
+  fprintf(f,
+          "usage: icshadow iterate --kernel K[,K2,...] --var V --steps N[,N2,...] [--mean M]\n"
+          "                        [--samples S] [--param P] [--seed SEED] [--width W]\n"
+          "                        [--compensate none|nonneg|signed]\n"
+          "Iterates a Heaviside edge H(x) (0 for x < 0, 1 for x > 0) with a 1D kernel of the\n"
+          "equivalence class (mean M, variance V) in pixels (Patel et al. 2013, Eq. 5, Fig. 3)\n"
+          "and prints the profile after each requested step count as CSV:\n"
+          "  steps,x,value,gauss_cdf\n"
+          "x: pixel centres, the edge half-way between two of them; value: the iterated shadow;\n"
+          "gauss_cdf: the Gaussian cdf with the moments actually applied (sum of step means;\n"
+          "sum of tap variances + interpolation variance + the grid's 1/12).\n\n"
+          "options:\n"
+          "  --kernel K   member: dirac, tophat, stochastic-dirac, gauss; a comma list cycles\n"
+          "               through the members step by step (Lyapunov mixing), e.g. dirac,tophat\n"
+          "  --var V      class variance in px^2, finite and >= 0 (required)\n"
+          "  --steps N    step counts to print, strictly increasing, 0..%d: a comma list of\n"
+          "               counts and ranges A:B[:STRIDE], e.g. 0:100 or 1,10,100\n"
+          "  --mean M     class mean in px, finite (default 0)\n"
+          "  --samples S  member sample count (gauss taps), 0 = default (9)\n"
+          "  --param P    member parameter, 0 = default: stochastic-dirac jitter half-width\n"
+          "               (default 1 px), gauss truncation (default 3), tophat 1 = raw box\n"
+          "  --seed SEED  seed of the stochastic members (default 0)\n"
+          "  --width W    grid size in pixels, even, 2..%d (default: wide enough for 10\n"
+          "               standard deviations plus the kernel reach on each side)\n"
+          "  --compensate none (default): off-grid taps are linearly interpolated, adding\n"
+          "               variance; nonneg / signed: integer taps with the exact moments\n"
+          "Exit status: 0 ok, 1 runtime failure, 2 bad input (message on stderr).\n",
+          MAX_STEPS, MAX_WIDTH);
+}
+
+#define ERR(...)                                \
+  do {                                          \
+    fprintf(stderr, "icshadow iterate: ");      \
+    fprintf(stderr, __VA_ARGS__);               \
+    fputc('\n', stderr);                        \
+  } while (0)
+
+static int get_double(const char *opt, const char *s, int variance, double *out) {
+  double v;
+  if (cli_parse_double(s, &v) != 0) {
+    ERR("%s: not a number: '%s'", opt, s);
+    return -1;
+  }
+  if (isnan(v)) {
+    ERR("%s: NaN is not allowed", opt);
+    return -1;
+  }
+  if (variance && v < 0) {
+    ERR("%s: negative variance %s (must be >= 0)", opt, s);
+    return -1;
+  }
+  if (isinf(v)) {
+    ERR("%s: must be finite, got '%s'", opt, s);
+    return -1;
+  }
+  *out = v;
+  return 0;
+}
+
+static int parse_member(const char *name, ics_kernel_member *m) {
+  for (int i = 0; i < ICS_KERNEL_MEMBER_COUNT_; i++) {
+    const char *n = ics_kernel_member_name((ics_kernel_member)i);
+    if (n && !strcmp(n, name) && (ics_kernel_member_dims((ics_kernel_member)i) & 1)) {
+      *m = (ics_kernel_member)i;
+      return 0;
+    }
+  }
+  return -1;
+}
+
+/* comma list of 1D member names */
+static int parse_members(const char *s, ics_kernel_member *m, int *count) {
+  char buf[512];
+  if (strlen(s) >= sizeof buf) {
+    ERR("--kernel: list too long");
+    return -1;
+  }
+  strcpy(buf, s);
+  int n = 0;
+  char *p = buf;
+  for (;;) {
+    char *comma = strchr(p, ',');
+    if (comma) *comma = '\0';
+    if (n == MAX_MEMBERS) {
+      ERR("--kernel: at most %d members", MAX_MEMBERS);
+      return -1;
+    }
+    if (parse_member(p, &m[n]) != 0) {
+      ERR("--kernel: unknown 1D kernel '%s' (dirac, tophat, stochastic-dirac, gauss)", p);
+      return -1;
+    }
+    n++;
+    if (!comma) break;
+    p = comma + 1;
+  }
+  *count = n;
+  return 0;
+}
+
+/* comma list of step counts and ranges A:B[:S] (A, A + S, ..., up to B), strictly increasing;
+ * *steps is allocated */
+static int parse_steps(const char *s, int **steps, int *count) {
+  char *buf = strdup(s);
+  int cap = 16, n = 0;
+  int *v = malloc(sizeof *v * (size_t)cap);
+  if (!buf || !v) {
+    free(buf);
+    free(v);
+    ERR("out of memory");
+    return -1;
+  }
+  char *p = buf;
+  int ok = 1;
+  for (;;) {
+    char *comma = strchr(p, ',');
+    if (comma) *comma = '\0';
+    int a, b, stride = 1;
+    char *c1 = strchr(p, ':'), *c2 = NULL;
+    if (c1) {
+      *c1 = '\0';
+      c2 = strchr(c1 + 1, ':');
+      if (c2) *c2 = '\0';
+    }
+    if (cli_parse_int(p, 0, MAX_STEPS, &a) != 0 ||
+        (c1 && cli_parse_int(c1 + 1, 0, MAX_STEPS, &b) != 0) ||
+        (c2 && cli_parse_int(c2 + 1, 1, MAX_STEPS, &stride) != 0)) {
+      ERR("--steps: expected integers in 0..%d or ranges A:B[:STRIDE], got '%s'", MAX_STEPS, s);
+      ok = 0;
+      break;
+    }
+    if (!c1) b = a;
+    if (b < a) {
+      ERR("--steps: empty range %d:%d", a, b);
+      ok = 0;
+      break;
+    }
+    for (long k = a; k <= b; k += stride) {
+      if (n > 0 && k <= v[n - 1]) {
+        ERR("--steps: step counts must be strictly increasing (%ld after %d)", k, v[n - 1]);
+        ok = 0;
+        break;
+      }
+      if (n == cap) {
+        cap *= 2;
+        int *nv = realloc(v, sizeof *v * (size_t)cap);
+        if (!nv) {
+          ERR("out of memory");
+          ok = 0;
+          break;
+        }
+        v = nv;
+      }
+      v[n++] = (int)k;
+    }
+    if (!ok || !comma) break;
+    p = comma + 1;
+  }
+  free(buf);
+  if (!ok) {
+    free(v);
+    return -1;
+  }
+  *steps = v;
+  *count = n;
+  return 0;
+}
+
+static double phi(double z) { return 0.5 * erfc(-z / sqrt(2.0)); }
+
+/* the command; *steps_out holds the allocated step list (freed by the caller) */
+static int iterate_main(int argc, char **argv, int **steps_out) {
+  ics_kernel_member members[MAX_MEMBERS];
+  int nmembers = 0, nsnap = 0, samples = 0, width = 0;
+  double var = 0, mean = 0, param = 0;
+  unsigned long long seed = 0;
+  int have_kernel = 0, have_var = 0, have_steps = 0;
+  ics_comp_mode comp = ICS_COMP_NONE;
+  for (int i = 1; i < argc; i++) {
+    const char *opt = argv[i];
+    static const char *const known[] = {"--kernel", "--var",  "--steps", "--mean",      "--samples",
+                                        "--param",  "--seed", "--width", "--compensate"};
+    int k = -1;
+    for (int j = 0; j < (int)(sizeof known / sizeof known[0]); j++)
+      if (!strcmp(opt, known[j])) k = j;
+    if (k < 0) {
+      ERR("unknown option '%s' (see icshadow iterate --help)", opt);
+      return 2;
+    }
+    if (i + 1 >= argc) {
+      ERR("%s: missing value", opt);
+      return 2;
+    }
+    const char *val = argv[++i];
+    int bad = 0;
+    switch (k) {
+    case 0: bad = parse_members(val, members, &nmembers), have_kernel = 1; break;
+    case 1: bad = get_double(opt, val, 1, &var), have_var = 1; break;
+    case 2:
+      free(*steps_out);
+      *steps_out = NULL;
+      bad = parse_steps(val, steps_out, &nsnap), have_steps = 1;
+      break;
+    case 3: bad = get_double(opt, val, 0, &mean); break;
+    case 4:
+      if (cli_parse_int(val, 0, ICS_KERNEL_MAX_TAPS, &samples) != 0) {
+        ERR("--samples: expected an integer in 0..%d, got '%s'", ICS_KERNEL_MAX_TAPS, val);
+        bad = 1;
+      }
+      break;
+    case 5:
+      bad = get_double(opt, val, 0, &param);
+      if (!bad && param < 0) {
+        ERR("--param: must be >= 0, got '%s'", val);
+        bad = 1;
+      }
+      break;
+    case 6: {
+      char *end;
+      if (val[0] == '-' || val[0] == '\0' || (seed = strtoull(val, &end, 10), *end != '\0')) {
+        ERR("--seed: expected a non-negative integer, got '%s'", val);
+        bad = 1;
+      }
+      break;
+    }
+    case 7:
+      if (cli_parse_int(val, 2, MAX_WIDTH, &width) != 0 || width % 2) {
+        ERR("--width: expected an even integer in 2..%d, got '%s'", MAX_WIDTH, val);
+        bad = 1;
+      }
+      break;
+    case 8:
+      if (!strcmp(val, "none"))
+        comp = ICS_COMP_NONE;
+      else if (!strcmp(val, "nonneg"))
+        comp = ICS_COMP_NONNEG;
+      else if (!strcmp(val, "signed"))
+        comp = ICS_COMP_SIGNED;
+      else {
+        ERR("--compensate: expected none, nonneg or signed, got '%s'", val);
+        bad = 1;
+      }
+      break;
+    }
+    if (bad) return 2;
+  }
+  if (!have_kernel || !have_var || !have_steps) {
+    ERR("%s is required", !have_kernel ? "--kernel" : !have_var ? "--var" : "--steps");
+    return 2;
+  }
+  const int *steps = *steps_out;
+
+  ics_kernel1d ks[MAX_MEMBERS];
+  for (int j = 0; j < nmembers; j++) {
+    ics_status st = ics_kernel1d_init(&ks[j], members[j], mean, var);
+    ks[j].nsamples = samples;
+    ks[j].param = param;
+    ks[j].seed = (uint64_t)seed;
+    if (st == ICS_OK && ics_kernel1d_max_taps(&ks[j]) <= 0) st = ICS_ERR_RANGE;
+    if (st != ICS_OK) {
+      ERR("kernel %s with mean %.17g, variance %.17g, samples %d, param %.17g: %s",
+          ics_kernel_member_name(members[j]), mean, var, samples, param, ics_status_str(st));
+      return 2;
+    }
+  }
+  ics_schedule1d sched = {ks, nmembers};
+  int cap = ics_schedule1d_max_taps(&sched);
+  ics_tap1d *taps = cap > 0 ? malloc(sizeof *taps * (size_t)cap) : NULL;
+  if (!taps) {
+    ERR(cap > 0 ? "out of memory" : "invalid kernel schedule");
+    return cap > 0 ? 1 : 2;
+  }
+  /* the first step's taps validate the member parameters (e.g. an impossible exact top-hat) */
+  int nt = 0;
+  ics_status st = ics_schedule1d_taps(&sched, 0, taps, cap, &nt);
+  if (st != ICS_OK) {
+    ERR("kernel taps: %s (variance %.17g too small for this member and mean?)",
+        ics_status_str(st), var);
+    free(taps);
+    return 2;
+  }
+  double reach = 0; /* largest |tap| of step 0, plus the stochastic jitter */
+  for (int j = 0; j < nt; j++) reach = fmax(reach, fabs(taps[j].x));
+  reach += (param > 0 ? param : 1.0) + 2.0;
+  free(taps);
+
+  int nmax = steps[nsnap - 1];
+  if (width == 0) {
+    double sd = sqrt((double)nmax * var + 1.0 / 12.0);
+    double half = fabs((double)nmax * mean) + 10.0 * sd + reach + 8.0;
+    if (half > MAX_WIDTH / 2 - 1) {
+      ERR("the automatic grid would exceed %d pixels (give a smaller --steps or --var)",
+          MAX_WIDTH);
+      return 2;
+    }
+    width = 2 * (int)ceil(half);
+  }
+
+  size_t n = (size_t)width;
+  double *buf = malloc(sizeof *buf * n);
+  if (!buf) {
+    ERR("out of memory");
+    return 1;
+  }
+  for (size_t i = 0; i < n; i++) buf[i] = ((double)i - width / 2 + 0.5) > 0 ? 1.0 : 0.0;
+
+  ics_conv_opts opts = ics_conv_opts_default();
+  opts.boundary = ICS_BOUNDARY_CLAMP;
+  opts.compensate = comp;
+  double applied_var = 0, applied_mean = 0;
+  int done = 0;
+  printf("steps,x,value,gauss_cdf\n");
+  for (int s = 0; s < nsnap; s++) {
+    ics_conv_stats stats;
+    st = ics_conv1d_run(buf, n, &sched, (uint64_t)done, steps[s] - done, &opts, &stats);
+    if (st != ICS_OK) {
+      ERR("convolution failed: %s", ics_status_str(st));
+      free(buf);
+      return 1;
+    }
+    if (steps[s] > done) applied_var += stats.kernel_var[0] + stats.interp_var[0];
+    for (int k = done; k < steps[s]; k++) applied_mean += mean;
+    done = steps[s];
+    double sd = sqrt(applied_var + 1.0 / 12.0);
+    for (size_t i = 0; i < n; i++) {
+      double x = (double)i - width / 2 + 0.5;
+      printf("%d,%.17g,%.17g,%.17g\n", steps[s], x, buf[i], phi((x - applied_mean) / sd));
+    }
+  }
+  free(buf);
+  return fflush(stdout) != 0 ? 1 : 0;
+}
+
+int cmd_iterate(int argc, char **argv) {
+  if (cli_wants_help(argc, argv)) {
+    help(stdout);
+    return 0;
+  }
+  int *steps = NULL;
+  int rc = iterate_main(argc, argv, &steps);
+  free(steps);
+  return rc;
+}

@@ -1,0 +1,56 @@
+# CLI tests for `icshadow iterate` and `icshadow kernel-table`: --help, good output checked
+# against values worked out by hand, and every kind of bad input (exit 2, message, no stdout).
+set(num "-?[0-9.e+-]+")
+ics_cli_test(NAME cli_iterate_help RC 0 ARGS "iterate|--help" OUT "usage: icshadow iterate --kernel K.*--compensate")
+# Dirac, variance 1: taps at -1 and +1 (weight 1/2, on the grid: no interpolation). One step of
+# H (edge half-way between x = -0.5 and 0.5) gives 1/2 H(x + 1) + 1/2 H(x - 1): 0 for x < -1,
+# 1/2 for -1 < x < 1, 1 for x > 1. gauss_cdf = Phi(x / sqrt(1 + 1/12)): Phi(-0.5 / 1.0408) =
+# 0.3154770 (by hand from the normal table / erfc).
+ics_cli_test(NAME cli_iterate_dirac_one_step RC 0 ARGS "iterate|--kernel|dirac|--var|1|--steps|1|--width|8"
+  OUT "^steps,x,value,gauss_cdf\n1,-3\\.5,0,${num}\n1,-2\\.5,0,${num}\n1,-1\\.5,0,${num}\n1,-0\\.5,0\\.5,0\\.315477[0-9]*\n1,0\\.5,0\\.5,0\\.684522[0-9]*\n1,1\\.5,1,${num}\n1,2\\.5,1,${num}\n1,3\\.5,1,${num}\n$")
+# The sign convention: a kernel of mean +2 (variance 0) moves the edge by +2 px per step; step
+# counts 0 and 1 are both printed.
+ics_cli_test(NAME cli_iterate_mean_shift RC 0 ARGS "iterate|--kernel|dirac|--var|0|--mean|2|--steps|0,1|--width|8"
+  OUT "\n0,-0\\.5,0,${num}\n0,0\\.5,1,${num}\n.*\n1,1\\.5,0,${num}\n1,2\\.5,1,${num}\n1,3\\.5,1,${num}\n$")
+# Dirac at +-0.5 px: each tap is split into two integer taps (linear interpolation); after one
+# step the line is 1/4, 1/2, 3/4 around the edge: 1/2 [H(x+1/2) interpolated] + ...
+ics_cli_test(NAME cli_iterate_dirac_interpolated RC 0 ARGS "iterate|--kernel|dirac|--var|0.25|--steps|1|--width|6"
+  OUT "\n1,-1\\.5,0,${num}\n1,-0\\.5,0\\.25,${num}\n1,0\\.5,0\\.75,${num}\n1,1\\.5,1,${num}\n")
+# ... and with --compensate signed the same class is applied with integer taps of variance 1/4
+# exactly: weights 1/8, 3/4, 1/8 at -1, 0, 1, giving 1/8 and 7/8 beside the edge.
+ics_cli_test(NAME cli_iterate_compensated RC 0 ARGS "iterate|--kernel|dirac|--var|0.25|--steps|1|--width|6|--compensate|signed"
+  OUT "\n1,-1\\.5,0,${num}\n1,-0\\.5,0\\.125,${num}\n1,0\\.5,0\\.875,${num}\n1,1\\.5,1,${num}\n")
+# step ranges A:B[:STRIDE]: 1:3 prints the profile after 1, 2 and 3 steps; Dirac +-1 after two
+# steps (CMake regexes have no {n}: the 8 lines are spelled out): 1/4 H(x + 2) + 1/2 H(x) + 1/4 H(x - 2) = 1/4 at x = -1.5, 3/4 at x = 1.5.
+ics_cli_test(NAME cli_iterate_step_range RC 0 ARGS "iterate|--kernel|dirac|--var|1|--steps|1:3|--width|8"
+  OUT "^steps,x,value,gauss_cdf\n1,[^\n]*\n1,[^\n]*\n1,[^\n]*\n1,[^\n]*\n1,[^\n]*\n1,[^\n]*\n1,[^\n]*\n1,[^\n]*\n2,-3\\.5,0,[^\n]*\n2,-2\\.5,0,[^\n]*\n2,-1\\.5,0\\.25,[^\n]*\n2,-0\\.5,0\\.25,[^\n]*\n2,0\\.5,0\\.75,[^\n]*\n2,1\\.5,0\\.75,[^\n]*\n2,2\\.5,1,[^\n]*\n2,3\\.5,1,[^\n]*\n3,[^\n]*\n3,[^\n]*\n3,[^\n]*\n3,[^\n]*\n3,[^\n]*\n3,[^\n]*\n3,[^\n]*\n3,[^\n]*\n$")
+ics_cli_test(NAME cli_iterate_empty_range RC 2 ARGS "iterate|--kernel|dirac|--var|1|--steps|5:3" ERR "--steps: empty range 5:3")
+# bad input: exit 2, a message naming the problem, nothing on stdout
+ics_cli_test(NAME cli_iterate_no_kernel RC 2 ARGS "iterate|--var|1|--steps|1" ERR "--kernel is required")
+ics_cli_test(NAME cli_iterate_no_steps RC 2 ARGS "iterate|--kernel|dirac|--var|1" ERR "--steps is required")
+ics_cli_test(NAME cli_iterate_unknown_kernel RC 2 ARGS "iterate|--kernel|ellipse|--var|1|--steps|1" ERR "unknown 1D kernel 'ellipse'")
+ics_cli_test(NAME cli_iterate_bad_list RC 2 ARGS "iterate|--kernel|dirac,|--var|1|--steps|1" ERR "unknown 1D kernel ''")
+ics_cli_test(NAME cli_iterate_negative_variance RC 2 ARGS "iterate|--kernel|dirac|--var|-1|--steps|1" ERR "--var: negative variance")
+ics_cli_test(NAME cli_iterate_nan RC 2 ARGS "iterate|--kernel|dirac|--var|nan|--steps|1" ERR "--var: NaN")
+ics_cli_test(NAME cli_iterate_mean_inf RC 2 ARGS "iterate|--kernel|dirac|--var|1|--mean|inf|--steps|1" ERR "--mean: must be finite")
+ics_cli_test(NAME cli_iterate_steps_decreasing RC 2 ARGS "iterate|--kernel|dirac|--var|1|--steps|10,5" ERR "strictly increasing")
+ics_cli_test(NAME cli_iterate_steps_junk RC 2 ARGS "iterate|--kernel|dirac|--var|1|--steps|1x" ERR "--steps: expected integers")
+ics_cli_test(NAME cli_iterate_steps_negative RC 2 ARGS "iterate|--kernel|dirac|--var|1|--steps|-3" ERR "--steps: expected integers")
+ics_cli_test(NAME cli_iterate_odd_width RC 2 ARGS "iterate|--kernel|dirac|--var|1|--steps|1|--width|7" ERR "--width: expected an even integer")
+ics_cli_test(NAME cli_iterate_bad_compensate RC 2 ARGS "iterate|--kernel|dirac|--var|1|--steps|1|--compensate|yes" ERR "--compensate: expected none, nonneg or signed")
+ics_cli_test(NAME cli_iterate_bad_seed RC 2 ARGS "iterate|--kernel|stochastic-dirac|--var|1|--steps|1|--seed|-1" ERR "--seed: expected a non-negative integer")
+# an exact top-hat of variance 0.1 cannot have mean 0.5 (its least variance is 1/4)
+ics_cli_test(NAME cli_iterate_tophat_impossible RC 2 ARGS "iterate|--kernel|tophat|--var|0.1|--mean|0.5|--steps|1" ERR "out of range")
+ics_cli_test(NAME cli_iterate_missing_value RC 2 ARGS "iterate|--kernel|dirac|--steps|1|--var" ERR "--var: missing value")
+ics_cli_test(NAME cli_iterate_unknown_option RC 2 ARGS "iterate|--kernel|dirac|--var|1|--steps|1|--bogus|1" ERR "unknown option '--bogus'")
+
+ics_cli_test(NAME cli_kernel_table_help RC 0 ARGS "kernel-table|--help" OUT "usage: icshadow kernel-table.*ns_per_px_step")
+# Dirac, sigma = 5.5: taps at +-5.5 (width 11, 2 taps), each split into two integer taps (4 applied)
+# with fraction 1/2, adding 1/2 * 1/2 = 0.25 px^2 per step. Raw top-hat of width sqrt(12 V)
+# applied to the interpolated line: V + E[f(1 - f)] = 30.25 + 1/6 = 30.41(6). Stochastic Dirac:
+# every width inside 2 rho +- 2, rho = sqrt(30.25 - 1/3) = 5.4696: [8.94, 12.94].
+ics_cli_test(NAME cli_kernel_table_good RC 0 ARGS "kernel-table|--no-timing|--iterations|100"
+  OUT "^member,class_mean,class_var,iterations,mean,var,var_min,var_max,width_min,width_max,taps,applied_taps,interp_var,ns_per_px_step\ndirac,0,30\\.25,1,0,30\\.25,30\\.25,30\\.25,11,11,2,4,0\\.25,nan\ntophat,0,30\\.25,1,${num},30\\.2(5|49999999)[0-9]*,${num},${num},${num},${num},[0-9]+,[0-9]+,0,nan\ntophat-raw,0,30\\.25,1,${num},30\\.416[0-9]*,.*\nstochastic-dirac,0,30\\.25,100,${num},${num},${num},${num},(8\\.9[4-9]|9|10|11|12)[0-9.]*,(9|10|11|12)[0-9.]*,2,4,.*\ngauss,0,30\\.25,1,${num},30\\.2(5|49999999)[0-9]*,.*,9,[0-9]+,${num},nan\n$")
+ics_cli_test(NAME cli_kernel_table_zero_var RC 2 ARGS "kernel-table|--var|0" ERR "--var: the class variance must be > 0")
+ics_cli_test(NAME cli_kernel_table_bad_iterations RC 2 ARGS "kernel-table|--iterations|0" ERR "--iterations: expected an integer")
+ics_cli_test(NAME cli_kernel_table_unknown_option RC 2 ARGS "kernel-table|--bogus" ERR "unknown option '--bogus'")
