@@ -1,0 +1,621 @@
+/* test_sat.c — summed-area tables (libicshadow/src/sat.c) against independent brute force:
+ *  - box sums of small integer data are exact in every mode but float-offset (sums < 2^24);
+ *  - on 1000 + noise data (where float fails; noise in [-8, 8) at float resolution) every mode stays within the documented bound
+ *      |error| <= ics_sat_error_factor(mode, dims) * (x1 + y1 [+ z1] + 2^dims) * P,
+ *    factor = 2^dims * 1.01 * u, u = 2^-24 / 2^-24 / 2^-44 / 2^-53 (float / float-offset /
+ *    compensated / double), P = sum |a - m| over the prefix box; the reference is exact
+ *    (data are multiples of 2^-14, summed in int64), and float is shown to fail there;
+ *  - continuous-box integrals equal the brute-force integral of the piecewise-constant field;
+ *  - CSAT: exact box sums for an axis-aligned light; a rotated light against brute-force
+ *    shadow-ray marching of the same filtered optical depth within the first-order
+ *    discretisation bound G * L * (sqrt(3) h / 2 + quadrature terms) (docs/sat.md); six
+ *    orthodirectional lights of one CSAT equal six separately built CSATs; transmittance
+ *    monotone in the filter size below a centred blob;
+ *  - SSAT against brute-force marching of the same ray average within its stated bound;
+ *  - bad input: empty / huge sizes, NaN, Inf, overflow, inverted and out-of-range boxes. */
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "icshadow.h"
+#include "testutil.h"
+
+#define PI_T 3.14159265358979323846
+static uint64_t rs = 0x1234567;
+static uint64_t rnd(void) { /* splitmix64 */
+  uint64_t z = (rs += 0x9e3779b97f4a7c15ull);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+static double unit(void) { return (double)(rnd() >> 11) * 0x1p-53; }
+static long irand(long n) { return (long)(rnd() % (uint64_t)n); }
+
+static const ics_sat_precision modes[4] = {ICS_SAT_FLOAT, ICS_SAT_FLOAT_OFFSET,
+                                           ICS_SAT_COMPENSATED, ICS_SAT_DOUBLE};
+
+/* ---- exactness on small integers -------------------------------------------------------- */
+static void test_exact_small(void) {
+  const long W = 37, H = 23, D = 7; /* odd sizes: the SIMD tails and the odd row count */
+  float *a = malloc(sizeof(float) * W * H * D);
+  for (long i = 0; i < W * H * D; i++) a[i] = (float)irand(16);
+  for (int mi = 0; mi < 4; mi++) {
+    ics_sat_precision m = modes[mi];
+    if (m == ICS_SAT_FLOAT_OFFSET) continue; /* non-integer offset: covered by the bound test */
+    ics_sat2d *s2 = NULL;
+    ics_sat3d *s3 = NULL;
+    CHECK(ics_sat2d_build(&s2, a, W, H, W, m) == ICS_OK, "2D build %d", mi);
+    CHECK(ics_sat3d_build(&s3, a, W, H, D, m) == ICS_OK, "3D build %d", mi);
+    if (!s2 || !s3) continue;
+    int bad2 = 0, bad3 = 0, badat = 0;
+    for (long y0 = 0; y0 <= H; y0++)
+      for (long y1 = y0; y1 <= H; y1 += 3)
+        for (long x0 = 0; x0 <= W; x0 += 2)
+          for (long x1 = x0; x1 <= W; x1++) {
+            double ref = 0, got;
+            for (long y = y0; y < y1; y++)
+              for (long x = x0; x < x1; x++) ref += a[y * W + x];
+            if (ics_sat2d_box_sum(s2, x0, y0, x1, y1, &got) != ICS_OK || got != ref) bad2++;
+          }
+    for (int k = 0; k < 3000; k++) {
+      long lo[3], hi[3], n[3] = {W, H, D};
+      for (int q = 0; q < 3; q++) {
+        lo[q] = irand(n[q] + 1);
+        hi[q] = lo[q] + irand(n[q] - lo[q] + 1);
+      }
+      double ref = 0, got;
+      for (long z = lo[2]; z < hi[2]; z++)
+        for (long y = lo[1]; y < hi[1]; y++)
+          for (long x = lo[0]; x < hi[0]; x++) ref += a[(z * H + y) * W + x];
+      if (ics_sat3d_box_sum(s3, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], &got) != ICS_OK ||
+          got != ref)
+        bad3++;
+    }
+    for (long y = 0; y < H; y++)
+      for (long x = 0; x < W; x++) {
+        double ref = 0;
+        for (long j = 0; j <= y; j++)
+          for (long i = 0; i <= x; i++) ref += a[j * W + i];
+        if (ics_sat2d_at(s2, (size_t)x, (size_t)y) != ref) badat++;
+      }
+    CHECK(bad2 == 0, "%s: %d 2D box sums differ from brute force", ics_sat_precision_name(m), bad2);
+    CHECK(bad3 == 0, "%s: %d 3D box sums differ from brute force", ics_sat_precision_name(m), bad3);
+    CHECK(badat == 0, "%s: %d inclusive entries differ", ics_sat_precision_name(m), badat);
+    /* clamped boxes = the box cut to the table */
+    double c1, c2;
+    CHECK(ics_sat2d_box_sum_clamped(s2, -5, -9, W + 4, 11, &c1) == ICS_OK &&
+              ics_sat2d_box_sum(s2, 0, 0, W, 11, &c2) == ICS_OK && c1 == c2,
+          "clamped %g vs %g", c1, c2);
+    CHECK(ics_sat3d_box_sum_clamped(s3, -1, 2, -7, 1000, 5, 3, &c1) == ICS_OK &&
+              ics_sat3d_box_sum(s3, 0, 2, 0, W, 5, 3, &c2) == ICS_OK && c1 == c2,
+          "3D clamped %g vs %g", c1, c2);
+    double mean;
+    CHECK(ics_sat2d_box_mean_clamped(s2, -3, -3, 2, 2, &mean) == ICS_OK &&
+              mean == (a[0] + a[1] + a[W] + a[W + 1]) / 4.0,
+          "mean clamped %g", mean);
+    /* the rebuild gives the same table */
+    CHECK(ics_sat2d_rebuild(s2, a, W) == ICS_OK && ics_sat2d_box_sum(s2, 3, 4, 30, 20, &c1) == ICS_OK,
+          "rebuild");
+    double ref = 0;
+    for (long y = 4; y < 20; y++)
+      for (long x = 3; x < 30; x++) ref += a[y * W + x];
+    CHECK(c1 == ref, "after rebuild %g vs %g", c1, ref);
+    ics_sat2d_free(s2);
+    ics_sat3d_free(s3);
+  }
+  /* a strided 2D image: only the first W of each 50-element row counts */
+  float *img = malloc(sizeof(float) * 50 * H);
+  for (long i = 0; i < 50 * H; i++) img[i] = (i % 50) < W ? a[(i / 50) * W + i % 50] : 1e30f;
+  ics_sat2d *s2 = NULL;
+  double got, ref = 0;
+  CHECK(ics_sat2d_build(&s2, img, W, H, 50, ICS_SAT_DOUBLE) == ICS_OK, "strided build");
+  for (long i = 0; i < W * H; i++) ref += a[i];
+  CHECK(s2 && ics_sat2d_box_sum(s2, 0, 0, W, H, &got) == ICS_OK && got == ref, "strided %g vs %g",
+        got, ref);
+  ics_sat2d_free(s2);
+  free(img);
+  free(a);
+}
+
+/* ---- error bounds where float fails --------------------------------------------------- */
+/* Data 1000 + k / 2^14, k uniform in [-2^17, 2^17) (i.e. 1000 + uniform noise in [-8, 8) at
+ * the float resolution near 1000): exact in float and in int64 after scaling by 2^14. */
+static void test_bounds(int dims) {
+  const long W = dims == 2 ? 1024 : 96, H = dims == 2 ? 768 : 80, D = dims == 2 ? 1 : 72;
+  size_t n = (size_t)(W * H * D);
+  float *a = malloc(sizeof(float) * n);
+  int64_t *ia = malloc(sizeof(int64_t) * n);
+  for (size_t i = 0; i < n; i++) {
+    ia[i] = ((int64_t)1000 << 14) + (int64_t)irand(1 << 18) - (1 << 17);
+    a[i] = (float)((double)ia[i] * 0x1p-14);
+  }
+  double far_rel[4] = {0, 0, 0, 0};
+  for (int mi = 0; mi < 4; mi++) {
+    ics_sat_precision m = modes[mi];
+    ics_sat2d *s2 = NULL;
+    ics_sat3d *s3 = NULL;
+    ics_status st = dims == 2 ? ics_sat2d_build(&s2, a, W, H, W, m)
+                              : ics_sat3d_build(&s3, a, W, H, D, m);
+    CHECK(st == ICS_OK, "build %s: %s", ics_sat_precision_name(m), ics_status_str(st));
+    if (st != ICS_OK) continue;
+    double off = dims == 2 ? ics_sat2d_offset(s2) : ics_sat3d_offset(s3);
+    CHECK(m == ICS_SAT_FLOAT_OFFSET ? fabs(off - 1000.0) < 0.1 : off == 0.0, "offset %g", off);
+    /* P: inclusive prefix sums of |a - m| (naive, in double) */
+    double *P = malloc(sizeof(double) * n);
+    for (long z = 0; z < D; z++)
+      for (long y = 0; y < H; y++)
+        for (long x = 0; x < W; x++) {
+          size_t i = (size_t)((z * H + y) * W + x);
+          double v = fabs((double)a[i] - off);
+          if (x) v += P[i - 1];
+          if (y) v += P[i - W];
+          if (x && y) v -= P[i - W - 1];
+          if (z) {
+            v += P[i - W * H];
+            if (x) v -= P[i - W * H - 1];
+            if (y) v -= P[i - W * H - W];
+            if (x && y) v += P[i - W * H - W - 1];
+          }
+          P[i] = v;
+        }
+    double factor = ics_sat_error_factor(m, dims), worst = 0;
+    int over = 0;
+    for (int k = 0; k < 400; k++) {
+      long lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1}, nn[3] = {W, H, D};
+      for (int q = 0; q < dims; q++) {
+        long e = k < 300 ? 1 + irand(8) : 1 + irand(nn[q]); /* small boxes, then any */
+        if (e > nn[q]) e = nn[q];
+        /* half of the small boxes in the far corner, where the table entries are largest */
+        lo[q] = (k < 150) ? nn[q] - e - irand(nn[q] / 8 + 1) : irand(nn[q] - e + 1);
+        if (lo[q] < 0) lo[q] = 0;
+        hi[q] = lo[q] + e;
+      }
+      int64_t ex = 0;
+      for (long z = lo[2]; z < hi[2]; z++)
+        for (long y = lo[1]; y < hi[1]; y++)
+          for (long x = lo[0]; x < hi[0]; x++) ex += ia[(z * H + y) * W + x];
+      double exact = (double)ex * 0x1p-14, got;
+      st = dims == 2 ? ics_sat2d_box_sum(s2, lo[0], lo[1], hi[0], hi[1], &got)
+                     : ics_sat3d_box_sum(s3, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], &got);
+      if (st != ICS_OK) {
+        over++;
+        continue;
+      }
+      double pref = P[(size_t)(((hi[2] - 1) * H + hi[1] - 1) * W + hi[0] - 1)];
+      double nsum = (double)(hi[0] + hi[1] + (dims == 3 ? hi[2] : 0));
+      double bound = factor * (nsum + (dims == 3 ? 8 : 4)) * pref;
+      double err = fabs(got - exact);
+      if (err > bound) {
+        if (over < 3)
+          fprintf(stderr, "%s %dD box [%ld,%ld)x[%ld,%ld)x[%ld,%ld): err %g > bound %g\n",
+                  ics_sat_precision_name(m), dims, lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], err,
+                  bound);
+        over++;
+      }
+      if (err / bound > worst) worst = err / bound;
+      if (k < 150 && err / exact > far_rel[mi]) far_rel[mi] = err / exact;
+    }
+    printf("%dD %-12s max error / bound %.3g, far small boxes max rel err %.3g\n", dims,
+           ics_sat_precision_name(m), worst, far_rel[mi]);
+    CHECK(over == 0, "%s %dD: %d boxes beyond the documented bound", ics_sat_precision_name(m),
+          dims, over);
+    free(P);
+    ics_sat2d_free(s2);
+    ics_sat3d_free(s3);
+  }
+  /* float fails here; the offset, compensated and double modes do not */
+  CHECK(far_rel[0] > 1e-4, "%dD float: far small boxes rel err %g (expected to fail)", dims,
+        far_rel[0]);
+  CHECK(far_rel[1] < far_rel[0] / 100, "%dD offset %g vs float %g", dims, far_rel[1], far_rel[0]);
+  CHECK(far_rel[2] < 1e-9 && far_rel[3] < 1e-12, "%dD compensated %g double %g", dims,
+        far_rel[2], far_rel[3]);
+  free(a);
+  free(ia);
+}
+
+/* ---- continuous integrals ----------------------------------------------------------------- */
+static double overlap(double a0, double a1, double b0, double b1) {
+  double lo = a0 > b0 ? a0 : b0, hi = a1 < b1 ? a1 : b1;
+  return hi > lo ? hi - lo : 0.0;
+}
+
+static void test_integral(void) {
+  const long W = 19, H = 13, D = 11;
+  float *a = malloc(sizeof(float) * W * H * D);
+  for (long i = 0; i < W * H * D; i++) a[i] = (float)(unit() * 4 - 1);
+  ics_sat2d *s2 = NULL;
+  ics_sat3d *s3 = NULL;
+  CHECK(ics_sat2d_build(&s2, a, W, H, W, ICS_SAT_DOUBLE) == ICS_OK, "2D");
+  CHECK(ics_sat3d_build(&s3, a, W, H, D, ICS_SAT_DOUBLE) == ICS_OK, "3D");
+  double worst2 = 0, worst3 = 0;
+  for (int k = 0; k < 300; k++) {
+    double lo[3], hi[3], n[3] = {(double)W, (double)H, (double)D};
+    for (int q = 0; q < 3; q++) {
+      lo[q] = -2 + unit() * (n[q] + 4);
+      hi[q] = lo[q] + unit() * (n[q] + 2 - lo[q]);
+      if (k % 10 == 0) lo[q] = floor(lo[q]), hi[q] = ceil(hi[q]); /* integer corners */
+    }
+    double ref2 = 0, ref3 = 0, abs3 = 0, abs2 = 0, g2, g3;
+    for (long z = 0; z < D; z++)
+      for (long y = 0; y < H; y++)
+        for (long x = 0; x < W; x++) {
+          double v = a[(z * H + y) * W + x];
+          double o2 = overlap(x, x + 1, lo[0], hi[0]) * overlap(y, y + 1, lo[1], hi[1]);
+          double o3 = o2 * overlap(z, z + 1, lo[2], hi[2]);
+          ref3 += v * o3, abs3 += fabs(v);
+          if (z == 0) ref2 += v * o2, abs2 += fabs(v);
+        }
+    CHECK(ics_sat2d_integral(s2, lo[0], lo[1], hi[0], hi[1], &g2) == ICS_OK, "2D integral");
+    CHECK(ics_sat3d_integral(s3, lo, hi, &g3) == ICS_OK, "3D integral");
+    if (fabs(g2 - ref2) / abs2 > worst2) worst2 = fabs(g2 - ref2) / abs2;
+    if (fabs(g3 - ref3) / abs3 > worst3) worst3 = fabs(g3 - ref3) / abs3;
+  }
+  CHECK(worst2 < 1e-13 && worst3 < 1e-13, "integral errors %g %g (relative to sum |a|)", worst2,
+        worst3);
+  ics_sat2d_free(s2);
+  ics_sat3d_free(s3);
+  free(a);
+}
+
+/* ---- bad input ---------------------------------------------------------------------------- */
+static void test_bad_input(void) {
+  float a[64];
+  for (int i = 0; i < 64; i++) a[i] = (float)i;
+  ics_sat2d *s2 = (ics_sat2d *)&s2;
+  ics_sat3d *s3 = NULL;
+  CHECK(ics_sat2d_build(&s2, a, 0, 8, 8, ICS_SAT_FLOAT) == ICS_ERR_SIZE && s2 == NULL, "width 0");
+  CHECK(ics_sat2d_build(&s2, a, 8, 0, 8, ICS_SAT_FLOAT) == ICS_ERR_SIZE, "height 0");
+  CHECK(ics_sat3d_build(&s3, a, 4, 4, 0, ICS_SAT_FLOAT) == ICS_ERR_SIZE, "depth 0");
+  CHECK(ics_sat2d_build(&s2, a, (size_t)1 << 20, (size_t)1 << 20, (size_t)1 << 20, ICS_SAT_FLOAT) ==
+            ICS_ERR_SIZE,
+        "2^40 cells");
+  CHECK(ics_sat3d_build(&s3, a, 2048, 2048, 2048, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "2048^3");
+  CHECK(ics_sat3d_build(&s3, a, SIZE_MAX, 2, 2, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "SIZE_MAX");
+  CHECK(ics_sat2d_build(&s2, NULL, 8, 8, 8, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG, "NULL data");
+  CHECK(ics_sat2d_build(&s2, a, 8, 8, 7, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG, "stride < width");
+  CHECK(ics_sat2d_build(&s2, a, 8, 8, 8, (ics_sat_precision)7) == ICS_ERR_INVALID_ARG, "mode 7");
+  CHECK(ics_sat2d_build(NULL, a, 8, 8, 8, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG, "NULL out");
+  float b[64];
+  memcpy(b, a, sizeof b);
+  b[45] = NAN;
+  for (int mi = 0; mi < 4; mi++) {
+    CHECK(ics_sat2d_build(&s2, b, 8, 8, 8, modes[mi]) == ICS_ERR_NAN, "NaN mode %d", mi);
+    CHECK(ics_sat3d_build(&s3, b, 4, 4, 4, modes[mi]) == ICS_ERR_NAN, "NaN 3D mode %d", mi);
+  }
+  b[45] = -INFINITY;
+  CHECK(ics_sat2d_build(&s2, b, 8, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_INFINITE, "Inf");
+  b[45] = NAN, b[3] = INFINITY; /* NaN wins over Inf */
+  CHECK(ics_sat3d_build(&s3, b, 4, 4, 4, ICS_SAT_FLOAT) == ICS_ERR_NAN, "NaN + Inf");
+  for (int i = 0; i < 64; i++) b[i] = FLT_MAX;
+  CHECK(ics_sat2d_build(&s2, b, 8, 8, 8, ICS_SAT_FLOAT) == ICS_ERR_RANGE, "float overflow");
+  CHECK(ics_sat2d_build(&s2, b, 8, 8, 8, ICS_SAT_DOUBLE) == ICS_OK, "no overflow in double");
+  ics_sat2d_free(s2);
+  s2 = NULL;
+  CHECK(ics_sat2d_build(&s2, a, 8, 8, 8, ICS_SAT_FLOAT) == ICS_OK, "good build");
+  double v;
+  CHECK(ics_sat2d_box_sum(s2, 3, 2, 1, 4, &v) == ICS_ERR_INVALID_ARG, "inverted x");
+  CHECK(ics_sat2d_box_sum(s2, 1, 4, 3, 2, &v) == ICS_ERR_INVALID_ARG, "inverted y");
+  CHECK(ics_sat2d_box_sum_clamped(s2, 3, 2, 1, 4, &v) == ICS_ERR_INVALID_ARG, "inverted clamped");
+  CHECK(ics_sat2d_box_sum(s2, -1, 0, 3, 3, &v) == ICS_ERR_RANGE, "x0 < 0");
+  CHECK(ics_sat2d_box_sum(s2, 0, 0, 9, 3, &v) == ICS_ERR_RANGE, "x1 > w");
+  CHECK(ics_sat2d_box_sum(s2, 2, 2, 2, 5, &v) == ICS_OK && v == 0.0, "empty box");
+  CHECK(ics_sat2d_box_mean_clamped(s2, 8, 0, 12, 3, &v) == ICS_ERR_RANGE, "mean of nothing");
+  CHECK(ics_sat2d_integral(s2, NAN, 0, 1, 1, &v) == ICS_ERR_NAN, "NaN integral");
+  CHECK(ics_sat2d_integral(s2, 2, 0, 1, 1, &v) == ICS_ERR_INVALID_ARG, "inverted integral");
+  CHECK(isnan(ics_sat2d_at(s2, 8, 0)), "at outside");
+  /* a failed rebuild invalidates the table until a good one */
+  b[0] = NAN;
+  CHECK(ics_sat2d_rebuild(s2, b, 8) == ICS_ERR_NAN, "rebuild NaN");
+  CHECK(ics_sat2d_box_sum(s2, 0, 0, 2, 2, &v) == ICS_ERR_INVALID_ARG, "invalid after failure");
+  CHECK(ics_sat2d_rebuild(s2, a, 8) == ICS_OK && ics_sat2d_box_sum(s2, 0, 0, 2, 2, &v) == ICS_OK &&
+            v == 0 + 1 + 8 + 9,
+        "valid again: %g", v);
+  ics_sat2d_free(s2);
+  ics_sat2d_free(NULL);
+  ics_sat3d_free(NULL);
+  ics_sat_precision m;
+  CHECK(ics_sat_precision_parse("double", &m) == ICS_OK && m == ICS_SAT_DOUBLE, "parse");
+  CHECK(ics_sat_precision_parse("half", &m) == ICS_ERR_PARSE, "parse unknown");
+  CHECK(isnan(ics_sat_error_factor(ICS_SAT_FLOAT, 4)), "dims 4");
+  CHECK(ics_sat_error_factor(ICS_SAT_FLOAT, 2) == 4 * 1.01 * 0x1p-24 &&
+            ics_sat_error_factor(ICS_SAT_COMPENSATED, 3) == 8 * 1.01 * 0x1p-44 &&
+            ics_sat_error_factor(ICS_SAT_DOUBLE, 2) == 4 * 1.01 * 0x1p-53,
+        "documented factors");
+  /* CSAT / SSAT argument checks */
+  ics_volume vol = {a, 4, 4, 4};
+  ics_csat *c = NULL;
+  ics_ssat *s = NULL;
+  double l[3] = {0, 0, 1}, zero[3] = {0, 0, 0}, nanv[3] = {NAN, 0, 1};
+  CHECK(ics_csat_build(&c, &vol, zero, 1.0, ICS_SAT_DOUBLE) == ICS_ERR_INVALID_ARG, "l = 0");
+  CHECK(ics_csat_build(&c, &vol, nanv, 1.0, ICS_SAT_DOUBLE) == ICS_ERR_NAN, "l NaN");
+  CHECK(ics_csat_build(&c, &vol, l, 0.0, ICS_SAT_DOUBLE) == ICS_ERR_INVALID_ARG, "h = 0");
+  CHECK(ics_csat_build(&c, &vol, l, 1e-4, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "h tiny: huge grid");
+  ics_volume empty = {a, 0, 4, 4};
+  CHECK(ics_csat_build(&c, &empty, l, 1.0, ICS_SAT_DOUBLE) == ICS_ERR_INVALID_ARG, "empty volume");
+  double ru[3] = {1, 0, 0}, rv[3] = {0.5, 1, 0};
+  CHECK(ics_csat_build_frame(&c, &vol, ru, rv, 1.0, ICS_SAT_DOUBLE) == ICS_ERR_INVALID_ARG,
+        "not orthonormal");
+  CHECK(ics_csat_build(&c, &vol, l, 1.0, ICS_SAT_DOUBLE) == ICS_OK, "csat");
+  double p[3] = {1, 1, 1};
+  CHECK(ics_csat_tau(c, ICS_CSAT_PLUS_W, p, -1.0, &v) == ICS_ERR_INVALID_ARG, "U < 0");
+  CHECK(ics_csat_tau(c, ICS_CSAT_PLUS_W, nanv, 1.0, &v) == ICS_ERR_NAN, "p NaN");
+  CHECK(ics_csat_tau(c, (ics_csat_light)6, p, 1.0, &v) == ICS_ERR_INVALID_ARG, "light 6");
+  ics_csat_free(c);
+  double lp[3] = {-3, 2, 2};
+  CHECK(ics_ssat_build(&s, &vol, lp, 0, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "n_phi 0");
+  CHECK(ics_ssat_build(&s, &vol, lp, 1 << 20, 1 << 20, 8, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "huge");
+  CHECK(ics_ssat_build(&s, &vol, lp, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_OK, "ssat");
+  CHECK(ics_ssat_tau(s, lp, 1.0, &v) == ICS_ERR_RANGE, "p at the light");
+  CHECK(ics_ssat_tau(s, p, 0.0, &v) == ICS_ERR_INVALID_ARG, "SSAT U = 0");
+  ics_ssat_free(s);
+}
+
+/* ---- volumes for CSAT / SSAT -------------------------------------------------------------- */
+/* Compactly supported blobs (1 - r^2/R^2)^2: continuous, zero near the volume boundary. */
+static float *blob_volume(long n, int nblobs, const double (*c)[4]) {
+  float *v = malloc(sizeof(float) * n * n * n);
+  for (long z = 0; z < n; z++)
+    for (long y = 0; y < n; y++)
+      for (long x = 0; x < n; x++) {
+        double s = 0;
+        for (int b = 0; b < nblobs; b++) {
+          double dx = x + 0.5 - c[b][0], dy = y + 0.5 - c[b][1], dz = z + 0.5 - c[b][2];
+          double q = 1 - (dx * dx + dy * dy + dz * dz) / (c[b][3] * c[b][3]);
+          if (q > 0) s += 0.2 * q * q;
+        }
+        v[(z * n + y) * n + x] = (float)s;
+      }
+  return v;
+}
+
+/* Max |gradient| of the trilinear interpolant: per axis the largest neighbour difference. */
+static double grad_bound(const ics_volume *vol) {
+  double g[3] = {0, 0, 0};
+  long n[3] = {(long)vol->nx, (long)vol->ny, (long)vol->nz};
+  for (long z = 0; z < n[2]; z++)
+    for (long y = 0; y < n[1]; y++)
+      for (long x = 0; x < n[0]; x++) {
+        double v = vol->data[(z * n[1] + y) * n[0] + x];
+        long idx[3] = {x, y, z};
+        for (int a = 0; a < 3; a++) {
+          if (idx[a] + 1 >= n[a]) continue;
+          long i2[3] = {x, y, z};
+          i2[a]++;
+          double d = fabs(vol->data[(i2[2] * n[1] + i2[1]) * n[0] + i2[0]] - v);
+          if (d > g[a]) g[a] = d;
+        }
+      }
+  return sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+}
+
+static void test_csat_aligned(void) {
+  const long NX = 24, NY = 20, NZ = 16;
+  float *a = malloc(sizeof(float) * NX * NY * NZ);
+  for (long i = 0; i < NX * NY * NZ; i++) a[i] = (float)unit();
+  ics_volume vol = {a, NX, NY, NZ};
+  double ru[3] = {1, 0, 0}, rv[3] = {0, 1, 0};
+  ics_csat *c = NULL;
+  CHECK(ics_csat_build_frame(&c, &vol, ru, rv, 1.0, ICS_SAT_DOUBLE) == ICS_OK, "aligned CSAT");
+  if (!c) return;
+  size_t n[3];
+  ics_csat_frame(c, NULL, NULL, NULL, n);
+  CHECK(n[0] == (size_t)NX && n[1] == (size_t)NY && n[2] == (size_t)NZ, "grid %zu %zu %zu", n[0],
+        n[1], n[2]);
+  double worst = 0;
+  for (int k = 0; k < 200; k++) {
+    long P[3] = {irand(NX + 1), irand(NY + 1), irand(NZ + 1)}, U = 1 + irand(6);
+    int which = k % 6;
+    long lo[3], hi[3];
+    static const int axis[6] = {2, 2, 0, 0, 1, 1};
+    long N[3] = {NX, NY, NZ};
+    for (int q = 0; q < 3; q++) lo[q] = P[q] - U, hi[q] = P[q] + U;
+    int ax = axis[which];
+    if (which & 1)
+      lo[ax] = 0, hi[ax] = P[ax];
+    else
+      lo[ax] = P[ax], hi[ax] = N[ax];
+    double ref = 0;
+    for (long z = lo[2] < 0 ? 0 : lo[2]; z < hi[2] && z < NZ; z++)
+      for (long y = lo[1] < 0 ? 0 : lo[1]; y < hi[1] && y < NY; y++)
+        for (long x = lo[0] < 0 ? 0 : lo[0]; x < hi[0] && x < NX; x++) ref += a[(z * NY + y) * NX + x];
+    ref /= (double)(4 * U * U);
+    double p[3] = {(double)P[0], (double)P[1], (double)P[2]}, tau;
+    CHECK(ics_csat_tau(c, (ics_csat_light)which, p, (double)U, &tau) == ICS_OK, "tau");
+    double e = fabs(tau - ref) / (ref > 1 ? ref : 1);
+    if (e > worst) worst = e;
+  }
+  CHECK(worst < 1e-12, "aligned CSAT vs voxel sums: %g", worst);
+  ics_csat_free(c);
+  free(a);
+}
+
+static void test_csat_rotated(void) {
+  const long N = 32;
+  const double blobs[3][4] = {{16, 15, 18, 7}, {9, 22, 10, 4}, {23, 9, 12, 5}};
+  float *a = blob_volume(N, 3, blobs);
+  ics_volume vol = {a, N, N, N};
+  double G = grad_bound(&vol);
+  double l[3] = {1, 2, 3};
+  double pts[24][3], maxerr[2] = {0, 0};
+  for (int k = 0; k < 24; k++)
+    pts[k][0] = 4 + unit() * 24, pts[k][1] = 4 + unit() * 24, pts[k][2] = 2 + unit() * 12;
+  for (int hi = 0; hi < 2; hi++) {
+    double h = hi ? 0.5 : 1.0;
+    ics_csat *c = NULL;
+    CHECK(ics_csat_build(&c, &vol, l, h, ICS_SAT_DOUBLE) == ICS_OK, "rotated CSAT h = %g", h);
+    if (!c) continue;
+    double ru[3], rv[3], rw[3];
+    size_t n[3];
+    ics_csat_frame(c, ru, rv, rw, n);
+    CHECK(fabs(rw[0] * 14 - 1 * sqrt(14.0)) < 1e-12 && fabs(rw[2] - 3 / sqrt(14.0)) < 1e-12,
+          "r_w = l");
+    double Lw = (double)n[2] * h, worst = 0, worst_abs = 0;
+    const int npatch = 12;
+    const double step = 0.25;
+    for (int k = 0; k < 24; k++) {
+      double *p = pts[k];
+      double U = (k % 4) * 2.0; /* 0, 2, 4, 6 */
+      double tc, tb;
+      CHECK(ics_csat_tau(c, ICS_CSAT_PLUS_W, p, U, &tc) == ICS_OK, "csat tau");
+      CHECK(ics_tau_bruteforce_directional(&vol, ru, rv, rw, p, U, npatch, step, &tb) == ICS_OK,
+            "bf");
+      /* first-order bound (docs/sat.md): CSAT resampling sqrt(3) h / 2, the U = 0 patch of
+       * half-width h / 2 (h / sqrt(2)), brute-force midpoint cells of the patch grid x step */
+      double du = U > 0 ? 2 * U / npatch : 0;
+      double bound = G * Lw * (sqrt(3.0) * h / 2 + (U == 0 ? h / sqrt(2.0) : 0) +
+                               0.5 * sqrt(2 * du * du + step * step));
+      double e = fabs(tc - tb);
+      if (e / bound > worst) worst = e / bound;
+      if (e > worst_abs) worst_abs = e;
+      CHECK(e <= bound, "h %g p (%g %g %g) U %g: csat %.9g bf %.9g |diff| %g > bound %g", h, p[0],
+            p[1], p[2], U, tc, tb, e, bound);
+    }
+    printf("CSAT h = %.2g: max |tau_csat - tau_bf| = %.3g (%.3g of the bound)\n", h, worst_abs,
+           worst);
+    maxerr[hi] = worst_abs;
+    ics_csat_free(c);
+  }
+  /* the resampling error is second order in h for this smooth field: halving h divides the
+   * largest difference by about 4 (at least 2.5 asserted; the brute force's own error is
+   * smaller still: step 0.25, patch spacing <= 1) */
+  CHECK(maxerr[0] > 2.5 * maxerr[1], "CSAT error h = 1: %g, h = 0.5: %g (not second order)",
+        maxerr[0], maxerr[1]);
+  /* monotone: below the big blob, along the light through its centre, T grows with U */
+  {
+    ics_csat *c = NULL;
+    double lz[3] = {0, 0, 1}, ru[3] = {1, 0, 0}, rv[3] = {0, 1, 0};
+    const double one[1][4] = {{16, 16, 20, 8}};
+    float *b = blob_volume(N, 1, one);
+    ics_volume vb = {b, N, N, N};
+    (void)lz;
+    CHECK(ics_csat_build_frame(&c, &vb, ru, rv, 1.0, ICS_SAT_DOUBLE) == ICS_OK, "mono CSAT");
+    double p[3] = {16, 16, 4}, prev = -1, T;
+    int nonmono = 0;
+    for (double U = 0.5; U <= 14; U += 0.5) {
+      CHECK(ics_csat_transmittance(c, ICS_CSAT_PLUS_W, p, U, &T) == ICS_OK, "T");
+      if (T < prev) nonmono++;
+      prev = T;
+    }
+    CHECK(nonmono == 0, "transmittance below the blob not monotone in U (%d drops)", nonmono);
+    /* beside the blob (outside its hard shadow) widening the filter darkens */
+    double q[3] = {30, 16, 4}, T0, T1;
+    CHECK(ics_csat_transmittance(c, ICS_CSAT_PLUS_W, q, 0.5, &T0) == ICS_OK &&
+              ics_csat_transmittance(c, ICS_CSAT_PLUS_W, q, 10, &T1) == ICS_OK && T0 == 1.0 &&
+              T1 < 0.999,
+          "lit point: T %g -> %g", T0, T1);
+    ics_csat_free(c);
+    free(b);
+  }
+  free(a);
+}
+
+static void test_csat_six(void) {
+  const long N = 20;
+  const double blobs[2][4] = {{10, 9, 11, 6}, {5, 14, 6, 3}};
+  float *a = blob_volume(N, 2, blobs);
+  ics_volume vol = {a, N, N, N};
+  double l[3] = {-0.3, 0.5, 0.8};
+  ics_csat *c = NULL;
+  CHECK(ics_csat_build(&c, &vol, l, 1.0, ICS_SAT_DOUBLE) == ICS_OK, "shared CSAT");
+  if (!c) return;
+  double r[3][3];
+  ics_csat_frame(c, r[0], r[1], r[2], NULL);
+  /* frames (a, b) with a x b = the light of each of the six lights */
+  const int fa[6] = {0, 1, 1, 2, 2, 0}, fb[6] = {1, 0, 2, 1, 0, 2};
+  for (int i = 0; i < 6; i++) {
+    ics_csat *ci = NULL;
+    CHECK(ics_csat_build_frame(&ci, &vol, r[fa[i]], r[fb[i]], 1.0, ICS_SAT_DOUBLE) == ICS_OK,
+          "separate CSAT %d", i);
+    if (!ci) continue;
+    double d1[3], d2[3];
+    ics_csat_light_dir(c, (ics_csat_light)i, d1);
+    ics_csat_light_dir(ci, ICS_CSAT_PLUS_W, d2);
+    CHECK(fabs(d1[0] - d2[0]) + fabs(d1[1] - d2[1]) + fabs(d1[2] - d2[2]) < 1e-12,
+          "light %d direction", i);
+    double worst = 0;
+    for (int k = 0; k < 40; k++) {
+      double p[3] = {2 + unit() * 16, 2 + unit() * 16, 2 + unit() * 16}, U = unit() * 5;
+      double t1, t2;
+      CHECK(ics_csat_tau(c, (ics_csat_light)i, p, U, &t1) == ICS_OK &&
+                ics_csat_tau(ci, ICS_CSAT_PLUS_W, p, U, &t2) == ICS_OK,
+            "tau");
+      double e = fabs(t1 - t2) / (t1 > 1e-3 ? t1 : 1e-3);
+      if (e > worst) worst = e;
+    }
+    /* equal up to the float rounding of the resampled cells (same cell centres) */
+    CHECK(worst < 1e-6, "light %d: shared vs separate CSAT rel diff %g", i, worst);
+    ics_csat_free(ci);
+  }
+  ics_csat_free(c);
+  free(a);
+}
+
+static void test_ssat(void) {
+  const long N = 32;
+  const double blobs[2][4] = {{16, 16, 16, 8}, {10, 22, 20, 5}};
+  float *a = blob_volume(N, 2, blobs);
+  ics_volume vol = {a, N, N, N};
+  double G = grad_bound(&vol), smax = 0;
+  for (long i = 0; i < N * N * N; i++)
+    if (a[i] > smax) smax = a[i];
+  const double lights[2][3] = {{-10, 14, 17}, {16.5, 15.5, 3.0}}; /* outside, inside */
+  for (int li = 0; li < 2; li++) {
+    const size_t nphi = 256, nth = 128, nr = 64;
+    ics_ssat *s = NULL;
+    CHECK(ics_ssat_build(&s, &vol, lights[li], nphi, nth, nr, ICS_SAT_DOUBLE) == ICS_OK, "ssat");
+    if (!s) continue;
+    double rmax = 0;
+    for (int cidx = 0; cidx < 8; cidx++) {
+      double q[3];
+      for (int ax = 0; ax < 3; ax++) q[ax] = ((cidx >> ax) & 1 ? (double)N : 0.0) - lights[li][ax];
+      double r = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+      if (r > rmax) rmax = r;
+    }
+    double dphi = 2 * PI_T / nphi, dth = PI_T / nth, dr = rmax / nr;
+    double worst = 0, worst_abs = 0;
+    const int npatch = 16;
+    const double step = 0.25;
+    for (int k = 0; k < 16; k++) {
+      double p[3] = {4 + unit() * 24, 4 + unit() * 24, 4 + unit() * 24}, U = 1.5 + (k % 3) * 1.5;
+      double q[3] = {p[0] - lights[li][0], p[1] - lights[li][1], p[2] - lights[li][2]};
+      double R = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+      if (R < 6) continue;
+      double ts, tb;
+      CHECK(ics_ssat_tau(s, p, U, &ts) == ICS_OK, "ssat tau");
+      CHECK(ics_tau_bruteforce_point(&vol, lights[li], p, U, npatch, step, &tb) == ICS_OK, "bf");
+      /* first-order bound (docs/sat.md): cell resampling (half the largest cell diagonal),
+       * the partial-cell weights linear in theta instead of cos(theta), and the brute-force
+       * midpoint quadrature (ray spacing at radius R, step) */
+      double th = acos(q[2] / R), al = atan(U / R), st = sin(th);
+      double Dcell = sqrt(dr * dr + (rmax * dth) * (rmax * dth) + (rmax * dphi) * (rmax * dphi));
+      double span = 2 * al / (st > 1e-3 ? st : 1e-3); /* phi range */
+      double bf_sp = R * (2 * al > span * st ? 2 * al : span * st) / npatch;
+      double bound = G * R * (Dcell / 2 + 0.5 * sqrt(2 * bf_sp * bf_sp + step * step)) +
+                     smax * R * dth * dth / (8 * (st > 1e-3 ? st : 1e-3) * al);
+      double e = fabs(ts - tb);
+      if (e / bound > worst) worst = e / bound;
+      if (e > worst_abs) worst_abs = e;
+      CHECK(e <= bound, "light %d p (%g %g %g) U %g: ssat %.9g bf %.9g diff %g > bound %g", li,
+            p[0], p[1], p[2], U, ts, tb, e, bound);
+    }
+    printf("SSAT light %d: max |tau_ssat - tau_bf| = %.3g (%.3g of the bound)\n", li, worst_abs,
+           worst);
+    ics_ssat_free(s);
+  }
+  free(a);
+}
+
+int main(void) {
+  test_exact_small();
+  test_bounds(2);
+  test_bounds(3);
+  test_integral();
+  test_bad_input();
+  test_csat_aligned();
+  test_csat_rotated();
+  test_csat_six();
+  test_ssat();
+  return test_summary("test_sat");
+}
