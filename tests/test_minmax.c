@@ -574,6 +574,20 @@ static void test_bad_input(void) {
   double alpha;
   size_t row;
   CHECK(ics_epi_ray(&f, L, &alpha, &row, &ray) == ICS_ERR_RANGE, "ray parallel to the light");
+  double dnan[3] = {1, NAN, 0}, dir[3];
+  CHECK(ics_epi_ray(&f, dnan, &alpha, &row, &ray) == ICS_ERR_NAN, "NaN ray direction");
+  CHECK(ics_epi_ray_dir(&f, 4, 1.0, dir) == ICS_ERR_RANGE, "ray_dir row out of range");
+  CHECK(ics_epi_ray_dir(&f, 0, 0.0, dir) == ICS_ERR_RANGE, "ray_dir beta = 0 (parallel)");
+  CHECK(ics_epi_ray_dir(&f, 0, NAN, dir) == ICS_ERR_NAN, "ray_dir NaN beta");
+  float sm[4] = {1, 2, 3, 4}, rect[16];
+  CHECK(ics_epi_rectify(&f, sm, 0, 2, 0, 0, 1, rect) == ICS_ERR_SIZE, "rectify empty map");
+  CHECK(ics_epi_rectify(&f, sm, 2, 2, 0, NAN, 1, rect) == ICS_ERR_NAN, "rectify NaN origin");
+  CHECK(ics_epi_rectify(&f, sm, 2, 2, 0, 0, 0, rect) == ICS_ERR_RANGE, "rectify zero texel");
+  ics_hf_scene sc;
+  ics_hf_scene_default(&sc);
+  CHECK(ics_hf_shadow_map(&sc, &f, 0, 1.0, sm) == ICS_ERR_SIZE, "shadow map 0 texels");
+  CHECK(ics_hf_shadow_map(&sc, &f, 2, NAN, sm) == ICS_ERR_NAN, "shadow map NaN size");
+  CHECK(ics_hf_shadow_map(&sc, &f, 2, -1.0, sm) == ICS_ERR_RANGE, "shadow map negative size");
 }
 
 int main(void) {
