@@ -27,5 +27,8 @@
 #include "icshadow/sat.h"
 #include "icshadow/minmax.h"
 #include "icshadow/occtex.h"
+#include "icshadow/image.h"
+#include "icshadow/exr.h"
+#include "icshadow/lightfit.h"
 
 #endif

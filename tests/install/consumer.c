@@ -13,6 +13,9 @@ int main(void) {
   ics_status st = ics_ellipse_kernel(0.8, 0.2, 30.0, 2, 0.0, &shape, xy);
   printf("K(0.5) = %.17g, kernel: %s, a = %.6g, b = %.6g\n", k, ics_status_str(st), shape.a,
          shape.b);
+  /* pulls exr.o in: a static link must bring OpenEXR's library along (Requires.private /
+   * find_dependency) when libicshadow was built with it */
+  printf("OpenEXR I/O: %s\n", ics_exr_available() ? "yes" : "no");
   if (fabs(k - k_half) > 4e-16 * k_half || st != ICS_OK) return 1;
   return 0;
 }

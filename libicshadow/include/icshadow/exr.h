@@ -1,0 +1,51 @@
+/* icshadow/exr.h — OpenEXR input/output of float images (environment maps) through the
+ * OpenEXR Core C API (openexr.h, -lOpenEXRCore). Optional component: when the library was
+ * built without OpenEXR every function returns ICS_ERR_UNSUPPORTED with a message saying so
+ * (ics_exr_available() tells in advance).
+ *
+ * Files: one single-part scanline image; channels exactly {R, G, B} or {R, G, B, A}, each
+ * HALF or FLOAT, no subsampling; any data window (its size is the image size). Reading
+ * decodes every channel PLANAR into float and interleaves afterwards: OpenEXR 3.1.5's
+ * interleaved-RGBA fast path writes half data in reversed channel order (ABGR), measured
+ * here (DESIGN.md "Known stack facts"); the planar path has no such special case.
+ * Pixels that are NaN, infinite or negative (R, G, B) are rejected with their position.
+ * Written files are ZIP-compressed, INCREASING_Y, and carry envmap = latlong. */
+#ifndef ICSHADOW_EXR_H
+#define ICSHADOW_EXR_H
+
+#include <stddef.h>
+
+#include "icshadow/image.h"
+#include "icshadow/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum ics_exr_type {
+  ICS_EXR_HALF = 1, /* 16-bit half float (values above 65504 become inf: rejected on write) */
+  ICS_EXR_FLOAT = 2 /* 32-bit float */
+} ics_exr_type;
+
+/* 1 when the library was built with OpenEXR, else 0. */
+int ics_exr_available(void);
+
+/* Reads `path` into *img (3 or 4 channels, as in the file). On failure *img is empty and,
+ * when msg is non-NULL, msg receives a one-line reason (truncated to msg_size):
+ * ICS_ERR_IO (cannot open / read / truncated data), ICS_ERR_PARSE (not an EXR, corrupt header
+ * or chunk), ICS_ERR_UNSUPPORTED (tiled/deep/multi-part, wrong channel set, UINT or
+ * subsampled channels, or no OpenEXR at build time), ICS_ERR_INVALID_ARG (NaN / inf /
+ * negative pixel), ICS_ERR_SIZE, ICS_ERR_NOMEM. */
+ics_status ics_exr_read(const char *path, ics_image *img, char *msg, size_t msg_size);
+
+/* Writes *img (3 or 4 channels) to `path` directly (callers wanting atomic output write a
+ * temporary name and rename). ICS_ERR_INVALID_ARG for a NaN / inf / negative pixel, or a value
+ * that overflows half when type is ICS_EXR_HALF; ICS_ERR_IO on write errors (the partial file
+ * is removed). */
+ics_status ics_exr_write(const char *path, const ics_image *img, ics_exr_type type, char *msg,
+                         size_t msg_size);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,37 @@
+/* icshadow/image.h — a simple float image: W x H pixels, 3 (RGB) or 4 (RGBA) interleaved
+ * channels, rows top to bottom (row 0 is the top row, as in OpenEXR and DESIGN.md's
+ * latitude-longitude layout), linear values. Pure C, no dependencies. */
+#ifndef ICSHADOW_IMAGE_H
+#define ICSHADOW_IMAGE_H
+
+#include <stddef.h>
+
+#include "icshadow/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define ICS_IMAGE_MAX_DIM 65536 /* per axis; width * height * channels must fit a size_t */
+
+typedef struct ics_image {
+  int width, height;
+  int channels; /* 3: R, G, B; 4: R, G, B, A */
+  float *data;  /* width * height * channels floats, pixel (i, j) at (j * width + i) * channels */
+} ics_image;
+
+/* Allocates a zero-filled image. ICS_ERR_SIZE unless 1 <= width, height <= ICS_IMAGE_MAX_DIM;
+ * ICS_ERR_INVALID_ARG unless channels is 3 or 4; ICS_ERR_NOMEM. On failure *img is empty. */
+ics_status ics_image_init(ics_image *img, int width, int height, int channels);
+/* Frees the pixels and empties the struct (safe on an empty or zeroed struct). */
+void ics_image_free(ics_image *img);
+
+/* First pixel whose R, G or B is NaN, infinite or negative (alpha is not checked):
+ * returns 0 and sets *i, *j (column, row) and *c (channel) for it; 1 when all are finite
+ * and >= 0. NULL out-pointers are allowed. */
+int ics_image_find_bad(const ics_image *img, int *i, int *j, int *c);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,121 @@
+/* icshadow/lightfit.h — environment maps to a few Gaussian lights on the virtual light plane
+ * (Patel et al. 2013, Sec. 3.2 last paragraphs: "project [the environment map] onto the
+ * virtual light plane to define l(x), and perform Gaussian fitting on l(x)").
+ *
+ * Frames (DESIGN.md "Frames and file formats"): latitude-longitude map W x H, pixel (i, j)
+ * centre u = (i + 1/2)/W, v = (j + 1/2)/H, theta = pi v from +y, phi = 2 pi u - pi,
+ * direction (sin theta sin phi, cos theta, sin theta cos phi). Directions with dz > 0 (behind
+ * the viewer) map to the plane point (x, y) = (dx/dz, dy/dz) = (tan wx, tan wy), and the light
+ * function is the density l(x, y) = L(w) dw/dA, dw/dA = (1 + x^2 + y^2)^(-3/2), so
+ * integral of l over the plane = integral of L over the hemisphere. Radiance is reduced to
+ * luminance Y = 0.2126 R + 0.7152 G + 0.0722 B for the fit; colours are fitted afterwards.
+ *
+ * Cut-off: directions more than max_angle_deg from +z (plane radius > tan max_angle) are left
+ * out and their energy is reported (ics_lightfit_report.cutoff_loss); dz <= 0 (in front of the
+ * viewer) is reported separately.
+ *
+ * Light convention (docs/lights_format.md): weight = luminance power of the light, the
+ * integral of its Y over the plane (= over the hemisphere, in map units x steradian); color =
+ * its RGB power / weight (so Y(color) = 1). Light k contributes
+ * weight_k color_k g(x; mean_k, cov_k) to l(x); sum_k weight_k = the fitted energy.
+ *
+ * Fit: each map pixel is a weighted sample (plane point of its centre, mass Y dw, and the
+ * covariance of its footprint on the plane, J diag(dphi^2, dtheta^2)/12 J^T). Greedy
+ * initialisation (after Annen et al. 2008): K times, take the maximum of the residual density
+ * l - current mixture, flood-fill the 4-connected pixels above half that maximum, and start a
+ * Gaussian with their moments scaled to a full Gaussian (x 1/(1 - ln 2) ... see lightfit.c)
+ * and twice their residual mass. Refinement: EM on the weighted samples (the M-step adds each
+ * pixel's footprint covariance, so a one-pixel sun gets the pixel's own small variance, never
+ * a singular one). When a map has more kept pixels than max_samples, EM runs on max_samples
+ * pixels drawn by systematic resampling of the mass with a start drawn from `seed`
+ * (icshadow/rng.h); otherwise the fit is deterministic and the seed is unused.
+ *
+ * Errors (ics_lightfit_report): relative L1 and L2 of fitted against map density over the kept
+ * disc; and the edge-shadow error at the optimal distance d1: at d1 the iterative shadow of a
+ * Gaussian light is its correct shadow (Eq. 7/8), so the shadow error behind a straight edge
+ * is only the fit's, sup_t |L_map(t) - L_fit(t)| for the cdf L of the light's marginal across
+ * the edge (both normalised to 1) — independent of d1 (the shadow is L(x/d1)). Reported as the
+ * maximum over edge orientations 0, 45, 90, 135 degrees.
+ *
+ * Type: ics_fitlight has the same fields as light.h's ics_light (mean, cov = cxx, cxy, cyy,
+ * color, weight); it is defined here because that type had not landed when this module was
+ * written. */
+#ifndef ICSHADOW_LIGHTFIT_H
+#define ICSHADOW_LIGHTFIT_H
+
+#include <stdint.h>
+
+#include "icshadow/image.h"
+#include "icshadow/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define ICS_LIGHTFIT_MAX_K 32
+
+typedef struct ics_fitlight {
+  double mean[2];  /* (mu_x, mu_y) on the virtual light plane */
+  double cov[3];   /* cxx, cxy, cyy */
+  double color[3]; /* RGB power per unit weight (luminance 1 for fitted lights) */
+  double weight;   /* luminance power (>= 0) */
+} ics_fitlight;
+
+typedef struct ics_lightfit_params {
+  int k;                /* number of Gaussians, 1..ICS_LIGHTFIT_MAX_K (default 3) */
+  double max_angle_deg; /* cut-off angle from +z, (0, 90) (default 80) */
+  uint64_t seed;        /* resampling seed (default 1) */
+  int max_samples;      /* EM samples; 0 = every kept pixel (default 0) */
+  int max_iter;         /* EM iterations (default 300) */
+  double tol;           /* stop when the log-likelihood per unit mass changes less (1e-9) */
+  /* optional: called after each EM iteration (iter from 1) */
+  void (*progress)(void *ctx, int iter, int max_iter, double loglik);
+  void *progress_ctx;
+} ics_lightfit_params;
+
+typedef struct ics_lightfit_report {
+  int k_fit;            /* lights produced (< k when the map is explained with fewer) */
+  int iterations;       /* EM iterations run */
+  int samples;          /* weighted samples EM used */
+  int pixels;           /* kept pixels (behind the viewer, inside the cut-off) */
+  double energy_total;  /* luminance power of the whole map */
+  double energy_front;  /* dz <= 0: not representable on the plane */
+  double energy_cutoff; /* behind the viewer but beyond max_angle_deg: lost */
+  double energy_kept;   /* fitted */
+  double cutoff_loss;   /* energy_cutoff / (energy_cutoff + energy_kept) */
+  double loglik;        /* per unit mass */
+  double l1, l2, edge;  /* errors, see above */
+} ics_lightfit_report;
+
+void ics_lightfit_defaults(ics_lightfit_params *p);
+
+/* Fits p->k Gaussians to env (3 or 4 channels; alpha ignored). lights must hold p->k entries;
+ * entries past report->k_fit are zeroed. ICS_ERR_INVALID_ARG for bad parameters, a NaN / inf /
+ * negative pixel, or a map without light inside the cut-off; ICS_ERR_SIZE for maps smaller than
+ * 4 x 2; ICS_ERR_NOMEM. */
+ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *p, ics_fitlight *lights,
+                        ics_lightfit_report *report);
+
+/* The error fields (l1, l2, edge) and energies of any set of n lights against env, with the
+ * cut-off max_angle_deg (k_fit = n, iterations = samples = 0). */
+ics_status ics_lightfit_errors(const ics_image *env, double max_angle_deg,
+                               const ics_fitlight *lights, int n, ics_lightfit_report *report);
+
+/* Synthetic environment map: env (already initialised, 3 or 4 channels) is overwritten with
+ * sky_rgb (NULL: black) plus n Gaussian lights drawn with radiance
+ * weight color g(x) (1 + |x|^2)^(3/2), averaged over supersample^2 points per pixel
+ * (1..16). Lights with a covariance eigenvalue below (pixel size on the plane / 4)^2 are
+ * widened to it along that axis; lights narrower than that in both axes are drawn as a delta
+ * into the one pixel holding their mean (energy weight color). Alpha is set to 1.
+ * ICS_ERR_INVALID_ARG for bad lights (negative weight / colour / non-PSD covariance, NaN). */
+ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3], const ics_fitlight *lights,
+                             int n, int supersample);
+
+/* Plane point and solid angle of pixel (i, j) of a W x H map: returns 0 (and *x, *y, *domega)
+ * when the pixel centre is behind the viewer (dz > 0), -1 otherwise. */
+int ics_envmap_pixel(int width, int height, int i, int j, double *x, double *y, double *domega);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,323 @@
+/* exr.c — OpenEXR I/O through the Core C API (see icshadow/exr.h).
+ *
+ * Built against OpenEXR only when CMake found it (ICS_HAVE_OPENEXR); otherwise every entry
+ * point returns ICS_ERR_UNSUPPORTED. Reading: exr_start_read parses the header; each scanline
+ * chunk is decoded with its own decode pipeline into PLANAR float buffers (one per channel,
+ * user_pixel_stride 4 bytes), then interleaved into the ics_image. Writing: exr_start_write,
+ * one part, required attributes, channels (B, G, R[, A] — the library sorts them), header,
+ * then one encode pipeline per chunk reading planar float buffers (the library converts to
+ * half when asked). Error messages of the library are captured per thread (custom
+ * error_handler_fn) instead of printed. */
+#include "icshadow/exr.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void set_msg(char *msg, size_t n, const char *fmt, ...) {
+  if (!msg || !n) return;
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, n, fmt, ap);
+  va_end(ap);
+}
+
+#ifndef ICS_HAVE_OPENEXR
+
+int ics_exr_available(void) { return 0; }
+
+ics_status ics_exr_read(const char *path, ics_image *img, char *msg, size_t msg_size) {
+  if (img) img->width = img->height = img->channels = 0, img->data = NULL;
+  set_msg(msg, msg_size, "%s: cannot read OpenEXR: OpenEXR was not found when libicshadow was "
+          "built (install libopenexr-dev and rebuild)", path ? path : "(null)");
+  return ICS_ERR_UNSUPPORTED;
+}
+
+ics_status ics_exr_write(const char *path, const ics_image *img, ics_exr_type type, char *msg,
+                         size_t msg_size) {
+  (void)img;
+  (void)type;
+  set_msg(msg, msg_size, "%s: cannot write OpenEXR: OpenEXR was not found when libicshadow was "
+          "built (install libopenexr-dev and rebuild)", path ? path : "(null)");
+  return ICS_ERR_UNSUPPORTED;
+}
+
+#else
+
+#include <openexr.h>
+
+int ics_exr_available(void) { return 1; }
+
+/* the last message of the OpenEXR library on this thread */
+static _Thread_local char exr_lastmsg[512];
+
+static void exr_error_cb(exr_const_context_t ctxt, exr_result_t code, const char *text) {
+  (void)ctxt;
+  snprintf(exr_lastmsg, sizeof exr_lastmsg, "%s (%s)", text ? text : "",
+           exr_get_error_code_as_string(code));
+}
+
+static ics_status map_err(exr_result_t rv) {
+  switch (rv) {
+    case EXR_ERR_OUT_OF_MEMORY: return ICS_ERR_NOMEM;
+    case EXR_ERR_FILE_ACCESS:
+    case EXR_ERR_READ_IO:
+    case EXR_ERR_WRITE_IO: return ICS_ERR_IO;
+    case EXR_ERR_FEATURE_NOT_IMPLEMENTED: return ICS_ERR_UNSUPPORTED;
+    default: return ICS_ERR_PARSE;
+  }
+}
+
+static const char *chan_names[4] = {"R", "G", "B", "A"};
+
+static int chan_index(const char *name) {
+  for (int c = 0; c < 4; c++)
+    if (!strcmp(name, chan_names[c])) return c;
+  return -1;
+}
+
+ics_status ics_exr_read(const char *path, ics_image *img, char *msg, size_t msg_size) {
+  if (!img) return ICS_ERR_INVALID_ARG;
+  img->width = img->height = img->channels = 0;
+  img->data = NULL;
+  if (!path) return ICS_ERR_INVALID_ARG;
+  FILE *probe = fopen(path, "rb");
+  if (!probe) {
+    set_msg(msg, msg_size, "%s: cannot open: %s", path, strerror(errno));
+    return ICS_ERR_IO;
+  }
+  fclose(probe);
+
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = exr_error_cb;
+  exr_context_t ctx = NULL;
+  exr_lastmsg[0] = 0;
+  exr_result_t rv = exr_start_read(&ctx, path, &init);
+  if (rv != EXR_ERR_SUCCESS) {
+    set_msg(msg, msg_size, "%s: not a readable OpenEXR file: %s", path,
+            exr_lastmsg[0] ? exr_lastmsg : exr_get_default_error_message(rv));
+    exr_finish(&ctx);
+    return map_err(rv);
+  }
+
+  ics_status st = ICS_OK;
+  float *planes[4] = {NULL, NULL, NULL, NULL};
+  int parts = 0;
+  exr_storage_t storage;
+  const exr_attr_chlist_t *chl = NULL;
+  exr_attr_box2i_t dw;
+  int have[4] = {0, 0, 0, 0};
+  long w = 0, h = 0;
+  if (exr_get_count(ctx, &parts) != EXR_ERR_SUCCESS || parts != 1) {
+    set_msg(msg, msg_size, "%s: %d parts; only single-part images are supported", path, parts);
+    st = ICS_ERR_UNSUPPORTED;
+    goto done;
+  }
+  if (exr_get_storage(ctx, 0, &storage) != EXR_ERR_SUCCESS || storage != EXR_STORAGE_SCANLINE) {
+    set_msg(msg, msg_size, "%s: only scanline images are supported (this one is %s)", path,
+            storage == EXR_STORAGE_TILED ? "tiled" : "deep");
+    st = ICS_ERR_UNSUPPORTED;
+    goto done;
+  }
+  if (exr_get_channels(ctx, 0, &chl) != EXR_ERR_SUCCESS || !chl ||
+      exr_get_data_window(ctx, 0, &dw) != EXR_ERR_SUCCESS) {
+    set_msg(msg, msg_size, "%s: corrupt header: %s", path, exr_lastmsg);
+    st = ICS_ERR_PARSE;
+    goto done;
+  }
+  for (int c = 0; c < chl->num_channels; c++) {
+    const exr_attr_chlist_entry_t *e = &chl->entries[c];
+    int k = chan_index(e->name.str);
+    if (k < 0) {
+      set_msg(msg, msg_size, "%s: unexpected channel '%s' (expected R, G, B and optionally A)",
+              path, e->name.str);
+      st = ICS_ERR_UNSUPPORTED;
+      goto done;
+    }
+    if (e->pixel_type != EXR_PIXEL_HALF && e->pixel_type != EXR_PIXEL_FLOAT) {
+      set_msg(msg, msg_size, "%s: channel %s is UINT; only HALF and FLOAT are supported", path,
+              e->name.str);
+      st = ICS_ERR_UNSUPPORTED;
+      goto done;
+    }
+    if (e->x_sampling != 1 || e->y_sampling != 1) {
+      set_msg(msg, msg_size, "%s: channel %s is subsampled; not supported", path, e->name.str);
+      st = ICS_ERR_UNSUPPORTED;
+      goto done;
+    }
+    have[k] = 1;
+  }
+  if (!have[0] || !have[1] || !have[2]) {
+    set_msg(msg, msg_size, "%s: wrong channel set: missing %s%s%s (expected R, G, B and "
+            "optionally A)", path, have[0] ? "" : "R ", have[1] ? "" : "G ", have[2] ? "" : "B");
+    st = ICS_ERR_UNSUPPORTED;
+    goto done;
+  }
+  w = (long)dw.max.x - dw.min.x + 1;
+  h = (long)dw.max.y - dw.min.y + 1;
+  int nch = have[3] ? 4 : 3;
+  st = ics_image_init(img, (int)(w > 0 && w <= ICS_IMAGE_MAX_DIM ? w : 0),
+                      (int)(h > 0 && h <= ICS_IMAGE_MAX_DIM ? h : 0), nch);
+  if (st != ICS_OK) {
+    set_msg(msg, msg_size, "%s: cannot hold a %ld x %ld image: %s", path, w, h,
+            ics_status_str(st));
+    goto done;
+  }
+  for (int k = 0; k < nch; k++) {
+    planes[k] = malloc((size_t)w * (size_t)h * sizeof(float));
+    if (!planes[k]) {
+      st = ICS_ERR_NOMEM;
+      set_msg(msg, msg_size, "%s: out of memory", path);
+      goto done;
+    }
+  }
+
+  int32_t lines = 0;
+  if (exr_get_scanlines_per_chunk(ctx, 0, &lines) != EXR_ERR_SUCCESS || lines < 1) {
+    set_msg(msg, msg_size, "%s: corrupt header (scanlines per chunk)", path);
+    st = ICS_ERR_PARSE;
+    goto done;
+  }
+  for (long y = dw.min.y; y <= dw.max.y; y += lines) {
+    exr_chunk_info_t ci;
+    exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
+    exr_lastmsg[0] = 0;
+    rv = exr_read_scanline_chunk_info(ctx, 0, (int)y, &ci);
+    if (rv == EXR_ERR_SUCCESS) rv = exr_decoding_initialize(ctx, 0, &ci, &dec);
+    if (rv == EXR_ERR_SUCCESS) {
+      for (int c = 0; c < dec.channel_count; c++) {
+        exr_coding_channel_info_t *ch = &dec.channels[c];
+        int k = chan_index(ch->channel_name);
+        size_t row0 = (size_t)(ci.start_y - dw.min.y);
+        if (k < 0 || k >= nch || ci.start_y < dw.min.y || ci.start_y + ci.height - 1 > dw.max.y ||
+            ch->width != w) {
+          rv = EXR_ERR_CORRUPT_CHUNK;
+          break;
+        }
+        ch->decode_to_ptr = (uint8_t *)(planes[k] + row0 * (size_t)w);
+        ch->user_pixel_stride = (int32_t)sizeof(float);
+        ch->user_line_stride = (int32_t)(sizeof(float) * (size_t)w);
+        ch->user_data_type = EXR_PIXEL_FLOAT;
+        ch->user_bytes_per_element = (int16_t)sizeof(float);
+      }
+    }
+    if (rv == EXR_ERR_SUCCESS) rv = exr_decoding_choose_default_routines(ctx, 0, &dec);
+    if (rv == EXR_ERR_SUCCESS) rv = exr_decoding_run(ctx, 0, &dec);
+    exr_decoding_destroy(ctx, &dec);
+    if (rv != EXR_ERR_SUCCESS) {
+      st = map_err(rv);
+      set_msg(msg, msg_size, "%s: cannot decode scanlines from %ld (corrupt or truncated "
+              "file): %s", path, y, exr_lastmsg[0] ? exr_lastmsg : exr_get_default_error_message(rv));
+      goto done;
+    }
+  }
+  for (size_t p = 0; p < (size_t)w * (size_t)h; p++)
+    for (int k = 0; k < nch; k++) img->data[p * nch + k] = planes[k][p];
+  int bi, bj, bc;
+  if (!ics_image_find_bad(img, &bi, &bj, &bc)) {
+    float v = img->data[((size_t)bj * w + bi) * nch + bc];
+    set_msg(msg, msg_size, "%s: pixel (x %d, y %d) channel %s is %s (%g): radiance must be "
+            "finite and >= 0", path, bi, bj, chan_names[bc],
+            isnan(v) ? "NaN" : isinf(v) ? "infinite" : "negative", (double)v);
+    st = ICS_ERR_INVALID_ARG;
+  }
+done:
+  for (int k = 0; k < 4; k++) free(planes[k]);
+  exr_finish(&ctx);
+  if (st != ICS_OK) ics_image_free(img);
+  return st;
+}
+
+ics_status ics_exr_write(const char *path, const ics_image *img, ics_exr_type type, char *msg,
+                         size_t msg_size) {
+  if (!path || !img || !img->data || (img->channels != 3 && img->channels != 4) ||
+      img->width < 1 || img->height < 1 || (type != ICS_EXR_HALF && type != ICS_EXR_FLOAT)) {
+    set_msg(msg, msg_size, "%s: invalid image or pixel type", path ? path : "(null)");
+    return ICS_ERR_INVALID_ARG;
+  }
+  int bi, bj, bc;
+  if (!ics_image_find_bad(img, &bi, &bj, &bc)) {
+    set_msg(msg, msg_size, "%s: pixel (x %d, y %d) channel %s is NaN, infinite or negative", path,
+            bi, bj, chan_names[bc]);
+    return ICS_ERR_INVALID_ARG;
+  }
+  const int nch = img->channels;
+  const size_t npx = (size_t)img->width * (size_t)img->height;
+  if (type == ICS_EXR_HALF)
+    for (size_t p = 0; p < npx * nch; p++)
+      if (img->data[p] > 65504.0f) {
+        size_t q = p / nch;
+        set_msg(msg, msg_size, "%s: pixel (x %zu, y %zu) value %g overflows half (max 65504); "
+                "write float", path, q % img->width, q / img->width, (double)img->data[p]);
+        return ICS_ERR_INVALID_ARG;
+      }
+  float *planes[4] = {NULL, NULL, NULL, NULL};
+  for (int k = 0; k < nch; k++) {
+    planes[k] = malloc(npx * sizeof(float));
+    if (!planes[k]) {
+      for (int q = 0; q < k; q++) free(planes[q]);
+      set_msg(msg, msg_size, "%s: out of memory", path);
+      return ICS_ERR_NOMEM;
+    }
+    for (size_t p = 0; p < npx; p++) planes[k][p] = img->data[p * nch + k];
+  }
+
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = exr_error_cb;
+  exr_context_t ctx = NULL;
+  int part = 0;
+  exr_lastmsg[0] = 0;
+  exr_pixel_type_t pt = type == ICS_EXR_HALF ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT;
+  exr_result_t rv = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
+  if (rv == EXR_ERR_SUCCESS) rv = exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part);
+  if (rv == EXR_ERR_SUCCESS)
+    rv = exr_initialize_required_attr_simple(ctx, part, img->width, img->height,
+                                             EXR_COMPRESSION_ZIP);
+  for (int k = nch - 1; k >= 0 && rv == EXR_ERR_SUCCESS; k--)
+    rv = exr_add_channel(ctx, part, chan_names[k], pt, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+  if (rv == EXR_ERR_SUCCESS) rv = exr_set_lineorder(ctx, part, EXR_LINEORDER_INCREASING_Y);
+  if (rv == EXR_ERR_SUCCESS) rv = exr_attr_set_envmap(ctx, part, "envmap", EXR_ENVMAP_LATLONG);
+  if (rv == EXR_ERR_SUCCESS) rv = exr_write_header(ctx);
+  int32_t lines = 1;
+  if (rv == EXR_ERR_SUCCESS) rv = exr_get_scanlines_per_chunk(ctx, part, &lines);
+  for (int y = 0; rv == EXR_ERR_SUCCESS && y < img->height; y += lines) {
+    exr_chunk_info_t ci;
+    exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
+    rv = exr_write_scanline_chunk_info(ctx, part, y, &ci);
+    if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_initialize(ctx, part, &ci, &enc);
+    if (rv == EXR_ERR_SUCCESS) {
+      for (int c = 0; c < enc.channel_count; c++) {
+        exr_coding_channel_info_t *ch = &enc.channels[c];
+        int k = chan_index(ch->channel_name);
+        if (k < 0 || k >= nch) {
+          rv = EXR_ERR_INVALID_ARGUMENT;
+          break;
+        }
+        ch->encode_from_ptr = (const uint8_t *)(planes[k] + (size_t)ci.start_y * img->width);
+        ch->user_pixel_stride = (int32_t)sizeof(float);
+        ch->user_line_stride = (int32_t)(sizeof(float) * (size_t)img->width);
+        ch->user_data_type = EXR_PIXEL_FLOAT;
+        ch->user_bytes_per_element = (int16_t)sizeof(float);
+      }
+    }
+    if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_choose_default_routines(ctx, part, &enc);
+    if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_run(ctx, part, &enc);
+    exr_encoding_destroy(ctx, &enc);
+  }
+  exr_result_t frv = exr_finish(&ctx);
+  if (rv == EXR_ERR_SUCCESS) rv = frv;
+  for (int k = 0; k < nch; k++) free(planes[k]);
+  if (rv != EXR_ERR_SUCCESS) {
+    set_msg(msg, msg_size, "%s: cannot write OpenEXR: %s", path,
+            exr_lastmsg[0] ? exr_lastmsg : exr_get_default_error_message(rv));
+    remove(path);
+    return map_err(rv) == ICS_ERR_PARSE ? ICS_ERR_IO : map_err(rv);
+  }
+  return ICS_OK;
+}
+
+#endif

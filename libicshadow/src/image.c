@@ -1,0 +1,44 @@
+/* image.c — float RGB(A) images (see icshadow/image.h). */
+#include "icshadow/image.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+ics_status ics_image_init(ics_image *img, int width, int height, int channels) {
+  if (!img) return ICS_ERR_INVALID_ARG;
+  img->width = img->height = img->channels = 0;
+  img->data = NULL;
+  if (channels != 3 && channels != 4) return ICS_ERR_INVALID_ARG;
+  if (width < 1 || height < 1 || width > ICS_IMAGE_MAX_DIM || height > ICS_IMAGE_MAX_DIM)
+    return ICS_ERR_SIZE;
+  size_t n = (size_t)width * (size_t)height * (size_t)channels;
+  float *p = calloc(n, sizeof *p);
+  if (!p) return ICS_ERR_NOMEM;
+  img->width = width;
+  img->height = height;
+  img->channels = channels;
+  img->data = p;
+  return ICS_OK;
+}
+
+void ics_image_free(ics_image *img) {
+  if (!img) return;
+  free(img->data);
+  img->data = NULL;
+  img->width = img->height = img->channels = 0;
+}
+
+int ics_image_find_bad(const ics_image *img, int *i, int *j, int *c) {
+  for (int y = 0; y < img->height; y++)
+    for (int x = 0; x < img->width; x++) {
+      const float *p = img->data + ((size_t)y * img->width + x) * img->channels;
+      for (int k = 0; k < 3; k++)
+        if (!isfinite(p[k]) || p[k] < 0) {
+          if (i) *i = x;
+          if (j) *j = y;
+          if (c) *c = k;
+          return 0;
+        }
+    }
+  return 1;
+}

@@ -1,0 +1,619 @@
+/* lightfit.c — environment map -> Gaussian lights on the virtual light plane
+ * (see icshadow/lightfit.h for the frames, the light convention and the error measures).
+ *
+ * Method.
+ *  1. Pixels: every map pixel whose centre is behind the viewer (dz > 0) and within
+ *     max_angle of +z becomes a weighted sample: plane point (x, y) = (tan phi,
+ *     cot theta / cos phi), luminance mass m = Y dw with the exact pixel solid angle
+ *     dw = (cos theta0 - cos theta1) dphi, plane density d = m / A with A = dw (1 + r^2)^(3/2),
+ *     and footprint covariance S = J diag(dphi^2, dtheta^2)/12 J^T (J = d(x, y)/d(phi, theta)).
+ *  2. Greedy start: K times, the maximum of the residual density d - sum of started Gaussians
+ *     (evaluated with each pixel's footprint added, i.e. pixel-averaged); the 4-connected
+ *     pixels above half that maximum hold half the mass of a Gaussian and have covariance
+ *     (1 - ln 2) Sigma (in 2D, r^2 ~ Exp(mean 2) truncated at r^2 < 2 ln 2 has mean 2 - 2 ln 2),
+ *     so the start is mean = their centroid, Sigma = their covariance / (1 - ln 2) + S,
+ *     weight = 2 x their residual mass. Stops early when the residual has no positive mass.
+ *  3. EM on the weighted samples (log-sum-exp E-step; M-step with the footprint covariance
+ *     added, so no component becomes singular); components whose mass falls below 1e-12 of the
+ *     total are dropped. Stops at |dLL| <= tol per unit mass or max_iter.
+ *  4. Colours: RGB mass shared by the final responsibilities, divided by the luminance mass.
+ * Special cases: a one-pixel sun gives one light of the pixel's footprint covariance
+ * (~(pixel size)^2 / 12); a uniform sky gives a broad light and a large cutoff_loss (the
+ * density (1 + r^2)^(-3/2) has infinite variance on the plane: the cut-off is what makes it
+ * fittable at all). */
+#include "icshadow/lightfit.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "icshadow/rng.h"
+
+#define PI 3.14159265358979323846
+#define ONE_MINUS_LN2 0.30685281944005469 /* 1 - ln 2 */
+
+typedef struct px {
+  double x, y, m, d, a; /* plane point, luminance mass, density, plane area */
+  double rgb[3];        /* RGB mass */
+  double s[3];          /* footprint covariance */
+  int i, j;
+} px;
+
+typedef struct pixset {
+  px *p;
+  int n;
+  int *grid; /* W*H -> index into p, or -1 */
+  int w, h;
+  double e_total, e_front, e_cut, e_kept;
+} pixset;
+
+static double lum(const float *c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+
+int ics_envmap_pixel(int width, int height, int i, int j, double *x, double *y, double *domega) {
+  double th = PI * (j + 0.5) / height, ph = 2 * PI * (i + 0.5) / width - PI;
+  double st = sin(th), dz = st * cos(ph);
+  if (!(dz > 0)) return -1;
+  if (x) *x = tan(ph);
+  if (y) *y = cos(th) / dz;
+  if (domega) *domega = (cos(PI * j / height) - cos(PI * (j + 1.0) / height)) * (2 * PI / width);
+  return 0;
+}
+
+static void footprint(int w, int h, int i, int j, double s[3]) {
+  double th = PI * (j + 0.5) / h, ph = 2 * PI * (i + 0.5) / w - PI;
+  double cp = cos(ph), sp = sin(ph), st = sin(th), ct = cos(th);
+  double dph = 2 * PI / w, dth = PI / h;
+  double a = dph * dph / 12, b = dth * dth / 12;
+  double j00 = 1 / (cp * cp), j10 = ct / st * sp / (cp * cp), j11 = -1 / (st * st * cp);
+  s[0] = j00 * j00 * a;
+  s[1] = j00 * j10 * a;
+  s[2] = j10 * j10 * a + j11 * j11 * b;
+}
+
+static void pixset_free(pixset *ps) {
+  free(ps->p);
+  free(ps->grid);
+  memset(ps, 0, sizeof *ps);
+}
+
+static ics_status pixset_build(const ics_image *env, double max_angle_deg, pixset *ps) {
+  memset(ps, 0, sizeof *ps);
+  if (!env || !env->data || (env->channels != 3 && env->channels != 4)) return ICS_ERR_INVALID_ARG;
+  if (env->width < 4 || env->height < 2) return ICS_ERR_SIZE;
+  if (!(max_angle_deg > 0 && max_angle_deg < 90)) return ICS_ERR_INVALID_ARG;
+  if (!ics_image_find_bad(env, NULL, NULL, NULL)) return ICS_ERR_INVALID_ARG;
+  int w = env->width, h = env->height;
+  ps->w = w;
+  ps->h = h;
+  ps->grid = malloc((size_t)w * h * sizeof *ps->grid);
+  ps->p = malloc((size_t)w * h / 2 * sizeof *ps->p + sizeof *ps->p * (size_t)h);
+  if (!ps->grid || !ps->p) {
+    pixset_free(ps);
+    return ICS_ERR_NOMEM;
+  }
+  double cosmax = cos(max_angle_deg * PI / 180);
+  for (int j = 0; j < h; j++) {
+    double dw = (cos(PI * j / h) - cos(PI * (j + 1.0) / h)) * (2 * PI / w);
+    double th = PI * (j + 0.5) / h, st = sin(th), ct = cos(th);
+    for (int i = 0; i < w; i++) {
+      const float *c = env->data + ((size_t)j * w + i) * env->channels;
+      double m = lum(c) * dw;
+      ps->grid[(size_t)j * w + i] = -1;
+      ps->e_total += m;
+      double ph = 2 * PI * (i + 0.5) / w - PI, dz = st * cos(ph);
+      if (!(dz > 0)) {
+        ps->e_front += m;
+        continue;
+      }
+      if (dz < cosmax) {
+        ps->e_cut += m;
+        continue;
+      }
+      ps->e_kept += m;
+      px *q = &ps->p[ps->n];
+      q->x = tan(ph);
+      q->y = ct / dz;
+      double r2 = q->x * q->x + q->y * q->y;
+      q->a = dw * pow(1 + r2, 1.5);
+      q->m = m;
+      q->d = m / q->a;
+      for (int k = 0; k < 3; k++) q->rgb[k] = c[k] * dw;
+      footprint(w, h, i, j, q->s);
+      q->i = i;
+      q->j = j;
+      ps->grid[(size_t)j * w + i] = ps->n++;
+    }
+  }
+  return ICS_OK;
+}
+
+/* ---- 2D Gaussians ---- */
+
+typedef struct gauss {
+  double mx, my, ixx, ixy, iyy, lnorm; /* inverse covariance, log(1 / (2 pi sqrt det)) */
+} gauss;
+
+static int gauss_make(gauss *g, double mx, double my, const double c[3]) {
+  double det = c[0] * c[2] - c[1] * c[1];
+  if (!(det > 0) || !isfinite(det)) return -1;
+  g->mx = mx;
+  g->my = my;
+  g->ixx = c[2] / det;
+  g->ixy = -c[1] / det;
+  g->iyy = c[0] / det;
+  g->lnorm = -log(2 * PI) - 0.5 * log(det);
+  return 0;
+}
+
+static double gauss_log(const gauss *g, double x, double y) {
+  double dx = x - g->mx, dy = y - g->my;
+  return g->lnorm - 0.5 * (g->ixx * dx * dx + 2 * g->ixy * dx * dy + g->iyy * dy * dy);
+}
+
+/* density of light l at pixel q, averaged over the pixel (footprint added to the covariance) */
+static double light_at(const ics_fitlight *l, const px *q) {
+  double c[3] = {l->cov[0] + q->s[0], l->cov[1] + q->s[1], l->cov[2] + q->s[2]};
+  gauss g;
+  if (gauss_make(&g, l->mean[0], l->mean[1], c)) return 0;
+  return l->weight * exp(gauss_log(&g, q->x, q->y));
+}
+
+static void sym_eig(const double c[3], double *l1, double *l2, double *angle) {
+  double tr = c[0] + c[2], df = c[0] - c[2];
+  double r = hypot(0.5 * df, c[1]);
+  *l1 = 0.5 * tr + r;
+  *l2 = 0.5 * tr - r;
+  *angle = 0.5 * atan2(2 * c[1], df);
+}
+
+/* ---- errors ---- */
+
+static double mix_cdf(const ics_fitlight *l, int n, double wsum, double nx, double ny, double t) {
+  double f = 0;
+  for (int k = 0; k < n; k++) {
+    if (!(l[k].weight > 0)) continue;
+    double mu = nx * l[k].mean[0] + ny * l[k].mean[1];
+    double v = nx * nx * l[k].cov[0] + 2 * nx * ny * l[k].cov[1] + ny * ny * l[k].cov[2];
+    double c = v > 0 ? 0.5 * erfc(-(t - mu) / sqrt(2 * v)) : (t >= mu ? 1.0 : 0.0);
+    f += l[k].weight * c;
+  }
+  return f / wsum;
+}
+
+static ics_status errors(const pixset *ps, const ics_fitlight *l, int n, ics_lightfit_report *r) {
+  double s1 = 0, n1 = 0, s2 = 0, n2 = 0, wsum = 0;
+  for (int k = 0; k < n; k++) wsum += l[k].weight > 0 ? l[k].weight : 0;
+  for (int q = 0; q < ps->n; q++) {
+    const px *p = &ps->p[q];
+    double f = 0;
+    for (int k = 0; k < n; k++)
+      if (l[k].weight > 0) f += light_at(&l[k], p);
+    double e = p->d - f;
+    s1 += fabs(e) * p->a;
+    n1 += p->d * p->a;
+    s2 += e * e * p->a;
+    n2 += p->d * p->d * p->a;
+  }
+  r->l1 = n1 > 0 ? s1 / n1 : NAN;
+  r->l2 = n2 > 0 ? sqrt(s2 / n2) : NAN;
+  r->edge = NAN;
+  if (!(wsum > 0) || !(ps->e_kept > 0)) return ICS_OK;
+  /* the map's cdf across the edge: each pixel's mass spread uniformly over its footprint's
+   * width across the edge, h = sqrt(12 n^T S n) (exact for columns at orientation 0), binned
+   * exactly into G bins (difference array for fully covered bins) and compared at bin edges */
+  enum { G = 4096 };
+  double *bins = malloc(2 * (G + 1) * sizeof *bins);
+  double *t = malloc(2 * (size_t)ps->n * sizeof *t);
+  if (!bins || !t) {
+    free(bins);
+    free(t);
+    return ICS_ERR_NOMEM;
+  }
+  double *diff = bins + G + 1, *hw = t + ps->n;
+  double worst = 0;
+  for (int o = 0; o < 4; o++) {
+    double ang = o * PI / 4, nx = cos(ang), ny = sin(ang), lo = INFINITY, hi = -INFINITY;
+    for (int q = 0; q < ps->n; q++) {
+      const px *p = &ps->p[q];
+      t[q] = nx * p->x + ny * p->y;
+      hw[q] = 0.5 * sqrt(12 * (nx * nx * p->s[0] + 2 * nx * ny * p->s[1] + ny * ny * p->s[2]));
+      lo = fmin(lo, t[q] - hw[q]);
+      hi = fmax(hi, t[q] + hw[q]);
+    }
+    double bw = (hi - lo) / G;
+    memset(bins, 0, 2 * (G + 1) * sizeof *bins);
+    for (int q = 0; q < ps->n; q++) {
+      double m = ps->p[q].m, a = t[q] - hw[q], b = t[q] + hw[q];
+      if (!(m > 0)) continue;
+      int ia = (int)floor((a - lo) / bw), ib = (int)floor((b - lo) / bw);
+      ia = ia < 0 ? 0 : ia >= G ? G - 1 : ia;
+      ib = ib < 0 ? 0 : ib >= G ? G - 1 : ib;
+      if (ia == ib || !(b > a)) {
+        bins[ia] += m;
+        continue;
+      }
+      double dens = m / (b - a);
+      bins[ia] += dens * (lo + (ia + 1) * bw - a);
+      bins[ib] += dens * (b - (lo + ib * bw));
+      diff[ia + 1] += dens * bw;
+      diff[ib] -= dens * bw;
+    }
+    double run = 0, cum = 0;
+    for (int g = 0; g < G; g++) {
+      run += diff[g];
+      cum += bins[g] + run;
+      double f = mix_cdf(l, n, wsum, nx, ny, lo + (g + 1) * bw);
+      double d = fabs(f - cum / ps->e_kept);
+      if (d > worst) worst = d;
+    }
+  }
+  free(bins);
+  free(t);
+  r->edge = worst;
+  return ICS_OK;
+}
+
+static void report_energies(const pixset *ps, ics_lightfit_report *r) {
+  r->pixels = ps->n;
+  r->energy_total = ps->e_total;
+  r->energy_front = ps->e_front;
+  r->energy_cutoff = ps->e_cut;
+  r->energy_kept = ps->e_kept;
+  r->cutoff_loss = ps->e_cut + ps->e_kept > 0 ? ps->e_cut / (ps->e_cut + ps->e_kept) : 0;
+}
+
+ics_status ics_lightfit_errors(const ics_image *env, double max_angle_deg,
+                               const ics_fitlight *lights, int n, ics_lightfit_report *report) {
+  if (!report || (n > 0 && !lights) || n < 0) return ICS_ERR_INVALID_ARG;
+  memset(report, 0, sizeof *report);
+  pixset ps;
+  ics_status st = pixset_build(env, max_angle_deg, &ps);
+  if (st != ICS_OK) return st;
+  report_energies(&ps, report);
+  report->k_fit = n;
+  st = errors(&ps, lights, n, report);
+  pixset_free(&ps);
+  return st;
+}
+
+/* ---- the fit ---- */
+
+void ics_lightfit_defaults(ics_lightfit_params *p) {
+  memset(p, 0, sizeof *p);
+  p->k = 3;
+  p->max_angle_deg = 80;
+  p->seed = 1;
+  p->max_samples = 0;
+  p->max_iter = 300;
+  p->tol = 1e-9;
+}
+
+/* greedy start: returns the number of Gaussians started */
+static int greedy(const pixset *ps, int k, ics_fitlight *l, int *stack, double *res, char *mark) {
+  int n = 0;
+  for (int q = 0; q < ps->n; q++) res[q] = ps->p[q].d;
+  while (n < k) {
+    int best = -1;
+    for (int q = 0; q < ps->n; q++)
+      if (res[q] > 0 && (best < 0 || res[q] > res[best])) best = q;
+    if (best < 0) break;
+    double half = 0.5 * res[best];
+    memset(mark, 0, (size_t)ps->n);
+    int top = 0;
+    stack[top++] = best;
+    mark[best] = 1;
+    double m0 = 0, mx = 0, my = 0, sxx = 0, sxy = 0, syy = 0, f0 = 0, f1 = 0, f2 = 0;
+    const px *c = &ps->p[best];
+    while (top) {
+      int q = stack[--top];
+      const px *p = &ps->p[q];
+      double m = res[q] * p->a, dx = p->x - c->x, dy = p->y - c->y;
+      m0 += m;
+      mx += m * dx;
+      my += m * dy;
+      sxx += m * dx * dx;
+      sxy += m * dx * dy;
+      syy += m * dy * dy;
+      f0 += m * p->s[0];
+      f1 += m * p->s[1];
+      f2 += m * p->s[2];
+      static const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+      for (int e = 0; e < 4; e++) {
+        int i2 = p->i + di[e], j2 = p->j + dj[e];
+        if (i2 < 0 || i2 >= ps->w || j2 < 0 || j2 >= ps->h) continue;
+        int q2 = ps->grid[(size_t)j2 * ps->w + i2];
+        if (q2 < 0 || mark[q2] || !(res[q2] > half)) continue;
+        mark[q2] = 1;
+        stack[top++] = q2;
+      }
+    }
+    if (!(m0 > 1e-12 * ps->e_kept)) break;
+    mx /= m0;
+    my /= m0;
+    ics_fitlight *g = &l[n];
+    g->mean[0] = c->x + mx;
+    g->mean[1] = c->y + my;
+    g->cov[0] = (sxx / m0 - mx * mx) / ONE_MINUS_LN2 + f0 / m0;
+    g->cov[1] = (sxy / m0 - mx * my) / ONE_MINUS_LN2 + f1 / m0;
+    g->cov[2] = (syy / m0 - my * my) / ONE_MINUS_LN2 + f2 / m0;
+    g->weight = 2 * m0;
+    g->color[0] = g->color[1] = g->color[2] = 1;
+    n++;
+    for (int q = 0; q < ps->n; q++) res[q] -= light_at(g, &ps->p[q]);
+  }
+  return n;
+}
+
+ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *prm,
+                        ics_fitlight *lights, ics_lightfit_report *report) {
+  if (!prm || !lights || !report) return ICS_ERR_INVALID_ARG;
+  memset(report, 0, sizeof *report);
+  const int K = prm->k;
+  if (K < 1 || K > ICS_LIGHTFIT_MAX_K || prm->max_samples < 0 || prm->max_iter < 0 ||
+      !(prm->tol >= 0))
+    return ICS_ERR_INVALID_ARG;
+  memset(lights, 0, (size_t)K * sizeof *lights);
+  pixset ps;
+  ics_status st = pixset_build(env, prm->max_angle_deg, &ps);
+  if (st != ICS_OK) return st;
+  report_energies(&ps, report);
+  if (!(ps.e_kept > 0)) {
+    pixset_free(&ps);
+    return ICS_ERR_INVALID_ARG; /* no light behind the viewer inside the cut-off */
+  }
+
+  int *stack = malloc((size_t)ps.n * sizeof *stack);
+  double *res = malloc((size_t)ps.n * sizeof *res);
+  char *mark = malloc((size_t)ps.n);
+  int *sel = NULL;
+  double *smass = NULL, *resp = NULL;
+  if (!stack || !res || !mark) {
+    st = ICS_ERR_NOMEM;
+    goto out;
+  }
+  int n = greedy(&ps, K, lights, stack, res, mark);
+
+  /* samples: all kept pixels with mass, or a seeded systematic resampling of them */
+  int ns = 0;
+  sel = malloc((size_t)ps.n * sizeof *sel);
+  smass = malloc((size_t)ps.n * sizeof *smass);
+  if (!sel || !smass) {
+    st = ICS_ERR_NOMEM;
+    goto out;
+  }
+  int nz = 0;
+  for (int q = 0; q < ps.n; q++) nz += ps.p[q].m > 0;
+  if (prm->max_samples > 0 && nz > prm->max_samples) {
+    int N = prm->max_samples;
+    double step = ps.e_kept / N;
+    double u = ics_rng_uniform_at(prm->seed, 0x6c6967687466ULL /* "lightf" */, 0) * step;
+    double cum = 0;
+    int drawn = 0;
+    for (int q = 0; q < ps.n && drawn < N; q++) {
+      cum += ps.p[q].m;
+      int c = 0;
+      while (drawn < N && u + drawn * step < cum) drawn++, c++;
+      if (c) {
+        sel[ns] = q;
+        smass[ns++] = c * step;
+      }
+    }
+  } else {
+    for (int q = 0; q < ps.n; q++)
+      if (ps.p[q].m > 0) {
+        sel[ns] = q;
+        smass[ns++] = ps.p[q].m;
+      }
+  }
+  report->samples = ns;
+
+  /* EM */
+  double M = 0;
+  for (int s = 0; s < ns; s++) M += smass[s];
+  double pi_[ICS_LIGHTFIT_MAX_K];
+  gauss g[ICS_LIGHTFIT_MAX_K];
+  resp = malloc((size_t)K * sizeof *resp);
+  if (!resp) {
+    st = ICS_ERR_NOMEM;
+    goto out;
+  }
+  double wsum = 0;
+  for (int k = 0; k < n; k++) wsum += lights[k].weight;
+  for (int k = 0; k < n; k++) pi_[k] = lights[k].weight / wsum;
+  double ll_prev = -INFINITY, ll = -INFINITY;
+  int it = 0;
+  for (it = 1; it <= prm->max_iter && n > 0; it++) {
+    for (int k = 0; k < n; k++)
+      if (gauss_make(&g[k], lights[k].mean[0], lights[k].mean[1], lights[k].cov)) {
+        st = ICS_ERR_RANGE; /* cannot happen: footprints keep covariances positive definite */
+        goto out;
+      }
+    double acc[ICS_LIGHTFIT_MAX_K][9];
+    memset(acc, 0, sizeof acc);
+    ll = 0;
+    for (int s = 0; s < ns; s++) {
+      const px *p = &ps.p[sel[s]];
+      double lmax = -INFINITY;
+      for (int k = 0; k < n; k++) {
+        resp[k] = log(pi_[k]) + gauss_log(&g[k], p->x, p->y);
+        if (resp[k] > lmax) lmax = resp[k];
+      }
+      double sum = 0;
+      for (int k = 0; k < n; k++) sum += (resp[k] = exp(resp[k] - lmax));
+      ll += smass[s] * (lmax + log(sum));
+      for (int k = 0; k < n; k++) {
+        double m = smass[s] * resp[k] / sum;
+        double dx = p->x - lights[k].mean[0], dy = p->y - lights[k].mean[1];
+        double *a = acc[k];
+        a[0] += m;
+        a[1] += m * dx;
+        a[2] += m * dy;
+        a[3] += m * (dx * dx + p->s[0]);
+        a[4] += m * (dx * dy + p->s[1]);
+        a[5] += m * (dy * dy + p->s[2]);
+      }
+    }
+    ll /= M;
+    /* M-step; drop empty components */
+    int n2 = 0;
+    for (int k = 0; k < n; k++) {
+      double *a = acc[k];
+      if (!(a[0] > 1e-12 * M)) continue;
+      double mx = a[1] / a[0], my = a[2] / a[0];
+      ics_fitlight *L = &lights[n2];
+      L->mean[0] = lights[k].mean[0] + mx;
+      L->mean[1] = lights[k].mean[1] + my;
+      L->cov[0] = a[3] / a[0] - mx * mx;
+      L->cov[1] = a[4] / a[0] - mx * my;
+      L->cov[2] = a[5] / a[0] - my * my;
+      L->weight = a[0] / M * ps.e_kept;
+      pi_[n2] = a[0] / M;
+      n2++;
+    }
+    n = n2;
+    if (prm->progress) prm->progress(prm->progress_ctx, it, prm->max_iter, ll);
+    if (fabs(ll - ll_prev) <= prm->tol) break;
+    ll_prev = ll;
+  }
+  report->iterations = it > prm->max_iter ? prm->max_iter : it;
+  report->loglik = ll;
+
+  /* colours: RGB mass shared by the responsibilities over all kept pixels */
+  {
+    double rgb[ICS_LIGHTFIT_MAX_K][3], ym[ICS_LIGHTFIT_MAX_K];
+    memset(rgb, 0, sizeof rgb);
+    memset(ym, 0, sizeof ym);
+    for (int k = 0; k < n; k++) {
+      pi_[k] = lights[k].weight / ps.e_kept;
+      if (gauss_make(&g[k], lights[k].mean[0], lights[k].mean[1], lights[k].cov)) {
+        st = ICS_ERR_RANGE;
+        goto out;
+      }
+    }
+    for (int q = 0; q < ps.n; q++) {
+      const px *p = &ps.p[q];
+      if (!(p->m > 0) && !(p->rgb[0] + p->rgb[1] + p->rgb[2] > 0)) continue;
+      double lmax = -INFINITY, sum = 0;
+      for (int k = 0; k < n; k++) {
+        resp[k] = log(pi_[k]) + gauss_log(&g[k], p->x, p->y);
+        if (resp[k] > lmax) lmax = resp[k];
+      }
+      for (int k = 0; k < n; k++) sum += (resp[k] = exp(resp[k] - lmax));
+      for (int k = 0; k < n; k++) {
+        double r = resp[k] / sum;
+        ym[k] += r * p->m;
+        for (int c = 0; c < 3; c++) rgb[k][c] += r * p->rgb[c];
+      }
+    }
+    for (int k = 0; k < n; k++)
+      for (int c = 0; c < 3; c++) lights[k].color[c] = ym[k] > 0 ? rgb[k][c] / ym[k] : 1;
+  }
+  for (int k = n; k < K; k++) memset(&lights[k], 0, sizeof lights[k]);
+  report->k_fit = n;
+  st = errors(&ps, lights, n, report);
+out:
+  free(stack);
+  free(res);
+  free(mark);
+  free(sel);
+  free(smass);
+  free(resp);
+  pixset_free(&ps);
+  return st;
+}
+
+/* ---- synthetic maps ---- */
+
+ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3], const ics_fitlight *lights,
+                             int n, int supersample) {
+  if (!env || !env->data || (env->channels != 3 && env->channels != 4) || n < 0 ||
+      (n > 0 && !lights) || supersample < 1 || supersample > 16)
+    return ICS_ERR_INVALID_ARG;
+  if (env->width < 4 || env->height < 2) return ICS_ERR_SIZE;
+  const int w = env->width, h = env->height, s = supersample;
+  double sky[3] = {0, 0, 0};
+  if (sky_rgb)
+    for (int c = 0; c < 3; c++) {
+      if (!(sky_rgb[c] >= 0) || !isfinite(sky_rgb[c])) return ICS_ERR_INVALID_ARG;
+      sky[c] = sky_rgb[c];
+    }
+  gauss *g = malloc((size_t)(n ? n : 1) * sizeof *g);
+  int *delta = malloc((size_t)(n ? n : 1) * sizeof *delta);
+  if (!g || !delta) {
+    free(g);
+    free(delta);
+    return ICS_ERR_NOMEM;
+  }
+  for (int k = 0; k < n; k++) {
+    const ics_fitlight *l = &lights[k];
+    int ok = isfinite(l->mean[0]) && isfinite(l->mean[1]) && l->weight >= 0 &&
+             isfinite(l->weight);
+    for (int c = 0; c < 3; c++) ok = ok && l->cov[c] == l->cov[c] && isfinite(l->cov[c]);
+    for (int c = 0; c < 3; c++) ok = ok && l->color[c] >= 0 && isfinite(l->color[c]);
+    double l1 = 0, l2 = 0, ang = 0;
+    if (ok) {
+      sym_eig(l->cov, &l1, &l2, &ang);
+      double tr = l->cov[0] + l->cov[2];
+      ok = l->cov[0] >= 0 && l->cov[2] >= 0 && l2 >= -1e-12 * tr;
+    }
+    if (!ok) {
+      free(g);
+      free(delta);
+      return ICS_ERR_INVALID_ARG;
+    }
+    /* pixel size on the plane at the mean */
+    double r2 = l->mean[0] * l->mean[0] + l->mean[1] * l->mean[1], nr = sqrt(1 + r2);
+    double dx = l->mean[0] / nr, dy = l->mean[1] / nr, dz = 1 / nr;
+    double th = acos(dy), ph = atan2(dx, dz);
+    int pi = (int)floor((ph + PI) / (2 * PI) * w), pj = (int)floor(th / PI * h);
+    pi = pi < 0 ? 0 : pi >= w ? w - 1 : pi;
+    pj = pj < 0 ? 0 : pj >= h ? h - 1 : pj;
+    double fs[3], f1, f2, fa;
+    footprint(w, h, pi, pj, fs);
+    sym_eig(fs, &f1, &f2, &fa);
+    double floor_var = 12 * f2 / 16; /* (smallest pixel extent / 4)^2 */
+    delta[k] = -1;
+    if (l1 < floor_var) {
+      delta[k] = pj * w + pi;
+      continue;
+    }
+    if (l2 < floor_var) l2 = floor_var;
+    double c = cos(ang), sn = sin(ang), cv[3];
+    cv[0] = l1 * c * c + l2 * sn * sn;
+    cv[1] = (l1 - l2) * c * sn;
+    cv[2] = l1 * sn * sn + l2 * c * c;
+    gauss_make(&g[k], l->mean[0], l->mean[1], cv);
+  }
+  for (int j = 0; j < h; j++)
+    for (int i = 0; i < w; i++) {
+      double acc[3] = {0, 0, 0};
+      for (int b = 0; b < s; b++)
+        for (int a = 0; a < s; a++) {
+          double th = PI * (j + (b + 0.5) / s) / h, ph = 2 * PI * (i + (a + 0.5) / s) / w - PI;
+          double st = sin(th), dz = st * cos(ph);
+          if (!(dz > 0)) continue;
+          double x = st * sin(ph) / dz, y = cos(th) / dz, r2 = x * x + y * y;
+          double jac = pow(1 + r2, 1.5);
+          for (int k = 0; k < n; k++) {
+            if (delta[k] >= 0 || !(lights[k].weight > 0)) continue;
+            double v = lights[k].weight * exp(gauss_log(&g[k], x, y)) * jac;
+            for (int c = 0; c < 3; c++) acc[c] += v * lights[k].color[c];
+          }
+        }
+      float *p = env->data + ((size_t)j * w + i) * env->channels;
+      for (int c = 0; c < 3; c++) p[c] = (float)(sky[c] + acc[c] / (s * s));
+      if (env->channels == 4) p[3] = 1;
+    }
+  for (int k = 0; k < n; k++) {
+    if (delta[k] < 0) continue;
+    int pi = delta[k] % w, pj = delta[k] / w;
+    double dw = (cos(PI * pj / h) - cos(PI * (pj + 1.0) / h)) * (2 * PI / w);
+    float *p = env->data + ((size_t)pj * w + pi) * env->channels;
+    for (int c = 0; c < 3; c++) p[c] += (float)(lights[k].weight * lights[k].color[c] / dw);
+  }
+  free(g);
+  free(delta);
+  for (size_t q = 0; q < (size_t)w * h * env->channels; q++)
+    if (!isfinite(env->data[q])) return ICS_ERR_RANGE; /* a light too bright for float */
+  return ICS_OK;
+}

@@ -1,0 +1,6 @@
+# Gaussian light fitting (pure C: synthetic maps -> fit), OpenEXR I/O (needs OpenEXR).
+ics_add_test(NAME test_lightfit SOURCES test_lightfit.c LABELS fast)
+if(ICS_HAVE_OPENEXR)
+  set(ICS_EXR_TEST_LIBS OpenEXR::OpenEXRCore)
+endif()
+ics_add_test(NAME test_exr SOURCES test_exr.c LABELS fast LIBS ${ICS_EXR_TEST_LIBS} NEEDS OPENEXR)

@@ -1,0 +1,218 @@
+/* test_exr.c — OpenEXR I/O: float and half round trips (bit-exact; the half data uses values
+ * exactly representable in half, different in every channel so a channel swap is caught),
+ * and clear errors for missing, corrupt, truncated, wrong-channel, UINT, NaN / inf /
+ * negative files. Files with channel sets or values ics_exr_write refuses are made here with
+ * the OpenEXR Core API directly (write_raw). */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <openexr.h>
+
+#include "icshadow.h"
+#include "testutil.h"
+
+static char dir[256];
+
+static const char *tmpf(const char *name) {
+  static char buf[8][512];
+  static int k;
+  k = (k + 1) % 8;
+  snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
+  return buf[k];
+}
+
+/* a W x H file with the given channels (all of type pt); value of channel c at pixel p is
+ * val(c, p) */
+static int write_raw(const char *path, int w, int h, int nch, const char *const *names,
+                     exr_pixel_type_t pt, float (*val)(int c, int p)) {
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  exr_context_t ctx;
+  int part;
+  float *planes[8];
+  for (int c = 0; c < nch; c++) {
+    planes[c] = malloc(sizeof(float) * w * h);
+    for (int p = 0; p < w * h; p++) planes[c][p] = val(c, p);
+  }
+  exr_result_t rv = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
+  if (rv == 0) rv = exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part);
+  if (rv == 0) rv = exr_initialize_required_attr_simple(ctx, part, w, h, EXR_COMPRESSION_NONE);
+  for (int c = 0; c < nch && rv == 0; c++)
+    rv = exr_add_channel(ctx, part, names[c], pt, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+  if (rv == 0) rv = exr_write_header(ctx);
+  int32_t lines = 1;
+  if (rv == 0) rv = exr_get_scanlines_per_chunk(ctx, part, &lines);
+  for (int y = 0; rv == 0 && y < h; y += lines) {
+    exr_chunk_info_t ci;
+    exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
+    rv = exr_write_scanline_chunk_info(ctx, part, y, &ci);
+    if (rv == 0) rv = exr_encoding_initialize(ctx, part, &ci, &enc);
+    for (int c = 0; rv == 0 && c < enc.channel_count; c++) {
+      int k = 0;
+      while (strcmp(names[k], enc.channels[c].channel_name)) k++;
+      enc.channels[c].encode_from_ptr = (const uint8_t *)(planes[k] + (size_t)y * w);
+      enc.channels[c].user_pixel_stride = 4;
+      enc.channels[c].user_line_stride = 4 * w;
+      enc.channels[c].user_data_type = EXR_PIXEL_FLOAT;
+      enc.channels[c].user_bytes_per_element = 4;
+    }
+    if (rv == 0) rv = exr_encoding_choose_default_routines(ctx, part, &enc);
+    if (rv == 0) rv = exr_encoding_run(ctx, part, &enc);
+    exr_encoding_destroy(ctx, &enc);
+  }
+  exr_finish(&ctx);
+  for (int c = 0; c < nch; c++) free(planes[c]);
+  return rv == 0 ? 0 : -1;
+}
+
+static float v_plain(int c, int p) { return (float)(1 + c + (p % 7) * 0.25); }
+static float v_nan(int c, int p) { return c == 1 && p == 2 * 5 + 3 ? NAN : v_plain(c, p); }
+static float v_inf(int c, int p) { return c == 2 && p == 7 ? INFINITY : v_plain(c, p); }
+static float v_neg(int c, int p) { return c == 0 && p == 0 ? -0.5f : v_plain(c, p); }
+
+static int file_exists(const char *p) {
+  FILE *f = fopen(p, "rb");
+  if (f) fclose(f);
+  return f != NULL;
+}
+
+/* read must fail with `want` status, an empty image and a message containing `needle` */
+static void expect_fail(const char *path, ics_status want, const char *needle) {
+  ics_image im;
+  char msg[512] = "";
+  ics_status st = ics_exr_read(path, &im, msg, sizeof msg);
+  CHECK(st == want, "%s: status %s, expected %s (%s)", path, ics_status_str(st),
+        ics_status_str(want), msg);
+  CHECK(im.data == NULL && im.width == 0, "%s: image not empty after failure", path);
+  CHECK(strstr(msg, needle) != NULL, "%s: message '%s' lacks '%s'", path, msg, needle);
+  printf("expected failure: %s\n", msg);
+}
+
+static long file_size(const char *p) {
+  FILE *f = fopen(p, "rb");
+  if (!f) return -1;
+  fseek(f, 0, SEEK_END);
+  long n = ftell(f);
+  fclose(f);
+  return n;
+}
+
+static void copy_prefix(const char *src, const char *dst, long n, long flip_at) {
+  FILE *f = fopen(src, "rb"), *g = fopen(dst, "wb");
+  for (long i = 0; i < n; i++) {
+    int c = fgetc(f);
+    if (i >= flip_at && i < flip_at + 64) c ^= 0x5a;
+    fputc(c, g);
+  }
+  fclose(f);
+  fclose(g);
+}
+
+int main(void) {
+  snprintf(dir, sizeof dir, "%s", "test_exr_tmp");
+  if (system("mkdir -p test_exr_tmp") != 0) return 1;
+  CHECK(ics_exr_available() == 1, "built with OpenEXR");
+  ics_image a, b;
+  char msg[512];
+
+  /* float round trip, RGB, odd size (several ZIP chunks of 16 lines), wide value range */
+  CHECK(ics_image_init(&a, 37, 41, 3) == ICS_OK, "init");
+  for (int p = 0; p < 37 * 41 * 3; p++)
+    a.data[p] = (float)(p % 5 == 0 ? 0.0 : ldexp(1.0 + p * 0.001, (p % 41) - 20));
+  ics_status st = ics_exr_write(tmpf("f.exr"), &a, ICS_EXR_FLOAT, msg, sizeof msg);
+  CHECK(st == ICS_OK, "write float: %s", msg);
+  st = ics_exr_read(tmpf("f.exr"), &b, msg, sizeof msg);
+  CHECK(st == ICS_OK, "read float: %s", msg);
+  CHECK(b.width == 37 && b.height == 41 && b.channels == 3, "float size %dx%dx%d", b.width,
+        b.height, b.channels);
+  CHECK(b.data && !memcmp(a.data, b.data, sizeof(float) * 37 * 41 * 3), "float round trip exact");
+  ics_image_free(&b);
+  ics_image_free(&a);
+
+  /* half round trip, RGBA: R, G, B, A differ at every pixel (k/8 + 16 c + 1 < 64, all exact
+   * in half), so a reversed (ABGR) decode or any swap fails */
+  CHECK(ics_image_init(&a, 19, 35, 4) == ICS_OK, "init");
+  for (int p = 0; p < 19 * 35; p++)
+    for (int c = 0; c < 4; c++) a.data[p * 4 + c] = (float)((p % 64) / 8.0 + 16 * c + 1);
+  st = ics_exr_write(tmpf("h.exr"), &a, ICS_EXR_HALF, msg, sizeof msg);
+  CHECK(st == ICS_OK, "write half: %s", msg);
+  st = ics_exr_read(tmpf("h.exr"), &b, msg, sizeof msg);
+  CHECK(st == ICS_OK, "read half: %s", msg);
+  CHECK(b.channels == 4 && b.width == 19 && b.height == 35, "half size");
+  int bad = -1;
+  for (int p = 0; b.data && p < 19 * 35 * 4 && bad < 0; p++)
+    if (a.data[p] != b.data[p]) bad = p;
+  CHECK(b.data && bad < 0, "half round trip: value %d is %g, wrote %g", bad,
+        bad >= 0 ? b.data[bad] : 0.0, bad >= 0 ? a.data[bad] : 0.0);
+  ics_image_free(&b);
+  /* half: a value above 65504 is refused, and no file is left */
+  a.data[5] = 70000;
+  remove(tmpf("big.exr"));
+  st = ics_exr_write(tmpf("big.exr"), &a, ICS_EXR_HALF, msg, sizeof msg);
+  CHECK(st == ICS_ERR_INVALID_ARG && strstr(msg, "overflows half"), "half overflow: %s", msg);
+  CHECK(!file_exists(tmpf("big.exr")), "no file after a refused write");
+  a.data[5] = NAN;
+  st = ics_exr_write(tmpf("big.exr"), &a, ICS_EXR_FLOAT, msg, sizeof msg);
+  CHECK(st == ICS_ERR_INVALID_ARG && !file_exists(tmpf("big.exr")), "NaN write refused: %s", msg);
+  ics_image_free(&a);
+
+  /* files written here with the raw API read back too (uncompressed, RGB half) */
+  static const char *const rgb[] = {"R", "G", "B"};
+  CHECK(write_raw(tmpf("raw.exr"), 5, 4, 3, rgb, EXR_PIXEL_HALF, v_plain) == 0, "raw");
+  st = ics_exr_read(tmpf("raw.exr"), &b, msg, sizeof msg);
+  CHECK(st == ICS_OK && b.data[3 * 6 + 1] == v_plain(1, 6), "raw half read: %s", msg);
+  ics_image_free(&b);
+
+  /* errors */
+  expect_fail(tmpf("missing.exr"), ICS_ERR_IO, "cannot open");
+  FILE *f = fopen(tmpf("text.exr"), "w");
+  fputs("this is not an OpenEXR file\n", f);
+  fclose(f);
+  expect_fail(tmpf("text.exr"), ICS_ERR_PARSE, "not a readable OpenEXR file");
+  /* truncated: a float map cut in half; and corrupt: 64 bytes of chunk data flipped */
+  CHECK(ics_image_init(&a, 64, 64, 3) == ICS_OK, "init");
+  for (int p = 0; p < 64 * 64 * 3; p++) a.data[p] = (float)(p % 97) * 0.5f;
+  CHECK(ics_exr_write(tmpf("big.exr"), &a, ICS_EXR_FLOAT, msg, sizeof msg) == ICS_OK, "%s", msg);
+  ics_image_free(&a);
+  long n = file_size(tmpf("big.exr"));
+  copy_prefix(tmpf("big.exr"), tmpf("trunc.exr"), n / 2, n);
+  expect_fail(tmpf("trunc.exr"), ICS_ERR_PARSE, "corrupt or truncated");
+  copy_prefix(tmpf("big.exr"), tmpf("flip.exr"), n, n - 600);
+  {
+    ics_image im;
+    st = ics_exr_read(tmpf("flip.exr"), &im, msg, sizeof msg);
+    CHECK(st != ICS_OK && im.data == NULL && strstr(msg, "flip.exr"), "flipped bytes: %s (%s)",
+          ics_status_str(st), msg);
+    printf("expected failure: %s\n", msg);
+  }
+  copy_prefix(tmpf("big.exr"), tmpf("hdr.exr"), 40, n); /* header cut */
+  {
+    ics_image im;
+    st = ics_exr_read(tmpf("hdr.exr"), &im, msg, sizeof msg);
+    CHECK(st != ICS_OK && im.data == NULL && strstr(msg, "not a readable OpenEXR"),
+          "cut header: %s (%s)", ics_status_str(st), msg);
+  }
+  /* wrong channel sets */
+  static const char *const rg[] = {"R", "G"}, *const rgbz[] = {"R", "G", "B", "Z"},
+                           *const y[] = {"Y"};
+  CHECK(write_raw(tmpf("rg.exr"), 5, 4, 2, rg, EXR_PIXEL_FLOAT, v_plain) == 0, "raw rg");
+  expect_fail(tmpf("rg.exr"), ICS_ERR_UNSUPPORTED, "missing B");
+  CHECK(write_raw(tmpf("rgbz.exr"), 5, 4, 4, rgbz, EXR_PIXEL_FLOAT, v_plain) == 0, "raw rgbz");
+  expect_fail(tmpf("rgbz.exr"), ICS_ERR_UNSUPPORTED, "unexpected channel 'Z'");
+  CHECK(write_raw(tmpf("y.exr"), 5, 4, 1, y, EXR_PIXEL_HALF, v_plain) == 0, "raw y");
+  expect_fail(tmpf("y.exr"), ICS_ERR_UNSUPPORTED, "unexpected channel 'Y'");
+  CHECK(write_raw(tmpf("uint.exr"), 5, 4, 3, rgb, EXR_PIXEL_UINT, v_plain) == 0, "raw uint");
+  expect_fail(tmpf("uint.exr"), ICS_ERR_UNSUPPORTED, "UINT");
+  /* bad pixels, with their position */
+  CHECK(write_raw(tmpf("nan.exr"), 5, 4, 3, rgb, EXR_PIXEL_FLOAT, v_nan) == 0, "raw nan");
+  expect_fail(tmpf("nan.exr"), ICS_ERR_INVALID_ARG, "pixel (x 3, y 2) channel G is NaN");
+  CHECK(write_raw(tmpf("inf.exr"), 5, 4, 3, rgb, EXR_PIXEL_HALF, v_inf) == 0, "raw inf");
+  expect_fail(tmpf("inf.exr"), ICS_ERR_INVALID_ARG, "pixel (x 2, y 1) channel B is infinite");
+  CHECK(write_raw(tmpf("neg.exr"), 5, 4, 3, rgb, EXR_PIXEL_FLOAT, v_neg) == 0, "raw neg");
+  expect_fail(tmpf("neg.exr"), ICS_ERR_INVALID_ARG, "pixel (x 0, y 0) channel R is negative");
+
+  if (system("rm -rf test_exr_tmp") != 0) return 1;
+  return test_summary("exr");
+}

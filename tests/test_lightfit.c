@@ -1,0 +1,231 @@
+/* test_lightfit.c — environment map -> Gaussian lights (pure C, no OpenEXR): synthetic maps
+ * from ics_envmap_render are fitted back. The expected values are the lights the maps were
+ * drawn from; the map's energy is integrated here with this file's own solid-angle formula
+ * (an independent check of the change of measure dw/dA = (1 + r^2)^(-3/2)). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "icshadow.h"
+#include "testutil.h"
+
+#define PI 3.14159265358979323846
+
+static double lumf(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+
+static ics_fitlight mk(double mx, double my, double varx, double vary, double adeg, double w,
+                       double r, double g, double b) {
+  ics_fitlight l;
+  double a = adeg * PI / 180, c = cos(a), s = sin(a);
+  l.mean[0] = mx;
+  l.mean[1] = my;
+  l.cov[0] = varx * c * c + vary * s * s;
+  l.cov[1] = (varx - vary) * c * s;
+  l.cov[2] = varx * s * s + vary * c * c;
+  l.color[0] = r;
+  l.color[1] = g;
+  l.color[2] = b;
+  double y = lumf(l.color);
+  for (int k = 0; k < 3; k++) l.color[k] /= y; /* luminance 1: the fit's convention */
+  l.weight = w;
+  return l;
+}
+
+/* luminance power of the whole map: sum of Y * (pixel solid angle, integrated sin(theta)) */
+static double map_energy(const ics_image *im) {
+  double e = 0;
+  for (int j = 0; j < im->height; j++) {
+    double t0 = PI * j / im->height, t1 = PI * (j + 1) / im->height;
+    double dw = (cos(t0) - cos(t1)) * 2 * PI / im->width;
+    for (int i = 0; i < im->width; i++) {
+      const float *p = im->data + ((size_t)j * im->width + i) * im->channels;
+      e += (0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]) * dw;
+    }
+  }
+  return e;
+}
+
+static double frob_rel(const double a[3], const double b[3]) {
+  double d = sqrt((a[0] - b[0]) * (a[0] - b[0]) + 2 * (a[1] - b[1]) * (a[1] - b[1]) +
+                  (a[2] - b[2]) * (a[2] - b[2]));
+  double n = sqrt(b[0] * b[0] + 2 * b[1] * b[1] + b[2] * b[2]);
+  return d / n;
+}
+
+/* sqrt of the smaller eigenvalue */
+static double sig_min(const double c[3]) {
+  double tr = c[0] + c[2], r = hypot(0.5 * (c[0] - c[2]), c[1]);
+  return sqrt(fmax(0.5 * tr - r, 0));
+}
+
+/* match each truth light to the nearest fitted mean; check the stated tolerances */
+static void check_recovery(const char *what, const ics_fitlight *truth, int n,
+                           const ics_fitlight *fit, int nfit, double tol_mean, double tol_cov,
+                           double tol_w, double tol_col) {
+  CHECK(nfit == n, "%s: %d lights fitted, expected %d", what, nfit, n);
+  for (int t = 0; t < n; t++) {
+    int best = -1;
+    double bd = INFINITY;
+    for (int f = 0; f < nfit; f++) {
+      double d = hypot(fit[f].mean[0] - truth[t].mean[0], fit[f].mean[1] - truth[t].mean[1]);
+      if (d < bd) bd = d, best = f;
+    }
+    if (best < 0) return;
+    const ics_fitlight *F = &fit[best], *T = &truth[t];
+    double sm = sig_min(T->cov);
+    CHECK(bd <= tol_mean * sm, "%s light %d: mean (%.6g, %.6g) vs (%.6g, %.6g): %.3g sigma_min "
+          "> %.3g", what, t, F->mean[0], F->mean[1], T->mean[0], T->mean[1], bd / sm, tol_mean);
+    double ce = frob_rel(F->cov, T->cov);
+    CHECK(ce <= tol_cov, "%s light %d: cov (%.6g %.6g %.6g) vs (%.6g %.6g %.6g): rel %.3g > %.3g",
+          what, t, F->cov[0], F->cov[1], F->cov[2], T->cov[0], T->cov[1], T->cov[2], ce, tol_cov);
+    double we = fabs(F->weight / T->weight - 1);
+    CHECK(we <= tol_w, "%s light %d: weight %.9g vs %.9g: rel %.3g > %.3g", what, t, F->weight,
+          T->weight, we, tol_w);
+    for (int c = 0; c < 3; c++) {
+      double e = fabs(F->color[c] - T->color[c]) / fmax(T->color[c], 0.1);
+      CHECK(e <= tol_col, "%s light %d: colour[%d] %.6g vs %.6g: %.3g > %.3g", what, t, c,
+            F->color[c], T->color[c], e, tol_col);
+    }
+    printf("%s light %d: mean err %.3g sigma_min, cov rel %.3g, weight rel %.3g\n", what, t,
+           bd / sm, ce, we);
+  }
+}
+
+int main(void) {
+  ics_image env;
+  ics_lightfit_params p;
+  ics_lightfit_report rep;
+  ics_fitlight fit[ICS_LIGHTFIT_MAX_K];
+
+  /* 1. pixel geometry: the centre of the map is +z; the plane point of a pixel is (tan wx,
+   *    tan wy) of its direction */
+  {
+    double x, y, dw;
+    CHECK(ics_envmap_pixel(512, 256, 256, 128, &x, &y, &dw) == 0, "centre pixel behind viewer");
+    double ph = 2 * PI * 256.5 / 512 - PI, th = PI * 128.5 / 256;
+    double dx = sin(th) * sin(ph), dy = cos(th), dz = sin(th) * cos(ph);
+    CHECK(fabs(x - dx / dz) <= 1e-15 && fabs(y - dy / dz) <= 1e-15, "plane point (%g %g)", x, y);
+    CHECK(ics_envmap_pixel(512, 256, 10, 128, &x, &y, &dw) == -1, "left edge is in front");
+  }
+
+  /* 2. three anisotropic lights (cf. Patel Fig. 14: a low-variance green, a broad red, a thin
+   *    blue one rotated 70 degrees clockwise) are recovered */
+  const ics_fitlight truth[3] = {
+      mk(0.35, 0.25, 0.004, 0.004, 0, 1.0, 0.2, 1.0, 0.2),
+      mk(-0.45, -0.05, 0.02, 0.012, 20, 2.0, 1.0, 0.25, 0.15),
+      mk(0.15, -0.55, 0.012, 0.0012, -70, 1.5, 0.2, 0.3, 1.0)};
+  CHECK(ics_image_init(&env, 384, 192, 3) == ICS_OK, "image");
+  CHECK(ics_envmap_render(&env, NULL, truth, 3, 4) == ICS_OK, "render");
+  double e = map_energy(&env);
+  CHECK(fabs(e / 4.5 - 1) <= 2e-3, "map energy %.9g, expected 4.5 (sum of weights)", e);
+  ics_lightfit_defaults(&p);
+  p.k = 3;
+  CHECK(ics_lightfit(env.data ? &env : NULL, &p, fit, &rep) == ICS_OK, "fit 3");
+  check_recovery("mix3", truth, 3, fit, rep.k_fit, 0.05, 0.03, 0.01, 0.02);
+  printf("mix3: %d iterations, l1 %.3g l2 %.3g edge %.3g, cutoff loss %.3g\n", rep.iterations,
+         rep.l1, rep.l2, rep.edge, rep.cutoff_loss);
+  CHECK(rep.cutoff_loss < 1e-6, "no energy beyond 80 degrees: %g", rep.cutoff_loss);
+  CHECK(rep.edge < 0.01, "edge error %g", rep.edge);
+  CHECK(rep.l1 < 0.05, "l1 %g", rep.l1);
+  /* fewer lights than the map has: worse, but sane */
+  ics_lightfit_report rep1;
+  p.k = 1;
+  CHECK(ics_lightfit(&env, &p, fit, &rep1) == ICS_OK, "fit 1");
+  CHECK(rep1.k_fit == 1 && rep1.l1 > rep.l1 && rep1.edge > rep.edge,
+        "K=1 must fit worse: l1 %g vs %g, edge %g vs %g", rep1.l1, rep.l1, rep1.edge, rep.edge);
+  CHECK(fabs(fit[0].weight / rep1.energy_kept - 1) < 1e-9, "K=1 weight = kept energy");
+
+  /* 3. reproducible from the seed when EM resamples */
+  {
+    ics_fitlight a[3], b[3], c[3];
+    ics_lightfit_report ra, rb, rc;
+    p.k = 3;
+    p.max_samples = 3000;
+    p.seed = 7;
+    CHECK(ics_lightfit(&env, &p, a, &ra) == ICS_OK, "seed 7");
+    CHECK(ics_lightfit(&env, &p, b, &rb) == ICS_OK, "seed 7 again");
+    CHECK(!memcmp(a, b, sizeof a) && ra.samples <= 3000, "same seed, same lights");
+    p.seed = 8;
+    CHECK(ics_lightfit(&env, &p, c, &rc) == ICS_OK, "seed 8");
+    CHECK(memcmp(a, c, sizeof a) != 0, "another seed resamples differently");
+    check_recovery("seed8", truth, 3, c, rc.k_fit, 0.1, 0.06, 0.02, 0.03);
+    p.max_samples = 0;
+  }
+  ics_image_free(&env);
+
+  /* 4. a sun: a delta (zero covariance) gives one light with a sub-pixel variance */
+  {
+    ics_fitlight sun = mk(0.2, -0.1, 0, 0, 0, 5.0, 1, 0.9, 0.7);
+    CHECK(ics_image_init(&env, 256, 128, 4) == ICS_OK, "image");
+    CHECK(ics_envmap_render(&env, NULL, &sun, 1, 2) == ICS_OK, "render sun");
+    p.k = 3;
+    CHECK(ics_lightfit(&env, &p, fit, &rep) == ICS_OK, "fit sun");
+    CHECK(rep.k_fit == 1, "a sun gives one light, not %d", rep.k_fit);
+    double pix = 2 * PI / 256 * (1 + 0.2 * 0.2); /* pixel width on the plane near the sun */
+    double d = hypot(fit[0].mean[0] - 0.2, fit[0].mean[1] + 0.1);
+    CHECK(d <= pix, "sun mean (%g %g), %g from truth > one pixel %g", fit[0].mean[0],
+          fit[0].mean[1], d, pix);
+    CHECK(fit[0].cov[0] + fit[0].cov[2] <= pix * pix / 4, "sun variance %g %g > pixel^2/4",
+          fit[0].cov[0], fit[0].cov[2]);
+    CHECK(fabs(fit[0].weight / 5 - 1) <= 1e-5, "sun weight %.9g", fit[0].weight);
+    for (int c = 0; c < 3; c++)
+      CHECK(fabs(fit[0].color[c] / sun.color[c] - 1) <= 1e-5, "sun colour %d", c);
+    ics_image_free(&env);
+  }
+
+  /* 5. uniform sky: handled, with the cut-off loss reported (cos 80 deg of the hemisphere) */
+  {
+    const double one[3] = {1, 1, 1};
+    CHECK(ics_image_init(&env, 256, 128, 3) == ICS_OK, "image");
+    CHECK(ics_envmap_render(&env, one, NULL, 0, 1) == ICS_OK, "render sky");
+    p.k = 2;
+    ics_status st = ics_lightfit(&env, &p, fit, &rep);
+    CHECK(st == ICS_OK, "sky fit: %s", ics_status_str(st));
+    double want = cos(80 * PI / 180);
+    CHECK(fabs(rep.cutoff_loss / want - 1) <= 0.03, "cut-off loss %.6g, expected ~%.6g",
+          rep.cutoff_loss, want);
+    CHECK(fabs(rep.energy_total / (4 * PI) - 1) <= 1e-12, "sky energy %.17g", rep.energy_total);
+    CHECK(fabs(rep.energy_front / (2 * PI) - 1) <= 1e-12, "front energy %.17g", rep.energy_front);
+    /* EM keeps the data's second moment: sum_k w_k (cov_k + mu_k mu_k^T) / sum w equals the
+     * per-axis variance of (1 + r^2)^(-3/2) on the disc r < R = tan 80 deg:
+     * (1/c + c - 2) / (2 (1 - c)), c = cos 80 deg = 2.3824 */
+    double ws = 0, vx = 0, vy = 0;
+    for (int k = 0; k < rep.k_fit; k++) {
+      ws += fit[k].weight;
+      vx += fit[k].weight * (fit[k].cov[0] + fit[k].mean[0] * fit[k].mean[0]);
+      vy += fit[k].weight * (fit[k].cov[2] + fit[k].mean[1] * fit[k].mean[1]);
+      CHECK(isfinite(fit[k].mean[0]) && isfinite(fit[k].mean[1]) && fabs(fit[k].mean[0]) < 0.1 &&
+                fabs(fit[k].mean[1]) < 0.1 && fit[k].cov[0] > 0 && fit[k].cov[2] > 0 &&
+                fit[k].cov[0] * fit[k].cov[2] > fit[k].cov[1] * fit[k].cov[1],
+            "sky light %d: mean (%g %g) cov (%g %g %g)", k, fit[k].mean[0], fit[k].mean[1],
+            fit[k].cov[0], fit[k].cov[1], fit[k].cov[2]);
+    }
+    CHECK(rep.k_fit >= 1 && fabs(ws / rep.energy_kept - 1) <= 1e-9, "sky weights %g vs %g", ws,
+          rep.energy_kept);
+    double vref = (1 / want + want - 2) / (2 * (1 - want));
+    CHECK(fabs(vx / ws / vref - 1) <= 0.03 && fabs(vy / ws / vref - 1) <= 0.03,
+          "sky second moments %.6g %.6g, expected %.6g", vx / ws, vy / ws, vref);
+    printf("sky: cutoff loss %.4f, l1 %.3g, edge %.3g\n", rep.cutoff_loss, rep.l1, rep.edge);
+
+    /* bad input */
+    p.k = 0;
+    CHECK(ics_lightfit(&env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "k = 0");
+    p.k = 1;
+    p.max_angle_deg = 90;
+    CHECK(ics_lightfit(&env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "max angle 90");
+    p.max_angle_deg = 80;
+    env.data[7] = NAN;
+    CHECK(ics_lightfit(&env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "NaN pixel");
+    env.data[7] = -1;
+    CHECK(ics_lightfit(&env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "negative pixel");
+    memset(env.data, 0, (size_t)env.width * env.height * 3 * sizeof(float));
+    CHECK(ics_lightfit(&env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "black map");
+    ics_image_free(&env);
+    ics_fitlight badl = mk(0, 0, 0.1, 0.1, 0, 1, 1, 1, 1);
+    badl.cov[1] = 1; /* not positive semidefinite */
+    CHECK(ics_image_init(&env, 64, 32, 3) == ICS_OK, "image");
+    CHECK(ics_envmap_render(&env, NULL, &badl, 1, 1) == ICS_ERR_INVALID_ARG, "non-PSD light");
+    ics_image_free(&env);
+  }
+  return test_summary("lightfit");
+}
