@@ -1,8 +1,311 @@
-/* cmd_isoline.c — (placeholder: being written by the kernel-theory work). */
+/* cmd_isoline.c — `icshadow isoline --light SPEC --level S --distance D --model M ...`: the x
+ * position of the isoline of level S at distance D behind a Heaviside edge (Patel et al. 2013,
+ * Sec. 6, Appendix A.3-A.5) for the correct shadow, the CLT model (Eq. 8) or the actually
+ * iterated shadow (conv engine). Conventions: icshadow/shadow1d.h and docs/theory.md. */
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
 #include "commands.h"
+#include "icshadow.h"
+
+static void help(FILE *f) {
+  fprintf(f,
+          "usage: icshadow isoline --light SPEC --level S --distance D --model MODEL\n"
+          "                        [--d1 D1] [--slab E] [--kernel K] [--samples N] [--seed U]\n"
+          "Prints (%%.17g) the x position of the isoline of shadow level S at distance D behind\n"
+          "an edge occluder opaque for x > 0. The shadow value is the blocked fraction of the\n"
+          "light (0 lit, 1 umbra); light at +x on the light plane throws the shadow toward -x.\n"
+          "  correct:   x = -D L^-1(1 - S)                       (Eq. 9/17)\n"
+          "  clt:       x = -D mu + Phi^-1(S) sqrt(D D1 var)    (Eq. 8, A.4)\n"
+          "  iterative: the iterated shadow H * kappa^{*n}, n = D/E, kappa the member K with\n"
+          "             mean -E mu and variance D1 E var (Eq. 7/15), on a grid of 64 pixels per\n"
+          "             final standard deviation (the 2x finer grid is what is printed).\n"
+          "SPEC: gauss:MU,VAR | box:LO,HI | mix:W,MU,VAR;W,MU,VAR;... (weights normalised,\n"
+          "      each VAR > 0, at most %d components)\n\n"
+          "options:\n"
+          "  --light SPEC     the 1D light (required)\n"
+          "  --level S        shadow level in (0, 1) (required)\n"
+          "  --distance D     distance behind the occluder, finite and >= 0 (required)\n"
+          "  --model M        correct | clt | iterative (required)\n"
+          "  --d1 D1          optimal distance, > 0 (required for clt and iterative)\n"
+          "  --slab E         slab spacing, > 0, D/E an integer (required for iterative)\n"
+          "  --kernel K       dirac | tophat | stochastic-dirac | gauss (default dirac)\n"
+          "  --samples N      the member's sample count (gauss; 0 = default)\n"
+          "  --seed U         seed of stochastic members (default 0)\n"
+          "Exit status: 0 ok, 1 runtime failure, 2 bad input (message on stderr).\n",
+          ICS_LIGHT1D_MAX_MIX);
+}
+
+/* parse "a,b[,c]" at s into v (exactly n numbers); on error, report the character offset
+ * within the whole SPEC */
+static int parse_tuple(const char *spec, const char *s, const char *end, int n, double *v) {
+  const char *p = s;
+  for (int i = 0; i < n; i++) {
+    const char *q = p;
+    while (q < end && *q != ',') q++;
+    if (i < n - 1 && q >= end) {
+      fprintf(stderr,
+              "icshadow isoline: --light: expected %d comma-separated numbers at position %d "
+              "of '%s'\n",
+              n, (int)(p - spec) + 1, spec);
+      return -1;
+    }
+    if (i == n - 1 && q < end) {
+      fprintf(stderr, "icshadow isoline: --light: too many numbers at position %d of '%s'\n",
+              (int)(q - spec) + 1, spec);
+      return -1;
+    }
+    char buf[128];
+    size_t len = (size_t)(q - p);
+    if (len == 0 || len >= sizeof buf || (memcpy(buf, p, len), buf[len] = 0, 0) ||
+        cli_parse_double(buf, &v[i]) != 0) {
+      fprintf(stderr, "icshadow isoline: --light: not a number at position %d of '%s'\n",
+              (int)(p - spec) + 1, spec);
+      return -1;
+    }
+    if (!isfinite(v[i])) {
+      fprintf(stderr, "icshadow isoline: --light: %s at position %d of '%s' (must be finite)\n",
+              isnan(v[i]) ? "NaN" : "infinite number", (int)(p - spec) + 1, spec);
+      return -1;
+    }
+    p = q + 1;
+  }
+  return 0;
+}
+
+static int parse_light(const char *spec, ics_light1d *l) {
+  const char *colon = strchr(spec, ':');
+  const char *end = spec + strlen(spec);
+  if (!colon) {
+    fprintf(stderr, "icshadow isoline: --light: expected KIND:NUMBERS (gauss:MU,VAR, box:LO,HI, "
+                    "mix:W,MU,VAR;...), got '%s'\n", spec);
+    return -1;
+  }
+  size_t kl = (size_t)(colon - spec);
+  const char *a = colon + 1;
+  ics_status st;
+  if (kl == 5 && !strncmp(spec, "gauss", 5)) {
+    double v[2];
+    if (parse_tuple(spec, a, end, 2, v)) return -1;
+    if (v[1] < 0) {
+      fprintf(stderr, "icshadow isoline: --light: negative variance at position %d of '%s'\n",
+              (int)(strrchr(spec, ',') - spec) + 2, spec);
+      return -1;
+    }
+    st = ics_light1d_gauss(l, v[0], v[1]);
+  } else if (kl == 3 && !strncmp(spec, "box", 3)) {
+    double v[2];
+    if (parse_tuple(spec, a, end, 2, v)) return -1;
+    if (!(v[0] < v[1])) {
+      fprintf(stderr, "icshadow isoline: --light: box needs LO < HI (position %d of '%s')\n",
+              (int)(a - spec) + 1, spec);
+      return -1;
+    }
+    st = ics_light1d_box(l, v[0], v[1]);
+  } else if (kl == 3 && !strncmp(spec, "mix", 3)) {
+    double w[ICS_LIGHT1D_MAX_MIX], mu[ICS_LIGHT1D_MAX_MIX], var[ICS_LIGHT1D_MAX_MIX];
+    int n = 0;
+    const char *p = a;
+    for (;;) {
+      const char *q = strchr(p, ';');
+      if (!q) q = end;
+      if (n == ICS_LIGHT1D_MAX_MIX) {
+        fprintf(stderr, "icshadow isoline: --light: more than %d components at position %d of "
+                        "'%s'\n", ICS_LIGHT1D_MAX_MIX, (int)(p - spec) + 1, spec);
+        return -1;
+      }
+      double v[3];
+      if (parse_tuple(spec, p, q, 3, v)) return -1;
+      if (v[0] < 0) {
+        fprintf(stderr, "icshadow isoline: --light: negative weight at position %d of '%s'\n",
+                (int)(p - spec) + 1, spec);
+        return -1;
+      }
+      if (!(v[2] > 0)) {
+        const char *c2 = p;
+        for (int c = 0; c < 2; c++) c2 = strchr(c2, ',') + 1;
+        fprintf(stderr, "icshadow isoline: --light: component variance must be > 0 at position "
+                        "%d of '%s'\n", (int)(c2 - spec) + 1, spec);
+        return -1;
+      }
+      w[n] = v[0], mu[n] = v[1], var[n] = v[2], n++;
+      if (q == end) break;
+      p = q + 1;
+    }
+    st = ics_light1d_mix(l, n, w, mu, var);
+    if (st == ICS_ERR_INVALID_ARG) {
+      fprintf(stderr, "icshadow isoline: --light: the weights of '%s' sum to zero\n", spec);
+      return -1;
+    }
+  } else {
+    fprintf(stderr, "icshadow isoline: --light: unknown light kind '%.*s' at position 1 of '%s' "
+                    "(gauss, box, mix)\n", (int)kl, spec, spec);
+    return -1;
+  }
+  if (st != ICS_OK) {
+    fprintf(stderr, "icshadow isoline: --light '%s': %s\n", spec, ics_status_str(st));
+    return -1;
+  }
+  return 0;
+}
+
+static int get_number(const char *opt, const char *s, double *out) {
+  double v;
+  if (cli_parse_double(s, &v) != 0) {
+    fprintf(stderr, "icshadow isoline: %s: not a number: '%s'\n", opt, s);
+    return -1;
+  }
+  if (isnan(v)) {
+    fprintf(stderr, "icshadow isoline: %s: NaN is not allowed\n", opt);
+    return -1;
+  }
+  if (isinf(v)) {
+    fprintf(stderr, "icshadow isoline: %s: must be finite, got '%s'\n", opt, s);
+    return -1;
+  }
+  *out = v;
+  return 0;
+}
+
+/* 1D members by name; -1 if unknown or without a 1D form */
+static int kernel1d_member(const char *name) {
+  for (int m = 0; m < ICS_KERNEL_MEMBER_COUNT_; m++) {
+    const char *n = ics_kernel_member_name((ics_kernel_member)m);
+    if (n && !strcmp(n, name) && (ics_kernel_member_dims((ics_kernel_member)m) & 1)) return m;
+  }
+  return -1;
+}
+
 int cmd_isoline(int argc, char **argv) {
-  (void)argc; (void)argv;
-  fprintf(stderr, "icshadow isoline: not built yet\n");
-  return 1;
+  if (cli_wants_help(argc, argv)) {
+    help(stdout);
+    return 0;
+  }
+  const char *spec = NULL, *model = NULL, *kname = "dirac";
+  double level = NAN, dist = NAN, d1 = NAN, slab = NAN, seed = 0;
+  int samples = 0;
+  for (int i = 1; i < argc; i++) {
+    const char *opt = argv[i];
+    static const char *known[] = {"--light", "--level", "--distance", "--model", "--d1",
+                                  "--slab", "--kernel", "--samples", "--seed"};
+    int ok = 0;
+    for (size_t j = 0; j < sizeof known / sizeof *known; j++) ok |= !strcmp(opt, known[j]);
+    if (!ok) {
+      fprintf(stderr, "icshadow isoline: unknown option '%s' (see icshadow isoline --help)\n",
+              opt);
+      return 2;
+    }
+    if (i + 1 >= argc) {
+      fprintf(stderr, "icshadow isoline: %s: missing value\n", opt);
+      return 2;
+    }
+    const char *val = argv[++i];
+    int bad = 0;
+    if (!strcmp(opt, "--light"))
+      spec = val;
+    else if (!strcmp(opt, "--model"))
+      model = val;
+    else if (!strcmp(opt, "--kernel"))
+      kname = val;
+    else if (!strcmp(opt, "--level"))
+      bad = get_number(opt, val, &level);
+    else if (!strcmp(opt, "--distance"))
+      bad = get_number(opt, val, &dist);
+    else if (!strcmp(opt, "--d1"))
+      bad = get_number(opt, val, &d1);
+    else if (!strcmp(opt, "--slab"))
+      bad = get_number(opt, val, &slab);
+    else if (!strcmp(opt, "--seed")) {
+      bad = get_number(opt, val, &seed);
+      if (!bad && (seed < 0 || seed != floor(seed) || seed > 9007199254740992.0)) {
+        fprintf(stderr, "icshadow isoline: --seed: expected an integer in 0..2^53, got '%s'\n",
+                val);
+        bad = 1;
+      }
+    } else if (cli_parse_int(val, 0, 4096, &samples) != 0) {
+      fprintf(stderr, "icshadow isoline: --samples: expected an integer in 0..4096, got '%s'\n",
+              val);
+      bad = 1;
+    }
+    if (bad) return 2;
+  }
+  if (!spec || !model || isnan(level) || isnan(dist)) {
+    fprintf(stderr, "icshadow isoline: %s is required\n",
+            !spec ? "--light" : !model ? "--model" : isnan(level) ? "--level" : "--distance");
+    return 2;
+  }
+  int m_correct = !strcmp(model, "correct"), m_clt = !strcmp(model, "clt"),
+      m_iter = !strcmp(model, "iterative");
+  if (!m_correct && !m_clt && !m_iter) {
+    fprintf(stderr, "icshadow isoline: --model: unknown model '%s' (correct, clt, iterative)\n",
+            model);
+    return 2;
+  }
+  if (!(level > 0 && level < 1)) {
+    fprintf(stderr, "icshadow isoline: --level: must be in (0, 1), got %.17g\n", level);
+    return 2;
+  }
+  if (dist < 0) {
+    fprintf(stderr, "icshadow isoline: --distance: negative distance %.17g\n", dist);
+    return 2;
+  }
+  if ((m_clt || m_iter) && isnan(d1)) {
+    fprintf(stderr, "icshadow isoline: --d1 is required for model %s\n", model);
+    return 2;
+  }
+  if (!isnan(d1) && !(d1 > 0)) {
+    fprintf(stderr, "icshadow isoline: --d1: must be > 0, got %.17g\n", d1);
+    return 2;
+  }
+  if (m_iter && isnan(slab)) {
+    fprintf(stderr, "icshadow isoline: --slab is required for model iterative\n");
+    return 2;
+  }
+  if (!isnan(slab) && !(slab > 0)) {
+    fprintf(stderr, "icshadow isoline: --slab: must be > 0, got %.17g\n", slab);
+    return 2;
+  }
+  int member = kernel1d_member(kname);
+  if (member < 0) {
+    fprintf(stderr, "icshadow isoline: --kernel: unknown 1D kernel '%s' (dirac, tophat, "
+                    "stochastic-dirac, gauss)\n", kname);
+    return 2;
+  }
+  ics_light1d l;
+  if (parse_light(spec, &l)) return 2;
+  double x = NAN;
+  if (m_correct)
+    x = ics_isoline_correct(&l, level, dist);
+  else if (m_clt)
+    x = ics_isoline_clt(&l, level, dist, d1);
+  else {
+    double nf = dist / slab;
+    if (fabs(nf - nearbyint(nf)) > 1e-9 * fmax(nf, 1.0) || nf > 1e6) {
+      fprintf(stderr, "icshadow isoline: --distance / --slab = %.17g must be an integer "
+                      "number of slabs (at most 1e6)\n", nf);
+      return 2;
+    }
+    if (ics_light1d_var(&l) == 0 && dist > 0) {
+      fprintf(stderr, "icshadow isoline: model iterative needs a light with variance > 0\n");
+      return 2;
+    }
+    ics_iter1d_opts o = ics_iter1d_opts_default();
+    o.member = (ics_kernel_member)member;
+    o.nsamples = samples;
+    o.seed = (uint64_t)seed;
+    double disc;
+    ics_status st = ics_isoline_iterative(&l, level, dist, d1, slab, &o, &x, &disc);
+    if (st != ICS_OK) {
+      fprintf(stderr, "icshadow isoline: iterated shadow failed: %s\n", ics_status_str(st));
+      return st == ICS_ERR_NOMEM ? 1 : 2;
+    }
+  }
+  if (isnan(x)) {
+    fprintf(stderr, "icshadow isoline: no isoline (internal error)\n");
+    return 1;
+  }
+  printf("%.17g\n", x);
+  return fflush(stdout) != 0 ? 1 : 0;
 }

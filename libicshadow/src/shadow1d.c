@@ -1,0 +1,370 @@
+/* shadow1d.c — shadows behind a Heaviside edge for a 1D light (Patel et al. 2013, Sec. 6,
+ * Appendix A.3–A.5). Conventions in icshadow/shadow1d.h.
+ *
+ * Method: the correct shadow is the light's survival function at -x/d (Eq. 16), so its
+ * accuracy is that of ics_light1d_sf (~1e-15 relative for Gaussian lights and mixtures, both
+ * tails); isolines use the upper quantile (isf) so that levels near 0 and 1 keep their
+ * precision. The CLT model is Phi of the standardised position. */
+#include "icshadow/shadow1d.h"
+
+#include <math.h>
+
+static int bad_d(double d) { return isnan(d) || d < 0 || isinf(d); }
+static int bad_s(double s) { return !(s > 0 && s < 1); }
+
+double ics_shadow1d_correct(const ics_light1d *l, double d, double x) {
+  if (!l || bad_d(d) || isnan(x)) return NAN;
+  if (d == 0) return x > 0 ? 1.0 : (x < 0 ? 0.0 : 0.5);
+  return ics_light1d_sf(l, -x / d);
+}
+
+double ics_shadow1d_clt(const ics_light1d *l, double d, double d1, double x) {
+  if (!l || bad_d(d) || !(d1 > 0) || isinf(d1) || isnan(x)) return NAN;
+  double m = -d * ics_light1d_mean(l);
+  double sd = sqrt(d * d1 * ics_light1d_var(l));
+  if (sd == 0) return x > m ? 1.0 : (x < m ? 0.0 : 0.5);
+  return ics_light_phi((x - m) / sd);
+}
+
+double ics_isoline_correct(const ics_light1d *l, double s, double d) {
+  if (!l || bad_d(d) || bad_s(s)) return NAN;
+  if (d == 0) return 0.0;
+  return -d * ics_light1d_isf(l, s);
+}
+
+double ics_isoline_clt(const ics_light1d *l, double s, double d, double d1) {
+  if (!l || bad_d(d) || bad_s(s) || !(d1 > 0) || isinf(d1)) return NAN;
+  return -d * ics_light1d_mean(l) + ics_light_phiinv(s) * sqrt(d1 * ics_light1d_var(l) * d);
+}
+
+/* ---- iterated shadow ---- */
+
+#include <stdlib.h>
+#include <string.h>
+
+ics_iter1d_opts ics_iter1d_opts_default(void) {
+  ics_iter1d_opts o;
+  memset(&o, 0, sizeof o);
+  o.member = ICS_KERNEL_DIRAC;
+  o.ppsd = 64;
+  o.compensate = ICS_COMP_NONNEG;
+  return o;
+}
+
+void ics_iter1d_free(ics_iter1d *it) {
+  if (!it) return;
+  free(it->r);
+  it->r = NULL;
+  it->n = 0;
+}
+
+ics_status ics_shadow1d_iterate(const ics_light1d *l, double d, double d1, double e,
+                                const ics_iter1d_opts *opts, ics_iter1d *out) {
+  if (!l || !out) return ICS_ERR_INVALID_ARG;
+  memset(out, 0, sizeof *out);
+  ics_iter1d_opts o = opts ? *opts : ics_iter1d_opts_default();
+  if (isnan(d) || isnan(d1) || isnan(e) || isnan(o.h) || isnan(o.var_factor)) return ICS_ERR_NAN;
+  if (isinf(d) || isinf(d1) || isinf(e)) return ICS_ERR_INFINITE;
+  if (d < 0 || !(d1 > 0) || !(e > 0) || o.h < 0 || o.var_factor < 0) return ICS_ERR_RANGE;
+  double nf = d / e;
+  double nr = nearbyint(nf);
+  if (nr > 1e8 || fabs(nf - nr) > 1e-9 * fmax(nf, 1.0)) return ICS_ERR_RANGE;
+  int steps = (int)nr;
+  double mu = ics_light1d_mean(l), var = ics_light1d_var(l);
+  double vf = o.var_factor > 0 ? o.var_factor : d1;
+  double sign = o.mean_sign < 0 ? -1.0 : 1.0;
+  double kmean = -sign * e * mu, kvar = vf * e * var;         /* world units */
+  double sd_n = sqrt(steps * kvar);                            /* final std */
+  double h = o.h;
+  if (h == 0) {
+    double ppsd = o.ppsd > 0 ? o.ppsd : 64;
+    h = sd_n / ppsd;
+    if (!(h > 0)) return ICS_ERR_RANGE; /* point light: give h */
+  }
+  double shift = steps * kmean;
+  double lo = fmin(0.0, shift) - 14 * sd_n - 4 * sqrt(kvar) - 4 * h;
+  double hi = fmax(0.0, shift) + 14 * sd_n + 4 * sqrt(kvar) + 4 * h;
+  double nl = ceil(-lo / h), nrt = ceil(hi / h);
+  if (nl + nrt > (double)(1 << 24)) return ICS_ERR_SIZE;
+  size_t il = (size_t)nl, n = il + (size_t)nrt;
+  out->r = malloc(n * sizeof *out->r);
+  if (!out->r) return ICS_ERR_NOMEM;
+  out->n = n;
+  out->h = h;
+  out->x0 = (0.5 - (double)il) * h; /* node il is at +h/2: the edge is between nodes */
+  for (size_t i = 0; i < n; i++) out->r[i] = i >= il ? 1.0 : 0.0;
+  out->steps = steps;
+  out->kmean_px = kmean / h;
+  out->kvar_px = kvar / (h * h);
+  if (steps == 0) return ICS_OK;
+  if (!o.no_edge_comp) out->kvar_px -= 1.0 / (12.0 * steps);
+  if (out->kvar_px < 0) out->kvar_px = 0;
+  ics_kernel1d k;
+  ics_status st;
+  if (o.skew) {
+    ics_tap1d taps[ICS_CLT_SKEW_TAPS];
+    double *tmp = malloc(n * sizeof *tmp);
+    if (!tmp) {
+      ics_iter1d_free(out);
+      return ICS_ERR_NOMEM;
+    }
+    st = ics_clt_skew_taps(out->kmean_px, out->kvar_px, taps);
+    out->max_taps = ICS_CLT_SKEW_TAPS;
+    ics_conv_opts co = ics_conv_opts_default();
+    co.boundary = ICS_BOUNDARY_CLAMP;
+    co.compensate = o.compensate;
+    for (int i = 0; st == ICS_OK && i < steps; i++) {
+      st = ics_conv1d_step(out->r, tmp, n, taps, ICS_CLT_SKEW_TAPS, &co);
+      memcpy(out->r, tmp, n * sizeof *tmp);
+    }
+    out->stats.steps = steps;
+    free(tmp);
+    if (st != ICS_OK) ics_iter1d_free(out);
+    return st;
+  }
+  st = ics_kernel1d_init(&k, o.member, out->kmean_px, out->kvar_px);
+  if (st == ICS_OK) {
+    k.nsamples = o.nsamples;
+    k.param = o.param;
+    k.seed = o.seed;
+    ics_schedule1d sch = {&k, 1};
+    out->max_taps = ics_schedule1d_max_taps(&sch);
+    ics_conv_opts co = ics_conv_opts_default();
+    co.boundary = ICS_BOUNDARY_CLAMP;
+    co.compensate = o.compensate;
+    st = ics_conv1d_run(out->r, n, &sch, 0, steps, &co, &out->stats);
+  }
+  if (st != ICS_OK) ics_iter1d_free(out);
+  return st;
+}
+
+double ics_iter1d_eval(const ics_iter1d *it, double x) {
+  if (!it || !it->r || isnan(x)) return NAN;
+  double t = (x - it->x0) / it->h;
+  if (t <= 0) return it->r[0];
+  if (t >= (double)(it->n - 1)) return it->r[it->n - 1];
+  size_t i = (size_t)t;
+  double f = t - (double)i;
+  return it->r[i] + f * (it->r[i + 1] - it->r[i]);
+}
+
+double ics_iter1d_isoline(const ics_iter1d *it, double s) {
+  if (!it || !it->r || bad_s(s)) return NAN;
+  for (size_t i = 1; i < it->n; i++) {
+    if (it->r[i] >= s && it->r[i - 1] < s) {
+      double f = (s - it->r[i - 1]) / (it->r[i] - it->r[i - 1]);
+      return it->x0 + ((double)(i - 1) + f) * it->h;
+    }
+  }
+  return NAN;
+}
+
+ics_status ics_isoline_iterative(const ics_light1d *l, double s, double d, double d1, double e,
+                                 const ics_iter1d_opts *opts, double *x, double *disc_err) {
+  if (bad_s(s)) return isnan(s) ? ICS_ERR_NAN : ICS_ERR_RANGE;
+  if (isnan(d)) return ICS_ERR_NAN;
+  if (d == 0) { /* the edge itself: every isoline passes through x = 0 */
+    if (x) *x = 0;
+    if (disc_err) *disc_err = 0;
+    return ICS_OK;
+  }
+  ics_iter1d_opts o = opts ? *opts : ics_iter1d_opts_default();
+  ics_iter1d a, b;
+  ics_status st = ics_shadow1d_iterate(l, d, d1, e, &o, &a);
+  if (st != ICS_OK) return st;
+  o.h = a.h / 2;
+  st = ics_shadow1d_iterate(l, d, d1, e, &o, &b);
+  if (st != ICS_OK) {
+    ics_iter1d_free(&a);
+    return st;
+  }
+  double xa = ics_iter1d_isoline(&a, s), xb = ics_iter1d_isoline(&b, s);
+  ics_iter1d_free(&a);
+  ics_iter1d_free(&b);
+  if (x) *x = xb;
+  if (disc_err) *disc_err = fabs(xa - xb);
+  return (isnan(xa) || isnan(xb)) ? ICS_ERR_RANGE : ICS_OK;
+}
+
+/* ---- CLT convergence ---- */
+
+#include <time.h>
+
+ics_status ics_clt_member_gen(void *ctx, uint64_t step, double scale, ics_tap1d *taps, int cap,
+                              int *ntaps) {
+  ics_kernel1d k = *(const ics_kernel1d *)ctx;
+  k.cls.mean *= scale;
+  k.cls.var *= scale * scale;
+  if (k.member == ICS_KERNEL_STOCH_DIRAC) k.param = (k.param > 0 ? k.param : 1.0) * scale;
+  return ics_kernel1d_taps(&k, step, taps, cap, ntaps);
+}
+
+ics_status ics_clt_skew_taps(double mean, double var, ics_tap1d taps[ICS_CLT_SKEW_TAPS]) {
+  if (isnan(mean) || isnan(var)) return ICS_ERR_NAN;
+  if (isinf(mean) || isinf(var)) return ICS_ERR_INFINITE;
+  if (var < 0) return ICS_ERR_NEGATIVE_VARIANCE;
+  double w[ICS_CLT_SKEW_TAPS], sw = 0, m = 0, v = 0;
+  for (int j = 0; j < ICS_CLT_SKEW_TAPS; j++) sw += w[j] = exp(-j / 4.0);
+  for (int j = 0; j < ICS_CLT_SKEW_TAPS; j++) m += (w[j] /= sw) * j;
+  for (int j = 0; j < ICS_CLT_SKEW_TAPS; j++) v += w[j] * (j - m) * (j - m);
+  double sc = sqrt(var / v);
+  for (int j = 0; j < ICS_CLT_SKEW_TAPS; j++) {
+    taps[j].x = mean + sc * (j - m);
+    taps[j].w = w[j];
+  }
+  return ICS_OK;
+}
+
+ics_status ics_clt_fixed_gen(void *ctx, uint64_t step, double scale, ics_tap1d *taps, int cap,
+                             int *ntaps) {
+  (void)step;
+  const ics_clt_fixed *f = ctx;
+  if (cap < f->ntaps) return ICS_ERR_SIZE;
+  for (int j = 0; j < f->ntaps; j++) {
+    taps[j].x = f->taps[j].x * scale;
+    taps[j].w = f->taps[j].w;
+  }
+  *ntaps = f->ntaps;
+  return ICS_OK;
+}
+
+/* one run on a grid refined by `scale`; err[k][i] (if errs) gets the error profile at the
+ * base grid's nodes i */
+static ics_status clt_run(ics_clt_gen gen, void *ctx, double mean, double var, const int *steps,
+                          int nsteps, ics_comp_mode comp, double scale, size_t nb, double xb0,
+                          double **errs, ics_clt_point *out) {
+  int nmax = steps[nsteps - 1];
+  double sd = sqrt(nmax * var * scale * scale);
+  double lo = fmin(0.0, nmax * mean * scale) - 14 * sd - 64 * scale;
+  double hi = fmax(0.0, nmax * mean * scale) + 14 * sd + 64 * scale;
+  size_t il = (size_t)ceil(-lo), n = il + (size_t)ceil(hi);
+  if (n > ((size_t)1 << 24)) return ICS_ERR_SIZE;
+  double *buf = malloc(n * sizeof *buf), *tmp = malloc(n * sizeof *tmp);
+  int cap = ICS_KERNEL_MAX_TAPS;
+  ics_tap1d *taps = malloc((size_t)cap * sizeof *taps);
+  ics_tap1d *dt = malloc((size_t)(2 * cap + 3) * sizeof *dt);
+  ics_status st = ICS_OK;
+  if (!buf || !tmp || !taps || !dt) st = ICS_ERR_NOMEM;
+  double x0 = 0.5 - (double)il; /* node i at x0 + i (fine pixels) */
+  ics_conv_opts co = ics_conv_opts_default();
+  co.boundary = ICS_BOUNDARY_CLAMP;
+  co.compensate = ICS_COMP_NONE; /* we hand the engine already compensated integer taps */
+  double cost = 0, rmean = 0, rvar = 0;
+  clock_t t0 = clock();
+  int k = 0;
+  if (st == ICS_OK)
+    for (size_t i = 0; i < n; i++) buf[i] = i >= il ? 1.0 : 0.0;
+  for (int s = 1; st == ICS_OK && s <= nmax; s++) {
+    int nt = 0, nd = 0;
+    st = gen(ctx, (uint64_t)(s - 1), scale, taps, cap, &nt);
+    if (st != ICS_OK) break;
+    st = ics_taps1d_compensate(taps, nt, comp, dt, 2 * cap + 3, &nd, NULL);
+    if (st != ICS_OK) break;
+    st = ics_conv1d_step(buf, tmp, n, dt, nd, &co);
+    if (st != ICS_OK) break;
+    double *sw = buf;
+    buf = tmp;
+    tmp = sw;
+    cost += nd;
+    {
+      double ws, tm, tv;
+      ics_taps1d_moments(dt, nd, &ws, &tm, &tv);
+      rmean += tm;
+      rvar += tv;
+    }
+    if (s == steps[k]) {
+      double secs = (double)(clock() - t0) / CLOCKS_PER_SEC;
+      double m = s * mean * scale, sdv = sqrt(s * var * scale * scale + 1.0 / 12.0);
+      double worst = 0, worst_r = 0, sdr = sqrt(rvar + 1.0 / 12.0);
+      for (size_t i = 0; i < n; i++) {
+        double x = x0 + (double)i;
+        double e = buf[i] - ics_light_phi((x - m) / sdv);
+        double er = buf[i] - ics_light_phi((x - rmean) / sdr);
+        if (fabs(e) > worst) worst = fabs(e);
+        if (fabs(er) > worst_r) worst_r = fabs(er);
+      }
+      if (out) {
+        out[k].steps = s;
+        out[k].sup_err = worst;
+        out[k].sup_err_realized = worst_r;
+        out[k].cost = cost;
+        out[k].seconds = secs;
+      }
+      if (errs) /* profile at the base nodes x = xb0 + i (base px) = scale * that (fine px) */
+        for (size_t i = 0; i < nb; i++) {
+          double xf = (xb0 + (double)i) * scale;
+          double t = xf - x0;
+          double r;
+          if (t <= 0)
+            r = buf[0];
+          else if (t >= (double)(n - 1))
+            r = buf[n - 1];
+          else {
+            size_t j = (size_t)t;
+            double f = t - (double)j;
+            r = buf[j] + f * (buf[j + 1] - buf[j]);
+          }
+          errs[k][i] = r - ics_light_phi((xf - m) / sdv);
+        }
+      k++;
+    }
+  }
+  free(buf);
+  free(tmp);
+  free(taps);
+  free(dt);
+  return st;
+}
+
+ics_status ics_clt_measure(ics_clt_gen gen, void *ctx, double mean, double var, const int *steps,
+                           int nsteps, ics_comp_mode comp, int refine, ics_clt_point *out) {
+  if (!gen || !steps || !out || nsteps <= 0) return ICS_ERR_INVALID_ARG;
+  if (isnan(mean) || isnan(var)) return ICS_ERR_NAN;
+  if (isinf(mean) || isinf(var)) return ICS_ERR_INFINITE;
+  if (var < 0) return ICS_ERR_NEGATIVE_VARIANCE;
+  for (int k = 0; k < nsteps; k++)
+    if (steps[k] < 1 || steps[k] > 1000000 || (k && steps[k] <= steps[k - 1])) return ICS_ERR_RANGE;
+  if (!refine) {
+    for (int k = 0; k < nsteps; k++) out[k].disc_err = NAN;
+    return clt_run(gen, ctx, mean, var, steps, nsteps, comp, 1.0, 0, 0, NULL, out);
+  }
+  /* base grid nodes used for the comparison: +-14 sd around the path */
+  int nmax = steps[nsteps - 1];
+  double sd = sqrt(nmax * var);
+  double lo = fmin(0.0, nmax * mean) - 14 * sd - 8, hi = fmax(0.0, nmax * mean) + 14 * sd + 8;
+  double xb0 = floor(lo) + 0.5;
+  size_t nb = (size_t)(hi - lo) + 2;
+  double **e1 = calloc((size_t)nsteps, sizeof *e1), **e2 = calloc((size_t)nsteps, sizeof *e2);
+  ics_status st = (e1 && e2) ? ICS_OK : ICS_ERR_NOMEM;
+  for (int k = 0; st == ICS_OK && k < nsteps; k++) {
+    e1[k] = malloc(nb * sizeof **e1);
+    e2[k] = malloc(nb * sizeof **e2);
+    if (!e1[k] || !e2[k]) st = ICS_ERR_NOMEM;
+  }
+  if (st == ICS_OK) st = clt_run(gen, ctx, mean, var, steps, nsteps, comp, 1.0, nb, xb0, e1, out);
+  if (st == ICS_OK) st = clt_run(gen, ctx, mean, var, steps, nsteps, comp, 2.0, nb, xb0, e2, NULL);
+  for (int k = 0; st == ICS_OK && k < nsteps; k++) {
+    double w = 0;
+    for (size_t i = 0; i < nb; i++) w = fmax(w, fabs(e1[k][i] - e2[k][i]));
+    out[k].disc_err = w;
+  }
+  for (int k = 0; k < nsteps; k++) {
+    if (e1) free(e1[k]);
+    if (e2) free(e2[k]);
+  }
+  free(e1);
+  free(e2);
+  return st;
+}
+
+double ics_clt_rate(const ics_clt_point *p, int np, int nmin) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int m = 0;
+  for (int k = 0; k < np; k++) {
+    if (p[k].steps < nmin || !(p[k].sup_err > 0)) continue;
+    double x = log((double)p[k].steps), y = log(p[k].sup_err);
+    sx += x, sy += y, sxx += x * x, sxy += x * y, m++;
+  }
+  if (m < 2) return NAN;
+  return (m * sxy - sx * sy) / (m * sxx - sx * sx);
+}

@@ -1,0 +1,59 @@
+# CLI tests for `icshadow isoline` and `icshadow clt`. Expected numbers are derived
+# independently: closed-form isolines (box: x = -d (hi - s (hi - lo)); Gaussian: -d mu +
+# Phi^-1(s) sqrt(d d1 var) with the published Phi^-1(0.975) = 1.959963984540054), the mixture
+# median by a bisection in Python's math.erfc (0.8 N(0, .25) + 0.2 N(2, .25): median
+# 0.15928145625928486), and the tophat's Edgeworth error 1.705e-3 at n = 16 (docs/theory.md).
+ics_cli_test(NAME cli_isoline_help RC 0 ARGS "isoline|--help" OUT "usage: icshadow isoline --light SPEC")
+ics_cli_test(NAME cli_clt_help RC 0 ARGS "clt|--help" OUT "usage: icshadow clt --kernel K")
+ics_cli_test(NAME cli_isoline_box RC 0 ARGS "isoline|--light|box:-1,3|--level|0.25|--distance|2|--model|correct"
+  OUT "^-4\n$")
+ics_cli_test(NAME cli_isoline_gauss_half RC 0 ARGS "isoline|--light|gauss:0.3,2|--level|0.5|--distance|2|--model|correct"
+  OUT "^-0\\.(6|59999999999999[0-9]*|60000000000000[0-9]*)\n$")
+ics_cli_test(NAME cli_isoline_clt RC 0 ARGS "isoline|--light|gauss:0,1|--level|0.975|--distance|2|--d1|2|--model|clt"
+  OUT "^3\\.91992796908010[0-9]*\n$")
+# iterated: the 1/2-isoline of a Gaussian light sits at -d mu (A.5 holds here) to 1e-4
+ics_cli_test(NAME cli_isoline_iterative RC 0 ARGS "isoline|--light|gauss:0.5,1|--level|0.5|--distance|1|--d1|1|--slab|0.015625|--model|iterative|--kernel|tophat"
+  OUT "^-0\\.(5000|4999)[0-9]*\n$")
+ics_cli_test(NAME cli_isoline_distance_zero RC 0 ARGS "isoline|--light|gauss:0.5,1|--level|0.3|--distance|0|--d1|1|--slab|0.1|--model|iterative"
+  OUT "^0\n$")
+# bad input
+ics_cli_test(NAME cli_isoline_spec_short RC 2 ARGS "isoline|--light|gauss:1|--level|0.5|--distance|1|--model|correct"
+  ERR "--light: expected 2 comma-separated numbers at position 7 of 'gauss:1'")
+ics_cli_test(NAME cli_isoline_spec_kind RC 2 ARGS "isoline|--light|cauchy:0,1|--level|0.5|--distance|1|--model|correct"
+  ERR "unknown light kind 'cauchy'")
+ics_cli_test(NAME cli_isoline_spec_negvar RC 2 ARGS "isoline|--light|gauss:0,-1|--level|0.5|--distance|1|--model|correct"
+  ERR "negative variance at position 9")
+ics_cli_test(NAME cli_isoline_spec_box RC 2 ARGS "isoline|--light|box:2,1|--level|0.5|--distance|1|--model|correct"
+  ERR "box needs LO < HI")
+ics_cli_test(NAME cli_isoline_spec_extra RC 2 ARGS "isoline|--light|box:0,1,2|--level|0.5|--distance|1|--model|correct"
+  ERR "too many numbers at position 8")
+ics_cli_test(NAME cli_isoline_spec_nanval RC 2 ARGS "isoline|--light|gauss:nan,1|--level|0.5|--distance|1|--model|correct"
+  ERR "NaN at position 7")
+ics_cli_test(NAME cli_isoline_level RC 2 ARGS "isoline|--light|gauss:0,1|--level|1|--distance|1|--model|correct"
+  ERR "--level: must be in \\(0, 1\\)")
+ics_cli_test(NAME cli_isoline_level_nan RC 2 ARGS "isoline|--light|gauss:0,1|--level|nan|--distance|1|--model|correct"
+  ERR "--level: NaN")
+ics_cli_test(NAME cli_isoline_distance RC 2 ARGS "isoline|--light|gauss:0,1|--level|0.5|--distance|-1|--model|correct"
+  ERR "negative distance")
+ics_cli_test(NAME cli_isoline_model RC 2 ARGS "isoline|--light|gauss:0,1|--level|0.5|--distance|1|--model|exact"
+  ERR "unknown model 'exact'")
+ics_cli_test(NAME cli_isoline_kernel RC 2 ARGS "isoline|--light|gauss:0,1|--level|0.5|--distance|1|--d1|1|--slab|0.1|--model|iterative|--kernel|ellipse"
+  ERR "unknown 1D kernel 'ellipse'")
+ics_cli_test(NAME cli_isoline_need_d1 RC 2 ARGS "isoline|--light|gauss:0,1|--level|0.5|--distance|1|--model|clt"
+  ERR "--d1 is required")
+ics_cli_test(NAME cli_isoline_slabs RC 2 ARGS "isoline|--light|gauss:0,1|--level|0.5|--distance|1|--d1|1|--slab|0.3|--model|iterative"
+  ERR "integer number of slabs")
+ics_cli_test(NAME cli_isoline_unknown_opt RC 2 ARGS "isoline|--lite|gauss:0,1" ERR "unknown option '--lite'")
+# clt: CSV header, then the tophat at n = 16 within 3 % of Edgeworth's 1.705e-3
+ics_cli_test(NAME cli_clt_tophat RC 0 ARGS "clt|--kernel|tophat|--var|36|--steps|16,64"
+  OUT "^steps,sup_error,disc_error,taps_x_steps,seconds\n16,0\\.001(6[6-9]|7[0-5])[0-9]*,[0-9.e-]+,[0-9]+,[0-9.e-]+\n64,")
+ics_cli_test(NAME cli_clt_skew RC 0 ARGS "clt|--kernel|skew|--var|36|--steps|4,8|--no-refine" OUT "^steps,sup_error,disc_error,taps_x_steps,seconds\n4,[0-9.e-]+,nan,")
+ics_cli_test(NAME cli_clt_var_negative RC 2 ARGS "clt|--kernel|tophat|--var|-1|--steps|4" ERR "--var: negative variance")
+ics_cli_test(NAME cli_clt_var_nan RC 2 ARGS "clt|--kernel|tophat|--var|nan|--steps|4" ERR "--var: NaN")
+ics_cli_test(NAME cli_clt_kernel RC 2 ARGS "clt|--kernel|poisson|--var|1|--steps|4" ERR "unknown 1D kernel 'poisson'")
+ics_cli_test(NAME cli_clt_steps_order RC 2 ARGS "clt|--kernel|dirac|--var|1|--steps|8,4" ERR "not strictly increasing at position 3")
+ics_cli_test(NAME cli_clt_steps_bad RC 2 ARGS "clt|--kernel|dirac|--var|1|--steps|4,x" ERR "expected an integer in 1..1000000 at position 3")
+ics_cli_test(NAME cli_clt_missing RC 2 ARGS "clt|--kernel|dirac|--steps|4" ERR "--var is required")
+# mixture SPECs hold ';' (not passable through ics_cli_test): tests/cli/theory_mix.sh
+add_test(NAME cli_isoline_mix COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/theory_mix.sh $<TARGET_FILE:icshadow_cli>)
+set_tests_properties(cli_isoline_mix PROPERTIES LABELS fast)

@@ -1,0 +1,6 @@
+# Theory of iterative convolution shadows (libicshadow/src/light.c, shadow1d.c): lights and the
+# Eq. 7/15 mapping; the half-shadow isoline (A.5) and CLT convergence suites (names asked for by
+# users: clt_convergence, half_shadow_isoline).
+ics_add_test(NAME test_light SOURCES test_light.c LABELS fast LIBS m)
+ics_add_test(NAME half_shadow_isoline SOURCES test_half_shadow_isoline.c LABELS fast LIBS m)
+ics_add_test(NAME clt_convergence SOURCES test_clt_convergence.c LABELS fast LIBS m)
