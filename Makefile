@@ -6,7 +6,7 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 PYTHON     ?= /usr/bin/python3
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure test test-asan demo figs bench analysis install clean
+.PHONY: all deps configure test test-asan demo figs notebooks bench analysis install clean
 
 all: configure
 	cmake --build $(BUILD) -j $(JOBS)
@@ -40,6 +40,13 @@ demo: deps all
 # Every paper_figs/*.py takes --cli and --out and writes PNG + CSV.
 figs: deps all
 	@set -e; for f in paper_figs/*.py; do echo "== $$f"; $(PYTHON) $$f --cli $(BUILD)/bin/icshadow --out out/figs; done
+
+# Execute notebooks/iterative_shadows.ipynb headless into out/notebooks (kernel python3 = /usr/bin/python3 through
+# the repo's kernel spec in notebooks/kernels; the CLI path goes in as ICSHADOW_CLI).
+notebooks: deps all
+	JUPYTER_PATH=$(CURDIR)/notebooks PYDEVD_DISABLE_FILE_VALIDATION=1 ICSHADOW_CLI=$(abspath $(BUILD))/bin/icshadow $(PYTHON) -m nbconvert \
+	  --to notebook --execute --ExecutePreprocessor.kernel_name=python3 --ExecutePreprocessor.timeout=600 \
+	  --output-dir out/notebooks notebooks/iterative_shadows.ipynb
 
 # Every bench/*.cmake adds a bench_* program to the `benchmarks` target; each prints CSV.
 bench: deps all
