@@ -1,4 +1,350 @@
-/* bench_occtex.c — (placeholder: being written by the occtex work). */
+/* bench_occtex.c — `icshadow bench occtex [options]`: occlusion textures (Eisemann & Décoret
+ * 2006) against brute-force visibility of a rectangular light, side by side in one run.
+ * One CSV row per texture size x slice count x prefilter x combination: build and query times
+ * (min over repetitions), error against the brute force, speed-up over it. With --fig3-csv,
+ * writes the data of Eisemann Fig. 3 (max vs sum vs product on one receiver plane) instead. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
 #include "commands.h"
-int bench_occtex(int argc, char **argv) { (void)argc; (void)argv; fprintf(stderr, "not built yet\n"); return 1; }
+#include "icshadow.h"
+
+#define MAX_LIST 8
+
+static void help(FILE *f) {
+  fprintf(f,
+          "usage: icshadow bench occtex [options]\n"
+          "Occlusion textures (Eisemann & Decoret 2006): synthetic scenes of boxes between a square\n"
+          "light (z = 0) and a receiver plane is cut into K slices, each slice's occlusion texture is\n"
+          "prefiltered (mipmap, nbuffers, sat) and looked up with the box of Eq. 4 at every receiver;\n"
+          "slices are combined by product (Eq. 5), clamped sum or max. The reference is brute-force\n"
+          "visibility (M x M rays to the light per receiver). CSV on stdout, header first:\n"
+          "  scene,prefilter,combination,size,slices,build_ms,query_ms,time_ms,brute_ms,\n"
+          "  mean_abs_err,max_abs_err,mean_signed_err,speedup\n"
+          "build_ms = slicing + prefilter, query_ms = all receivers, time_ms = both; each the\n"
+          "minimum over the repetitions, measured in the same run as brute_ms; speedup =\n"
+          "brute_ms / time_ms. Errors are occlusion (fraction of the light hidden) minus the\n"
+          "brute force's, over all receivers.\n\n"
+          "options:\n"
+          "  --sizes LIST        texture sides, powers of two in 1..%d (default 128,256)\n"
+          "  --slices LIST       slice counts, 1..%d (default 4,8,16)\n"
+          "  --scene LIST        scenes from foliage, plates, blocks (default plates,foliage):\n"
+          "                      12 thin plates / 150 small cubes / 20 large blocks\n"
+          "  --boxes N           boxes in every scene, 1..100000 (default: as above)\n"
+          "  --seed N            scene seed, 0..2^31-1 (default 1)\n"
+          "  --light W           side of the square light, > 0 and <= 100 (default 0.6)\n"
+          "  --receivers R       R x R receivers on the plane z = 2.5, 1..1024 (default 48)\n"
+          "  --light-samples M   brute force: M x M rays per receiver, 1..1024 (default 32)\n"
+          "  --supersample S     slicing: S x S samples per texel, 1..%d (default 2)\n"
+          "  --reps N            repetitions for the timings, 1..100 (default 3)\n"
+          "  --fig3-csv FILE     write Fig. 3 data instead: x,y,exact,max,sum,product (occlusion) at\n"
+          "                      the R x R receivers, for the first scene, size and slice count\n"
+          "                      and --fig3-prefilter\n"
+          "  --fig3-prefilter P  mipmap | nbuffers | sat (default sat)\n"
+          "The scene lies in x, y in [-1, 1], z in [1, 2]; the textures cover [-1, 1]^2; receivers\n"
+          "cover [-1.2, 1.2]^2. Exit status: 0 ok, 1 runtime failure, 2 bad input.\n",
+          ICS_OCC_MAX_SIZE, ICS_OCC_MAX_SLICES, ICS_OCC_MAX_SUPERSAMPLE);
+}
+
+static double now_ms(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+/* comma-separated integers in lo..hi; pow2: powers of two only */
+static int parse_list(const char *opt, const char *s, long lo, long hi, int pow2, int *out, int *count) {
+  char buf[256];
+  if (strlen(s) >= sizeof buf || !*s) {
+    fprintf(stderr, "icshadow bench occtex: %s: expected a comma-separated list, got '%s'\n", opt, s);
+    return -1;
+  }
+  strcpy(buf, s);
+  *count = 0;
+  char *save = NULL;
+  for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+    int v;
+    if (*count >= MAX_LIST) {
+      fprintf(stderr, "icshadow bench occtex: %s: at most %d values\n", opt, MAX_LIST);
+      return -1;
+    }
+    if (cli_parse_int(tok, lo, hi, &v) != 0 || (pow2 && (v & (v - 1)))) {
+      fprintf(stderr, "icshadow bench occtex: %s: expected %sintegers in %ld..%ld, got '%s'\n", opt,
+              pow2 ? "power-of-two " : "", lo, hi, tok);
+      return -1;
+    }
+    out[(*count)++] = v;
+  }
+  if (!*count) {
+    fprintf(stderr, "icshadow bench occtex: %s: empty list\n", opt);
+    return -1;
+  }
+  return 0;
+}
+
+static int get_int(const char *opt, const char *val, long lo, long hi, int *out) {
+  if (cli_parse_int(val, lo, hi, out) == 0) return 0;
+  fprintf(stderr, "icshadow bench occtex: %s: expected an integer in %ld..%ld, got '%s'\n", opt, lo, hi, val);
+  return -1;
+}
+
+static const char *const scene_names[] = {"foliage", "plates", "blocks"};
+
+typedef struct {
+  int sizes[MAX_LIST], nsizes, slices[MAX_LIST], nslices;
+  ics_occ_scene_kind scenes[3];
+  int nscenes;
+  int boxes, seed, receivers, m, ss, reps;
+  double light;
+  const char *fig3;
+  ics_occ_prefilter fig3_pf;
+} options;
+
+/* comma-separated scene names, each at most once */
+static int parse_scenes(const char *val, options *o) {
+  const char *p = val;
+  o->nscenes = 0;
+  while (1) {
+    size_t len = strcspn(p, ",");
+    int which = -1;
+    for (int k = 0; k < 3; k++)
+      if (len == strlen(scene_names[k]) && !strncmp(p, scene_names[k], len)) which = k;
+    for (int k = 0; k < o->nscenes; k++)
+      if ((int)o->scenes[k] == which) which = -2;
+    if (which < 0) {
+      fprintf(stderr, "icshadow bench occtex: --scene: expected a list of distinct names from foliage, plates, blocks; got '%s'\n", val);
+      return -1;
+    }
+    o->scenes[o->nscenes++] = (ics_occ_scene_kind)which;
+    if (!p[len]) return 0;
+    p += len + 1;
+  }
+}
+
+static int parse(int argc, char **argv, options *o) {
+  *o = (options){{128, 256}, 2, {4, 8, 16}, 3, {ICS_OCC_SCENE_PLATES, ICS_OCC_SCENE_FOLIAGE}, 2, 0, 1, 48, 32, 2, 3, 0.6, NULL, ICS_OCC_SAT};
+  for (int i = 1; i < argc; i++) {
+    const char *opt = argv[i];
+    static const char *const known[] = {"--sizes", "--slices", "--scene", "--boxes", "--seed", "--light",
+                                        "--receivers", "--light-samples", "--supersample", "--reps",
+                                        "--fig3-csv", "--fig3-prefilter"};
+    int which = -1;
+    for (int k = 0; k < (int)(sizeof known / sizeof known[0]); k++)
+      if (!strcmp(opt, known[k])) which = k;
+    if (which < 0) {
+      fprintf(stderr, "icshadow bench occtex: unknown option '%s' (see icshadow bench occtex --help)\n", opt);
+      return -1;
+    }
+    if (i + 1 >= argc) {
+      fprintf(stderr, "icshadow bench occtex: %s: missing value\n", opt);
+      return -1;
+    }
+    const char *val = argv[++i];
+    int bad = 0;
+    switch (which) {
+    case 0: bad = parse_list(opt, val, 1, ICS_OCC_MAX_SIZE, 1, o->sizes, &o->nsizes); break;
+    case 1: bad = parse_list(opt, val, 1, ICS_OCC_MAX_SLICES, 0, o->slices, &o->nslices); break;
+    case 2: bad = parse_scenes(val, o); break;
+    case 3: bad = get_int(opt, val, 1, 100000, &o->boxes); break;
+    case 4: bad = get_int(opt, val, 0, 2147483647L, &o->seed); break;
+    case 5:
+      if (cli_parse_double(val, &o->light) != 0) {
+        fprintf(stderr, "icshadow bench occtex: --light: not a number: '%s'\n", val);
+        return -1;
+      }
+      if (isnan(o->light) || !(o->light > 0) || !(o->light <= 100)) {
+        fprintf(stderr, "icshadow bench occtex: --light: expected a size in (0, 100], got '%s'\n", val);
+        return -1;
+      }
+      break;
+    case 6: bad = get_int(opt, val, 1, 1024, &o->receivers); break;
+    case 7: bad = get_int(opt, val, 1, 1024, &o->m); break;
+    case 8: bad = get_int(opt, val, 1, ICS_OCC_MAX_SUPERSAMPLE, &o->ss); break;
+    case 9: bad = get_int(opt, val, 1, 100, &o->reps); break;
+    case 10: o->fig3 = val; break;
+    case 11:
+      if (!strcmp(val, "mipmap")) o->fig3_pf = ICS_OCC_MIPMAP;
+      else if (!strcmp(val, "nbuffers")) o->fig3_pf = ICS_OCC_NBUFFERS;
+      else if (!strcmp(val, "sat")) o->fig3_pf = ICS_OCC_SAT;
+      else {
+        fprintf(stderr, "icshadow bench occtex: --fig3-prefilter: unknown prefilter '%s' (mipmap, nbuffers, sat)\n", val);
+        bad = 1;
+      }
+      break;
+    }
+    if (bad) return -1;
+  }
+  for (int i = 0; i < o->nsizes; i++)
+    if ((long)o->sizes[i] * o->ss > 8192) {
+      fprintf(stderr, "icshadow bench occtex: --sizes x --supersample must stay <= 8192\n");
+      return -1;
+    }
+  return 0;
+}
+
+static int fail(const char *what, ics_status st) {
+  fprintf(stderr, "icshadow bench occtex: %s: %s\n", what, ics_status_str(st));
+  return 1;
+}
+
+/* slice + build one prefilter; returns the object, times in ms */
+static ics_status build(const options *o, const ics_occ_box *boxes, int nb, int n, int K, ics_occ_prefilter pf,
+                        float *tex, ics_occtex **ot, double *ms) {
+  const ics_occ_grid g = {-1, -1, 2.0 / n, n};
+  double t0 = now_ms();
+  ics_status st = ics_occ_slice(boxes, (size_t)nb, &g, K, 1, 2, o->ss, tex);
+  if (!st) st = ics_occtex_create(tex, &g, K, 1, 2, ot);
+  if (!st) st = ics_occtex_prefilter(*ot, pf);
+  *ms = now_ms() - t0;
+  return st;
+}
+
+static int scene_boxes(const options *o, ics_occ_scene_kind k) {
+  static const int def[3] = {150, 12, 20}; /* foliage, plates, blocks */
+  return o->boxes ? o->boxes : def[k];
+}
+
+int bench_occtex(int argc, char **argv) {
+  if (cli_wants_help(argc, argv)) {
+    help(stdout);
+    return 0;
+  }
+  options o;
+  if (parse(argc, argv, &o) != 0) return 2;
+
+  const size_t R = (size_t)o.receivers, nr = R * R;
+  int maxb = 0, maxn = 0, maxk = 0;
+  for (int i = 0; i < o.nscenes; i++) maxb = scene_boxes(&o, o.scenes[i]) > maxb ? scene_boxes(&o, o.scenes[i]) : maxb;
+  for (int i = 0; i < o.nsizes; i++) maxn = o.sizes[i] > maxn ? o.sizes[i] : maxn;
+  for (int i = 0; i < o.nslices; i++) maxk = o.slices[i] > maxk ? o.slices[i] : maxk;
+  ics_occ_box *boxes = malloc((size_t)maxb * sizeof *boxes);
+  double *P = malloc(3 * nr * sizeof *P), *ref = malloc(nr * sizeof *ref), *occ = malloc(3 * nr * sizeof *occ);
+  float *tex = malloc((size_t)maxn * maxn * maxk * sizeof *tex);
+  int rc = 0, header = 0;
+  ics_status st;
+  if (!boxes || !P || !ref || !occ || !tex) {
+    rc = fail("allocation", ICS_ERR_NOMEM);
+    goto done;
+  }
+  for (size_t j = 0; j < R; j++)
+    for (size_t i = 0; i < R; i++) {
+      P[3 * (j * R + i)] = -1.2 + 2.4 * (i + 0.5) / R;
+      P[3 * (j * R + i) + 1] = -1.2 + 2.4 * (j + 0.5) / R;
+      P[3 * (j * R + i) + 2] = 2.5;
+    }
+  const ics_occ_light light = {0, 0, o.light, o.light};
+
+  if (o.fig3) { /* first scene, first size, first slice count */
+    ics_occtex *ot = NULL;
+    double ms;
+    const int nb = scene_boxes(&o, o.scenes[0]);
+    st = ics_occ_scene_make(o.scenes[0], nb, (uint64_t)o.seed, boxes);
+    if (!st) st = build(&o, boxes, nb, o.sizes[0], o.slices[0], o.fig3_pf, tex, &ot, &ms);
+    for (int c = 0; c < 3 && !st; c++) st = ics_occtex_shadow(ot, &light, o.fig3_pf, (ics_occ_combine)c, P, nr, occ + c * nr);
+    if (!st) st = ics_occ_exact(boxes, (size_t)nb, &light, o.m, P, nr, ref);
+    ics_occtex_free(ot);
+    if (st) {
+      rc = fail("fig3", st);
+      goto done;
+    }
+    cli_output out;
+    if (cli_output_open(&out, o.fig3) != 0) {
+      rc = 1;
+      goto done;
+    }
+    fprintf(out.fp, "x,y,exact,max,sum,product\n");
+    for (size_t i = 0; i < nr; i++)
+      fprintf(out.fp, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", P[3 * i], P[3 * i + 1], ref[i],
+              occ[ICS_OCC_MAX * nr + i], occ[ICS_OCC_SUM * nr + i], occ[ICS_OCC_PRODUCT * nr + i]);
+    rc = cli_output_commit(&out) ? 1 : 0;
+    goto done;
+  }
+
+  enum { NPF = ICS_OCC_PREFILTER_COUNT, NC = ICS_OCC_COMBINE_COUNT };
+  static double tb[MAX_LIST][MAX_LIST][NPF], tq[MAX_LIST][MAX_LIST][NPF][NC];
+  static double emean[MAX_LIST][MAX_LIST][NPF][NC], emax[MAX_LIST][MAX_LIST][NPF][NC], ebias[MAX_LIST][MAX_LIST][NPF][NC];
+  for (int sc = 0; sc < o.nscenes; sc++) {
+    const int nb = scene_boxes(&o, o.scenes[sc]);
+    if ((st = ics_occ_scene_make(o.scenes[sc], nb, (uint64_t)o.seed, boxes))) {
+      rc = fail("scene", st);
+      goto done;
+    }
+    double brute = INFINITY;
+    for (int a = 0; a < MAX_LIST; a++)
+      for (int b = 0; b < MAX_LIST; b++)
+        for (int p = 0; p < NPF; p++) {
+          tb[a][b][p] = INFINITY;
+          for (int c = 0; c < NC; c++) tq[a][b][p][c] = INFINITY;
+        }
+    /* each repetition runs the brute force and every method once: side by side in one run */
+    for (int rep = 0; rep < o.reps; rep++) {
+      double t0 = now_ms();
+      if ((st = ics_occ_exact(boxes, (size_t)nb, &light, o.m, P, nr, ref))) {
+        rc = fail("brute force", st);
+        goto done;
+      }
+      double t1 = now_ms() - t0;
+      brute = t1 < brute ? t1 : brute;
+      for (int a = 0; a < o.nsizes; a++)
+        for (int b = 0; b < o.nslices; b++)
+          for (int p = 0; p < NPF; p++) {
+            ics_occtex *ot = NULL;
+            double ms;
+            st = build(&o, boxes, nb, o.sizes[a], o.slices[b], (ics_occ_prefilter)p, tex, &ot, &ms);
+            if (st) {
+              ics_occtex_free(ot);
+              rc = fail("build", st);
+              goto done;
+            }
+            tb[a][b][p] = ms < tb[a][b][p] ? ms : tb[a][b][p];
+            for (int c = 0; c < NC; c++) {
+              double q0 = now_ms();
+              st = ics_occtex_shadow(ot, &light, (ics_occ_prefilter)p, (ics_occ_combine)c, P, nr, occ);
+              double q = now_ms() - q0;
+              if (st) {
+                ics_occtex_free(ot);
+                rc = fail("shadow", st);
+                goto done;
+              }
+              tq[a][b][p][c] = q < tq[a][b][p][c] ? q : tq[a][b][p][c];
+              double sa = 0, mx = 0, sb = 0;
+              for (size_t i = 0; i < nr; i++) {
+                double e = occ[i] - ref[i];
+                sa += fabs(e);
+                sb += e;
+                mx = fabs(e) > mx ? fabs(e) : mx;
+              }
+              emean[a][b][p][c] = sa / nr;
+              emax[a][b][p][c] = mx;
+              ebias[a][b][p][c] = sb / nr;
+            }
+            ics_occtex_free(ot);
+          }
+    }
+    if (!header++)
+      printf("scene,prefilter,combination,size,slices,build_ms,query_ms,time_ms,brute_ms,mean_abs_err,"
+             "max_abs_err,mean_signed_err,speedup\n");
+    for (int a = 0; a < o.nsizes; a++)
+      for (int b = 0; b < o.nslices; b++)
+        for (int p = 0; p < NPF; p++)
+          for (int c = 0; c < NC; c++) {
+            double t = tb[a][b][p] + tq[a][b][p][c];
+            printf("%s,%s,%s,%d,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g\n", scene_names[o.scenes[sc]],
+                   ics_occ_prefilter_name((ics_occ_prefilter)p), ics_occ_combine_name((ics_occ_combine)c),
+                   o.sizes[a], o.slices[b], tb[a][b][p], tq[a][b][p][c], t, brute, emean[a][b][p][c],
+                   emax[a][b][p][c], ebias[a][b][p][c], brute / t);
+          }
+  }
+  if (fflush(stdout) != 0) rc = 1;
+done:
+  free(boxes);
+  free(P);
+  free(ref);
+  free(occ);
+  free(tex);
+  return rc;
+}

@@ -1,0 +1,35 @@
+# CLI tests for `icshadow bench occtex`: --help, a small run (CSV header and rows, errors in
+# range), the Fig. 3 CSV, and bad input (exit 2, a message naming the problem, no stdout).
+set(num "[0-9.e+-]+")
+set(frac "(0(\\.[0-9]+)?|1|[0-9](\\.[0-9]+)?e-[0-9]+)") # a number in [0, 1] as %.4g prints it
+set(occ_small "bench|occtex|--sizes|32|--slices|2|--scene|plates|--receivers|6|--light-samples|4|--reps|1")
+ics_cli_test(NAME cli_occtex_help RC 0 ARGS "bench|occtex|--help" OUT "usage: icshadow bench occtex.*--fig3-csv")
+# a small run: the header, then exactly the 9 rows (3 prefilters x 3 combinations) in order;
+# mean and max errors are fractions in [0, 1] (checked on the first row: CMake regexes allow
+# few groups)
+set(occ_rows "plates,mipmap,product,32,2,${num},${num},${num},${num},${frac},${frac},-?${num},${num}\n")
+foreach(pf mipmap nbuffers sat)
+  foreach(c product sum max)
+    if(NOT pf STREQUAL "mipmap" OR NOT c STREQUAL "product")
+      string(APPEND occ_rows "plates,${pf},${c},32,2,${num},${num},${num},${num},${num},${num},-?${num},${num}\n")
+    endif()
+  endforeach()
+endforeach()
+ics_cli_test(NAME cli_occtex_small RC 0 ARGS "${occ_small}"
+  OUT "^scene,prefilter,combination,size,slices,build_ms,query_ms,time_ms,brute_ms,mean_abs_err,max_abs_err,mean_signed_err,speedup\n${occ_rows}$")
+ics_cli_test(NAME cli_occtex_fig3 RC 0
+  ARGS "bench|occtex|--sizes|32|--slices|2|--receivers|4|--light-samples|4|--fig3-csv|${CMAKE_CURRENT_BINARY_DIR}/occtex_fig3.csv")
+ics_cli_test(NAME cli_occtex_fig3_bad_dir RC 1
+  ARGS "bench|occtex|--sizes|32|--slices|2|--receivers|4|--fig3-csv|${CMAKE_CURRENT_BINARY_DIR}/no/such/dir/f.csv"
+  ERR "cannot create" NOFILE "${CMAKE_CURRENT_BINARY_DIR}/no/such/dir/f.csv")
+ics_cli_test(NAME cli_occtex_size_not_pow2 RC 2 ARGS "bench|occtex|--sizes|100" ERR "--sizes: expected power-of-two integers in 1..4096, got '100'")
+ics_cli_test(NAME cli_occtex_size_huge RC 2 ARGS "bench|occtex|--sizes|8192" ERR "--sizes: expected power-of-two integers in 1..4096, got '8192'")
+ics_cli_test(NAME cli_occtex_size_empty RC 2 ARGS "bench|occtex|--sizes|,," ERR "--sizes: empty list")
+ics_cli_test(NAME cli_occtex_slices_zero RC 2 ARGS "bench|occtex|--slices|0" ERR "--slices: expected integers in 1..64, got '0'")
+ics_cli_test(NAME cli_occtex_light_nan RC 2 ARGS "bench|occtex|--light|nan" ERR "--light: expected a size in \\(0, 100\\], got 'nan'")
+ics_cli_test(NAME cli_occtex_light_text RC 2 ARGS "bench|occtex|--light|big" ERR "--light: not a number: 'big'")
+ics_cli_test(NAME cli_occtex_scene_unknown RC 2 ARGS "bench|occtex|--scene|trees" ERR "--scene: expected a list of distinct names")
+ics_cli_test(NAME cli_occtex_receivers_zero RC 2 ARGS "bench|occtex|--receivers|0" ERR "--receivers: expected an integer in 1..1024, got '0'")
+ics_cli_test(NAME cli_occtex_missing_value RC 2 ARGS "bench|occtex|--reps" ERR "--reps: missing value")
+ics_cli_test(NAME cli_occtex_unknown_option RC 2 ARGS "bench|occtex|--bogus|1" ERR "unknown option '--bogus'")
+ics_cli_test(NAME cli_occtex_supersample_too_big RC 2 ARGS "bench|occtex|--sizes|4096|--supersample|4" ERR "--sizes x --supersample must stay <= 8192")
