@@ -13,9 +13,9 @@ Row 3: the profile after 100 steps with the Gaussian cdf of the same moments (da
         the grey curve is step 10, where the Dirac staircase is plain.
 Every number comes from `icshadow iterate` (the library's convolution engine); the Gaussian
 reference is the CLI's gauss_cdf column (same moments as applied, plus the grid's 1/12 px^2).
-Writes fig3_profiles.csv (kernel, steps, x, value, gauss_cdf at steps 1, 2, 5, 10, 20, 50, 100),
-fig3_summary.csv (kernel, steps, max |value - gauss_cdf|, ripple = max |second difference|)
-and fig3.png into --out.
+Writes patel_fig3_profiles.csv (kernel, steps, x, value, gauss_cdf at steps 1, 2, 5, 10, 20, 50, 100),
+patel_fig3_summary.csv (kernel, steps, max |value - gauss_cdf|, ripple = max |second difference|)
+and patel_fig3.png into --out.
 """
 import argparse
 import csv
@@ -101,8 +101,8 @@ def main():
             ripple = float(np.max(np.abs(np.diff(val[i], 2))))
             summ_rows.append([k, s, "%.6g" % err, "%.6g" % ripple])
             print("fig3: %-16s step %3d  max|r - Phi| = %.3g  max|2nd difference| = %.3g" % (k, s, err, ripple))
-    write_csv(os.path.join(args.out, "fig3_profiles.csv"), ["kernel", "steps", "x", "value", "gauss_cdf"], prof_rows)
-    write_csv(os.path.join(args.out, "fig3_summary.csv"), ["kernel", "steps", "max_abs_err_vs_gauss", "max_abs_second_difference"], summ_rows)
+    write_csv(os.path.join(args.out, "patel_fig3_profiles.csv"), ["kernel", "steps", "x", "value", "gauss_cdf"], prof_rows)
+    write_csv(os.path.join(args.out, "patel_fig3_summary.csv"), ["kernel", "steps", "max_abs_err_vs_gauss", "max_abs_second_difference"], summ_rows)
 
     ylim = 1.15 * max(float(np.max(np.abs(r[2][-1] - r[3][-1]))) for r in runs.values())
     fig, ax = plt.subplots(3, 3, figsize=(13, 10.5), gridspec_kw={"height_ratios": [1.1, 1.1, 1.2]})
@@ -157,11 +157,11 @@ def main():
     fig.suptitle("Patel et al. 2013, Fig. 3: 100 steps on a Heaviside edge, class mean 0, variance %g px$^2$ "
                  "(icshadow iterate)" % VAR, fontsize=11)
     fig.tight_layout()
-    png = os.path.join(args.out, "fig3.png")
-    tmp = os.path.join(args.out, ".fig3.tmp.png")
+    png = os.path.join(args.out, "patel_fig3.png")
+    tmp = os.path.join(args.out, ".patel_fig3.tmp.png")
     fig.savefig(tmp, dpi=110)
     os.replace(tmp, png)
-    print("fig3: wrote %s, fig3_profiles.csv, fig3_summary.csv" % png)
+    print("fig3: wrote %s, patel_fig3_profiles.csv, patel_fig3_summary.csv" % png)
 
 
 if __name__ == "__main__":

@@ -8,7 +8,7 @@ samples (taps), the integer taps the engine applies after splitting off-grid tap
 interpolation, the variance that splitting adds per step, and the engine's time per pixel and
 step. Next to them: the paper's entries (width sqrt(12) sigma, 2 sigma, 2 sigma +- 2; samples
 sqrt(12) sigma, 2, 2) evaluated at sigma = 5.5.
-Writes table1.csv (the CLI's CSV as is), table1.md (Markdown) and table1.png into --out.
+Writes patel_table1.csv (the CLI's CSV as is), patel_table1.md (Markdown) and patel_table1.png into --out.
 """
 import argparse
 import csv
@@ -60,10 +60,10 @@ def main():
         if abs(float(r["mean"])) > 1e-9 or abs(float(r["var"]) / VAR - 1) > (2e-2 if r["member"] == "stochastic-dirac" else 1e-12):
             sys.exit("table1: %s does not have the class moments: mean %s var %s" % (r["member"], r["mean"], r["var"]))
 
-    tmp = os.path.join(args.out, "table1.csv.tmp")
+    tmp = os.path.join(args.out, "patel_table1.csv.tmp")
     with open(tmp, "w") as f:
         f.write(text)
-    os.replace(tmp, os.path.join(args.out, "table1.csv"))
+    os.replace(tmp, os.path.join(args.out, "patel_table1.csv"))
 
     header = ["kernel", "mean", "variance", "var range", "width (taps)", "samples", "applied taps",
               "interp. var/step", "ns/px/step", "paper width", "paper samples"]
@@ -82,10 +82,10 @@ def main():
           "ns/px/step is a timing on this machine (best of repeated runs on a 65536-pixel line).", "",
           "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     md += ["| " + " | ".join(b) + " |" for b in body]
-    tmp = os.path.join(args.out, "table1.md.tmp")
+    tmp = os.path.join(args.out, "patel_table1.md.tmp")
     with open(tmp, "w") as f:
         f.write("\n".join(md) + "\n")
-    os.replace(tmp, os.path.join(args.out, "table1.md"))
+    os.replace(tmp, os.path.join(args.out, "patel_table1.md"))
 
     fig, ax = plt.subplots(figsize=(15, 2.6))
     ax.axis("off")
@@ -97,12 +97,12 @@ def main():
     ax.set_title("Patel et al. 2013, Table I measured (icshadow kernel-table): class mean 0, variance %g px$^2$ "
                  "($\\sigma$ = %g px)" % (VAR, SIG), fontsize=10)
     fig.tight_layout()
-    tmp = os.path.join(args.out, ".table1.tmp.png")
+    tmp = os.path.join(args.out, ".patel_table1.tmp.png")
     fig.savefig(tmp, dpi=120)
-    os.replace(tmp, os.path.join(args.out, "table1.png"))
+    os.replace(tmp, os.path.join(args.out, "patel_table1.png"))
     for b in body:
         print("table1: " + " | ".join(b))
-    print("table1: wrote table1.csv, table1.md, table1.png in %s" % args.out)
+    print("table1: wrote patel_table1.csv, patel_table1.md, patel_table1.png in %s" % args.out)
 
 
 if __name__ == "__main__":
