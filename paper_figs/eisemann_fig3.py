@@ -10,7 +10,8 @@ Panels: brute force, max, clamped sum, product (1 - prod(1 - O_k), their Eq. 5),
 difference of each to the brute force. The paper's claim: the sum is too dark, the max too
 bright, the product in between; the script checks max <= product <= sum at every receiver (an
 identity for values in [0, 1]) and prints the measured mean error and bias of each.
-Writes fig3_occtex.csv (from the CLI), fig3_summary.csv and fig3.png into --out.
+Writes eisemann_fig3_occtex.csv (from the CLI), eisemann_fig3_summary.csv and eisemann_fig3.png
+into --out.
 """
 import argparse
 import csv
@@ -38,7 +39,7 @@ def main():
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
 
-    data_csv = os.path.join(args.out, "fig3_occtex.csv")
+    data_csv = os.path.join(args.out, "eisemann_fig3_occtex.csv")
     cmd = [args.cli, "bench", "occtex", "--scene", args.scene, "--sizes", str(args.size),
            "--slices", str(args.slices), "--receivers", str(args.receivers),
            "--fig3-prefilter", args.prefilter, "--fig3-csv", data_csv]
@@ -60,13 +61,13 @@ def main():
         e = d[k] - d["exact"]
         rows.append((k, float(np.mean(np.abs(e))), float(np.max(np.abs(e))), float(np.mean(e))))
         print("fig3: %-7s mean |error| %.4f  max |error| %.4f  bias %+.4f" % rows[-1])
-    tmp = os.path.join(args.out, "fig3_summary.csv.tmp")
+    tmp = os.path.join(args.out, "eisemann_fig3_summary.csv.tmp")
     with open(tmp, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["combination", "mean_abs_err", "max_abs_err", "mean_signed_err"])
         for r in rows:
             w.writerow([r[0]] + ["%.17g" % v for v in r[1:]])
-    os.replace(tmp, os.path.join(args.out, "fig3_summary.csv"))
+    os.replace(tmp, os.path.join(args.out, "eisemann_fig3_summary.csv"))
 
     ext = [-1.2, 1.2, -1.2, 1.2]
     fig, ax = plt.subplots(2, 4, figsize=(14, 7))
@@ -90,7 +91,7 @@ def main():
     fig.colorbar(im, ax=ax[1, 1:].tolist(), shrink=0.8)
     fig.suptitle("Eisemann & Decoret 2006, Fig. 3: %s scene, %d slices, %d^2 %s" %
                  (args.scene, args.slices, args.size, args.prefilter))
-    png = os.path.join(args.out, "fig3.png")
+    png = os.path.join(args.out, "eisemann_fig3.png")
     fig.savefig(png + ".tmp.png", dpi=110)
     os.replace(png + ".tmp.png", png)
     print("fig3: wrote %s" % png)
