@@ -48,10 +48,13 @@ notebooks: deps all
 	  --to notebook --execute --ExecutePreprocessor.kernel_name=python3 --ExecutePreprocessor.timeout=600 \
 	  --output-dir out/notebooks notebooks/iterative_shadows.ipynb
 
-# Every bench/*.cmake adds a bench_* program to the `benchmarks` target; each prints CSV.
+# Every bench/*.cmake adds a bench_* program to the `benchmarks` target; the peer primitives are
+# benchmarked by `icshadow bench KIND`. Each prints CSV.
+BENCH_KINDS ?= sat2d sat3d minmax occtex
 bench: deps all
 	cmake --build $(BUILD) --target benchmarks -j $(JOBS)
 	@set -e; for b in $(BUILD)/bin/bench_*; do echo "== $$b"; $$b; done
+	@set -e; for k in $(BENCH_KINDS); do echo "== icshadow bench $$k"; $(BUILD)/bin/icshadow bench $$k; done
 
 # Stability sweep of the exact functions: max ulp error vs MPFR and ns per call per region.
 analysis: deps all
