@@ -123,7 +123,8 @@ static void test_exact_small(void) {
 /* Data 1000 + k / 2^14, k uniform in [-2^17, 2^17) (i.e. 1000 + uniform noise in [-8, 8) at
  * the float resolution near 1000): exact in float and in int64 after scaling by 2^14. */
 static void test_bounds(int dims) {
-  const long W = dims == 2 ? 1024 : 96, H = dims == 2 ? 768 : 80, D = dims == 2 ? 1 : 72;
+  /* large enough for the non-temporal-store path (tables > 4 MiB) in every mode */
+  const long W = dims == 2 ? 1280 : 128, H = dims == 2 ? 1024 : 96, D = dims == 2 ? 1 : 96;
   size_t n = (size_t)(W * H * D);
   float *a = malloc(sizeof(float) * n);
   int64_t *ia = malloc(sizeof(int64_t) * n);
@@ -213,6 +214,67 @@ static void test_bounds(int dims) {
         far_rel[2], far_rel[3]);
   free(a);
   free(ia);
+}
+
+/* Full-mantissa data (uniform in [0, 1000) as floats): no sum is exact, so the compensated
+ * and double modes round too; reference = double-double (TwoSum) sums, error ~2^-53 |S|. */
+static void dd_add(double *hi, double *lo, double v) {
+  double s = *hi + v, bb = s - *hi, e = (*hi - (s - bb)) + (v - bb);
+  *hi = s;
+  *lo += e;
+}
+
+static void test_bounds_random(int dims) {
+  const long W = dims == 2 ? 512 : 64, H = dims == 2 ? 384 : 56, D = dims == 2 ? 1 : 48;
+  size_t n = (size_t)(W * H * D);
+  float *a = malloc(sizeof(float) * n);
+  for (size_t i = 0; i < n; i++) a[i] = (float)(unit() * 1000);
+  for (int mi = 0; mi < 4; mi++) {
+    ics_sat_precision m = modes[mi];
+    ics_sat2d *s2 = NULL;
+    ics_sat3d *s3 = NULL;
+    ics_status st = dims == 2 ? ics_sat2d_build(&s2, a, W, H, W, m)
+                              : ics_sat3d_build(&s3, a, W, H, D, m);
+    CHECK(st == ICS_OK, "build");
+    if (st != ICS_OK) continue;
+    double off = dims == 2 ? ics_sat2d_offset(s2) : ics_sat3d_offset(s3);
+    double factor = ics_sat_error_factor(m, dims), worst = 0;
+    int over = 0, inexact = 0;
+    for (int k = 0; k < 60; k++) {
+      long lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1}, nn[3] = {W, H, D};
+      for (int q = 0; q < dims; q++) {
+        long e = k < 40 ? 1 + irand(6) : 1 + irand(nn[q]);
+        lo[q] = k < 20 ? nn[q] - e : irand(nn[q] - e + 1);
+        hi[q] = lo[q] + e;
+      }
+      double shi = 0, slo = 0, P = 0;
+      for (long z = 0; z < hi[2]; z++)
+        for (long y = 0; y < hi[1]; y++)
+          for (long x = 0; x < hi[0]; x++) {
+            double v = a[(z * H + y) * W + x];
+            P += fabs(v - off);
+            if (x >= lo[0] && y >= lo[1] && z >= lo[2]) dd_add(&shi, &slo, v);
+          }
+      double exact = shi + slo, got;
+      st = dims == 2 ? ics_sat2d_box_sum(s2, lo[0], lo[1], hi[0], hi[1], &got)
+                     : ics_sat3d_box_sum(s3, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], &got);
+      double nsum = (double)(hi[0] + hi[1] + (dims == 3 ? hi[2] : 0));
+      double bound = factor * (nsum + (dims == 3 ? 8 : 4)) * P * (1 + 1e-12);
+      double err = fabs(got - exact);
+      if (st != ICS_OK || err > bound) over++;
+      if (err != 0) inexact++;
+      if (err / bound > worst) worst = err / bound;
+    }
+    printf("%dD %-12s full-mantissa data: max error / bound %.3g (%d of 60 boxes inexact)\n", dims,
+           ics_sat_precision_name(m), worst, inexact);
+    CHECK(over == 0, "%s %dD full-mantissa data: %d boxes beyond the bound",
+          ics_sat_precision_name(m), dims, over);
+    CHECK(inexact > 0, "%s %dD: no rounding at all: the data do not exercise the bound",
+          ics_sat_precision_name(m), dims);
+    ics_sat2d_free(s2);
+    ics_sat3d_free(s3);
+  }
+  free(a);
 }
 
 /* ---- continuous integrals ----------------------------------------------------------------- */
@@ -611,6 +673,8 @@ int main(void) {
   test_exact_small();
   test_bounds(2);
   test_bounds(3);
+  test_bounds_random(2);
+  test_bounds_random(3);
   test_integral();
   test_bad_input();
   test_csat_aligned();

@@ -168,7 +168,7 @@ static inline __m128d scan2(__m128d v) {
 
 /* One row (or two rows r, r+1 when src1 != NULL) of the fused pass, float. */
 static void row_f32(float *o0, float *o1, const float *src0, const float *src1, float m, float *t,
-                    float *za0, float *za1, size_t w, int zmode) {
+                    float *za0, float *za1, size_t w, int zmode, int nt) {
   __m128 c0 = _mm_setzero_ps(), c1 = _mm_setzero_ps(), mm = _mm_set1_ps(m);
   size_t x = 0;
   for (; x + 4 <= w; x += 4) {
@@ -177,16 +177,22 @@ static void row_f32(float *o0, float *o1, const float *src0, const float *src1, 
     __m128 tv = _mm_add_ps(_mm_loadu_ps(t + x), v0);
     __m128 out0 = tv;
     if (zmode == 1) _mm_storeu_ps(za0 + x, tv);
-    if (zmode == 2) out0 = _mm_add_ps(_mm_loadu_ps(za0 + x), tv);
-    _mm_storeu_ps(o0 + x, out0);
+    if (zmode == 2) _mm_storeu_ps(za0 + x, out0 = _mm_add_ps(_mm_loadu_ps(za0 + x), tv));
+    if (nt)
+      _mm_stream_ps(o0 + x, out0);
+    else
+      _mm_storeu_ps(o0 + x, out0);
     if (src1) {
       __m128 v1 = _mm_add_ps(scan4(_mm_sub_ps(_mm_loadu_ps(src1 + x), mm)), c1);
       c1 = _mm_shuffle_ps(v1, v1, 0xFF);
       tv = _mm_add_ps(tv, v1);
       __m128 out1 = tv;
       if (zmode == 1) _mm_storeu_ps(za1 + x, tv);
-      if (zmode == 2) out1 = _mm_add_ps(_mm_loadu_ps(za1 + x), tv);
-      _mm_storeu_ps(o1 + x, out1);
+      if (zmode == 2) _mm_storeu_ps(za1 + x, out1 = _mm_add_ps(_mm_loadu_ps(za1 + x), tv));
+      if (nt)
+        _mm_stream_ps(o1 + x, out1);
+      else
+        _mm_storeu_ps(o1 + x, out1);
     }
     _mm_storeu_ps(t + x, tv);
   }
@@ -195,14 +201,14 @@ static void row_f32(float *o0, float *o1, const float *src0, const float *src1, 
     r0 += src0[x] - m;
     float tv = t[x] + r0, out0 = tv;
     if (zmode == 1) za0[x] = tv;
-    if (zmode == 2) out0 = za0[x] + tv;
+    if (zmode == 2) za0[x] = out0 = za0[x] + tv;
     o0[x] = out0;
     if (src1) {
       r1 += src1[x] - m;
       tv = tv + r1;
       float out1 = tv;
       if (zmode == 1) za1[x] = tv;
-      if (zmode == 2) out1 = za1[x] + tv;
+      if (zmode == 2) za1[x] = out1 = za1[x] + tv;
       o1[x] = out1;
     }
     t[x] = tv;
@@ -210,7 +216,7 @@ static void row_f32(float *o0, float *o1, const float *src0, const float *src1, 
 }
 
 static void row_f64(double *o0, double *o1, const float *src0, const float *src1, double *t,
-                    double *za0, double *za1, size_t w, int zmode) {
+                    double *za0, double *za1, size_t w, int zmode, int nt) {
   __m128d c0 = _mm_setzero_pd(), c1 = _mm_setzero_pd();
   size_t x = 0;
   for (; x + 2 <= w; x += 2) {
@@ -221,8 +227,11 @@ static void row_f64(double *o0, double *o1, const float *src0, const float *src1
     __m128d tv = _mm_add_pd(_mm_loadu_pd(t + x), v0);
     __m128d out0 = tv;
     if (zmode == 1) _mm_storeu_pd(za0 + x, tv);
-    if (zmode == 2) out0 = _mm_add_pd(_mm_loadu_pd(za0 + x), tv);
-    _mm_storeu_pd(o0 + x, out0);
+    if (zmode == 2) _mm_storeu_pd(za0 + x, out0 = _mm_add_pd(_mm_loadu_pd(za0 + x), tv));
+    if (nt)
+      _mm_stream_pd(o0 + x, out0);
+    else
+      _mm_storeu_pd(o0 + x, out0);
     if (src1) {
       __m128d v1 = _mm_add_pd(scan2(_mm_cvtps_pd(_mm_castsi128_ps(
                                   _mm_loadl_epi64((const __m128i *)(const void *)(src1 + x))))),
@@ -231,8 +240,11 @@ static void row_f64(double *o0, double *o1, const float *src0, const float *src1
       tv = _mm_add_pd(tv, v1);
       __m128d out1 = tv;
       if (zmode == 1) _mm_storeu_pd(za1 + x, tv);
-      if (zmode == 2) out1 = _mm_add_pd(_mm_loadu_pd(za1 + x), tv);
-      _mm_storeu_pd(o1 + x, out1);
+      if (zmode == 2) _mm_storeu_pd(za1 + x, out1 = _mm_add_pd(_mm_loadu_pd(za1 + x), tv));
+      if (nt)
+        _mm_stream_pd(o1 + x, out1);
+      else
+        _mm_storeu_pd(o1 + x, out1);
     }
     _mm_storeu_pd(t + x, tv);
   }
@@ -241,41 +253,47 @@ static void row_f64(double *o0, double *o1, const float *src0, const float *src1
     r0 += (double)src0[x];
     double tv = t[x] + r0, out0 = tv;
     if (zmode == 1) za0[x] = tv;
-    if (zmode == 2) out0 = za0[x] + tv;
+    if (zmode == 2) za0[x] = out0 = za0[x] + tv;
     o0[x] = out0;
     if (src1) {
       r1 += (double)src1[x];
       tv = tv + r1;
       double out1 = tv;
       if (zmode == 1) za1[x] = tv;
-      if (zmode == 2) out1 = za1[x] + tv;
+      if (zmode == 2) za1[x] = out1 = za1[x] + tv;
       o1[x] = out1;
     }
     t[x] = tv;
   }
 }
 
+/* Tables above NT_BYTES are written with non-temporal stores (no read-for-ownership, no
+ * eviction of the data being read); the previous slice is then kept in zacc (in cache). */
+#define NT_BYTES ((size_t)4 << 20)
 #define DEFINE_SSE_BUILD(NAME, T, ROWFN, ...)                                                 \
   static void NAME(T *out, const float *in, size_t w, size_t h, size_t d, size_t stride,     \
                    size_t sstride, T m, T *t, T *zacc, T *px) {                              \
     (void)px;                                                                                \
-    (void)zacc;                                                                              \
     (void)m;                                                                                 \
+    int nt = w * h * d * sizeof(T) > NT_BYTES;                                               \
     for (size_t z = 0; z < d; z++) {                                                         \
-      int zmode = z == 0 ? 0 : 2; /* z > 0: add the previous slice of the table */           \
+      int zmode = d == 1 ? 0 : z == 0 ? 1 : 2;                                               \
       for (size_t x = 0; x < w; x++) t[x] = 0;                                               \
       for (size_t y = 0; y < h; y += 2) {                                                    \
         int two = y + 1 < h;                                                                 \
         const float *s0 = in + z * sstride + y * stride;                                     \
         T *o0 = out + (z * h + y) * w;                                                       \
-        T *za0 = zmode ? out + ((z - 1) * h + y) * w : NULL;                                 \
+        T *za0 = zmode ? zacc + y * w : NULL;                                                \
+        int ntr = nt && ((uintptr_t)o0 & 15) == 0 && ((uintptr_t)(o0 + w) & 15) == 0;        \
         ROWFN(o0, two ? o0 + w : NULL, s0, two ? s0 + stride : NULL, __VA_ARGS__, t, za0,    \
-              za0 && two ? za0 + w : NULL, w, zmode);                                        \
+              za0 && two ? za0 + w : NULL, w, zmode, ntr);                                   \
       }                                                                                      \
     }                                                                                        \
+    if (nt) _mm_sfence();                                                                    \
   }
 DEFINE_SSE_BUILD(build_f32_sse, float, row_f32, m)
-#define row_f64_(o0, o1, s0, s1, dummy, t, za0, za1, w, zm) row_f64(o0, o1, s0, s1, t, za0, za1, w, zm)
+#define row_f64_(o0, o1, s0, s1, dummy, t, za0, za1, w, zm, nt) \
+  row_f64(o0, o1, s0, s1, t, za0, za1, w, zm, nt)
 DEFINE_SSE_BUILD(build_f64_sse, double, row_f64_, 0)
 #endif
 
