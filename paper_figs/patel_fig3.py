@@ -91,7 +91,7 @@ def main():
         steps, x, val, gauss = runs[k]
         # sanity of what the engine produced: monotone profiles between 0 and 1
         if np.any(val < -1e-12) or np.any(val > 1 + 1e-12):
-            sys.exit("fig3: %s profile leaves [0, 1]" % k)
+            sys.exit("patel_fig3: %s profile leaves [0, 1]" % k)
         for s in CSV_STEPS:
             i = int(np.nonzero(steps == s)[0][0])
             prof_rows += [[k, s, "%.17g" % xx, "%.17g" % v, "%.17g" % g] for xx, v, g in zip(x, val[i], gauss[i])]
@@ -100,7 +100,7 @@ def main():
             err = float(np.max(np.abs(val[i] - gauss[i])))
             ripple = float(np.max(np.abs(np.diff(val[i], 2))))
             summ_rows.append([k, s, "%.6g" % err, "%.6g" % ripple])
-            print("fig3: %-16s step %3d  max|r - Phi| = %.3g  max|2nd difference| = %.3g" % (k, s, err, ripple))
+            print("patel_fig3: %-16s step %3d  max|r - Phi| = %.3g  max|2nd difference| = %.3g" % (k, s, err, ripple))
     write_csv(os.path.join(args.out, "patel_fig3_profiles.csv"), ["kernel", "steps", "x", "value", "gauss_cdf"], prof_rows)
     write_csv(os.path.join(args.out, "patel_fig3_summary.csv"), ["kernel", "steps", "max_abs_err_vs_gauss", "max_abs_second_difference"], summ_rows)
 
@@ -161,7 +161,7 @@ def main():
     tmp = os.path.join(args.out, ".patel_fig3.tmp.png")
     fig.savefig(tmp, dpi=110)
     os.replace(tmp, png)
-    print("fig3: wrote %s, patel_fig3_profiles.csv, patel_fig3_summary.csv" % png)
+    print("patel_fig3: wrote %s, patel_fig3_profiles.csv, patel_fig3_summary.csv" % png)
 
 
 if __name__ == "__main__":

@@ -53,12 +53,12 @@ def main():
     text = run_cli(args.cli, ["kernel-table", "--var", repr(VAR), "--iterations", "10000", "--seed", "1"])
     rows = list(csv.DictReader(io.StringIO(text)))
     if [r["member"] for r in rows][:5] != ["dirac", "tophat", "tophat-raw", "stochastic-dirac", "gauss"]:
-        sys.exit("table1: unexpected members in the kernel-table output")
+        sys.exit("patel_table1: unexpected members in the kernel-table output")
     for r in rows:  # the class members must reproduce the class: mean 0, variance sigma^2
         if r["member"] == "tophat-raw":
             continue
         if abs(float(r["mean"])) > 1e-9 or abs(float(r["var"]) / VAR - 1) > (2e-2 if r["member"] == "stochastic-dirac" else 1e-12):
-            sys.exit("table1: %s does not have the class moments: mean %s var %s" % (r["member"], r["mean"], r["var"]))
+            sys.exit("patel_table1: %s does not have the class moments: mean %s var %s" % (r["member"], r["mean"], r["var"]))
 
     tmp = os.path.join(args.out, "patel_table1.csv.tmp")
     with open(tmp, "w") as f:
@@ -101,8 +101,8 @@ def main():
     fig.savefig(tmp, dpi=120)
     os.replace(tmp, os.path.join(args.out, "patel_table1.png"))
     for b in body:
-        print("table1: " + " | ".join(b))
-    print("table1: wrote patel_table1.csv, patel_table1.md, patel_table1.png in %s" % args.out)
+        print("patel_table1: " + " | ".join(b))
+    print("patel_table1: wrote patel_table1.csv, patel_table1.md, patel_table1.png in %s" % args.out)
 
 
 if __name__ == "__main__":
