@@ -22,6 +22,8 @@ static const struct {
     {"iterate", cmd_iterate, "iterate a Heaviside edge with a 1D kernel member: profile after N steps (CSV)"},
     {"kernel-table", cmd_kernel_table, "Table I measured: moments, width, taps and cost of each 1D kernel member (CSV)"},
     {"bench", cmd_bench, "benchmark a peer primitive (sat2d, sat3d, minmax, occtex): CSV"},
+    {"make-env", cmd_make_env, "draw Gaussian lights into a lat-long OpenEXR environment map"},
+    {"fit-light", cmd_fit_light, "fit K Gaussian lights to an OpenEXR environment map (JSON + CSV)"},
 };
 
 static void usage(FILE *f) {

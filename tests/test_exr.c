@@ -110,7 +110,27 @@ static void copy_prefix(const char *src, const char *dst, long n, long flip_at) 
   fclose(g);
 }
 
-int main(void) {
+/* `test_exr --write-bad DIR`: writes DIR/nan.exr, DIR/rg.exr and DIR/trunc.exr for the CLI
+ * tests (tests/cli_lightfit.cmake) and exits */
+static int write_bad(const char *d) {
+  static const char *const rgb[] = {"R", "G", "B"}, *const rg[] = {"R", "G"};
+  snprintf(dir, sizeof dir, "%s", d);
+  char msg[256];
+  ics_image a;
+  if (write_raw(tmpf("nan.exr"), 8, 4, 3, rgb, EXR_PIXEL_FLOAT, v_nan) ||
+      write_raw(tmpf("rg.exr"), 8, 4, 2, rg, EXR_PIXEL_FLOAT, v_plain) ||
+      ics_image_init(&a, 64, 32, 3) != ICS_OK)
+    return 1;
+  for (int p = 0; p < 64 * 32 * 3; p++) a.data[p] = (float)(p % 97) * 0.5f;
+  ics_status st = ics_exr_write(tmpf("full.exr"), &a, ICS_EXR_FLOAT, msg, sizeof msg);
+  ics_image_free(&a);
+  if (st != ICS_OK) return 1;
+  copy_prefix(tmpf("full.exr"), tmpf("trunc.exr"), file_size(tmpf("full.exr")) / 2, 1L << 40);
+  return 0;
+}
+
+int main(int argc, char **argv) {
+  if (argc == 3 && !strcmp(argv[1], "--write-bad")) return write_bad(argv[2]);
   snprintf(dir, sizeof dir, "%s", "test_exr_tmp");
   if (system("mkdir -p test_exr_tmp") != 0) return 1;
   CHECK(ics_exr_available() == 1, "built with OpenEXR");

@@ -1,0 +1,104 @@
+# CLI tests for `icshadow make-env` and `icshadow fit-light`: make-env -> fit-light round trips
+# (the expected means are the SPEC's, not the program's output), the lights file reader, and
+# every kind of bad input (exit 2, a named problem, no output file left behind).
+set(D ${CMAKE_CURRENT_BINARY_DIR})
+set(DATA ${CMAKE_CURRENT_SOURCE_DIR}/data/lightfit)
+# three lights (cf. Patel Fig. 14): mean, variances, angle, weight, colour
+set(M3 "0.35,0.25,0.004,0.004,0,1,0.2,1,0.2:-0.45,-0.05,0.02,0.012,20,2,1,0.25,0.15:0.15,-0.55,0.012,0.0012,-70,1.5,0.2,0.3,1")
+
+ics_cli_test(NAME cli_make_env_help RC 0 ARGS "make-env|--help" OUT "usage: icshadow make-env.*--size WxH")
+ics_cli_test(NAME cli_fit_light_help RC 0 ARGS "fit-light|--help" OUT "usage: icshadow fit-light.*--max-angle DEG")
+
+if(NOT ICS_HAVE_OPENEXR)
+  # without OpenEXR both commands say so clearly
+  ics_cli_test(NAME cli_make_env_no_exr RC 1 ARGS "make-env|--lights|${M3}|--size|64x32|-o|${D}/lf_m3.exr"
+    ERR "OpenEXR was not found" NOFILE ${D}/lf_m3.exr)
+  ics_cli_test(NAME cli_fit_light_no_exr RC 2 ARGS "fit-light|${DATA}/good.json|--lights|1|-o|${D}/lf.json"
+    ERR "OpenEXR was not found" NOFILE ${D}/lf.json)
+  return()
+endif()
+
+# round trip: SPEC -> map -> 3 lights whose means are the SPEC's (to 1e-3)
+ics_cli_test(NAME cli_make_env_m3 RC 0 ARGS "make-env|--lights|${M3}|--size|384x192|-o|${D}/lf_m3.exr")
+set_tests_properties(cli_make_env_m3 PROPERTIES FIXTURES_SETUP lf_m3)
+set(num "-?[0-9.e+-]+")
+ics_cli_test(NAME cli_fit_light_m3_means RC 0 ARGS "fit-light|${D}/lf_m3.exr|--lights|3|-o|-"
+  OUT "\"mean\": \\[0\\.(349|350)[0-9]*, 0\\.(249|250)[0-9]*\\].*\"mean\": \\[0\\.(149|150)[0-9]*, -0\\.(549|550)[0-9]*\\].*\"mean\": \\[-0\\.(449|450)[0-9]*, -0\\.0(49|50)[0-9]*\\]")
+set_tests_properties(cli_fit_light_m3_means PROPERTIES FIXTURES_REQUIRED lf_m3)
+# the table: one row per k with --sweep; k = 3 fits to l1, l2 < 2% and edge error < 0.2%
+# (what is left is the 384 x 192 map's discretisation: 1.0 / 1.2 / 0.13% here, 0.55 / 0.67 /
+# 0.08% at 512 x 256)
+ics_cli_test(NAME cli_fit_light_m3_sweep RC 0 ARGS "fit-light|${D}/lf_m3.exr|--lights|3|--sweep|-o|${D}/lf_m3.json"
+  OUT "^k,fitted,l1,l2,edge,seconds,iterations,samples,cutoff_loss\n1,1,[^\n]*\n2,2,[^\n]*\n3,3,0\\.0[01][0-9e-]*,0\\.0[01][0-9e-]*,0\\.00[01][0-9e-]*,${num},[0-9]+,[0-9]+,0\n$"
+  ERR "beyond 80 degrees")
+set_tests_properties(cli_fit_light_m3_sweep PROPERTIES FIXTURES_REQUIRED lf_m3 FIXTURES_SETUP lf_m3json)
+# the written lights file is read back (jansson) and drawn again
+if(ICS_HAVE_JANSSON)
+  ics_cli_test(NAME cli_make_env_from_json RC 0 ARGS "make-env|--lights|${D}/lf_m3.json|--size|64x32|--half|-o|${D}/lf_m3b.exr")
+  set_tests_properties(cli_make_env_from_json PROPERTIES FIXTURES_REQUIRED lf_m3json)
+  ics_cli_test(NAME cli_make_env_good_json RC 0 ARGS "make-env|--lights|${DATA}/good.json|--size|64x32|-o|${D}/lf_good.exr")
+  ics_cli_test(NAME cli_make_env_bad_syntax RC 2 ARGS "make-env|--lights|${DATA}/bad_syntax.json|--size|64x32|-o|${D}/lf_bad.exr"
+    ERR "bad_syntax\\.json:2:[0-9]+: " NOFILE ${D}/lf_bad.exr)
+  ics_cli_test(NAME cli_make_env_bad_cov RC 2 ARGS "make-env|--lights|${DATA}/bad_cov.json|--size|64x32|-o|${D}/lf_bad.exr"
+    ERR "lights\\[0\\]\\.cov: not symmetric" NOFILE ${D}/lf_bad.exr)
+  ics_cli_test(NAME cli_make_env_no_mean RC 2 ARGS "make-env|--lights|${DATA}/no_mean.json|--size|64x32|-o|${D}/lf_bad.exr"
+    ERR "lights\\[0\\]: needs \"mean\" or \"tilt_deg\"" NOFILE ${D}/lf_bad.exr)
+  ics_cli_test(NAME cli_make_env_bad_tilt RC 2 ARGS "make-env|--lights|${DATA}/bad_tilt.json|--size|64x32|-o|${D}/lf_bad.exr"
+    ERR "tilt_deg: expected \\[wx, wy\\] in degrees, \\|w\\| < 90" NOFILE ${D}/lf_bad.exr)
+else()
+  ics_cli_test(NAME cli_make_env_no_jansson RC 2 ARGS "make-env|--lights|${DATA}/good.json|--size|64x32|-o|${D}/lf_bad.exr"
+    ERR "needs jansson" NOFILE ${D}/lf_bad.exr)
+endif()
+
+# a sun (zero covariance) gives one light; a uniform sky reports its cut-off loss cos(80 deg)
+ics_cli_test(NAME cli_make_env_sun RC 0 ARGS "make-env|--lights|0.2,-0.1,0,0,0,5|--size|128x64|-o|${D}/lf_sun.exr")
+set_tests_properties(cli_make_env_sun PROPERTIES FIXTURES_SETUP lf_sun)
+ics_cli_test(NAME cli_fit_light_sun RC 0 ARGS "fit-light|${D}/lf_sun.exr|--lights|3|-o|${D}/lf_sun.json"
+  OUT "\n3,1," ERR "explained by 1 light; 3 requested")
+set_tests_properties(cli_fit_light_sun PROPERTIES FIXTURES_REQUIRED lf_sun)
+ics_cli_test(NAME cli_make_env_sky RC 0 ARGS "make-env|--sky|1,1,1|--size|256x128|--supersample|1|-o|${D}/lf_sky.exr")
+set_tests_properties(cli_make_env_sky PROPERTIES FIXTURES_SETUP lf_sky)
+ics_cli_test(NAME cli_fit_light_sky RC 0 ARGS "fit-light|${D}/lf_sky.exr|--lights|2|--progress|-o|${D}/lf_sky.json"
+  OUT ",0\\.17[0-9]*\n$" ERR "EM iteration 1/300.*in front of the viewer \\(ignored\\) 50%.*of which 17\\.[0-9]*% beyond 80 degrees")
+set_tests_properties(cli_fit_light_sky PROPERTIES FIXTURES_REQUIRED lf_sky)
+ics_cli_test(NAME cli_make_env_black RC 0 ARGS "make-env|--sky|0,0,0|--size|64x32|-o|${D}/lf_black.exr")
+set_tests_properties(cli_make_env_black PROPERTIES FIXTURES_SETUP lf_black)
+ics_cli_test(NAME cli_fit_light_black RC 2 ARGS "fit-light|${D}/lf_black.exr|--lights|2|-o|${D}/lf_bad.json"
+  ERR "no light behind the viewer" NOFILE ${D}/lf_bad.json)
+set_tests_properties(cli_fit_light_black PROPERTIES FIXTURES_REQUIRED lf_black)
+
+# bad maps: missing, not an EXR, NaN pixel, wrong channels, truncated (made by test_exr)
+add_test(NAME cli_lightfit_bad_maps COMMAND test_exr --write-bad ${D})
+set_tests_properties(cli_lightfit_bad_maps PROPERTIES LABELS fast FIXTURES_SETUP lf_bad)
+ics_cli_test(NAME cli_fit_light_missing RC 2 ARGS "fit-light|${D}/lf_nonexistent.exr|--lights|1|-o|${D}/lf_bad.json"
+  ERR "lf_nonexistent\\.exr: cannot open" NOFILE ${D}/lf_bad.json)
+ics_cli_test(NAME cli_fit_light_not_exr RC 2 ARGS "fit-light|${DATA}/good.json|--lights|1|-o|${D}/lf_bad.json"
+  ERR "not a readable OpenEXR file" NOFILE ${D}/lf_bad.json)
+foreach(bad "nan;pixel \\(x 5, y 1\\) channel G is NaN" "rg;wrong channel set: missing B" "trunc;corrupt or truncated")
+  list(GET bad 0 name)
+  list(GET bad 1 err)
+  ics_cli_test(NAME cli_fit_light_${name} RC 2 ARGS "fit-light|${D}/${name}.exr|--lights|1|-o|${D}/lf_bad.json"
+    ERR "${err}" NOFILE ${D}/lf_bad.json)
+  set_tests_properties(cli_fit_light_${name} PROPERTIES FIXTURES_REQUIRED lf_bad)
+endforeach()
+
+# bad options
+ics_cli_test(NAME cli_make_env_bad_spec RC 2 ARGS "make-env|--lights|0.1,0.2,0.01|--size|64x32|-o|${D}/lf_bad.exr"
+  ERR "neither an existing lights file nor a valid SPEC \\(light 1: expected mx,my,varx,vary" NOFILE ${D}/lf_bad.exr)
+ics_cli_test(NAME cli_make_env_neg_var RC 2 ARGS "make-env|--lights|0,0,-1,0.1|--size|64x32|-o|${D}/lf_bad.exr"
+  ERR "variances must be finite and >= 0" NOFILE ${D}/lf_bad.exr)
+ics_cli_test(NAME cli_make_env_bad_size RC 2 ARGS "make-env|--sky|1,1,1|--size|3x2|-o|${D}/lf_bad.exr"
+  ERR "--size: expected WxH" NOFILE ${D}/lf_bad.exr)
+ics_cli_test(NAME cli_make_env_nothing RC 2 ARGS "make-env|--size|64x32|-o|${D}/lf_bad.exr"
+  ERR "nothing to draw" NOFILE ${D}/lf_bad.exr)
+ics_cli_test(NAME cli_make_env_no_dir RC 1 ARGS "make-env|--sky|1,1,1|--size|64x32|-o|${D}/lf_no_such_dir/x.exr"
+  ERR "cannot create")
+ics_cli_test(NAME cli_fit_light_k0 RC 2 ARGS "fit-light|${D}/lf_m3.exr|--lights|0|-o|${D}/lf_bad.json"
+  ERR "--lights: expected an integer in 1\\.\\.32" NOFILE ${D}/lf_bad.json)
+ics_cli_test(NAME cli_fit_light_angle RC 2 ARGS "fit-light|${D}/lf_m3.exr|--lights|2|--max-angle|90|-o|${D}/lf_bad.json"
+  ERR "--max-angle: expected degrees in \\(0, 90\\)" NOFILE ${D}/lf_bad.json)
+ics_cli_test(NAME cli_fit_light_no_k RC 2 ARGS "fit-light|${D}/lf_m3.exr|-o|${D}/lf_bad.json"
+  ERR "--lights K is required" NOFILE ${D}/lf_bad.json)
+ics_cli_test(NAME cli_fit_light_no_out_dir RC 1 ARGS "fit-light|${D}/lf_m3.exr|--lights|1|-o|${D}/lf_no_such_dir/l.json"
+  ERR "cannot create")
+set_tests_properties(cli_fit_light_no_out_dir PROPERTIES FIXTURES_REQUIRED lf_m3)
