@@ -318,15 +318,16 @@ static void test_compensation(void) {
   static double b[N];
   const double vars[] = {0, 0.05, 0.25, 1};
   const double shifts[] = {0, 0.3, 0.5};
-  printf("compensation (Dirac member, %d steps; effective variance per step = var(impulse)/n)\n",
-         STEPS);
+  for (int member = 0; member < 2; member++) {
+  printf("compensation (%s member, %d steps; effective variance per step = var(impulse)/n)\n",
+         member ? "gauss N=9" : "dirac", STEPS);
   printf("%8s %6s | %12s %12s | %12s %12s | %12s %8s\n", "target", "shift", "none", "predicted",
          "nonneg", "residual", "signed", "sum|w|");
   for (int i = 0; i < 4; i++)
     for (int j = 0; j < 3; j++) {
       double var = vars[i], mu = shifts[j];
       ics_kernel1d k;
-      ics_kernel1d_init(&k, ICS_KERNEL_DIRAC, mu, var);
+      ics_kernel1d_init(&k, member ? ICS_KERNEL_GAUSS : ICS_KERNEL_DIRAC, mu, var);
       ics_schedule1d s = {&k, 1};
       int n;
       ics_kernel1d_taps(&k, 0, ta, CAP, &n);
@@ -360,6 +361,7 @@ static void test_compensation(void) {
       CHECK(fabs(eff[2] - var) < 1e-12, "signed: %.15g vs %.15g", eff[2], var);
       if (var >= vmin) CHECK(fabs(l1 - 1) < 1e-15, "signed mode uses non-negative taps when it can");
     }
+  }
   /* residual reported by the tap-level function for the hard-shadow case */
   ics_tap1d hard = {0.3, 1};
   int nc;

@@ -491,11 +491,11 @@ int ics_kernel2d_max_taps(const ics_kernel2d *k) {
 }
 
 /* Poisson-disk pattern by dart throwing in the unit disk (fixed per seed): min distance starts at
- * 1.6 / sqrt(N) and shrinks by 10% after 2000 rejected candidates in a row. Then centred and
+ * 1.2 / sqrt(N) and shrinks by 10% after 200 rejected candidates in a row. Then centred and
  * whitened: second moment c I with c = 1 (so p = S^(-1/2) (q - mean q)). */
 static void poisson_pattern(uint64_t seed, int N, double *px, double *py) {
   ics_rng r = ics_rng_make(seed, POISSON_STREAM);
-  double dmin = 1.6 / sqrt((double)N);
+  double dmin = 1.2 / sqrt((double)N);
   int have = 0, fails = 0;
   while (have < N) {
     double x = 2 * ics_rng_uniform(&r) - 1, y = 2 * ics_rng_uniform(&r) - 1;
@@ -507,7 +507,7 @@ static void poisson_pattern(uint64_t seed, int N, double *px, double *py) {
     }
     if (ok) {
       px[have] = x, py[have] = y, have++, fails = 0;
-    } else if (++fails >= 2000) {
+    } else if (++fails >= 200) {
       dmin *= 0.9;
       fails = 0;
     }
