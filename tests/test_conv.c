@@ -486,6 +486,20 @@ static void test_errors(void) {
   k.cls.var = -1;
   ics_schedule1d s = {&k, 1};
   CHECK(ics_conv1d_run(a, 4, &s, 0, 3, NULL, NULL) == ICS_ERR_NEGATIVE_VARIANCE, "bad kernel in run");
+  ics_kernel1d two_k[2];
+  ics_kernel1d_init(&two_k[0], ICS_KERNEL_DIRAC, 0, 1);
+  ics_kernel1d_init(&two_k[1], ICS_KERNEL_GAUSS, 0, 1);
+  two_k[1].cls.mean = NAN;
+  ics_schedule1d s2 = {two_k, 2};
+  CHECK(ics_conv1d_run(a, 4, &s2, 0, 3, NULL, NULL) == ICS_ERR_NAN, "second member invalid");
+  ics_class2d c2;
+  ics_class2d_from_axes(0, 0, 1, 1, 0, &c2);
+  ics_kernel2d k2;
+  ics_kernel2d_init(&k2, ICS_KERNEL_POISSON, &c2);
+  k2.nsamples = 1;
+  ics_schedule2d s3 = {&k2, 1};
+  float im[4] = {0};
+  CHECK(ics_conv2d_run(im, 2, 2, &s3, 0, 1, NULL, NULL) == ICS_ERR_RANGE, "2D run, bad member");
   ics_tap1d zw[2] = {{0, 1}, {1, -1}};
   int n;
   CHECK(ics_taps1d_compensate(zw, 2, ICS_COMP_NONNEG, b == NULL ? NULL : ta, CAP, &n, NULL) ==

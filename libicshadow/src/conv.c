@@ -556,8 +556,16 @@ ics_status ics_conv1d_run(double *buf, size_t n, const ics_schedule1d *s, uint64
   ics_status st = check_opts(&o);
   if (st != ICS_OK) return st;
   int cap = ics_schedule1d_max_taps(s);
-  if (cap <= 0) return s->members && s->nmembers > 0 ? ics_kernel1d_taps(s->members, 0, NULL, 0, NULL)
-                                                     : ICS_ERR_INVALID_ARG;
+  if (cap <= 0) { /* name the first invalid member's problem */
+    if (!s->members || s->nmembers <= 0) return ICS_ERR_INVALID_ARG;
+    for (int i = 0; i < s->nmembers; i++) {
+      ics_tap1d probe[1];
+      int np;
+      ics_status e = ics_kernel1d_taps(&s->members[i], 0, probe, 0, &np);
+      if (e != ICS_OK && e != ICS_ERR_SIZE) return e;
+    }
+    return ICS_ERR_INVALID_ARG;
+  }
   if (stats) memset(stats, 0, sizeof *stats);
   ics_tap1d *taps = malloc(sizeof *taps * (size_t)cap);
   double *tmp = malloc(sizeof *tmp * n);
@@ -603,8 +611,16 @@ ics_status ics_conv2d_run(float *buf, size_t w, size_t h, const ics_schedule2d *
   ics_status st = check_opts(&o);
   if (st != ICS_OK) return st;
   int cap = ics_schedule2d_max_taps(s);
-  if (cap <= 0) return s->members && s->nmembers > 0 ? ics_kernel2d_taps(s->members, 0, NULL, 0, NULL)
-                                                     : ICS_ERR_INVALID_ARG;
+  if (cap <= 0) { /* name the first invalid member's problem */
+    if (!s->members || s->nmembers <= 0) return ICS_ERR_INVALID_ARG;
+    for (int i = 0; i < s->nmembers; i++) {
+      ics_tap2d probe[1];
+      int np;
+      ics_status e = ics_kernel2d_taps(&s->members[i], 0, probe, 0, &np);
+      if (e != ICS_OK && e != ICS_ERR_SIZE) return e;
+    }
+    return ICS_ERR_INVALID_ARG;
+  }
   if (stats) memset(stats, 0, sizeof *stats);
   ics_tap2d *taps = malloc(sizeof *taps * (size_t)cap);
   float *tmp = malloc(sizeof *tmp * w * h);

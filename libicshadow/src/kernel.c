@@ -173,7 +173,8 @@ ics_status ics_class2d_from_axes(double mx, double my, double varx, double vary,
   return ics_class2d_check(out);
 }
 
-ics_status ics_class2d_to_axes(const ics_class2d *c, double *varx, double *vary, double *angle_deg) {
+ics_status ics_class2d_to_axes(const ics_class2d *c, double *varx, double *vary,
+                               double *angle_deg) {
   ics_status st = ics_class2d_check(c);
   if (st != ICS_OK) return st;
   double l1, l2;
@@ -190,7 +191,8 @@ ics_status ics_class2d_to_axes(const ics_class2d *c, double *varx, double *vary,
   return ICS_OK;
 }
 
-/* symmetric square root of a PSD 2x2 matrix {a, b, c}: (M + sqrt(det) I) / sqrt(tr + 2 sqrt(det)) */
+/* symmetric square root of a PSD 2x2 matrix {a, b, c}:
+ * (M + sqrt(det) I) / sqrt(tr + 2 sqrt(det)) */
 static void sqrtm2(double a, double b, double c, double out[3]) {
   double l1, l2;
   eig2(a, b, c, &l1, &l2);

@@ -17,8 +17,8 @@
  * Variance compensation (ics_taps*_compensate): replace taps by INTEGER taps whose discrete
  * moments (total weight, mean, covariance) equal the moments of the input taps exactly, so the
  * interpolation adds nothing. Method: the taps are shrunk about their mean, x -> m + A (x - m)
- * (1D: A = s in [0, 1], found by bisection on the continuous, monotone-at-the-root discrete
- * variance; 2D: A = T^(1/2) Sigma^(-1/2) with T = Sigma - D(A), by fixed-point iteration), then
+ * (1D: A = s in [0, 1], found by bisection on the discrete variance, which is continuous in s;
+ * 2D: A = T^(1/2) Sigma^(-1/2) with T = Sigma - D(A), by fixed-point iteration), then
  * discretized. When the target is below what non-negative integer taps can reach (1D: the
  * minimum is f_m (1 - f_m) for f_m = frac(mean), reached by two taps at floor/ceil of the mean;
  * e.g. the zero-variance hard shadow with a 0.3 px shift), mode ICS_COMP_NONNEG returns that

@@ -7,36 +7,37 @@
  * mean mu shifts the buffer content by +mu.
  *
  * Members (sigma^2 = class variance; "exact" = the taps' moments equal the class to rounding):
- *   DIRAC        1D  taps mu - sigma, mu + sigma, weights 1/2. Exact. 2 taps (1 when sigma = 0).
- *   TOPHAT       1D  the continuous box of width W centred on mu, on the pixel grid: integer taps
- *                    j with weights w_j = integral box(t) hat(t - j) dt (the box applied to the
- *                    linearly interpolated line; no further interpolation). Discrete variance
- *                    W^2/12 + E_box[f(1 - f)], f = frac(t). param = 0 (default): W is solved so
- *                    this equals sigma^2 exactly (needs sigma^2 >= f_mu(1 - f_mu), f_mu = frac(mu),
- *                    else ICS_ERR_RANGE); param = 1: the raw box W = sqrt(12) sigma, variance
- *                    sigma^2 + E_box[f(1 - f)] (NOT in the class; for comparison). ceil(W) + 1 or
- *                    ceil(W) + 2 taps.
- *   STOCH_DIRAC  1D  per iteration i, u ~ U(-h, h) from (seed, i): taps mu - (rho + u), mu + (rho + u),
- *                    weights 1/2, rho = sqrt(sigma^2 - h^2/3) with h = min(param, sqrt(3) sigma)
- *                    (param = jitter half-width, default 1 px: Table I's width 2 sigma +- 2).
- *                    Mean exactly mu every iteration; variance (rho + u)^2, expectation exactly
- *                    sigma^2. 2 taps.
+ *   DIRAC        1D  taps mu - sigma, mu + sigma, weights 1/2. Exact. 2 taps (1 if sigma = 0).
+ *   TOPHAT       1D  the continuous box of width W centred on mu, on the pixel grid: integer
+ *                    taps j with weights w_j = integral box(t) hat(t - j) dt (the box applied
+ *                    to the linearly interpolated line; no further interpolation). Discrete
+ *                    variance W^2/12 + E_box[f(1 - f)], f = frac(t). param = 0 (default): W is
+ *                    solved so this equals sigma^2 exactly (needs sigma^2 >= f_mu (1 - f_mu),
+ *                    f_mu = frac(mu), else ICS_ERR_RANGE); param = 1: the raw box
+ *                    W = sqrt(12) sigma, variance sigma^2 + E_box[f(1 - f)] (NOT in the class;
+ *                    for comparison). At most ceil(W) + 3 taps.
+ *   STOCH_DIRAC  1D  per iteration i, u ~ U(-h, h) from (seed, i): taps mu - (rho + u),
+ *                    mu + (rho + u), weights 1/2, rho = sqrt(sigma^2 - h^2/3) with
+ *                    h = min(param, sqrt(3) sigma) (param = jitter half-width, default 1 px:
+ *                    Table I's width 2 sigma +- 2). Mean exactly mu every iteration; variance
+ *                    (rho + u)^2, expectation exactly sigma^2. 2 taps (1 if sigma = 0).
  *   GAUSS        1D  nsamples (default 9) taps at mu + s z_k, z_k = -T + 2 T k / (N - 1),
  *                    T = param (default 3), weights exp(-z^2/2) normalised, s chosen so the
  *                    variance is exactly sigma^2. N = 1 only for sigma = 0.
- *                2D  an N x N grid (N = nsamples, default 5) of those 1D taps in the whitened frame,
- *                    mapped by Sigma^(1/2): exact mean and covariance. N^2 taps.
- *   ELLIPSE      2D  ics_ellipse_kernel(varx, vary, alpha, N, offset) with offset ~ U[0, 1) from
- *                    (seed, i), plus mu; weights 1/N (N = nsamples, default 2). Covariance exact in
- *                    expectation over the offset; the mean is exactly mu for even N (antipodal pairs),
- *                    in expectation for odd N. N taps.
- *   POISSON      2D  N (default 8) points by dart throwing in the unit disk (seeded by `seed`, fixed
- *                    for the kernel), centred and WHITENED (second-moment matrix made c I), mapped by
- *                    Sigma^(1/2)/sqrt(c), rotated per iteration by theta ~ U[0, 2 pi) from (seed, i)
- *                    in the whitened frame. Because the whitened pattern is isotropic, mean and
- *                    covariance are exact for EVERY rotation (so also in expectation). N taps.
- * Stochastic members draw iteration i's numbers from stream i of ics_rng (key = seed): the taps of
- * iteration i depend on (seed, i) only. */
+ *                2D  an N x N grid (N = nsamples, default 5, at most 256) of those 1D taps in
+ *                    the whitened frame, mapped by Sigma^(1/2): exact mean and covariance.
+ *   ELLIPSE      2D  ics_ellipse_kernel(varx, vary, alpha, N, offset) with offset ~ U[0, 1)
+ *                    from (seed, i), plus mu; weights 1/N (N = nsamples, default 2). Covariance
+ *                    exact in expectation over the offset; the mean is exactly mu for even N
+ *                    (antipodal pairs), in expectation for odd N. N taps.
+ *   POISSON      2D  N (default 8, 3..64) points by dart throwing in the unit disk (seeded by
+ *                    `seed`, fixed for the kernel), centred and WHITENED (second-moment matrix
+ *                    made I), mapped by Sigma^(1/2), rotated per iteration by theta ~ U[0, 2 pi)
+ *                    from (seed, i) in the whitened frame. Because the whitened pattern is
+ *                    isotropic, mean and covariance are exact for EVERY rotation (so also in
+ *                    expectation). N taps.
+ * Stochastic members draw iteration i's numbers from stream i of ics_rng (key = seed): the taps
+ * of iteration i depend on (seed, i) only. */
 #ifndef ICSHADOW_KERNEL_H
 #define ICSHADOW_KERNEL_H
 

@@ -10,8 +10,8 @@
  * (block low, block high, stream low, stream high) with block = index / 2; the 128-bit output
  * gives two 64-bit words (out0 | out1 << 32 for index even, out2 | out3 << 32 for index odd).
  * Uniform doubles take the top 53 bits: u = (x >> 11) * 2^-53, in [0, 1 - 2^-53].
- * Standard normals: Box-Muller on two consecutive uniforms (cosine branch only), sqrt(-2 ln(1 - u1))
- * cos(2 pi u2); finite for every input (1 - u1 >= 2^-53, |z| <= 8.58). */
+ * Standard normals: Box-Muller on two consecutive uniforms (cosine branch only),
+ * sqrt(-2 ln(1 - u1)) cos(2 pi u2); finite for every input (1 - u1 >= 2^-53, |z| <= 8.58). */
 #ifndef ICSHADOW_RNG_H
 #define ICSHADOW_RNG_H
 
