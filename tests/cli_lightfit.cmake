@@ -36,7 +36,13 @@ set_tests_properties(cli_fit_light_m3_sweep PROPERTIES FIXTURES_REQUIRED lf_m3 F
 if(ICS_HAVE_JANSSON)
   ics_cli_test(NAME cli_make_env_from_json RC 0 ARGS "make-env|--lights|${D}/lf_m3.json|--size|64x32|--half|-o|${D}/lf_m3b.exr")
   set_tests_properties(cli_make_env_from_json PROPERTIES FIXTURES_REQUIRED lf_m3json)
-  ics_cli_test(NAME cli_make_env_good_json RC 0 ARGS "make-env|--lights|${DATA}/good.json|--size|64x32|-o|${D}/lf_good.exr")
+  # good.json uses tilt_deg [10, -5] and var/angle_deg for its first light: the fit finds it at
+  # (tan 10 deg, tan -5 deg) = (0.17633, -0.08749), and the second at its plain mean (-0.4, 0.3)
+  ics_cli_test(NAME cli_make_env_good_json RC 0 ARGS "make-env|--lights|${DATA}/good.json|--size|256x128|-o|${D}/lf_good.exr")
+  set_tests_properties(cli_make_env_good_json PROPERTIES FIXTURES_SETUP lf_good)
+  ics_cli_test(NAME cli_fit_light_good_json RC 0 ARGS "fit-light|${D}/lf_good.exr|--lights|2|-o|-"
+    OUT "\"mean\": \\[0\\.17[56][0-9]*, -0\\.08[78][0-9]*\\].*\"mean\": \\[-0\\.(399|400)[0-9]*, 0\\.(299|300)[0-9]*\\]")
+  set_tests_properties(cli_fit_light_good_json PROPERTIES FIXTURES_REQUIRED lf_good)
   ics_cli_test(NAME cli_make_env_bad_syntax RC 2 ARGS "make-env|--lights|${DATA}/bad_syntax.json|--size|64x32|-o|${D}/lf_bad.exr"
     ERR "bad_syntax\\.json:2:[0-9]+: " NOFILE ${D}/lf_bad.exr)
   ics_cli_test(NAME cli_make_env_bad_cov RC 2 ARGS "make-env|--lights|${DATA}/bad_cov.json|--size|64x32|-o|${D}/lf_bad.exr"

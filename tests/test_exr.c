@@ -24,6 +24,8 @@ static const char *tmpf(const char *name) {
   return buf[k];
 }
 
+static int raw_cube; /* write_raw: tag the file as a cube map */
+
 /* a W x H file with the given channels (all of type pt); value of channel c at pixel p is
  * val(c, p) */
 static int write_raw(const char *path, int w, int h, int nch, const char *const *names,
@@ -41,6 +43,7 @@ static int write_raw(const char *path, int w, int h, int nch, const char *const 
   if (rv == 0) rv = exr_initialize_required_attr_simple(ctx, part, w, h, EXR_COMPRESSION_NONE);
   for (int c = 0; c < nch && rv == 0; c++)
     rv = exr_add_channel(ctx, part, names[c], pt, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+  if (rv == 0 && raw_cube) rv = exr_attr_set_envmap(ctx, part, "envmap", EXR_ENVMAP_CUBE);
   if (rv == 0) rv = exr_write_header(ctx);
   int32_t lines = 1;
   if (rv == 0) rv = exr_get_scanlines_per_chunk(ctx, part, &lines);
@@ -225,6 +228,11 @@ int main(int argc, char **argv) {
   expect_fail(tmpf("y.exr"), ICS_ERR_UNSUPPORTED, "unexpected channel 'Y'");
   CHECK(write_raw(tmpf("uint.exr"), 5, 4, 3, rgb, EXR_PIXEL_UINT, v_plain) == 0, "raw uint");
   expect_fail(tmpf("uint.exr"), ICS_ERR_UNSUPPORTED, "UINT");
+  /* a cube map */
+  raw_cube = 1;
+  CHECK(write_raw(tmpf("cube.exr"), 5, 30, 3, rgb, EXR_PIXEL_HALF, v_plain) == 0, "raw cube");
+  raw_cube = 0;
+  expect_fail(tmpf("cube.exr"), ICS_ERR_UNSUPPORTED, "only latitude-longitude maps");
   /* bad pixels, with their position */
   CHECK(write_raw(tmpf("nan.exr"), 5, 4, 3, rgb, EXR_PIXEL_FLOAT, v_nan) == 0, "raw nan");
   expect_fail(tmpf("nan.exr"), ICS_ERR_INVALID_ARG, "pixel (x 3, y 2) channel G is NaN");

@@ -123,6 +123,13 @@ ics_status ics_exr_read(const char *path, ics_image *img, char *msg, size_t msg_
     st = ICS_ERR_UNSUPPORTED;
     goto done;
   }
+  exr_envmap_t envmap;
+  if (exr_attr_get_envmap(ctx, 0, "envmap", &envmap) == EXR_ERR_SUCCESS &&
+      envmap != EXR_ENVMAP_LATLONG) {
+    set_msg(msg, msg_size, "%s: a cube map; only latitude-longitude maps are supported", path);
+    st = ICS_ERR_UNSUPPORTED;
+    goto done;
+  }
   if (exr_get_channels(ctx, 0, &chl) != EXR_ERR_SUCCESS || !chl ||
       exr_get_data_window(ctx, 0, &dw) != EXR_ERR_SUCCESS) {
     set_msg(msg, msg_size, "%s: corrupt header: %s", path, exr_lastmsg);
