@@ -37,3 +37,8 @@ ics_cli_test(NAME cli_sat3d_chirp RC 2 ARGS "bench|sat3d|--chirp-csv|x.csv" ERR 
 ics_cli_test(NAME cli_sat2d_size_and_width RC 2 ARGS "bench|sat2d|--size|8|--width|8" ERR "either --size or --width")
 ics_cli_test(NAME cli_sat2d_chirp_unwritable RC 1 ARGS "bench|sat2d|--chirp-csv|${ics_sat_cli_dir}/no/such/dir/c.csv"
   ERR "cannot create" NOFILE ${ics_sat_cli_dir}/no/such/dir/c.csv)
+ics_cli_test(NAME cli_sat2d_lights RC 2 ARGS "bench|sat2d|--lights" ERR "--lights is for sat3d")
+# CSAT / SSAT against brute-force marching (a few seconds): constant-time lookups, errors small
+# against the mean optical depth (the numbers are discussed in docs/sat.md).
+ics_cli_test(NAME cli_sat3d_lights RC 0 ARGS "bench|sat3d|--lights" LABELS medium
+  OUT "^method,table,mode,U,build_s,ns_per_query,bf_ns_per_query,speedup,max_abs_err,mean_abs_err,mean_tau\ncsat,h=1,float,0,[^\n]+\n(csat,[^\n]+\n)+(ssat,[^\n]+\n)+$")
