@@ -4,6 +4,8 @@
  * stochastic members, with their range), the tap extent (width), the tap count, the integer taps
  * the engine applies after linear-interpolation splitting, the variance that splitting adds per
  * step, and the measured engine time per pixel and step. CSV on stdout, %.17g numbers.
+ * --dims 2: the same per axis for the 2D members of Fig. 11 (elliptical, Poisson disk,
+ * Gaussian grid) of a covariance class.
  * Bad input: a message naming the problem on stderr, exit status 2, nothing on stdout. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -21,9 +23,10 @@
 static void help(FILE *f) {
   fprintf(f,
           "usage: icshadow kernel-table [--var V] [--mean M] [--iterations N] [--seed SEED]\n"
-          "                             [--no-timing]\n"
-          "Table I of Patel et al. 2013, measured on the library's 1D kernel members of the\n"
-          "equivalence class (mean M, variance V), as CSV with one row per member:\n"
+          "                             [--no-timing] [--dims 2 [--vary V2] [--angle DEG]]\n"
+          "Table I of Patel et al. 2013, measured on the library's kernel members of one\n"
+          "equivalence class, as CSV with one row per member.\n\n"
+          "--dims 1 (default): the 1D members of the class (mean M, variance V):\n"
           "  member,class_mean,class_var,iterations,mean,var,var_min,var_max,width_min,\n"
           "  width_max,taps,applied_taps,interp_var,ns_per_px_step\n"
           "members: dirac, tophat (box width solved so the interpolated variance is exact),\n"
@@ -35,15 +38,25 @@ static void help(FILE *f) {
           "(largest over iterations); interp_var: the variance that splitting adds per step\n"
           "(mean over iterations); ns_per_px_step: measured time of one engine step per pixel on\n"
           "a %d-pixel line (nan with --no-timing).\n\n"
+          "--dims 2: the 2D members of Fig. 11 (ellipse-2, ellipse-3, poisson-8, poisson-16,\n"
+          "gauss-5x5, gauss-19x19) for the class mean (M, 0), covariance R(DEG) diag(V, V2)\n"
+          "R(DEG)^T:\n"
+          "  member,class_mean_x,class_mean_y,class_cxx,class_cxy,class_cyy,iterations,mean_x,\n"
+          "  mean_y,cxx,cxy,cyy,cxx_min,cxx_max,width_x_max,width_y_max,taps,applied_taps,\n"
+          "  interp_var_x,interp_var_y,ns_per_px_step\n"
+          "(the same measurements per axis; bilinear splitting; timing on a %dx%d image).\n\n"
           "options:\n"
-          "  --var V         class variance in px^2, finite and > 0 (default 30.25: sigma = 5.5,\n"
-          "                  the Dirac width 11 of the paper's Fig. 3)\n"
+          "  --var V         class variance in px^2 (2D: along the rotated x axis), finite and\n"
+          "                  > 0 (default 30.25: sigma = 5.5, the Dirac width 11 of Fig. 3)\n"
           "  --mean M        class mean in px, finite (default 0)\n"
           "  --iterations N  iterations sampled for stochastic members, 1..%d (default 10000)\n"
           "  --seed SEED     seed of the stochastic members (default 0)\n"
           "  --no-timing     skip the timing runs (ns_per_px_step = nan)\n"
+          "  --dims D        1 (default) or 2\n"
+          "  --vary V2       2D: variance along the rotated y axis, > 0 (default V)\n"
+          "  --angle DEG     2D: rotation of the x axis, degrees counter-clockwise (default 0)\n"
           "Exit status: 0 ok, 1 runtime failure, 2 bad input (message on stderr).\n",
-          TIMING_LEN, MAX_ITER);
+          TIMING_LEN, 256, 256, MAX_ITER);
 }
 
 #define ERR(...)                                 \
@@ -109,53 +122,8 @@ static int time_member(const ics_kernel1d *k, double *ns) {
   return 0;
 }
 
-int cmd_kernel_table(int argc, char **argv) {
-  if (cli_wants_help(argc, argv)) {
-    help(stdout);
-    return 0;
-  }
-  double var = 30.25, mean = 0;
-  int iterations = 10000, timing = 1;
-  unsigned long long seed = 0;
-  for (int i = 1; i < argc; i++) {
-    const char *opt = argv[i];
-    if (!strcmp(opt, "--no-timing")) {
-      timing = 0;
-      continue;
-    }
-    int known = !strcmp(opt, "--var") || !strcmp(opt, "--mean") || !strcmp(opt, "--iterations") ||
-                !strcmp(opt, "--seed");
-    if (!known) {
-      ERR("unknown option '%s' (see icshadow kernel-table --help)", opt);
-      return 2;
-    }
-    if (i + 1 >= argc) {
-      ERR("%s: missing value", opt);
-      return 2;
-    }
-    const char *val = argv[++i];
-    if (!strcmp(opt, "--var")) {
-      if (get_double(opt, val, &var) != 0) return 2;
-      if (var <= 0) {
-        ERR("--var: the class variance must be > 0, got '%s'", val);
-        return 2;
-      }
-    } else if (!strcmp(opt, "--mean")) {
-      if (get_double(opt, val, &mean) != 0) return 2;
-    } else if (!strcmp(opt, "--iterations")) {
-      if (cli_parse_int(val, 1, MAX_ITER, &iterations) != 0) {
-        ERR("--iterations: expected an integer in 1..%d, got '%s'", MAX_ITER, val);
-        return 2;
-      }
-    } else {
-      char *end;
-      if (val[0] == '-' || val[0] == '\0' || (seed = strtoull(val, &end, 10), *end != '\0')) {
-        ERR("--seed: expected a non-negative integer, got '%s'", val);
-        return 2;
-      }
-    }
-  }
-
+/* the 1D table (Table I) */
+static int table1d(double var, double mean, int iterations, unsigned long long seed, int timing) {
   static const row rows[] = {
       {"dirac", ICS_KERNEL_DIRAC, 0},
       {"tophat", ICS_KERNEL_TOPHAT, 0},
@@ -244,4 +212,204 @@ int cmd_kernel_table(int argc, char **argv) {
   free(text);
   if (status) return status;
   return fflush(stdout) != 0 ? 1 : 0;
+}
+
+/* the 2D members (Patel Sec. 3.4, the kernels of Fig. 11), class (mean (M, 0), covariance
+ * R(angle) diag(varx, vary) R(angle)^T) */
+typedef struct row2d {
+  const char *label;
+  ics_kernel_member member;
+  int nsamples;
+} row2d;
+
+#define TIMING_SIDE 256
+
+static int time_member2d(const ics_kernel2d *k, double *ns) {
+  size_t n = (size_t)TIMING_SIDE * TIMING_SIDE;
+  float *buf = malloc(sizeof *buf * n);
+  if (!buf) return -1;
+  for (size_t i = 0; i < n; i++) buf[i] = (i % TIMING_SIDE) >= TIMING_SIDE / 2 ? 1.0f : 0.0f;
+  ics_schedule2d s = {k, 1};
+  ics_conv_opts opts = ics_conv_opts_default();
+  int steps = 4;
+  double best = INFINITY, t_total = 0;
+  for (int rep = 0; rep < 50 && (rep < 3 || t_total < 0.05); rep++) {
+    double t0 = now_sec();
+    ics_status st = ics_conv2d_run(buf, TIMING_SIDE, TIMING_SIDE, &s, (uint64_t)rep * steps, steps,
+                                   &opts, NULL);
+    double t = now_sec() - t0;
+    if (st != ICS_OK) {
+      free(buf);
+      return -1;
+    }
+    t_total += t;
+    if (t < best) best = t;
+  }
+  free(buf);
+  *ns = 1e9 * best / ((double)n * steps);
+  return 0;
+}
+
+static int table2d(double varx, double vary, double angle, double mean, int iterations,
+                   unsigned long long seed, int timing) {
+  static const row2d rows[] = {
+      {"ellipse-2", ICS_KERNEL_ELLIPSE, 2},  {"ellipse-3", ICS_KERNEL_ELLIPSE, 3},
+      {"poisson-8", ICS_KERNEL_POISSON, 8},  {"poisson-16", ICS_KERNEL_POISSON, 16},
+      {"gauss-5x5", ICS_KERNEL_GAUSS, 5},    {"gauss-19x19", ICS_KERNEL_GAUSS, 19},
+  };
+  enum { NROWS = sizeof rows / sizeof rows[0] };
+  ics_class2d cls;
+  ics_status st = ics_class2d_from_axes(mean, 0, varx, vary, angle, &cls);
+  if (st != ICS_OK) {
+    ERR("class (varx %.17g, vary %.17g, angle %.17g): %s", varx, vary, angle, ics_status_str(st));
+    return 2;
+  }
+  ics_kernel2d ks[NROWS];
+  int cap = 0;
+  for (int r = 0; r < NROWS; r++) {
+    st = ics_kernel2d_init(&ks[r], rows[r].member, &cls);
+    ks[r].nsamples = rows[r].nsamples;
+    ks[r].seed = (uint64_t)seed;
+    int mt = st == ICS_OK ? ics_kernel2d_max_taps(&ks[r]) : 0;
+    if (st != ICS_OK || mt <= 0) {
+      ERR("%s: %s", rows[r].label, ics_status_str(st != ICS_OK ? st : ICS_ERR_RANGE));
+      return 2;
+    }
+    if (mt > cap) cap = mt;
+  }
+  ics_tap2d *taps = malloc(sizeof *taps * (size_t)cap);
+  ics_tap2d *itaps = malloc(sizeof *itaps * (4 * (size_t)cap + 9));
+  char *text = NULL;
+  size_t text_len = 0;
+  FILE *mem = open_memstream(&text, &text_len);
+  if (!taps || !itaps || !mem) {
+    ERR("out of memory");
+    free(taps);
+    free(itaps);
+    if (mem) fclose(mem);
+    free(text);
+    return 1;
+  }
+  fprintf(mem, "member,class_mean_x,class_mean_y,class_cxx,class_cxy,class_cyy,iterations,mean_x,"
+               "mean_y,cxx,cxy,cyy,cxx_min,cxx_max,width_x_max,width_y_max,taps,applied_taps,"
+               "interp_var_x,interp_var_y,ns_per_px_step\n");
+  int status = 0;
+  for (int r = 0; r < NROWS && !status; r++) {
+    const ics_kernel2d *k = &ks[r];
+    int iters = ics_kernel_member_stochastic(k->member) ? iterations : 1;
+    double sm[2] = {0, 0}, sc[3] = {0, 0, 0}, si[2] = {0, 0};
+    double cmin = INFINITY, cmax = -INFINITY, wx = 0, wy = 0;
+    int ntap_max = 0, napplied_max = 0;
+    for (int it = 0; it < iters; it++) {
+      int nt = 0, ni = 0;
+      st = ics_kernel2d_taps(k, (uint64_t)it, taps, cap, &nt);
+      if (st == ICS_OK) st = ics_taps2d_discretize(taps, nt, itaps, 4 * cap + 9, &ni);
+      if (st != ICS_OK) {
+        ERR("%s: %s", rows[r].label, ics_status_str(st));
+        status = st == ICS_ERR_NOMEM ? 1 : 2;
+        break;
+      }
+      double w, m[2], c[3], iv[2];
+      double lox = INFINITY, hix = -INFINITY, loy = INFINITY, hiy = -INFINITY;
+      ics_taps2d_moments(taps, nt, &w, m, c);
+      ics_interp_var2d(taps, nt, iv);
+      for (int j = 0; j < nt; j++) {
+        lox = fmin(lox, taps[j].x), hix = fmax(hix, taps[j].x);
+        loy = fmin(loy, taps[j].y), hiy = fmax(hiy, taps[j].y);
+      }
+      for (int q = 0; q < 2; q++) sm[q] += m[q], si[q] += iv[q];
+      for (int q = 0; q < 3; q++) sc[q] += c[q];
+      cmin = fmin(cmin, c[0]);
+      cmax = fmax(cmax, c[0]);
+      wx = fmax(wx, hix - lox);
+      wy = fmax(wy, hiy - loy);
+      if (nt > ntap_max) ntap_max = nt;
+      if (ni > napplied_max) napplied_max = ni;
+    }
+    if (status) break;
+    double ns = NAN;
+    if (timing && time_member2d(k, &ns) != 0) {
+      ERR("%s: timing run failed", rows[r].label);
+      status = 1;
+      break;
+    }
+    fprintf(mem,
+            "%s,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
+            "%.17g,%d,%d,%.17g,%.17g,%.4g\n",
+            rows[r].label, cls.mean[0], cls.mean[1], cls.cxx, cls.cxy, cls.cyy, iters,
+            sm[0] / iters, sm[1] / iters, sc[0] / iters, sc[1] / iters, sc[2] / iters, cmin, cmax,
+            wx, wy, ntap_max, napplied_max, si[0] / iters, si[1] / iters, ns);
+  }
+  fclose(mem);
+  free(taps);
+  free(itaps);
+  if (!status) fputs(text, stdout);
+  free(text);
+  if (status) return status;
+  return fflush(stdout) != 0 ? 1 : 0;
+}
+
+int cmd_kernel_table(int argc, char **argv) {
+  if (cli_wants_help(argc, argv)) {
+    help(stdout);
+    return 0;
+  }
+  double var = 30.25, mean = 0, vary = NAN, angle = 0;
+  int iterations = 10000, timing = 1, dims = 1;
+  unsigned long long seed = 0;
+  for (int i = 1; i < argc; i++) {
+    const char *opt = argv[i];
+    if (!strcmp(opt, "--no-timing")) {
+      timing = 0;
+      continue;
+    }
+    int known = !strcmp(opt, "--var") || !strcmp(opt, "--mean") || !strcmp(opt, "--iterations") ||
+                !strcmp(opt, "--seed") || !strcmp(opt, "--dims") || !strcmp(opt, "--vary") ||
+                !strcmp(opt, "--angle");
+    if (!known) {
+      ERR("unknown option '%s' (see icshadow kernel-table --help)", opt);
+      return 2;
+    }
+    if (i + 1 >= argc) {
+      ERR("%s: missing value", opt);
+      return 2;
+    }
+    const char *val = argv[++i];
+    if (!strcmp(opt, "--var") || !strcmp(opt, "--vary")) {
+      double v;
+      if (get_double(opt, val, &v) != 0) return 2;
+      if (v <= 0) {
+        ERR("%s: the class variance must be > 0, got '%s'", opt, val);
+        return 2;
+      }
+      *(!strcmp(opt, "--var") ? &var : &vary) = v;
+    } else if (!strcmp(opt, "--mean")) {
+      if (get_double(opt, val, &mean) != 0) return 2;
+    } else if (!strcmp(opt, "--angle")) {
+      if (get_double(opt, val, &angle) != 0) return 2;
+    } else if (!strcmp(opt, "--dims")) {
+      if (strcmp(val, "1") && strcmp(val, "2")) {
+        ERR("--dims: expected 1 or 2, got '%s'", val);
+        return 2;
+      }
+      dims = val[0] - '0';
+    } else if (!strcmp(opt, "--iterations")) {
+      if (cli_parse_int(val, 1, MAX_ITER, &iterations) != 0) {
+        ERR("--iterations: expected an integer in 1..%d, got '%s'", MAX_ITER, val);
+        return 2;
+      }
+    } else {
+      char *end;
+      if (val[0] == '-' || val[0] == '\0' || (seed = strtoull(val, &end, 10), *end != '\0')) {
+        ERR("--seed: expected a non-negative integer, got '%s'", val);
+        return 2;
+      }
+    }
+  }
+  if (dims == 1 && (!isnan(vary) || angle != 0)) {
+    ERR("--vary and --angle need --dims 2");
+    return 2;
+  }
+  if (dims == 2) return table2d(var, isnan(vary) ? var : vary, angle, mean, iterations, seed, timing);
+  return table1d(var, mean, iterations, seed, timing);
 }

@@ -54,3 +54,14 @@ ics_cli_test(NAME cli_kernel_table_good RC 0 ARGS "kernel-table|--no-timing|--it
 ics_cli_test(NAME cli_kernel_table_zero_var RC 2 ARGS "kernel-table|--var|0" ERR "--var: the class variance must be > 0")
 ics_cli_test(NAME cli_kernel_table_bad_iterations RC 2 ARGS "kernel-table|--iterations|0" ERR "--iterations: expected an integer")
 ics_cli_test(NAME cli_kernel_table_unknown_option RC 2 ARGS "kernel-table|--bogus" ERR "unknown option '--bogus'")
+# 2D members (Fig. 11 kernels), isotropic class 30.25 px^2: three points at 120 degrees on a circle
+# of radius^2 = 2 * 30.25 have cxx = cyy = 30.25, cxy = 0 for every rotation; the whitened Poisson
+# patterns are exact for every rotation too; the 5x5 Gaussian grid has 25 taps, the 19x19 361.
+set(v3025 "30\\.2(5|4999)[0-9]*")
+ics_cli_test(NAME cli_kernel_table_2d RC 0 ARGS "kernel-table|--dims|2|--no-timing|--iterations|100"
+  OUT "^member,class_mean_x,class_mean_y,class_cxx,class_cxy,class_cyy,iterations,mean_x,mean_y,cxx,cxy,cyy,cxx_min,cxx_max,width_x_max,width_y_max,taps,applied_taps,interp_var_x,interp_var_y,ns_per_px_step\nellipse-2,0,0,30\\.25,0,30\\.25,100,[^\n]*,2,[0-9]+,${num},${num},nan\nellipse-3,0,0,30\\.25,0,30\\.25,100,${num},${num},${v3025},${num},${v3025},${v3025},${v3025},${num},${num},3,[^\n]*\npoisson-8,0,0,30\\.25,0,30\\.25,100,${num},${num},${v3025},${num},${v3025},${v3025},${v3025},${num},${num},8,[^\n]*\npoisson-16,[^\n]*,16,[0-9]+,${num},${num},nan\ngauss-5x5,0,0,30\\.25,0,30\\.25,1,[^\n]*,25,[0-9]+,${num},${num},nan\ngauss-19x19,[^\n]*,361,[0-9]+,${num},${num},nan\n$")
+ics_cli_test(NAME cli_kernel_table_2d_rotated RC 0 ARGS "kernel-table|--dims|2|--var|0.8|--vary|0.2|--angle|30|--no-timing|--iterations|10"
+  OUT "\npoisson-8,0,0,0\\.65[0-9]*,0\\.2598076211353[0-9]*,0\\.34999[0-9]*,10,")
+ics_cli_test(NAME cli_kernel_table_bad_dims RC 2 ARGS "kernel-table|--dims|3" ERR "--dims: expected 1 or 2")
+ics_cli_test(NAME cli_kernel_table_vary_1d RC 2 ARGS "kernel-table|--vary|2" ERR "--vary and --angle need --dims 2")
+ics_cli_test(NAME cli_kernel_table_vary_zero RC 2 ARGS "kernel-table|--dims|2|--vary|0" ERR "--vary: the class variance must be > 0")
