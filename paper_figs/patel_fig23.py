@@ -6,7 +6,7 @@ Middle: V_x(t) (green) and V_y(t) (red) of the unit ellipse with radii (1 - t, t
 Right:  the map ratio V_y/V_x -> t (ratioToab).
 Every curve comes from `icshadow eval`; markers on the left panel are an independent check by
 periodic trapezoid quadrature of the arc-length density (numpy), so a wrong convention shows.
-Writes fig23_varx.csv, fig23_vxvy.csv, fig23_ratio_to_t.csv and fig23.png into --out.
+Writes patel_fig23_varx.csv, patel_fig23_vxvy.csv, patel_fig23_ratio_to_t.csv and patel_fig23.png into --out.
 """
 import argparse
 import csv
@@ -72,9 +72,9 @@ def main():
     rat = np.logspace(-4, 4, 401)
     t_of_rat = cli_eval(args.cli, "ratio_to_t", rat)
 
-    write_csv(os.path.join(args.out, "fig23_varx.csv"), ["b", "varx"], [b, varx])
-    write_csv(os.path.join(args.out, "fig23_vxvy.csv"), ["t", "Vx", "Vy"], [t, vx, vy])
-    write_csv(os.path.join(args.out, "fig23_ratio_to_t.csv"), ["ratio", "t"], [rat, t_of_rat])
+    write_csv(os.path.join(args.out, "patel_fig23_varx.csv"), ["b", "varx"], [b, varx])
+    write_csv(os.path.join(args.out, "patel_fig23_vxvy.csv"), ["t", "Vx", "Vy"], [t, vx, vy])
+    write_csv(os.path.join(args.out, "patel_fig23_ratio_to_t.csv"), ["ratio", "t"], [rat, t_of_rat])
 
     fig, ax = plt.subplots(1, 3, figsize=(12, 3.6))
     ax[0].plot(b, varx, "b-", label="icshadow varx")
@@ -93,7 +93,7 @@ def main():
         a.grid(alpha=0.3)
     fig.suptitle("Patel et al. 2013, Fig. 23 (reproduced by icshadow eval)")
     fig.tight_layout()
-    png = os.path.join(args.out, "fig23.png")
+    png = os.path.join(args.out, "patel_fig23.png")
     fig.savefig(png + ".tmp.png", dpi=110)
     os.replace(png + ".tmp.png", png)
     print("fig23: wrote %s and 3 CSV files" % png)
