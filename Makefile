@@ -27,6 +27,10 @@ test-asan:
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	cd $(ASAN_BUILD) && ctest --output-on-failure -L 'fast' -j $(JOBS)
 
+# The main job on embedded defaults (no input files): LUT report and header, the elliptical
+# kernel of a light, CLT convergence of the Dirac kernel, isolines correct vs iterative, and an
+# environment map of three Fig. 14-like lights fitted back to Gaussian lights.
+DEMO_LIGHTS = -0.55,0.35,0.08,0.08,0,1,0.2,1,0.2:0.6,0.3,0.32,0.32,0,2,1,0.2,0.1:0.05,-0.6,0.3,0.002,-70,1,0.15,0.25,1
 demo: deps all
 	@mkdir -p out
 	@echo "== lookup-table error against size and evaluation time (icshadow lut --report)"
@@ -36,6 +40,16 @@ demo: deps all
 	@echo "wrote out/icshadow_lut_64.glsl"
 	@echo "== 2-sample elliptical kernel for a light with variances (0.8, 0.2) rotated 30 degrees"
 	$(BUILD)/bin/icshadow kernel ellipse --varx 0.8 --vary 0.2 --angle 30 --samples 2
+	@echo "== CLT: sup distance of n steps on an edge to the Gaussian cdf (top-hat, then Dirac; 36 px^2)"
+	$(BUILD)/bin/icshadow clt --kernel tophat --var 36 --steps 1,10,100,1000 --rate
+	$(BUILD)/bin/icshadow clt --kernel dirac --var 36 --steps 1,10,100,1000 --rate
+	@echo "== half-shadow isoline at d = 4 (d1 = 1) for a skewed light: correct vs iterative"
+	$(BUILD)/bin/icshadow isoline --light 'mix:0.8,0,0.25;0.2,2,0.25' --level 0.5 --distance 4 --d1 1 --slab 0.0625 --model correct
+	$(BUILD)/bin/icshadow isoline --light 'mix:0.8,0,0.25;0.2,2,0.25' --level 0.5 --distance 4 --d1 1 --slab 0.0625 --model iterative
+	@echo "== environment map of three Gaussian lights over a sky, fitted back with K = 4"
+	$(BUILD)/bin/icshadow make-env --lights '$(DEMO_LIGHTS)' --sky 0.02,0.03,0.05 --size 512x256 -o out/demo_env.exr
+	$(BUILD)/bin/icshadow fit-light out/demo_env.exr --lights 4 -o out/demo_lights.json
+	@echo "wrote out/demo_env.exr and out/demo_lights.json"
 
 # Every paper_figs/*.py takes --cli and --out and writes PNG + CSV.
 figs: deps all
