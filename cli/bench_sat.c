@@ -219,7 +219,7 @@ static int bench_lights(void) {
         char name[32];
         snprintf(name, sizeof name, "h=%g", hs[hi]);
         double ns = tq / NP * 1e9;
-        printf("csat,%s,%s,%g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", name,
+        printf("csat,%s,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", name,
                ics_sat_precision_name(ms[mi]), Us[ui], tb, ns, bf_ns[ui], bf_ns[ui] / ns, emax,
                esum / NP, tsum / NP);
       }
@@ -274,7 +274,7 @@ static int bench_lights(void) {
         char name[48];
         snprintf(name, sizeof name, "%zux%zux%zu", grids[gi][0], grids[gi][1], grids[gi][2]);
         double ns = tq / nvalid * 1e9;
-        printf("ssat,%s,%s,%g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", name,
+        printf("ssat,%s,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", name,
                ics_sat_precision_name(ms[mi]), Uss[ui], tb, ns, sbf_ns[ui], sbf_ns[ui] / ns, emax,
                esum / nvalid, tsum / nvalid);
       }

@@ -158,6 +158,11 @@ DEFINE_BUILD(build_f64, double)
  * so their carry chains overlap; the y and z accumulations are fused into the same loop, so
  * the data are read once and the table written once. */
 #define HAVE_SSE_BUILD_ 1
+/* software prefetch distance (floats of input) — 4 KiB ahead: measured 0.41 -> 0.7 of the floor
+ * on 512^3 (the hardware prefetcher alone falls behind this mixed load/compute stream) */
+#ifndef PF_
+#define PF_ 1024
+#endif
 static inline __m128 scan4(__m128 v) {
   v = _mm_add_ps(v, _mm_castsi128_ps(_mm_slli_si128(_mm_castps_si128(v), 4)));
   return _mm_add_ps(v, _mm_castsi128_ps(_mm_slli_si128(_mm_castps_si128(v), 8)));
@@ -172,6 +177,10 @@ static void row_f32(float *o0, float *o1, const float *src0, const float *src1, 
   __m128 c0 = _mm_setzero_ps(), c1 = _mm_setzero_ps(), mm = _mm_set1_ps(m);
   size_t x = 0;
   for (; x + 4 <= w; x += 4) {
+    if ((x & 15) == 0) {
+      _mm_prefetch((const char *)(src0 + x + PF_), _MM_HINT_T0);
+      if (src1) _mm_prefetch((const char *)(src1 + x + PF_), _MM_HINT_T0);
+    }
     __m128 v0 = _mm_add_ps(scan4(_mm_sub_ps(_mm_loadu_ps(src0 + x), mm)), c0);
     c0 = _mm_shuffle_ps(v0, v0, 0xFF);
     __m128 tv = _mm_add_ps(_mm_loadu_ps(t + x), v0);
@@ -220,6 +229,10 @@ static void row_f64(double *o0, double *o1, const float *src0, const float *src1
   __m128d c0 = _mm_setzero_pd(), c1 = _mm_setzero_pd();
   size_t x = 0;
   for (; x + 2 <= w; x += 2) {
+    if ((x & 15) == 0) {
+      _mm_prefetch((const char *)(src0 + x + PF_), _MM_HINT_T0);
+      if (src1) _mm_prefetch((const char *)(src1 + x + PF_), _MM_HINT_T0);
+    }
     __m128d v0 = _mm_add_pd(scan2(_mm_cvtps_pd(_mm_castsi128_ps(
                                 _mm_loadl_epi64((const __m128i *)(const void *)(src0 + x))))),
                             c0);
@@ -316,25 +329,66 @@ static inline ff ff_addf(ff a, float b) {
   return ff_add(a, bb);
 }
 
+/* Compensated pass: the x prefixes of 8 rows run as 8 interleaved double-float chains (one
+ * chain is ~7 dependent float adds per cell), then the y and z accumulations are double-float
+ * adds across x (independent per x: vectorised by the compiler; the same IEEE operations). */
+#define FF_ADD_(H, L, AH, AL, BH, BL)                                                          \
+  do {                                                                                       \
+    float s_ = (AH) + (BH), bb_ = s_ - (AH);                                                 \
+    float e_ = ((AH) - (s_ - bb_)) + ((BH) - bb_);                                           \
+    e_ += (AL) + (BL);                                                                       \
+    float h_ = s_ + e_;                                                                      \
+    (L) = e_ - (h_ - s_);                                                                    \
+    (H) = h_;                                                                                \
+  } while (0)
+
 static void build_ff(float *hi, float *lo, const float *in, size_t w, size_t h, size_t d,
-                     size_t stride, size_t sstride, ff *t, ff *zacc) {
+                     size_t stride, size_t sstride, float *tmp) {
+  size_t slice = d > 1 ? w * h : 0, pw = w + 40; /* padded rows: no 4K aliasing with src */
+  float *th = tmp, *tl = th + w, *zh = tl + w, *zl = zh + slice, *ph = zl + slice,
+        *pl = ph + ROWS * pw + 24;
   for (size_t z = 0; z < d; z++) {
-    for (size_t x = 0; x < w; x++) t[x].hi = t[x].lo = 0.0f;
-    for (size_t y = 0; y < h; y++) {
+    for (size_t x = 0; x < w; x++) th[x] = tl[x] = 0.0f;
+    for (size_t y = 0; y < h; y += ROWS) {
+      size_t nr = h - y < ROWS ? h - y : ROWS;
       const float *src = in + z * sstride + y * stride;
-      size_t o = (z * h + y) * w;
-      ff acc = {0.0f, 0.0f};
-      for (size_t x = 0; x < w; x++) {
-        acc = ff_addf(acc, src[x]);
-        t[x] = ff_add(t[x], acc);
-        ff v = t[x];
-        if (d > 1) {
-          ff *za = zacc + y * w + x;
-          v = z == 0 ? v : ff_add(*za, v);
-          *za = v;
+      if (nr == ROWS) {
+        ff acc[ROWS];
+        for (int r = 0; r < ROWS; r++) acc[r].hi = acc[r].lo = 0.0f;
+        for (size_t x = 0; x < w; x++)
+          for (int r = 0; r < ROWS; r++) {
+            acc[r] = ff_addf(acc[r], src[x + (size_t)r * stride]);
+            ph[(size_t)r * pw + x] = acc[r].hi;
+            pl[(size_t)r * pw + x] = acc[r].lo;
+          }
+      } else {
+        for (size_t r = 0; r < nr; r++) {
+          ff acc = {0.0f, 0.0f};
+          for (size_t x = 0; x < w; x++) {
+            acc = ff_addf(acc, src[x + r * stride]);
+            ph[r * pw + x] = acc.hi;
+            pl[r * pw + x] = acc.lo;
+          }
         }
-        hi[o + x] = v.hi;
-        lo[o + x] = v.lo;
+      }
+      for (size_t r = 0; r < nr; r++) {
+        size_t o = (z * h + y + r) * w;
+        const float *rh = ph + r * pw, *rl = pl + r * pw;
+        float *zrh = d > 1 ? zh + (y + r) * w : NULL, *zrl = d > 1 ? zl + (y + r) * w : NULL;
+        for (size_t x = 0; x < w; x++) FF_ADD_(th[x], tl[x], th[x], tl[x], rh[x], rl[x]);
+        if (d == 1) {
+          memcpy(hi + o, th, w * sizeof(float));
+          memcpy(lo + o, tl, w * sizeof(float));
+        } else if (z == 0) {
+          memcpy(zrh, th, w * sizeof(float));
+          memcpy(zrl, tl, w * sizeof(float));
+          memcpy(hi + o, th, w * sizeof(float));
+          memcpy(lo + o, tl, w * sizeof(float));
+        } else {
+          for (size_t x = 0; x < w; x++) FF_ADD_(zrh[x], zrl[x], zrh[x], zrl[x], th[x], tl[x]);
+          memcpy(hi + o, zrh, w * sizeof(float));
+          memcpy(lo + o, zrl, w * sizeof(float));
+        }
       }
     }
   }
@@ -397,8 +451,7 @@ static ics_status sat3d_fill(struct ics_sat3d *s, const float *data, size_t stri
 #endif
     for (size_t x = 0; x < w; x++) ok &= isfinite(s->dbl[last + x]) != 0;
   } else if (s->mode == ICS_SAT_COMPENSATED) {
-    ff *tmp = s->scratch;
-    build_ff(s->f, s->lo, data, w, h, d, stride, sstride, tmp, tmp + w);
+    build_ff(s->f, s->lo, data, w, h, d, stride, sstride, s->scratch);
     for (size_t x = 0; x < w; x++) ok &= isfinite(s->f[last + x]) && isfinite(s->lo[last + x]);
   } else {
     float m = s->mode == ICS_SAT_FLOAT_OFFSET ? sample_mean(data, w, h, d, stride, sstride) : 0.0f;
@@ -430,7 +483,7 @@ static ics_status sat3d_init(struct ics_sat3d *s, const float *data, size_t w, s
   } else if (mode == ICS_SAT_COMPENSATED) {
     s->f = malloc(n * sizeof(float));
     s->lo = malloc(n * sizeof(float));
-    s->scratch = malloc((w + slice) * sizeof(ff));
+    s->scratch = malloc((2 * w + 2 * slice + 2 * ROWS * (w + 40) + 24) * sizeof(float));
   } else {
     s->f = malloc(n * sizeof(float));
     s->scratch = malloc((w + slice + w * ROWS) * sizeof(float));
