@@ -11,7 +11,7 @@ This script checks the SAT box filter against an independent numpy moving sum, t
 transfer function (a sinc) has zeros at k/37 cycles per column; the chirp frequencies there
 are erased (and between zeros of odd order the contrast is inverted), while the Gaussian damps
 steadily. The positions where the local chirp frequency hits a zero are marked in (b).
-Writes fig4_chirp.csv, fig4_zeros.csv and fig4.png into --out.
+Writes ament_fig4_chirp.csv, ament_fig4_zeros.csv and ament_fig4.png into --out.
 """
 import argparse
 import csv
@@ -47,7 +47,7 @@ def main():
     ap.add_argument("--out", default="out/figs", help="output folder")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
-    path = os.path.join(args.out, "fig4_chirp.csv")
+    path = os.path.join(args.out, "ament_fig4_chirp.csv")
     res = subprocess.run([args.cli, "bench", "sat2d", "--chirp-csv", path], capture_output=True, text=True)
     if res.returncode != 0:
         sys.exit("icshadow bench sat2d --chirp-csv failed: %s" % res.stderr.strip())
@@ -79,7 +79,7 @@ def main():
     fz = ks / Lb
     fz = fz[(fz > F0) & (fz < F1)]
     xz = (fz - F0) / (F1 - F0) * W  # local frequency f0 + (f1 - f0) x / W (in columns)
-    write_csv(os.path.join(args.out, "fig4_zeros.csv"), ["zero_freq_cycles_per_column", "x_voxels"], [fz, xz / 4.0])
+    write_csv(os.path.join(args.out, "ament_fig4_zeros.csv"), ["zero_freq_cycles_per_column", "x_voxels"], [fz, xz / 4.0])
     # at those positions the box-filtered shadow is flat: its local contrast vs the unfiltered one
     x = d["x"]
     print("fig4: box-filter zeros at %s cycles/column -> x = %s voxels"
@@ -114,7 +114,7 @@ def main():
     ax[2].set_title("(c) spectra: the box filter erases the chirp at its zeros, the Gaussian damps steadily")
     ax[2].legend(loc="upper right", fontsize=8)
     fig.tight_layout()
-    png = os.path.join(args.out, "fig4.png")
+    png = os.path.join(args.out, "ament_fig4.png")
     tmp = png + ".tmp.png"
     fig.savefig(tmp, dpi=110)
     os.replace(tmp, png)

@@ -10,7 +10,7 @@ Every position comes from `icshadow isoline` (models correct and iterative). As 
 check, the correct isolines are compared with the closed form x = d sigma Phi^-1(s) of a
 Gaussian light (math.erfc bisection here) and the iterated ones with the CLT form
 x = Phi^-1(s) sqrt(d d1) sigma; the worst differences are printed.
-Writes fig16_isolines.csv, fig16.png, fig17_isolines.csv, fig17.png into --out.
+Writes patel_fig16_isolines.csv, patel_fig16.png, patel_fig17_isolines.csv, patel_fig17.png into --out.
 """
 import argparse
 import csv
@@ -84,7 +84,7 @@ def main():
             rows.append((s, d, xc, xi))
     print("fig16: correct vs closed form: max |dx| = %.3g; iterated vs CLT form: max |dx|/sigma_n = %.3g"
           % (worst_c, worst_i))
-    write_csv(os.path.join(args.out, "fig16_isolines.csv"), ["level", "distance", "x_correct", "x_iterative"], rows)
+    write_csv(os.path.join(args.out, "patel_fig16_isolines.csv"), ["level", "distance", "x_correct", "x_iterative"], rows)
     a = np.array(rows)
     fig, axs = plt.subplots(1, 2, figsize=(10, 4.5), sharey=True)
     for ax, col, title in ((axs[0], 2, "correct shadow (Eq. 16)"), (axs[1], 3, "iterated shadow (tophat, e = 1/64)")):
@@ -106,7 +106,7 @@ def main():
     axs[0].set_ylabel("distance d behind the occluder")
     fig.suptitle("Patel Fig. 16: light mean 0, variance 1, d1 = 1; isolines 0.1..0.9, 1/2 in white")
     fig.tight_layout()
-    fig.savefig(os.path.join(args.out, "fig16.png"), dpi=120)
+    fig.savefig(os.path.join(args.out, "patel_fig16.png"), dpi=120)
     plt.close(fig)
 
     # ---- Fig. 17: Gaussian light, d1 = 2
@@ -118,7 +118,7 @@ def main():
             rows.append((s, d, isoline(args.cli, light, s, d, "correct"),
                          isoline(args.cli, light, s, d, "iterative", d1, e),
                          isoline(args.cli, light, s, d, "clt", d1)))
-    write_csv(os.path.join(args.out, "fig17_isolines.csv"),
+    write_csv(os.path.join(args.out, "patel_fig17_isolines.csv"),
               ["level", "distance", "x_correct", "x_iterative", "x_clt"], rows)
     a = np.array(rows)
     at_d1 = a[a[:, 1] == d1]
@@ -135,7 +135,7 @@ def main():
     ax.set_title("Patel Fig. 17: isolines 0.1..0.9, Gaussian light (var 1)")
     ax.legend(loc="lower left")
     fig.tight_layout()
-    fig.savefig(os.path.join(args.out, "fig17.png"), dpi=120)
+    fig.savefig(os.path.join(args.out, "patel_fig17.png"), dpi=120)
     plt.close(fig)
 
 
