@@ -162,7 +162,7 @@ int cmd_fit_light(int argc, char **argv) {
     p.progress = on_progress;
     p.progress_ctx = &pg;
   }
-  ics_fitlight lights[ICS_LIGHTFIT_MAX_K];
+  ics_light lights[ICS_LIGHTFIT_MAX_K];
   ics_lightfit_report rep[ICS_LIGHTFIT_MAX_K];
   double secs[ICS_LIGHTFIT_MAX_K];
   int k0 = sweep ? 1 : K;

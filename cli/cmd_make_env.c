@@ -99,7 +99,7 @@ int cmd_make_env(int argc, char **argv) {
             "icshadow was built\n");
     return 1;
   }
-  ics_fitlight *lights = NULL;
+  ics_light *lights = NULL;
   int n = 0;
   char err[768];
   if (lights_arg) {

@@ -33,7 +33,7 @@ int lights_cov_from_eig(double varx, double vary, double angle_deg, double cov[3
   return 0;
 }
 
-int lights_write(FILE *f, const ics_fitlight *l, int n) {
+int lights_write(FILE *f, const ics_light *l, int n) {
   fprintf(f, "{\"lights\": [");
   for (int k = 0; k < n; k++)
     fprintf(f,
@@ -46,7 +46,7 @@ int lights_write(FILE *f, const ics_fitlight *l, int n) {
 }
 
 /* checks shared by files and specs */
-static int check_light(const ics_fitlight *l, char *err, size_t n, const char *where) {
+static int check_light(const ics_light *l, char *err, size_t n, const char *where) {
   for (int c = 0; c < 2; c++)
     if (!isfinite(l->mean[c])) return seterr(err, n, "%s: mean must be finite", where), -1;
   for (int c = 0; c < 3; c++)
@@ -62,12 +62,12 @@ static int check_light(const ics_fitlight *l, char *err, size_t n, const char *w
   return 0;
 }
 
-int lights_parse_spec(const char *spec, ics_fitlight **out, int *n, char *err, size_t errlen) {
+int lights_parse_spec(const char *spec, ics_light **out, int *n, char *err, size_t errlen) {
   *out = NULL;
   *n = 0;
   int cap = 1;
   for (const char *p = spec; *p; p++) cap += *p == ':';
-  ics_fitlight *l = calloc((size_t)cap, sizeof *l);
+  ics_light *l = calloc((size_t)cap, sizeof *l);
   char *copy = strdup(spec);
   if (!l || !copy) {
     free(l);
@@ -132,7 +132,7 @@ static int numbers(json_t *a, size_t len, double *v) {
 }
 #endif
 
-int lights_read_file(const char *path, ics_fitlight **out, int *n, char *err, size_t errlen) {
+int lights_read_file(const char *path, ics_light **out, int *n, char *err, size_t errlen) {
   *out = NULL;
   *n = 0;
 #ifndef ICS_HAVE_JANSSON
@@ -146,7 +146,7 @@ int lights_read_file(const char *path, ics_fitlight **out, int *n, char *err, si
     seterr(err, errlen, "%s:%d:%d: %s", path, je.line, je.column, je.text);
     return -1;
   }
-  ics_fitlight *l = NULL;
+  ics_light *l = NULL;
   json_t *arr = json_is_object(root) ? json_object_get(root, "lights") : NULL;
   if (!json_is_array(arr)) {
     seterr(err, errlen, "%s: expected an object with a \"lights\" array", path);
@@ -243,7 +243,7 @@ fail:
 #endif
 }
 
-int lights_load(const char *arg, ics_fitlight **out, int *n, char *err, size_t errlen) {
+int lights_load(const char *arg, ics_light **out, int *n, char *err, size_t errlen) {
   struct stat sb;
   if (stat(arg, &sb) == 0) return lights_read_file(arg, out, n, err, errlen);
   if (lights_parse_spec(arg, out, n, err, errlen) == 0) return 0;

@@ -12,22 +12,22 @@
 /* {"lights": [{"mean": [mx, my], "cov": [[cxx, cxy], [cxy, cyy]], "color": [r, g, b],
  *  "weight": w}, ...]} with %.17g numbers, one light per line. Returns 0, or -1 on a write
  * error. */
-int lights_write(FILE *f, const ics_fitlight *l, int n);
+int lights_write(FILE *f, const ics_light *l, int n);
 
 /* Reads a lights file. Accepts "tilt_deg": [wx, wy] instead of "mean" (mean = tan w, |w| < 90)
  * and "var": [varx, vary], "angle_deg": a instead of "cov". "color" defaults to [1, 1, 1] and
  * "weight" to 1. On success *out is malloc'ed (free it) and 0 is returned; otherwise err holds
  * "FILE:LINE:COLUMN: reason" (JSON syntax) or "FILE: lights[i].field: reason" and -1 is
  * returned (-2: jansson missing at build time). */
-int lights_read_file(const char *path, ics_fitlight **out, int *n, char *err, size_t errlen);
+int lights_read_file(const char *path, ics_light **out, int *n, char *err, size_t errlen);
 
 /* SPEC: lights separated by ':', each "mx,my,varx,vary[,angle_deg[,weight[,r,g,b]]]" (plane
  * mean, variances along the light's axes rotated by angle_deg counter-clockwise from +x;
  * weight default 1, colour default 1,1,1). Returns 0 (and a malloc'ed *out) or -1 with err. */
-int lights_parse_spec(const char *spec, ics_fitlight **out, int *n, char *err, size_t errlen);
+int lights_parse_spec(const char *spec, ics_light **out, int *n, char *err, size_t errlen);
 
 /* FILE if `arg` names an existing file, else SPEC. Same returns as above. */
-int lights_load(const char *arg, ics_fitlight **out, int *n, char *err, size_t errlen);
+int lights_load(const char *arg, ics_light **out, int *n, char *err, size_t errlen);
 
 /* R(a) diag(varx, vary) R(a)^T as (cxx, cxy, cyy); -1 for NaN/inf/negative variances. */
 int lights_cov_from_eig(double varx, double vary, double angle_deg, double cov[3]);

@@ -13,9 +13,9 @@
 
 static double lumf(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
 
-static ics_fitlight mk(double mx, double my, double varx, double vary, double adeg, double w,
+static ics_light mk(double mx, double my, double varx, double vary, double adeg, double w,
                        double r, double g, double b) {
-  ics_fitlight l;
+  ics_light l;
   double a = adeg * PI / 180, c = cos(a), s = sin(a);
   l.mean[0] = mx;
   l.mean[1] = my;
@@ -59,8 +59,8 @@ static double sig_min(const double c[3]) {
 }
 
 /* match each truth light to the nearest fitted mean; check the stated tolerances */
-static void check_recovery(const char *what, const ics_fitlight *truth, int n,
-                           const ics_fitlight *fit, int nfit, double tol_mean, double tol_cov,
+static void check_recovery(const char *what, const ics_light *truth, int n,
+                           const ics_light *fit, int nfit, double tol_mean, double tol_cov,
                            double tol_w, double tol_col) {
   CHECK(nfit == n, "%s: %d lights fitted, expected %d", what, nfit, n);
   for (int t = 0; t < n; t++) {
@@ -71,7 +71,7 @@ static void check_recovery(const char *what, const ics_fitlight *truth, int n,
       if (d < bd) bd = d, best = f;
     }
     if (best < 0) return;
-    const ics_fitlight *F = &fit[best], *T = &truth[t];
+    const ics_light *F = &fit[best], *T = &truth[t];
     double sm = sig_min(T->cov);
     CHECK(bd <= tol_mean * sm, "%s light %d: mean (%.6g, %.6g) vs (%.6g, %.6g): %.3g sigma_min "
           "> %.3g", what, t, F->mean[0], F->mean[1], T->mean[0], T->mean[1], bd / sm, tol_mean);
@@ -95,7 +95,7 @@ int main(void) {
   ics_image env;
   ics_lightfit_params p;
   ics_lightfit_report rep;
-  ics_fitlight fit[ICS_LIGHTFIT_MAX_K];
+  ics_light fit[ICS_LIGHTFIT_MAX_K];
 
   /* 1. pixel geometry: the centre of the map is +z; the plane point of a pixel is (tan wx,
    *    tan wy) of its direction */
@@ -110,7 +110,7 @@ int main(void) {
 
   /* 2. three anisotropic lights (cf. Patel Fig. 14: a low-variance green, a broad red, a thin
    *    blue one rotated 70 degrees clockwise) are recovered */
-  const ics_fitlight truth[3] = {
+  const ics_light truth[3] = {
       mk(0.35, 0.25, 0.004, 0.004, 0, 1.0, 0.2, 1.0, 0.2),
       mk(-0.45, -0.05, 0.02, 0.012, 20, 2.0, 1.0, 0.25, 0.15),
       mk(0.15, -0.55, 0.012, 0.0012, -70, 1.5, 0.2, 0.3, 1.0)};
@@ -137,7 +137,7 @@ int main(void) {
 
   /* 3. reproducible from the seed when EM resamples */
   {
-    ics_fitlight a[3], b[3], c[3];
+    ics_light a[3], b[3], c[3];
     ics_lightfit_report ra, rb, rc;
     p.k = 3;
     p.max_samples = 3000;
@@ -155,7 +155,7 @@ int main(void) {
 
   /* 4. a sun: a delta (zero covariance) gives one light with a sub-pixel variance */
   {
-    ics_fitlight sun = mk(0.2, -0.1, 0, 0, 0, 5.0, 1, 0.9, 0.7);
+    ics_light sun = mk(0.2, -0.1, 0, 0, 0, 5.0, 1, 0.9, 0.7);
     CHECK(ics_image_init(&env, 256, 128, 4) == ICS_OK, "image");
     CHECK(ics_envmap_render(&env, NULL, &sun, 1, 2) == ICS_OK, "render sun");
     p.k = 3;
@@ -221,7 +221,7 @@ int main(void) {
     memset(env.data, 0, (size_t)env.width * env.height * 3 * sizeof(float));
     CHECK(ics_lightfit(&env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "black map");
     ics_image_free(&env);
-    ics_fitlight badl = mk(0, 0, 0.1, 0.1, 0, 1, 1, 1, 1);
+    ics_light badl = mk(0, 0, 0.1, 0.1, 0, 1, 1, 1, 1);
     badl.cov[1] = 1; /* not positive semidefinite */
     CHECK(ics_image_init(&env, 64, 32, 3) == ICS_OK, "image");
     CHECK(ics_envmap_render(&env, NULL, &badl, 1, 1) == ICS_ERR_INVALID_ARG, "non-PSD light");

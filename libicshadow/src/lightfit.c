@@ -151,7 +151,7 @@ static double gauss_log(const gauss *g, double x, double y) {
 }
 
 /* density of light l at pixel q, averaged over the pixel (footprint added to the covariance) */
-static double light_at(const ics_fitlight *l, const px *q) {
+static double light_at(const ics_light *l, const px *q) {
   double c[3] = {l->cov[0] + q->s[0], l->cov[1] + q->s[1], l->cov[2] + q->s[2]};
   gauss g;
   if (gauss_make(&g, l->mean[0], l->mean[1], c)) return 0;
@@ -168,7 +168,7 @@ static void sym_eig(const double c[3], double *l1, double *l2, double *angle) {
 
 /* ---- errors ---- */
 
-static double mix_cdf(const ics_fitlight *l, int n, double wsum, double nx, double ny, double t) {
+static double mix_cdf(const ics_light *l, int n, double wsum, double nx, double ny, double t) {
   double f = 0;
   for (int k = 0; k < n; k++) {
     if (!(l[k].weight > 0)) continue;
@@ -180,7 +180,7 @@ static double mix_cdf(const ics_fitlight *l, int n, double wsum, double nx, doub
   return f / wsum;
 }
 
-static ics_status errors(const pixset *ps, const ics_fitlight *l, int n, ics_lightfit_report *r) {
+static ics_status errors(const pixset *ps, const ics_light *l, int n, ics_lightfit_report *r) {
   double s1 = 0, n1 = 0, s2 = 0, n2 = 0, wsum = 0;
   for (int k = 0; k < n; k++) wsum += l[k].weight > 0 ? l[k].weight : 0;
   for (int q = 0; q < ps->n; q++) {
@@ -263,7 +263,7 @@ static void report_energies(const pixset *ps, ics_lightfit_report *r) {
 }
 
 ics_status ics_lightfit_errors(const ics_image *env, double max_angle_deg,
-                               const ics_fitlight *lights, int n, ics_lightfit_report *report) {
+                               const ics_light *lights, int n, ics_lightfit_report *report) {
   if (!report || (n > 0 && !lights) || n < 0) return ICS_ERR_INVALID_ARG;
   memset(report, 0, sizeof *report);
   pixset ps;
@@ -289,7 +289,7 @@ void ics_lightfit_defaults(ics_lightfit_params *p) {
 }
 
 /* greedy start: returns the number of Gaussians started */
-static int greedy(const pixset *ps, int k, ics_fitlight *l, int *stack, double *res, char *mark) {
+static int greedy(const pixset *ps, int k, ics_light *l, int *stack, double *res, char *mark) {
   int n = 0;
   for (int q = 0; q < ps->n; q++) res[q] = ps->p[q].d;
   while (n < k) {
@@ -330,7 +330,7 @@ static int greedy(const pixset *ps, int k, ics_fitlight *l, int *stack, double *
     if (!(m0 > 1e-12 * ps->e_kept)) break;
     mx /= m0;
     my /= m0;
-    ics_fitlight *g = &l[n];
+    ics_light *g = &l[n];
     g->mean[0] = c->x + mx;
     g->mean[1] = c->y + my;
     g->cov[0] = (sxx / m0 - mx * mx) / ONE_MINUS_LN2 + f0 / m0;
@@ -345,7 +345,7 @@ static int greedy(const pixset *ps, int k, ics_fitlight *l, int *stack, double *
 }
 
 ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *prm,
-                        ics_fitlight *lights, ics_lightfit_report *report) {
+                        ics_light *lights, ics_lightfit_report *report) {
   if (!prm || !lights || !report) return ICS_ERR_INVALID_ARG;
   memset(report, 0, sizeof *report);
   const int K = prm->k;
@@ -460,7 +460,7 @@ ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *prm,
       double *a = acc[k];
       if (!(a[0] > 1e-12 * M)) continue;
       double mx = a[1] / a[0], my = a[2] / a[0];
-      ics_fitlight *L = &lights[n2];
+      ics_light *L = &lights[n2];
       L->mean[0] = lights[k].mean[0] + mx;
       L->mean[1] = lights[k].mean[1] + my;
       L->cov[0] = a[3] / a[0] - mx * mx;
@@ -524,7 +524,7 @@ out:
 
 /* ---- synthetic maps ---- */
 
-ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3], const ics_fitlight *lights,
+ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3], const ics_light *lights,
                              int n, int supersample) {
   if (!env || !env->data || (env->channels != 3 && env->channels != 4) || n < 0 ||
       (n > 0 && !lights) || supersample < 1 || supersample > 16)
@@ -545,7 +545,7 @@ ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3], const ics_
     return ICS_ERR_NOMEM;
   }
   for (int k = 0; k < n; k++) {
-    const ics_fitlight *l = &lights[k];
+    const ics_light *l = &lights[k];
     int ok = isfinite(l->mean[0]) && isfinite(l->mean[1]) && l->weight >= 0 &&
              isfinite(l->weight);
     for (int c = 0; c < 3; c++) ok = ok && l->cov[c] == l->cov[c] && isfinite(l->cov[c]);

@@ -41,11 +41,16 @@ double ics_tilt_condition(double w_deg);
 
 /* ---- 2D Gaussian lights ---- */
 
+/* The one Gaussian light type of the library (lights files, ics_lightfit, ics_envmap_render;
+ * docs/lights_format.md "What weight and colour mean"). Light k contributes
+ * weight_k color_k g(x; mean_k, cov_k) to the light function on the plane, so weight * color is
+ * its RGB power (map units x steradian). Fitted lights (and the default white colour, whose
+ * luminance 0.2126 + 0.7152 + 0.0722 is 1) have Y(color) = 1, so weight is the luminance power. */
 typedef struct ics_light {
   double mean[2];  /* (mu_x, mu_y) on the virtual light plane */
   double cov[3];   /* cxx, cxy, cyy */
-  double color[3]; /* linear RGB */
-  double weight;   /* >= 0 */
+  double color[3]; /* linear RGB power per unit weight (>= 0; luminance 1 for fitted lights) */
+  double weight;   /* >= 0; the luminance power when Y(color) = 1 */
 } ics_light;
 
 /* R(alpha) diag(varx, vary) R(alpha)^T. ICS_ERR_NAN / ICS_ERR_INFINITE /

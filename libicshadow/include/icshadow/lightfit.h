@@ -37,15 +37,15 @@
  * the edge (both normalised to 1) — independent of d1 (the shadow is L(x/d1)). Reported as the
  * maximum over edge orientations 0, 45, 90, 135 degrees.
  *
- * Type: ics_fitlight has the same fields as light.h's ics_light (mean, cov = cxx, cxy, cyy,
- * color, weight); it is defined here because that type had not landed when this module was
- * written. */
+ * Type: the lights are light.h's ics_light (mean, cov = cxx, cxy, cyy, color, weight), the one
+ * Gaussian light type of the library. */
 #ifndef ICSHADOW_LIGHTFIT_H
 #define ICSHADOW_LIGHTFIT_H
 
 #include <stdint.h>
 
 #include "icshadow/image.h"
+#include "icshadow/light.h"
 #include "icshadow/status.h"
 
 #ifdef __cplusplus
@@ -53,13 +53,6 @@ extern "C" {
 #endif
 
 #define ICS_LIGHTFIT_MAX_K 32
-
-typedef struct ics_fitlight {
-  double mean[2];  /* (mu_x, mu_y) on the virtual light plane */
-  double cov[3];   /* cxx, cxy, cyy */
-  double color[3]; /* RGB power per unit weight (luminance 1 for fitted lights) */
-  double weight;   /* luminance power (>= 0) */
-} ics_fitlight;
 
 typedef struct ics_lightfit_params {
   int k;                /* number of Gaussians, 1..ICS_LIGHTFIT_MAX_K (default 3) */
@@ -93,13 +86,13 @@ void ics_lightfit_defaults(ics_lightfit_params *p);
  * entries past report->k_fit are zeroed. ICS_ERR_INVALID_ARG for bad parameters, a NaN / inf /
  * negative pixel, or a map without light inside the cut-off; ICS_ERR_SIZE for maps smaller than
  * 4 x 2; ICS_ERR_NOMEM. */
-ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *p, ics_fitlight *lights,
+ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *p, ics_light *lights,
                         ics_lightfit_report *report);
 
 /* The error fields (l1, l2, edge) and energies of any set of n lights against env, with the
  * cut-off max_angle_deg (k_fit = n, iterations = samples = 0). */
 ics_status ics_lightfit_errors(const ics_image *env, double max_angle_deg,
-                               const ics_fitlight *lights, int n, ics_lightfit_report *report);
+                               const ics_light *lights, int n, ics_lightfit_report *report);
 
 /* Synthetic environment map: env (already initialised, 3 or 4 channels) is overwritten with
  * sky_rgb (NULL: black) plus n Gaussian lights drawn with radiance
@@ -108,7 +101,7 @@ ics_status ics_lightfit_errors(const ics_image *env, double max_angle_deg,
  * widened to it along that axis; lights narrower than that in both axes are drawn as a delta
  * into the one pixel holding their mean (energy weight color). Alpha is set to 1.
  * ICS_ERR_INVALID_ARG for bad lights (negative weight / colour / non-PSD covariance, NaN). */
-ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3], const ics_fitlight *lights,
+ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3], const ics_light *lights,
                              int n, int supersample);
 
 /* Plane point and solid angle of pixel (i, j) of a W x H map: returns 0 (and *x, *y, *domega)
