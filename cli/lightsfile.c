@@ -14,23 +14,11 @@
 #include <jansson.h>
 #endif
 
-#define PI 3.14159265358979323846
-
 static void seterr(char *err, size_t n, const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(err, n, fmt, ap);
   va_end(ap);
-}
-
-int lights_cov_from_eig(double varx, double vary, double angle_deg, double cov[3]) {
-  if (!isfinite(varx) || !isfinite(vary) || !isfinite(angle_deg) || varx < 0 || vary < 0)
-    return -1;
-  double a = angle_deg * PI / 180, c = cos(a), s = sin(a);
-  cov[0] = varx * c * c + vary * s * s;
-  cov[1] = (varx - vary) * c * s;
-  cov[2] = varx * s * s + vary * c * c;
-  return 0;
 }
 
 int lights_write(FILE *f, const ics_light *l, int n) {
@@ -95,7 +83,7 @@ int lights_parse_spec(const char *spec, ics_light **out, int *n, char *err, size
     }
     l[k].mean[0] = v[0];
     l[k].mean[1] = v[1];
-    if (lights_cov_from_eig(v[2], v[3], m > 4 ? v[4] : 0, l[k].cov) != 0) {
+    if (ics_cov_from_eig(v[2], v[3], m > 4 ? v[4] : 0, l[k].cov) != ICS_OK) {
       seterr(err, errlen, "light %d: variances must be finite and >= 0, angle finite", k + 1);
       goto fail;
     }
@@ -181,8 +169,8 @@ int lights_read_file(const char *path, ics_light **out, int *n, char *err, size_
         seterr(err, errlen, "%s.tilt_deg: expected [wx, wy] in degrees, |w| < 90", where);
         goto fail;
       }
-      l[k].mean[0] = tan(v[0] * PI / 180);
-      l[k].mean[1] = tan(v[1] * PI / 180);
+      l[k].mean[0] = ics_tan_deg(v[0]);
+      l[k].mean[1] = ics_tan_deg(v[1]);
     } else {
       seterr(err, errlen, "%s: needs \"mean\" or \"tilt_deg\"", where);
       goto fail;
@@ -209,7 +197,7 @@ int lights_read_file(const char *path, ics_light **out, int *n, char *err, size_
         goto fail;
       }
       if (ang) a = json_number_value(ang);
-      if (numbers(x, 2, v) || lights_cov_from_eig(v[0], v[1], a, l[k].cov)) {
+      if (numbers(x, 2, v) || ics_cov_from_eig(v[0], v[1], a, l[k].cov) != ICS_OK) {
         seterr(err, errlen, "%s.var: expected [varx, vary], finite and >= 0", where);
         goto fail;
       }

@@ -29,7 +29,4 @@ int lights_parse_spec(const char *spec, ics_light **out, int *n, char *err, size
 /* FILE if `arg` names an existing file, else SPEC. Same returns as above. */
 int lights_load(const char *arg, ics_light **out, int *n, char *err, size_t errlen);
 
-/* R(a) diag(varx, vary) R(a)^T as (cxx, cxy, cyy); -1 for NaN/inf/negative variances. */
-int lights_cov_from_eig(double varx, double vary, double angle_deg, double cov[3]);
-
 #endif

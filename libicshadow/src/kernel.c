@@ -8,13 +8,14 @@
  * Stochastic members: STOCH_DIRAC and ELLIPSE are exact in expectation (closed forms in
  * kernel.h); POISSON is whitened so it is exact for every rotation.
  * Sums: moments use Neumaier-compensated sums and a two-pass (mean, then central) variance. */
-#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 
 #include "icshadow/ellipse.h"
 #include "icshadow/kernel.h"
+#include "icshadow/light.h"
 #include "icshadow/rng.h"
+#include "sym2.h"
 
 #define GAUSS_DEFAULT_N1 9
 #define GAUSS_DEFAULT_N2 5
@@ -126,16 +127,6 @@ ics_status ics_class1d_check(const ics_class1d *c) {
   return ICS_OK;
 }
 
-/* eigenvalues l1 >= l2 of [[a, b], [b, c]] */
-static void eig2(double a, double b, double c, double *l1, double *l2) {
-  double h = 0.5 * (a + c), d = hypot(0.5 * (a - c), b);
-  *l1 = h + d;
-  *l2 = h - d;
-  if (*l2 != 0 && fabs(*l2) < 4 * DBL_EPSILON * fabs(*l1)) { /* rounding level: form as det/l1 */
-    *l2 = (a * c - b * b) / *l1;
-  }
-}
-
 ics_status ics_class2d_check(const ics_class2d *c) {
   if (!c) return ICS_ERR_INVALID_ARG;
   if (isnan(c->mean[0]) || isnan(c->mean[1]) || isnan(c->cxx) || isnan(c->cxy) || isnan(c->cyy))
@@ -145,15 +136,9 @@ ics_status ics_class2d_check(const ics_class2d *c) {
     return ICS_ERR_INFINITE;
   if (c->cxx > 0x1p500 || c->cyy > 0x1p500 || fabs(c->cxy) > 0x1p500) return ICS_ERR_RANGE;
   double l1, l2;
-  eig2(c->cxx, c->cxy, c->cyy, &l1, &l2);
+  ics_sym2_eig(c->cxx, c->cxy, c->cyy, &l1, &l2, NULL);
   if (l2 < -1e-12 * (c->cxx + c->cyy)) return ICS_ERR_NEGATIVE_VARIANCE;
   return ICS_OK;
-}
-
-static void sincos_deg(double deg, double *s, double *c) {
-  double r = fmod(deg, 360.0) * (3.14159265358979323846 / 180.0);
-  *s = sin(r);
-  *c = cos(r);
 }
 
 ics_status ics_class2d_from_axes(double mx, double my, double varx, double vary, double angle_deg,
@@ -163,13 +148,14 @@ ics_status ics_class2d_from_axes(double mx, double my, double varx, double vary,
   if (varx < 0 || vary < 0) return ICS_ERR_NEGATIVE_VARIANCE;
   if (isinf(mx) || isinf(my) || isinf(varx) || isinf(vary) || isinf(angle_deg))
     return ICS_ERR_INFINITE;
-  double s, c;
-  sincos_deg(angle_deg, &s, &c);
+  double cov[3];
+  ics_status st = ics_cov_from_eig(varx, vary, angle_deg, cov); /* inputs checked above */
+  if (st != ICS_OK) return st;
   out->mean[0] = mx;
   out->mean[1] = my;
-  out->cxx = varx * c * c + vary * s * s;
-  out->cyy = varx * s * s + vary * c * c;
-  out->cxy = (varx - vary) * s * c;
+  out->cxx = cov[0];
+  out->cxy = cov[1];
+  out->cyy = cov[2];
   return ics_class2d_check(out);
 }
 
@@ -177,14 +163,9 @@ ics_status ics_class2d_to_axes(const ics_class2d *c, double *varx, double *vary,
                                double *angle_deg) {
   ics_status st = ics_class2d_check(c);
   if (st != ICS_OK) return st;
-  double l1, l2;
-  eig2(c->cxx, c->cxy, c->cyy, &l1, &l2);
+  double l1, l2, ang;
+  ics_sym2_eig(c->cxx, c->cxy, c->cyy, &l1, &l2, &ang); /* the algorithm of ics_cov_to_eig */
   if (l2 < 0) l2 = 0;
-  double ang = 0;
-  if (l1 != l2) {
-    ang = 0.5 * atan2(2 * c->cxy, c->cxx - c->cyy) * (180.0 / 3.14159265358979323846);
-    if (ang <= -90.0) ang += 180.0;
-  }
   if (varx) *varx = l1;
   if (vary) *vary = l2;
   if (angle_deg) *angle_deg = ang;
@@ -195,7 +176,7 @@ ics_status ics_class2d_to_axes(const ics_class2d *c, double *varx, double *vary,
  * (M + sqrt(det) I) / sqrt(tr + 2 sqrt(det)) */
 static void sqrtm2(double a, double b, double c, double out[3]) {
   double l1, l2;
-  eig2(a, b, c, &l1, &l2);
+  ics_sym2_eig(a, b, c, &l1, &l2, NULL);
   if (l1 < 0) l1 = 0;
   if (l2 < 0) l2 = 0;
   double s = sqrt(l1) * sqrt(l2), t = sqrt(l1) + sqrt(l2);

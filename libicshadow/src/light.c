@@ -22,6 +22,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sym2.h"
+
 static const double PI = 3.14159265358979323846;
 
 /* ---- tilt ---- */
@@ -85,23 +87,31 @@ ics_status ics_cov_from_eig(double varx, double vary, double alpha, double cov[3
   return ICS_OK;
 }
 
+void ics_sym2_eig(double a, double b, double d, double *l1, double *l2, double *alpha_deg) {
+  double h = 0.5 * (a - d);
+  double r = hypot(h, b);
+  double m = 0.5 * (a + d);
+  double big = m + r;
+  *l1 = big;
+  *l2 = (big > 0) ? (a * d - b * b) / big : m - r; /* no cancellation in the small one */
+  if (alpha_deg) {
+    double ang = (r == 0) ? 0.0 : 0.5 * atan2(b, h) * (180.0 / PI);
+    if (ang <= -90.0) ang += 180.0;
+    *alpha_deg = ang;
+  }
+}
+
 ics_status ics_cov_to_eig(const double cov[3], double *varx, double *vary, double *alpha) {
   ics_status s;
   for (int i = 0; i < 3; i++)
     if ((s = check_finite(cov[i])) != ICS_OK) return s;
-  double a = cov[0], b = cov[1], d = cov[2];
-  double tr = a + d;
-  double tol = 8 * DBL_EPSILON * fabs(tr);
+  double a = cov[0], d = cov[2];
+  double tol = 8 * DBL_EPSILON * fabs(a + d);
   if (a < -tol || d < -tol) return ICS_ERR_INVALID_ARG;
-  double h = 0.5 * (a - d);
-  double r = hypot(h, b);
-  double m = 0.5 * tr;
-  double l1 = m + r;
-  double l2 = (l1 > 0) ? (a * d - b * b) / l1 : m - r; /* no cancellation in the small one */
+  double l1, l2, ang;
+  ics_sym2_eig(a, cov[1], d, &l1, &l2, &ang);
   if (l2 < -tol) return ICS_ERR_INVALID_ARG;
   if (l2 < 0) l2 = 0;
-  double ang = (r == 0) ? 0.0 : 0.5 * atan2(b, h) * (180.0 / PI);
-  if (ang <= -90.0) ang += 180.0;
   *varx = l1;
   *vary = l2;
   *alpha = ang;

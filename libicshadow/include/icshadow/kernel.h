@@ -93,11 +93,14 @@ typedef struct ics_class2d {
 ics_status ics_class1d_check(const ics_class1d *c);
 ics_status ics_class2d_check(const ics_class2d *c);
 /* Class from eigenvalues varx, vary and the rotation alpha (degrees ccw from +x) of the x axis:
- * Sigma = R(alpha) diag(varx, vary) R(alpha)^T. */
+ * Sigma = R(alpha) diag(varx, vary) R(alpha)^T, computed by light.h's ics_cov_from_eig (exact
+ * at multiples of 90 degrees); the mean is checked here and the result by ics_class2d_check. */
 ics_status ics_class2d_from_axes(double mx, double my, double varx, double vary, double angle_deg,
                                  ics_class2d *out);
 /* Inverse: varx = the larger eigenvalue, angle_deg = direction of its eigenvector in (-90, 90]
- * (0 when varx = vary); vary = the smaller eigenvalue (clamped to >= 0). */
+ * (0 when cxy = 0 and cxx = cyy); vary = the smaller eigenvalue (clamped to >= 0), formed as
+ * det / varx so it keeps its relative accuracy for huge ratios. The same algorithm as light.h's
+ * ics_cov_to_eig, on any class ics_class2d_check accepts (its tolerance, -1e-12 trace). */
 ics_status ics_class2d_to_axes(const ics_class2d *c, double *varx, double *vary, double *angle_deg);
 
 /* A member of a 1D class. nsamples and param as described above; 0 selects the default. */
