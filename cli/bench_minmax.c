@@ -16,7 +16,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "commands.h"
 #include "icshadow.h"
@@ -49,12 +48,6 @@ static void help(FILE *f) {
           "                  fullres_max_rel,inscatter_max_rel for N = 1..10 at the first d\n"
           "  --fig4-csv FILE write Chen Fig. 4 data at the first --samples value and exit\n"
           "                  (paper_figs/chen_fig4.py passes --samples 64)\n");
-}
-
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* ---- the scene set-up shared by all modes ---- */
@@ -247,11 +240,11 @@ static int bench_one(const setup *S, int reps) {
   double runs = 0;
   for (int rep = 0; rep < reps && st == ICS_OK; rep++) {
     ics_minmax *t = NULL;
-    double t0 = now();
+    double t0 = cli_now_s();
     st = ics_minmax_create(&t, S->rect, S->rows, d, d);
-    double t1 = now();
+    double t1 = cli_now_s();
     if (st == ICS_OK) st = ics_minmax_prefix(S->terms, N, d, d, pre, d + 1);
-    double t2 = now();
+    double t2 = cli_now_s();
     double out[MAX_TERMS];
     for (size_t q = 0; q < nr && st == ICS_OK; q++) {
       st = ics_minmax_integrate(t, q / S->rays, &S->ray[q], pre, N, d + 1, out);
@@ -259,14 +252,14 @@ static int bench_one(const setup *S, int reps) {
       for (size_t i = 0; i < N; i++) L += S->B[q * N + i] * out[i];
       Lt[q] = L;
     }
-    double t3 = now();
+    double t3 = cli_now_s();
     for (size_t q = 0; q < nr && st == ICS_OK; q++) {
       st = ics_minmax_march(S->rect + (q / S->rays) * d, d, &S->ray[q], S->terms, N, d, out);
       double L = 0;
       for (size_t i = 0; i < N; i++) L += S->B[q * N + i] * out[i];
       Lm[q] = L;
     }
-    double t4 = now();
+    double t4 = cli_now_s();
     if (rep == 0 && st == ICS_OK)
       for (size_t q = 0; q < nr; q++) {
         size_t ns = 0;

@@ -8,7 +8,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "commands.h"
 #include "icshadow.h"
@@ -48,12 +47,6 @@ static void help(FILE *f) {
           "The scene lies in x, y in [-1, 1], z in [1, 2]; the textures cover [-1, 1]^2; receivers\n"
           "cover [-1.2, 1.2]^2. Exit status: 0 ok, 1 runtime failure, 2 bad input.\n",
           ICS_OCC_MAX_SIZE, ICS_OCC_MAX_SLICES, ICS_OCC_MAX_SUPERSAMPLE);
-}
-
-static double now_ms(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
 /* comma-separated integers in lo..hi; pow2: powers of two only */
@@ -195,11 +188,11 @@ static int fail(const char *what, ics_status st) {
 static ics_status build(const options *o, const ics_occ_box *boxes, int nb, int n, int K, ics_occ_prefilter pf,
                         float *tex, ics_occtex **ot, double *ms) {
   const ics_occ_grid g = {-1, -1, 2.0 / n, n};
-  double t0 = now_ms();
+  double t0 = cli_now_s();
   ics_status st = ics_occ_slice(boxes, (size_t)nb, &g, K, 1, 2, o->ss, tex);
   if (!st) st = ics_occtex_create(tex, &g, K, 1, 2, ot);
   if (!st) st = ics_occtex_prefilter(*ot, pf);
-  *ms = now_ms() - t0;
+  *ms = 1e3 * (cli_now_s() - t0);
   return st;
 }
 
@@ -282,12 +275,12 @@ int bench_occtex(int argc, char **argv) {
         }
     /* each repetition runs the brute force and every method once: side by side in one run */
     for (int rep = 0; rep < o.reps; rep++) {
-      double t0 = now_ms();
+      double t0 = cli_now_s();
       if ((st = ics_occ_exact(boxes, (size_t)nb, &light, o.m, P, nr, ref))) {
         rc = fail("brute force", st);
         goto done;
       }
-      double t1 = now_ms() - t0;
+      double t1 = 1e3 * (cli_now_s() - t0);
       brute = t1 < brute ? t1 : brute;
       for (int a = 0; a < o.nsizes; a++)
         for (int b = 0; b < o.nslices; b++)
@@ -302,9 +295,9 @@ int bench_occtex(int argc, char **argv) {
             }
             tb[a][b][p] = ms < tb[a][b][p] ? ms : tb[a][b][p];
             for (int c = 0; c < NC; c++) {
-              double q0 = now_ms();
+              double q0 = cli_now_s();
               st = ics_occtex_shadow(ot, &light, (ics_occ_prefilter)p, (ics_occ_combine)c, P, nr, occ);
-              double q = now_ms() - q0;
+              double q = 1e3 * (cli_now_s() - q0);
               if (st) {
                 ics_occtex_free(ot);
                 rc = fail("shadow", st);

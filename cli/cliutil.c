@@ -1,5 +1,5 @@
 /* cliutil.c — helpers shared by the icshadow subcommands: strict number parsing, --help
- * detection, and atomic output files (temporary name + rename). */
+ * detection, a monotonic clock for timings, and atomic output files (temporary name + rename). */
 #define _POSIX_C_SOURCE 200809L
 #include "commands.h"
 
@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 int cli_parse_double(const char *s, double *out) {
@@ -34,6 +35,12 @@ int cli_parse_int(const char *s, long lo, long hi, int *out) {
   if (*end || v < lo || v > hi) return -1;
   *out = (int)v;
   return 0;
+}
+
+double cli_now_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 int cli_wants_help(int argc, char **argv) {

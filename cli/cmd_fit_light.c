@@ -10,7 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "commands.h"
@@ -57,12 +56,6 @@ static void on_progress(void *ctx, int iter, int max_iter, double ll) {
   else if (iter % 25 == 0 || iter == 1)
     fprintf(stderr, "fit-light: K=%d EM iteration %d/%d, log-likelihood %.9g\n", p->k, iter,
             max_iter, ll);
-}
-
-static double now(void) {
-  struct timespec ts;
-  timespec_get(&ts, TIME_UTC);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
 int cmd_fit_light(int argc, char **argv) {
@@ -168,9 +161,9 @@ int cmd_fit_light(int argc, char **argv) {
   int k0 = sweep ? 1 : K;
   for (int k = k0; k <= K; k++) {
     p.k = pg.k = k;
-    double t0 = now();
+    double t0 = cli_now_s();
     st = ics_lightfit(&env, &p, lights, &rep[k - 1]);
-    secs[k - 1] = now() - t0;
+    secs[k - 1] = cli_now_s() - t0;
     if (p.progress && pg.tty) fputc('\n', stderr);
     if (st != ICS_OK) {
       ics_image_free(&env);

@@ -12,7 +12,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "commands.h"
 #include "icshadow.h"
@@ -84,12 +83,6 @@ static int get_double(const char *opt, const char *s, double *out) {
   return 0;
 }
 
-static double now_sec(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 typedef struct row {
   const char *label;
   ics_kernel_member member;
@@ -107,9 +100,9 @@ static int time_member(const ics_kernel1d *k, double *ns) {
   double best = INFINITY;
   double t_total = 0;
   for (int rep = 0; rep < 50 && (rep < 3 || t_total < 0.05); rep++) {
-    double t0 = now_sec();
+    double t0 = cli_now_s();
     ics_status st = ics_conv1d_run(buf, TIMING_LEN, &s, (uint64_t)rep * steps, steps, &opts, NULL);
-    double t = now_sec() - t0;
+    double t = cli_now_s() - t0;
     if (st != ICS_OK) {
       free(buf);
       return -1;
@@ -234,10 +227,10 @@ static int time_member2d(const ics_kernel2d *k, double *ns) {
   int steps = 4;
   double best = INFINITY, t_total = 0;
   for (int rep = 0; rep < 50 && (rep < 3 || t_total < 0.05); rep++) {
-    double t0 = now_sec();
+    double t0 = cli_now_s();
     ics_status st = ics_conv2d_run(buf, TIMING_SIDE, TIMING_SIDE, &s, (uint64_t)rep * steps, steps,
                                    &opts, NULL);
-    double t = now_sec() - t0;
+    double t = cli_now_s() - t0;
     if (st != ICS_OK) {
       free(buf);
       return -1;

@@ -28,6 +28,9 @@ int bench_occtex(int argc, char **argv);
 int cli_parse_double(const char *s, double *out);
 int cli_parse_int(const char *s, long lo, long hi, int *out);
 
+/* Seconds on the monotonic clock (CLOCK_MONOTONIC), for elapsed times. */
+double cli_now_s(void);
+
 /* True when argv holds -h or --help. */
 int cli_wants_help(int argc, char **argv);
 
