@@ -24,19 +24,11 @@
 #define BOUND_K 0.60 /* ulp: the documented bound (ellint.c header, docs/ellint.md) */
 #define BOUND_E 0.60
 
-/* ---- RNG (splitmix64) ------------------------------------------------------------------- */
-static uint64_t rng_state = 0x9e3779b97f4a7c15ULL;
-static uint64_t rng_u64(void) {
-  uint64_t z = (rng_state += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-static double rng_unit(void) { return (double)(rng_u64() >> 11) * 0x1p-53; } /* [0, 1) */
+/* ---- RNG: splitmix64 from testutil.h (test_rng_u64, test_rng_unit, test_rng_state) ---- */
 /* log-uniform: binary exponent uniform in [emin, emax], random mantissa; subnormals included */
 static double rng_logu(int emin, int emax) {
-  int e = emin + (int)(rng_u64() % (uint64_t)(emax - emin + 1));
-  double f = 1.0 + (double)(rng_u64() >> 12) * 0x1p-52;
+  int e = emin + (int)(test_rng_u64() % (uint64_t)(emax - emin + 1));
+  double f = 1.0 + (double)(test_rng_u64() >> 12) * 0x1p-52;
   double v = ldexp(f, e); /* correctly rounded into the subnormal range */
   return v > 0 ? v : 0x1p-1074;
 }
@@ -169,12 +161,12 @@ static void test_random(long n) {
     switch (i % 8) {
       case 0: test_m1(rng_logu(-1074, -1)); break;           /* m -> 1, down to subnormals */
       case 1: test_m1(rng_logu(-60, -1)); break;
-      case 2: test_m1(rng_unit() + 0x1p-60); break;          /* m1 uniform in (0, 1] */
+      case 2: test_m1(test_rng_unit() + 0x1p-60); break;          /* m1 uniform in (0, 1] */
       case 3: test_m1(1.0 + rng_logu(-1074, 1023)); break;   /* m < 0, log-uniform */
-      case 4: test_m(rng_unit()); break;                     /* m uniform in [0, 1) */
+      case 4: test_m(test_rng_unit()); break;                     /* m uniform in [0, 1) */
       case 5: test_m(1.0 - rng_logu(-53, -1)); break;        /* m -> 1 through m */
       case 6: test_m(-rng_logu(-1074, 1023)); break;         /* m < 0 down to -DBL_MAX */
-      default: test_m(-40.0 * rng_unit()); break;            /* m in (-40, 0] */
+      default: test_m(-40.0 * test_rng_unit()); break;            /* m in (-40, 0] */
     }
   }
 }
@@ -251,7 +243,7 @@ static void test_special(void) {
 static void test_legendre(long n) {
   double worst = 0, worst_x = 0;
   for (long i = 0; i < n; i++) {
-    double x = (i % 2) ? rng_logu(-60, -2) : ldexp((double)(rng_u64() >> 11), -53);
+    double x = (i % 2) ? rng_logu(-60, -2) : ldexp((double)(test_rng_u64() >> 11), -53);
     if (x <= 0) continue;
     double y = 1.0 - x; /* exact for dyadic x with <= 53 bits below 1 */
     if (1.0 - y != x) continue;
@@ -291,7 +283,7 @@ int main(int argc, char **argv) {
   long n = 60000; /* MPFR comparisons in the random part (fast label) */
   for (int i = 1; i < argc; i++) {
     if (strcmp(argv[i], "--exhaustive") == 0) n = 3000000;
-    else rng_state ^= (uint64_t)strtoull(argv[i], NULL, 0);
+    else test_rng_state ^= (uint64_t)strtoull(argv[i], NULL, 0);
   }
   mpfr_inits2(REF_PREC, rK, rE, (mpfr_ptr)0);
   mpfr_init2(rm1, 2200);

@@ -15,15 +15,9 @@
 #include "icshadow.h"
 #include "testutil.h"
 
-static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
-static uint64_t rnd(void) { /* splitmix64 */
-  uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
+static long irand(long lo, long hi) {
+  return lo + (long)(test_rng_u64() % (uint64_t)(hi - lo + 1));
 }
-static double urand(void) { return (double)(rnd() >> 11) * 0x1p-53; }
-static long irand(long lo, long hi) { return lo + (long)(rnd() % (uint64_t)(hi - lo + 1)); }
 
 static const double U_ = 0x1p-53;
 
@@ -47,7 +41,7 @@ static void test_tree(size_t d, int quantized) {
   size_t rows = 3, stride = d + 3;
   float *v = malloc(rows * stride * sizeof(float));
   for (size_t i = 0; i < rows * stride; i++)
-    v[i] = quantized ? (float)irand(-3, 3) : (float)(urand() * 200 - 100);
+    v[i] = quantized ? (float)irand(-3, 3) : (float)(test_rng_unit() * 200 - 100);
   ics_minmax *t = NULL;
   ics_status st = ics_minmax_create(&t, v, rows, d, stride);
   CHECK(st == ICS_OK, "create d=%zu: %s", d, ics_status_str(st));
@@ -168,7 +162,7 @@ static void rowset_init(rowset *s, size_t d, int quantized) {
   for (size_t r = 0; r < s->rows; r++) {
     double w = 0;
     for (size_t g = 0; g < s->stride; g++) {
-      w += urand() - 0.5;
+      w += test_rng_unit() - 0.5;
       s->v[r * s->stride + g] = quantized ? (float)irand(-64, 64) / 16.0f : (float)w;
     }
   }
@@ -179,7 +173,7 @@ static void rowset_init(rowset *s, size_t d, int quantized) {
   for (size_t i = 0; i < 4 * d; i++) {
     s->terms_int[i] = (double)irand(-1000, 1000);
     /* mixed signs and magnitudes, like singular vectors */
-    s->terms_real[i] = (urand() - 0.3) * exp(4 * urand());
+    s->terms_real[i] = (test_rng_unit() - 0.3) * exp(4 * test_rng_unit());
   }
   CHECK(ics_minmax_prefix(s->terms_int, 4, d, d, s->pre_int, d + 1) == ICS_OK, "prefix");
   CHECK(ics_minmax_prefix(s->terms_real, 4, d, d, s->pre_real, d + 1) == ICS_OK, "prefix");
@@ -208,7 +202,7 @@ static void test_traversal(size_t d, int quantized, int nrays) {
     int kind = k % 5;
     if (kind == 0) { /* flat ray at a random height */
       ray.slope = 0;
-      ray.beta0 = quantized ? irand(-70, 70) / 16.0 : (urand() - 0.5) * 8;
+      ray.beta0 = quantized ? irand(-70, 70) / 16.0 : (test_rng_unit() - 0.5) * 8;
     } else if (kind == 1 || kind == 2) { /* flat ray exactly at a node's min or max */
       size_t node = (size_t)irand(1, (long)(2 * s.P - 1));
       size_t g0, g1;
@@ -226,8 +220,8 @@ static void test_traversal(size_t d, int quantized, int nrays) {
       CHECK(ray.beta0 + ray.slope * (double)gs == (double)row[gs], "grazing ray not exact");
       grazing++;
     } else { /* random sloped ray */
-      ray.slope = (urand() - 0.5) * 8.0 / (double)d;
-      ray.beta0 = (urand() - 0.5) * 8;
+      ray.slope = (test_rng_unit() - 0.5) * 8.0 / (double)d;
+      ray.beta0 = (test_rng_unit() - 0.5) * 8;
     }
     check_ray(&s, r, ray, kind == 1 || kind == 2 || kind == 3 ? "grazing" : "random", &fails);
     checked++;
@@ -272,7 +266,7 @@ static void random_orthogonal(size_t n, double *Q) { /* product of Householder r
   for (size_t k = 0; k < n; k++) {
     double nn = 0;
     for (size_t i = 0; i < n; i++) {
-      v[i] = urand() - 0.5;
+      v[i] = test_rng_unit() - 0.5;
       nn += v[i] * v[i];
     }
     /* Q = Q (I - 2 v v^T / nn) */
@@ -310,7 +304,7 @@ static void test_svd_case(size_t m, size_t n, int known) {
     free(Q1);
     free(Q2);
   } else {
-    for (size_t i = 0; i < m * n; i++) A[i] = urand() - 0.5;
+    for (size_t i = 0; i < m * n; i++) A[i] = test_rng_unit() - 0.5;
   }
   ics_status st = ics_svd(A, m, n, U, s, V);
   CHECK(st == ICS_OK, "svd %zux%zu: %s", m, n, ics_status_str(st));

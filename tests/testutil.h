@@ -5,6 +5,7 @@
 #define ICS_TESTUTIL_H
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 
 static int test_passes_, test_failures_;
@@ -31,6 +32,18 @@ static inline void kadd(ksum *k, double x) {
   k->s = t;
 }
 static inline double kval(const ksum *k) { return k->s + k->c; }
+
+/* Reproducible random numbers: splitmix64 (Steele, Lea, Flood 2014) on one state per test
+ * program, seeded with the golden-ratio increment (a test may xor a seed from argv into it). */
+static uint64_t test_rng_state = 0x9E3779B97F4A7C15ull;
+static inline uint64_t test_rng_u64(void) {
+  uint64_t z = (test_rng_state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+/* Uniform in [0, 1), 53 random bits. */
+static inline double test_rng_unit(void) { return (double)(test_rng_u64() >> 11) * 0x1p-53; }
 
 static inline int test_summary(const char *name) {
   printf("%s: %d passed, %d failed\n", name, test_passes_, test_failures_);
