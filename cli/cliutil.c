@@ -1,10 +1,12 @@
-/* cliutil.c — helpers shared by the icshadow subcommands: strict number parsing, --help
- * detection, a monotonic clock for timings, and atomic output files (temporary name + rename). */
+/* cliutil.c — helpers shared by the icshadow subcommands: strict number parsing (also of option
+ * values, with the subcommand's error messages), --help detection, a monotonic clock for
+ * timings, and atomic output files (temporary name + rename). */
 #define _POSIX_C_SOURCE 200809L
 #include "commands.h"
 
 #include <ctype.h>
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -34,6 +36,28 @@ int cli_parse_int(const char *s, long lo, long hi, int *out) {
   while (isspace((unsigned char)*end)) end++;
   if (*end || v < lo || v > hi) return -1;
   *out = (int)v;
+  return 0;
+}
+
+int cli_option_double(const char *cmd, const char *opt, const char *s, int variance, double *out) {
+  double v;
+  if (cli_parse_double(s, &v) != 0) {
+    fprintf(stderr, "icshadow %s: %s: not a number: '%s'\n", cmd, opt, s);
+    return -1;
+  }
+  if (isnan(v)) {
+    fprintf(stderr, "icshadow %s: %s: NaN is not allowed\n", cmd, opt);
+    return -1;
+  }
+  if (variance && v < 0) {
+    fprintf(stderr, "icshadow %s: %s: negative variance %s (must be >= 0)\n", cmd, opt, s);
+    return -1;
+  }
+  if (isinf(v)) {
+    fprintf(stderr, "icshadow %s: %s: must be finite, got '%s'\n", cmd, opt, s);
+    return -1;
+  }
+  *out = v;
   return 0;
 }
 

@@ -38,24 +38,6 @@ static void help(FILE *f) {
           MAX_STEPS_LIST);
 }
 
-static int get_number(const char *opt, const char *s, double *out) {
-  double v;
-  if (cli_parse_double(s, &v) != 0) {
-    fprintf(stderr, "icshadow clt: %s: not a number: '%s'\n", opt, s);
-    return -1;
-  }
-  if (isnan(v)) {
-    fprintf(stderr, "icshadow clt: %s: NaN is not allowed\n", opt);
-    return -1;
-  }
-  if (isinf(v)) {
-    fprintf(stderr, "icshadow clt: %s: must be finite, got '%s'\n", opt, s);
-    return -1;
-  }
-  *out = v;
-  return 0;
-}
-
 static int parse_steps(const char *s, int *steps, int *n) {
   *n = 0;
   const char *p = s;
@@ -130,16 +112,16 @@ int cmd_clt(int argc, char **argv) {
     else if (!strcmp(opt, "--comp"))
       comp = val;
     else if (!strcmp(opt, "--var")) {
-      bad = get_number(opt, val, &var);
+      bad = cli_option_double("clt", opt, val, 0, &var);
       if (!bad && !(var > 0)) {
         fprintf(stderr, "icshadow clt: --var: %s variance %s (must be > 0)\n",
                 var < 0 ? "negative" : "zero", val);
         bad = 1;
       }
     } else if (!strcmp(opt, "--mean"))
-      bad = get_number(opt, val, &mean);
+      bad = cli_option_double("clt", opt, val, 0, &mean);
     else if (!strcmp(opt, "--seed")) {
-      bad = get_number(opt, val, &seed);
+      bad = cli_option_double("clt", opt, val, 0, &seed);
       if (!bad && (seed < 0 || seed != floor(seed) || seed > 9007199254740992.0)) {
         fprintf(stderr, "icshadow clt: --seed: expected an integer in 0..2^53, got '%s'\n", val);
         bad = 1;

@@ -151,24 +151,6 @@ static int parse_light(const char *spec, ics_light1d *l) {
   return 0;
 }
 
-static int get_number(const char *opt, const char *s, double *out) {
-  double v;
-  if (cli_parse_double(s, &v) != 0) {
-    fprintf(stderr, "icshadow isoline: %s: not a number: '%s'\n", opt, s);
-    return -1;
-  }
-  if (isnan(v)) {
-    fprintf(stderr, "icshadow isoline: %s: NaN is not allowed\n", opt);
-    return -1;
-  }
-  if (isinf(v)) {
-    fprintf(stderr, "icshadow isoline: %s: must be finite, got '%s'\n", opt, s);
-    return -1;
-  }
-  *out = v;
-  return 0;
-}
-
 /* 1D members by name; -1 if unknown or without a 1D form */
 static int kernel1d_member(const char *name) {
   for (int m = 0; m < ICS_KERNEL_MEMBER_COUNT_; m++) {
@@ -210,15 +192,15 @@ int cmd_isoline(int argc, char **argv) {
     else if (!strcmp(opt, "--kernel"))
       kname = val;
     else if (!strcmp(opt, "--level"))
-      bad = get_number(opt, val, &level);
+      bad = cli_option_double("isoline", opt, val, 0, &level);
     else if (!strcmp(opt, "--distance"))
-      bad = get_number(opt, val, &dist);
+      bad = cli_option_double("isoline", opt, val, 0, &dist);
     else if (!strcmp(opt, "--d1"))
-      bad = get_number(opt, val, &d1);
+      bad = cli_option_double("isoline", opt, val, 0, &d1);
     else if (!strcmp(opt, "--slab"))
-      bad = get_number(opt, val, &slab);
+      bad = cli_option_double("isoline", opt, val, 0, &slab);
     else if (!strcmp(opt, "--seed")) {
-      bad = get_number(opt, val, &seed);
+      bad = cli_option_double("isoline", opt, val, 0, &seed);
       if (!bad && (seed < 0 || seed != floor(seed) || seed > 9007199254740992.0)) {
         fprintf(stderr, "icshadow isoline: --seed: expected an integer in 0..2^53, got '%s'\n",
                 val);

@@ -62,28 +62,6 @@ static void help(FILE *f) {
     fputc('\n', stderr);                        \
   } while (0)
 
-static int get_double(const char *opt, const char *s, int variance, double *out) {
-  double v;
-  if (cli_parse_double(s, &v) != 0) {
-    ERR("%s: not a number: '%s'", opt, s);
-    return -1;
-  }
-  if (isnan(v)) {
-    ERR("%s: NaN is not allowed", opt);
-    return -1;
-  }
-  if (variance && v < 0) {
-    ERR("%s: negative variance %s (must be >= 0)", opt, s);
-    return -1;
-  }
-  if (isinf(v)) {
-    ERR("%s: must be finite, got '%s'", opt, s);
-    return -1;
-  }
-  *out = v;
-  return 0;
-}
-
 static int parse_member(const char *name, ics_kernel_member *m) {
   for (int i = 0; i < ICS_KERNEL_MEMBER_COUNT_; i++) {
     const char *n = ics_kernel_member_name((ics_kernel_member)i);
@@ -221,13 +199,13 @@ static int iterate_main(int argc, char **argv, int **steps_out) {
     int bad = 0;
     switch (k) {
     case 0: bad = parse_members(val, members, &nmembers), have_kernel = 1; break;
-    case 1: bad = get_double(opt, val, 1, &var), have_var = 1; break;
+    case 1: bad = cli_option_double("iterate", opt, val, 1, &var), have_var = 1; break;
     case 2:
       free(*steps_out);
       *steps_out = NULL;
       bad = parse_steps(val, steps_out, &nsnap), have_steps = 1;
       break;
-    case 3: bad = get_double(opt, val, 0, &mean); break;
+    case 3: bad = cli_option_double("iterate", opt, val, 0, &mean); break;
     case 4:
       if (cli_parse_int(val, 0, ICS_KERNEL_MAX_TAPS, &samples) != 0) {
         ERR("--samples: expected an integer in 0..%d, got '%s'", ICS_KERNEL_MAX_TAPS, val);
@@ -235,7 +213,7 @@ static int iterate_main(int argc, char **argv, int **steps_out) {
       }
       break;
     case 5:
-      bad = get_double(opt, val, 0, &param);
+      bad = cli_option_double("iterate", opt, val, 0, &param);
       if (!bad && param < 0) {
         ERR("--param: must be >= 0, got '%s'", val);
         bad = 1;

@@ -34,29 +34,6 @@ static void help(FILE *f) {
           ICS_ELLIPSE_MAX_SAMPLES);
 }
 
-/* a finite double option value; variance: also >= 0 */
-static int get_number(const char *opt, const char *s, int variance, double *out) {
-  double v;
-  if (cli_parse_double(s, &v) != 0) {
-    fprintf(stderr, "icshadow kernel: %s: not a number: '%s'\n", opt, s);
-    return -1;
-  }
-  if (isnan(v)) {
-    fprintf(stderr, "icshadow kernel: %s: NaN is not allowed\n", opt);
-    return -1;
-  }
-  if (variance && v < 0) {
-    fprintf(stderr, "icshadow kernel: %s: negative variance %s (must be >= 0)\n", opt, s);
-    return -1;
-  }
-  if (isinf(v)) {
-    fprintf(stderr, "icshadow kernel: %s: must be finite, got '%s'\n", opt, s);
-    return -1;
-  }
-  *out = v;
-  return 0;
-}
-
 int cmd_kernel(int argc, char **argv) {
   if (cli_wants_help(argc, argv)) {
     help(stdout);
@@ -89,15 +66,15 @@ int cmd_kernel(int argc, char **argv) {
     const char *val = argv[++i];
     int bad = 0;
     if (!strcmp(opt, "--varx")) {
-      bad = get_number(opt, val, 1, &varx);
+      bad = cli_option_double("kernel", opt, val, 1, &varx);
       have_x = 1;
     } else if (!strcmp(opt, "--vary")) {
-      bad = get_number(opt, val, 1, &vary);
+      bad = cli_option_double("kernel", opt, val, 1, &vary);
       have_y = 1;
     } else if (!strcmp(opt, "--angle")) {
-      bad = get_number(opt, val, 0, &angle);
+      bad = cli_option_double("kernel", opt, val, 0, &angle);
     } else if (!strcmp(opt, "--offset")) {
-      bad = get_number(opt, val, 0, &offset);
+      bad = cli_option_double("kernel", opt, val, 0, &offset);
     } else if (cli_parse_int(val, 1, ICS_ELLIPSE_MAX_SAMPLES, &samples) != 0) {
       fprintf(stderr, "icshadow kernel: --samples: expected an integer in 1..%d, got '%s'\n",
               ICS_ELLIPSE_MAX_SAMPLES, val);

@@ -65,24 +65,6 @@ static void help(FILE *f) {
     fputc('\n', stderr);                         \
   } while (0)
 
-static int get_double(const char *opt, const char *s, double *out) {
-  double v;
-  if (cli_parse_double(s, &v) != 0) {
-    ERR("%s: not a number: '%s'", opt, s);
-    return -1;
-  }
-  if (isnan(v)) {
-    ERR("%s: NaN is not allowed", opt);
-    return -1;
-  }
-  if (isinf(v)) {
-    ERR("%s: must be finite, got '%s'", opt, s);
-    return -1;
-  }
-  *out = v;
-  return 0;
-}
-
 typedef struct row {
   const char *label;
   ics_kernel_member member;
@@ -370,16 +352,16 @@ int cmd_kernel_table(int argc, char **argv) {
     const char *val = argv[++i];
     if (!strcmp(opt, "--var") || !strcmp(opt, "--vary")) {
       double v;
-      if (get_double(opt, val, &v) != 0) return 2;
+      if (cli_option_double("kernel-table", opt, val, 0, &v) != 0) return 2;
       if (v <= 0) {
         ERR("%s: the class variance must be > 0, got '%s'", opt, val);
         return 2;
       }
       *(!strcmp(opt, "--var") ? &var : &vary) = v;
     } else if (!strcmp(opt, "--mean")) {
-      if (get_double(opt, val, &mean) != 0) return 2;
+      if (cli_option_double("kernel-table", opt, val, 0, &mean) != 0) return 2;
     } else if (!strcmp(opt, "--angle")) {
-      if (get_double(opt, val, &angle) != 0) return 2;
+      if (cli_option_double("kernel-table", opt, val, 0, &angle) != 0) return 2;
     } else if (!strcmp(opt, "--dims")) {
       if (strcmp(val, "1") && strcmp(val, "2")) {
         ERR("--dims: expected 1 or 2, got '%s'", val);

@@ -28,6 +28,11 @@ int bench_occtex(int argc, char **argv);
 int cli_parse_double(const char *s, double *out);
 int cli_parse_int(const char *s, long lo, long hi, int *out);
 
+/* An option's number for subcommand `cmd`: finite, and >= 0 when `variance` is set. Returns 0,
+ * or -1 after "icshadow CMD: OPT: not a number: 'S'" (or "NaN is not allowed", "negative
+ * variance S (must be >= 0)", "must be finite, got 'S'", checked in that order) on stderr. */
+int cli_option_double(const char *cmd, const char *opt, const char *s, int variance, double *out);
+
 /* Seconds on the monotonic clock (CLOCK_MONOTONIC), for elapsed times. */
 double cli_now_s(void);
 
