@@ -69,6 +69,8 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "degtrig.h"
+
 /* ---- double-double helpers ---------------------------------------------------------------- */
 typedef struct {
   double hi, lo;
@@ -422,8 +424,8 @@ static double arc_invert(double beta, double sigma, double Q) {
   return psi;
 }
 
-/* cos and sin of an angle in degrees, exact at multiples of 90 */
-static void sincos_deg(double deg, double *s, double *c) {
+/* cos and sin of an angle in degrees, exact at multiples of 90 (degtrig.h) */
+void ics_sincos_deg(double deg, double *s, double *c) {
   double r = fmod(deg, 360.0); /* exact */
   double q = nearbyint(r / 90.0);
   double rem = r - 90.0 * q; /* exact: |rem| <= 45 */
@@ -479,7 +481,7 @@ ics_status ics_ellipse_kernel(double varx, double vary, double angle_deg, int ns
   int segment = beta < 0x1p-500; /* beta^2 would underflow: a segment to O(beta^2) relative */
   double Q = segment ? 1.0 : arc_from_major(beta, 1.5707963267948966);
   double sa, ca;
-  sincos_deg(angle_deg, &sa, &ca);
+  ics_sincos_deg(angle_deg, &sa, &ca);
   double u0 = offset - floor(offset);
   for (int j = 0; j < nsamples; j++) {
     double u = u0 + (double)j / nsamples;

@@ -22,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "degtrig.h"
 #include "sym2.h"
 
 static const double PI = 3.14159265358979323846;
@@ -62,25 +63,13 @@ static ics_status check_var(double v) {
   return v < 0 ? ICS_ERR_NEGATIVE_VARIANCE : ICS_OK;
 }
 
-/* cos and sin of an angle in degrees with exact values at multiples of 90 */
-static void cossin_deg(double a, double *c, double *s) {
-  double r = fmod(a, 360.0);
-  if (r < 0) r += 360.0;
-  if (r == 0) { *c = 1; *s = 0; return; }
-  if (r == 90) { *c = 0; *s = 1; return; }
-  if (r == 180) { *c = -1; *s = 0; return; }
-  if (r == 270) { *c = 0; *s = -1; return; }
-  *c = cos(r * (PI / 180.0));
-  *s = sin(r * (PI / 180.0));
-}
-
 ics_status ics_cov_from_eig(double varx, double vary, double alpha, double cov[3]) {
   ics_status s;
   if ((s = check_var(varx)) != ICS_OK || (s = check_var(vary)) != ICS_OK ||
       (s = check_finite(alpha)) != ICS_OK)
     return s;
   double c, sn;
-  cossin_deg(alpha, &c, &sn);
+  ics_sincos_deg(alpha, &sn, &c);
   cov[0] = varx * c * c + vary * sn * sn;
   cov[1] = (varx - vary) * c * sn;
   cov[2] = varx * sn * sn + vary * c * c;

@@ -53,8 +53,9 @@ typedef struct ics_light {
   double weight;   /* >= 0; the luminance power when Y(color) = 1 */
 } ics_light;
 
-/* R(alpha) diag(varx, vary) R(alpha)^T. ICS_ERR_NAN / ICS_ERR_INFINITE /
- * ICS_ERR_NEGATIVE_VARIANCE on bad input. */
+/* R(alpha) diag(varx, vary) R(alpha)^T (cos, sin of alpha exact at multiples of 90 degrees and
+ * ~1 ulp relative near them). ICS_ERR_NAN / ICS_ERR_INFINITE / ICS_ERR_NEGATIVE_VARIANCE on bad
+ * input. */
 ics_status ics_cov_from_eig(double varx, double vary, double alpha_deg, double cov[3]);
 /* Inverse: varx >= vary, alpha in (-90, 90]; ICS_ERR_INVALID_ARG if cov is not symmetric
  * positive semidefinite (up to rounding: eigenvalues >= -8 eps * trace are clamped to 0). */
