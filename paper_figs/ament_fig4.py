@@ -13,10 +13,7 @@ are erased (and between zeros of odd order the contrast is inverted), while the 
 steadily. The positions where the local chirp frequency hits a zero are marked in (b).
 Writes ament_fig4_chirp.csv, ament_fig4_zeros.csv and ament_fig4.png into --out.
 """
-import argparse
-import csv
 import os
-import subprocess
 import sys
 
 import numpy as np
@@ -26,31 +23,18 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
+from figutil import parse_args, run_cli, save_fig, write_csv  # noqa: E402
+
 # the set-up of cli/bench_sat.c (chirp_csv): 4 columns per voxel
 W, H, Y0, Y1, HALF = 708, 64, 24, 40, 18
 F0, F1 = 1.0 / 96, 1.0 / 6
 
 
-def write_csv(path, header, cols):
-    tmp = path + ".tmp"
-    with open(tmp, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(header)
-        for row in zip(*cols):
-            w.writerow(["%.17g" % v for v in row])
-    os.replace(tmp, path)
-
-
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cli", default="build/bin/icshadow", help="path to the icshadow binary")
-    ap.add_argument("--out", default="out/figs", help="output folder")
-    args = ap.parse_args()
-    os.makedirs(args.out, exist_ok=True)
+    args = parse_args(__doc__)
     path = os.path.join(args.out, "ament_fig4_chirp.csv")
-    res = subprocess.run([args.cli, "bench", "sat2d", "--chirp-csv", path], capture_output=True, text=True)
-    if res.returncode != 0:
-        sys.exit("icshadow bench sat2d --chirp-csv failed: %s" % res.stderr.strip())
+    run_cli(args.cli, ["bench", "sat2d", "--chirp-csv", path])
     d = np.genfromtxt(path, delimiter=",", names=True)
     if len(d) != W:
         sys.exit("fig4: expected %d rows, got %d" % (W, len(d)))
@@ -79,7 +63,7 @@ def main():
     fz = ks / Lb
     fz = fz[(fz > F0) & (fz < F1)]
     xz = (fz - F0) / (F1 - F0) * W  # local frequency f0 + (f1 - f0) x / W (in columns)
-    write_csv(os.path.join(args.out, "ament_fig4_zeros.csv"), ["zero_freq_cycles_per_column", "x_voxels"], [fz, xz / 4.0])
+    write_csv(os.path.join(args.out, "ament_fig4_zeros.csv"), ["zero_freq_cycles_per_column", "x_voxels"], zip(fz, xz / 4.0))
     # at those positions the box-filtered shadow is flat: its local contrast vs the unfiltered one
     x = d["x"]
     print("fig4: box-filter zeros at %s cycles/column -> x = %s voxels"
@@ -115,9 +99,7 @@ def main():
     ax[2].legend(loc="upper right", fontsize=8)
     fig.tight_layout()
     png = os.path.join(args.out, "ament_fig4.png")
-    tmp = png + ".tmp.png"
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, png)
+    save_fig(fig, png, 110)
     print("fig4: wrote %s" % png)
 
 

@@ -13,10 +13,8 @@ The script checks the C traversal independently: the lit runs it reports must eq
 samples with S > h computed here in numpy, and every node's [min, max] must be the extremes of
 its samples. Writes chen_fig4.csv (the CLI's data) and chen_fig4.png into --out.
 """
-import argparse
 import csv
 import os
-import subprocess
 import sys
 
 import numpy as np
@@ -27,18 +25,14 @@ matplotlib.use("Agg")
 import matplotlib.patches as mpatches  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
+from figutil import parse_args, run_cli, save_fig  # noqa: E402
+
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cli", default="build/bin/icshadow", help="path to the icshadow binary")
-    ap.add_argument("--out", default="out/figs", help="output folder")
-    args = ap.parse_args()
-    os.makedirs(args.out, exist_ok=True)
+    args = parse_args(__doc__)
     csv_path = os.path.join(args.out, "chen_fig4.csv")
-    res = subprocess.run([args.cli, "bench", "minmax", "--samples", "64", "--rows", "64", "--rays", "64",
-                          "--fig4-csv", csv_path], capture_output=True, text=True)
-    if res.returncode != 0:
-        sys.exit("icshadow bench minmax --fig4-csv failed: %s" % res.stderr.strip())
+    run_cli(args.cli, ["bench", "minmax", "--samples", "64", "--rows", "64", "--rays", "64", "--fig4-csv", csv_path])
 
     samples, nodes, runs, ray = [], [], [], None
     with open(csv_path, newline="") as f:
@@ -126,9 +120,7 @@ def main():
     fig.colorbar(sm, ax=ax[0], pad=0.01).remove()
     fig.tight_layout()
     png = os.path.join(args.out, "chen_fig4.png")
-    tmp = png + ".tmp.png"
-    fig.savefig(tmp, dpi=130)
-    os.replace(tmp, png)
+    save_fig(fig, png, 130)
     print("chen_fig4: wrote %s and %s" % (csv_path, png))
 
 

@@ -8,12 +8,10 @@ As an independent check, the printed Dirac errors are compared with the lattice 
 phi(0) (2 sigma - 1) / (2 sigma sqrt n) derived in docs/theory.md.
 Writes clt_convergence.csv and clt_convergence.png into --out.
 """
-import argparse
 import csv
 import io
 import math
 import os
-import subprocess
 import sys
 
 import numpy as np
@@ -23,40 +21,31 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
+from figutil import arg_parser, parse_args, run_cli, save_fig, write_csv  # noqa: E402
+
 KERNELS = ["dirac", "tophat", "stochastic-dirac", "gauss", "skew"]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cli", default="build/bin/icshadow", help="path to the icshadow binary")
-    ap.add_argument("--out", default="out/figs", help="output folder")
+    ap = arg_parser(__doc__)
     ap.add_argument("--var", type=float, default=36.0, help="class variance per step, px^2")
-    args = ap.parse_args()
-    os.makedirs(args.out, exist_ok=True)
+    args = parse_args(ap)
     steps = [2 ** k for k in range(2, 11)]
     data = {}
     for k in KERNELS:
-        cmd = [args.cli, "clt", "--kernel", k, "--var", "%.17g" % args.var, "--steps", ",".join(map(str, steps))]
-        res = subprocess.run(cmd, capture_output=True, text=True)
-        if res.returncode != 0:
-            sys.exit("icshadow clt failed (%s): %s" % (" ".join(cmd), res.stderr.strip()))
-        rows = list(csv.DictReader(io.StringIO(res.stdout)))
+        out = run_cli(args.cli, ["clt", "--kernel", k, "--var", "%.17g" % args.var, "--steps", ",".join(map(str, steps))])
+        rows = list(csv.DictReader(io.StringIO(out)))
         data[k] = {c: np.array([float(r[c]) for r in rows]) for c in rows[0]}
     sigma = math.sqrt(args.var)
     if abs(sigma - round(sigma)) < 1e-12:
         pred = (2 * sigma - 1) / (2 * sigma) / math.sqrt(2 * math.pi) / np.sqrt(data["dirac"]["steps"])
         print("dirac vs lattice staircase: max relative difference (n >= 64) %.3g"
               % np.max(np.abs(data["dirac"]["sup_error"] / pred - 1)[data["dirac"]["steps"] >= 64]))
-    tmp = os.path.join(args.out, "clt_convergence.csv.tmp")
-    with open(tmp, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["kernel", "steps", "sup_error", "disc_error", "taps_x_steps", "seconds"])
-        for k in KERNELS:
-            d = data[k]
-            for i in range(len(d["steps"])):
-                w.writerow([k, int(d["steps"][i])] + ["%.17g" % d[c][i] for c in
-                                                       ("sup_error", "disc_error", "taps_x_steps", "seconds")])
-    os.replace(tmp, os.path.join(args.out, "clt_convergence.csv"))
+    write_csv(os.path.join(args.out, "clt_convergence.csv"),
+              ["kernel", "steps", "sup_error", "disc_error", "taps_x_steps", "seconds"],
+              [[k, int(data[k]["steps"][i])] + [data[k][c][i] for c in ("sup_error", "disc_error", "taps_x_steps", "seconds")]
+               for k in KERNELS for i in range(len(data[k]["steps"]))])
 
     fig, axs = plt.subplots(1, 2, figsize=(11, 4.5))
     for k in KERNELS:
@@ -76,7 +65,7 @@ def main():
     axs[1].set_title("error vs cost")
     fig.suptitle("CLT convergence per kernel member, class variance %g px^2 per step" % args.var)
     fig.tight_layout()
-    fig.savefig(os.path.join(args.out, "clt_convergence.png"), dpi=120)
+    save_fig(fig, os.path.join(args.out, "clt_convergence.png"), 120)
     plt.close(fig)
 
 

@@ -13,10 +13,7 @@ identity for values in [0, 1]) and prints the measured mean error and bias of ea
 Writes eisemann_fig3_occtex.csv (from the CLI), eisemann_fig3_summary.csv and eisemann_fig3.png
 into --out.
 """
-import argparse
-import csv
 import os
-import subprocess
 import sys
 
 import numpy as np
@@ -26,26 +23,23 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
+from figutil import arg_parser, parse_args, run_cli, save_fig, write_csv  # noqa: E402
+
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cli", default="build/bin/icshadow", help="path to the icshadow binary")
-    ap.add_argument("--out", default="out/figs", help="output folder")
+    ap = arg_parser(__doc__)
     ap.add_argument("--scene", default="foliage", help="foliage, plates or blocks")
     ap.add_argument("--size", type=int, default=256, help="texture side")
     ap.add_argument("--slices", type=int, default=8, help="number of slices")
     ap.add_argument("--receivers", type=int, default=128, help="R x R receivers")
     ap.add_argument("--prefilter", default="sat", help="mipmap, nbuffers or sat")
-    args = ap.parse_args()
-    os.makedirs(args.out, exist_ok=True)
+    args = parse_args(ap)
 
     data_csv = os.path.join(args.out, "eisemann_fig3_occtex.csv")
-    cmd = [args.cli, "bench", "occtex", "--scene", args.scene, "--sizes", str(args.size),
-           "--slices", str(args.slices), "--receivers", str(args.receivers),
-           "--fig3-prefilter", args.prefilter, "--fig3-csv", data_csv]
-    res = subprocess.run(cmd, capture_output=True, text=True)
-    if res.returncode != 0:
-        sys.exit("fig3: %s failed: %s" % (" ".join(cmd), res.stderr.strip()))
+    run_cli(args.cli, ["bench", "occtex", "--scene", args.scene, "--sizes", str(args.size),
+                       "--slices", str(args.slices), "--receivers", str(args.receivers),
+                       "--fig3-prefilter", args.prefilter, "--fig3-csv", data_csv])
 
     d = np.genfromtxt(data_csv, delimiter=",", names=True)
     R = args.receivers
@@ -61,13 +55,8 @@ def main():
         e = d[k] - d["exact"]
         rows.append((k, float(np.mean(np.abs(e))), float(np.max(np.abs(e))), float(np.mean(e))))
         print("fig3: %-7s mean |error| %.4f  max |error| %.4f  bias %+.4f" % rows[-1])
-    tmp = os.path.join(args.out, "eisemann_fig3_summary.csv.tmp")
-    with open(tmp, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["combination", "mean_abs_err", "max_abs_err", "mean_signed_err"])
-        for r in rows:
-            w.writerow([r[0]] + ["%.17g" % v for v in r[1:]])
-    os.replace(tmp, os.path.join(args.out, "eisemann_fig3_summary.csv"))
+    write_csv(os.path.join(args.out, "eisemann_fig3_summary.csv"),
+              ["combination", "mean_abs_err", "max_abs_err", "mean_signed_err"], rows)
 
     ext = [-1.2, 1.2, -1.2, 1.2]
     fig, ax = plt.subplots(2, 4, figsize=(14, 7))
@@ -92,8 +81,7 @@ def main():
     fig.suptitle("Eisemann & Decoret 2006, Fig. 3: %s scene, %d slices, %d^2 %s" %
                  (args.scene, args.slices, args.size, args.prefilter))
     png = os.path.join(args.out, "eisemann_fig3.png")
-    fig.savefig(png + ".tmp.png", dpi=110)
-    os.replace(png + ".tmp.png", png)
+    save_fig(fig, png, 110)
     print("fig3: wrote %s" % png)
 
 

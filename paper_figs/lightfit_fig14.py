@@ -15,12 +15,10 @@ Writes lightfit_fig14.png, lightfit_fig14_errors.csv (the CLI's table), lightfit
 into --out. Check here: the mixture's total luminance equals the kept energy of the map
 integrated from the plane CSV (independent of the library's pixel bookkeeping).
 """
-import argparse
 import csv
 import io
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -32,28 +30,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import Ellipse  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
+from figutil import parse_args, run_cli, save_fig, write_csv  # noqa: E402
+
 SPEC = ("-0.55,0.35,0.08,0.08,0,1,0.2,1,0.2"
         ":0.6,0.3,0.32,0.32,0,2,1,0.2,0.1"
         ":0.05,-0.6,0.3,0.002,-70,1,0.15,0.25,1")
 W, H = 512, 256
 KMAX = 8
 KFIG = 4  # three lights and the sky
-
-
-def run(cmd):
-    res = subprocess.run(cmd, capture_output=True, text=True)
-    if res.returncode != 0:
-        sys.exit("%s failed (%d): %s" % (" ".join(cmd), res.returncode, res.stderr.strip()))
-    return res.stdout
-
-
-def write_csv(path, header, rows):
-    tmp = path + ".tmp"
-    with open(tmp, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(header)
-        w.writerows(rows)
-    os.replace(tmp, path)
 
 
 def mixture(lights, x, y):
@@ -78,20 +63,15 @@ def ellipse(ax, l, nsig, **kw):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cli", default="build/bin/icshadow", help="path to the icshadow binary")
-    ap.add_argument("--out", default="out/figs", help="output folder")
-    args = ap.parse_args()
-    os.makedirs(args.out, exist_ok=True)
+    args = parse_args(__doc__)
     with tempfile.TemporaryDirectory() as tmp:
         env = os.path.join(tmp, "env.exr")
-        run([args.cli, "make-env", "--lights", SPEC, "--sky", "0.02,0.03,0.05", "--size",
-             "%dx%d" % (W, H), "-o", env])
+        run_cli(args.cli, ["make-env", "--lights", SPEC, "--sky", "0.02,0.03,0.05", "--size", "%dx%d" % (W, H), "-o", env])
         lj = os.path.join(tmp, "lights.json")
-        table = run([args.cli, "fit-light", env, "--lights", str(KMAX), "--sweep", "-o", lj])
+        table = run_cli(args.cli, ["fit-light", env, "--lights", str(KMAX), "--sweep", "-o", lj])
         lj4 = os.path.join(tmp, "lights%d.json" % KFIG)
         pc = os.path.join(tmp, "plane.csv")
-        run([args.cli, "fit-light", env, "--lights", str(KFIG), "-o", lj4, "--plane-csv", pc])
+        run_cli(args.cli, ["fit-light", env, "--lights", str(KFIG), "-o", lj4, "--plane-csv", pc])
         with open(lj4) as f:
             lights = json.load(f)["lights"]
         plane = np.genfromtxt(pc, delimiter=",", names=True)
@@ -100,8 +80,7 @@ def main():
     write_csv(os.path.join(args.out, "lightfit_fig14_errors.csv"), header, rows)
     write_csv(os.path.join(args.out, "lightfit_fig14_lights.csv"),
               ["mx", "my", "cxx", "cxy", "cyy", "r", "g", "b", "weight"],
-              [["%.17g" % v for v in l["mean"] + [l["cov"][0][0], l["cov"][0][1], l["cov"][1][1]]
-                + l["color"] + [l["weight"]]] for l in lights])
+              [l["mean"] + [l["cov"][0][0], l["cov"][0][1], l["cov"][1][1]] + l["color"] + [l["weight"]] for l in lights])
 
     # independent check: kept luminance energy integrated from the plane CSV (area of each
     # pixel on the plane = its solid angle * (1 + r^2)^(3/2)) against the fitted weights
@@ -170,8 +149,7 @@ def main():
     ax.set_title("fit error against K (labels: fit time)", fontsize=10)
     fig.tight_layout()
     png = os.path.join(args.out, "lightfit_fig14.png")
-    fig.savefig(png + ".tmp.png", dpi=110)
-    os.replace(png + ".tmp.png", png)
+    save_fig(fig, png, 110)
     print("wrote", png)
     print(table, end="")
 

@@ -12,11 +12,8 @@ Gaussian light (math.erfc bisection here) and the iterated ones with the CLT for
 x = Phi^-1(s) sqrt(d d1) sigma; the worst differences are printed.
 Writes patel_fig16_isolines.csv, patel_fig16.png, patel_fig17_isolines.csv, patel_fig17.png into --out.
 """
-import argparse
-import csv
 import math
 import os
-import subprocess
 import sys
 
 import numpy as np
@@ -26,18 +23,17 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
+from figutil import parse_args, run_cli, save_fig, write_csv  # noqa: E402
+
 
 def isoline(cli, light, level, dist, model, d1=None, slab=None, kernel="tophat"):
-    cmd = [cli, "isoline", "--light", light, "--level", "%.17g" % level, "--distance", "%.17g" % dist,
-           "--model", model]
+    cmd = ["isoline", "--light", light, "--level", "%.17g" % level, "--distance", "%.17g" % dist, "--model", model]
     if model != "correct":
         cmd += ["--d1", "%.17g" % d1]
     if model == "iterative":
         cmd += ["--slab", "%.17g" % slab, "--kernel", kernel]
-    res = subprocess.run(cmd, capture_output=True, text=True)
-    if res.returncode != 0:
-        sys.exit("icshadow isoline failed (%s): %s" % (" ".join(cmd), res.stderr.strip()))
-    return float(res.stdout)
+    return float(run_cli(cli, cmd))
 
 
 def phi_inv(p):
@@ -52,22 +48,8 @@ def phi_inv(p):
     return 0.5 * (lo + hi)
 
 
-def write_csv(path, header, rows):
-    tmp = path + ".tmp"
-    with open(tmp, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(header)
-        for r in rows:
-            w.writerow([("%.17g" % v) if isinstance(v, float) else v for v in r])
-    os.replace(tmp, path)
-
-
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cli", default="build/bin/icshadow", help="path to the icshadow binary")
-    ap.add_argument("--out", default="out/figs", help="output folder")
-    args = ap.parse_args()
-    os.makedirs(args.out, exist_ok=True)
+    args = parse_args(__doc__)
     e = 1.0 / 64
 
     # ---- Fig. 16: light mean 0, variance 1, d1 = 1
@@ -106,7 +88,7 @@ def main():
     axs[0].set_ylabel("distance d behind the occluder")
     fig.suptitle("Patel Fig. 16: light mean 0, variance 1, d1 = 1; isolines 0.1..0.9, 1/2 in white")
     fig.tight_layout()
-    fig.savefig(os.path.join(args.out, "patel_fig16.png"), dpi=120)
+    save_fig(fig, os.path.join(args.out, "patel_fig16.png"), 120)
     plt.close(fig)
 
     # ---- Fig. 17: Gaussian light, d1 = 2
@@ -135,7 +117,7 @@ def main():
     ax.set_title("Patel Fig. 17: isolines 0.1..0.9, Gaussian light (var 1)")
     ax.legend(loc="lower left")
     fig.tight_layout()
-    fig.savefig(os.path.join(args.out, "patel_fig17.png"), dpi=120)
+    save_fig(fig, os.path.join(args.out, "patel_fig17.png"), 120)
     plt.close(fig)
 
 

@@ -8,10 +8,7 @@ Every curve comes from `icshadow eval`; markers on the left panel are an indepen
 periodic trapezoid quadrature of the arc-length density (numpy), so a wrong convention shows.
 Writes patel_fig23_varx.csv, patel_fig23_vxvy.csv, patel_fig23_ratio_to_t.csv and patel_fig23.png into --out.
 """
-import argparse
-import csv
 import os
-import subprocess
 import sys
 
 import numpy as np
@@ -21,14 +18,14 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
+from figutil import parse_args, run_cli, save_fig, write_csv  # noqa: E402
+
 
 def cli_eval(cli, func, xs):
     """Evaluate FUNC on xs through `icshadow eval` (one number per line in and out)."""
     text = "".join("%.17g\n" % x for x in xs)
-    res = subprocess.run([cli, "eval", func], input=text, capture_output=True, text=True)
-    if res.returncode != 0:
-        sys.exit("icshadow eval %s failed: %s" % (func, res.stderr.strip()))
-    return np.array([float(v) for v in res.stdout.split()])
+    return np.array([float(v) for v in run_cli(cli, ["eval", func], stdin_text=text).split()])
 
 
 def varx_quadrature(b, n=4096):
@@ -38,22 +35,8 @@ def varx_quadrature(b, n=4096):
     return float(np.sum(np.cos(th) ** 2 * ds) / np.sum(ds))
 
 
-def write_csv(path, header, cols):
-    tmp = path + ".tmp"
-    with open(tmp, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(header)
-        for row in zip(*cols):
-            w.writerow(["%.17g" % v for v in row])
-    os.replace(tmp, path)
-
-
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cli", default="build/bin/icshadow", help="path to the icshadow binary")
-    ap.add_argument("--out", default="out/figs", help="output folder")
-    args = ap.parse_args()
-    os.makedirs(args.out, exist_ok=True)
+    args = parse_args(__doc__)
 
     b = np.linspace(0.0, 4.0, 401)
     varx = cli_eval(args.cli, "varx", b)
@@ -72,9 +55,9 @@ def main():
     rat = np.logspace(-4, 4, 401)
     t_of_rat = cli_eval(args.cli, "ratio_to_t", rat)
 
-    write_csv(os.path.join(args.out, "patel_fig23_varx.csv"), ["b", "varx"], [b, varx])
-    write_csv(os.path.join(args.out, "patel_fig23_vxvy.csv"), ["t", "Vx", "Vy"], [t, vx, vy])
-    write_csv(os.path.join(args.out, "patel_fig23_ratio_to_t.csv"), ["ratio", "t"], [rat, t_of_rat])
+    write_csv(os.path.join(args.out, "patel_fig23_varx.csv"), ["b", "varx"], zip(b, varx))
+    write_csv(os.path.join(args.out, "patel_fig23_vxvy.csv"), ["t", "Vx", "Vy"], zip(t, vx, vy))
+    write_csv(os.path.join(args.out, "patel_fig23_ratio_to_t.csv"), ["ratio", "t"], zip(rat, t_of_rat))
 
     fig, ax = plt.subplots(1, 3, figsize=(12, 3.6))
     ax[0].plot(b, varx, "b-", label="icshadow varx")
@@ -94,8 +77,7 @@ def main():
     fig.suptitle("Patel et al. 2013, Fig. 23 (reproduced by icshadow eval)")
     fig.tight_layout()
     png = os.path.join(args.out, "patel_fig23.png")
-    fig.savefig(png + ".tmp.png", dpi=110)
-    os.replace(png + ".tmp.png", png)
+    save_fig(fig, png, 110)
     print("fig23: wrote %s and 3 CSV files" % png)
 
 

@@ -17,11 +17,9 @@ Writes patel_fig3_profiles.csv (kernel, steps, x, value, gauss_cdf at steps 1, 2
 patel_fig3_summary.csv (kernel, steps, max |value - gauss_cdf|, ripple = max |second difference|)
 and patel_fig3.png into --out.
 """
-import argparse
 import csv
 import io
 import os
-import subprocess
 import sys
 
 import numpy as np
@@ -32,6 +30,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import Rectangle  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
+from figutil import parse_args, run_cli, save_fig, write_csv  # noqa: E402
+
 VAR = 30.25
 STEPS = 100
 SEED = 1
@@ -41,13 +42,6 @@ KERNELS = [("tophat", "top-hat (width %.2f, %s taps)"),
 CSV_STEPS = [1, 2, 5, 10, 20, 50, 100]
 ZOOM_X = (-40.0, 40.0)
 ZOOM_STEPS = (0, 20)
-
-
-def run_cli(cli, args):
-    res = subprocess.run([cli] + args, capture_output=True, text=True)
-    if res.returncode != 0:
-        sys.exit("icshadow %s failed (exit %d): %s" % (" ".join(args), res.returncode, res.stderr.strip()))
-    return res.stdout
 
 
 def iterate(cli, kernel):
@@ -67,21 +61,8 @@ def kernel_table(cli):
     return {r["member"]: r for r in csv.DictReader(io.StringIO(out))}
 
 
-def write_csv(path, header, rows):
-    tmp = path + ".tmp"
-    with open(tmp, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(header)
-        w.writerows(rows)
-    os.replace(tmp, path)
-
-
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cli", default="build/bin/icshadow", help="path to the icshadow binary")
-    ap.add_argument("--out", default="out/figs", help="output folder")
-    args = ap.parse_args()
-    os.makedirs(args.out, exist_ok=True)
+    args = parse_args(__doc__)
 
     table = kernel_table(args.cli)
     runs = {k: iterate(args.cli, k) for k, _ in KERNELS}
@@ -94,7 +75,7 @@ def main():
             sys.exit("patel_fig3: %s profile leaves [0, 1]" % k)
         for s in CSV_STEPS:
             i = int(np.nonzero(steps == s)[0][0])
-            prof_rows += [[k, s, "%.17g" % xx, "%.17g" % v, "%.17g" % g] for xx, v, g in zip(x, val[i], gauss[i])]
+            prof_rows += [[k, s, xx, v, g] for xx, v, g in zip(x, val[i], gauss[i])]
         for s in (1, 10, 100):
             i = int(np.nonzero(steps == s)[0][0])
             err = float(np.max(np.abs(val[i] - gauss[i])))
@@ -158,9 +139,7 @@ def main():
                  "(icshadow iterate)" % VAR, fontsize=11)
     fig.tight_layout()
     png = os.path.join(args.out, "patel_fig3.png")
-    tmp = os.path.join(args.out, ".patel_fig3.tmp.png")
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, png)
+    save_fig(fig, png, 110)
     print("patel_fig3: wrote %s, patel_fig3_profiles.csv, patel_fig3_summary.csv" % png)
 
 

@@ -15,18 +15,19 @@ Fig. 11 frame rates (GTX 480, 768^2; a different machine and renderer: only the 
 Writes patel_table1.csv and patel_table1_2d.csv (the CLI's CSVs as is), patel_table1.md (Markdown,
 both tables) and patel_table1.png into --out.
 """
-import argparse
 import csv
 import io
 import math
 import os
-import subprocess
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
+from figutil import parse_args, run_cli, save_fig, write_text  # noqa: E402
 
 VAR = 30.25
 SIG = math.sqrt(VAR)
@@ -42,23 +43,12 @@ PAPER_FPS = {"ellipse-2": "22.58", "ellipse-3": "20.34", "poisson-8": "11.83", "
              "gauss-19x19": "0.48"}
 
 
-def run_cli(cli, args):
-    res = subprocess.run([cli] + args, capture_output=True, text=True)
-    if res.returncode != 0:
-        sys.exit("icshadow %s failed (exit %d): %s" % (" ".join(args), res.returncode, res.stderr.strip()))
-    return res.stdout
-
-
 def g(v, digits=6):
     return "%.*g" % (digits, float(v))
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cli", default="build/bin/icshadow", help="path to the icshadow binary")
-    ap.add_argument("--out", default="out/figs", help="output folder")
-    args = ap.parse_args()
-    os.makedirs(args.out, exist_ok=True)
+    args = parse_args(__doc__)
 
     text = run_cli(args.cli, ["kernel-table", "--var", repr(VAR), "--iterations", "10000", "--seed", "1"])
     rows = list(csv.DictReader(io.StringIO(text)))
@@ -82,10 +72,7 @@ def main():
             sys.exit("patel_table1: 2D %s covariance %s, class %s" % (r["member"], got, cls))
 
     for name, t in (("patel_table1.csv", text), ("patel_table1_2d.csv", text2)):
-        tmp = os.path.join(args.out, name + ".tmp")
-        with open(tmp, "w") as f:
-            f.write(t)
-        os.replace(tmp, os.path.join(args.out, name))
+        write_text(os.path.join(args.out, name), t)
 
     header = ["kernel", "mean", "variance", "var range", "width (taps)", "samples", "applied taps",
               "interp. var/step", "ns/px/step", "paper width", "paper samples"]
@@ -126,10 +113,7 @@ def main():
     md += ["", "cov is the central covariance of each iteration's taps (what one step spreads), averaged. For the "
            "ellipse with odd N the taps' centroid is off the class mean (exact only in expectation), so the central "
            "covariance falls short of the class by the centroid's scatter; see docs/figures.md."]
-    tmp = os.path.join(args.out, "patel_table1.md.tmp")
-    with open(tmp, "w") as f:
-        f.write("\n".join(md) + "\n")
-    os.replace(tmp, os.path.join(args.out, "patel_table1.md"))
+    write_text(os.path.join(args.out, "patel_table1.md"), "\n".join(md) + "\n")
 
     fig, axs = plt.subplots(2, 1, figsize=(15, 5.4))
     for ax, hd, bd in ((axs[0], header, body), (axs[1], header2, body2)):
@@ -144,9 +128,7 @@ def main():
     axs[1].set_title("2D members (Sec. 3.4, Fig. 11; icshadow kernel-table --dims 2): covariance R(%g$^\\circ$) "
                      "diag(%g, %g) R$^T$" % (ANGLE2, VARX2, VARY2), fontsize=10)
     fig.tight_layout()
-    tmp = os.path.join(args.out, ".patel_table1.tmp.png")
-    fig.savefig(tmp, dpi=120)
-    os.replace(tmp, os.path.join(args.out, "patel_table1.png"))
+    save_fig(fig, os.path.join(args.out, "patel_table1.png"), 120)
     for b in body + body2:
         print("patel_table1: " + " | ".join(b))
     print("patel_table1: wrote patel_table1.csv, patel_table1_2d.csv, patel_table1.md, patel_table1.png in %s" % args.out)
