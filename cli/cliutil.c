@@ -1,7 +1,7 @@
 /* cliutil.c — helpers shared by the icshadow subcommands: strict number parsing (also of option
  * values, with the subcommand's error messages), --help detection, a monotonic clock for
  * timings, and atomic output files (temporary name + rename). */
-#define _POSIX_C_SOURCE 200809L
+#define _XOPEN_SOURCE 700 /* realpath, mkstemp, fchmod */
 #include "commands.h"
 
 #include <ctype.h>
@@ -76,20 +76,49 @@ int cli_wants_help(int argc, char **argv) {
 int cli_output_open(cli_output *out, const char *path) {
   out->fp = NULL;
   out->tmp_path = NULL;
+  out->target = NULL;
   out->path = path;
+  out->write_path = path;
   if (!path || !strcmp(path, "-")) {
     out->fp = stdout;
     return 0;
   }
-  size_t n = strlen(path) + 16;
+  struct stat st;
+  int dangling = 0;
+  if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode)) {
+    out->target = realpath(path, NULL);
+    dangling = !out->target; /* a link to nothing yet: write through it, in place */
+  }
+  if (!out->target) out->target = strdup(path);
+  if (!out->target) return -1;
+  if (dangling || (stat(out->target, &st) == 0 && !S_ISREG(st.st_mode))) {
+    if (S_ISDIR(st.st_mode)) {
+      fprintf(stderr, "icshadow: cannot write %s: it is a directory\n", path);
+      cli_output_abort(out);
+      return -1;
+    }
+    out->fp = fopen(out->target, "w"); /* device, FIFO or dangling link: in place */
+    if (!out->fp) {
+      fprintf(stderr, "icshadow: cannot open %s: %s\n", path, strerror(errno));
+      cli_output_abort(out);
+      return -1;
+    }
+    out->write_path = out->target;
+    return 0;
+  }
+  size_t n = strlen(out->target) + 16;
   out->tmp_path = malloc(n);
-  if (!out->tmp_path) return -1;
-  snprintf(out->tmp_path, n, "%s.tmpXXXXXX", path);
+  if (!out->tmp_path) {
+    cli_output_abort(out);
+    return -1;
+  }
+  snprintf(out->tmp_path, n, "%s.tmpXXXXXX", out->target);
   int fd = mkstemp(out->tmp_path);
   if (fd < 0) {
     fprintf(stderr, "icshadow: cannot create %s: %s\n", path, strerror(errno));
     free(out->tmp_path);
     out->tmp_path = NULL;
+    cli_output_abort(out);
     return -1;
   }
   /* mkstemp creates mode 0600: give the file the mode a plain fopen would have */
@@ -103,6 +132,7 @@ int cli_output_open(cli_output *out, const char *path) {
     cli_output_abort(out);
     return -1;
   }
+  out->write_path = out->tmp_path;
   return 0;
 }
 
@@ -112,21 +142,28 @@ void cli_output_abort(cli_output *out) {
     remove(out->tmp_path);
     free(out->tmp_path);
   }
+  free(out->target);
   out->fp = NULL;
   out->tmp_path = NULL;
+  out->target = NULL;
 }
 
 int cli_output_commit(cli_output *out) {
   if (out->fp == stdout) return fflush(stdout) ? -1 : 0;
-  int bad = ferror(out->fp);
-  bad |= fclose(out->fp) != 0;
-  out->fp = NULL;
-  if (!bad && rename(out->tmp_path, out->path) != 0) bad = 1;
+  int bad = 0;
+  if (out->fp) {
+    bad = ferror(out->fp);
+    bad |= fclose(out->fp) != 0;
+    out->fp = NULL;
+  }
+  if (!bad && out->tmp_path && rename(out->tmp_path, out->target) != 0) bad = 1;
   if (bad) {
     fprintf(stderr, "icshadow: cannot write %s: %s\n", out->path, strerror(errno));
-    remove(out->tmp_path);
+    if (out->tmp_path) remove(out->tmp_path);
   }
   free(out->tmp_path);
+  free(out->target);
   out->tmp_path = NULL;
+  out->target = NULL;
   return bad ? -1 : 0;
 }

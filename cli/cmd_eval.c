@@ -1,7 +1,9 @@
 /* cmd_eval.c — `icshadow eval FUNC`: one number per line on stdin, one %.17g result per line
- * on stdout. A line that is not a number is reported on stderr with its line number, gets
- * "nan" on stdout (so outputs stay aligned with inputs), and makes the exit status 2. */
+ * on stdout. A line that is not a number (or holds a NUL byte) is reported on stderr with its
+ * line number, gets "nan" on stdout (so outputs stay aligned with inputs), and makes the exit
+ * status 2. A failure to read stdin or write stdout is reported and gives exit status 1. */
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -61,6 +63,12 @@ int cmd_eval(int argc, char **argv) {
     lineno++;
     if (len > 0 && line[len - 1] == '\n') line[--len] = '\0';
     double x;
+    if (strlen(line) != (size_t)len) {
+      fprintf(stderr, "icshadow eval: line %ld: contains a NUL byte\n", lineno);
+      printf("nan\n");
+      status = 2;
+      continue;
+    }
     if (cli_parse_double(line, &x) != 0) {
       fprintf(stderr, "icshadow eval: line %ld: not a number: '%.60s'\n", lineno, line);
       printf("nan\n");
@@ -69,7 +77,15 @@ int cmd_eval(int argc, char **argv) {
     }
     printf("%.17g\n", funcs[which].f(x));
   }
+  int read_error = ferror(stdin) ? errno : 0;
   free(line);
-  if (fflush(stdout) != 0) return 1;
+  if (read_error) {
+    fprintf(stderr, "icshadow eval: cannot read stdin: %s\n", strerror(read_error));
+    return 1;
+  }
+  if (fflush(stdout) != 0 || ferror(stdout)) {
+    fprintf(stderr, "icshadow eval: cannot write stdout: %s\n", strerror(errno));
+    return 1;
+  }
   return status;
 }

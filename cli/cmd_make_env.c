@@ -123,10 +123,10 @@ int cmd_make_env(int argc, char **argv) {
     ics_image_free(&env);
     return 1;
   }
-  st = ics_exr_write(out.tmp_path, &env, half ? ICS_EXR_HALF : ICS_EXR_FLOAT, err, sizeof err);
+  st = ics_exr_write(out.write_path, &env, half ? ICS_EXR_HALF : ICS_EXR_FLOAT, err, sizeof err);
   ics_image_free(&env);
   if (st != ICS_OK) {
-    fprintf(stderr, "icshadow make-env: %s\n", err);
+    fprintf(stderr, "icshadow make-env: cannot write %s: %s\n", outp, err);
     cli_output_abort(&out);
     return st == ICS_ERR_INVALID_ARG ? 2 : 1;
   }

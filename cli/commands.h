@@ -41,11 +41,16 @@ int cli_wants_help(int argc, char **argv);
 
 /* Atomic output: write to a temporary file beside `path`, then rename on commit; abort (or a
  * failed commit) removes the temporary file, so no partial output is ever left behind.
- * path "-" means stdout (commit just flushes). */
+ * path "-" means stdout (commit just flushes). A symbolic link is resolved first, so the file it
+ * points to is replaced, not the link. An existing target that is not a regular file (a device,
+ * a FIFO) is written in place: renaming over it would replace it.
+ * Writers that need a file name rather than a FILE * write to `write_path`. */
 typedef struct cli_output {
   FILE *fp;
-  char *tmp_path; /* NULL for stdout */
-  const char *path;
+  char *tmp_path;         /* the temporary file; NULL for stdout and for in-place targets */
+  char *target;           /* owned: where the result ends up (symbolic links resolved) */
+  const char *path;       /* as given, for messages */
+  const char *write_path; /* where the bytes go now: tmp_path, or the target itself */
 } cli_output;
 int cli_output_open(cli_output *out, const char *path);
 int cli_output_commit(cli_output *out); /* 0 on success; reports errors on stderr */

@@ -1,5 +1,6 @@
-# CLI tests for `icshadow eval` and the top-level dispatcher: help, domain handling, and bad
-# input (line numbers on stderr, nan kept in place on stdout, exit status 2).
+# CLI tests for `icshadow eval`, the top-level dispatcher and the shared -o handling: help,
+# domain handling, output targets (links, FIFOs, directories), and bad input (line numbers on
+# stderr, nan kept in place on stdout, exit status 2; unreadable stdin, exit status 1).
 ics_cli_test(NAME cli_help RC 0 ARGS "--help" OUT "eval.*kernel.*lut")
 ics_cli_test(NAME cli_no_command RC 2 ARGS "" ERR "usage: icshadow COMMAND")
 ics_cli_test(NAME cli_unknown_command RC 2 ARGS "frobnicate" ERR "unknown command 'frobnicate'")
@@ -10,3 +11,6 @@ ics_cli_test(NAME cli_eval_no_function RC 2 ARGS "eval" ERR "usage: icshadow eva
 add_test(NAME cli_eval_bad_line
   COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/eval_bad_line.sh $<TARGET_FILE:icshadow_cli>)
 set_tests_properties(cli_eval_bad_line PROPERTIES LABELS fast)
+add_test(NAME cli_output_targets
+  COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/output_targets.sh $<TARGET_FILE:icshadow_cli>)
+set_tests_properties(cli_output_targets PROPERTIES LABELS fast)

@@ -19,5 +19,14 @@ expect 'echo "$err" | grep -q "line 3: not a number"'
 expect 'echo "$err" | grep -q "line 4: not a number"'
 expect 'echo "$err" | grep -q "line 6: not a number"'
 echo "$err"
-[ $fail -eq 0 ] && echo "cli_eval_bad_line: 9 passed, 0 failed"
+# a NUL byte inside a line is named, not silently cut off
+out=$(printf '7\0xx\n0.5\n' | "$cli" eval varx 2>"${TMPDIR:-/tmp}/eval_err.$$")
+rc=$?
+err=$(cat "${TMPDIR:-/tmp}/eval_err.$$"); rm -f "${TMPDIR:-/tmp}/eval_err.$$"
+expect '[ "$rc" -eq 2 ] && [ "$(echo "$out" | sed -n 1p)" = "nan" ]'
+expect 'echo "$err" | grep -q "line 1: contains a NUL byte"'
+# stdin that cannot be read (a directory) is an error, not an empty input
+"$cli" eval ellipk < / 2>/dev/null
+expect '[ $? -eq 1 ]'
+[ $fail -eq 0 ] && echo "cli_eval_bad_line: 12 passed, 0 failed"
 exit $fail
