@@ -76,6 +76,12 @@ bench: deps all
 	cmake --build $(BUILD) --target benchmarks -j $(JOBS)
 	@set -e; for b in $(BUILD)/bin/bench_*; do echo "== $$b"; $$b; done
 	@set -e; for k in $(BENCH_KINDS); do echo "== icshadow bench $$k"; $(BUILD)/bin/icshadow bench $$k; done
+	@echo "== icshadow bench sat3d --lights (CSAT / SSAT against brute-force marching)"
+	$(BUILD)/bin/icshadow bench sat3d --lights
+	@echo "== icshadow bench minmax --scene noise (a hard, forest-like scene)"
+	$(BUILD)/bin/icshadow bench minmax --scene noise
+	@echo "== icshadow bench minmax --svd-table (error of the N-term SVD integrand)"
+	$(BUILD)/bin/icshadow bench minmax --svd-table
 
 # Stability sweep of the exact functions: max ulp error vs MPFR and ns per call per region.
 analysis: deps all
