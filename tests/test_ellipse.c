@@ -3,6 +3,7 @@
  * quadrature that settles the elliptic-integral convention of Patel's Appendix A.7.
  *
  * Bounds asserted here are the ones stated in libicshadow/src/ellipse.c and docs/ellipse.md. */
+#include <errno.h>
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
@@ -247,11 +248,54 @@ static void test_special(void) {
   }
 }
 
+/* DESIGN contract: math functions never touch errno. All nine `icshadow eval` functions on the
+ * extremes of (and beyond) their domains: 0, subnormals, DBL_MIN, 1e-300, 1 - 2^-53, 1, huge,
+ * DBL_MAX, +-inf, NaN, negative. (ldexp's underflow in vy/ratio's scaled square set ERANGE.) */
+static void test_errno(void) {
+  typedef double (*fn)(double);
+  static const struct {
+    const char *name;
+    fn f;
+  } fs[] = {{"ics_ellipk", ics_ellipk},
+            {"ics_ellipe", ics_ellipe},
+            {"ics_ellipk_m1", ics_ellipk_m1},
+            {"ics_ellipe_m1", ics_ellipe_m1},
+            {"ics_ellipse_varx", ics_ellipse_varx},
+            {"ics_ellipse_vx", ics_ellipse_vx},
+            {"ics_ellipse_vy", ics_ellipse_vy},
+            {"ics_ellipse_ratio", ics_ellipse_ratio},
+            {"ics_ellipse_ratio_to_t", ics_ellipse_ratio_to_t}};
+  const double xs[] = {0.0, -0.0, 0x1p-1074, 0x1p-1073, 0x1.8p-1060, 0x1p-1040, 0x1.fffffffffffffp-1023,
+                       DBL_MIN, 0x1.0000000000001p-1022, 1e-310, 1e-300, 1e-200, 0x1p-961,
+                       0x1p-960, 1e-160, 0x1p-480, 1e-100, 1e-8, 0.5, 1.0 - 0x1p-53, 1.0,
+                       1.0 + 0x1p-52, 2.0, 1e8, 1e100, 1e300, DBL_MAX, INFINITY, -INFINITY, NAN,
+                       -NAN, -0x1p-1074, -DBL_MIN, -1e-300, -0.5, -1.0, -1e8, -1e300, -DBL_MAX};
+  for (size_t i = 0; i < sizeof fs / sizeof fs[0]; i++)
+    for (size_t j = 0; j < sizeof xs / sizeof xs[0]; j++) {
+      errno = 0;
+      double y = fs[i].f(xs[j]);
+      int err = errno;
+      CHECK(err == 0, "%s(%a) = %.17g set errno = %d (%s)", fs[i].name, xs[j], y, err,
+            strerror(err));
+    }
+  /* every binade of t below the scaled square's switch, where the exponent is applied last */
+  for (int k = -1074; k <= -470; k++) {
+    double t = ldexp(1.0, k), ts[] = {t, nextafter(t, 1.0), 1.5 * t};
+    for (int j = 0; j < 3; j++) {
+      errno = 0;
+      double a = ics_ellipse_vy(ts[j]), b = ics_ellipse_ratio(ts[j]);
+      int err = errno;
+      CHECK(err == 0, "vy/ratio(%a) = %.17g / %.17g set errno = %d", ts[j], a, b, err);
+    }
+  }
+}
+
 int main(int argc, char **argv) {
   int n = 400; /* random points per region; the sanitizer build uses the same count */
   if (argc > 1) n = atoi(argv[1]);
   test_convention();
   test_special();
+  test_errno();
 
   worst_t wvarx = {"varx", 0, 0};
   const double fixed_b[] = {0x1p-1074, 1e-300, 1e-200, 1.5e-154, 1e-100, 1e-20, 1e-8, 0.001, 0.1,

@@ -68,6 +68,8 @@
 #include <float.h>
 #include <math.h>
 #include <stddef.h>
+#include <stdint.h>
+#include <string.h>
 
 #include "degtrig.h"
 
@@ -225,18 +227,31 @@ double ics_ellipse_vx(double t) {
   return v.hi + v.lo;
 }
 
-/* t^2 * f for f in double-double. Below t = 2^-480 the square is formed on the mantissa of t
- * and the exponent applied last, so every normal result is rounded once (subnormal results
- * twice: <= 1 ulp of 2^-1074). */
+/* 2^k for -1022 <= k <= 1023, built from its bits (no libm call, so no errno) */
+static double pow2i(int k) {
+  uint64_t u = (uint64_t)(k + 1023) << 52;
+  double d;
+  memcpy(&d, &u, sizeof d);
+  return d;
+}
+
+/* t^2 * f for f in double-double, f in [1/2, 2]. Below t = 2^-480 the square is formed on the
+ * mantissa of t and the exponent applied last, so every normal result is rounded once (subnormal
+ * results twice: <= 1 ulp of 2^-1074). The exponent is applied by two multiplications, the first
+ * exact (x 2^-600 is normal), the second rounding once: the same result as ldexp(x, 2e), which
+ * would set errno = ERANGE on underflow (the math functions never touch errno). */
 static double sq_times(double t, dd f) {
   if (t >= 0x1p-480) {
     dd v = dd_mul(dd_sqr(t), f);
     return v.hi + v.lo;
   }
   int e;
-  double m = frexp(t, &e);
+  double m = frexp(t, &e); /* m in [1/2, 1), e <= -479 */
   dd v = dd_mul(dd_sqr(m), f);
-  return ldexp(v.hi + v.lo, 2 * e);
+  double x = v.hi + v.lo; /* in [1/8, 2] */
+  int k = 2 * e;          /* <= -958 */
+  if (k <= -1077) return 0.0; /* x 2^k <= 2^-1076 < 2^-1075: rounds to +0 */
+  return (x * 0x1p-600) * pow2i(k + 600); /* k + 600 in [-476, -358] */
 }
 
 double ics_ellipse_vy(double t) {
