@@ -4,9 +4,11 @@
  * independently: closed-form moments of the box, the triangular density and Gaussian mixtures,
  * published normal quantiles, the series cot x = 1/x - x/3 - x^3/45 - 2x^5/945, and
  * trapezoid quadrature of the pdf. */
+#include <errno.h>
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "icshadow.h"
 #include "testutil.h"
@@ -254,6 +256,32 @@ static void test_mapping(void) {
         "cov_k %.17g %.17g %.17g", c2[0], c2[1], c2[2]);
 }
 
+/* DESIGN contract: math functions never touch errno (glibc's erfc and exp set ERANGE on
+ * underflow/overflow: Phi far in the tails, the pdf, Phi^-1's Halley step for subnormal p). */
+static void test_errno(void) {
+  const double xs[] = {0.0,  0x1p-1074, DBL_MIN, 1e-300, 0.5,     1.0 - 0x1p-53, 1.0,
+                       40.0, 1e10,      1e300,   DBL_MAX, INFINITY, -INFINITY,    NAN,
+                       -40.0, -1e10,    -DBL_MAX, 89.999999999, -89.999999999};
+  ics_light1d g, mx;
+  const double w[2] = {0.5, 0.5}, mu[2] = {-1, 1}, v[2] = {0.5, 2};
+  CHECK(ics_light1d_gauss(&g, 0, 1) == ICS_OK && ics_light1d_mix(&mx, 2, w, mu, v) == ICS_OK,
+        "lights");
+  for (size_t j = 0; j < sizeof xs / sizeof xs[0]; j++) {
+    double x = xs[j], y[13];
+    errno = 0;
+    y[0] = ics_light_phi(x), y[1] = ics_light_phic(x), y[2] = ics_light_phiinv(x);
+    y[3] = ics_tan_deg(x), y[4] = ics_tilt_condition(x);
+    y[5] = ics_light1d_pdf(&g, x), y[6] = ics_light1d_cdf(&g, x), y[7] = ics_light1d_sf(&g, x);
+    y[8] = ics_light1d_quantile(&g, x), y[9] = ics_light1d_isf(&g, x);
+    y[10] = ics_light1d_pdf(&mx, x), y[11] = ics_light1d_cdf(&mx, x), y[12] = ics_light1d_sf(&mx, x);
+    int err = errno;
+    CHECK(err == 0, "phi/phic/phiinv/tan_deg/tilt_condition/pdf/cdf/sf/quantile/isf(%a) set errno = %d (%s); phi %g",
+          x, err, strerror(err), y[0]);
+  }
+  ics_light1d_free(&g);
+  ics_light1d_free(&mx);
+}
+
 int main(void) {
   test_normal();
   test_gauss();
@@ -262,5 +290,6 @@ int main(void) {
   test_tab();
   test_tilt();
   test_mapping();
+  test_errno();
   return test_summary("test_light");
 }

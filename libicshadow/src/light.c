@@ -17,6 +17,7 @@
  *   Gauss-Legendre per segment (exact for the degree-4 integrands). */
 #include "icshadow/light.h"
 
+#include <errno.h>
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -165,14 +166,32 @@ ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, double mea
 
 /* ---- standard normal ---- */
 
+/* glibc's erfc and exp set errno = ERANGE when the result underflows or overflows (erfc(x) for
+ * x >~ 26.5, i.e. Phi(z) for z < -37.5; exp in the pdf's tails and Phi^-1's Halley step for
+ * subnormal p). The math functions never touch errno: these calls save and restore it (the
+ * results are libm's, unchanged). */
+static double erfc_noerrno(double x) {
+  int saved = errno;
+  double r = erfc(x);
+  errno = saved;
+  return r;
+}
+
+static double exp_noerrno(double x) {
+  int saved = errno;
+  double r = exp(x);
+  errno = saved;
+  return r;
+}
+
 double ics_light_phi(double z) {
   if (isnan(z)) return NAN;
-  return 0.5 * erfc(-z * 0.70710678118654752440);
+  return 0.5 * erfc_noerrno(-z * 0.70710678118654752440);
 }
 
 double ics_light_phic(double z) {
   if (isnan(z)) return NAN;
-  return 0.5 * erfc(z * 0.70710678118654752440);
+  return 0.5 * erfc_noerrno(z * 0.70710678118654752440);
 }
 
 double ics_light_phiinv(double p) {
@@ -210,7 +229,7 @@ double ics_light_phiinv(double p) {
   } else {
     e = -(ics_light_phic(x) - (1.0 - p)); /* 1 - p exact for p >= 0.5 */
   }
-  u = e * 2.50662827463100050242 * exp(0.5 * x * x);
+  u = e * 2.50662827463100050242 * exp_noerrno(0.5 * x * x);
   x = x - u / (1 + 0.5 * x * u);
   return x;
 }
@@ -359,13 +378,13 @@ double ics_light1d_pdf(const ics_light1d *l, double x) {
   switch (l->kind) {
   case ICS_LIGHT1D_GAUSS:
     if (l->b == 0) return x == l->a ? INFINITY : 0.0;
-    return exp(-0.5 * (x - l->a) * (x - l->a) / l->b) / sqrt(2 * PI * l->b);
+    return exp_noerrno(-0.5 * (x - l->a) * (x - l->a) / l->b) / sqrt(2 * PI * l->b);
   case ICS_LIGHT1D_BOX:
     return (x >= l->a && x <= l->b) ? 1.0 / (l->b - l->a) : 0.0;
   case ICS_LIGHT1D_MIX: {
     double s = 0;
     for (int i = 0; i < l->n; i++)
-      s += l->w[i] * exp(-0.5 * (x - l->mu[i]) * (x - l->mu[i]) / l->var[i]) /
+      s += l->w[i] * exp_noerrno(-0.5 * (x - l->mu[i]) * (x - l->mu[i]) / l->var[i]) /
            sqrt(2 * PI * l->var[i]);
     return s;
   }
