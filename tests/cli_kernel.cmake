@@ -11,6 +11,15 @@ ics_cli_test(NAME cli_kernel_good RC 0 ARGS "kernel|ellipse|--varx|1|--vary|0.25
 # line light: a = sqrt(3 varx) = 3, taps at the segment's ends
 ics_cli_test(NAME cli_kernel_line RC 0 ARGS "kernel|ellipse|--varx|3|--vary|0"
   OUT "\"a\":3,\"b\":0,\"t\":0,\"samples\":2,\"offset\":0,\"taps\":\\[\\[3,0\\],\\[-3,0\\]\\]}")
+# vertical line light: offset 0 is the end of the MAJOR axis (here y), so the 2 taps are the
+# segment's ends (0, +-sqrt(3 vary)); uniform on [-c, c] has variance c^2/3, so vary = 1 gives
+# c = sqrt(3) = 1.7320508075688772935... (by hand)
+ics_cli_test(NAME cli_kernel_vertical_line RC 0 ARGS "kernel|ellipse|--varx|0|--vary|1"
+  OUT "\"a\":0,\"b\":1\\.73205080756887[0-9]*,\"t\":1,\"samples\":2,\"offset\":0,\"taps\":\\[\\[0,1\\.73205080756887[0-9]*\\],\\[0,-1\\.73205080756887[0-9]*\\]\\]}")
+# horizontal line light, varx = 1/4: taps (+-sqrt(3 varx), 0) = (+-sqrt(3)/2, 0), sqrt(3)/2 =
+# 0.86602540378443864676... (by hand)
+ics_cli_test(NAME cli_kernel_horizontal_line RC 0 ARGS "kernel|ellipse|--varx|0.25|--vary|0|--samples|2"
+  OUT "\"a\":0\\.8660254037844(38|39)[0-9]*,\"b\":0,\"t\":0,\"samples\":2,\"offset\":0,\"taps\":\\[\\[0\\.8660254037844(38|39)[0-9]*,0\\],\\[-0\\.8660254037844(38|39)[0-9]*,0\\]\\]}")
 # point light: one tap at the origin, samples reported as 1
 ics_cli_test(NAME cli_kernel_point RC 0 ARGS "kernel|ellipse|--varx|0|--vary|0|--samples|8"
   OUT "\"samples\":1,\"offset\":0,\"taps\":\\[\\[0,0\\]\\]}")

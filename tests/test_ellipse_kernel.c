@@ -165,11 +165,14 @@ static void test_single(double varx, double vary, double alpha, int N, double of
           "ellipse a=%.17g b=%.17g by %.3g", varx, vary, alpha, N, offset, j, x, y, sh.a, sh.b, on);
     th[j] = atan2(y / sh.b, x / sh.a);
   }
-  /* first tap at arc fraction `offset` from (a, 0) */
+  /* first tap at arc fraction `offset` from the end of the MAJOR axis: (a, 0) when varx >= vary,
+   * (0, b) (parameter angle pi/2) when vary > varx */
   double P = 4.0 * arc(sh.a, sh.b, 0.0, PI / 2, 1e-17 * (sh.a + sh.b));
-  double t0 = th[0] < 0 ? th[0] + 2 * PI : th[0];
+  double th_start = varx >= vary ? 0.0 : PI / 2;
+  double t0 = th[0];
+  while (t0 < th_start) t0 += 2 * PI;
   double u0 = offset - floor(offset);
-  double d0 = fabs(arc(sh.a, sh.b, 0.0, t0, 1e-17 * P) - u0 * P) / P;
+  double d0 = fabs(arc(sh.a, sh.b, th_start, t0, 1e-17 * P) - u0 * P) / P;
   double e0 = fmin(d0, 1.0 - d0); /* modulo the perimeter */
   CHECK(e0 <= BOUND_ARC, "kernel(%g, %g, %g, N=%d, u=%g): first tap at arc fraction %.17g",
         varx, vary, alpha, N, offset, e0);
@@ -234,6 +237,39 @@ static void test_degenerate(void) {
   CHECK(sh.t == 1 && sh.a == 0 && fabs(sh.b / sqrt(15.0) - 1) < 1e-15, "vertical line: t %g a %g "
         "b %.17g", sh.t, sh.a, sh.b);
   for (int j = 0; j < 3; j++) CHECK(xy[2 * j] == 0, "vertical line tap %d x = %g", j, xy[2 * j]);
+  /* offset 0 is the end of the MAJOR axis: the 2-tap kernel of a line light has its taps at the
+   * segment's ends for both orientations. A uniform density on [-c, c] has variance c^2/3, so
+   * var 1 gives c = sqrt(3) and varx = 3 gives c = 3 (values derived by hand, not from the code) */
+  CHECK(ics_ellipse_kernel(0, 1.0, 0, 2, 0, &sh, xy) == ICS_OK, "vertical line, 2 taps");
+  CHECK(xy[0] == 0 && fabs(xy[1] / sqrt(3.0) - 1) <= 0x1p-52 && xy[2] == 0 &&
+            fabs(xy[3] / -sqrt(3.0) - 1) <= 0x1p-52,
+        "vertical line (varx 0, vary 1) at offset 0: taps (%.17g, %.17g), (%.17g, %.17g), "
+        "expected (0, +-sqrt 3)", xy[0], xy[1], xy[2], xy[3]);
+  CHECK(ics_ellipse_kernel(3.0, 0, 0, 2, 0, &sh, xy) == ICS_OK, "horizontal line, 2 taps");
+  CHECK(fabs(xy[0] / 3.0 - 1) <= 0x1p-52 && xy[1] == 0 && fabs(xy[2] / -3.0 - 1) <= 0x1p-52 &&
+            xy[3] == 0,
+        "horizontal line (varx 3, vary 0) at offset 0: taps (%.17g, %.17g), (%.17g, %.17g), "
+        "expected (+-3, 0)", xy[0], xy[1], xy[2], xy[3]);
+  /* the vertical line's taps at u: y = b (1 - 4u) for u <= 1/2, on the way back y = b (4u - 3) */
+  CHECK(ics_ellipse_kernel(0, 2.0, 0, 8, 0.1, &sh, xy) == ICS_OK, "vertical line, 8 taps");
+  for (int j = 0; j < 8; j++) {
+    double u = 0.1 + j / 8.0, y = u <= 0.5 ? sh.b * (1 - 4 * u) : sh.b * (4 * u - 3);
+    CHECK(xy[2 * j] == 0 && fabs(xy[2 * j + 1] - y) <= 1e-15 * sh.b,
+          "vertical line tap %d (%.17g, %.17g) expected (0, %.17g)", j, xy[2 * j], xy[2 * j + 1], y);
+  }
+  /* swapping the variances is a quarter turn: kernel(vy, vx, 0) = kernel(vx, vy, 90) exactly,
+   * for every offset (both start at the major axis' end) */
+  for (int c = 0; c < 3; c++) {
+    const double vv[3][2] = {{1.0, 0.3}, {2.0, 0.0}, {1.0, 1e-9}};
+    const double offs[3] = {0.0, 0.2, 0.77};
+    double xa[2 * 5], xb[2 * 5];
+    ics_ellipse_shape sa, sb;
+    ics_ellipse_kernel(vv[c][1], vv[c][0], 0, 5, offs[c], &sa, xa);
+    ics_ellipse_kernel(vv[c][0], vv[c][1], 90, 5, offs[c], &sb, xb);
+    for (int j = 0; j < 10; j++)
+      CHECK(xa[j] == xb[j], "kernel(%g, %g, 0) vs kernel(%g, %g, 90), u = %g: coordinate %d "
+            "%.17g vs %.17g", vv[c][1], vv[c][0], vv[c][0], vv[c][1], offs[c], j, xa[j], xb[j]);
+  }
   /* rotated by 90 degrees: exactly the swapped kernel */
   double xy2[2 * 8];
   ics_ellipse_shape sh2;

@@ -57,7 +57,8 @@
  * KERNEL: t, scale and radii as in Patel Sec. 3.4, but always computed from the MAJOR variance
  * (s = ratio_to_t(minor/major) <= 1/2, sc = major / V_x(s)), so the minor radius keeps full
  * relative accuracy for any ratio (Patel's a = (1 - t) sqrt(sc) loses it when vary > varx).
- * Taps at equal arc-length fractions: the arc within a quadrant, measured from the major-axis end,
+ * Taps at equal arc-length fractions, offset 0 at the end of the MAJOR axis ((a, 0) if varx >= vary,
+ * else (0, b)), counter-clockwise: the arc within a quadrant, measured from the major-axis end,
  * is an incomplete elliptic integral of the second kind in Carlson form with both terms positive
  * (arc_from_major), inverted by Newton from an upper bound (monotone: the arc is convex in the
  * angle) with a bisection guard. Measured (tests/test_ellipse_kernel.c): taps on the ellipse to
@@ -489,8 +490,11 @@ ics_status ics_ellipse_kernel(double varx, double vary, double angle_deg, int ns
   shape->nsamples = nsamples;
   if (!xy) return ICS_OK;
 
-  /* taps: arc fraction u_j = offset + j/N (mod 1) of the perimeter from (a, 0), counter-
-   * clockwise. Quadrant k = floor(4u) by symmetry; within a quadrant, the arc is measured from
+  /* taps: arc fraction u_j = offset + j/N (mod 1) of the perimeter from the end of the MAJOR
+   * axis, counter-clockwise: from (a, 0) when x is major, from (0, b) when y is (so a line light
+   * has its extreme taps at offset 0 in either orientation). The taps are computed in a frame
+   * whose first axis is the major one, then turned by +90 degrees ((M, N) -> (-N, M), exact) when
+   * y is major. Quadrant k = floor(4u) by symmetry; within a quadrant, the arc is measured from
    * the major-axis end (no cancellation, see arc_from_major) on the normalised ellipse. */
   double beta = s / (1.0 - s); /* minor / major */
   int segment = beta < 0x1p-500; /* beta^2 would underflow: a segment to O(beta^2) relative */
@@ -505,10 +509,8 @@ ics_status ics_ellipse_kernel(double varx, double vary, double angle_deg, int ns
     int k = (int)q4;
     if (k > 3) k = 3;
     double lam = (q4 - k) * Q; /* arc within the quadrant, from its start */
-    /* quadrants 1 and 3 run from the y axis to the x axis: mirror to "from the x axis" */
-    double from_x = (k & 1) ? Q - lam : lam;
-    /* arc from the major end: from the x axis if x is major, else from the y axis */
-    double sigma = x_major ? from_x : Q - from_x;
+    /* quadrants 1 and 3 run from the minor axis to the major one: mirror to "from the major" */
+    double sigma = (k & 1) ? Q - lam : lam;
     double pm, pn; /* coordinates along the major and minor axes (normalised), first quadrant */
     if (segment) { /* |major| = 1 - sigma (arc = 1 - cos psi to O(beta^2)), on the ellipse */
       pm = 1.0 - sigma;
@@ -518,11 +520,11 @@ ics_status ics_ellipse_kernel(double varx, double vary, double angle_deg, int ns
       pm = cos(psi);
       pn = beta * sin(psi);
     }
-    double px = x_major ? pm : pn, py = x_major ? pn : pm;
-    px *= rmaj;
-    py *= rmaj;
-    if (k == 1 || k == 2) px = -px;
-    if (k >= 2) py = -py;
+    pm *= rmaj;
+    pn *= rmaj;
+    if (k == 1 || k == 2) pm = -pm;
+    if (k >= 2) pn = -pn;
+    double px = x_major ? pm : -pn, py = x_major ? pn : pm;
     xy[2 * j] = (px * ca - py * sa) + 0.0; /* + 0.0: no negative zeros */
     xy[2 * j + 1] = (px * sa + py * ca) + 0.0;
   }

@@ -41,8 +41,12 @@ typedef struct ics_ellipse_shape {
 
 /* The N-sample elliptical kernel of covariance R(alpha) diag(varx, vary) R(alpha)^T:
  * N points equidistant in arc length on the ellipse with radii a, b, the first at arc-length
- * fraction `offset` (in [0, 1); any finite value is reduced mod 1) of the perimeter measured from
- * (a, 0) counter-clockwise in the kernel's own frame, then rotated by alpha. Averaged over a
+ * fraction `offset` (in [0, 1); any finite value is reduced mod 1) of the perimeter measured
+ * counter-clockwise in the kernel's own frame from the end of the MAJOR axis, (a, 0) when
+ * varx >= vary and (0, b) when vary > varx, then rotated by alpha. So at offset 0 a line light's
+ * 2 taps are its segment's ends in either orientation ((+-sqrt(3 varx), 0) for vary = 0,
+ * (0, +-sqrt(3 vary)) for varx = 0), and kernel(vy, vx, alpha) = kernel(vx, vy, alpha + 90)
+ * exactly for every offset. Averaged over a
  * uniform offset the taps have exactly that covariance (zero mean). vary = 0 gives a segment
  * (t = 0, b = 0, a = sqrt(3 varx)), varx = 0 the segment along y (t = 1); both 0 a point light:
  * one tap at the origin, shape->nsamples = 1, a = b = 0, t = 1/2. xy must hold 2 * nsamples
