@@ -7,15 +7,24 @@
  *     cot theta / cos phi), luminance mass m = Y dw with the exact pixel solid angle
  *     dw = (cos theta0 - cos theta1) dphi, plane density d = m / A with A = dw (1 + r^2)^(3/2),
  *     and footprint covariance S = J diag(dphi^2, dtheta^2)/12 J^T (J = d(x, y)/d(phi, theta)).
+ *  Model: a pixel's value is the radiance averaged over the pixel (a filtered map, or
+ *     make-env with supersampling), so the mass placed at pixel centres has the moments of the
+ *     light convolved with the pixel box: centre covariance C = Sigma + S (Sheppard). The light
+ *     is Sigma = C - F, F the mass-weighted footprint, floored so that Sigma >= F (F-whitened
+ *     eigenvalues clamped to >= 1): a light narrower than a pixel cannot be resolved and is
+ *     represented by its pixel's own box covariance (a one-pixel sun gets ~S). Adding S to
+ *     the centre moments instead would give Sigma + 2S.
  *  2. Greedy start: K times, the maximum of the residual density d - sum of started Gaussians
  *     (evaluated with each pixel's footprint added, i.e. pixel-averaged); the 4-connected
- *     pixels above half that maximum hold half the mass of a Gaussian and have covariance
- *     (1 - ln 2) Sigma (in 2D, r^2 ~ Exp(mean 2) truncated at r^2 < 2 ln 2 has mean 2 - 2 ln 2),
- *     so the start is mean = their centroid, Sigma = their covariance / (1 - ln 2) + S,
- *     weight = 2 x their residual mass. Stops early when the residual has no positive mass.
- *  3. EM on the weighted samples (log-sum-exp E-step; M-step with the footprint covariance
- *     added, so no component becomes singular); components whose mass falls below 1e-12 of the
- *     total are dropped. Stops at |dLL| <= tol per unit mass or max_iter.
+ *     pixels above half that maximum hold half the mass of a Gaussian and have centre
+ *     covariance (1 - ln 2) C (in 2D, r^2 ~ Exp(mean 2) truncated at r^2 < 2 ln 2 has mean
+ *     2 - 2 ln 2), so the start is mean = their centroid, C = their covariance / (1 - ln 2),
+ *     Sigma = floor(C - F), weight = 2 x their residual mass. Stops early when the residual
+ *     has no positive mass.
+ *  3. EM on the weighted samples (log-sum-exp E-step with each component's centre covariance
+ *     Sigma + F; the M-step takes the centre moments C and the footprint F, Sigma = floor(C - F)
+ *     as above, so no component becomes singular); components whose mass falls below 1e-12 of
+ *     the total are dropped. Stops at |dLL| <= tol per unit mass or max_iter.
  *  4. Colours: RGB mass shared by the final responsibilities, divided by the luminance mass.
  * Special cases: a one-pixel sun gives one light of the pixel's footprint covariance
  * (~(pixel size)^2 / 12); a uniform sky gives a broad light and a large cutoff_loss (the
@@ -166,6 +175,37 @@ static void sym_eig(const double c[3], double *l1, double *l2, double *angle) {
   *angle = 0.5 * atan2(2 * c[1], df);
 }
 
+/* Sigma = C - F with the floor Sigma >= F: with F = L L^T (Cholesky), the eigenvalues of
+ * L^-1 (C - F) L^-T are clamped to >= 1. sig = C - F unchanged when no clamp is needed. */
+static void cov_deconv(const double c[3], const double f[3], double sig[3]) {
+  double d[3] = {c[0] - f[0], c[1] - f[1], c[2] - f[2]};
+  double l00 = sqrt(f[0]), l10 = f[1] / l00, l11 = sqrt(f[2] - l10 * l10);
+  if (!(l00 > 0) || !(l11 > 0)) { /* cannot happen: footprints are positive definite */
+    memcpy(sig, f, 3 * sizeof *sig);
+    return;
+  }
+  /* M = L^-1 D, A = M L^-T */
+  double m00 = d[0] / l00, m01 = d[1] / l00;
+  double m10 = (d[1] - l10 * m00) / l11, m11 = (d[2] - l10 * m01) / l11;
+  double A0 = m00 / l00, A1 = (m01 - l10 * A0) / l11;
+  double A2 = (m11 - l10 * (m10 / l00)) / l11;
+  double e1, e2, ang;
+  sym_eig((double[3]){A0, A1, A2}, &e1, &e2, &ang);
+  if (e2 >= 1) {
+    memcpy(sig, d, 3 * sizeof *sig);
+    return;
+  }
+  if (e1 < 1) e1 = 1;
+  e2 = 1;
+  double co = cos(ang), sn = sin(ang);
+  double B0 = e1 * co * co + e2 * sn * sn, B1 = (e1 - e2) * co * sn;
+  double B2 = e1 * sn * sn + e2 * co * co;
+  /* sig = L B L^T, L = [[l00, 0], [l10, l11]] */
+  sig[0] = l00 * l00 * B0;
+  sig[1] = l00 * (l10 * B0 + l11 * B1);
+  sig[2] = l10 * l10 * B0 + 2 * l10 * l11 * B1 + l11 * l11 * B2;
+}
+
 /* ---- errors ---- */
 
 static double mix_cdf(const ics_light *l, int n, double wsum, double nx, double ny, double t) {
@@ -288,8 +328,10 @@ void ics_lightfit_defaults(ics_lightfit_params *p) {
   p->tol = 1e-9;
 }
 
-/* greedy start: returns the number of Gaussians started */
-static int greedy(const pixset *ps, int k, ics_light *l, int *stack, double *res, char *mark) {
+/* greedy start: returns the number of Gaussians started; f[k] = the mass-weighted footprint
+ * of start k's region */
+static int greedy(const pixset *ps, int k, ics_light *l, double (*f)[3], int *stack, double *res,
+                  char *mark) {
   int n = 0;
   for (int q = 0; q < ps->n; q++) res[q] = ps->p[q].d;
   while (n < k) {
@@ -333,9 +375,13 @@ static int greedy(const pixset *ps, int k, ics_light *l, int *stack, double *res
     ics_light *g = &l[n];
     g->mean[0] = c->x + mx;
     g->mean[1] = c->y + my;
-    g->cov[0] = (sxx / m0 - mx * mx) / ONE_MINUS_LN2 + f0 / m0;
-    g->cov[1] = (sxy / m0 - mx * my) / ONE_MINUS_LN2 + f1 / m0;
-    g->cov[2] = (syy / m0 - my * my) / ONE_MINUS_LN2 + f2 / m0;
+    /* centre covariance of the whole light, C = region's / (1 - ln 2); Sigma = C - F */
+    double cc[3] = {(sxx / m0 - mx * mx) / ONE_MINUS_LN2, (sxy / m0 - mx * my) / ONE_MINUS_LN2,
+                    (syy / m0 - my * my) / ONE_MINUS_LN2};
+    f[n][0] = f0 / m0;
+    f[n][1] = f1 / m0;
+    f[n][2] = f2 / m0;
+    cov_deconv(cc, f[n], g->cov);
     g->weight = 2 * m0;
     g->color[0] = g->color[1] = g->color[2] = 1;
     n++;
@@ -371,7 +417,8 @@ ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *prm,
     st = ICS_ERR_NOMEM;
     goto out;
   }
-  int n = greedy(&ps, K, lights, stack, res, mark);
+  double fk[ICS_LIGHTFIT_MAX_K][3]; /* each component's mass-weighted pixel footprint */
+  int n = greedy(&ps, K, lights, fk, stack, res, mark);
 
   /* samples: all kept pixels with mass, or a seeded systematic resampling of them */
   int ns = 0;
@@ -423,11 +470,15 @@ ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *prm,
   double ll_prev = -INFINITY, ll = -INFINITY;
   int it = 0;
   for (it = 1; it <= prm->max_iter && n > 0; it++) {
-    for (int k = 0; k < n; k++)
-      if (gauss_make(&g[k], lights[k].mean[0], lights[k].mean[1], lights[k].cov)) {
+    for (int k = 0; k < n; k++) {
+      /* the samples are pixel centres: their covariance under component k is Sigma + F */
+      double cc[3] = {lights[k].cov[0] + fk[k][0], lights[k].cov[1] + fk[k][1],
+                      lights[k].cov[2] + fk[k][2]};
+      if (gauss_make(&g[k], lights[k].mean[0], lights[k].mean[1], cc)) {
         st = ICS_ERR_RANGE; /* cannot happen: footprints keep covariances positive definite */
         goto out;
       }
+    }
     double acc[ICS_LIGHTFIT_MAX_K][9];
     memset(acc, 0, sizeof acc);
     ll = 0;
@@ -448,9 +499,12 @@ ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *prm,
         a[0] += m;
         a[1] += m * dx;
         a[2] += m * dy;
-        a[3] += m * (dx * dx + p->s[0]);
-        a[4] += m * (dx * dy + p->s[1]);
-        a[5] += m * (dy * dy + p->s[2]);
+        a[3] += m * dx * dx;
+        a[4] += m * dx * dy;
+        a[5] += m * dy * dy;
+        a[6] += m * p->s[0];
+        a[7] += m * p->s[1];
+        a[8] += m * p->s[2];
       }
     }
     ll /= M;
@@ -463,9 +517,10 @@ ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *prm,
       ics_light *L = &lights[n2];
       L->mean[0] = lights[k].mean[0] + mx;
       L->mean[1] = lights[k].mean[1] + my;
-      L->cov[0] = a[3] / a[0] - mx * mx;
-      L->cov[1] = a[4] / a[0] - mx * my;
-      L->cov[2] = a[5] / a[0] - my * my;
+      /* centre moments C = Sigma + F (pixels are area averages): Sigma = C - F, floored */
+      double cc[3] = {a[3] / a[0] - mx * mx, a[4] / a[0] - mx * my, a[5] / a[0] - my * my};
+      for (int c = 0; c < 3; c++) fk[n2][c] = a[6 + c] / a[0];
+      cov_deconv(cc, fk[n2], L->cov);
       L->weight = a[0] / M * ps.e_kept;
       pi_[n2] = a[0] / M;
       n2++;
@@ -485,7 +540,9 @@ ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *prm,
     memset(ym, 0, sizeof ym);
     for (int k = 0; k < n; k++) {
       pi_[k] = lights[k].weight / ps.e_kept;
-      if (gauss_make(&g[k], lights[k].mean[0], lights[k].mean[1], lights[k].cov)) {
+      double cc[3] = {lights[k].cov[0] + fk[k][0], lights[k].cov[1] + fk[k][1],
+                      lights[k].cov[2] + fk[k][2]};
+      if (gauss_make(&g[k], lights[k].mean[0], lights[k].mean[1], cc)) {
         st = ICS_ERR_RANGE;
         goto out;
       }

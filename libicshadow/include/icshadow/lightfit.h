@@ -20,13 +20,16 @@
  * weight_k color_k g(x; mean_k, cov_k) to l(x); sum_k weight_k = the fitted energy.
  *
  * Fit: each map pixel is a weighted sample (plane point of its centre, mass Y dw, and the
- * covariance of its footprint on the plane, J diag(dphi^2, dtheta^2)/12 J^T). Greedy
- * initialisation (after Annen et al. 2008): K times, take the maximum of the residual density
- * l - current mixture, flood-fill the 4-connected pixels above half that maximum, and start a
- * Gaussian with their moments scaled to a full Gaussian (x 1/(1 - ln 2) ... see lightfit.c)
- * and twice their residual mass. Refinement: EM on the weighted samples (the M-step adds each
- * pixel's footprint covariance, so a one-pixel sun gets the pixel's own small variance, never
- * a singular one). When a map has more kept pixels than max_samples, EM runs on max_samples
+ * covariance S of its footprint on the plane, J diag(dphi^2, dtheta^2)/12 J^T). Model: a
+ * pixel's value is the radiance averaged over the pixel, so the centre moments of a light are
+ * Sigma + S (Sheppard) and the fit returns Sigma = centre covariance - footprint, floored at
+ * the footprint (a light narrower than a pixel is represented by its pixel's box covariance; a
+ * one-pixel sun gets ~S, never a singular covariance). A point-sampled map comes out narrower
+ * by S. Greedy initialisation (after Annen et al. 2008): K times, take the maximum of the
+ * residual density l - current mixture, flood-fill the 4-connected pixels above half that
+ * maximum, and start a Gaussian with their moments scaled to a full Gaussian
+ * (x 1/(1 - ln 2) ... see lightfit.c) and twice their residual mass. Refinement: EM on the
+ * weighted samples (E-step with each component's centre covariance Sigma + F). When a map has more kept pixels than max_samples, EM runs on max_samples
  * pixels drawn by systematic resampling of the mass with a start drawn from `seed`
  * (icshadow/rng.h); otherwise the fit is deterministic and the seed is unused.
  *
