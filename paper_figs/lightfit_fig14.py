@@ -12,8 +12,12 @@ Left:   the map on the light plane (tone-mapped RGB) with the fitted K = 4 Gauss
 Middle: the fitted K = 4 mixture (three lights and one for the sky) evaluated here (numpy) from the lights file, same scale.
 Right:  fit error against K (L1, L2 on the plane; edge-shadow error at d1) and against time.
 Writes lightfit_fig14.png, lightfit_fig14_errors.csv (the CLI's table), lightfit_fig14_lights.csv
-into --out. Check here: the mixture's total luminance equals the kept energy of the map
-integrated from the plane CSV (independent of the library's pixel bookkeeping).
+into --out. Consistency check here: the mixture's total luminance equals the kept energy of the
+map summed from the plane CSV. This is not an independent check of the change of measure (the
+CLI writes L (1 + r^2)^(-3/2) and this script multiplies by (1 + r^2)^(3/2), so both sides sum
+Y dw, and fitted weights add up to the kept energy by construction); it checks that the kept
+set and the pixel solid angles agree with the library's. The change of measure is checked in
+tests/test_lightfit.c against the analytic total weight of a rendered map.
 """
 import csv
 import io
@@ -82,8 +86,9 @@ def main():
               ["mx", "my", "cxx", "cxy", "cyy", "r", "g", "b", "weight"],
               [l["mean"] + [l["cov"][0][0], l["cov"][0][1], l["cov"][1][1]] + l["color"] + [l["weight"]] for l in lights])
 
-    # independent check: kept luminance energy integrated from the plane CSV (area of each
-    # pixel on the plane = its solid angle * (1 + r^2)^(3/2)) against the fitted weights
+    # consistency check (see the docstring: not independent of the change of measure): kept
+    # luminance energy summed from the plane CSV (area of each pixel on the plane = its solid
+    # angle * (1 + r^2)^(3/2)) against the fitted weights
     i, j = plane["i"].astype(int), plane["j"].astype(int)
     x, y = plane["x"], plane["y"]
     th0, th1 = np.pi * j / H, np.pi * (j + 1) / H
