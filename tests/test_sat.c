@@ -11,7 +11,8 @@
  *    discretisation bound G * L * (sqrt(3) h / 2 + quadrature terms) (docs/sat.md); six
  *    orthodirectional lights of one CSAT equal six separately built CSATs; transmittance
  *    monotone in the filter size below a centred blob;
- *  - SSAT against brute-force marching of the same ray average within its stated bound;
+ *  - SSAT against brute-force marching of the same ray average within its stated bound and 5 %;
+ *    exact (1e-6) on and near the poles for a constant field; converging with the grid;
  *  - bad input: empty / huge sizes, NaN, Inf, overflow, inverted and out-of-range boxes. */
 #include <float.h>
 #include <math.h>
@@ -614,14 +615,29 @@ static void test_csat_six(void) {
   free(a);
 }
 
+/* Polar angle of q (relative to the light) in the SSAT's frame. */
+static double ssat_theta(const ics_ssat *s, const double q[3]) {
+  double ez[3];
+  ics_ssat_frame(s, NULL, NULL, ez, NULL);
+  double R = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+  double c = (q[0] * ez[0] + q[1] * ez[1] + q[2] * ez[2]) / R;
+  return acos(c > 1 ? 1 : c < -1 ? -1 : c);
+}
+
+/* SSAT against brute-force marching of the same ray average on a smooth field. Bound (first
+ * order, docs/sat.md): G R (D/2 + bf/2) with D the largest cell diagonal at r_max and bf the
+ * diameter of one brute-force ray cell at R plus the step; the lookup itself is exact for the
+ * cell-wise constant resampled field (box edges placed in cos(theta) inside a theta cell), so
+ * there is no partial-cell term. Relative error: |ssat - bf| <= 5 % of bf + 0.002 (points whose
+ * rays see almost no extinction) at 256 x 128 x 64 cells — a stated tolerance, a few times the
+ * measured 1.5 %; the linear-in-theta partial cells of the earlier version erred by up to
+ * +83 % near a pole. */
 static void test_ssat(void) {
   const long N = 32;
   const double blobs[2][4] = {{16, 16, 16, 8}, {10, 22, 20, 5}};
   float *a = blob_volume(N, 2, blobs);
   ics_volume vol = {a, N, N, N};
-  double G = grad_bound(&vol), smax = 0;
-  for (long i = 0; i < N * N * N; i++)
-    if (a[i] > smax) smax = a[i];
+  double G = grad_bound(&vol);
   const double lights[2][3] = {{-10, 14, 17}, {16.5, 15.5, 3.0}}; /* outside, inside */
   for (int li = 0; li < 2; li++) {
     const size_t nphi = 256, nth = 128, nr = 64;
@@ -636,7 +652,7 @@ static void test_ssat(void) {
       if (r > rmax) rmax = r;
     }
     double dphi = 2 * PI_T / nphi, dth = PI_T / nth, dr = rmax / nr;
-    double worst = 0, worst_abs = 0;
+    double worst = 0, worst_abs = 0, worst_rel = 0;
     const int npatch = 16;
     const double step = 0.25;
     for (int k = 0; k < 16; k++) {
@@ -647,26 +663,155 @@ static void test_ssat(void) {
       double ts, tb;
       CHECK(ics_ssat_tau(s, p, U, &ts) == ICS_OK, "ssat tau");
       CHECK(ics_tau_bruteforce_point(&vol, lights[li], p, U, npatch, step, &tb) == ICS_OK, "bf");
-      /* first-order bound (docs/sat.md): cell resampling (half the largest cell diagonal),
-       * the partial-cell weights linear in theta instead of cos(theta), and the brute-force
-       * midpoint quadrature (ray spacing at radius R, step) */
-      double th = acos(q[2] / R), al = atan(U / R), st = sin(th);
+      double th = ssat_theta(s, q), al = atan(U / R), st = sin(th);
       double Dcell = sqrt(dr * dr + (rmax * dth) * (rmax * dth) + (rmax * dphi) * (rmax * dphi));
-      double span = 2 * al / (st > 1e-3 ? st : 1e-3); /* phi range */
-      double bf_sp = R * (2 * al > span * st ? 2 * al : span * st) / npatch;
-      double bound = G * R * (Dcell / 2 + 0.5 * sqrt(2 * bf_sp * bf_sp + step * step)) +
-                     smax * R * dth * dth / (8 * (st > 1e-3 ? st : 1e-3) * al);
+      double be = st > 0 && al / st < PI_T ? al / st : PI_T; /* phi half-width */
+      double th1 = th + al < PI_T ? th + al : PI_T;
+      double smax_box = th - al <= PI_T / 2 && th1 >= PI_T / 2 ? 1.0 : fmax(sin(th1), sin(th - al));
+      /* one brute-force cell: theta extent (largest at the end nearest a pole: at most the
+       * whole theta range / sqrt(npatch) ... bounded by the full range / 1 for safety below)
+       * and phi extent sin(theta) * 2 be / npatch */
+      double c0 = cos(fmax(th - al, 0.0)), c1 = cos(th1), dth_bf = 0;
+      for (int j = 0; j < npatch; j++) {
+        double t0 = acos(c0 + (c1 - c0) * j / npatch), t1 = acos(c0 + (c1 - c0) * (j + 1) / npatch);
+        if (t1 - t0 > dth_bf) dth_bf = t1 - t0;
+      }
+      double bf_sp = R * sqrt(dth_bf * dth_bf + pow(smax_box * 2 * be / npatch, 2));
+      double bound = G * R * (Dcell / 2 + 0.5 * sqrt(bf_sp * bf_sp + step * step));
       double e = fabs(ts - tb);
       if (e / bound > worst) worst = e / bound;
       if (e > worst_abs) worst_abs = e;
+      if (e / tb > worst_rel && tb > 0.01) worst_rel = e / tb;
       CHECK(e <= bound, "light %d p (%g %g %g) U %g: ssat %.9g bf %.9g diff %g > bound %g", li,
             p[0], p[1], p[2], U, ts, tb, e, bound);
+      CHECK(e <= 0.05 * tb + 0.002, "light %d p (%g %g %g) U %g: ssat %.9g bf %.9g rel diff %g",
+            li, p[0], p[1], p[2], U, ts, tb, e / tb);
     }
-    printf("SSAT light %d: max |tau_ssat - tau_bf| = %.3g (%.3g of the bound)\n", li, worst_abs,
-           worst);
+    printf("SSAT light %d: max |tau_ssat - tau_bf| = %.3g (%.3g of the bound), max rel %.3g\n", li,
+           worst_abs, worst, worst_rel);
     ics_ssat_free(s);
   }
   free(a);
+}
+
+/* At and near the poles. (1) Constant sigma with the light inside the volume and every patch ray
+ * inside it: every ray's optical depth is sigma R, so tau_bar = sigma R exactly for the
+ * cell-wise constant field (the cells are rounded to float: 1e-6 relative asserted) — on the
+ * pole (theta = 0 and pi: the polar cap), beside it (inside and just outside the cap) and on the
+ * equator, U from 0.05 to 2 (patches far smaller than a theta cell). The earlier linear-in-theta
+ * edges gave +83 % (U = 1) to +810 % (U = 0.2) on the pole at 64 x 32 x 32 cells.
+ * (2) The reviewer's set-up (16^3, sigma = 0.1, light at (8, 8, -10), points above it): the
+ * polar axis is now across the light-to-centre direction, and the only error left is the
+ * cells straddling the volume's entry face, <= sigma dr per ray, plus the brute force's own
+ * (sigma * step) — asserted at each grid. (3) Smooth field near the pole of a light inside:
+ * the difference to a fine brute force falls with grid refinement (at least 2x over two
+ * doublings; first order expected, 4x). */
+static void test_ssat_pole(void) {
+  const long N = 16;
+  const double sig = 0.1;
+  float *a = malloc(sizeof(float) * N * N * N);
+  for (long i = 0; i < N * N * N; i++) a[i] = (float)sig;
+  ics_volume vol = {a, N, N, N};
+  {
+    const double L[3] = {8.25, 7.75, 8.5};
+    const size_t grids[2][3] = {{64, 32, 32}, {128, 64, 64}};
+    for (int gi = 0; gi < 2; gi++) {
+      ics_ssat *s = NULL;
+      CHECK(ics_ssat_build(&s, &vol, L, grids[gi][0], grids[gi][1], grids[gi][2], ICS_SAT_DOUBLE) ==
+                ICS_OK, "pole ssat");
+      if (!s) continue;
+      double e[3][3];
+      ics_ssat_frame(s, e[0], e[1], e[2], NULL);
+      double worst = 0;
+      const double Us[4] = {0.05, 0.2, 1, 2}, Rs[2] = {2.5, 4.5};
+      for (int ui = 0; ui < 4; ui++)
+        for (int ri = 0; ri < 2; ri++)
+          for (int di = 0; di < 8; di++) {
+            double R = Rs[ri], al = atan(Us[ui] / R);
+            /* polar angles: on the north pole, 0.3 al, al (edge of the cap), 3 al, the
+             * equator, pi - 0.5 al, the south pole; azimuth 0.7 */
+            const double ths[8] = {0, 0.3 * al, al, 3 * al, PI_T / 2, PI_T - 0.5 * al, PI_T, 2 * al};
+            double th = ths[di], ph = 0.7 + di;
+            double d[3], p[3], t;
+            for (int k = 0; k < 3; k++)
+              d[k] = sin(th) * (cos(ph) * e[0][k] + sin(ph) * e[1][k]) + cos(th) * e[2][k];
+            for (int k = 0; k < 3; k++) p[k] = L[k] + R * d[k];
+            CHECK(ics_ssat_tau(s, p, Us[ui], &t) == ICS_OK, "pole tau");
+            double rel = fabs(t / (sig * R) - 1);
+            if (rel > worst) worst = rel;
+            CHECK(rel <= 1e-6, "grid %zu: theta %g U %g R %g: tau %.9g, exact %.9g", grids[gi][1],
+                  th, Us[ui], R, t, sig * R);
+          }
+      printf("SSAT constant field, light inside, poles to equator (%zux%zux%zu): max rel err %.3g\n",
+             grids[gi][0], grids[gi][1], grids[gi][2], worst);
+      ics_ssat_free(s);
+    }
+  }
+  {
+    const double L[3] = {8, 8, -10};
+    const double pts[3][3] = {{8, 8, 8}, {8.3, 8, 8}, {12, 5, 9}}, Us[2] = {1, 0.2};
+    const size_t grids[3][3] = {{64, 32, 32}, {128, 64, 64}, {256, 128, 128}};
+    const double step = 0.05;
+    double tb[3][2];
+    for (int pi = 0; pi < 3; pi++)
+      for (int ui = 0; ui < 2; ui++)
+        CHECK(ics_tau_bruteforce_point(&vol, L, pts[pi], Us[ui], 32, step, &tb[pi][ui]) == ICS_OK,
+              "bf");
+    for (int gi = 0; gi < 3; gi++) {
+      ics_ssat *s = NULL;
+      CHECK(ics_ssat_build(&s, &vol, L, grids[gi][0], grids[gi][1], grids[gi][2], ICS_SAT_DOUBLE) ==
+                ICS_OK, "ssat below");
+      if (!s) continue;
+      double rmax = sqrt(8.0 * 8 + 8 * 8 + 26 * 26), dr = rmax / (double)grids[gi][2], worst = 0;
+      for (int pi = 0; pi < 3; pi++)
+        for (int ui = 0; ui < 2; ui++) {
+          double t;
+          CHECK(ics_ssat_tau(s, pts[pi], Us[ui], &t) == ICS_OK, "tau");
+          double err = fabs(t - tb[pi][ui]);
+          if (err / tb[pi][ui] > worst) worst = err / tb[pi][ui];
+          CHECK(err <= sig * (dr + step), "grid %zu p (%g %g %g) U %g: ssat %.6g bf %.6g",
+                grids[gi][1], pts[pi][0], pts[pi][1], pts[pi][2], Us[ui], t, tb[pi][ui]);
+        }
+      printf("SSAT constant field, light below (%zux%zux%zu): max rel err %.3g\n", grids[gi][0],
+             grids[gi][1], grids[gi][2], worst);
+      ics_ssat_free(s);
+    }
+  }
+  free(a);
+  {
+    const long M = 32;
+    const double blobs[2][4] = {{16, 16, 16, 8}, {10, 22, 20, 5}};
+    float *b = blob_volume(M, 2, blobs);
+    ics_volume vb = {b, M, M, M};
+    const double L[3] = {16.5, 15.5, 9.0};
+    const size_t grids[3][3] = {{64, 32, 32}, {128, 64, 64}, {256, 128, 128}};
+    double err[3] = {0, 0, 0}, e[3][3];
+    for (int gi = 0; gi < 3; gi++) {
+      ics_ssat *s = NULL;
+      CHECK(ics_ssat_build(&s, &vb, L, grids[gi][0], grids[gi][1], grids[gi][2], ICS_SAT_DOUBLE) ==
+                ICS_OK, "ssat conv");
+      if (!s) continue;
+      ics_ssat_frame(s, e[0], e[1], e[2], NULL);
+      for (int di = 0; di < 6; di++) {
+        const double R = 8, U = di < 3 ? 1.0 : 0.3, al = atan(U / R);
+        const double ths[6] = {0, 0.5 * al, 2 * al, 0, PI_T - 0.5 * al, PI_T};
+        double th = ths[di], ph = 1.3 * di, p[3], t, tb;
+        for (int k = 0; k < 3; k++)
+          p[k] = L[k] + R * (sin(th) * (cos(ph) * e[0][k] + sin(ph) * e[1][k]) + cos(th) * e[2][k]);
+        CHECK(ics_ssat_tau(s, p, U, &t) == ICS_OK, "tau");
+        CHECK(ics_tau_bruteforce_point(&vb, L, p, U, 24, 0.05, &tb) == ICS_OK, "bf");
+        if (fabs(t - tb) > err[gi]) err[gi] = fabs(t - tb);
+        if (gi == 2)
+          CHECK(fabs(t - tb) <= 0.05 * tb + 0.002, "pole point %d: ssat %.6g bf %.6g", di, t, tb);
+      }
+      ics_ssat_free(s);
+    }
+    printf("SSAT smooth field near the poles: max |diff| %.3g, %.3g, %.3g (grid x1, x2, x4)\n",
+           err[0], err[1], err[2]);
+    CHECK(err[2] * 2 <= err[0], "SSAT error does not fall with the grid: %g -> %g -> %g", err[0],
+          err[1], err[2]);
+    free(b);
+  }
 }
 
 int main(void) {
@@ -681,5 +826,6 @@ int main(void) {
   test_csat_rotated();
   test_csat_six();
   test_ssat();
+  test_ssat_pole();
   return test_summary("test_sat");
 }

@@ -993,10 +993,51 @@ ics_status ics_tau_bruteforce_directional(const ics_volume *vol, const double r_
 }
 
 /* ---- SSAT ----------------------------------------------------------------------------- */
+/* Spherical frame around the light: e[0] (phi = 0, theta = pi/2) points from the light to the
+ * volume centre, the polar axis e[2] is the world axis least aligned with it, orthogonalised,
+ * and e[1] = e[2] x e[0] (so e[0] x e[1] = e[2]). The volume then sits around the equator,
+ * away from both poles and from the phi seam at +-pi, whenever the light is outside it (the
+ * angular box of a patch degenerates near a pole). A light at the volume centre keeps the
+ * world axes. The brute-force reference derives the same frame from the same inputs. */
+static void ssat_frame(const ics_volume *vol, const double light[3], double e[3][3]) {
+  double a[3] = {(double)vol->nx / 2 - light[0], (double)vol->ny / 2 - light[1],
+                 (double)vol->nz / 2 - light[2]};
+  double len = sqrt(dot3(a, a));
+  memset(e, 0, 9 * sizeof(double));
+  if (!(len > 0.0) || !isfinite(len)) {
+    e[0][0] = e[1][1] = e[2][2] = 1.0;
+    return;
+  }
+  for (int k = 0; k < 3; k++) e[0][k] = a[k] / len;
+  int m = 0;
+  for (int k = 1; k < 3; k++)
+    if (fabs(e[0][k]) < fabs(e[0][m])) m = k;
+  double d = e[0][m];
+  for (int k = 0; k < 3; k++) e[2][k] = (k == m ? 1.0 : 0.0) - d * e[0][k];
+  double l2 = sqrt(dot3(e[2], e[2]));
+  for (int k = 0; k < 3; k++) e[2][k] /= l2;
+  cross3(e[2], e[0], e[1]);
+}
+
+/* Largest distance from the light to a volume corner. */
+static ics_status ssat_rmax(const ics_volume *vol, const double light[3], double *rmax) {
+  double dims[3] = {(double)vol->nx, (double)vol->ny, (double)vol->nz};
+  double rm = 0.0;
+  for (int c = 0; c < 8; c++) {
+    double q[3];
+    for (int a = 0; a < 3; a++) q[a] = ((c >> a) & 1 ? dims[a] : 0.0) - light[a];
+    double r = hypot(hypot(q[0], q[1]), q[2]);
+    if (!(r <= rm)) rm = r;
+  }
+  *rmax = rm;
+  return ICS_OK;
+}
+
 struct ics_ssat {
   ics_sat3d *sat;
   double light[3];
-  size_t n[3]; /* phi, theta, r */
+  double e[3][3]; /* ssat_frame */
+  size_t n[3];    /* phi, theta, r */
   double r_max;
 };
 
@@ -1010,18 +1051,14 @@ ics_status ics_ssat_build(ics_ssat **out, const ics_volume *vol, const double li
   if (st != ICS_OK) return st;
   if ((double)n_phi * (double)n_theta * (double)n_r * 4.0 > (double)ICS_SAT_MAX_BYTES)
     return ICS_ERR_SIZE;
+  double rm;
+  st = ssat_rmax(vol, light_pos, &rm);
+  if (st != ICS_OK) return st;
   ics_ssat *s = calloc(1, sizeof *s);
   if (!s) return ICS_ERR_NOMEM;
   memcpy(s->light, light_pos, sizeof s->light);
+  ssat_frame(vol, light_pos, s->e);
   s->n[0] = n_phi, s->n[1] = n_theta, s->n[2] = n_r;
-  double dims[3] = {(double)vol->nx, (double)vol->ny, (double)vol->nz};
-  double rm = 0.0;
-  for (int c = 0; c < 8; c++) {
-    double q[3];
-    for (int a = 0; a < 3; a++) q[a] = ((c >> a) & 1 ? dims[a] : 0.0) - light_pos[a];
-    double r = sqrt(dot3(q, q));
-    if (r > rm) rm = r;
-  }
   s->r_max = rm;
   float *grid = malloc(n_phi * n_theta * n_r * sizeof(float));
   if (!grid) {
@@ -1037,8 +1074,9 @@ ics_status ics_ssat_build(ics_ssat **out, const ics_volume *vol, const double li
       double st_ = sin(th), ct = cos(th);
       for (size_t i = 0; i < n_phi; i++) {
         double ph = -PI_ + ((double)i + 0.5) * dphi;
-        double p[3] = {light_pos[0] + r * st_ * cos(ph), light_pos[1] + r * st_ * sin(ph),
-                       light_pos[2] + r * ct};
+        double c1 = r * st_ * cos(ph), c2 = r * st_ * sin(ph), c3 = r * ct, p[3];
+        for (int a = 0; a < 3; a++)
+          p[a] = light_pos[a] + c1 * s->e[0][a] + c2 * s->e[1][a] + c3 * s->e[2][a];
         grid[(k * n_theta + j) * n_phi + i] = (float)(ics_volume_sample(vol, p) * omega * dr);
       }
     }
@@ -1059,20 +1097,34 @@ void ics_ssat_free(ics_ssat *ssat) {
   free(ssat);
 }
 
-/* The angular box of a patch of half-width U at p: phi in [p0, p1] (may leave [-pi, pi]),
- * theta in [t0, t1], and R. Returns ICS_ERR_RANGE when p is at the light. */
-static ics_status ssat_box(const double light[3], const double p[3], double U, double *ph0,
-                           double *ph1, double *th0, double *th1, double *R) {
+void ics_ssat_frame(const ics_ssat *ssat, double e_x[3], double e_y[3], double e_z[3],
+                    size_t n[3]) {
+  if (!ssat) return;
+  if (e_x) memcpy(e_x, ssat->e[0], sizeof ssat->e[0]);
+  if (e_y) memcpy(e_y, ssat->e[1], sizeof ssat->e[1]);
+  if (e_z) memcpy(e_z, ssat->e[2], sizeof ssat->e[2]);
+  if (n) memcpy(n, ssat->n, sizeof ssat->n);
+}
+
+/* The angular box of a patch of half-width U at p in the frame e: phi in [p0, p1] (may leave
+ * [-pi, pi]; p1 - p0 <= 2 pi), theta in [t0, t1], and R. The phi half-width
+ * atan(U/R) / sin(theta) is clamped to pi: a patch over a pole (theta < atan(U/R)) becomes the
+ * polar cap theta in [0, t1] over the whole ring (the same for the south pole). Returns
+ * ICS_ERR_RANGE when p is at the light. */
+static ics_status ssat_box(const double light[3], const double e[3][3], const double p[3],
+                           double U, double *ph0, double *ph1, double *th0, double *th1,
+                           double *R) {
   double q[3] = {p[0] - light[0], p[1] - light[1], p[2] - light[2]};
   double r = sqrt(dot3(q, q));
   if (!(r > 0.0)) return ICS_ERR_RANGE;
-  double th = acos(clampd(q[2] / r, -1.0, 1.0)), ph = atan2(q[1], q[0]);
+  double x = dot3(q, e[0]), y = dot3(q, e[1]), z = dot3(q, e[2]);
+  double th = atan2(hypot(x, y), z), ph = atan2(y, x);
   double al = atan(U / r);
   double sn = sin(th);
-  double be = sn > 0.0 ? al / sn : INFINITY;
+  double be = sn > 0.0 ? al / sn : INFINITY; /* phi half-width */
   *th0 = clampd(th - al, 0.0, PI_);
   *th1 = clampd(th + al, 0.0, PI_);
-  if (!(be < PI_)) {
+  if (!(be < PI_)) { /* clamped to pi: the whole ring (then th0 = 0 or th1 = pi) */
     *ph0 = -PI_, *ph1 = PI_;
   } else {
     *ph0 = ph - be, *ph1 = ph + be;
@@ -1081,21 +1133,37 @@ static ics_status ssat_box(const double light[3], const double p[3], double U, d
   return ICS_OK;
 }
 
+/* SAT coordinate of polar angle theta: cell j covers [j dth, (j+1) dth] and holds the solid
+ * angle dphi (cos(j dth) - cos((j+1) dth)) of the cell-wise constant field, so the part of it
+ * above theta is the fraction (cos(j dth) - cos(theta)) / (cos(j dth) - cos((j+1) dth)) — the
+ * SAT's continuous integral, linear inside a cell, is then exact in solid angle. */
+static double theta_coord(double th, size_t n, double dth) {
+  if (!(th > 0.0)) return 0.0;
+  double j = floor(th / dth);
+  if (j >= (double)n) return (double)n;
+  double c0 = cos(j * dth), c1 = cos((j + 1) * dth);
+  double f = (c0 - cos(th)) / (c0 - c1);
+  return j + clampd(f, 0.0, 1.0);
+}
+
 ics_status ics_ssat_tau(const ics_ssat *s, const double p[3], double half_width, double *tau) {
   if (!s || !p || !tau) return ICS_ERR_INVALID_ARG;
   if (isnan(half_width) || isnan(p[0]) || isnan(p[1]) || isnan(p[2])) return ICS_ERR_NAN;
   if (!(half_width > 0.0) || !isfinite(half_width) || !finite3(p)) return ICS_ERR_INVALID_ARG;
   double ph0, ph1, th0, th1, R;
-  ics_status st = ssat_box(s->light, p, half_width, &ph0, &ph1, &th0, &th1, &R);
+  ics_status st = ssat_box(s->light, s->e, p, half_width, &ph0, &ph1, &th0, &th1, &R);
   if (st != ICS_OK) return st;
   double dphi = 2 * PI_ / (double)s->n[0], dth = PI_ / (double)s->n[1];
   double dr = s->r_max / (double)s->n[2];
-  double lo[3] = {0, th0 / dth, 0.0}, hi[3] = {0, th1 / dth, R / dr};
+  double lo[3] = {0, theta_coord(th0, s->n[1], dth), 0.0};
+  double hi[3] = {0, theta_coord(th1, s->n[1], dth), R / dr};
   double sum = 0.0;
-  /* phi intervals inside [-pi, pi] (wrap once at most: the width is < 2 pi or exactly it) */
+  /* phi intervals inside [-pi, pi]: the whole ring, or one interval that wraps at most once */
   double seg[2][2];
   int ns = 0;
-  if (ph0 < -PI_) {
+  if (ph1 - ph0 >= 2 * PI_) {
+    seg[ns][0] = -PI_, seg[ns++][1] = PI_;
+  } else if (ph0 < -PI_) {
     seg[ns][0] = ph0 + 2 * PI_, seg[ns++][1] = PI_;
     seg[ns][0] = -PI_, seg[ns++][1] = ph1;
   } else if (ph1 > PI_) {
@@ -1132,8 +1200,9 @@ ics_status ics_tau_bruteforce_point(const ics_volume *vol, const double light_po
   if (!volume_ok(vol) || !light_pos || !p || !tau) return ICS_ERR_INVALID_ARG;
   if (isnan(half_width) || isnan(step) || !finite3(p) || !finite3(light_pos)) return ICS_ERR_NAN;
   if (!(half_width > 0.0) || !(step > 0.0) || n_patch < 1) return ICS_ERR_INVALID_ARG;
-  double ph0, ph1, th0, th1, R;
-  ics_status st = ssat_box(light_pos, p, half_width, &ph0, &ph1, &th0, &th1, &R);
+  double ph0, ph1, th0, th1, R, e[3][3];
+  ssat_frame(vol, light_pos, e);
+  ics_status st = ssat_box(light_pos, e, p, half_width, &ph0, &ph1, &th0, &th1, &R);
   if (st != ICS_OK) return st;
   double c0 = cos(th0), c1 = cos(th1), acc = 0.0;
   for (int j = 0; j < n_patch; j++) {
@@ -1141,7 +1210,9 @@ ics_status ics_tau_bruteforce_point(const ics_volume *vol, const double light_po
     double stt = sqrt(fmax(0.0, 1.0 - ct * ct));
     for (int i = 0; i < n_patch; i++) {
       double ph = ph0 + ((double)i + 0.5) * (ph1 - ph0) / n_patch;
-      double dir[3] = {stt * cos(ph), stt * sin(ph), ct};
+      double dir[3];
+      for (int a = 0; a < 3; a++)
+        dir[a] = stt * cos(ph) * e[0][a] + stt * sin(ph) * e[1][a] + ct * e[2][a];
       acc += march(vol, light_pos, dir, 0.0, R, step);
     }
   }

@@ -193,27 +193,41 @@ ics_status ics_tau_bruteforce_directional(const ics_volume *vol, const double r_
                                           const double p[3], double half_width, int n_patch,
                                           double step, double *tau);
 
-/* SSAT: a 3D SAT in spherical coordinates (phi, theta, r) around a point light at x_L:
- * phi in [-pi, pi) azimuth about +z from +x, theta in [0, pi] polar angle from +z, r in
- * [0, r_max] with r_max the largest distance from x_L to a volume corner. Cell (i, j, k)
- * holds sigma_t(cell centre) * sin(theta) dphi dtheta dr (exact cell solid angle times dr),
- * so a box sum divided by the box's solid angle is the SOLID-ANGLE AVERAGE of the optical
- * depth of the rays from x_L through the box (the ray average that Eq. 23-24 approximate by
- * dividing a volume sum by the patch area A; see docs/sat.md). */
+/* SSAT: a 3D SAT in spherical coordinates (phi, theta, r) around a point light at x_L, in a
+ * frame (e_x, e_y, e_z) derived from the light and the volume alone: e_x points from x_L to the
+ * volume centre, the polar axis e_z is the world axis least aligned with e_x (orthogonalised),
+ * e_y = e_z x e_x; a light exactly at the volume centre keeps the world axes. Direction
+ * (phi, theta) is sin(theta) (cos(phi) e_x + sin(phi) e_y) + cos(theta) e_z: the volume lies
+ * around phi = 0, theta = pi/2, away from the poles and the phi seam, whenever the light is
+ * outside it. phi in [-pi, pi), theta in [0, pi], r in [0, r_max] with r_max the largest
+ * distance from x_L to a volume corner. Cell (i, j, k) holds sigma_t(cell centre) *
+ * dphi (cos(theta_j) - cos(theta_j+1)) dr (exact cell solid angle times dr), so a box sum
+ * divided by the box's solid angle is the SOLID-ANGLE AVERAGE of the optical depth of the
+ * rays from x_L through the box (the ray average that Eq. 23-24 approximate by dividing a
+ * volume sum by the patch area A; see docs/sat.md). Inside a theta cell the box edge is
+ * placed in cos(theta) (the solid angle is linear in cos(theta), not in theta), so a lookup is
+ * the exact solid-angle integral of the cell-wise constant resampled field, also at the poles.
+ */
 typedef struct ics_ssat ics_ssat;
 ics_status ics_ssat_build(ics_ssat **out, const ics_volume *vol, const double light_pos[3],
                           size_t n_phi, size_t n_theta, size_t n_r, ics_sat_precision mode);
 void ics_ssat_free(ics_ssat *ssat);
+/* Frame axes and grid size (cells along phi, theta, r). Any output pointer may be NULL. */
+void ics_ssat_frame(const ics_ssat *ssat, double e_x[3], double e_y[3], double e_z[3],
+                    size_t n[3]);
 /* tau_bar at p for a square patch of half-width U at p facing the light: the angular box
- * phi_p +- atan(U/R)/sin(theta_p), theta_p +- atan(U/R) (R = |p - x_L|, clamped to
- * [0, pi]; phi wraps around), r in [0, R]. Constant time (two SAT lookups when phi wraps).
- * Needs U > 0 (ICS_ERR_INVALID_ARG otherwise); p at the light -> ICS_ERR_RANGE. */
+ * phi_p +- min(atan(U/R) / sin(theta_p), pi), theta_p +- atan(U/R) clamped to [0, pi]
+ * (R = |p - x_L|), r in [0, R]. When the phi half-width reaches pi (the patch covers a pole)
+ * the box is the polar cap over the whole ring; otherwise phi wraps around at +-pi (two SAT
+ * lookups). Constant time. Needs U > 0 (ICS_ERR_INVALID_ARG otherwise); p at the light ->
+ * ICS_ERR_RANGE. */
 ics_status ics_ssat_tau(const ics_ssat *ssat, const double p[3], double half_width, double *tau);
 ics_status ics_ssat_transmittance(const ics_ssat *ssat, const double p[3], double half_width,
                                   double *transmittance);
-/* Reference for the SSAT: n_patch x n_patch rays over the same angular box (midpoint in phi
- * and in cos(theta), i.e. uniform in solid angle), each marched from the light to radius R
- * with step `step`, averaged. */
+/* Reference for the SSAT: n_patch x n_patch rays over the same angular box in the same frame
+ * (derived from vol and light_pos as in ics_ssat_build; midpoint in phi and in cos(theta),
+ * i.e. uniform in solid angle), each marched from the light to radius R with step `step`,
+ * averaged. */
 ics_status ics_tau_bruteforce_point(const ics_volume *vol, const double light_pos[3],
                                     const double p[3], double half_width, int n_patch,
                                     double step, double *tau);
