@@ -12,22 +12,45 @@
  * Chen's Fig. 4 (one row, its tree, one ray's traversal). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "commands.h"
 #include "icshadow.h"
 
 #define GRID 64
 #define MAX_TERMS 10 /* beyond, s_N / s_1 < 1e-13 and the Nystrom factors are noise */
+/* Limits checked while parsing (see est_bytes / est_work and --help): the estimated peak memory
+ * of one configuration, and its estimated work in "operations" (about 0.3-0.6 ns each on the
+ * 2-core VM of docs/minmax.md, so 2^36 operations take roughly 20-40 s). */
+#define MM_MAX_GIB 4
+#define MM_MAX_BYTES ((double)MM_MAX_GIB * 1073741824.0)
+#define MM_MAX_WORK 68719476736.0 /* 2^36 */
+
+/* progress on stderr: when stderr is a terminal, or with --progress */
+static int g_progress, g_tty;
+static void progress(const char *fmt, ...) {
+  if (!g_progress) return;
+  va_list ap;
+  va_start(ap, fmt);
+  fputs(g_tty ? "\ricshadow bench minmax: " : "icshadow bench minmax: ", stderr);
+  vfprintf(stderr, fmt, ap);
+  fputs(g_tty ? "\033[K" : "\n", stderr);
+  va_end(ap);
+}
+static void progress_done(void) {
+  if (g_progress && g_tty) fputs("\r\033[K", stderr);
+}
 
 static void help(FILE *f) {
   fprintf(f,
           "usage: icshadow bench minmax [--samples LIST] [--rows N] [--rays N] [--terms N] "
           "[--reps N]\n"
-          "                             [--scene hf|noise] [--svd-table] [--fig4-csv FILE]\n"
+          "                             [--scene hf|noise] [--svd-table] [--fig4-csv FILE] [--progress]\n"
           "\n"
           "1D min-max mipmaps (Chen et al. 2011) vs brute-force ray marching at the same\n"
           "resolution, on the built-in height-field scene. One CSV line per depth-sample count:\n"
@@ -47,7 +70,36 @@ static void help(FILE *f) {
           "  --svd-table     print instead: N,sigma_rel,grid_fro_rel,grid_max_rel,\n"
           "                  fullres_max_rel,inscatter_max_rel for N = 1..10 at the first d\n"
           "  --fig4-csv FILE write Chen Fig. 4 data at the first --samples value and exit\n"
-          "                  (paper_figs/chen_fig4.py passes --samples 64)\n");
+          "                  (paper_figs/chen_fig4.py passes --samples 64)\n"
+          "  --progress      progress on stderr (default: only when stderr is a terminal)\n"
+          "\n"
+          "Limits, checked per depth-sample count before anything runs (exit 2 naming the options):\n"
+          "  memory: rows x samples x 4 (rectified map) + max(W^2 x 4 (shadow map, W = min(d,\n"
+          "    4096)), rows x 2P x 8 (trees, P = next power of two >= d)) + rows x rays x\n"
+          "    (8 terms + 48) (ray factors, rays, results) bytes <= %d GiB;\n"
+          "  work: 64 W^2 + 64 x 64 x (rows x rays + samples) (set-up: shadow map, low-rank\n"
+          "    factors) + reps x rows x rays x samples x (terms + 2) (traversal and march; with\n"
+          "    --svd-table rows x rays x samples x 119 instead) <= 2^36 operations (roughly\n"
+          "    20-40 s on a 2-core VM).\n"
+          "Exit status: 0 ok, 1 runtime failure, 2 bad input.\n",
+          MM_MAX_GIB);
+}
+
+/* The estimates behind the limits (mode 0: benchmark, 1: --svd-table, 2: --fig4-csv). */
+static double est_bytes(double d, double rows, double rays, double terms) {
+  double P = 1;
+  while (P < d) P *= 2;
+  double W = d < 4096 ? d : 4096;
+  double big = W * W * 4 > rows * 2 * P * 8 ? W * W * 4 : rows * 2 * P * 8;
+  return rows * d * 4 + big + rows * rays * (8 * terms + 48) + 2 * terms * (d + 1) * 8;
+}
+static double est_work(double d, double rows, double rays, double terms, double reps, int mode) {
+  double W = d < 4096 ? d : 4096, nr = rows * rays;
+  double w = 64 * W * W + 64.0 * GRID * (nr + d) + rows * d;
+  if (mode == 0) w += reps * nr * d * (terms + 2);
+  else if (mode == 1) w += nr * d * 119; /* 10 marches (1 + ... + 10 terms) + exact integrand */
+  else w += nr * 64;
+  return w;
 }
 
 /* ---- the scene set-up shared by all modes ---- */
@@ -127,6 +179,7 @@ static void setup_free(setup *S) {
 /* returns 0, or 1 on a runtime failure (message printed) */
 static int setup_init(setup *S, size_t d, size_t rows, size_t rays, size_t nterms, int noise) {
   memset(S, 0, sizeof *S);
+  progress("samples %zu: scene, shadow map, rectification and low-rank factors...", d);
   S->d = d;
   S->rows = rows;
   S->rays = rays;
@@ -239,6 +292,7 @@ static int bench_one(const setup *S, int reps) {
   ics_status st = ICS_OK;
   double runs = 0;
   for (int rep = 0; rep < reps && st == ICS_OK; rep++) {
+    progress("samples %zu: repetition %d/%d", d, rep + 1, reps);
     ics_minmax *t = NULL;
     double t0 = cli_now_s();
     st = ics_minmax_create(&t, S->rect, S->rows, d, d);
@@ -323,6 +377,7 @@ static int svd_table(setup *S) {
   }
   printf("N,sigma_rel,grid_fro_rel,grid_max_rel,fullres_max_rel,inscatter_max_rel\n");
   for (size_t N = 1; N <= MAX_TERMS; N++) {
+    progress("samples %zu: N = %zu/%d", d, N, MAX_TERMS);
     ics_svd_truncate(S->U, S->s, S->V, GRID, GRID, N, AN);
     double fe = 0, me = 0;
     for (size_t i = 0; i < GRID * GRID; i++) {
@@ -434,6 +489,10 @@ int bench_minmax(int argc, char **argv) {
       table = 1;
       continue;
     }
+    if (!strcmp(opt, "--progress")) {
+      g_progress = 1;
+      continue;
+    }
     int known = !strcmp(opt, "--samples") || !strcmp(opt, "--rows") || !strcmp(opt, "--rays") ||
                 !strcmp(opt, "--terms") || !strcmp(opt, "--reps") || !strcmp(opt, "--fig4-csv") ||
                 !strcmp(opt, "--scene");
@@ -502,11 +561,40 @@ int bench_minmax(int argc, char **argv) {
               dlist[k]);
       return 2;
     }
+  /* memory and work limits, per configuration that will run */
+  int mode = figpath ? 2 : table ? 1 : 0, ncheck = mode ? 1 : nd;
+  for (int k = 0; k < ncheck; k++) {
+    double dd = dlist[k], nt = mode == 1 ? MAX_TERMS : terms;
+    double by = est_bytes(dd, rows, rays, nt), wk = est_work(dd, rows, rays, nt, reps, mode);
+    if (by > MM_MAX_BYTES) {
+      fprintf(stderr,
+              "icshadow bench minmax: --samples %d with --rows %d and --rays %d%s needs an estimated "
+              "%.1f GiB of memory; the limit is %d GiB (see --help)\n",
+              dlist[k], rows, rays, mode == 1 ? " (--svd-table: 10 terms)" : "", by / 1073741824.0,
+              MM_MAX_GIB);
+      return 2;
+    }
+    if (wk > MM_MAX_WORK) {
+      char extra[64];
+      if (mode == 0)
+        snprintf(extra, sizeof extra, ", --terms %d and --reps %d", terms, reps);
+      else
+        snprintf(extra, sizeof extra, "%s", mode == 1 ? " and --svd-table" : " and --fig4-csv");
+      fprintf(stderr,
+              "icshadow bench minmax: --samples %d with --rows %d, --rays %d%s: an estimated %.3g "
+              "operations; the work limit is 2^36 = %.3g (about 20-40 s here; see --help)\n",
+              dlist[k], rows, rays, extra, wk, MM_MAX_WORK);
+      return 2;
+    }
+  }
+  g_tty = isatty(2);
+  if (g_tty) g_progress = 1;
   setup S;
   if (figpath || table) {
     int rc = setup_init(&S, (size_t)dlist[0], (size_t)rows, (size_t)rays, figpath ? (size_t)terms : MAX_TERMS, noise);
     if (rc == 0) rc = figpath ? fig4(&S, figpath) : svd_table(&S);
     setup_free(&S);
+    progress_done();
     return rc;
   }
   printf("samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,speedup,speedup_with_build,"
@@ -515,7 +603,11 @@ int bench_minmax(int argc, char **argv) {
     int rc = setup_init(&S, (size_t)dlist[k], (size_t)rows, (size_t)rays, (size_t)terms, noise);
     if (rc == 0) rc = bench_one(&S, reps);
     setup_free(&S);
-    if (rc) return rc;
+    if (rc) {
+      progress_done();
+      return rc;
+    }
   }
+  progress_done();
   return 0;
 }

@@ -5,14 +5,62 @@
  * writes the data of Eisemann Fig. 3 (max vs sum vs product on one receiver plane) instead. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "commands.h"
 #include "icshadow.h"
 
 #define MAX_LIST 8
+/* Limits checked while parsing (see est_bytes / est_work and --help): estimated peak memory of
+ * one configuration, and estimated work in "operations" (about 1-1.7 ns each on the 2-core VM of
+ * docs/occtex.md: 2^36 operations take 1-2 minutes). */
+#define OT_MAX_GIB 4
+#define OT_MAX_BYTES ((double)OT_MAX_GIB * 1073741824.0)
+#define OT_MAX_WORK 68719476736.0 /* 2^36 */
+
+/* progress on stderr: when stderr is a terminal, or with --progress */
+static int g_progress, g_tty;
+static void progress(const char *fmt, ...) {
+  if (!g_progress) return;
+  va_list ap;
+  va_start(ap, fmt);
+  fputs(g_tty ? "\ricshadow bench occtex: " : "icshadow bench occtex: ", stderr);
+  vfprintf(stderr, fmt, ap);
+  fputs(g_tty ? "\033[K" : "\n", stderr);
+  va_end(ap);
+}
+static void progress_done(void) {
+  if (g_progress && g_tty) fputs("\r\033[K", stderr);
+}
+
+/* Peak bytes of one configuration (n x n textures, K slices): the bench's and the object's
+ * texture copies, the slicing bitmap, the largest prefilter (N-Buffers: levels of side
+ * n + 2^l - 1, l = 0..log2 n, and its padded scratch level) and the receiver arrays. */
+static double est_bytes(double n, double K, double ss, double R) {
+  double nb = 0, L = 0;
+  for (double w = 1; w < n; w *= 2) L++;
+  for (double l = 0, p = 1; l <= L; l++, p *= 2) nb += (n + p - 1) * (n + p - 1);
+  double scratch = n + 3 * (L > 0 ? pow(2, L - 1) : 1);
+  double pre = K * nb * 4 + scratch * scratch * 4, sat = K * n * n * 8, mip = K * n * n * 4 * 4 / 3;
+  if (sat > pre) pre = sat;
+  if (mip > pre) pre = mip;
+  return 2 * K * n * n * 4 + (n * ss) * (n * ss) + pre + R * R * 7 * 8;
+}
+/* Operations of one configuration, one repetition: slicing (3 times, once per prefilter:
+ * K (n ss)^2 sub-samples x 2), the three prefilters (~3 K n^2 (log2 n + 5) for N-Buffers,
+ * less for the others) and the 9 query passes (R^2 K lookups, up to 16 taps x 16 reads for the
+ * pyramids). */
+static double est_work(double n, double K, double ss, double R) {
+  double L = 0;
+  for (double w = 1; w < n; w *= 2) L++;
+  return 3 * K * (n * ss) * (n * ss) * 2 + K * n * n * (3 * (L + 5) + 8) + 3 * R * R * K * (256 + 256 + 16);
+}
+/* Brute force, one repetition: R^2 receivers x M^2 rays x (at most) every box, plus the cull. */
+static double est_brute(double R, double M, double boxes) { return R * R * (M * M * boxes + boxes); }
 
 static void help(FILE *f) {
   fprintf(f,
@@ -44,9 +92,21 @@ static void help(FILE *f) {
           "                      the R x R receivers, for the first scene, size and slice count\n"
           "                      and --fig3-prefilter\n"
           "  --fig3-prefilter P  mipmap | nbuffers | sat (default sat)\n"
+          "  --progress          progress on stderr (default: only when stderr is a terminal)\n"
           "The scene lies in x, y in [-1, 1], z in [1, 2]; the textures cover [-1, 1]^2; receivers\n"
-          "cover [-1.2, 1.2]^2. Exit status: 0 ok, 1 runtime failure, 2 bad input.\n",
-          ICS_OCC_MAX_SIZE, ICS_OCC_MAX_SLICES, ICS_OCC_MAX_SUPERSAMPLE);
+          "cover [-1.2, 1.2]^2.\n"
+          "Limits, checked before anything runs (exit 2 naming the options), for every size n x\n"
+          "slice count K that will run:\n"
+          "  K x n^2 <= 2^%.0f texels (the library's ICS_OCC_MAX_TEXELS);\n"
+          "  memory: 8 K n^2 (two texture copies) + (n S)^2 (slicing) + the largest prefilter\n"
+          "    (N-Buffers: 4 K sum_l (n + 2^l - 1)^2, about 4 K (log2 n + 5) n^2) bytes <= %d GiB;\n"
+          "  work per configuration and repetition: 6 K (n S)^2 + K n^2 (3 log2 n + 23) + 1584 R^2 K\n"
+          "    operations <= 2^36 (1-2 minutes here), and for the brute force of one scene\n"
+          "    reps x R^2 x (M^2 + 1) x boxes <= 2^36 (S = --supersample, R = --receivers,\n"
+          "    M = --light-samples).\n"
+          "Exit status: 0 ok, 1 runtime failure, 2 bad input.\n",
+          ICS_OCC_MAX_SIZE, ICS_OCC_MAX_SLICES, ICS_OCC_MAX_SUPERSAMPLE, log2((double)ICS_OCC_MAX_TEXELS),
+          OT_MAX_GIB);
 }
 
 /* comma-separated integers in lo..hi; pow2: powers of two only */
@@ -122,6 +182,10 @@ static int parse(int argc, char **argv, options *o) {
   *o = (options){{128, 256}, 2, {4, 8, 16}, 3, {ICS_OCC_SCENE_PLATES, ICS_OCC_SCENE_FOLIAGE}, 2, 0, 1, 48, 32, 2, 3, 0.6, NULL, ICS_OCC_SAT};
   for (int i = 1; i < argc; i++) {
     const char *opt = argv[i];
+    if (!strcmp(opt, "--progress")) {
+      g_progress = 1;
+      continue;
+    }
     static const char *const known[] = {"--sizes", "--slices", "--scene", "--boxes", "--seed", "--light",
                                         "--receivers", "--light-samples", "--supersample", "--reps",
                                         "--fig3-csv", "--fig3-prefilter"};
@@ -201,6 +265,54 @@ static int scene_boxes(const options *o, ics_occ_scene_kind k) {
   return o->boxes ? o->boxes : def[k];
 }
 
+/* memory and work limits of every configuration that will run (fig3: the first of each) */
+static int check_limits(const options *o) {
+  const int na = o->fig3 ? 1 : o->nsizes, nb = o->fig3 ? 1 : o->nslices, nsc = o->fig3 ? 1 : o->nscenes;
+  for (int a = 0; a < na; a++)
+    for (int b = 0; b < nb; b++) {
+      const int n = o->sizes[a], K = o->slices[b];
+      if ((double)K * n * n > (double)ICS_OCC_MAX_TEXELS) {
+        fprintf(stderr,
+                "icshadow bench occtex: --sizes %d with --slices %d: %d x %d^2 texels exceeds the limit "
+                "2^%.0f (see --help)\n",
+                n, K, K, n, log2((double)ICS_OCC_MAX_TEXELS));
+        return -1;
+      }
+      double by = est_bytes(n, K, o->ss, o->receivers);
+      if (by > OT_MAX_BYTES) {
+        fprintf(stderr,
+                "icshadow bench occtex: --sizes %d with --slices %d: an estimated %.1f GiB of memory "
+                "(textures and N-Buffers); the limit is %d GiB (see --help)\n",
+                n, K, by / 1073741824.0, OT_MAX_GIB);
+        return -1;
+      }
+      double wk = est_work(n, K, o->ss, o->receivers);
+      if (!o->fig3) wk *= o->reps;
+      if (wk > OT_MAX_WORK) {
+        fprintf(stderr,
+                "icshadow bench occtex: --sizes %d with --slices %d, --supersample %d, --receivers %d "
+                "and --reps %d: an estimated %.3g operations; the work limit is 2^36 = %.3g (1-2 "
+                "minutes here; see --help)\n",
+                n, K, o->ss, o->receivers, o->fig3 ? 1 : o->reps, wk, OT_MAX_WORK);
+        return -1;
+      }
+    }
+  for (int sc = 0; sc < nsc; sc++) {
+    int boxes = scene_boxes(o, o->scenes[sc]);
+    double wk = est_brute(o->receivers, o->m, boxes) * (o->fig3 ? 1 : o->reps);
+    if (wk > OT_MAX_WORK) {
+      fprintf(stderr,
+              "icshadow bench occtex: brute force: --receivers %d with --light-samples %d, %d boxes "
+              "(%s) and --reps %d: an estimated %.3g operations; the work limit is 2^36 = %.3g "
+              "(1-2 minutes here; see --help)\n",
+              o->receivers, o->m, boxes, scene_names[o->scenes[sc]], o->fig3 ? 1 : o->reps, wk,
+              OT_MAX_WORK);
+      return -1;
+    }
+  }
+  return 0;
+}
+
 int bench_occtex(int argc, char **argv) {
   if (cli_wants_help(argc, argv)) {
     help(stdout);
@@ -208,6 +320,9 @@ int bench_occtex(int argc, char **argv) {
   }
   options o;
   if (parse(argc, argv, &o) != 0) return 2;
+  if (check_limits(&o) != 0) return 2;
+  g_tty = isatty(2);
+  if (g_tty) g_progress = 1;
 
   const size_t R = (size_t)o.receivers, nr = R * R;
   int maxb = 0, maxn = 0, maxk = 0;
@@ -235,6 +350,7 @@ int bench_occtex(int argc, char **argv) {
     ics_occtex *ot = NULL;
     double ms;
     const int nb = scene_boxes(&o, o.scenes[0]);
+    progress("fig3: slicing, prefilter, shadows and brute force");
     st = ics_occ_scene_make(o.scenes[0], nb, (uint64_t)o.seed, boxes);
     if (!st) st = build(&o, boxes, nb, o.sizes[0], o.slices[0], o.fig3_pf, tex, &ot, &ms);
     for (int c = 0; c < 3 && !st; c++) st = ics_occtex_shadow(ot, &light, o.fig3_pf, (ics_occ_combine)c, P, nr, occ + c * nr);
@@ -275,6 +391,7 @@ int bench_occtex(int argc, char **argv) {
         }
     /* each repetition runs the brute force and every method once: side by side in one run */
     for (int rep = 0; rep < o.reps; rep++) {
+      progress("%s: repetition %d/%d: brute force", scene_names[o.scenes[sc]], rep + 1, o.reps);
       double t0 = cli_now_s();
       if ((st = ics_occ_exact(boxes, (size_t)nb, &light, o.m, P, nr, ref))) {
         rc = fail("brute force", st);
@@ -287,6 +404,8 @@ int bench_occtex(int argc, char **argv) {
           for (int p = 0; p < NPF; p++) {
             ics_occtex *ot = NULL;
             double ms;
+            progress("%s: repetition %d/%d: size %d, %d slices, %s", scene_names[o.scenes[sc]], rep + 1,
+                     o.reps, o.sizes[a], o.slices[b], ics_occ_prefilter_name((ics_occ_prefilter)p));
             st = build(&o, boxes, nb, o.sizes[a], o.slices[b], (ics_occ_prefilter)p, tex, &ot, &ms);
             if (st) {
               ics_occtex_free(ot);
@@ -334,6 +453,7 @@ int bench_occtex(int argc, char **argv) {
   }
   if (fflush(stdout) != 0) rc = 1;
 done:
+  progress_done();
   free(boxes);
   free(P);
   free(ref);

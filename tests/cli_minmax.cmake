@@ -29,3 +29,12 @@ ics_cli_test(NAME cli_minmax_missing_value RC 2 ARGS "bench|minmax|--reps" ERR "
 ics_cli_test(NAME cli_minmax_bad_scene RC 2 ARGS "bench|minmax|--scene|forest" ERR "--scene: expected 'hf' or 'noise', got 'forest'")
 ics_cli_test(NAME cli_minmax_fig4_bad_dir RC 1 ARGS "bench|minmax|--samples|16|--rows|2|--rays|2|--fig4-csv|${ics_mm_dir}/no/such/dir/f.csv"
   ERR "cannot create" NOFILE "${ics_mm_dir}/no/such/dir/f.csv")
+# memory and work limits, checked before any work (the first ran > 60 s at 3.1 GB before)
+ics_cli_test(NAME cli_minmax_limit_memory RC 2 ARGS "bench|minmax|--rows|8192|--rays|4096|--samples|4096|--svd-table"
+  ERR "--samples 4096 with --rows 8192 and --rays 4096 .*GiB of memory; the limit is 4 GiB")
+ics_cli_test(NAME cli_minmax_limit_work RC 2 ARGS "bench|minmax|--rows|8192|--rays|128|--samples|4096"
+  ERR "--samples 4096 with --rows 8192, --rays 128, --terms 4 and --reps 5: an estimated [0-9.e+]+ operations; the work limit is 2\\^36")
+ics_cli_test(NAME cli_minmax_limit_work_svd RC 2 ARGS "bench|minmax|--rows|1024|--rays|512|--samples|4096|--svd-table"
+  ERR "and --svd-table: an estimated [0-9.e+]+ operations; the work limit is 2\\^36")
+ics_cli_test(NAME cli_minmax_progress RC 0 ARGS "bench|minmax|--samples|32|--rows|2|--rays|2|--reps|2|--progress"
+  ERR "samples 32: repetition 2/2")

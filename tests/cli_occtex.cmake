@@ -33,3 +33,15 @@ ics_cli_test(NAME cli_occtex_receivers_zero RC 2 ARGS "bench|occtex|--receivers|
 ics_cli_test(NAME cli_occtex_missing_value RC 2 ARGS "bench|occtex|--reps" ERR "--reps: missing value")
 ics_cli_test(NAME cli_occtex_unknown_option RC 2 ARGS "bench|occtex|--bogus|1" ERR "unknown option '--bogus'")
 ics_cli_test(NAME cli_occtex_supersample_too_big RC 2 ARGS "bench|occtex|--sizes|4096|--supersample|4" ERR "--sizes x --supersample must stay <= 8192")
+# memory and work limits, checked before any allocation or work
+ics_cli_test(NAME cli_occtex_limit_brute RC 2 ARGS "bench|occtex|--receivers|1024|--light-samples|1024|--sizes|1|--slices|1"
+  ERR "brute force: --receivers 1024 with --light-samples 1024, 12 boxes \\(plates\\) and --reps 3: an estimated [0-9.e+]+ operations; the work limit is 2\\^36")
+ics_cli_test(NAME cli_occtex_limit_texels RC 2 ARGS "bench|occtex|--sizes|4096|--slices|64"
+  ERR "--sizes 4096 with --slices 64: 64 x 4096\\^2 texels exceeds the limit 2\\^28")
+ics_cli_test(NAME cli_occtex_limit_memory RC 2 ARGS "bench|occtex|--sizes|4096|--slices|4"
+  ERR "--sizes 4096 with --slices 4: an estimated [0-9.]+ GiB of memory .*the limit is 4 GiB")
+ics_cli_test(NAME cli_occtex_limit_work RC 2 ARGS "bench|occtex|--sizes|512|--slices|64|--supersample|16|--reps|10"
+  ERR "--sizes 512 with --slices 64, --supersample 16, --receivers 48 and --reps 10: an estimated [0-9.e+]+ operations; the work limit is 2\\^36")
+ics_cli_test(NAME cli_occtex_limit_fig3_brute RC 2 ARGS "bench|occtex|--receivers|1024|--light-samples|512|--scene|foliage|--fig3-csv|${CMAKE_CURRENT_BINARY_DIR}/occtex_limit.csv"
+  ERR "brute force: --receivers 1024 with --light-samples 512, 150 boxes \\(foliage\\) and --reps 1" NOFILE "${CMAKE_CURRENT_BINARY_DIR}/occtex_limit.csv")
+ics_cli_test(NAME cli_occtex_progress RC 0 ARGS "${occ_small}|--progress" ERR "plates: repetition 1/1: size 32, 2 slices, sat")
