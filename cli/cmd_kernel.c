@@ -10,6 +10,11 @@
 #include "commands.h"
 #include "icshadow.h"
 
+/* JSON never shows a negative zero: every printed number goes through nz (x + 0.0 is +0 for
+ * x = -0 and x itself otherwise). The taps already have no -0 (ellipse.c); -0 options
+ * (--varx -0, --angle -0, --offset -0) are echoed as 0. */
+static double nz(double x) { return x + 0.0; }
+
 static void help(FILE *f) {
   fprintf(f,
           "usage: icshadow kernel ellipse --varx X --vary Y [--angle DEG] [--samples N] "
@@ -103,9 +108,10 @@ int cmd_kernel(int argc, char **argv) {
   }
   printf("{\"kernel\":\"ellipse\",\"varx\":%.17g,\"vary\":%.17g,\"angle_deg\":%.17g,"
          "\"a\":%.17g,\"b\":%.17g,\"t\":%.17g,\"samples\":%d,\"offset\":%.17g,\"taps\":[",
-         varx, vary, angle, shape.a, shape.b, shape.t, shape.nsamples, offset);
+         nz(varx), nz(vary), nz(angle), nz(shape.a), nz(shape.b), nz(shape.t), shape.nsamples,
+         nz(offset));
   for (int j = 0; j < shape.nsamples; j++)
-    printf("%s[%.17g,%.17g]", j ? "," : "", xy[2 * j], xy[2 * j + 1]);
+    printf("%s[%.17g,%.17g]", j ? "," : "", nz(xy[2 * j]), nz(xy[2 * j + 1]));
   printf("]}\n");
   free(xy);
   return fflush(stdout) != 0 ? 1 : 0;

@@ -20,6 +20,13 @@ ics_cli_test(NAME cli_kernel_vertical_line RC 0 ARGS "kernel|ellipse|--varx|0|--
 # 0.86602540378443864676... (by hand)
 ics_cli_test(NAME cli_kernel_horizontal_line RC 0 ARGS "kernel|ellipse|--varx|0.25|--vary|0|--samples|2"
   OUT "\"a\":0\\.8660254037844(38|39)[0-9]*,\"b\":0,\"t\":0,\"samples\":2,\"offset\":0,\"taps\":\\[\\[0\\.8660254037844(38|39)[0-9]*,0\\],\\[-0\\.8660254037844(38|39)[0-9]*,0\\]\\]}")
+# negative zeros: -0 options are echoed as 0 and no printed number is -0 (whole line matched)
+ics_cli_test(NAME cli_kernel_negative_zero RC 0 ARGS "kernel|ellipse|--varx|-0|--vary|1|--angle|-0|--offset|-0"
+  OUT "^{\"kernel\":\"ellipse\",\"varx\":0,\"vary\":1,\"angle_deg\":0,\"a\":0,\"b\":1\\.73205080756887[0-9]*,\"t\":1,\"samples\":2,\"offset\":0,\"taps\":\\[\\[0,1\\.73205080756887[0-9]*\\],\\[0,-1\\.73205080756887[0-9]*\\]\\]}\n$")
+ics_cli_test(NAME cli_kernel_negative_zero_vary RC 0 ARGS "kernel|ellipse|--varx|1|--vary|-0.0|--angle|-0|--samples|1|--offset|-0e5"
+  OUT "^{\"kernel\":\"ellipse\",\"varx\":1,\"vary\":0,\"angle_deg\":0,\"a\":1\\.73205080756887[0-9]*,\"b\":0,\"t\":0,\"samples\":1,\"offset\":0,\"taps\":\\[\\[1\\.73205080756887[0-9]*,0\\]\\]}\n$")
+ics_cli_test(NAME cli_kernel_negative_zero_point RC 0 ARGS "kernel|ellipse|--varx|-0|--vary|-0|--angle|-0"
+  OUT "^{\"kernel\":\"ellipse\",\"varx\":0,\"vary\":0,\"angle_deg\":0,\"a\":0,\"b\":0,\"t\":0\\.5,\"samples\":1,\"offset\":0,\"taps\":\\[\\[0,0\\]\\]}\n$")
 # point light: one tap at the origin, samples reported as 1
 ics_cli_test(NAME cli_kernel_point RC 0 ARGS "kernel|ellipse|--varx|0|--vary|0|--samples|8"
   OUT "\"samples\":1,\"offset\":0,\"taps\":\\[\\[0,0\\]\\]}")

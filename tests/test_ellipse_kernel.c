@@ -257,6 +257,13 @@ static void test_degenerate(void) {
     CHECK(xy[2 * j] == 0 && fabs(xy[2 * j + 1] - y) <= 1e-15 * sh.b,
           "vertical line tap %d (%.17g, %.17g) expected (0, %.17g)", j, xy[2 * j], xy[2 * j + 1], y);
   }
+  /* -0 variances: no negative zero radii, t or taps */
+  CHECK(ics_ellipse_kernel(-0.0, 1.0, 0, 2, 0, &sh, xy) == ICS_OK && !signbit(sh.a) &&
+            !signbit(xy[0]) && !signbit(xy[2]),
+        "kernel(-0, 1): a %g taps x %g %g", sh.a, xy[0], xy[2]);
+  CHECK(ics_ellipse_kernel(1.0, -0.0, 0, 2, 0, &sh, xy) == ICS_OK && !signbit(sh.b) &&
+            !signbit(sh.t) && !signbit(xy[1]) && !signbit(xy[3]),
+        "kernel(1, -0): b %g t %g taps y %g %g", sh.b, sh.t, xy[1], xy[3]);
   /* swapping the variances is a quarter turn: kernel(vy, vx, 0) = kernel(vx, vy, 90) exactly,
    * for every offset (both start at the major axis' end) */
   for (int c = 0; c < 3; c++) {

@@ -464,6 +464,8 @@ ics_status ics_ellipse_kernel(double varx, double vary, double angle_deg, int ns
   if (isinf(varx) || isinf(vary) || isinf(angle_deg)) return ICS_ERR_INFINITE;
   if (isinf(offset) || nsamples < 1 || nsamples > ICS_ELLIPSE_MAX_SAMPLES) return ICS_ERR_RANGE;
 
+  varx += 0.0; /* -0 -> +0: no negative zero radii or t */
+  vary += 0.0;
   shape->angle_deg = angle_deg;
   if (varx == 0.0 && vary == 0.0) { /* point light: one tap at the origin */
     shape->a = shape->b = 0.0;
