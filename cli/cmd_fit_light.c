@@ -38,7 +38,8 @@ static void help(FILE *f) {
           "  --sweep            fit k = 1..K and print one row each (the file holds k = K)\n"
           "  --progress         show progress on stderr even when it is not a terminal\n"
           "  --plane-csv FILE   also write the map projected onto the plane: one row per pixel\n"
-          "                     behind the viewer: i,j,x,y,r,g,b,kept (density l = L dw/dA)\n"
+          "                     behind the viewer: i,j,x,y,r,g,b,kept (density l = L dw/dA;\n"
+          "                     kept: the fit uses the pixel: centre within DEG, not a rim pixel)\n"
           "  -o LIGHTS.json     output file (required; - for stdout, then no table)\n"
           "Exit status: 0 ok, 1 runtime failure, 2 bad input (unreadable or invalid map too).\n",
           ICS_LIGHTFIT_MAX_K);
@@ -200,7 +201,6 @@ int cmd_fit_light(int argc, char **argv) {
       ics_image_free(&env2);
       return 1;
     }
-    double tmax = tan(max_angle * 3.14159265358979323846 / 180);
     fprintf(out.fp, "i,j,x,y,r,g,b,kept\n");
     for (int j = 0; j < env2.height; j++)
       for (int i = 0; i < env2.width; i++) {
@@ -209,7 +209,8 @@ int cmd_fit_light(int argc, char **argv) {
         double r2 = x * x + y * y, jac = pow(1 + r2, -1.5);
         const float *px = env2.data + ((size_t)j * env2.width + i) * env2.channels;
         fprintf(out.fp, "%d,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n", i, j, x, y, px[0] * jac,
-                px[1] * jac, px[2] * jac, r2 <= tmax * tmax);
+                px[1] * jac, px[2] * jac,
+                ics_envmap_pixel_kept(env2.width, env2.height, i, j, max_angle));
       }
     ics_image_free(&env2);
     if (cli_output_commit(&out) != 0) return 1;

@@ -2,8 +2,8 @@
  * (see icshadow/lightfit.h for the frames, the light convention and the error measures).
  *
  * Method.
- *  1. Pixels: every map pixel whose centre is behind the viewer (dz > 0) and within
- *     max_angle of +z becomes a weighted sample: plane point (x, y) = (tan phi,
+ *  1. Pixels: every map pixel whose centre is within max_angle of +z and whose worst corner
+ *     has dz >= half its centre's (so no kept pixel reaches 90 degrees) becomes a weighted sample: plane point (x, y) = (tan phi,
  *     cot theta / cos phi), luminance mass m = Y dw with the exact pixel solid angle
  *     dw = (cos theta0 - cos theta1) dphi, plane density d = m / A with A = dw (1 + r^2)^(3/2),
  *     and footprint covariance S = J diag(dphi^2, dtheta^2)/12 J^T (J = d(x, y)/d(phi, theta)).
@@ -68,6 +68,30 @@ int ics_envmap_pixel(int width, int height, int i, int j, double *x, double *y, 
   return 0;
 }
 
+/* the smallest dz = sin(theta) cos(phi) over pixel (i, j): a product of two functions that are
+ * positive and unimodal on the pixel when the pixel is behind the viewer, so its minimum is at
+ * the corner farthest from the equator and from phi = 0 */
+static double pixel_min_dz(int w, int h, int i, int j) {
+  double t0 = PI * j / h, t1 = PI * (j + 1.0) / h;
+  double p0 = 2 * PI * i / w - PI, p1 = 2 * PI * (i + 1.0) / w - PI;
+  double st = fmin(sin(t0), sin(t1)), cp = fmin(cos(p0), cos(p1));
+  return st > 0 && cp > 0 ? st * cp : 0;
+}
+
+/* the kept-pixel rule (see ics_envmap_pixel_kept) for a pixel whose centre has dz = dzc */
+static int pixel_kept(int w, int h, int i, int j, double dzc, double cosmax) {
+  return dzc >= cosmax && pixel_min_dz(w, h, i, j) >= 0.5 * dzc;
+}
+
+int ics_envmap_pixel_kept(int width, int height, int i, int j, double max_angle_deg) {
+  if (width < 1 || height < 1 || i < 0 || i >= width || j < 0 || j >= height ||
+      !(max_angle_deg > 0 && max_angle_deg < 90))
+    return 0;
+  double th = PI * (j + 0.5) / height, ph = 2 * PI * (i + 0.5) / width - PI;
+  double dzc = sin(th) * cos(ph);
+  return dzc > 0 && pixel_kept(width, height, i, j, dzc, cos(max_angle_deg * PI / 180));
+}
+
 static void footprint(int w, int h, int i, int j, double s[3]) {
   double th = PI * (j + 0.5) / h, ph = 2 * PI * (i + 0.5) / w - PI;
   double cp = cos(ph), sp = sin(ph), st = sin(th), ct = cos(th);
@@ -114,7 +138,12 @@ static ics_status pixset_build(const ics_image *env, double max_angle_deg, pixse
         ps->e_front += m;
         continue;
       }
-      if (dz < cosmax) {
+      /* kept when the centre is within the cut-off (an unbiased boundary) and dz at the
+       * pixel's worst corner is >= half of dz at its centre: the plane stretch (1 + r^2)^(3/2)
+       * then varies by at most 8x over the pixel, so its plane area and footprint, taken at
+       * the centre, stay meaningful. Rim pixels reaching (nearly) 90 degrees, whose area and
+       * footprint are unbounded, are thereby cut whatever max_angle is. */
+      if (!pixel_kept(w, h, i, j, dz, cosmax)) {
         ps->e_cut += m;
         continue;
       }

@@ -10,9 +10,12 @@
  * integral of l over the plane = integral of L over the hemisphere. Radiance is reduced to
  * luminance Y = 0.2126 R + 0.7152 G + 0.0722 B for the fit; colours are fitted afterwards.
  *
- * Cut-off: directions more than max_angle_deg from +z (plane radius > tan max_angle) are left
- * out and their energy is reported (ics_lightfit_report.cutoff_loss); dz <= 0 (in front of the
- * viewer) is reported separately.
+ * Cut-off: a pixel whose centre is behind the viewer is kept when its centre is within
+ * max_angle_deg of +z (plane radius <= tan max_angle) and dz at its worst corner is at least
+ * half of dz at its centre (ics_envmap_pixel_kept); the energy of the others is left out and
+ * reported (ics_lightfit_report.cutoff_loss). The second condition cuts rim pixels that reach
+ * (nearly) 90 degrees, where the plane area and footprint are unbounded, whatever the cut-off.
+ * dz <= 0 at the centre (in front of the viewer) is reported separately.
  *
  * Light convention (docs/lights_format.md): weight = luminance power of the light, the
  * integral of its Y over the plane (= over the hemisphere, in map units x steradian); color =
@@ -110,6 +113,11 @@ ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3], const ics_
 /* Plane point and solid angle of pixel (i, j) of a W x H map: returns 0 (and *x, *y, *domega)
  * when the pixel centre is behind the viewer (dz > 0), -1 otherwise. */
 int ics_envmap_pixel(int width, int height, int i, int j, double *x, double *y, double *domega);
+
+/* 1 when the fit keeps pixel (i, j) of a W x H map with the cut-off max_angle_deg (in (0, 90)):
+ * its centre is within the cut-off and dz at its worst corner >= half of dz at its centre;
+ * 0 otherwise (also for bad arguments). */
+int ics_envmap_pixel_kept(int width, int height, int i, int j, double max_angle_deg);
 
 #ifdef __cplusplus
 }
