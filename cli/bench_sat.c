@@ -5,6 +5,7 @@
  * `sat2d --chirp-csv FILE` writes the data of Ament et al. 2014 Fig. 4 (paper_figs/ament_fig4.py).
  * Method and results: docs/sat.md. */
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -67,6 +68,18 @@ static void help(FILE *f, int dims) {
                "                brute-force shadow-ray marching of the same quantity: error and\n"
                "                time per query side by side (CSV)\n");
   fprintf(f, "Tables larger than 8 GiB in total are refused.\n");
+}
+
+/* Flush stdout; on a write error (full disk, closed pipe, /dev/full) say so on stderr and
+ * return 0, so the command exits 1 instead of pretending the CSV was written. */
+static int stdout_ok(int dims) {
+  errno = 0;
+  if (fflush(stdout) != 0 || ferror(stdout)) {
+    fprintf(stderr, "icshadow bench sat%dd: cannot write stdout: %s\n", dims,
+            errno ? strerror(errno) : "write error");
+    return 0;
+  }
+  return 1;
 }
 
 static int usage_error(int dims, const char *msg, const char *arg) {
@@ -137,6 +150,10 @@ static int chirp_csv(const char *path) {
   }
   ics_sat2d_free(sat);
   free(img), free(tau), free(sig);
+  if (out.fp == stdout && !stdout_ok(2)) { /* cli_output_commit would fail without a message */
+    cli_output_abort(&out);
+    return 1;
+  }
   return cli_output_commit(&out) ? 1 : 0;
 }
 
@@ -176,6 +193,10 @@ static int bench_lights(void) {
     for (int a = 0; a < 3; a++) pts[i][a] = 4 + rng_unit(&seed) * (N - 8);
   printf("method,table,mode,U,build_s,ns_per_query,bf_ns_per_query,speedup,max_abs_err,"
          "mean_abs_err,mean_tau\n");
+  if (!stdout_ok(3)) { /* fail before the brute force runs */
+    free(data);
+    return 1;
+  }
   const double l[3] = {1, 2, 3}, Us[4] = {0, 2, 4, 8};
   const double hs[2] = {1.0, 0.5};
   const ics_sat_precision ms[2] = {ICS_SAT_FLOAT, ICS_SAT_DOUBLE};
@@ -284,7 +305,7 @@ static int bench_lights(void) {
       ics_ssat_free(s);
     }
   free(data);
-  return 0;
+  return stdout_ok(3) ? 0 : 1;
 }
 
 /* ---- benchmark --------------------------------------------------------------------------- */
@@ -389,7 +410,10 @@ static int run_bench(const config *c) {
   memset(dst, 0, copy_max);
   printf("kind,mode,width,height,depth,reps,time_s,first_build_s,bytes,memcpy_s,floor_ratio,"
          "gbytes_per_s,max_rel_err,max_bound_frac,boxes\n");
-  fflush(stdout);
+  if (!stdout_ok(c->dims)) {
+    free(data), free(src), free(dst);
+    return 1;
+  }
   int rc = 0;
   for (int mi = 0; mi < c->nmodes; mi++) {
     ics_sat_precision m = (ics_sat_precision)c->modes[mi];
@@ -458,8 +482,11 @@ static int run_bench(const config *c) {
     printf("sat%dd,%s,%zu,%zu,%zu,%d,%.17g,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n", c->dims,
            ics_sat_precision_name(m), c->n[0], c->n[1], c->n[2], c->reps, best, first, bytes,
            best_copy, best_copy / best, (double)bytes / best * 1e-9, max_rel, max_frac, c->boxes);
-    fflush(stdout);
     free_any(c, sat);
+    if (!stdout_ok(c->dims)) {
+      rc = 1;
+      break;
+    }
   }
   free(data), free(src), free(dst);
   return rc;
@@ -468,7 +495,7 @@ static int run_bench(const config *c) {
 static int bench_sat(int argc, char **argv, int dims) {
   if (cli_wants_help(argc, argv)) {
     help(stdout, dims);
-    return 0;
+    return stdout_ok(dims) ? 0 : 1;
   }
   config c;
   memset(&c, 0, sizeof c);

@@ -42,3 +42,7 @@ ics_cli_test(NAME cli_sat2d_lights RC 2 ARGS "bench|sat2d|--lights" ERR "--light
 # against the mean optical depth (the numbers are discussed in docs/sat.md).
 ics_cli_test(NAME cli_sat3d_lights RC 0 ARGS "bench|sat3d|--lights" LABELS medium
   OUT "^method,table,mode,U,build_s,ns_per_query,bf_ns_per_query,speedup,max_abs_err,mean_abs_err,mean_tau\ncsat,h=1,float,0,[^\n]+\n(csat,[^\n]+\n)+(ssat,[^\n]+\n)+$")
+# stdout on a full device: the write error is reported on stderr and the exit status is 1
+add_test(NAME cli_sat_stdout_full
+  COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/sat_stdout_full.sh $<TARGET_FILE:icshadow_cli>)
+set_tests_properties(cli_sat_stdout_full PROPERTIES LABELS fast)
