@@ -11,6 +11,7 @@
  * --svd-table prints the low-rank error against N instead; --fig4-csv writes the data of
  * Chen's Fig. 4 (one row, its tree, one ray's traversal). */
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -44,6 +45,13 @@ static void progress(const char *fmt, ...) {
 }
 static void progress_done(void) {
   if (g_progress && g_tty) fputs("\r\033[K", stderr);
+}
+
+/* flush stdout; on failure name it (exit status 1 follows) */
+static int stdout_failed(void) {
+  if (fflush(stdout) == 0 && !ferror(stdout)) return 0;
+  fprintf(stderr, "icshadow bench minmax: cannot write stdout: %s\n", strerror(errno ? errno : EIO));
+  return 1;
 }
 
 static void help(FILE *f) {
@@ -344,7 +352,7 @@ static int bench_one(const setup *S, int reps) {
   free(Lt);
   free(Lm);
   free(pre);
-  return fflush(stdout) != 0;
+  return stdout_failed();
 }
 
 /* Low-rank error against N: on the grid, at full resolution, and on the in-scattering. */
@@ -407,7 +415,7 @@ static int svd_table(setup *S) {
   }
   free(AN);
   free(Lx);
-  return fflush(stdout) != 0;
+  return stdout_failed();
 }
 
 /* Chen Fig. 4: the row with the most lit runs for the middle ray; all its samples, its tree

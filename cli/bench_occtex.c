@@ -4,6 +4,7 @@
  * (min over repetitions), error against the brute force, speed-up over it. With --fig3-csv,
  * writes the data of Eisemann Fig. 3 (max vs sum vs product on one receiver plane) instead. */
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -35,6 +36,13 @@ static void progress(const char *fmt, ...) {
 }
 static void progress_done(void) {
   if (g_progress && g_tty) fputs("\r\033[K", stderr);
+}
+
+/* flush stdout; on failure name it (exit status 1 follows) */
+static int stdout_failed(void) {
+  if (fflush(stdout) == 0 && !ferror(stdout)) return 0;
+  fprintf(stderr, "icshadow bench occtex: cannot write stdout: %s\n", strerror(errno ? errno : EIO));
+  return 1;
 }
 
 /* Peak bytes of one configuration (n x n textures, K slices): the bench's and the object's
@@ -451,7 +459,7 @@ int bench_occtex(int argc, char **argv) {
                    emax[a][b][p][c], ebias[a][b][p][c], brute / t);
           }
   }
-  if (fflush(stdout) != 0) rc = 1;
+  if (stdout_failed()) rc = 1;
 done:
   progress_done();
   free(boxes);

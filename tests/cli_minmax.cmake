@@ -38,3 +38,7 @@ ics_cli_test(NAME cli_minmax_limit_work_svd RC 2 ARGS "bench|minmax|--rows|1024|
   ERR "and --svd-table: an estimated [0-9.e+]+ operations; the work limit is 2\\^36")
 ics_cli_test(NAME cli_minmax_progress RC 0 ARGS "bench|minmax|--samples|32|--rows|2|--rays|2|--reps|2|--progress"
   ERR "samples 32: repetition 2/2")
+# stdout on a full device: exit 1 with "cannot write stdout: <strerror>" (minmax and occtex)
+add_test(NAME cli_bench_stdout_full
+  COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/bench_stdout_full.sh $<TARGET_FILE:icshadow_cli>)
+set_tests_properties(cli_bench_stdout_full PROPERTIES LABELS fast)
