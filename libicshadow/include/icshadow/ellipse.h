@@ -8,8 +8,14 @@
  *   ics_ellipse_vy(t)  : its y-variance, = vx(1 - t).
  *   ics_ellipse_ratio(t)      = vy(t) / vx(t), increasing from 0 (t = 0) to +inf (t = 1).
  *   ics_ellipse_ratio_to_t(r) : inverse of ratio for r in [0, +inf] (paper's ratioToab).
- * Outside the domain (or NaN) they return NaN. Accuracy: see ellipse.c and docs/ellipse.md
- * (<= 0.75 ulp for varx, vx, vy; <= 1 ulp for ratio and ratio_to_t).
+ * Outside the domain (or NaN) they return NaN; errno is never touched.
+ * ACCURACY (measured against Patel's closed form in 320-bit MPFR, not proved; tests/test_ellipse.c
+ * asserts these same numbers; method and worst inputs in ellipse.c and docs/ellipse.md):
+ *   ics_ellipse_varx, ics_ellipse_vx, ics_ellipse_vy   <= 0.75 ulp
+ *   ics_ellipse_ratio, ics_ellipse_ratio_to_t          <= 1.0 ulp
+ *   exception: when the result of ics_ellipse_vy or ics_ellipse_ratio is subnormal (t below
+ *   ~1.5e-154), the bound is 1.0 ulp of 2^-1074 (the smallest subnormal): the exponent is applied
+ *   last, so such results are rounded twice.
  * Patel's closed form (Appendix A.7) takes EllipticK/E of the MODULUS sqrt(1 - b^2), i.e. the
  * parameter m = 1 - b^2 (settled by quadrature, docs/ellipse.md). var_x(0) = 1/3, var_x(1) = 1/2,
  * var_x(b) + var_x(1/b) = 1, var_x(+inf) = 2/3. */
