@@ -221,10 +221,81 @@ static void test_eq8(void) {
   printf("  broken mean sign: sup %.3e -> detected\n", w);
 }
 
+/* ASSERTION FUNCTION (2D, end to end): a 2D Gaussian light mapped by ics_kernel_map_2d (Eq. 15)
+ * to a kernel class, the 2D Gaussian member of that class propagated by the 2D engine from an
+ * impulse for n = d / e steps (compensated taps: the applied integer taps have exactly the
+ * class moments, so the image's moments are exactly n times them up to float rounding). The
+ * image's mean and covariance (world units) must be -d mu_l and d d1 Sigma_l: max abs deviation
+ * of the 5 numbers, relative to sqrt(trace(d d1 Sigma_l)) for the mean and trace for the
+ * covariance, <= tol. kbreak: 0 none; 1 kernel covariance e Sigma_l (d1 dropped); 2 kernel mean
+ * +e mu_l (sign). 1 = pass. */
+static int conv2d_matches_mapping(const ics_light *L, double d, double d1, double e, double h,
+                                  int kbreak, double tol, double *worst) {
+  double mk[2], ck[3];
+  *worst = INFINITY;
+  if (ics_kernel_map_2d(L, e, d1, mk, ck) != ICS_OK) return 0;
+  if (kbreak == 1)
+    for (int i = 0; i < 3; i++) ck[i] /= d1;
+  if (kbreak == 2) mk[0] = -mk[0], mk[1] = -mk[1];
+  ics_class2d cls = {{mk[0] / h, mk[1] / h}, ck[0] / (h * h), ck[1] / (h * h), ck[2] / (h * h)};
+  ics_kernel2d k;
+  if (ics_kernel2d_init(&k, ICS_KERNEL_GAUSS, &cls) != ICS_OK) return 0;
+  int n = (int)lround(d / e);
+  enum { W = 256, H = 256 };
+  static float img[W * H];
+  for (size_t i = 0; i < (size_t)W * H; i++) img[i] = 0;
+  const size_t cx = 128, cy = 128;
+  img[cy * W + cx] = 1.0f;
+  ics_schedule2d sch = {&k, 1};
+  ics_conv_opts co = ics_conv_opts_default();
+  co.boundary = ICS_BOUNDARY_CONSTANT;
+  co.compensate = ICS_COMP_NONNEG;
+  if (ics_conv2d_run(img, W, H, &sch, 0, n, &co, NULL) != ICS_OK) return 0;
+  double s0 = 0, sx = 0, sy = 0;
+  for (size_t y = 0; y < H; y++)
+    for (size_t x = 0; x < W; x++) {
+      double v = img[y * W + x], px = ((double)x - cx) * h, py = ((double)y - cy) * h;
+      s0 += v, sx += v * px, sy += v * py;
+    }
+  double m[2] = {sx / s0, sy / s0}, c[3] = {0, 0, 0};
+  for (size_t y = 0; y < H; y++)
+    for (size_t x = 0; x < W; x++) {
+      double v = img[y * W + x], px = ((double)x - cx) * h - m[0], py = ((double)y - cy) * h - m[1];
+      c[0] += v * px * px, c[1] += v * px * py, c[2] += v * py * py;
+    }
+  for (int i = 0; i < 3; i++) c[i] /= s0;
+  double tm[2] = {-d * L->mean[0], -d * L->mean[1]};
+  double tc[3] = {d * d1 * L->cov[0], d * d1 * L->cov[1], d * d1 * L->cov[2]};
+  double tr = tc[0] + tc[2], w = 0;
+  for (int i = 0; i < 2; i++) w = fmax(w, fabs(m[i] - tm[i]) / sqrt(tr));
+  for (int i = 0; i < 3; i++) w = fmax(w, fabs(c[i] - tc[i]) / tr);
+  *worst = w;
+  return w <= tol;
+}
+
+static void test_2d_mapping(void) {
+  /* light: tilt (10, -6) degrees, eigen-variances 0.02, 0.008 rotated 30 degrees */
+  ics_light L;
+  CHECK(ics_light_from_tilt(&L, 10, -6, 0.02, 0.008, 30, NULL, 1) == ICS_OK, "light");
+  double d1 = 2.0, e = 0.25, d = 2.0, h = 0.05; /* d = d1: 8 steps of ~(4, 1.6) px^2 */
+  /* tolerance: float storage rounds each pixel to 2^-24 relative once per step, so the moments
+   * drift by at most ~8 x 6e-8 = 4.8e-7 relative; tol 1e-6 */
+  double tol = 1e-6, w;
+  CHECK(conv2d_matches_mapping(&L, d, d1, e, h, 0, tol, &w),
+        "2D: moments off the Eq. 15 prediction by %.3g > %.3g", w, tol);
+  printf("  2D Gaussian light -> ics_kernel_map_2d -> conv2d (gauss 5x5, 8 steps, d = d1 = 2): "
+         "mean -d mu_l, covariance d1^2 Sigma_l to %.2e (tol %.0e)\n", w, tol);
+  CHECK(!conv2d_matches_mapping(&L, d, d1, e, h, 1, tol, &w), "2D broken variance NOT detected");
+  printf("  2D broken covariance e Sigma_l: %.3e -> detected\n", w);
+  CHECK(!conv2d_matches_mapping(&L, d, d1, e, h, 2, tol, &w), "2D broken mean sign NOT detected");
+  printf("  2D broken mean sign: %.3e -> detected\n", w);
+}
+
 int main(void) {
   test_members();
   test_lattice();
   test_stochastic();
   test_eq8();
+  test_2d_mapping();
   return test_summary("test_clt_convergence");
 }

@@ -71,9 +71,12 @@ ics_status ics_shadow1d_iterate(const ics_light1d *l, double d, double d1, doubl
   if (nr > 1e8 || fabs(nf - nr) > 1e-9 * fmax(nf, 1.0)) return ICS_ERR_RANGE;
   int steps = (int)nr;
   double mu = ics_light1d_mean(l), var = ics_light1d_var(l);
-  double vf = o.var_factor > 0 ? o.var_factor : d1;
-  double sign = o.mean_sign < 0 ? -1.0 : 1.0;
-  double kmean = -sign * e * mu, kvar = vf * e * var;         /* world units */
+  double kmean, kvar; /* world units: the Eq. 7/15 mapping of light.c */
+  ics_status mst = ics_kernel_map_1d(mu, var, e, d1, &kmean, &kvar);
+  if (mst != ICS_OK) return mst;
+  /* deliberate breaks (tests), applied on top of the mapping */
+  if (o.mean_sign < 0) kmean = -kmean;
+  if (o.var_factor > 0) kvar = kvar / d1 * o.var_factor;
   double sd_n = sqrt(steps * kvar);                            /* final std */
   double h = o.h;
   if (h == 0) {
