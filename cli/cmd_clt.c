@@ -33,7 +33,10 @@ static void help(FILE *f) {
           "  --seed U     seed of stochastic members (default 0)\n"
           "  --comp C     interpolation-variance compensation (default nonneg)\n"
           "  --no-refine  skip the 2x finer run (disc_error is then nan)\n"
-          "  --rate       print the fitted rate exponent (slope of log error vs log n) on stderr\n"
+          "  --rate       print the fitted rate exponent (slope of log error vs log n) on stderr,\n"
+          "               over the resolved points only\n"
+          "A point whose disc_error >= sup_error / 10 is not resolved by the grid: a warning\n"
+          "names it on stderr (it is still printed) and --rate leaves it out.\n"
           "Exit status: 0 ok, 1 runtime failure, 2 bad input (message on stderr).\n",
           MAX_STEPS_LIST);
 }
@@ -192,6 +195,27 @@ int cmd_clt(int argc, char **argv) {
   for (int i = 0; i < nsteps; i++)
     printf("%d,%.17g,%.17g,%.17g,%.17g\n", pts[i].steps, pts[i].sup_err, pts[i].disc_err,
            pts[i].cost, pts[i].seconds);
-  if (rate) fprintf(stderr, "rate exponent: %.4g\n", ics_clt_rate(pts, nsteps, 1));
+  /* a point is resolved when the grid's own error is below a tenth of the reported one */
+  ics_clt_point kept[MAX_STEPS_LIST];
+  int nkept = 0;
+  for (int i = 0; i < nsteps; i++) {
+    if (refine && !(pts[i].disc_err < 0.1 * pts[i].sup_err)) {
+      fprintf(stderr, "icshadow clt: warning: n = %d: disc_error %.3g >= sup_error / 10 (%.3g): "
+                      "the grid does not resolve this error%s\n", pts[i].steps, pts[i].disc_err,
+              0.1 * pts[i].sup_err, rate ? "; left out of the rate" : "");
+      continue;
+    }
+    kept[nkept++] = pts[i];
+  }
+  if (rate) {
+    if (!refine)
+      fprintf(stderr, "icshadow clt: warning: --no-refine: the grid is not checked; the rate may "
+                      "be a discretisation artefact\n");
+    if (nkept < 2)
+      fprintf(stderr, "rate exponent: nan (fewer than 2 resolved points)\n");
+    else
+      fprintf(stderr, "rate exponent: %.4g (%d of %d points)\n", ics_clt_rate(kept, nkept, 1),
+              nkept, nsteps);
+  }
   return fflush(stdout) != 0 ? 1 : 0;
 }

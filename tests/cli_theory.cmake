@@ -57,3 +57,12 @@ ics_cli_test(NAME cli_clt_missing RC 2 ARGS "clt|--kernel|dirac|--steps|4" ERR "
 # mixture SPECs hold ';' (not passable through ics_cli_test): tests/cli/theory_mix.sh
 add_test(NAME cli_isoline_mix COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/theory_mix.sh $<TARGET_FILE:icshadow_cli>)
 set_tests_properties(cli_isoline_mix PROPERTIES LABELS fast)
+# The 9-tap Gaussian with sigma = 6 is a comb 4.5 px apart that the grid's interpolation smooths:
+# its error at n = 16, 32 is below a tenth of the 2x-grid change (docs/figures.md), so clt warns
+# about each point on stderr, still prints it, and --rate has no resolved point left.
+ics_cli_test(NAME cli_clt_unresolved_warning RC 0 ARGS "clt|--kernel|gauss|--var|36|--steps|16,32|--rate"
+  OUT "^steps,sup_error,disc_error,taps_x_steps,seconds\n16,[^\n]*\n32,[^\n]*\n$"
+  ERR "warning: n = 16: disc_error [0-9.e-]+ >= sup_error / 10 .*left out of the rate.*warning: n = 32: .*rate exponent: nan \\(fewer than 2 resolved points\\)")
+# a resolved run gives the rate over all its points and no warning
+ics_cli_test(NAME cli_clt_rate_resolved RC 0 ARGS "clt|--kernel|tophat|--var|36|--steps|16,32,64|--rate"
+  ERR "^rate exponent: -(0\\.99|1\\.0)[0-9]* \\(3 of 3 points\\)\n$")
