@@ -25,6 +25,19 @@ static const char *tmpf(const char *name) {
 }
 
 static int raw_cube; /* write_raw: tag the file as a cube map */
+/* write_raw: when raw_windows is set, the display window is raw_disp and the data window
+ * raw_data (w x h must be the data window's size) */
+static int raw_windows;
+static exr_attr_box2i_t raw_disp, raw_data;
+
+static exr_attr_box2i_t box(int x0, int y0, int x1, int y1) {
+  exr_attr_box2i_t b;
+  b.min.x = x0;
+  b.min.y = y0;
+  b.max.x = x1;
+  b.max.y = y1;
+  return b;
+}
 
 /* a W x H file with the given channels (all of type pt); value of channel c at pixel p is
  * val(c, p) */
@@ -40,17 +53,25 @@ static int write_raw(const char *path, int w, int h, int nch, const char *const 
   }
   exr_result_t rv = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
   if (rv == 0) rv = exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part);
-  if (rv == 0) rv = exr_initialize_required_attr_simple(ctx, part, w, h, EXR_COMPRESSION_NONE);
+  if (rv == 0 && raw_windows) {
+    exr_attr_v2f_t centre;
+    centre.x = centre.y = 0;
+    rv = exr_initialize_required_attr(ctx, part, &raw_disp, &raw_data, 1, &centre, 1,
+                                      EXR_LINEORDER_INCREASING_Y, EXR_COMPRESSION_NONE);
+  } else if (rv == 0) {
+    rv = exr_initialize_required_attr_simple(ctx, part, w, h, EXR_COMPRESSION_NONE);
+  }
   for (int c = 0; c < nch && rv == 0; c++)
     rv = exr_add_channel(ctx, part, names[c], pt, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
   if (rv == 0 && raw_cube) rv = exr_attr_set_envmap(ctx, part, "envmap", EXR_ENVMAP_CUBE);
   if (rv == 0) rv = exr_write_header(ctx);
   int32_t lines = 1;
   if (rv == 0) rv = exr_get_scanlines_per_chunk(ctx, part, &lines);
+  int y0 = raw_windows ? raw_data.min.y : 0;
   for (int y = 0; rv == 0 && y < h; y += lines) {
     exr_chunk_info_t ci;
     exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
-    rv = exr_write_scanline_chunk_info(ctx, part, y, &ci);
+    rv = exr_write_scanline_chunk_info(ctx, part, y0 + y, &ci);
     if (rv == 0) rv = exr_encoding_initialize(ctx, part, &ci, &enc);
     for (int c = 0; rv == 0 && c < enc.channel_count; c++) {
       int k = 0;
@@ -187,6 +208,44 @@ int main(int argc, char **argv) {
   st = ics_exr_read(tmpf("raw.exr"), &b, msg, sizeof msg);
   CHECK(st == ICS_OK && b.data[3 * 6 + 1] == v_plain(1, 6), "raw half read: %s", msg);
   ics_image_free(&b);
+
+  /* a data window smaller than the display window: the image is the display window (the
+   * latitude-longitude frame), the data placed at its offset, zeros elsewhere; a data window
+   * reaching outside the display window (overscan) is clipped to it */
+  raw_windows = 1;
+  raw_disp = box(0, 0, 127, 63);
+  raw_data = box(32, 16, 95, 47);
+  CHECK(write_raw(tmpf("win.exr"), 64, 32, 3, rgb, EXR_PIXEL_FLOAT, v_plain) == 0, "raw window");
+  raw_disp = box(0, 0, 7, 3);
+  raw_data = box(-2, -1, 9, 4);
+  CHECK(write_raw(tmpf("over.exr"), 12, 6, 3, rgb, EXR_PIXEL_FLOAT, v_plain) == 0, "raw overscan");
+  raw_windows = 0;
+  st = ics_exr_read(tmpf("win.exr"), &b, msg, sizeof msg);
+  CHECK(st == ICS_OK && b.width == 128 && b.height == 64, "windowed read: %s, %dx%d", msg,
+        b.width, b.height);
+  if (st == ICS_OK) {
+    int wrong = 0;
+    for (int yy = 0; yy < 64; yy++)
+      for (int xx = 0; xx < 128; xx++)
+        for (int c = 0; c < 3; c++) {
+          int in = xx >= 32 && xx < 96 && yy >= 16 && yy < 48;
+          float want = in ? v_plain(c, (yy - 16) * 64 + (xx - 32)) : 0.0f;
+          wrong += b.data[((size_t)yy * 128 + xx) * 3 + c] != want;
+        }
+    CHECK(wrong == 0, "windowed read: %d values misplaced", wrong);
+    ics_image_free(&b);
+  }
+  st = ics_exr_read(tmpf("over.exr"), &b, msg, sizeof msg);
+  CHECK(st == ICS_OK && b.width == 8 && b.height == 4, "overscan read: %s", msg);
+  if (st == ICS_OK) {
+    int wrong = 0;
+    for (int yy = 0; yy < 4; yy++)
+      for (int xx = 0; xx < 8; xx++)
+        for (int c = 0; c < 3; c++)
+          wrong += b.data[((size_t)yy * 8 + xx) * 3 + c] != v_plain(c, (yy + 1) * 12 + (xx + 2));
+    CHECK(wrong == 0, "overscan read: %d values misplaced", wrong);
+    ics_image_free(&b);
+  }
 
   /* errors */
   expect_fail(tmpf("missing.exr"), ICS_ERR_IO, "cannot open");

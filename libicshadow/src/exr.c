@@ -109,7 +109,7 @@ ics_status ics_exr_read(const char *path, ics_image *img, char *msg, size_t msg_
   int parts = 0;
   exr_storage_t storage;
   const exr_attr_chlist_t *chl = NULL;
-  exr_attr_box2i_t dw;
+  exr_attr_box2i_t dw, disp;
   int have[4] = {0, 0, 0, 0};
   long w = 0, h = 0;
   if (exr_get_count(ctx, &parts) != EXR_ERR_SUCCESS || parts != 1) {
@@ -131,7 +131,8 @@ ics_status ics_exr_read(const char *path, ics_image *img, char *msg, size_t msg_
     goto done;
   }
   if (exr_get_channels(ctx, 0, &chl) != EXR_ERR_SUCCESS || !chl ||
-      exr_get_data_window(ctx, 0, &dw) != EXR_ERR_SUCCESS) {
+      exr_get_data_window(ctx, 0, &dw) != EXR_ERR_SUCCESS ||
+      exr_get_display_window(ctx, 0, &disp) != EXR_ERR_SUCCESS) {
     set_msg(msg, msg_size, "%s: corrupt header: %s", path, exr_lastmsg);
     st = ICS_ERR_PARSE;
     goto done;
@@ -164,13 +165,23 @@ ics_status ics_exr_read(const char *path, ics_image *img, char *msg, size_t msg_
     st = ICS_ERR_UNSUPPORTED;
     goto done;
   }
+  /* the image is the DISPLAY window (the latitude-longitude frame); the data window is placed
+   * inside it at its offset, pixels outside the data window are 0 (OpenEXR: no data there),
+   * data outside the display window is dropped */
   w = (long)dw.max.x - dw.min.x + 1;
   h = (long)dw.max.y - dw.min.y + 1;
+  long W = (long)disp.max.x - disp.min.x + 1, H = (long)disp.max.y - disp.min.y + 1;
   int nch = have[3] ? 4 : 3;
-  st = ics_image_init(img, (int)(w > 0 && w <= ICS_IMAGE_MAX_DIM ? w : 0),
-                      (int)(h > 0 && h <= ICS_IMAGE_MAX_DIM ? h : 0), nch);
+  if (!(w > 0 && w <= ICS_IMAGE_MAX_DIM && h > 0 && h <= ICS_IMAGE_MAX_DIM)) {
+    set_msg(msg, msg_size, "%s: data window %ld x %ld: sizes must be in 1..%d", path, w, h,
+            ICS_IMAGE_MAX_DIM);
+    st = ICS_ERR_SIZE;
+    goto done;
+  }
+  st = ics_image_init(img, (int)(W > 0 && W <= ICS_IMAGE_MAX_DIM ? W : 0),
+                      (int)(H > 0 && H <= ICS_IMAGE_MAX_DIM ? H : 0), nch);
   if (st != ICS_OK) {
-    set_msg(msg, msg_size, "%s: cannot hold a %ld x %ld image: %s", path, w, h,
+    set_msg(msg, msg_size, "%s: cannot hold a %ld x %ld image (display window): %s", path, W, H,
             ics_status_str(st));
     goto done;
   }
@@ -222,11 +233,20 @@ ics_status ics_exr_read(const char *path, ics_image *img, char *msg, size_t msg_
       goto done;
     }
   }
-  for (size_t p = 0; p < (size_t)w * (size_t)h; p++)
-    for (int k = 0; k < nch; k++) img->data[p * nch + k] = planes[k][p];
+  memset(img->data, 0, (size_t)W * (size_t)H * nch * sizeof *img->data);
+  for (long y = 0; y < h; y++) {
+    long Y = y + dw.min.y - disp.min.y;
+    if (Y < 0 || Y >= H) continue;
+    for (long x = 0; x < w; x++) {
+      long X = x + dw.min.x - disp.min.x;
+      if (X < 0 || X >= W) continue;
+      size_t p = (size_t)y * (size_t)w + (size_t)x, q = (size_t)Y * (size_t)W + (size_t)X;
+      for (int k = 0; k < nch; k++) img->data[q * nch + k] = planes[k][p];
+    }
+  }
   int bi, bj, bc;
   if (!ics_image_find_bad(img, &bi, &bj, &bc)) {
-    float v = img->data[((size_t)bj * w + bi) * nch + bc];
+    float v = img->data[((size_t)bj * W + bi) * nch + bc];
     set_msg(msg, msg_size, "%s: pixel (x %d, y %d) channel %s is %s (%g): radiance must be "
             "finite and >= 0", path, bi, bj, chan_names[bc],
             isnan(v) ? "NaN" : isinf(v) ? "infinite" : "negative", (double)v);

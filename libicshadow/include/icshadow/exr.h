@@ -4,7 +4,10 @@
  * (ics_exr_available() tells in advance).
  *
  * Files: one single-part scanline image; channels exactly {R, G, B} or {R, G, B, A}, each
- * HALF or FLOAT, no subsampling; any data window (its size is the image size). Reading
+ * HALF or FLOAT, no subsampling. The image is the DISPLAY window (the latitude-longitude
+ * frame): the data window is placed inside it at its offset, pixels outside the data window
+ * are 0 and data outside the display window (overscan) is dropped; pixel positions in
+ * messages are display-window positions from its top-left corner. Reading
  * decodes every channel PLANAR into float and interleaves afterwards: OpenEXR 3.1.5's
  * interleaved-RGBA fast path writes half data in reversed channel order (ABGR), measured
  * here (DESIGN.md "Known stack facts"); the planar path has no such special case.
