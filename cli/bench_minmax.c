@@ -61,11 +61,17 @@ static void help(FILE *f) {
           "                             [--scene hf|noise] [--svd-table] [--fig4-csv FILE] [--progress]\n"
           "\n"
           "1D min-max mipmaps (Chen et al. 2011) vs brute-force ray marching at the same\n"
-          "resolution, on the built-in height-field scene. One CSV line per depth-sample count:\n"
-          "  samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,speedup,\n"
-          "  speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err\n"
+          "resolution, on the built-in height-field scene. One CSV line per depth-sample count\n"
+          "(numbers printed with %%.17g):\n"
+          "  samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,tree_bytes,march_bytes,\n"
+          "  speedup,speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err\n"
           "(times: seconds, min over --reps; speedup = march_s / traverse_s; speedup_with_build\n"
           "adds build_s + prefix_s to the tree side; max_rel_err = max |tree - march| / max |march|).\n"
+          "Bytes read + written per repetition, counted from the data structures (float 4, double 8,\n"
+          "tree node 8 bytes): tree_bytes = build (rows x (4 d + 16 P + 8 (2P - 2)), P = next power\n"
+          "of two >= d) + prefix sums (8 N d read + 8 N (d + 1) written) + traversal (8 per visited\n"
+          "node, 16 N per lit run, 8 N per ray); march_bytes = 4 per sample below each ray's end +\n"
+          "8 N per lit sample + 8 N per ray (N = --terms).\n"
           "\n"
           "  --samples LIST  comma-separated depth-sample counts d, each 1..16384 (default\n"
           "                  1024,2048,4096); the shadow map is min(d, 4096)^2; rows x d <= 2^25\n"
@@ -298,7 +304,13 @@ static int bench_one(const setup *S, int reps) {
   }
   double tb = INFINITY, tp = INFINITY, tt = INFINITY, tm = INFINITY;
   ics_status st = ICS_OK;
-  double runs = 0;
+  double runs = 0, visited = 0, lit = 0, marched = 0; /* totals over the rays, for the bytes */
+  size_t P = 1;
+  while (P < d) P <<= 1;
+  const size_t maxseg = d / 2 + 1; /* maximal lit runs are separated by >= 1 shadowed sample */
+  unsigned char *cls = malloc(2 * P);
+  size_t *seg = malloc(2 * maxseg * sizeof *seg);
+  if (!cls || !seg) st = ICS_ERR_NOMEM;
   for (int rep = 0; rep < reps && st == ICS_OK; rep++) {
     progress("samples %zu: repetition %d/%d", d, rep + 1, reps);
     ics_minmax *t = NULL;
@@ -325,8 +337,11 @@ static int bench_one(const setup *S, int reps) {
     if (rep == 0 && st == ICS_OK)
       for (size_t q = 0; q < nr; q++) {
         size_t ns = 0;
-        ics_minmax_segments(t, q / S->rays, &S->ray[q], NULL, 0, &ns, NULL);
+        ics_minmax_segments(t, q / S->rays, &S->ray[q], seg, maxseg, &ns, cls);
         runs += (double)ns;
+        for (size_t k = 1; k < 2 * P; k++) visited += cls[k] != 0;
+        for (size_t j = 0; j < ns && j < maxseg; j++) lit += (double)(seg[2 * j + 1] - seg[2 * j]);
+        marched += (double)S->ray[q].gamma_end;
       }
     ics_minmax_destroy(t);
     tb = fmin(tb, t1 - t0);
@@ -334,6 +349,8 @@ static int bench_one(const setup *S, int reps) {
     tt = fmin(tt, t3 - t2);
     tm = fmin(tm, t4 - t3);
   }
+  free(cls);
+  free(seg);
   if (st != ICS_OK) {
     fprintf(stderr, "icshadow bench minmax: %s\n", ics_status_str(st));
     free(Lt);
@@ -341,14 +358,24 @@ static int bench_one(const setup *S, int reps) {
     free(pre);
     return 1;
   }
+  /* Bytes read + written, from the data structures (floats 4, doubles 8, a node 8):
+   * tree side = build (read rows x d samples, write rows x 2P nodes, read the 2P - 2 children)
+   * + prefix sums (read N d terms, write N (d + 1) sums) + traversal (read every visited node,
+   * 2 prefix sums per lit run and term, write N results per ray); march = read every sample
+   * below gamma_end and N terms per lit sample, write N results per ray. */
+  double Nd = (double)N, rows = (double)S->rows;
+  double tree_bytes = rows * ((double)d * 4 + 2.0 * (double)P * 8 + (2.0 * (double)P - 2) * 8) +
+                      Nd * (double)d * 8 + Nd * ((double)d + 1) * 8 + visited * 8 + runs * 2 * Nd * 8 +
+                      (double)nr * Nd * 8;
+  double march_bytes = marched * 4 + lit * Nd * 8 + (double)nr * Nd * 8;
   double maxL = 0, maxe = 0;
   for (size_t q = 0; q < nr; q++) {
     maxL = fmax(maxL, fabs(Lm[q]));
     maxe = fmax(maxe, fabs(Lt[q] - Lm[q]));
   }
-  printf("%zu,%zu,%zu,%zu,%.6g,%.6g,%.6g,%.6g,%.4g,%.4g,%.4g,%.3g,%.3g\n", d, S->rows, S->rays, N,
-         tb, tp, tt, tm, tm / tt, tm / (tb + tp + tt), runs / (double)nr, maxe,
-         maxL > 0 ? maxe / maxL : 0.0);
+  printf("%zu,%zu,%zu,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", d,
+         S->rows, S->rays, N, tb, tp, tt, tm, tree_bytes, march_bytes, tm / tt, tm / (tb + tp + tt),
+         runs / (double)nr, maxe, maxL > 0 ? maxe / maxL : 0.0);
   free(Lt);
   free(Lm);
   free(pre);
@@ -410,7 +437,7 @@ static int svd_table(setup *S) {
       for (size_t i = 0; i < N; i++) L += S->B[q * S->nterms + i] * out[i];
       le = fmax(le, fabs(L - Lx[q]));
     }
-    printf("%zu,%.3g,%.3g,%.3g,%.3g,%.3g\n", N, S->s[N - 1] / S->s[0], sqrt(fe) / fa, me / ma,
+    printf("%zu,%.17g,%.17g,%.17g,%.17g,%.17g\n", N, S->s[N - 1] / S->s[0], sqrt(fe) / fa, me / ma,
            fr / frmax, maxL > 0 ? le / maxL : 0.0);
   }
   free(AN);
@@ -454,7 +481,7 @@ static int fig4(setup *S, const char *path) {
   FILE *fp = out.fp;
   fprintf(fp, "kind,index,level,g0,g1,lo,hi,class\n");
   for (size_t g = 0; g < d; g++)
-    fprintf(fp, "sample,%zu,,%zu,%zu,%.9g,%.9g,%d\n", g, g, g + 1, S->rect[row * d + g],
+    fprintf(fp, "sample,%zu,,%zu,%zu,%.17g,%.17g,%d\n", g, g, g + 1, S->rect[row * d + g],
             S->rect[row * d + g], g < ry->gamma_end && (double)S->rect[row * d + g] > ry->beta0 + ry->slope * (double)g);
   for (size_t k = 1; k < 2 * P; k++) {
     size_t g0, g1, level = 0;
@@ -462,7 +489,7 @@ static int fig4(setup *S, const char *path) {
     while (((size_t)2 << level) <= k) level++;
     ics_minmax_node_range(t, k, &g0, &g1);
     ics_minmax_node(t, row, k, &lo, &hi);
-    if (g0 < g1) fprintf(fp, "node,%zu,%zu,%zu,%zu,%.9g,%.9g,%d\n", k, level, g0, g1, lo, hi, cls[k]);
+    if (g0 < g1) fprintf(fp, "node,%zu,%zu,%zu,%zu,%.17g,%.17g,%d\n", k, level, g0, g1, lo, hi, cls[k]);
   }
   fprintf(fp, "ray,%zu,,0,%zu,%.17g,%.17g,\n", row, ry->gamma_end, ry->beta0, ry->slope);
   for (size_t j = 0; j < nseg; j++) fprintf(fp, "run,%zu,,%zu,%zu,,,\n", j, seg[2 * j], seg[2 * j + 1]);
@@ -605,8 +632,8 @@ int bench_minmax(int argc, char **argv) {
     progress_done();
     return rc;
   }
-  printf("samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,speedup,speedup_with_build,"
-         "lit_runs_per_ray,max_abs_err,max_rel_err\n");
+  printf("samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,tree_bytes,march_bytes,speedup,"
+         "speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err\n");
   for (int k = 0; k < nd; k++) {
     int rc = setup_init(&S, (size_t)dlist[k], (size_t)rows, (size_t)rays, (size_t)terms, noise);
     if (rc == 0) rc = bench_one(&S, reps);

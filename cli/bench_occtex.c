@@ -67,6 +67,29 @@ static double est_work(double n, double K, double ss, double R) {
   for (double w = 1; w < n; w *= 2) L++;
   return 3 * K * (n * ss) * (n * ss) * 2 + K * n * n * (3 * (L + 5) + 8) + 3 * R * R * K * (256 + 256 + 16);
 }
+/* Bytes read + written by a method, counted from its data structures (float 4, double 8):
+ * build = slicing (per slice: the (n S)^2-byte sub-sample bitmap cleared, painted and read,
+ * the n^2 texture written) + the object's copy (read and write K n^2 floats) + the prefilter:
+ * mipmap and N-Buffers read and write every level once (4 K x their total texels, x 2; the
+ * N-Buffers also clear and fill a padded scratch level, so x 4 for them), the SAT reads the
+ * floats and writes doubles (12 K n^2). query = per receiver its point (24) and result (8),
+ * and per slice one lookup: 2 levels x 4 texels x 4 bytes for the pyramids (one tap: the
+ * light is square), 4 bilinear corner reads x 4 doubles for the SAT. */
+static double bytes_build(ics_occ_prefilter pf, double n, double K, double ss) {
+  double b = K * (3 * (n * ss) * (n * ss) + 4 * n * n) + 8 * K * n * n, lev = 0;
+  int L = 0;
+  for (double w = 1; w < n; w *= 2) L++;
+  if (pf == ICS_OCC_SAT) return b + 12 * K * n * n;
+  for (int l = 0; l <= L; l++) {
+    double w = pf == ICS_OCC_MIPMAP ? n / pow(2, l) : n + pow(2, l) - 1;
+    lev += w * w;
+  }
+  return b + (pf == ICS_OCC_MIPMAP ? 2 : 4) * 4 * K * lev;
+}
+static double bytes_query(ics_occ_prefilter pf, double K, double R) {
+  return R * R * (24 + 8 + K * (pf == ICS_OCC_SAT ? 128 : 32));
+}
+
 /* Brute force, one repetition: R^2 receivers x M^2 rays x (at most) every box, plus the cull. */
 static double est_brute(double R, double M, double boxes) { return R * R * (M * M * boxes + boxes); }
 
@@ -77,13 +100,20 @@ static void help(FILE *f) {
           "light (z = 0) and a receiver plane is cut into K slices, each slice's occlusion texture is\n"
           "prefiltered (mipmap, nbuffers, sat) and looked up with the box of Eq. 4 at every receiver;\n"
           "slices are combined by product (Eq. 5), clamped sum or max. The reference is brute-force\n"
-          "visibility (M x M rays to the light per receiver). CSV on stdout, header first:\n"
-          "  scene,prefilter,combination,size,slices,build_ms,query_ms,time_ms,brute_ms,\n"
-          "  mean_abs_err,max_abs_err,mean_signed_err,speedup\n"
+          "visibility (M x M rays to the light per receiver). CSV on stdout, header first, numbers\n"
+          "printed with %%.17g:\n"
+          "  scene,prefilter,combination,size,slices,build_ms,query_ms,time_ms,build_bytes,\n"
+          "  query_bytes,brute_ms,mean_abs_err,max_abs_err,mean_signed_err,speedup\n"
           "build_ms = slicing + prefilter, query_ms = all receivers, time_ms = both; each the\n"
           "minimum over the repetitions, measured in the same run as brute_ms; speedup =\n"
           "brute_ms / time_ms. Errors are occlusion (fraction of the light hidden) minus the\n"
-          "brute force's, over all receivers.\n\n"
+          "brute force's, over all receivers. Bytes read + written, counted from the data\n"
+          "structures (float 4, double 8; S = --supersample, R = --receivers):\n"
+          "  build_bytes = K (3 (n S)^2 + 12 n^2) (slicing bitmap, texture, object copy) + the\n"
+          "    prefilter: mipmap 8 K x its texels (each level read and written once), N-Buffers\n"
+          "    16 K x its texels (also the padded scratch level), SAT 12 K n^2 (floats in, doubles out);\n"
+          "  query_bytes = R^2 (32 + K x 32 (mipmap, nbuffers: 2 levels x 4 texels) or K x 128\n"
+          "    (SAT: 4 corners x 4 doubles)).\n\n"
           "options:\n"
           "  --sizes LIST        texture sides, powers of two in 1..%d (default 128,256)\n"
           "  --slices LIST       slice counts, 1..%d (default 4,8,16)\n"
@@ -446,17 +476,20 @@ int bench_occtex(int argc, char **argv) {
           }
     }
     if (!header++)
-      printf("scene,prefilter,combination,size,slices,build_ms,query_ms,time_ms,brute_ms,mean_abs_err,"
-             "max_abs_err,mean_signed_err,speedup\n");
+      printf("scene,prefilter,combination,size,slices,build_ms,query_ms,time_ms,build_bytes,query_bytes,"
+             "brute_ms,mean_abs_err,max_abs_err,mean_signed_err,speedup\n");
     for (int a = 0; a < o.nsizes; a++)
       for (int b = 0; b < o.nslices; b++)
         for (int p = 0; p < NPF; p++)
           for (int c = 0; c < NC; c++) {
             double t = tb[a][b][p] + tq[a][b][p][c];
-            printf("%s,%s,%s,%d,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g\n", scene_names[o.scenes[sc]],
-                   ics_occ_prefilter_name((ics_occ_prefilter)p), ics_occ_combine_name((ics_occ_combine)c),
-                   o.sizes[a], o.slices[b], tb[a][b][p], tq[a][b][p][c], t, brute, emean[a][b][p][c],
-                   emax[a][b][p][c], ebias[a][b][p][c], brute / t);
+            double bb = bytes_build((ics_occ_prefilter)p, o.sizes[a], o.slices[b], o.ss);
+            double bq = bytes_query((ics_occ_prefilter)p, o.slices[b], (double)R);
+            printf("%s,%s,%s,%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                   scene_names[o.scenes[sc]], ics_occ_prefilter_name((ics_occ_prefilter)p),
+                   ics_occ_combine_name((ics_occ_combine)c), o.sizes[a], o.slices[b], tb[a][b][p],
+                   tq[a][b][p][c], t, bb, bq, brute, emean[a][b][p][c], emax[a][b][p][c],
+                   ebias[a][b][p][c], brute / t);
           }
   }
   if (stdout_failed()) rc = 1;
