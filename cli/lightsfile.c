@@ -62,19 +62,37 @@ int lights_parse_spec(const char *spec, ics_light **out, int *n, char *err, size
     free(copy);
     return seterr(err, errlen, "out of memory"), -1;
   }
+  if (!*spec) {
+    seterr(err, errlen, "empty lights SPEC");
+    goto fail;
+  }
+  /* split by hand (strtok would merge empty fields): every light and field must be non-empty */
   int k = 0;
-  char *save = NULL;
-  for (char *tok = strtok_r(copy, ":", &save); tok; tok = strtok_r(NULL, ":", &save), k++) {
-    double v[10];
+  for (char *tok = copy, *next; tok; tok = next, k++) {
+    next = strchr(tok, ':');
+    if (next) *next++ = 0;
+    if (!*tok) {
+      seterr(err, errlen, "light %d: empty (two ':' in a row, or a ':' at an end)", k + 1);
+      goto fail;
+    }
+    double v[9];
     int m = 0;
-    char *save2 = NULL;
-    for (char *f = strtok_r(tok, ",", &save2); f; f = strtok_r(NULL, ",", &save2)) {
-      if (m == 10 || cli_parse_double(f, &v[m]) != 0) {
-        seterr(err, errlen, "light %d: %s '%s'", k + 1, m == 10 ? "too many fields at" :
-               "not a number:", f);
+    for (char *f = tok, *fn; f; f = fn, m++) {
+      fn = strchr(f, ',');
+      if (fn) *fn++ = 0;
+      if (m == 9) {
+        seterr(err, errlen, "light %d: more than 9 fields (mx,my,varx,vary[,angle_deg[,weight"
+               "[,r,g,b]]])", k + 1);
         goto fail;
       }
-      m++;
+      if (!*f) {
+        seterr(err, errlen, "light %d: field %d is empty", k + 1, m + 1);
+        goto fail;
+      }
+      if (cli_parse_double(f, &v[m]) != 0) {
+        seterr(err, errlen, "light %d: not a number: '%s'", k + 1, f);
+        goto fail;
+      }
     }
     if (m < 4 || m == 7 || m == 8) {
       seterr(err, errlen, "light %d: expected mx,my,varx,vary[,angle_deg[,weight[,r,g,b]]], "
@@ -92,10 +110,6 @@ int lights_parse_spec(const char *spec, ics_light **out, int *n, char *err, size
     char where[32];
     snprintf(where, sizeof where, "light %d", k + 1);
     if (check_light(&l[k], err, errlen, where)) goto fail;
-  }
-  if (k == 0) {
-    seterr(err, errlen, "empty lights SPEC");
-    goto fail;
   }
   free(copy);
   *out = l;
@@ -140,6 +154,17 @@ int lights_read_file(const char *path, ics_light **out, int *n, char *err, size_
     seterr(err, errlen, "%s: expected an object with a \"lights\" array", path);
     goto fail;
   }
+  {
+    const char *key;
+    json_t *val;
+    json_object_foreach(root, key, val) {
+      if (strcmp(key, "lights")) {
+        seterr(err, errlen, "%s: unknown key \"%s\" at the top level (expected only \"lights\")",
+               path, key);
+        goto fail;
+      }
+    }
+  }
   size_t cnt = json_array_size(arr);
   if (cnt == 0 || cnt > 4096) {
     seterr(err, errlen, "%s: \"lights\" must hold 1..4096 lights, not %zu", path, cnt);
@@ -157,6 +182,35 @@ int lights_read_file(const char *path, ics_light **out, int *n, char *err, size_
     double v[4];
     if (!json_is_object(o)) {
       seterr(err, errlen, "%s: expected an object", where);
+      goto fail;
+    }
+    {
+      static const char *const known[] = {"mean", "tilt_deg", "cov", "var", "angle_deg", "color",
+                                          "weight"};
+      const char *key;
+      json_t *val;
+      json_object_foreach(o, key, val) {
+        size_t q = 0;
+        while (q < sizeof known / sizeof *known && strcmp(key, known[q])) q++;
+        if (q == sizeof known / sizeof *known) {
+          seterr(err, errlen, "%s: unknown key \"%s\" (expected mean or tilt_deg, cov or var "
+                 "[+ angle_deg], color, weight)", where, key);
+          goto fail;
+        }
+      }
+    }
+    if (json_object_get(o, "mean") && json_object_get(o, "tilt_deg")) {
+      seterr(err, errlen, "%s: both \"mean\" and \"tilt_deg\": give one", where);
+      goto fail;
+    }
+    if (json_object_get(o, "cov") &&
+        (json_object_get(o, "var") || json_object_get(o, "angle_deg"))) {
+      seterr(err, errlen, "%s: both \"cov\" and \"%s\": give cov, or var [+ angle_deg]", where,
+             json_object_get(o, "var") ? "var" : "angle_deg");
+      goto fail;
+    }
+    if (json_object_get(o, "angle_deg") && !json_object_get(o, "var")) {
+      seterr(err, errlen, "%s: \"angle_deg\" without \"var\"", where);
       goto fail;
     }
     if ((x = json_object_get(o, "mean"))) {
@@ -233,7 +287,15 @@ fail:
 
 int lights_load(const char *arg, ics_light **out, int *n, char *err, size_t errlen) {
   struct stat sb;
-  if (stat(arg, &sb) == 0) return lights_read_file(arg, out, n, err, errlen);
+  if (stat(arg, &sb) == 0) {
+    if (S_ISDIR(sb.st_mode)) {
+      *out = NULL;
+      *n = 0;
+      seterr(err, errlen, "%s: is a directory, not a lights file", arg);
+      return -1;
+    }
+    return lights_read_file(arg, out, n, err, errlen);
+  }
   if (lights_parse_spec(arg, out, n, err, errlen) == 0) return 0;
   char spec_err[256];
   snprintf(spec_err, sizeof spec_err, "%s", err);

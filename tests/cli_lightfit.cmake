@@ -52,6 +52,16 @@ if(ICS_HAVE_JANSSON)
     ERR "lights\\[0\\]: needs \"mean\" or \"tilt_deg\"" NOFILE ${D}/lf_bad.exr)
   ics_cli_test(NAME cli_make_env_bad_tilt RC 2 ARGS "make-env|--lights|${DATA}/bad_tilt.json|--size|64x32|-o|${D}/lf_bad.exr"
     ERR "tilt_deg: expected \\[wx, wy\\] in degrees, \\|w\\| < 90" NOFILE ${D}/lf_bad.exr)
+  # unknown keys (a misspelt "weigth" was ignored) and conflicting alternatives (one was dropped
+  # silently, even an invalid one) are refused by name
+  ics_cli_test(NAME cli_make_env_unknown_key RC 2 ARGS "make-env|--lights|${DATA}/unknown_key.json|--size|64x32|-o|${D}/lf_bad.exr"
+    ERR "unknown_key\\.json: lights\\[0\\]: unknown key \"weigth\"" NOFILE ${D}/lf_bad.exr)
+  ics_cli_test(NAME cli_make_env_unknown_top RC 2 ARGS "make-env|--lights|${DATA}/unknown_top.json|--size|64x32|-o|${D}/lf_bad.exr"
+    ERR "unknown_top\\.json: unknown key \"light\" at the top level" NOFILE ${D}/lf_bad.exr)
+  ics_cli_test(NAME cli_make_env_both_mean RC 2 ARGS "make-env|--lights|${DATA}/both_mean.json|--size|64x32|-o|${D}/lf_bad.exr"
+    ERR "lights\\[0\\]: both \"mean\" and \"tilt_deg\"" NOFILE ${D}/lf_bad.exr)
+  ics_cli_test(NAME cli_make_env_both_cov RC 2 ARGS "make-env|--lights|${DATA}/both_cov.json|--size|64x32|-o|${D}/lf_bad.exr"
+    ERR "lights\\[0\\]: both \"cov\" and \"var\"" NOFILE ${D}/lf_bad.exr)
 else()
   ics_cli_test(NAME cli_make_env_no_jansson RC 2 ARGS "make-env|--lights|${DATA}/good.json|--size|64x32|-o|${D}/lf_bad.exr"
     ERR "needs jansson" NOFILE ${D}/lf_bad.exr)
@@ -97,6 +107,18 @@ endforeach()
 # bad options
 ics_cli_test(NAME cli_make_env_bad_spec RC 2 ARGS "make-env|--lights|0.1,0.2,0.01|--size|64x32|-o|${D}/lf_bad.exr"
   ERR "neither an existing lights file nor a valid SPEC \\(light 1: expected mx,my,varx,vary" NOFILE ${D}/lf_bad.exr)
+# SPEC: empty fields and empty lights are refused (strtok merged them: "0,,0,0.01,0.01" read as
+# four fields), and so is a 10th field (it was ignored)
+ics_cli_test(NAME cli_make_env_spec_empty_field RC 2 ARGS "make-env|--lights|0,,0,0.01,0.01|--size|64x32|-o|${D}/lf_bad.exr"
+  ERR "light 1: field 2 is empty" NOFILE ${D}/lf_bad.exr)
+ics_cli_test(NAME cli_make_env_spec_empty_light RC 2 ARGS "make-env|--lights|0,0,0.01,0.01::0.1,0,0.01,0.01|--size|64x32|-o|${D}/lf_bad.exr"
+  ERR "light 2: empty" NOFILE ${D}/lf_bad.exr)
+ics_cli_test(NAME cli_make_env_spec_trailing RC 2 ARGS "make-env|--lights|0,0,0.01,0.01:|--size|64x32|-o|${D}/lf_bad.exr"
+  ERR "light 2: empty" NOFILE ${D}/lf_bad.exr)
+ics_cli_test(NAME cli_make_env_spec_10 RC 2 ARGS "make-env|--lights|0,0,0.01,0.01,0,1,1,1,1,7|--size|64x32|-o|${D}/lf_bad.exr"
+  ERR "light 1: more than 9 fields" NOFILE ${D}/lf_bad.exr)
+ics_cli_test(NAME cli_make_env_lights_dir RC 2 ARGS "make-env|--lights|${DATA}|--size|64x32|-o|${D}/lf_bad.exr"
+  ERR "lightfit: is a directory, not a lights file" NOFILE ${D}/lf_bad.exr)
 ics_cli_test(NAME cli_make_env_neg_var RC 2 ARGS "make-env|--lights|0,0,-1,0.1|--size|64x32|-o|${D}/lf_bad.exr"
   ERR "variances must be finite and >= 0" NOFILE ${D}/lf_bad.exr)
 ics_cli_test(NAME cli_make_env_bad_size RC 2 ARGS "make-env|--sky|1,1,1|--size|3x2|-o|${D}/lf_bad.exr"
