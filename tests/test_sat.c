@@ -338,6 +338,22 @@ static void test_bad_input(void) {
   CHECK(ics_sat3d_build(&s3, a, SIZE_MAX, 2, 2, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "SIZE_MAX");
   CHECK(ics_sat2d_build(&s2, NULL, 8, 8, 8, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG, "NULL data");
   CHECK(ics_sat2d_build(&s2, a, 8, 8, 7, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG, "stride < width");
+  /* strides whose input span (h - 1) * stride + w overflows or exceeds ICS_SAT_MAX_SPAN_BYTES
+   * (the build would read far outside the buffer); a single row may have any stride >= w */
+  CHECK(ics_sat2d_build(&s2, a, 3, 4, SIZE_MAX, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG && !s2,
+        "stride SIZE_MAX");
+  CHECK(ics_sat2d_build(&s2, a, 3, 4, SIZE_MAX / 3 + 1, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG,
+        "span overflows");
+  CHECK(ics_sat2d_build(&s2, a, 3, 2, ICS_SAT_MAX_SPAN_BYTES / 4, ICS_SAT_FLOAT) ==
+            ICS_ERR_INVALID_ARG,
+        "span above the limit");
+  CHECK(ics_sat2d_build(&s2, a, 3, 1, SIZE_MAX, ICS_SAT_FLOAT) == ICS_OK, "one row, any stride");
+  ics_sat2d_free(s2);
+  s2 = NULL;
+  CHECK(ics_sat2d_build(&s2, a, 3, 4, 3, ICS_SAT_FLOAT) == ICS_OK, "3 x 4");
+  CHECK(ics_sat2d_rebuild(s2, a, SIZE_MAX) == ICS_ERR_INVALID_ARG, "rebuild stride SIZE_MAX");
+  ics_sat2d_free(s2);
+  s2 = NULL;
   CHECK(ics_sat2d_build(&s2, a, 8, 8, 8, (ics_sat_precision)7) == ICS_ERR_INVALID_ARG, "mode 7");
   CHECK(ics_sat2d_build(NULL, a, 8, 8, 8, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG, "NULL out");
   float b[64];
@@ -400,6 +416,20 @@ static void test_bad_input(void) {
   double ru[3] = {1, 0, 0}, rv[3] = {0.5, 1, 0};
   CHECK(ics_csat_build_frame(&c, &vol, ru, rv, 1.0, ICS_SAT_DOUBLE) == ICS_ERR_INVALID_ARG,
         "not orthonormal");
+  /* h beyond the volume's extent (4 along each axis here): refused; h = 1e6 used to give
+   * tau = sigma(centre) * h, 1e5 times more than any ray through the volume can collect */
+  CHECK(ics_csat_build(&c, &vol, l, 1e6, ICS_SAT_DOUBLE) == ICS_ERR_RANGE && !c, "h = 1e6");
+  CHECK(ics_csat_build(&c, &vol, l, 4.5, ICS_SAT_DOUBLE) == ICS_ERR_RANGE, "h > extent");
+  CHECK(ics_csat_build(&c, &vol, l, 4.0, ICS_SAT_DOUBLE) == ICS_OK, "h = extent");
+  {
+    double pc[3] = {2, 2, 2}, t = -1, amax = 0;
+    for (int i = 0; i < 64; i++) amax = a[i] > amax ? a[i] : amax;
+    CHECK(c && ics_csat_tau(c, ICS_CSAT_PLUS_W, pc, 0.0, &t) == ICS_OK && t >= 0 &&
+              t <= amax * 4 * sqrt(3.0),
+          "h = extent: tau %g above sigma_max * diagonal", t);
+  }
+  ics_csat_free(c);
+  c = NULL;
   CHECK(ics_csat_build(&c, &vol, l, 1.0, ICS_SAT_DOUBLE) == ICS_OK, "csat");
   double p[3] = {1, 1, 1};
   CHECK(ics_csat_tau(c, ICS_CSAT_PLUS_W, p, -1.0, &v) == ICS_ERR_INVALID_ARG, "U < 0");
@@ -409,8 +439,17 @@ static void test_bad_input(void) {
   double lp[3] = {-3, 2, 2};
   CHECK(ics_ssat_build(&s, &vol, lp, 0, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "n_phi 0");
   CHECK(ics_ssat_build(&s, &vol, lp, 1 << 20, 1 << 20, 8, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "huge");
+  /* a light too far away: finite input, ICS_ERR_RANGE (it was ICS_ERR_NAN at 1e300) */
+  double far[3] = {1e300, 0, 0}, farther[3] = {4 * 1.8e10 * 7, 2, 2}, inf3[3] = {INFINITY, 0, 0};
+  CHECK(ics_ssat_build(&s, &vol, far, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_RANGE && !s, "1e300");
+  CHECK(ics_ssat_build(&s, &vol, farther, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_RANGE,
+        "beyond ICS_SSAT_MAX_DISTANCE diagonals");
+  CHECK(ics_ssat_build(&s, &vol, inf3, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_RANGE, "inf");
+  CHECK(ics_ssat_build(&s, &vol, nanv, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_NAN, "NaN light");
+  CHECK(ics_tau_bruteforce_point(&vol, far, p, 1.0, 2, 0.5, &v) == ICS_ERR_RANGE, "bf 1e300");
   CHECK(ics_ssat_build(&s, &vol, lp, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_OK, "ssat");
   CHECK(ics_ssat_tau(s, lp, 1.0, &v) == ICS_ERR_RANGE, "p at the light");
+  CHECK(ics_ssat_tau(s, far, 1.0, &v) == ICS_OK && isfinite(v), "p at 1e300 (valid: whole ray)");
   CHECK(ics_ssat_tau(s, p, 0.0, &v) == ICS_ERR_INVALID_ARG, "SSAT U = 0");
   ics_ssat_free(s);
 }

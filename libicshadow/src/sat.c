@@ -469,12 +469,24 @@ static ics_status sat3d_fill(struct ics_sat3d *s, const float *data, size_t stri
   return ICS_OK;
 }
 
+/* A row stride is usable when stride >= w and the input span (h - 1) * stride + w floats
+ * neither overflows nor exceeds ICS_SAT_MAX_SPAN_BYTES (a larger span is a caller's error, not
+ * an image: reading it would run off the buffer). 3D input is tightly packed (span = the cell
+ * count, checked by check_size). */
+static int stride_ok(size_t w, size_t h, size_t stride) {
+  if (stride < w) return 0;
+  if (h <= 1) return 1;
+  size_t lim = ICS_SAT_MAX_SPAN_BYTES / sizeof(float);
+  if (stride > (lim - w) / (h - 1)) return 0;
+  return 1;
+}
+
 static ics_status sat3d_init(struct ics_sat3d *s, const float *data, size_t w, size_t h,
                              size_t d, size_t stride, size_t sstride, ics_sat_precision mode) {
   memset(s, 0, sizeof *s);
   ics_status st = check_size(w, h, d, mode);
   if (st != ICS_OK) return st;
-  if (!data || stride < w) return ICS_ERR_INVALID_ARG;
+  if (!data || !stride_ok(w, h, stride)) return ICS_ERR_INVALID_ARG;
   size_t n = w * h * d, slice = d > 1 ? w * h : 0;
   s->w = w, s->h = h, s->d = d, s->mode = mode;
   if (mode == ICS_SAT_DOUBLE) {
@@ -621,7 +633,7 @@ ics_status ics_sat2d_build(ics_sat2d **out, const float *data, size_t width, siz
 }
 
 ics_status ics_sat2d_rebuild(ics_sat2d *sat, const float *data, size_t stride) {
-  if (!sat || !data || stride < sat->s.w) return ICS_ERR_INVALID_ARG;
+  if (!sat || !data || !stride_ok(sat->s.w, sat->s.h, stride)) return ICS_ERR_INVALID_ARG;
   return sat3d_fill(&sat->s, data, stride, 0);
 }
 
@@ -841,6 +853,13 @@ ics_status ics_csat_build_frame(ics_csat **out, const ics_volume *vol, const dou
   double dims[3] = {(double)vol->nx, (double)vol->ny, (double)vol->nz};
   for (int k = 0; k < 3; k++) c->centre[k] = dims[k] / 2;
   double cells = 1.0;
+  for (int a = 0; a < 3; a++) { /* h beyond the volume's extent: cells mostly outside it */
+    double e = fabs(c->r[a][0]) * dims[0] + fabs(c->r[a][1]) * dims[1] + fabs(c->r[a][2]) * dims[2];
+    if (h > e * (1 + 1e-12)) {
+      free(c);
+      return ICS_ERR_RANGE;
+    }
+  }
   for (int a = 0; a < 3; a++) {
     double e = fabs(c->r[a][0]) * dims[0] + fabs(c->r[a][1]) * dims[1] + fabs(c->r[a][2]) * dims[2];
     double na = ceil(e / h - 1e-9);
@@ -1019,7 +1038,8 @@ static void ssat_frame(const ics_volume *vol, const double light[3], double e[3]
   cross3(e[2], e[0], e[1]);
 }
 
-/* Largest distance from the light to a volume corner. */
+/* Largest distance from the light to a volume corner; the light may be at most
+ * ICS_SSAT_MAX_DISTANCE volume diagonals from the farthest corner. */
 static ics_status ssat_rmax(const ics_volume *vol, const double light[3], double *rmax) {
   double dims[3] = {(double)vol->nx, (double)vol->ny, (double)vol->nz};
   double rm = 0.0;
@@ -1029,6 +1049,8 @@ static ics_status ssat_rmax(const ics_volume *vol, const double light[3], double
     double r = hypot(hypot(q[0], q[1]), q[2]);
     if (!(r <= rm)) rm = r;
   }
+  double diag = sqrt(dot3(dims, dims));
+  if (!isfinite(rm) || rm > ICS_SSAT_MAX_DISTANCE * diag) return ICS_ERR_RANGE;
   *rmax = rm;
   return ICS_OK;
 }
@@ -1046,7 +1068,8 @@ ics_status ics_ssat_build(ics_ssat **out, const ics_volume *vol, const double li
   if (!out) return ICS_ERR_INVALID_ARG;
   *out = NULL;
   if (!volume_ok(vol) || !light_pos) return ICS_ERR_INVALID_ARG;
-  if (!finite3(light_pos)) return ICS_ERR_NAN;
+  if (isnan(light_pos[0]) || isnan(light_pos[1]) || isnan(light_pos[2])) return ICS_ERR_NAN;
+  if (!finite3(light_pos)) return ICS_ERR_RANGE;
   ics_status st = check_size(n_phi, n_theta, n_r, mode);
   if (st != ICS_OK) return st;
   if ((double)n_phi * (double)n_theta * (double)n_r * 4.0 > (double)ICS_SAT_MAX_BYTES)
@@ -1110,13 +1133,13 @@ void ics_ssat_frame(const ics_ssat *ssat, double e_x[3], double e_y[3], double e
  * [-pi, pi]; p1 - p0 <= 2 pi), theta in [t0, t1], and R. The phi half-width
  * atan(U/R) / sin(theta) is clamped to pi: a patch over a pole (theta < atan(U/R)) becomes the
  * polar cap theta in [0, t1] over the whole ring (the same for the south pole). Returns
- * ICS_ERR_RANGE when p is at the light. */
+ * ICS_ERR_RANGE when p is at the light or |p - light| overflows. */
 static ics_status ssat_box(const double light[3], const double e[3][3], const double p[3],
                            double U, double *ph0, double *ph1, double *th0, double *th1,
                            double *R) {
   double q[3] = {p[0] - light[0], p[1] - light[1], p[2] - light[2]};
-  double r = sqrt(dot3(q, q));
-  if (!(r > 0.0)) return ICS_ERR_RANGE;
+  double r = hypot(hypot(q[0], q[1]), q[2]);
+  if (!(r > 0.0) || !isfinite(r)) return ICS_ERR_RANGE;
   double x = dot3(q, e[0]), y = dot3(q, e[1]), z = dot3(q, e[2]);
   double th = atan2(hypot(x, y), z), ph = atan2(y, x);
   double al = atan(U / r);
@@ -1198,9 +1221,13 @@ ics_status ics_tau_bruteforce_point(const ics_volume *vol, const double light_po
                                     const double p[3], double half_width, int n_patch,
                                     double step, double *tau) {
   if (!volume_ok(vol) || !light_pos || !p || !tau) return ICS_ERR_INVALID_ARG;
-  if (isnan(half_width) || isnan(step) || !finite3(p) || !finite3(light_pos)) return ICS_ERR_NAN;
+  if (isnan(half_width) || isnan(step) || !finite3(p) || isnan(light_pos[0]) ||
+      isnan(light_pos[1]) || isnan(light_pos[2]))
+    return ICS_ERR_NAN;
   if (!(half_width > 0.0) || !(step > 0.0) || n_patch < 1) return ICS_ERR_INVALID_ARG;
-  double ph0, ph1, th0, th1, R, e[3][3];
+  double ph0, ph1, th0, th1, R, e[3][3], rm;
+  ics_status st0 = ssat_rmax(vol, light_pos, &rm); /* the same light limit as ics_ssat_build */
+  if (st0 != ICS_OK) return st0;
   ssat_frame(vol, light_pos, e);
   ics_status st = ssat_box(light_pos, e, p, half_width, &ph0, &ph1, &th0, &th1, &R);
   if (st != ICS_OK) return st;

@@ -58,6 +58,9 @@ extern "C" {
 #endif
 
 #define ICS_SAT_MAX_BYTES ((size_t)8 << 30) /* 8 GiB: larger tables are refused */
+/* 64 GiB: a 2D input whose span (height - 1) * stride + width floats is larger (or overflows)
+ * is refused (ICS_ERR_INVALID_ARG), like stride < width */
+#define ICS_SAT_MAX_SPAN_BYTES ((size_t)64 << 30)
 
 typedef enum ics_sat_precision {
   ICS_SAT_FLOAT = 0,
@@ -79,7 +82,9 @@ size_t ics_sat_cell_bytes(ics_sat_precision mode);
 /* ---- 2D ------------------------------------------------------------------------------ */
 typedef struct ics_sat2d ics_sat2d;
 
-/* Build the SAT of a width x height float image (row stride in elements, >= width). */
+/* Build the SAT of a width x height float image (row stride in elements, >= width, and the
+ * input span (height - 1) * stride + width at most ICS_SAT_MAX_SPAN_BYTES / 4 floats; otherwise
+ * ICS_ERR_INVALID_ARG). */
 ics_status ics_sat2d_build(ics_sat2d **out, const float *data, size_t width, size_t height,
                            size_t stride, ics_sat_precision mode);
 /* Recompute an existing table from new data of the same size (no allocation: the steady
@@ -150,7 +155,10 @@ double ics_volume_sample(const ics_volume *vol, const double p[3]);
  *   A = (2U)^2,
  * evaluated with ics_sat3d_integral in constant time, independent of U. U = 0 is the
  * unfiltered limit and is evaluated as the integral over a patch of half-width h/2 (one cell
- * column). */
+ * column) The cell edge h must not exceed the volume's extent along any frame
+ * axis (the projected box size): larger cells would lie mostly outside the volume yet carry
+ * sigma_t of their centre (h = 1e6 gave tau = 5e4 on a 16^3 volume of sigma 0.1) ->
+ * ICS_ERR_RANGE. */
 typedef struct ics_csat ics_csat;
 
 /* Frame from l alone (r_u chosen deterministically, perpendicular to l). */
@@ -207,7 +215,10 @@ ics_status ics_tau_bruteforce_directional(const ics_volume *vol, const double r_
  * volume sum by the patch area A; see docs/sat.md). Inside a theta cell the box edge is
  * placed in cos(theta) (the solid angle is linear in cos(theta), not in theta), so a lookup is
  * the exact solid-angle integral of the cell-wise constant resampled field, also at the poles.
- */
+ * Light farther than ICS_SSAT_MAX_DISTANCE volume diagonals from the farthest volume corner,
+ * or at an infinite coordinate -> ICS_ERR_RANGE (ray positions would lose all precision);
+ * NaN light -> ICS_ERR_NAN. */
+#define ICS_SSAT_MAX_DISTANCE 4294967296.0 /* 2^32 volume diagonals */
 typedef struct ics_ssat ics_ssat;
 ics_status ics_ssat_build(ics_ssat **out, const ics_volume *vol, const double light_pos[3],
                           size_t n_phi, size_t n_theta, size_t n_r, ics_sat_precision mode);
@@ -219,15 +230,15 @@ void ics_ssat_frame(const ics_ssat *ssat, double e_x[3], double e_y[3], double e
  * phi_p +- min(atan(U/R) / sin(theta_p), pi), theta_p +- atan(U/R) clamped to [0, pi]
  * (R = |p - x_L|), r in [0, R]. When the phi half-width reaches pi (the patch covers a pole)
  * the box is the polar cap over the whole ring; otherwise phi wraps around at +-pi (two SAT
- * lookups). Constant time. Needs U > 0 (ICS_ERR_INVALID_ARG otherwise); p at the light ->
- * ICS_ERR_RANGE. */
+ * lookups). Constant time. Needs U > 0 (ICS_ERR_INVALID_ARG otherwise); p at the light (or
+ * so far that |p - x_L| overflows) -> ICS_ERR_RANGE. */
 ics_status ics_ssat_tau(const ics_ssat *ssat, const double p[3], double half_width, double *tau);
 ics_status ics_ssat_transmittance(const ics_ssat *ssat, const double p[3], double half_width,
                                   double *transmittance);
 /* Reference for the SSAT: n_patch x n_patch rays over the same angular box in the same frame
  * (derived from vol and light_pos as in ics_ssat_build; midpoint in phi and in cos(theta),
  * i.e. uniform in solid angle), each marched from the light to radius R with step `step`,
- * averaged. */
+ * averaged. The same light limit as ics_ssat_build (ICS_ERR_RANGE). */
 ics_status ics_tau_bruteforce_point(const ics_volume *vol, const double light_pos[3],
                                     const double p[3], double half_width, int n_patch,
                                     double step, double *tau);
