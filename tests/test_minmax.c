@@ -557,6 +557,35 @@ static void test_bad_input(void) {
   CHECK(ics_svd(A, 3, 2, U, s, V) == ICS_ERR_NAN, "svd NaN");
   A[3] = INFINITY;
   CHECK(ics_svd(A, 3, 2, U, s, V) == ICS_ERR_INFINITE, "svd inf");
+  /* a stride whose last row is not addressable: refused, not wrapped around */
+  CHECK(ics_minmax_create(&t, v, 2, 4, SIZE_MAX / 2) == ICS_ERR_SIZE && t == NULL, "stride overflow");
+  CHECK(ics_minmax_create(&t, v, 3, 4, SIZE_MAX / 8) == ICS_ERR_SIZE, "rows x stride overflow");
+  /* NULL pointers */
+  ics_hf_scene_default(NULL);
+  {
+    ics_hf_scene sc0;
+    ics_hf_scene_default(&sc0);
+    const double o0[3] = {0, 1, 0}, d0[3] = {0, -1, 0};
+    CHECK(isnan(ics_hf_scene_hit(NULL, o0, d0, 0)) && isnan(ics_hf_scene_hit(&sc0, NULL, d0, 0)) &&
+              isnan(ics_hf_scene_hit(&sc0, o0, NULL, 0)),
+          "scene hit with NULL");
+    CHECK(ics_hf_shadow_map(NULL, NULL, 2, 1.0, NULL) == ICS_ERR_INVALID_ARG, "shadow map NULL");
+  }
+  CHECK(ics_svd(NULL, 3, 2, U, s, V) == ICS_ERR_INVALID_ARG && ics_svd(A, 3, 2, NULL, s, V) == ICS_ERR_INVALID_ARG &&
+            ics_svd(A, 3, 2, U, NULL, V) == ICS_ERR_INVALID_ARG && ics_svd(A, 3, 2, U, s, NULL) == ICS_ERR_INVALID_ARG,
+        "svd NULL");
+  CHECK(ics_svd_truncate(NULL, s, V, 3, 2, 1, A) == ICS_ERR_INVALID_ARG, "truncate NULL");
+  CHECK(ics_minmax_prefix(NULL, 1, 3, 3, p, 4) == ICS_ERR_INVALID_ARG &&
+            ics_minmax_prefix(terms, 1, 3, 3, NULL, 4) == ICS_ERR_INVALID_ARG,
+        "prefix NULL");
+  CHECK(ics_minmax_march(NULL, 4, &ray, terms, 1, 4, out) == ICS_ERR_INVALID_ARG, "march NULL row");
+  CHECK(ics_minmax_node(NULL, 0, 1, NULL, NULL) == ICS_ERR_INVALID_ARG &&
+            ics_minmax_node_range(NULL, 1, NULL, NULL) == ICS_ERR_INVALID_ARG,
+        "node NULL");
+  CHECK(ics_minmax_rows(NULL) == 0 && ics_minmax_samples(NULL) == 0 && ics_minmax_leaves(NULL) == 0,
+        "accessors NULL");
+  ics_minmax_destroy(NULL);
+  CHECK(ics_epi_frame_init(NULL, NULL, NULL, 4, 4, 1.0) == ICS_ERR_INVALID_ARG, "frame NULL");
   ics_epi_frame f;
   double eye[3] = {0, 1, 0}, L[3] = {0, 0, 0}, Lnan[3] = {0, NAN, 1};
   CHECK(ics_epi_frame_init(&f, eye, L, 4, 4, 1.0) == ICS_ERR_INVALID_ARG, "zero light direction");
@@ -584,6 +613,36 @@ static void test_bad_input(void) {
   CHECK(ics_hf_shadow_map(&sc, &f, 2, -1.0, sm) == ICS_ERR_RANGE, "shadow map negative size");
 }
 
+/* SVD of A 2^k for huge and tiny k: the input is scaled by a power of two internally, so the
+ * result equals the SVD of A with s multiplied by 2^k, bit for bit (used to fail with
+ * ICS_ERR_RANGE for entries near 1e308: the squared column norms overflowed); a singular value
+ * above DBL_MAX is ICS_ERR_INFINITE. */
+static void test_svd_scaling(void) {
+  enum { M = 5, N = 3 };
+  double B[M * N], A[M * N], UB[M * N], sB[N], VB[N * N], U[M * N], s[N], V[N * N];
+  unsigned x = 12345;
+  for (int i = 0; i < M * N; i++) {
+    x = x * 1664525u + 1013904223u;
+    B[i] = ((double)(x >> 8) / 16777216.0 - 0.5) * 0.5; /* in [-0.25, 0.25) */
+  }
+  CHECK(ics_svd(B, M, N, UB, sB, VB) == ICS_OK, "svd B");
+  const int ks[] = {1023, 1000, 700, -700, -1000};
+  for (int j = 0; j < (int)(sizeof ks / sizeof ks[0]); j++) {
+    for (int i = 0; i < M * N; i++) A[i] = ldexp(B[i], ks[j]);
+    ics_status st = ics_svd(A, M, N, U, s, V);
+    int same = st == ICS_OK;
+    for (int i = 0; same && i < N; i++) same = s[i] == ldexp(sB[i], ks[j]);
+    for (int i = 0; same && i < M * N; i++) same = U[i] == UB[i];
+    for (int i = 0; same && i < N * N; i++) same = V[i] == VB[i];
+    CHECK(same, "svd of A 2^%d: status %s, s0 %.17g vs %.17g", ks[j], ics_status_str(st), s[0],
+          ldexp(sB[0], ks[j]));
+  }
+  double H[2] = {1.5e308, 1.5e308}, Uh[2], sh[1], Vh[1];
+  CHECK(ics_svd(H, 2, 1, Uh, sh, Vh) == ICS_ERR_INFINITE, "singular value above DBL_MAX");
+  double Z[2] = {0, 0};
+  CHECK(ics_svd(Z, 2, 1, Uh, sh, Vh) == ICS_OK && sh[0] == 0, "zero matrix");
+}
+
 int main(void) {
   size_t ds[] = {1, 2, 3, 5, 7, 8, 13, 64, 100, 257, 1000, 1024};
   for (size_t i = 0; i < sizeof ds / sizeof ds[0]; i++) {
@@ -598,6 +657,7 @@ int main(void) {
   }
   test_node_classes();
   test_svd();
+  test_svd_scaling();
   test_rectification();
   test_bad_input();
   return test_summary("test_minmax");

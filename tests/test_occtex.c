@@ -187,6 +187,19 @@ static void test_combination(void) {
   double f3[3] = {0.5, 0.75, 0.25};
   CHECK(ics_occ_combine_values(ICS_OCC_SUM, f3, 3) == 1, "clamped sum");
   CHECK(isnan(ics_occ_combine_values((ics_occ_combine)7, f3, 3)), "unknown combination");
+  /* bad input: NaN for every combination alike (NULL, k < 0, NaN, values outside [0, 1]) */
+  double fbig[2] = {1.5, -0.5}, fneg[2] = {0.25, -0.25}, fnan[3] = {0.5, NAN, 0.25};
+  for (int c = 0; c < ICS_OCC_COMBINE_COUNT; c++) {
+    CHECK(isnan(ics_occ_combine_values((ics_occ_combine)c, NULL, 2)), "%d: NULL f", c);
+    CHECK(isnan(ics_occ_combine_values((ics_occ_combine)c, f2, -1)), "%d: k < 0", c);
+    CHECK(isnan(ics_occ_combine_values((ics_occ_combine)c, fbig, 2)), "%d: f outside [0, 1]", c);
+    CHECK(isnan(ics_occ_combine_values((ics_occ_combine)c, fneg, 2)), "%d: negative f", c);
+    CHECK(isnan(ics_occ_combine_values((ics_occ_combine)c, fnan, 3)), "%d: NaN f", c);
+    CHECK(ics_occ_combine_values((ics_occ_combine)c, NULL, 0) == 0, "%d: no slices", c);
+  }
+  double fedge[2] = {0, 1};
+  CHECK(ics_occ_combine_values(ICS_OCC_PRODUCT, fedge, 2) == 1 && ics_occ_combine_values(ICS_OCC_MAX, fedge, 2) == 1,
+        "0 and 1 are accepted");
 
   /* on a real scene, through ics_occtex_shadow */
   ics_occ_box boxes[60];

@@ -62,6 +62,8 @@ ics_status ics_minmax_create(ics_minmax **out, const float *values, size_t rows,
   if (rows == 0 || d == 0 || rows > ICS_MINMAX_MAX_ROWS || d > ICS_MINMAX_MAX_SAMPLES)
     return ICS_ERR_SIZE;
   if (stride < d) return ICS_ERR_INVALID_ARG;
+  /* the last row ends at (rows - 1) stride + d floats: must be addressable */
+  if ((rows - 1) > (SIZE_MAX / sizeof(float) - d) / stride) return ICS_ERR_SIZE;
   size_t P = next_pow2(d);
   if (rows * 2 * P > ((size_t)1 << 31)) return ICS_ERR_SIZE;
   for (size_t r = 0; r < rows; r++)
@@ -305,8 +307,14 @@ ics_status ics_svd(const double *A, size_t m, size_t n, double *U, double *s, do
     if (isnan(A[i])) return ICS_ERR_NAN;
     if (isinf(A[i])) return ICS_ERR_INFINITE;
   }
-  /* work on W = A (columns rotated in place), stored in U */
-  memcpy(U, A, m * n * sizeof(double));
+  /* work on W = A 2^-e (columns rotated in place), stored in U: scaling by a power of two
+   * (exact, apart from entries that become subnormal, far below u max|A|) puts the largest
+   * entry in [1/2, 1), so the squared column norms neither overflow nor underflow */
+  double amax = 0;
+  for (size_t i = 0; i < m * n; i++) amax = fmax(amax, fabs(A[i]));
+  int e = 0;
+  if (amax > 0) frexp(amax, &e);
+  for (size_t i = 0; i < m * n; i++) U[i] = ldexp(A[i], -e);
   for (size_t i = 0; i < n * n; i++) V[i] = 0.0;
   for (size_t i = 0; i < n; i++) V[i * n + i] = 1.0;
   const double eps = DBL_EPSILON;
@@ -343,9 +351,11 @@ ics_status ics_svd(const double *A, size_t m, size_t n, double *U, double *s, do
   for (size_t j = 0; j < n; j++) {
     double nn = 0;
     for (size_t i = 0; i < m; i++) nn = hypot(nn, U[i * n + j]);
-    s[j] = nn;
+    s[j] = ldexp(nn, e);
     for (size_t i = 0; i < m; i++) U[i * n + j] = nn > 0 ? U[i * n + j] / nn : 0.0;
   }
+  for (size_t j = 0; j < n; j++)
+    if (isinf(s[j])) return ICS_ERR_INFINITE; /* a singular value above DBL_MAX */
   /* selection sort by descending s, swapping columns of U and V */
   for (size_t j = 0; j < n; j++) {
     size_t b = j;
@@ -502,6 +512,7 @@ ics_status ics_epi_rectify(const ics_epi_frame *f, const float *smap, size_t w, 
 
 /* ---- synthetic height-field scene ---------------------------------------------------- */
 void ics_hf_scene_default(ics_hf_scene *s) {
+  if (!s) return;
   static const double boxes[][5] = {
       {-4.5, -3.0, -4.0, -2.5, 2.0}, {-1.0, 0.2, -5.0, -4.2, 2.5}, {2.0, 3.5, -3.0, -1.0, 1.2},
       {-3.0, -2.6, 0.5, 4.0, 1.8},   {0.5, 1.0, 1.0, 1.5, 2.2},    {3.0, 5.5, 2.5, 3.0, 0.8},
@@ -522,6 +533,7 @@ void ics_hf_scene_default(ics_hf_scene *s) {
 
 double ics_hf_scene_hit(const ics_hf_scene *s, const double o[3], const double dir[3],
                         double tmin) {
+  if (!s || !o || !dir) return NAN;
   double best = INFINITY;
   if (dir[1] != 0) { /* the plane y = 0 */
     double t = -o[1] / dir[1];

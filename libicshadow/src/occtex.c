@@ -540,6 +540,9 @@ ics_status ics_occtex_box(const ics_occtex *ot, ics_occ_prefilter pf, int k, dou
 
 /* ---- shadows ---------------------------------------------------------------------------- */
 double ics_occ_combine_values(ics_occ_combine c, const double *f, int k) {
+  if ((unsigned)c >= ICS_OCC_COMBINE_COUNT || k < 0 || (k > 0 && !f)) return NAN;
+  for (int i = 0; i < k; i++)
+    if (!(f[i] >= 0 && f[i] <= 1)) return NAN; /* NaN or outside [0, 1] */
   double r;
   switch (c) {
   case ICS_OCC_PRODUCT:
@@ -598,7 +601,10 @@ ics_status ics_occtex_shadow(const ics_occtex *ot, const ics_occ_light *light, i
   double w[ICS_OCC_MAX_SLICES], o[ICS_OCC_MAX_SLICES];
   for (size_t i = 0; i < n; i++) {
     slices_at(ot, light, pf, P + 3 * i, w, o);
-    for (int k = 0; k < ot->K; k++) w[k] *= o[k];
+    for (int k = 0; k < ot->K; k++) { /* a box average of values in [0, 1]: clamp rounding */
+      double f = w[k] * o[k];
+      w[k] = f < 0 ? 0 : f > 1 ? 1 : f;
+    }
     occ[i] = ics_occ_combine_values(c, w, ot->K);
   }
   return ICS_OK;

@@ -56,7 +56,8 @@ extern "C" {
 typedef struct ics_minmax ics_minmax; /* opaque: one min-max tree per row */
 
 /* Build the trees of `rows` rows of d samples; row r starts at values + r * stride
- * (stride >= d). Values may be +-inf, not NaN. */
+ * (stride >= d; ICS_ERR_SIZE if (rows - 1) stride + d floats are not addressable). Values may
+ * be +-inf, not NaN. */
 ics_status ics_minmax_create(ics_minmax **out, const float *values, size_t rows, size_t d,
                              size_t stride);
 void ics_minmax_destroy(ics_minmax *t);
@@ -108,7 +109,10 @@ ics_status ics_minmax_march(const float *row, size_t d, const ics_minmax_ray *ra
  * Hestenes one-sided Jacobi: rotate column pairs until every pair is orthogonal to
  * |<a_p, a_q>| <= eps ||a_p|| ||a_q||, eps = 2^-52. Measured (tests/test_minmax.c):
  * ||A - U S V^T||_F <= 10 n u ||A||_F and ||U^T U - I||, ||V^T V - I|| <= 10 n u (max entry).
- * ICS_ERR_RANGE if 64 sweeps do not converge. */
+ * A is scaled by a power of two internally, so any finite A works (entries up to DBL_MAX, or
+ * tiny ones) as long as its singular values are finite: ICS_ERR_INFINITE if one exceeds DBL_MAX
+ * (e.g. several entries near 1e308 in one column). ICS_ERR_RANGE only if 64 sweeps do not
+ * converge. */
 ics_status ics_svd(const double *A, size_t m, size_t n, double *U, double *s, double *V);
 /* A_N = sum_{i<N} s_i U_i V_i^T into out (m x n); N <= n. */
 ics_status ics_svd_truncate(const double *U, const double *s, const double *V, size_t m,
@@ -163,7 +167,8 @@ typedef struct ics_hf_scene {
 
 /* The default scene: 6 boxes and 4 caps over [-6, 6]^2, heights <= 2.5. */
 void ics_hf_scene_default(ics_hf_scene *s);
-/* Nearest hit t > tmin of the ray o + t dir with the scene (+inf if none). */
+/* Nearest hit t > tmin of the ray o + t dir with the scene (+inf if none; NaN for a NULL
+ * pointer). ics_hf_scene_default(NULL) does nothing. */
 double ics_hf_scene_hit(const ics_hf_scene *s, const double o[3], const double dir[3],
                         double tmin);
 /* Render the orthographic shadow map of the frame's light: w x w texels covering the square of

@@ -129,7 +129,9 @@ ics_status ics_occtex_slices_at(const ics_occtex *ot, const ics_occ_light *light
                                 ics_occ_prefilter pf, const double P[3], double *w, double *o);
 
 /* Combine K faded contributions f[k] = w_k O_k in [0, 1]: product 1 - prod(1 - f_k), sum
- * min(1, sum f_k), or max f_k. NaN if c is unknown. */
+ * min(1, sum f_k), or max f_k (k = 0: 0). NaN, for every combination alike, if c is unknown,
+ * k < 0, f is NULL with k > 0, or any f_k is NaN or outside [0, 1] (not clamped: such a value
+ * is a caller's error). ics_occtex_shadow clamps w_k O_k to [0, 1] (rounding) before calling. */
 double ics_occ_combine_values(ics_occ_combine c, const double *f, int k);
 
 int ics_occtex_slices(const ics_occtex *ot);
