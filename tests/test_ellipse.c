@@ -357,9 +357,33 @@ int main(int argc, char **argv) {
     check_r(log_uniform(1e-4, 1e4), &wrt, &wrtr);
   }
 
+  /* Probes: the worst inputs found so far by independent searches and by
+   * `stability_sweep --samples 3000` (docs/ellipse.md, "Measured accuracy"), checked against the
+   * same bounds, plus dense stratified probes of the regions where they sit. */
+  const double probe_b[] = {0x1.38033dccb7d4dp-2, 0x1.44e714a865b25p-2, 0x1.3a9ea2b979441p-2,
+                            0x1.33ad1e8030728p-1, 0x1.66f2ebf098537p-2};
+  for (size_t i = 0; i < sizeof probe_b / sizeof probe_b[0]; i++) check_varx(probe_b[i], &wvarx);
+  const double probe_t[] = {0x1.91954faebeb8ep-1, 0x1.8815cb2ff2544p-1, 0x1.69a898ad7ea73p-1,
+                            0x1.2aca5dbc5682cp-511, 0x1.27fb224018f7dp-511, 0x1.90a3dc4f43f68p-1,
+                            0x1.ba6c8ddf640d2p-3, 0x1.4cbf37298bac4p-512, 0x1.d43aa45d35764p-3,
+                            0x1.807a9d7362cf9p-1, 0x1.90ba7af935748p-1, 0x1.1b5c6d182d3fep-512,
+                            0x1.cb8b9e9e6eaa4p-3};
+  for (size_t i = 0; i < sizeof probe_t / sizeof probe_t[0]; i++)
+    check_t(probe_t[i], &wvx, &wvy, &wr, &wrtt);
+  const double probe_r[] = {0x1.495db980ef32dp-1, 0x1.b9af19751211ep+0, 0x1.ffffffffe353bp-1,
+                            0x1.7a347d84511ffp+0, 0x1.f06a2f853dfc8p+106};
+  for (size_t i = 0; i < sizeof probe_r / sizeof probe_r[0]; i++) check_r(probe_r[i], &wrt, &wrtr);
+  const int ndense = 3000; /* per region, stratified: one random point in each of ndense cells */
+  for (int i = 0; i < ndense; i++) {
+    check_varx(0.25 + 0.25 * ((i + urand()) / ndense), &wvarx);          /* b in [1/4, 1/2] */
+    check_t(0.5 + 0.5 * ((i + urand()) / ndense), &wvx, &wvy, &wr, &wrtt); /* t in [1/2, 1) */
+  }
+  for (int i = 0; i < 400; i++) /* t in [2^-512, 2^-510): vy, ratio cross into subnormals */
+    check_t(ldexp(1.0 + (i + urand()) / 200.0, -512 + i / 200), &wvx, &wvy, &wr, &wrtt);
+
   worst_t *all[] = {&wvarx, &wvx, &wvy, &wr, &wsub, &wrt, &wrtt, &wrtr};
   for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
-    printf("%-22s max %.3f ulp at %a (%.17g)\n", all[i]->name, all[i]->worst, all[i]->at,
+    printf("%-22s max %.5f ulp at %a (%.17g)\n", all[i]->name, all[i]->worst, all[i]->at,
            all[i]->at);
   mpfr_free_cache();
   return test_summary("test_ellipse");

@@ -45,14 +45,15 @@
  *   p = 1/4 (T formula, beta ~ 0.24), r = 1 and r = 2^-600 / 2^600 (ratio_to_t); t = 2^-480 (the
  *   scaled square). Both sides of each are tested.
  * ACCURACY (max error against Patel's closed form in MPFR at 320 bits, tests/test_ellipse.c,
- *   which asserts these same numbers; worst inputs in docs/ellipse.md):
- *   ics_ellipse_varx        <= 0.75 ulp    (measured 0.589)
- *   ics_ellipse_vx          <= 0.75 ulp    (measured 0.652)
- *   ics_ellipse_vy          <= 0.75 ulp    (measured 0.656)
- *   ics_ellipse_ratio       <= 1.0 ulp     (measured 0.726)
- *   ics_ellipse_ratio_to_t  <= 1.0 ulp     (measured 0.737)
- *   vy and ratio with a subnormal result: <= 1.0 ulp of 2^-1074 (measured 0.749; the exponent
- *   is applied last, so such results are rounded twice).
+ *   which asserts these same numbers; worst inputs in docs/ellipse.md; "worst found" is the worst
+ *   found so far by random runs and probes, not a proof):
+ *   ics_ellipse_varx        <= 0.75 ulp    (worst found 0.6272)
+ *   ics_ellipse_vx          <= 0.75 ulp    (worst found 0.652)
+ *   ics_ellipse_vy          <= 0.75 ulp    (worst found 0.656)
+ *   ics_ellipse_ratio       <= 1.0 ulp     (worst found 0.7695)
+ *   ics_ellipse_ratio_to_t  <= 1.0 ulp     (worst found 0.737)
+ *   vy and ratio with a subnormal result: <= 1.0 ulp of 2^-1074 (worst found 0.74997; the
+ *   exponent is applied last, so such results are rounded twice).
  *
  * KERNEL: t, scale and radii as in Patel Sec. 3.4, but always computed from the MAJOR variance
  * (s = ratio_to_t(minor/major) <= 1/2, sc = major / V_x(s)), so the minor radius keeps full
