@@ -6,6 +6,7 @@
  * EM iterations, samples, cut-off loss. stderr: the energy report, and progress when stderr is
  * a terminal or --progress is given. */
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -32,7 +33,7 @@ static void help(FILE *f) {
           "options:\n"
           "  --lights K         number of Gaussians, 1..%d (required)\n"
           "  --max-angle DEG    cut-off angle from the view axis, in (0, 90) (default 80)\n"
-          "  --seed S           seed of the EM sample selection (default 1)\n"
+          "  --seed S           seed of the EM sample selection, 0..2^64-1 (default 1)\n"
           "  --max-samples N    EM on N pixels resampled by energy (0: all; default 32768)\n"
           "  --max-iter N       EM iterations, 1..100000 (default 300)\n"
           "  --sweep            fit k = 1..K and print one row each (the file holds k = K)\n"
@@ -92,10 +93,11 @@ int cmd_fit_light(int argc, char **argv) {
     } else if (!strcmp(o, "--seed")) {
       const char *v = argv[++a];
       char *end;
+      errno = 0;
       seed = strtoull(v, &end, 10);
-      if (!*v || *end || v[0] == '-') {
-        fprintf(stderr, "icshadow fit-light: --seed: expected a non-negative integer, got '%s'\n",
-                v);
+      if (!*v || *end || v[0] == '-' || v[0] == '+' || v[0] == ' ' || errno == ERANGE) {
+        fprintf(stderr, "icshadow fit-light: --seed: expected an integer in 0..%llu, got '%s'\n",
+                (unsigned long long)-1, v);
         return 2;
       }
     } else if (!strcmp(o, "--max-samples")) {
@@ -167,14 +169,22 @@ int cmd_fit_light(int argc, char **argv) {
     secs[k - 1] = cli_now_s() - t0;
     if (p.progress && pg.tty) fputc('\n', stderr);
     if (st != ICS_OK) {
-      ics_image_free(&env);
+      /* the options are checked above and ics_exr_read refuses bad pixels, so INVALID_ARG
+       * can only mean a map without light inside the cut-off */
       if (st == ICS_ERR_INVALID_ARG)
         fprintf(stderr, "icshadow fit-light: %s: no light behind the viewer within %g degrees of "
-                "the view axis (or an invalid pixel)\n", inp, max_angle);
+                "the view axis\n", inp, max_angle);
+      else if (st == ICS_ERR_SIZE)
+        fprintf(stderr, "icshadow fit-light: %s: a %d x %d map is too small to fit (at least "
+                "4 x 2 pixels)\n", inp, env.width, env.height);
       else
-        fprintf(stderr, "icshadow fit-light: fit failed: %s\n", ics_status_str(st));
+        fprintf(stderr, "icshadow fit-light: %s: fit failed: %s\n", inp, ics_status_str(st));
+      ics_image_free(&env);
       return st == ICS_ERR_NOMEM ? 1 : 2;
     }
+    if (!rep[k - 1].converged)
+      fprintf(stderr, "fit-light: warning: K=%d: EM stopped at --max-iter %d before converging "
+              "(log-likelihood change still above 1e-9)\n", k, max_iter);
   }
   ics_image_free(&env);
   const ics_lightfit_report *r = &rep[K - 1];
@@ -188,45 +198,51 @@ int cmd_fit_light(int argc, char **argv) {
     fprintf(stderr, "fit-light: the map is explained by %d light%s; %d requested\n", r->k_fit,
             r->k_fit == 1 ? "" : "s", K);
 
-  cli_output out;
-  if (planep) {
-    /* written from the map directly (not from the library's internals): the same frame
-     * formulas as DESIGN.md, density = radiance * (1 + r^2)^(-3/2) */
-    ics_image env2;
-    if (ics_exr_read(inp, &env2, msg, sizeof msg) != ICS_OK) {
-      fprintf(stderr, "icshadow fit-light: %s\n", msg);
-      return 1;
-    }
-    if (cli_output_open(&out, planep) != 0) {
-      ics_image_free(&env2);
-      return 1;
-    }
-    fprintf(out.fp, "i,j,x,y,r,g,b,kept\n");
-    for (int j = 0; j < env2.height; j++)
-      for (int i = 0; i < env2.width; i++) {
-        double x, y;
-        if (ics_envmap_pixel(env2.width, env2.height, i, j, &x, &y, NULL)) continue;
-        double r2 = x * x + y * y, jac = pow(1 + r2, -1.5);
-        const float *px = env2.data + ((size_t)j * env2.width + i) * env2.channels;
-        fprintf(out.fp, "%d,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n", i, j, x, y, px[0] * jac,
-                px[1] * jac, px[2] * jac,
-                ics_envmap_pixel_kept(env2.width, env2.height, i, j, max_angle));
-      }
-    ics_image_free(&env2);
-    if (cli_output_commit(&out) != 0) return 1;
-  }
+  /* -o first: when it cannot be opened, no plane CSV is written either */
+  cli_output out, pout;
   if (cli_output_open(&out, outp) != 0) return 1;
   if (lights_write(out.fp, lights, r->k_fit) != 0) {
     cli_output_abort(&out);
     fprintf(stderr, "icshadow fit-light: cannot write %s\n", outp);
     return 1;
   }
+  if (planep) {
+    /* written from the map directly (not from the library's internals): the same frame
+     * formulas as DESIGN.md, density = radiance * (1 + r^2)^(-3/2) */
+    ics_image env2;
+    if (ics_exr_read(inp, &env2, msg, sizeof msg) != ICS_OK) {
+      fprintf(stderr, "icshadow fit-light: %s\n", msg);
+      cli_output_abort(&out);
+      return 1;
+    }
+    if (cli_output_open(&pout, planep) != 0) {
+      ics_image_free(&env2);
+      cli_output_abort(&out);
+      return 1;
+    }
+    fprintf(pout.fp, "i,j,x,y,r,g,b,kept\n");
+    for (int j = 0; j < env2.height; j++)
+      for (int i = 0; i < env2.width; i++) {
+        double x, y;
+        if (ics_envmap_pixel(env2.width, env2.height, i, j, &x, &y, NULL)) continue;
+        double r2 = x * x + y * y, jac = pow(1 + r2, -1.5);
+        const float *px = env2.data + ((size_t)j * env2.width + i) * env2.channels;
+        fprintf(pout.fp, "%d,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n", i, j, x, y, px[0] * jac,
+                px[1] * jac, px[2] * jac,
+                ics_envmap_pixel_kept(env2.width, env2.height, i, j, max_angle));
+      }
+    ics_image_free(&env2);
+    if (cli_output_commit(&pout) != 0) {
+      cli_output_abort(&out);
+      return 1;
+    }
+  }
   if (cli_output_commit(&out) != 0) return 1;
   if (!strcmp(outp, "-")) return 0;
   printf("k,fitted,l1,l2,edge,seconds,iterations,samples,cutoff_loss\n");
   for (int k = k0; k <= K; k++) {
     const ics_lightfit_report *q = &rep[k - 1];
-    printf("%d,%d,%.17g,%.17g,%.17g,%.6g,%d,%d,%.17g\n", k, q->k_fit, q->l1, q->l2, q->edge,
+    printf("%d,%d,%.17g,%.17g,%.17g,%.17g,%d,%d,%.17g\n", k, q->k_fit, q->l1, q->l2, q->edge,
            secs[k - 1], q->iterations, q->samples, q->cutoff_loss);
   }
   return fflush(stdout) ? 1 : 0;

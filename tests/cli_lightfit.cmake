@@ -104,6 +104,30 @@ foreach(bad "nan;pixel \\(x 5, y 1\\) channel G is NaN" "rg;wrong channel set: m
   set_tests_properties(cli_fit_light_${name} PROPERTIES FIXTURES_REQUIRED lf_bad)
 endforeach()
 
+# a map too small to fit names the file, its size and the minimum
+ics_cli_test(NAME cli_fit_light_tiny RC 2 ARGS "fit-light|${D}/tiny.exr|--lights|1|-o|${D}/lf_bad.json"
+  ERR "tiny\\.exr: a 2 x 1 map is too small to fit \\(at least 4 x 2 pixels\\)" NOFILE ${D}/lf_bad.json)
+set_tests_properties(cli_fit_light_tiny PROPERTIES FIXTURES_REQUIRED lf_bad)
+# EM that runs out of --max-iter says so on stderr
+ics_cli_test(NAME cli_fit_light_max_iter RC 0 ARGS "fit-light|${D}/lf_m3.exr|--lights|3|--max-iter|1|-o|${D}/lf_iter.json"
+  ERR "K=3: EM stopped at --max-iter 1 before converging")
+set_tests_properties(cli_fit_light_max_iter PROPERTIES FIXTURES_REQUIRED lf_m3)
+# --seed beyond 2^64 - 1 is refused (strtoull saturated it silently)
+ics_cli_test(NAME cli_fit_light_seed_overflow RC 2 ARGS "fit-light|${D}/lf_m3.exr|--lights|1|--seed|18446744073709551616|-o|${D}/lf_bad.json"
+  ERR "--seed: expected an integer in 0\\.\\.18446744073709551615" NOFILE ${D}/lf_bad.json)
+# a failing -o leaves no plane CSV behind (it was committed before -o was opened)
+ics_cli_test(NAME cli_fit_light_plane_no_out RC 1 ARGS "fit-light|${D}/lf_m3.exr|--lights|1|--plane-csv|${D}/lf_plane.csv|-o|${D}/lf_no_such_dir/l.json"
+  ERR "cannot create" NOFILE ${D}/lf_plane.csv)
+set_tests_properties(cli_fit_light_plane_no_out PROPERTIES FIXTURES_REQUIRED lf_m3)
+# make-env: sizes whose map would need more than 2 GiB are refused up front; a light too bright
+# for float is named; --progress shows the rows on stderr
+ics_cli_test(NAME cli_make_env_too_big RC 2 ARGS "make-env|--sky|1,1,1|--size|16384x8192|-o|${D}/lf_bad.exr"
+  ERR "--size 16384x8192: 134217728 pixels would need 3 GiB.*at most 89478485 pixels \\(2 GiB\\)" NOFILE ${D}/lf_bad.exr)
+ics_cli_test(NAME cli_make_env_too_bright RC 2 ARGS "make-env|--lights|0,0,0.01,0.01:0.3,0,0.01,0.01,0,1e38|--size|64x32|-o|${D}/lf_bad.exr"
+  ERR "light 2 \\(weight 1e\\+38, colour 1,1,1\\) is too bright to draw" NOFILE ${D}/lf_bad.exr)
+ics_cli_test(NAME cli_make_env_progress RC 0 ARGS "make-env|--sky|1,1,1|--size|64x32|--progress|-o|${D}/lf_prog.exr"
+  ERR "make-env: row 32/32")
+
 # bad options
 ics_cli_test(NAME cli_make_env_bad_spec RC 2 ARGS "make-env|--lights|0.1,0.2,0.01|--size|64x32|-o|${D}/lf_bad.exr"
   ERR "neither an existing lights file nor a valid SPEC \\(light 1: expected mx,my,varx,vary" NOFILE ${D}/lf_bad.exr)

@@ -134,7 +134,8 @@ static void copy_prefix(const char *src, const char *dst, long n, long flip_at) 
   fclose(g);
 }
 
-/* `test_exr --write-bad DIR`: writes DIR/nan.exr, DIR/rg.exr and DIR/trunc.exr for the CLI
+/* `test_exr --write-bad DIR`: writes DIR/nan.exr, DIR/rg.exr, DIR/tiny.exr (2 x 1) and
+ * DIR/trunc.exr for the CLI
  * tests (tests/cli_lightfit.cmake) and exits */
 static int write_bad(const char *d) {
   static const char *const rgb[] = {"R", "G", "B"}, *const rg[] = {"R", "G"};
@@ -143,6 +144,7 @@ static int write_bad(const char *d) {
   ics_image a;
   if (write_raw(tmpf("nan.exr"), 8, 4, 3, rgb, EXR_PIXEL_FLOAT, v_nan) ||
       write_raw(tmpf("rg.exr"), 8, 4, 2, rg, EXR_PIXEL_FLOAT, v_plain) ||
+      write_raw(tmpf("tiny.exr"), 2, 1, 3, rgb, EXR_PIXEL_FLOAT, v_plain) ||
       ics_image_init(&a, 64, 32, 3) != ICS_OK)
     return 1;
   for (int p = 0; p < 64 * 32 * 3; p++) a.data[p] = (float)(p % 97) * 0.5f;

@@ -556,7 +556,10 @@ ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *prm,
     }
     n = n2;
     if (prm->progress) prm->progress(prm->progress_ctx, it, prm->max_iter, ll);
-    if (fabs(ll - ll_prev) <= prm->tol) break;
+    if (fabs(ll - ll_prev) <= prm->tol) {
+      report->converged = 1;
+      break;
+    }
     ll_prev = ll;
   }
   report->iterations = it > prm->max_iter ? prm->max_iter : it;
@@ -612,6 +615,13 @@ out:
 
 ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3], const ics_light *lights,
                              int n, int supersample) {
+  return ics_envmap_render_progress(env, sky_rgb, lights, n, supersample, NULL, NULL);
+}
+
+ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
+                                      const ics_light *lights, int n, int supersample,
+                                      void (*progress)(void *ctx, int rows_done, int rows),
+                                      void *ctx) {
   if (!env || !env->data || (env->channels != 3 && env->channels != 4) || n < 0 ||
       (n > 0 && !lights) || supersample < 1 || supersample > 16)
     return ICS_ERR_INVALID_ARG;
@@ -670,7 +680,8 @@ ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3], const ics_
     cv[2] = l1 * sn * sn + l2 * c * c;
     gauss_make(&g[k], l->mean[0], l->mean[1], cv);
   }
-  for (int j = 0; j < h; j++)
+  for (int j = 0; j < h; j++) {
+    if (progress && j) progress(ctx, j, h);
     for (int i = 0; i < w; i++) {
       double acc[3] = {0, 0, 0};
       for (int b = 0; b < s; b++)
@@ -690,6 +701,8 @@ ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3], const ics_
       for (int c = 0; c < 3; c++) p[c] = (float)(sky[c] + acc[c] / (s * s));
       if (env->channels == 4) p[3] = 1;
     }
+  }
+  if (progress) progress(ctx, h, h);
   for (int k = 0; k < n; k++) {
     if (delta[k] < 0) continue;
     int pi = delta[k] % w, pj = delta[k] / w;

@@ -84,6 +84,7 @@ typedef struct ics_lightfit_report {
   double cutoff_loss;   /* energy_cutoff / (energy_cutoff + energy_kept) */
   double loglik;        /* per unit mass */
   double l1, l2, edge;  /* errors, see above */
+  int converged;        /* 1: EM stopped at |dLL| <= tol; 0: it ran out of max_iter */
 } ics_lightfit_report;
 
 void ics_lightfit_defaults(ics_lightfit_params *p);
@@ -109,6 +110,13 @@ ics_status ics_lightfit_errors(const ics_image *env, double max_angle_deg,
  * ICS_ERR_INVALID_ARG for bad lights (negative weight / colour / non-PSD covariance, NaN). */
 ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3], const ics_light *lights,
                              int n, int supersample);
+
+/* The same, calling progress(ctx, rows_done, rows) after each row of pixels (progress may be
+ * NULL). */
+ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
+                                      const ics_light *lights, int n, int supersample,
+                                      void (*progress)(void *ctx, int rows_done, int rows),
+                                      void *ctx);
 
 /* Plane point and solid angle of pixel (i, j) of a W x H map: returns 0 (and *x, *y, *domega)
  * when the pixel centre is behind the viewer (dz > 0), -1 otherwise. */
