@@ -518,6 +518,7 @@ int bench_minmax(int argc, char **argv) {
   dlist[1] = 2048;
   dlist[2] = 4096;
   const char *figpath = NULL;
+  int given_samples = 0, given_terms = 0, given_reps = 0;
   for (int i = 1; i < argc; i++) {
     const char *opt = argv[i];
     if (!strcmp(opt, "--svd-table")) {
@@ -541,6 +542,7 @@ int bench_minmax(int argc, char **argv) {
     }
     const char *val = argv[++i];
     if (!strcmp(opt, "--samples")) {
+      given_samples = 1;
       nd = 0;
       char buf[256];
       if (strlen(val) >= sizeof buf) {
@@ -548,30 +550,33 @@ int bench_minmax(int argc, char **argv) {
         return 2;
       }
       strcpy(buf, val);
-      char *save = NULL;
-      if (!*buf) {
-        fprintf(stderr, "icshadow bench minmax: --samples: expected integers in 1..16384, got ''\n");
-        return 2;
-      }
-      for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+      /* split at every comma: an empty item ("", "1,,2", "1,") is an error, as in sat's --modes */
+      for (char *tok = buf;;) {
+        char *comma = strchr(tok, ',');
+        if (comma) *comma = '\0';
+        if (!*tok) {
+          fprintf(stderr, "icshadow bench minmax: --samples: expected integers in 1..16384, got an empty item in '%s'\n",
+                  val);
+          return 2;
+        }
         if (nd == 16) {
           fprintf(stderr, "icshadow bench minmax: --samples: at most 16 values\n");
           return 2;
         }
         if (parse_count("--samples", tok, 1, 16384, &dlist[nd])) return 2;
         nd++;
-      }
-      if (nd == 0) {
-        fprintf(stderr, "icshadow bench minmax: --samples: expected integers in 1..16384, got '%s'\n", val);
-        return 2;
+        if (!comma) break;
+        tok = comma + 1;
       }
     } else if (!strcmp(opt, "--rows")) {
       if (parse_count(opt, val, 1, 8192, &rows)) return 2;
     } else if (!strcmp(opt, "--rays")) {
       if (parse_count(opt, val, 1, 4096, &rays)) return 2;
     } else if (!strcmp(opt, "--terms")) {
+      given_terms = 1;
       if (parse_count(opt, val, 1, MAX_TERMS, &terms)) return 2;
     } else if (!strcmp(opt, "--reps")) {
+      given_reps = 1;
       if (parse_count(opt, val, 1, 100, &reps)) return 2;
     } else if (!strcmp(opt, "--scene")) {
       if (!strcmp(val, "hf"))
@@ -596,6 +601,21 @@ int bench_minmax(int argc, char **argv) {
               dlist[k]);
       return 2;
     }
+  /* options a mode does not use: an error when they contradict, a warning when ignored */
+  if (figpath && table) {
+    fprintf(stderr, "icshadow bench minmax: --svd-table and --fig4-csv: choose one\n");
+    return 2;
+  }
+  if (figpath || table) {
+    const char *mode_opt = figpath ? "--fig4-csv" : "--svd-table";
+    if (given_reps) fprintf(stderr, "icshadow bench minmax: warning: --reps is ignored with %s\n", mode_opt);
+    if (given_terms && table)
+      fprintf(stderr, "icshadow bench minmax: warning: --terms is ignored with --svd-table (it prints N = 1..%d)\n",
+              MAX_TERMS);
+    if (given_samples && nd > 1)
+      fprintf(stderr, "icshadow bench minmax: warning: %s uses only the first --samples value (%d)\n", mode_opt,
+              dlist[0]);
+  }
   /* memory and work limits, per configuration that will run */
   int mode = figpath ? 2 : table ? 1 : 0, ncheck = mode ? 1 : nd;
   for (int k = 0; k < ncheck; k++) {

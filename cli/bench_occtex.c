@@ -156,8 +156,14 @@ static int parse_list(const char *opt, const char *s, long lo, long hi, int pow2
   }
   strcpy(buf, s);
   *count = 0;
-  char *save = NULL;
-  for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+  /* split at every comma: an empty item (",,", "1,,2", "1,") is an error, as in sat's --modes */
+  for (char *tok = buf, *comma; tok; tok = comma ? comma + 1 : NULL) {
+    comma = strchr(tok, ',');
+    if (comma) *comma = '\0';
+    if (!*tok) {
+      fprintf(stderr, "icshadow bench occtex: %s: empty list item in '%s'\n", opt, s);
+      return -1;
+    }
     int v;
     if (*count >= MAX_LIST) {
       fprintf(stderr, "icshadow bench occtex: %s: at most %d values\n", opt, MAX_LIST);
@@ -169,10 +175,6 @@ static int parse_list(const char *opt, const char *s, long lo, long hi, int pow2
       return -1;
     }
     out[(*count)++] = v;
-  }
-  if (!*count) {
-    fprintf(stderr, "icshadow bench occtex: %s: empty list\n", opt);
-    return -1;
   }
   return 0;
 }
@@ -217,6 +219,7 @@ static int parse_scenes(const char *val, options *o) {
 }
 
 static int parse(int argc, char **argv, options *o) {
+  int given[12] = {0};
   *o = (options){{128, 256}, 2, {4, 8, 16}, 3, {ICS_OCC_SCENE_PLATES, ICS_OCC_SCENE_FOLIAGE}, 2, 0, 1, 48, 32, 2, 3, 0.6, NULL, ICS_OCC_SAT};
   for (int i = 1; i < argc; i++) {
     const char *opt = argv[i];
@@ -240,6 +243,7 @@ static int parse(int argc, char **argv, options *o) {
     }
     const char *val = argv[++i];
     int bad = 0;
+    given[which] = 1;
     switch (which) {
     case 0: bad = parse_list(opt, val, 1, ICS_OCC_MAX_SIZE, 1, o->sizes, &o->nsizes); break;
     case 1: bad = parse_list(opt, val, 1, ICS_OCC_MAX_SLICES, 0, o->slices, &o->nslices); break;
@@ -260,7 +264,13 @@ static int parse(int argc, char **argv, options *o) {
     case 7: bad = get_int(opt, val, 1, 1024, &o->m); break;
     case 8: bad = get_int(opt, val, 1, ICS_OCC_MAX_SUPERSAMPLE, &o->ss); break;
     case 9: bad = get_int(opt, val, 1, 100, &o->reps); break;
-    case 10: o->fig3 = val; break;
+    case 10:
+      if (!*val) {
+        fprintf(stderr, "icshadow bench occtex: --fig3-csv: empty file name\n");
+        return -1;
+      }
+      o->fig3 = val;
+      break;
     case 11:
       if (!strcmp(val, "mipmap")) o->fig3_pf = ICS_OCC_MIPMAP;
       else if (!strcmp(val, "nbuffers")) o->fig3_pf = ICS_OCC_NBUFFERS;
@@ -272,6 +282,16 @@ static int parse(int argc, char **argv, options *o) {
       break;
     }
     if (bad) return -1;
+  }
+  /* options the chosen mode does not use: warn */
+  if (o->fig3) {
+    if (given[9]) fprintf(stderr, "icshadow bench occtex: warning: --reps is ignored with --fig3-csv\n");
+    if (o->nsizes > 1 || o->nslices > 1 || o->nscenes > 1)
+      fprintf(stderr, "icshadow bench occtex: warning: --fig3-csv uses only the first --scene, --sizes and "
+                      "--slices values (%s, %d, %d)\n",
+              scene_names[o->scenes[0]], o->sizes[0], o->slices[0]);
+  } else if (given[11]) {
+    fprintf(stderr, "icshadow bench occtex: warning: --fig3-prefilter is ignored without --fig3-csv\n");
   }
   for (int i = 0; i < o->nsizes; i++)
     if ((long)o->sizes[i] * o->ss > 8192) {

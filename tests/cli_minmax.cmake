@@ -43,3 +43,17 @@ ics_cli_test(NAME cli_minmax_progress RC 0 ARGS "bench|minmax|--samples|32|--row
 add_test(NAME cli_bench_stdout_full
   COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/bench_stdout_full.sh $<TARGET_FILE:icshadow_cli>)
 set_tests_properties(cli_bench_stdout_full PROPERTIES LABELS fast)
+# list items must not be empty (as sat's --modes); an empty file name is a usage error
+ics_cli_test(NAME cli_minmax_samples_empty_item RC 2 ARGS "bench|minmax|--samples|64,,128"
+  ERR "--samples: expected integers in 1\\.\\.16384, got an empty item in '64,,128'")
+ics_cli_test(NAME cli_minmax_samples_trailing_comma RC 2 ARGS "bench|minmax|--samples|64,"
+  ERR "--samples: expected integers in 1\\.\\.16384, got an empty item in '64,'")
+# (an empty argument cannot pass through ics_cli_test's list: a script checks both commands)
+add_test(NAME cli_bench_empty_path
+  COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/bench_empty_path.sh $<TARGET_FILE:icshadow_cli>)
+set_tests_properties(cli_bench_empty_path PROPERTIES LABELS fast)
+# options a mode does not use: contradictions are refused, ignored options are named
+ics_cli_test(NAME cli_minmax_table_and_fig4 RC 2 ARGS "bench|minmax|--svd-table|--fig4-csv|${ics_mm_dir}/both.csv"
+  ERR "--svd-table and --fig4-csv: choose one" NOFILE "${ics_mm_dir}/both.csv")
+ics_cli_test(NAME cli_minmax_svd_table_ignored RC 0 ARGS "bench|minmax|--svd-table|--samples|32,64|--rows|2|--rays|2|--reps|2|--terms|3"
+  OUT "^N,sigma_rel" ERR "warning: --reps is ignored with --svd-table.*warning: --terms is ignored with --svd-table.*warning: --svd-table uses only the first --samples value \\(32\\)")

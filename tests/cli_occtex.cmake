@@ -46,3 +46,12 @@ ics_cli_test(NAME cli_occtex_limit_work RC 2 ARGS "bench|occtex|--sizes|512|--sl
 ics_cli_test(NAME cli_occtex_limit_fig3_brute RC 2 ARGS "bench|occtex|--receivers|1024|--light-samples|512|--scene|foliage|--fig3-csv|${CMAKE_CURRENT_BINARY_DIR}/occtex_limit.csv"
   ERR "brute force: --receivers 1024 with --light-samples 512, 150 boxes \\(foliage\\) and --reps 1" NOFILE "${CMAKE_CURRENT_BINARY_DIR}/occtex_limit.csv")
 ics_cli_test(NAME cli_occtex_progress RC 0 ARGS "${occ_small}|--progress" ERR "plates: repetition 1/1: size 32, 2 slices, sat")
+# list items must not be empty (the empty --fig3-csv name: tests/cli/bench_empty_path.sh)
+ics_cli_test(NAME cli_occtex_sizes_empty_item RC 2 ARGS "bench|occtex|--sizes|8,,16" ERR "--sizes: empty list item in '8,,16'")
+ics_cli_test(NAME cli_occtex_slices_trailing_comma RC 2 ARGS "bench|occtex|--slices|2," ERR "--slices: empty list item in '2,'")
+# ignored options are named
+ics_cli_test(NAME cli_occtex_fig3_prefilter_ignored RC 0 ARGS "${occ_small}|--fig3-prefilter|mipmap"
+  OUT "^scene," ERR "warning: --fig3-prefilter is ignored without --fig3-csv")
+ics_cli_test(NAME cli_occtex_fig3_ignored RC 0
+  ARGS "bench|occtex|--sizes|32,64|--slices|2|--receivers|4|--light-samples|4|--reps|2|--fig3-csv|${CMAKE_CURRENT_BINARY_DIR}/occtex_fig3_ign.csv"
+  ERR "warning: --reps is ignored with --fig3-csv.*warning: --fig3-csv uses only the first --scene, --sizes and --slices values \\(plates, 32, 2\\)")
