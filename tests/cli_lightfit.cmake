@@ -36,7 +36,13 @@ set_tests_properties(cli_fit_light_m3_sweep PROPERTIES FIXTURES_REQUIRED lf_m3 F
 # the written lights file is read back (jansson) and drawn again
 if(ICS_HAVE_JANSSON)
   ics_cli_test(NAME cli_make_env_from_json RC 0 ARGS "make-env|--lights|${D}/lf_m3.json|--size|64x32|--half|-o|${D}/lf_m3b.exr")
-  set_tests_properties(cli_make_env_from_json PROPERTIES FIXTURES_REQUIRED lf_m3json)
+  set_tests_properties(cli_make_env_from_json PROPERTIES FIXTURES_REQUIRED lf_m3json FIXTURES_SETUP lf_m3half)
+  # ... and the half map is read back: one light holds all the power, so its colour is the
+  # SPEC's RGB power over its luminance power, (2.5, 1.95, 2.0) / 2.0705 = (1.207, 0.942, 0.966),
+  # and its weight 2.0705 (to 0.1% at 64 x 32); a channel swap in the half decode would show
+  ics_cli_test(NAME cli_fit_light_half RC 0 ARGS "fit-light|${D}/lf_m3b.exr|--lights|1|-o|-"
+    OUT "\"color\": \\[1\\.20[0-9]*, 0\\.94[0-9]*, 0\\.96[0-9]*\\], \"weight\": 2\\.0(6[89]|7[01])")
+  set_tests_properties(cli_fit_light_half PROPERTIES FIXTURES_REQUIRED lf_m3half)
   # good.json uses tilt_deg [10, -5] and var/angle_deg for its first light: the fit finds it at
   # (tan 10 deg, tan -5 deg) = (0.17633, -0.08749), and the second at its plain mean (-0.4, 0.3)
   ics_cli_test(NAME cli_make_env_good_json RC 0 ARGS "make-env|--lights|${DATA}/good.json|--size|256x128|-o|${D}/lf_good.exr")
@@ -88,6 +94,12 @@ set_tests_properties(cli_make_env_black PROPERTIES FIXTURES_SETUP lf_black)
 ics_cli_test(NAME cli_fit_light_black RC 2 ARGS "fit-light|${D}/lf_black.exr|--lights|2|-o|${D}/lf_bad.json"
   ERR "no light behind the viewer" NOFILE ${D}/lf_bad.json)
 set_tests_properties(cli_fit_light_black PROPERTIES FIXTURES_REQUIRED lf_black)
+
+# output files: a failing run leaves an existing -o file untouched; the same --seed gives a
+# byte-identical lights file when EM resamples (--max-samples below the kept pixels), another
+# seed a different one
+add_test(NAME cli_lightfit_files COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/lightfit_files.sh $<TARGET_FILE:icshadow_cli>)
+set_tests_properties(cli_lightfit_files PROPERTIES LABELS fast)
 
 # bad maps: missing, not an EXR, NaN pixel, wrong channels, truncated (made by test_exr)
 add_test(NAME cli_lightfit_bad_maps COMMAND test_exr --write-bad ${D})

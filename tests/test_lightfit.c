@@ -196,8 +196,11 @@ int main(void) {
     p.k = 2;
     ics_status st = ics_lightfit(&env, &p, fit, &rep);
     CHECK(st == ICS_OK, "sky fit: %s", ics_status_str(st));
+    /* to 0.3%: the kept set follows the pixel centres (an unbiased boundary), so the loss
+     * differs from the disc's cos 80 deg only by the jagged rim of pixels (measured 0.11% at
+     * 256 x 128) */
     double want = cos(80 * PI / 180);
-    CHECK(fabs(rep.cutoff_loss / want - 1) <= 0.03, "cut-off loss %.6g, expected ~%.6g",
+    CHECK(fabs(rep.cutoff_loss / want - 1) <= 0.003, "cut-off loss %.6g, expected ~%.6g",
           rep.cutoff_loss, want);
     CHECK(fabs(rep.energy_total / (4 * PI) - 1) <= 1e-12, "sky energy %.17g", rep.energy_total);
     CHECK(fabs(rep.energy_front / (2 * PI) - 1) <= 1e-12, "front energy %.17g", rep.energy_front);
@@ -217,8 +220,10 @@ int main(void) {
     }
     CHECK(rep.k_fit >= 1 && fabs(ws / rep.energy_kept - 1) <= 1e-9, "sky weights %g vs %g", ws,
           rep.energy_kept);
+    /* to 1.5% (measured 0.6%, -0.5%: the fitted moments are the pixel centres' minus their
+     * footprints, and the rim is jagged) */
     double vref = (1 / want + want - 2) / (2 * (1 - want));
-    CHECK(fabs(vx / ws / vref - 1) <= 0.03 && fabs(vy / ws / vref - 1) <= 0.03,
+    CHECK(fabs(vx / ws / vref - 1) <= 0.015 && fabs(vy / ws / vref - 1) <= 0.015,
           "sky second moments %.6g %.6g, expected %.6g", vx / ws, vy / ws, vref);
     printf("sky: cutoff loss %.4f (rel %.3g), second moments rel %.3g %.3g, l1 %.3g, edge %.3g\n",
            rep.cutoff_loss, rep.cutoff_loss / want - 1, vx / ws / vref - 1, vy / ws / vref - 1,
