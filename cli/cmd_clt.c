@@ -37,8 +37,11 @@ static void help(FILE *f) {
           "               over the resolved points only\n"
           "A point whose disc_error >= sup_error / 10 is not resolved by the grid: a warning\n"
           "names it on stderr (it is still printed) and --rate leaves it out.\n"
+          "Work budget: runs whose estimated work (steps x grid nodes x applied taps, plus the\n"
+          "compensation's passes over the member's taps; x5 with the 2x finer run) exceeds %.0e\n"
+          "tap-updates (a few minutes) are refused with exit 2.\n"
           "Exit status: 0 ok, 1 runtime failure, 2 bad input (message on stderr).\n",
-          MAX_STEPS_LIST);
+          MAX_STEPS_LIST, ICS_WORK_BUDGET);
 }
 
 static int parse_steps(const char *s, int *steps, int *n) {
@@ -185,8 +188,23 @@ int cmd_clt(int argc, char **argv) {
     fprintf(stderr, "icshadow clt: kernel %s: %s\n", kname, ics_status_str(st));
     return 2;
   }
+  double nodes = 0, work = 0;
+  st = ics_clt_cost(gen, ctx, mean, var, steps, nsteps, cm, refine, &nodes, &work);
+  if (st == ICS_ERR_SIZE) {
+    fprintf(stderr, "icshadow clt: the grid for %d steps of mean %.17g, variance %.17g would exceed "
+                    "2^24 nodes%s (give smaller --steps, --mean or --var)\n", steps[nsteps - 1],
+            mean, var, refine ? " with its 2x finer copy" : "");
+    return 2;
+  }
+  if (st == ICS_OK && work > ICS_WORK_BUDGET) {
+    fprintf(stderr, "icshadow clt: estimated work %.3g tap-updates (%.0f nodes, %d steps%s) exceeds "
+                    "the budget of %.0e (give smaller --steps, --var or --samples%s)\n", work,
+            nodes, steps[nsteps - 1], refine ? ", x5 for the 2x finer run" : "", ICS_WORK_BUDGET,
+            refine ? ", or --no-refine" : "");
+    return 2;
+  }
   ics_clt_point pts[MAX_STEPS_LIST];
-  st = ics_clt_measure(gen, ctx, mean, var, steps, nsteps, cm, refine, pts);
+  if (st == ICS_OK) st = ics_clt_measure(gen, ctx, mean, var, steps, nsteps, cm, refine, pts);
   if (st != ICS_OK) {
     fprintf(stderr, "icshadow clt: %s\n", ics_status_str(st));
     return (st == ICS_ERR_NOMEM) ? 1 : 2;

@@ -34,8 +34,11 @@ static void help(FILE *f) {
           "  --kernel K       dirac | tophat | stochastic-dirac | gauss (default dirac)\n"
           "  --samples N      the member's sample count (gauss; 0 = default)\n"
           "  --seed U         seed of stochastic members (default 0)\n"
+          "Work budget (iterative): runs whose estimated work (slabs x grid nodes x applied taps,\n"
+          "plus the compensation's passes over the member's taps, for both grids) exceeds %.0e\n"
+          "tap-updates (about a minute) are refused with exit 2.\n"
           "Exit status: 0 ok, 1 runtime failure, 2 bad input (message on stderr).\n",
-          ICS_LIGHT1D_MAX_MIX);
+          ICS_LIGHT1D_MAX_MIX, ICS_WORK_BUDGET);
 }
 
 /* parse "a,b[,c]" at s into v (exactly n numbers); on error, report the character offset
@@ -277,8 +280,22 @@ int cmd_isoline(int argc, char **argv) {
     o.member = (ics_kernel_member)member;
     o.nsamples = samples;
     o.seed = (uint64_t)seed;
-    double disc;
-    ics_status st = ics_isoline_iterative(&l, level, dist, d1, slab, &o, &x, &disc);
+    double disc, h = 0, nodes = 0, w1 = 0, w2 = 0;
+    ics_status st = dist > 0 ? ics_shadow1d_iterate_cost(&l, dist, d1, slab, &o, &h, &nodes, &w1)
+                             : ICS_OK;
+    if (st == ICS_OK && dist > 0) { /* and the run on the grid twice as fine */
+      ics_iter1d_opts o2 = o;
+      o2.h = h / 2;
+      st = ics_shadow1d_iterate_cost(&l, dist, d1, slab, &o2, NULL, NULL, &w2);
+    }
+    if (st == ICS_OK && w1 + w2 > ICS_WORK_BUDGET) {
+      fprintf(stderr, "icshadow isoline: estimated work %.3g tap-updates (%.0f slabs on %.0f nodes, "
+                      "and again on a grid twice as fine) exceeds the budget of %.0e (give fewer "
+                      "slabs: a larger --slab or smaller --distance, or smaller --samples)\n",
+              w1 + w2, nearbyint(nf), nodes, ICS_WORK_BUDGET);
+      return 2;
+    }
+    if (st == ICS_OK) st = ics_isoline_iterative(&l, level, dist, d1, slab, &o, &x, &disc);
     if (st != ICS_OK) {
       fprintf(stderr, "icshadow isoline: iterated shadow failed: %s\n", ics_status_str(st));
       return st == ICS_ERR_NOMEM ? 1 : 2;

@@ -23,6 +23,8 @@
 #define MAX_MEMBERS 16
 #define MAX_STEPS 1000000
 #define MAX_WIDTH (1 << 24)
+#define OUT_BUDGET 2e9     /* bytes of CSV */
+#define OUT_LINE_BYTES 70.0 /* a typical line: steps, x and two %.17g numbers */
 
 static void help(FILE *f) {
   fprintf(f,
@@ -51,8 +53,12 @@ static void help(FILE *f) {
           "               standard deviations plus the kernel reach on each side)\n"
           "  --compensate none (default): off-grid taps are linearly interpolated, adding\n"
           "               variance; nonneg / signed: integer taps with the exact moments\n"
+          "Budgets: runs whose estimated work (steps x width x applied taps, plus the per-step\n"
+          "cost of generating and compensating the member's taps) exceeds %.0e tap-updates\n"
+          "(about a minute), or whose output would exceed %.0e bytes (~%.0f bytes a line), are\n"
+          "refused with exit 2.\n"
           "Exit status: 0 ok, 1 runtime failure, 2 bad input (message on stderr).\n",
-          MAX_STEPS, MAX_WIDTH);
+          MAX_STEPS, MAX_WIDTH, ICS_WORK_BUDGET, OUT_BUDGET, OUT_LINE_BYTES);
 }
 
 #define ERR(...)                                \
@@ -298,6 +304,22 @@ static int iterate_main(int argc, char **argv, int **steps_out) {
       return 2;
     }
     width = 2 * (int)ceil(half);
+  }
+
+  /* budgets: work (tap-updates, icshadow/shadow1d.h) and output size, before anything runs */
+  double nd = fmin(2.0 * cap + 3, ceil(2 * reach) + 4); /* applied integer taps per step */
+  double work = (double)nmax * ((double)width * nd + (double)ICS_WORK_COMP_PASSES * cap);
+  if (work > ICS_WORK_BUDGET) {
+    ERR("estimated work %.3g tap-updates (%d steps on %d pixels) exceeds the budget of %.0e "
+        "(give smaller --steps, --width, --var or --samples)", work, nmax, width, ICS_WORK_BUDGET);
+    return 2;
+  }
+  double bytes = (double)nsnap * width * OUT_LINE_BYTES;
+  if (bytes > OUT_BUDGET) {
+    ERR("the output would be about %.3g bytes (%d profiles of %d lines) and exceed the budget of "
+        "%.0e bytes (print fewer step counts or give a smaller --width)", bytes, nsnap, width,
+        OUT_BUDGET);
+    return 2;
   }
 
   size_t n = (size_t)width;

@@ -65,3 +65,11 @@ ics_cli_test(NAME cli_kernel_table_2d_rotated RC 0 ARGS "kernel-table|--dims|2|-
 ics_cli_test(NAME cli_kernel_table_bad_dims RC 2 ARGS "kernel-table|--dims|3" ERR "--dims: expected 1 or 2")
 ics_cli_test(NAME cli_kernel_table_vary_1d RC 2 ARGS "kernel-table|--vary|2" ERR "--vary and --angle need --dims 2")
 ics_cli_test(NAME cli_kernel_table_vary_zero RC 2 ARGS "kernel-table|--dims|2|--vary|0" ERR "--vary: the class variance must be > 0")
+# budgets: work (1e11 tap-updates) and output (2e9 bytes), checked before anything runs
+ics_cli_test(NAME cli_iterate_work_budget RC 2 ARGS "iterate|--kernel|gauss|--samples|65536|--var|36|--steps|1000000|--width|16777216"
+  OUT "^$" ERR "estimated work [0-9.e+]+ tap-updates \\(1000000 steps on 16777216 pixels\\) exceeds the budget of 1e\\+11")
+ics_cli_test(NAME cli_iterate_work_budget_range RC 2 ARGS "iterate|--kernel|dirac|--var|1|--steps|0:1000000:1"
+  OUT "^$" ERR "exceeds the budget of 1e\\+11")
+# 100001 profiles of 1000 lines: ~7e9 bytes
+ics_cli_test(NAME cli_iterate_output_budget RC 2 ARGS "iterate|--kernel|dirac|--var|1|--steps|0:100000:1|--width|1000"
+  OUT "^$" ERR "output would be about [0-9.e+]+ bytes \\(100001 profiles of 1000 lines\\) and exceed the budget of 2e\\+09 bytes")

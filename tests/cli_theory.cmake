@@ -66,3 +66,16 @@ ics_cli_test(NAME cli_clt_unresolved_warning RC 0 ARGS "clt|--kernel|gauss|--var
 # a resolved run gives the rate over all its points and no warning
 ics_cli_test(NAME cli_clt_rate_resolved RC 0 ARGS "clt|--kernel|tophat|--var|36|--steps|16,32,64|--rate"
   ERR "^rate exponent: -(0\\.99|1\\.0)[0-9]* \\(3 of 3 points\\)\n$")
+# work budget (1e11 tap-updates, ICS_WORK_BUDGET): refused before running, exit 2, nothing on stdout.
+# tophat sigma 6, 1e6 steps: ~1.7e5 nodes x ~23 taps x 1e6 steps = ~4e12 (hours)
+ics_cli_test(NAME cli_clt_work_budget RC 2 ARGS "clt|--kernel|tophat|--var|36|--steps|1000000|--no-refine"
+  OUT "^$" ERR "estimated work [0-9.e+]+ tap-updates .*exceeds the budget of 1e\\+11")
+# 4096 generated taps per step for 1e5 steps (x5 with the finer run)
+ics_cli_test(NAME cli_clt_work_budget_samples RC 2 ARGS "clt|--kernel|gauss|--samples|4096|--var|36|--steps|100000"
+  OUT "^$" ERR "exceeds the budget of 1e\\+11 .*--no-refine")
+# 1e5 slabs with 4096 taps each, twice
+ics_cli_test(NAME cli_isoline_work_budget RC 2 ARGS "isoline|--light|gauss:0.3,1|--level|0.3|--distance|1e5|--slab|1|--d1|1|--model|iterative|--kernel|gauss|--samples|4096"
+  OUT "^$" ERR "estimated work [0-9.e+]+ tap-updates \\(100000 slabs on [0-9]+ nodes.*exceeds the budget of 1e\\+11")
+# a grid over 2^24 nodes is a usage error named as such (was "out of memory", exit 1)
+ics_cli_test(NAME cli_clt_grid_size RC 2 ARGS "clt|--kernel|dirac|--var|36|--mean|1e9|--steps|1000"
+  OUT "^$" ERR "the grid for 1000 steps of mean 1000000000, variance 36 would exceed 2\\^24 nodes")

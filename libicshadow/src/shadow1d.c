@@ -58,14 +58,18 @@ void ics_iter1d_free(ics_iter1d *it) {
   it->n = 0;
 }
 
-ics_status ics_shadow1d_iterate(const ics_light1d *l, double d, double d1, double e,
-                                const ics_iter1d_opts *opts, ics_iter1d *out) {
-  if (!l || !out) return ICS_ERR_INVALID_ARG;
-  memset(out, 0, sizeof *out);
-  ics_iter1d_opts o = opts ? *opts : ics_iter1d_opts_default();
-  if (isnan(d) || isnan(d1) || isnan(e) || isnan(o.h) || isnan(o.var_factor)) return ICS_ERR_NAN;
+/* the grid and class of ics_shadow1d_iterate, without allocating anything */
+typedef struct iter_plan {
+  int steps;
+  double kmean, kvar, h; /* world units */
+  size_t il, n;
+} iter_plan;
+
+static ics_status plan_iter(const ics_light1d *l, double d, double d1, double e,
+                            const ics_iter1d_opts *o, iter_plan *p) {
+  if (isnan(d) || isnan(d1) || isnan(e) || isnan(o->h) || isnan(o->var_factor)) return ICS_ERR_NAN;
   if (isinf(d) || isinf(d1) || isinf(e)) return ICS_ERR_INFINITE;
-  if (d < 0 || !(d1 > 0) || !(e > 0) || o.h < 0 || o.var_factor < 0) return ICS_ERR_RANGE;
+  if (d < 0 || !(d1 > 0) || !(e > 0) || o->h < 0 || o->var_factor < 0) return ICS_ERR_RANGE;
   double nf = d / e;
   double nr = nearbyint(nf);
   if (nr > 1e8 || fabs(nf - nr) > 1e-9 * fmax(nf, 1.0)) return ICS_ERR_RANGE;
@@ -75,12 +79,12 @@ ics_status ics_shadow1d_iterate(const ics_light1d *l, double d, double d1, doubl
   ics_status mst = ics_kernel_map_1d(mu, var, e, d1, &kmean, &kvar);
   if (mst != ICS_OK) return mst;
   /* deliberate breaks (tests), applied on top of the mapping */
-  if (o.mean_sign < 0) kmean = -kmean;
-  if (o.var_factor > 0) kvar = kvar / d1 * o.var_factor;
+  if (o->mean_sign < 0) kmean = -kmean;
+  if (o->var_factor > 0) kvar = kvar / d1 * o->var_factor;
   double sd_n = sqrt(steps * kvar);                            /* final std */
-  double h = o.h;
+  double h = o->h;
   if (h == 0) {
-    double ppsd = o.ppsd > 0 ? o.ppsd : 64;
+    double ppsd = o->ppsd > 0 ? o->ppsd : 64;
     h = sd_n / ppsd;
     if (!(h > 0)) return ICS_ERR_RANGE; /* point light: give h */
   }
@@ -88,8 +92,79 @@ ics_status ics_shadow1d_iterate(const ics_light1d *l, double d, double d1, doubl
   double lo = fmin(0.0, shift) - 14 * sd_n - 4 * sqrt(kvar) - 4 * h;
   double hi = fmax(0.0, shift) + 14 * sd_n + 4 * sqrt(kvar) + 4 * h;
   double nl = ceil(-lo / h), nrt = ceil(hi / h);
-  if (nl + nrt > (double)(1 << 24)) return ICS_ERR_SIZE;
-  size_t il = (size_t)nl, n = il + (size_t)nrt;
+  if (!(nl + nrt <= (double)(1 << 24))) return ICS_ERR_SIZE;
+  p->steps = steps;
+  p->kmean = kmean;
+  p->kvar = kvar;
+  p->h = h;
+  p->il = (size_t)nl;
+  p->n = p->il + (size_t)nrt;
+  return ICS_OK;
+}
+
+/* generated taps per step of a member and the spread of its step-0 taps (pixels; stochastic
+ * members: plus twice the largest jitter, sqrt(3) sd) */
+static ics_status member_span(const ics_kernel1d *k, double *nt, double *span) {
+  int cap = ics_kernel1d_max_taps(k);
+  if (cap <= 0) {
+    ics_tap1d probe[1];
+    int np;
+    ics_status e = ics_kernel1d_taps(k, 0, probe, 0, &np);
+    return e != ICS_OK && e != ICS_ERR_SIZE ? e : ICS_ERR_RANGE;
+  }
+  ics_tap1d *t = malloc((size_t)cap * sizeof *t);
+  if (!t) return ICS_ERR_NOMEM;
+  int n = 0;
+  ics_status st = ics_kernel1d_taps(k, 0, t, cap, &n);
+  double lo = INFINITY, hi = -INFINITY;
+  for (int j = 0; st == ICS_OK && j < n; j++) lo = fmin(lo, t[j].x), hi = fmax(hi, t[j].x);
+  free(t);
+  if (st != ICS_OK) return st;
+  *nt = cap;
+  *span = hi - lo;
+  if (ics_kernel_member_stochastic(k->member)) *span += 4 * sqrt(3 * k->cls.var);
+  return ICS_OK;
+}
+
+ics_status ics_shadow1d_iterate_cost(const ics_light1d *l, double d, double d1, double e,
+                                     const ics_iter1d_opts *opts, double *h, double *nodes,
+                                     double *work) {
+  if (!l) return ICS_ERR_INVALID_ARG;
+  ics_iter1d_opts o = opts ? *opts : ics_iter1d_opts_default();
+  iter_plan p;
+  ics_status st = plan_iter(l, d, d1, e, &o, &p);
+  if (st != ICS_OK) return st;
+  if (h) *h = p.h;
+  if (nodes) *nodes = (double)p.n;
+  double nt, span; /* generated taps per step and their spread (pixels) */
+  if (o.skew) {
+    nt = ICS_CLT_SKEW_TAPS;
+    span = 5 * sqrt(p.kvar) / p.h; /* the skewed member spans 15 / 3.5 sd */
+  } else {
+    ics_kernel1d k;
+    st = ics_kernel1d_init(&k, o.member, p.kmean / p.h, p.kvar / (p.h * p.h));
+    if (st != ICS_OK) return st;
+    k.nsamples = o.nsamples;
+    k.param = o.param;
+    st = member_span(&k, &nt, &span);
+    if (st != ICS_OK) return st;
+  }
+  double nd = fmin(2 * nt + 3, ceil(span) + 4); /* applied integer taps */
+  if (work) *work = (double)p.steps * ((double)p.n * nd + ICS_WORK_COMP_PASSES * nt);
+  return ICS_OK;
+}
+
+ics_status ics_shadow1d_iterate(const ics_light1d *l, double d, double d1, double e,
+                                const ics_iter1d_opts *opts, ics_iter1d *out) {
+  if (!l || !out) return ICS_ERR_INVALID_ARG;
+  memset(out, 0, sizeof *out);
+  ics_iter1d_opts o = opts ? *opts : ics_iter1d_opts_default();
+  iter_plan p;
+  ics_status pst = plan_iter(l, d, d1, e, &o, &p);
+  if (pst != ICS_OK) return pst;
+  int steps = p.steps;
+  double kmean = p.kmean, kvar = p.kvar, h = p.h;
+  size_t il = p.il, n = p.n;
   out->r = malloc(n * sizeof *out->r);
   if (!out->r) return ICS_ERR_NOMEM;
   out->n = n;
@@ -231,17 +306,25 @@ ics_status ics_clt_fixed_gen(void *ctx, uint64_t step, double scale, ics_tap1d *
   return ICS_OK;
 }
 
+/* the grid of clt_run: nodes il left of the edge, n in all; 0 when it exceeds 2^24 nodes */
+static int clt_grid(double mean, double var, int nmax, double scale, size_t *il, size_t *n) {
+  double sd = sqrt(nmax * var * scale * scale);
+  double lo = fmin(0.0, nmax * mean * scale) - 14 * sd - 64 * scale;
+  double hi = fmax(0.0, nmax * mean * scale) + 14 * sd + 64 * scale;
+  if (!(ceil(-lo) + ceil(hi) <= (double)((size_t)1 << 24))) return 0;
+  *il = (size_t)ceil(-lo);
+  *n = *il + (size_t)ceil(hi);
+  return 1;
+}
+
 /* one run on a grid refined by `scale`; err[k][i] (if errs) gets the error profile at the
  * base grid's nodes i */
 static ics_status clt_run(ics_clt_gen gen, void *ctx, double mean, double var, const int *steps,
                           int nsteps, ics_comp_mode comp, double scale, size_t nb, double xb0,
                           double **errs, ics_clt_point *out) {
   int nmax = steps[nsteps - 1];
-  double sd = sqrt(nmax * var * scale * scale);
-  double lo = fmin(0.0, nmax * mean * scale) - 14 * sd - 64 * scale;
-  double hi = fmax(0.0, nmax * mean * scale) + 14 * sd + 64 * scale;
-  size_t il = (size_t)ceil(-lo), n = il + (size_t)ceil(hi);
-  if (n > ((size_t)1 << 24)) return ICS_ERR_SIZE;
+  size_t il, n;
+  if (!clt_grid(mean, var, nmax, scale, &il, &n)) return ICS_ERR_SIZE;
   double *buf = malloc(n * sizeof *buf), *tmp = malloc(n * sizeof *tmp);
   int cap = ICS_KERNEL_MAX_TAPS;
   ics_tap1d *taps = malloc((size_t)cap * sizeof *taps);
@@ -319,14 +402,54 @@ static ics_status clt_run(ics_clt_gen gen, void *ctx, double mean, double var, c
   return st;
 }
 
-ics_status ics_clt_measure(ics_clt_gen gen, void *ctx, double mean, double var, const int *steps,
-                           int nsteps, ics_comp_mode comp, int refine, ics_clt_point *out) {
-  if (!gen || !steps || !out || nsteps <= 0) return ICS_ERR_INVALID_ARG;
+static ics_status clt_check(ics_clt_gen gen, double mean, double var, const int *steps,
+                            int nsteps, int refine) {
+  if (!gen || !steps || nsteps <= 0) return ICS_ERR_INVALID_ARG;
   if (isnan(mean) || isnan(var)) return ICS_ERR_NAN;
   if (isinf(mean) || isinf(var)) return ICS_ERR_INFINITE;
   if (var < 0) return ICS_ERR_NEGATIVE_VARIANCE;
   for (int k = 0; k < nsteps; k++)
     if (steps[k] < 1 || steps[k] > 1000000 || (k && steps[k] <= steps[k - 1])) return ICS_ERR_RANGE;
+  /* every grid (base, 2x finer, the comparison nodes) must fit before anything is allocated */
+  size_t il, n;
+  int nmax = steps[nsteps - 1];
+  if (!clt_grid(mean, var, nmax, 1.0, &il, &n)) return ICS_ERR_SIZE;
+  if (refine && !clt_grid(mean, var, nmax, 2.0, &il, &n)) return ICS_ERR_SIZE;
+  return ICS_OK;
+}
+
+ics_status ics_clt_cost(ics_clt_gen gen, void *ctx, double mean, double var, const int *steps,
+                        int nsteps, ics_comp_mode comp, int refine, double *nodes, double *work) {
+  ics_status st = clt_check(gen, mean, var, steps, nsteps, refine);
+  if (st != ICS_OK) return st;
+  int nmax = steps[nsteps - 1], cap = ICS_KERNEL_MAX_TAPS;
+  ics_tap1d *taps = malloc((size_t)cap * sizeof *taps);
+  ics_tap1d *dt = malloc((size_t)(2 * (size_t)cap + 3) * sizeof *dt);
+  double w = 0, nn = 0;
+  if (!taps || !dt) st = ICS_ERR_NOMEM;
+  for (int r = 0; st == ICS_OK && r <= (refine ? 1 : 0); r++) {
+    double scale = r ? 2.0 : 1.0;
+    size_t il = 0, n = 0;
+    int nt = 0, nd = 0;
+    clt_grid(mean, var, nmax, scale, &il, &n);
+    st = gen(ctx, 0, scale, taps, cap, &nt);
+    if (st == ICS_OK) st = ics_taps1d_compensate(taps, nt, comp, dt, 2 * cap + 3, &nd, NULL);
+    w += (double)nmax * ((double)n * nd + ICS_WORK_COMP_PASSES * (double)nt);
+    if (!r) nn = (double)n;
+  }
+  free(taps);
+  free(dt);
+  if (st != ICS_OK) return st;
+  if (nodes) *nodes = nn;
+  if (work) *work = w;
+  return ICS_OK;
+}
+
+ics_status ics_clt_measure(ics_clt_gen gen, void *ctx, double mean, double var, const int *steps,
+                           int nsteps, ics_comp_mode comp, int refine, ics_clt_point *out) {
+  if (!out) return ICS_ERR_INVALID_ARG;
+  ics_status cst = clt_check(gen, mean, var, steps, nsteps, refine);
+  if (cst != ICS_OK) return cst;
   if (!refine) {
     for (int k = 0; k < nsteps; k++) out[k].disc_err = NAN;
     return clt_run(gen, ctx, mean, var, steps, nsteps, comp, 1.0, 0, 0, NULL, out);

@@ -86,6 +86,20 @@ typedef struct ics_iter1d {
 ics_status ics_shadow1d_iterate(const ics_light1d *l, double d, double d1, double e,
                                 const ics_iter1d_opts *opts, ics_iter1d *out);
 void ics_iter1d_free(ics_iter1d *it);
+/* Work model of the iterations (used by the CLI to refuse runs that would take hours):
+ * tap-updates = steps x (grid nodes x applied integer taps + ICS_WORK_COMP_PASSES x generated
+ * taps). A tap-update (one multiply-add on the grid) takes ~0.5 ns here (clt, tophat); the
+ * second term is the per-step generation, bisection-based compensation and sorting of the
+ * member's taps, measured at ~0.8 us per generated tap per step (gauss, 4096 samples: 3.2 ms a
+ * step), i.e. ~1600 tap-updates: counted as 2048. ICS_WORK_BUDGET (1e11) is about a minute. */
+#define ICS_WORK_COMP_PASSES 2048
+#define ICS_WORK_BUDGET 1e11
+/* The grid spacing h, node count and estimated work of ics_shadow1d_iterate with the same
+ * arguments, without allocating the grid; the same errors (ICS_ERR_SIZE for a grid over 2^24
+ * nodes). */
+ics_status ics_shadow1d_iterate_cost(const ics_light1d *l, double d, double d1, double e,
+                                     const ics_iter1d_opts *opts, double *h, double *nodes,
+                                     double *work);
 /* linear interpolation of the nodes (0 / 1 left / right of the grid); NaN for NaN x */
 double ics_iter1d_eval(const ics_iter1d *it, double x);
 /* the x where the interpolated shadow first reaches s in (0, 1); NaN if never */
@@ -135,6 +149,12 @@ typedef struct ics_clt_point {
  * (pixels). If refine is 0, disc_err is NaN and no finer run is made. */
 ics_status ics_clt_measure(ics_clt_gen gen, void *ctx, double mean, double var, const int *steps,
                            int nsteps, ics_comp_mode comp, int refine, ics_clt_point *out);
+
+/* Node count of the base grid and estimated work (tap-updates, see ICS_WORK_BUDGET; the 2x
+ * finer run counts too when refine is set: ~5x) of ics_clt_measure with the same arguments,
+ * without running it. Errors as ics_clt_measure (ICS_ERR_SIZE: a grid over 2^24 nodes). */
+ics_status ics_clt_cost(ics_clt_gen gen, void *ctx, double mean, double var, const int *steps,
+                        int nsteps, ics_comp_mode comp, int refine, double *nodes, double *work);
 
 /* Least-squares slope of log(err) against log(n) (the convergence rate exponent) over the
  * points with steps >= nmin; NaN with fewer than 2 points. */
