@@ -182,6 +182,13 @@ int main(void) {
           fit[0].mean[1], d, pix);
     CHECK(fit[0].cov[0] + fit[0].cov[2] <= pix * pix / 4, "sun variance %g %g > pixel^2/4",
           fit[0].cov[0], fit[0].cov[2]);
+    /* ... and not below: the fit floors a light at its pixels' footprint S (a one-pixel box,
+     * trace ~ 2 pixel^2 / 12), so the sun is a near-point light, never a singular one */
+    CHECK(fit[0].cov[0] + fit[0].cov[2] >= pix * pix / 12 &&
+              fit[0].cov[0] * fit[0].cov[2] > fit[0].cov[1] * fit[0].cov[1],
+          "sun covariance (%g %g %g) below the pixel footprint", fit[0].cov[0], fit[0].cov[1],
+          fit[0].cov[2]);
+    printf("sun: covariance trace %.3g pixel^2\n", (fit[0].cov[0] + fit[0].cov[2]) / (pix * pix));
     CHECK(fabs(fit[0].weight / 5 - 1) <= 1e-5, "sun weight %.9g", fit[0].weight);
     for (int c = 0; c < 3; c++)
       CHECK(fabs(fit[0].color[c] / sun.color[c] - 1) <= 1e-5, "sun colour %d", c);
