@@ -138,7 +138,7 @@ static void help(FILE *f) {
           "  K x n^2 <= 2^%.0f texels (the library's ICS_OCC_MAX_TEXELS);\n"
           "  memory: 8 K n^2 (two texture copies) + (n S)^2 (slicing) + the largest prefilter\n"
           "    (N-Buffers: 4 K sum_l (n + 2^l - 1)^2, about 4 K (log2 n + 5) n^2) bytes <= %d GiB;\n"
-          "  work per configuration and repetition: 6 K (n S)^2 + K n^2 (3 log2 n + 23) + 1584 R^2 K\n"
+          "  work per configuration: reps x (6 K (n S)^2 + K n^2 (3 log2 n + 23) + 1584 R^2 K)\n"
           "    operations <= 2^36 (1-2 minutes here), and for the brute force of one scene\n"
           "    reps x R^2 x (M^2 + 1) x boxes <= 2^36 (S = --supersample, R = --receivers,\n"
           "    M = --light-samples).\n"
