@@ -147,6 +147,13 @@ static int parse_light(const char *spec, ics_light1d *l) {
                     "(gauss, box, mix)\n", (int)kl, spec, spec);
     return -1;
   }
+  if (st == ICS_ERR_RANGE) {
+    fprintf(stderr, "icshadow isoline: --light '%s': %s overflows double precision (not "
+                    "finite)\n", spec,
+            !strncmp(spec, "box", 3) ? "the width HI - LO or its variance"
+                                     : "the weights' sum, the mixture's mean or its variance");
+    return -1;
+  }
   if (st != ICS_OK) {
     fprintf(stderr, "icshadow isoline: --light '%s': %s\n", spec, ics_status_str(st));
     return -1;
@@ -301,9 +308,10 @@ int cmd_isoline(int argc, char **argv) {
       return st == ICS_ERR_NOMEM ? 1 : 2;
     }
   }
-  if (isnan(x)) {
-    fprintf(stderr, "icshadow isoline: no isoline (internal error)\n");
-    return 1;
+  if (!isfinite(x)) {
+    fprintf(stderr, "icshadow isoline: the isoline position is not finite (%g): distance, d1 and "
+                    "the light's mean/variance overflow double precision together\n", x);
+    return 2;
   }
   printf("%.17g\n", x);
   return fflush(stdout) != 0 ? 1 : 0;

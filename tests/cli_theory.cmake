@@ -79,3 +79,13 @@ ics_cli_test(NAME cli_isoline_work_budget RC 2 ARGS "isoline|--light|gauss:0.3,1
 # a grid over 2^24 nodes is a usage error named as such (was "out of memory", exit 1)
 ics_cli_test(NAME cli_clt_grid_size RC 2 ARGS "clt|--kernel|dirac|--var|36|--mean|1e9|--steps|1000"
   OUT "^$" ERR "the grid for 1000 steps of mean 1000000000, variance 36 would exceed 2\\^24 nodes")
+# overflow: a box width 2e308, an isoline position -d mu = -1e400 or sqrt(d d1 var) = 1e159
+# overflowing in the clt model, NaN from inf - inf: exit 2 with a message, nothing printed
+ics_cli_test(NAME cli_isoline_box_overflow RC 2 ARGS "isoline|--light|box:-1e308,1e308|--level|0.3|--distance|1|--model|correct"
+  OUT "^$" ERR "the width HI - LO or its variance overflows")
+ics_cli_test(NAME cli_isoline_result_overflow RC 2 ARGS "isoline|--light|gauss:1e200,1|--level|0.3|--distance|1e200|--model|correct"
+  OUT "^$" ERR "the isoline position is not finite")
+ics_cli_test(NAME cli_isoline_clt_overflow RC 2 ARGS "isoline|--light|gauss:0,1e308|--level|0.3|--distance|1|--d1|1e10|--model|clt"
+  OUT "^$" ERR "the isoline position is not finite")
+ics_cli_test(NAME cli_isoline_clt_nan RC 2 ARGS "isoline|--light|gauss:1,1|--level|0.5|--distance|1e308|--d1|1e308|--model|clt"
+  OUT "^$" ERR "the isoline position is not finite")

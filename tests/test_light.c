@@ -137,6 +137,23 @@ static void test_mix(void) {
   CHECK(ics_light1d_mix(&l, 2, wn, mu, var) == ICS_ERR_INVALID_ARG, "negative weight");
 }
 
+/* derived quantities that overflow are rejected (ICS_ERR_RANGE), not returned as inf */
+static void test_overflow(void) {
+  ics_light1d l;
+  CHECK(ics_light1d_box(&l, -1e308, 1e308) == ICS_ERR_RANGE, "box width 2e308");
+  CHECK(ics_light1d_box(&l, 0, 1.5e154) == ICS_ERR_RANGE, "box variance (1.5e154)^2 / 12");
+  CHECK(ics_light1d_box(&l, -1e153, 1e153) == ICS_OK && isfinite(ics_light1d_var(&l)),
+        "box 2e153 wide is fine");
+  double w[2] = {1e308, 1e308}, mu[2] = {0, 1}, var[2] = {1, 1};
+  CHECK(ics_light1d_mix(&l, 2, w, mu, var) == ICS_ERR_RANGE, "weights' sum 2e308");
+  double w1[2] = {1, 1}, mu1[2] = {1e308, -1e308};
+  CHECK(ics_light1d_mix(&l, 2, w1, mu1, var) == ICS_ERR_RANGE, "mixture variance 1e616");
+  double w0[2] = {0, 0};
+  CHECK(ics_light1d_mix(&l, 2, w0, mu, var) == ICS_ERR_INVALID_ARG, "weights sum to 0");
+  double x[2] = {-1e308, 1e308}, p[2] = {1, 1};
+  CHECK(ics_light1d_tab(&l, 2, x, p) != ICS_OK, "table 2e308 wide");
+}
+
 static void test_tab(void) {
   /* triangular density a = 0, c = 1, b = 3: mean 4/3, var 7/18,
    * skewness sqrt2 (a+b-2c)(2a-b-c)(a-2b+c) / (5 (7)^1.5) = sqrt2 * 20 / (5 * 7^1.5),
@@ -283,6 +300,7 @@ static void test_errno(void) {
 }
 
 int main(void) {
+  test_overflow();
   test_normal();
   test_gauss();
   test_box();

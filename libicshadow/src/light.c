@@ -264,6 +264,10 @@ ics_status ics_light1d_box(ics_light1d *l, double lo, double hi) {
   l->mean_ = 0.5 * lo + 0.5 * hi;
   double w = hi - lo;
   l->var_ = w * w / 12.0;
+  if (!isfinite(w) || !isfinite(l->var_)) { /* hi - lo or its square overflows */
+    l1_zero(l);
+    return ICS_ERR_RANGE;
+  }
   return ICS_OK;
 }
 
@@ -280,7 +284,8 @@ ics_status ics_light1d_mix(ics_light1d *l, int n, const double *w, const double 
     if (var[i] == 0) return ICS_ERR_RANGE;
     sw += w[i];
   }
-  if (!(sw > 0) || isinf(sw)) return ICS_ERR_INVALID_ARG;
+  if (!(sw > 0)) return ICS_ERR_INVALID_ARG;
+  if (isinf(sw)) return ICS_ERR_RANGE; /* the weights' sum overflows */
   l1_zero(l);
   l->kind = ICS_LIGHT1D_MIX;
   l->n = n;
@@ -295,6 +300,10 @@ ics_status ics_light1d_mix(ics_light1d *l, int n, const double *w, const double 
   for (int i = 0; i < n; i++) v += l->w[i] * (var[i] + (mu[i] - m) * (mu[i] - m));
   l->mean_ = m;
   l->var_ = v;
+  if (!isfinite(m) || !isfinite(v)) { /* the mixture's mean or variance overflows */
+    l1_zero(l);
+    return ICS_ERR_RANGE;
+  }
   return ICS_OK;
 }
 
@@ -347,6 +356,11 @@ ics_status ics_light1d_tab(ics_light1d *l, int n, const double *x, const double 
     l->c[i + 1] = l->c[i] + 0.5 * (l->p[i] + l->p[i + 1]) * (x[i + 1] - x[i]);
   l->mean_ = tab_moment(l, 1, 0.0);
   l->var_ = tab_moment(l, 2, l->mean_);
+  if (!isfinite(l->mean_) || !isfinite(l->var_)) { /* moments overflow */
+    ics_light1d_free(l);
+    l1_zero(l);
+    return ICS_ERR_RANGE;
+  }
   return ICS_OK;
 }
 

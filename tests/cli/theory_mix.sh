@@ -26,5 +26,8 @@ run 2 '' 'component variance must be > 0 at position 15' isoline --light 'mix:1,
 run 2 '' 'negative weight at position 11' isoline --light 'mix:1,0,1;-1,2,1' --level 0.5 --distance 1 --model correct
 run 2 '' 'weights of .* sum to zero' isoline --light 'mix:0,0,1;0,2,1' --level 0.5 --distance 1 --model correct
 run 2 '' 'expected 3 comma-separated numbers at position 11' isoline --light 'mix:1,0,1;1' --level 0.5 --distance 1 --model correct
+# overflow: the weights' sum (2e308) and the variance ((1e308 - 0)^2) are not finite doubles
+run 2 '' "weights' sum, the mixture's mean or its variance overflows" isoline --light 'mix:1e308,0,1;1e308,1,1' --level 0.3 --distance 1 --model correct
+run 2 '' "weights' sum, the mixture's mean or its variance overflows" isoline --light 'mix:1,1e308,1;1,-1e308,1' --level 0.3 --distance 1 --model correct
 [ "$fail" -eq 0 ] && echo "theory_mix: all passed"
 exit $fail

@@ -96,9 +96,14 @@ typedef struct ics_light1d {
   double mean_, var_; /* cached moments */
 } ics_light1d;
 
+/* The constructors reject NaN/inf inputs (ICS_ERR_NAN / ICS_ERR_INFINITE) and inputs whose
+ * derived quantities overflow (ICS_ERR_RANGE: a box width hi - lo or its variance, a mixture's
+ * weight sum, mean or variance, a table's mean or variance not finite, e.g. box:-1e308,1e308);
+ * on an error *l holds no light. */
 ics_status ics_light1d_gauss(ics_light1d *l, double mean, double var);
 ics_status ics_light1d_box(ics_light1d *l, double lo, double hi);
-/* n in 1..ICS_LIGHT1D_MAX_MIX components; weights >= 0 with a positive sum; var > 0. */
+/* n in 1..ICS_LIGHT1D_MAX_MIX components; weights >= 0 with a positive sum (ICS_ERR_INVALID_ARG
+ * when it is 0); var > 0. */
 ics_status ics_light1d_mix(ics_light1d *l, int n, const double *w, const double *mu,
                            const double *var);
 /* n >= 2 strictly increasing nodes, densities >= 0 with positive integral (copied). */
