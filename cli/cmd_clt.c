@@ -205,6 +205,13 @@ int cmd_clt(int argc, char **argv) {
   }
   ics_clt_point pts[MAX_STEPS_LIST];
   if (st == ICS_OK) st = ics_clt_measure(gen, ctx, mean, var, steps, nsteps, cm, refine, pts);
+  if (st == ICS_ERR_RANGE && gen == ics_clt_member_gen && k.member == ICS_KERNEL_TOPHAT) {
+    double f = mean - floor(mean);
+    fprintf(stderr, "icshadow clt: --var %.17g is below %.17g = f(1 - f), the least variance of an "
+                    "exact top-hat with mean %.17g (f = frac(mean) = %.17g): give a larger --var\n",
+            var, f * (1 - f), mean, f);
+    return 2;
+  }
   if (st != ICS_OK) {
     fprintf(stderr, "icshadow clt: %s\n", ics_status_str(st));
     return (st == ICS_ERR_NOMEM) ? 1 : 2;

@@ -283,6 +283,23 @@ static int iterate_main(int argc, char **argv, int **steps_out) {
   /* the first step's taps validate the member parameters (e.g. an impossible exact top-hat) */
   int nt = 0;
   ics_status st = ics_schedule1d_taps(&sched, 0, taps, cap, &nt);
+  int has_tophat = 0;
+  for (int j = 0; j < nmembers; j++) has_tophat |= members[j] == ICS_KERNEL_TOPHAT;
+  double fm = mean - floor(mean);
+  if (st == ICS_ERR_RANGE && has_tophat && param == 0 && var < fm * (1 - fm)) {
+    ERR("kernel taps: argument out of range: --var %.17g is below %.17g = f(1 - f), the least "
+        "variance of an exact top-hat with mean "
+        "%.17g (f = frac(mean) = %.17g): give a larger --var or --param 1 (raw box)", var,
+        fm * (1 - fm), mean, fm);
+    free(taps);
+    return 2;
+  }
+  if (st == ICS_ERR_RANGE && param > 0) {
+    ERR("kernel taps: --param %.17g gives no finite taps for variance %.17g (argument out of "
+        "range; give a moderate --param, or the default 0)", param, var);
+    free(taps);
+    return 2;
+  }
   if (st != ICS_OK) {
     ERR("kernel taps: %s (variance %.17g too small for this member and mean?)",
         ics_status_str(st), var);
@@ -299,8 +316,13 @@ static int iterate_main(int argc, char **argv, int **steps_out) {
     double sd = sqrt((double)nmax * var + 1.0 / 12.0);
     double half = fabs((double)nmax * mean) + 10.0 * sd + reach + 8.0;
     if (half > MAX_WIDTH / 2 - 1) {
-      ERR("the automatic grid would exceed %d pixels (give a smaller --steps or --var)",
-          MAX_WIDTH);
+      if (!(reach <= 0.5 * half))
+        ERR("the kernel's taps reach %.3g px (--param %.17g, variance %.17g): the automatic grid "
+            "would exceed %d pixels (give a smaller --param, or the default 0)", reach, param, var,
+            MAX_WIDTH);
+      else
+        ERR("the automatic grid would exceed %d pixels (give a smaller --steps or --var)",
+            MAX_WIDTH);
       return 2;
     }
     width = 2 * (int)ceil(half);

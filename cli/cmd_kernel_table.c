@@ -114,6 +114,13 @@ static int table1d(double var, double mean, int iterations, unsigned long long s
     ks[r].param = rows[r].param;
     ks[r].seed = (uint64_t)seed;
     int mt = st == ICS_OK ? ics_kernel1d_max_taps(&ks[r]) : 0;
+    double fm = mean - floor(mean);
+    if (rows[r].member == ICS_KERNEL_TOPHAT && rows[r].param == 0 && var < fm * (1 - fm)) {
+      ERR("--var %.17g is below %.17g = f(1 - f), the least variance of an exact top-hat with "
+          "mean %.17g (f = frac(mean) = %.17g): give a larger --var", var, fm * (1 - fm), mean,
+          fm);
+      return 2;
+    }
     if (st != ICS_OK || mt <= 0) {
       ERR("%s with mean %.17g, variance %.17g: %s", rows[r].label, mean, var,
           ics_status_str(st != ICS_OK ? st : ICS_ERR_RANGE));

@@ -73,3 +73,15 @@ ics_cli_test(NAME cli_iterate_work_budget_range RC 2 ARGS "iterate|--kernel|dira
 # 100001 profiles of 1000 lines: ~7e9 bytes
 ics_cli_test(NAME cli_iterate_output_budget RC 2 ARGS "iterate|--kernel|dirac|--var|1|--steps|0:100000:1|--width|1000"
   OUT "^$" ERR "output would be about [0-9.e+]+ bytes \\(100001 profiles of 1000 lines\\) and exceed the budget of 2e\\+09 bytes")
+# messages that name the problem: the top-hat's least variance, a --param without finite taps,
+# a --param whose taps alone exceed the automatic grid
+ics_cli_test(NAME cli_iterate_tophat_min_var RC 2 ARGS "iterate|--kernel|tophat|--var|0.1|--mean|0.5|--steps|4"
+  OUT "^$" ERR "is below 0.25 = f\\(1 - f\\), the least variance of an exact top-hat with mean 0.5")
+ics_cli_test(NAME cli_iterate_param_tiny RC 2 ARGS "iterate|--kernel|gauss|--param|1e-300|--var|1|--steps|1"
+  OUT "^$" ERR "--param 1e-300 gives no finite taps")
+ics_cli_test(NAME cli_iterate_param_huge RC 2 ARGS "iterate|--kernel|stochastic-dirac|--param|1e300|--var|1|--steps|1"
+  OUT "^$" ERR "the kernel's taps reach [0-9.e+]+ px \\(--param 1[.0-9]*e\\+300")
+ics_cli_test(NAME cli_kernel_table_tophat_min_var RC 2 ARGS "kernel-table|--var|0.1|--mean|0.5"
+  OUT "^$" ERR "is below 0.25 = f\\(1 - f\\), the least variance of an exact top-hat")
+ics_cli_test(NAME cli_kernel_table_tiny_var RC 0 ARGS "kernel-table|--var|1e-300"
+  OUT "\ntophat,0,1e-300,")

@@ -89,3 +89,9 @@ ics_cli_test(NAME cli_isoline_clt_overflow RC 2 ARGS "isoline|--light|gauss:0,1e
   OUT "^$" ERR "the isoline position is not finite")
 ics_cli_test(NAME cli_isoline_clt_nan RC 2 ARGS "isoline|--light|gauss:1,1|--level|0.5|--distance|1e308|--d1|1e308|--model|clt"
   OUT "^$" ERR "the isoline position is not finite")
+# exact top-hat below its least variance f(1 - f) (f = frac(0.5): 0.25) is named as such
+ics_cli_test(NAME cli_clt_tophat_min_var RC 2 ARGS "clt|--kernel|tophat|--var|0.1|--mean|0.5|--steps|4"
+  OUT "^$" ERR "--var 0.10000000000000001 is below 0.25 = f\\(1 - f\\), the least variance of an exact top-hat")
+# a tiny variance is legal: the top-hat becomes its W -> 0 limit (one tap at mean 0)
+ics_cli_test(NAME cli_clt_tiny_var RC 0 ARGS "clt|--kernel|tophat|--var|1e-300|--steps|4|--no-refine"
+  OUT "^steps,sup_error,disc_error,taps_x_steps,seconds\n4,")

@@ -154,6 +154,27 @@ static void test_tophat(void) {
 }
 
 /* ---------------------------------------------------------------- stochastic Dirac */
+/* tiny variances: the top-hat's box narrower than 1e-6 px is applied as its W -> 0 limit (the
+ * weights' cancellation would otherwise give no taps at all); the Gaussian member with a
+ * truncation so small that its scale overflows is rejected instead of returning inf taps */
+static void test_tiny(void) {
+  ics_kernel1d k;
+  ics_tap1d t[16];
+  int n = 0;
+  double w, m, v;
+  CHECK(ics_kernel1d_init(&k, ICS_KERNEL_TOPHAT, 0, 1e-300) == ICS_OK, "tophat 1e-300 init");
+  CHECK(ics_kernel1d_taps(&k, 0, t, 16, &n) == ICS_OK && n >= 1, "tophat 1e-300 taps (n = %d)", n);
+  ics_taps1d_moments(t, n, &w, &m, &v);
+  CHECK(w == 1 && m == 0 && fabs(v - 1e-300) <= 1e-13, "tophat 1e-300: w %g m %g v %g", w, m, v);
+  CHECK(ics_kernel1d_init(&k, ICS_KERNEL_TOPHAT, 0.25, 0.1875 + 1e-14) == ICS_OK, "tophat f(1-f)");
+  CHECK(ics_kernel1d_taps(&k, 0, t, 16, &n) == ICS_OK, "tophat at f(1-f) + 1e-14");
+  ics_taps1d_moments(t, n, &w, &m, &v);
+  CHECK(fabs(m - 0.25) <= 1e-15 && fabs(v - 0.1875) <= 1e-13, "tophat near f(1-f): m %g v %.17g", m, v);
+  CHECK(ics_kernel1d_init(&k, ICS_KERNEL_GAUSS, 0, 1) == ICS_OK, "gauss init");
+  k.param = 1e-300;
+  CHECK(ics_kernel1d_taps(&k, 0, t, 16, &n) == ICS_ERR_RANGE, "gauss T = 1e-300: no inf taps");
+}
+
 static void test_stoch_dirac(void) {
   const double cases[][3] = {{0, 30, 1}, {0.3, 1, 1}, {-0.5, 0.1, 1}, {2, 4, 0.5}};
   for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
@@ -411,6 +432,7 @@ static void print_table1(void) {
 }
 
 int main(void) {
+  test_tiny();
   print_table1();
   test_deterministic1d();
   test_tophat();

@@ -235,7 +235,10 @@ static double hat_cdf(double u) {
  * linearly interpolated data; taps at base + j. Returns the count. */
 static int tophat_grid(double base, double m, double W, ics_tap1d *t) {
   int n = 0;
-  if (W == 0) {
+  /* W -> 0 limit: the weights (hat_cdf(b - j) - hat_cdf(a - j)) / W lose all precision to
+   * cancellation for tiny W (all 0 below ~1e-16); under 1e-6 px the box is applied as its limit,
+   * whose variance differs by W^2/12 < 1e-13 px^2 */
+  if (W < 1e-6) {
     double f = m - floor(m);
     double i = floor(m);
     if (1 - f > 0) t[n].x = base + i, t[n].w = 1 - f, n++;
@@ -397,6 +400,8 @@ ics_status ics_kernel1d_taps(const ics_kernel1d *k, uint64_t iter, ics_tap1d *ta
     gauss_std(N, T, z, z + N);
     for (int j = 0; j < N; j++) taps[j].x = mu + sd * z[j], taps[j].w = z[N + j];
     free(z);
+    for (int j = 0; j < N; j++) /* a truncation T so small that the scale overflows */
+      if (!isfinite(taps[j].x) || !isfinite(taps[j].w)) return ICS_ERR_RANGE;
     n = N;
     break;
   }

@@ -15,7 +15,9 @@
  *                    solved so this equals sigma^2 exactly (needs sigma^2 >= f_mu (1 - f_mu),
  *                    f_mu = frac(mu), else ICS_ERR_RANGE); param = 1: the raw box
  *                    W = sqrt(12) sigma, variance sigma^2 + E_box[f(1 - f)] (NOT in the class;
- *                    for comparison). At most ceil(W) + 3 taps.
+ *                    for comparison). At most ceil(W) + 3 taps. A box narrower than 1e-6 px
+ *                    is applied as its W -> 0 limit (linear weights at floor/ceil of mu;
+ *                    variance off by < 1e-13 px^2), e.g. for sigma^2 = 1e-300.
  *   STOCH_DIRAC  1D  per iteration i, u ~ U(-h, h) from (seed, i): taps mu - (rho + u),
  *                    mu + (rho + u), weights 1/2, rho = sqrt(sigma^2 - h^2/3) with
  *                    h = min(param, sqrt(3) sigma) (param = jitter half-width, default 1 px:
