@@ -122,7 +122,7 @@ ics_status ics_clt_member_gen(void *ctx /* const ics_kernel1d* */, uint64_t step
                               ics_tap1d *taps, int cap, int *ntaps);
 
 /* ICS_CLT_SKEW_TAPS taps of a discretised exponential (weights exp(-j/4), j = 0..15) moved and
- * scaled to the class (mean, var): a skewed (skewness ~ 1.7), non-symmetric class member. */
+ * scaled to the class (mean, var): a skewed (skewness 1.286), non-symmetric class member. */
 #define ICS_CLT_SKEW_TAPS 16
 ics_status ics_clt_skew_taps(double mean, double var, ics_tap1d taps[ICS_CLT_SKEW_TAPS]);
 typedef struct ics_clt_fixed {
