@@ -271,6 +271,13 @@ static void test_mapping(void) {
   /* cov of (1, 0.25) at 45 degrees: cxx = cyy = 0.625, cxy = 0.375; times d1 e = 0.1 */
   CHECK(rel(c2[0], 0.0625) < 1e-15 && rel(c2[1], 0.0375) < 1e-15 && rel(c2[2], 0.0625) < 1e-15,
         "cov_k %.17g %.17g %.17g", c2[0], c2[1], c2[2]);
+  {
+    ics_light B = L; /* {1, 5, 1}: eigenvalues 6 and -4, not a covariance */
+    B.cov[0] = 1, B.cov[1] = 5, B.cov[2] = 1;
+    CHECK(ics_kernel_map_2d(&B, 0.05, 2.0, m2, c2) == ICS_ERR_NEGATIVE_VARIANCE, "non-PSD {1, 5, 1}");
+    B.cov[1] = 1; /* {1, 1, 1}: singular, PSD */
+    CHECK(ics_kernel_map_2d(&B, 0.05, 2.0, m2, c2) == ICS_OK, "singular PSD {1, 1, 1}");
+  }
 }
 
 /* DESIGN contract: math functions never touch errno (glibc's erfc and exp set ERANGE on

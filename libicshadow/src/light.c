@@ -157,6 +157,8 @@ ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, double mea
   for (int i = 0; i < 3; i++)
     if ((s = check_finite(l->cov[i])) != ICS_OK) return s;
   if (l->cov[0] < 0 || l->cov[2] < 0) return ICS_ERR_NEGATIVE_VARIANCE;
+  double vx, vy, ang; /* positive semidefinite (ics_cov_to_eig's check, -8 eps trace) */
+  if (ics_cov_to_eig(l->cov, &vx, &vy, &ang) != ICS_OK) return ICS_ERR_NEGATIVE_VARIANCE;
   if ((s = check_e_d1(e, d1)) != ICS_OK) return s;
   mean_k[0] = -e * l->mean[0];
   mean_k[1] = -e * l->mean[1];

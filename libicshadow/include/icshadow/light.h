@@ -72,7 +72,8 @@ ics_status ics_light_from_tilt(ics_light *out, double wx_deg, double wy_deg, dou
  * ICS_ERR_NEGATIVE_VARIANCE for var_l < 0; NaN/inf rejected. */
 ics_status ics_kernel_map_1d(double mu_l, double var_l, double e, double d1, double *mu_k,
                              double *var_k);
-/* Eq. 7/15 in 2D: mean_k = -e mean_l, cov_k = d1 e cov_l (cov as cxx, cxy, cyy). */
+/* Eq. 7/15 in 2D: mean_k = -e mean_l, cov_k = d1 e cov_l (cov as cxx, cxy, cyy).
+ * ICS_ERR_NEGATIVE_VARIANCE unless cov_l is positive semidefinite (ics_cov_to_eig's check). */
 ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, double mean_k[2],
                              double cov_k[3]);
 
