@@ -24,7 +24,7 @@ static void help(FILE *f) {
           "taps_x_steps = integer taps applied in total (cost); seconds = CPU time so far.\n\n"
           "options:\n"
           "  --kernel K   dirac | tophat | stochastic-dirac | gauss | skew (required). skew: a\n"
-          "               discretised exponential (16 taps, skewness ~1.7) moved/scaled to the class\n"
+          "               discretised exponential (16 taps, skewness 1.286) moved/scaled to the class\n"
           "  --var V      class variance per step in pixels^2, finite and > 0 (required)\n"
           "  --steps L    comma-separated, strictly increasing step counts in 1..1000000 (required;\n"
           "               at most %d)\n"
@@ -202,6 +202,26 @@ int cmd_clt(int argc, char **argv) {
             nodes, steps[nsteps - 1], refine ? ", x5 for the 2x finer run" : "", ICS_WORK_BUDGET,
             refine ? ", or --no-refine" : "");
     return 2;
+  }
+  if (st == ICS_OK && cm == ICS_COMP_NONNEG) { /* can non-negative integer taps reach the class? */
+    ics_tap1d t0[ICS_CLT_SKEW_TAPS + 1];
+    ics_tap1d *tg = gen == ics_clt_fixed_gen ? t0 : malloc(sizeof *tg * ICS_KERNEL_MAX_TAPS);
+    ics_tap1d *td = malloc(sizeof *td * (2 * (size_t)ICS_KERNEL_MAX_TAPS + 3));
+    int nt = 0, nd = 0;
+    double resid = 0;
+    if (tg && td && gen(ctx, 0, 1.0, tg, gen == ics_clt_fixed_gen ? ICS_CLT_SKEW_TAPS + 1
+                                                                 : ICS_KERNEL_MAX_TAPS, &nt) == ICS_OK &&
+        ics_taps1d_compensate(tg, nt, cm, td, 2 * ICS_KERNEL_MAX_TAPS + 3, &nd, &resid) == ICS_OK &&
+        resid > 1e-12 * fmax(var, 1e-300)) {
+      double f = mean - floor(mean);
+      fprintf(stderr, "icshadow clt: warning: the class (mean %.17g, variance %.17g) cannot be "
+                      "reached by non-negative integer taps (least variance f(1 - f) = %.17g): each "
+                      "step adds a compensation residual of %.6g px^2, so the error against the "
+                      "class Gaussian will not go to 0 (use --comp signed or a larger --var)\n",
+              mean, var, f * (1 - f), resid);
+    }
+    if (tg != t0) free(tg);
+    free(td);
   }
   ics_clt_point pts[MAX_STEPS_LIST];
   if (st == ICS_OK) st = ics_clt_measure(gen, ctx, mean, var, steps, nsteps, cm, refine, pts);

@@ -95,3 +95,7 @@ ics_cli_test(NAME cli_clt_tophat_min_var RC 2 ARGS "clt|--kernel|tophat|--var|0.
 # a tiny variance is legal: the top-hat becomes its W -> 0 limit (one tap at mean 0)
 ics_cli_test(NAME cli_clt_tiny_var RC 0 ARGS "clt|--kernel|tophat|--var|1e-300|--steps|4|--no-refine"
   OUT "^steps,sup_error,disc_error,taps_x_steps,seconds\n4,")
+# a class below f(1 - f) (Dirac, variance 0.1, mean 0.5: least 0.25) cannot be reached with
+# non-negative integer taps: clt warns with the residual 0.25 - 0.1 = 0.15 px^2 per step
+ics_cli_test(NAME cli_clt_unreachable RC 0 ARGS "clt|--kernel|dirac|--var|0.1|--mean|0.5|--steps|4,16|--no-refine"
+  OUT "^steps,sup_error" ERR "cannot be reached by non-negative integer taps \\(least variance f\\(1 - f\\) = 0.25\\): each step adds a compensation residual of 0.15 px\\^2")
