@@ -30,7 +30,7 @@ static void help(FILE *f) {
   fprintf(f,
           "usage: icshadow iterate --kernel K[,K2,...] --var V --steps N[,N2,...] [--mean M]\n"
           "                        [--samples S] [--param P] [--seed SEED] [--width W]\n"
-          "                        [--compensate none|nonneg|signed]\n"
+          "                        [--compensate none|nonneg|signed|integer]\n"
           "Iterates a Heaviside edge H(x) (0 for x < 0, 1 for x > 0) with a 1D kernel of the\n"
           "equivalence class (mean M, variance V) in pixels (Patel et al. 2013, Eq. 5, Fig. 3)\n"
           "and prints the profile after each requested step count as CSV:\n"
@@ -52,7 +52,10 @@ static void help(FILE *f) {
           "  --width W    grid size in pixels, even, 2..%d (default: wide enough for 10\n"
           "               standard deviations plus the kernel reach on each side)\n"
           "  --compensate none (default): off-grid taps are linearly interpolated, adding\n"
-          "               variance; nonneg / signed: integer taps with the exact moments\n"
+          "               variance; nonneg / signed: integer taps with the exact moments;\n"
+          "               integer: each step shifts by round((i+1) M) - round(i M) whole\n"
+          "               pixels (the fractional mean carried) with the variance exact: a\n"
+          "               zero-variance (hard) shadow stays hard, at most 1/2 px off\n"
           "Budgets: runs whose estimated work (steps x width x applied taps, plus the per-step\n"
           "cost of generating and compensating the member's taps) exceeds %.0e tap-updates\n"
           "(about a minute), or whose output would exceed %.0e bytes (~%.0f bytes a line), are\n"
@@ -246,8 +249,10 @@ static int iterate_main(int argc, char **argv, int **steps_out) {
         comp = ICS_COMP_NONNEG;
       else if (!strcmp(val, "signed"))
         comp = ICS_COMP_SIGNED;
+      else if (!strcmp(val, "integer"))
+        comp = ICS_COMP_INTEGER;
       else {
-        ERR("--compensate: expected none, nonneg or signed, got '%s'", val);
+        ERR("--compensate: expected none, nonneg or signed (or integer), got '%s'", val);
         bad = 1;
       }
       break;

@@ -85,3 +85,7 @@ ics_cli_test(NAME cli_kernel_table_tophat_min_var RC 2 ARGS "kernel-table|--var|
   OUT "^$" ERR "is below 0.25 = f\\(1 - f\\), the least variance of an exact top-hat")
 ics_cli_test(NAME cli_kernel_table_tiny_var RC 0 ARGS "kernel-table|--var|1e-300"
   OUT "\ntophat,0,1e-300,")
+# --compensate integer: zero variance, mean 0.3 px: 10 steps shift by round(3.0) = 3 whole pixels
+# and the edge stays hard (0 at x = 2.5, 1 at x = 3.5; nothing in between)
+ics_cli_test(NAME cli_iterate_integer_shift RC 0 ARGS "iterate|--kernel|dirac|--var|0|--mean|0.3|--steps|10|--width|8|--compensate|integer"
+  OUT "^steps,x,value,gauss_cdf\n10,-3\\.5,0,${num}\n10,-2\\.5,0,${num}\n10,-1\\.5,0,${num}\n10,-0\\.5,0,${num}\n10,0\\.5,0,${num}\n10,1\\.5,0,${num}\n10,2\\.5,0,${num}\n10,3\\.5,1,${num}\n$")

@@ -404,6 +404,70 @@ static void test_compensation(void) {
  * Gaussian as a single member; compensated, the variance is exactly n sigma^2. */
 static double ncdf(double z) { return 0.5 * erfc(-z / sqrt(2.0)); }
 
+/* ICS_COMP_INTEGER (the integer-shift schedule). Derived expectations: step i shifts by
+ * round((i+1) mu) - round(i mu) whole pixels, so after n steps from step 0 the total shift is
+ * round(n mu) (telescoping), |round(n mu) - n mu| <= 1/2, and with an integer mean the class
+ * variance is met exactly by non-negative integer taps. */
+static void test_integer_shift(void) {
+  enum { N = 512 };
+  static double buf[N];
+  ics_conv_opts o = ics_conv_opts_default();
+  o.boundary = ICS_BOUNDARY_CONSTANT;
+  o.compensate = ICS_COMP_INTEGER;
+  /* zero variance, mean 0.3 px (Dirac class): an impulse stays ONE pixel (variance exactly 0)
+   * at round(0.3 n), for every n = 1..200; NONNEG would add 0.21 px^2 per step */
+  ics_kernel1d k;
+  CHECK(ics_kernel1d_init(&k, ICS_KERNEL_DIRAC, 0.3, 0) == ICS_OK, "dirac 0.3, 0");
+  ics_schedule1d sch = {&k, 1};
+  for (int i = 0; i < N; i++) buf[i] = 0;
+  buf[100] = 1;
+  double worst_pos = 0, worst_var = 0;
+  for (int n = 1; n <= 200; n++) {
+    CHECK(ics_conv1d_run(buf, N, &sch, (uint64_t)(n - 1), 1, &o, NULL) == ICS_OK, "run %d", n);
+    double w = 0, m = 0, v = 0;
+    for (int i = 0; i < N; i++) w += buf[i], m += buf[i] * (i - 100);
+    m /= w;
+    for (int i = 0; i < N; i++) v += buf[i] * (i - 100 - m) * (i - 100 - m);
+    v /= w;
+    worst_pos = fmax(worst_pos, fabs(m - 0.3 * n));
+    worst_var = fmax(worst_var, v);
+    if (m != floor(0.3 * n + 0.5) || v != 0 || w != 1) {
+      CHECK(0, "integer shift, n = %d: mean %.17g (want %g), var %g, weight %.17g", n, m,
+            floor(0.3 * n + 0.5), v, w);
+      break;
+    }
+  }
+  CHECK(worst_pos <= 0.5 && worst_var == 0, "hard shadow: position error %g, variance %g",
+        worst_pos, worst_var);
+  printf("  integer shift, sigma^2 = 0, mu = 0.3, n = 1..200: variance %g, position error <= %g px\n",
+         worst_var, worst_pos);
+  /* a Heaviside edge stays a hard 0/1 edge after 100 steps */
+  for (int i = 0; i < N; i++) buf[i] = i >= 100 ? 1.0 : 0.0;
+  o.boundary = ICS_BOUNDARY_CLAMP;
+  CHECK(ics_conv1d_run(buf, N, &sch, 0, 100, &o, NULL) == ICS_OK, "edge run");
+  int hard = 1;
+  for (int i = 0; i < N; i++) hard &= (buf[i] == 0.0 || buf[i] == 1.0) && (buf[i] == 1.0) == (i >= 130);
+  CHECK(hard, "edge after 100 steps of 0.3 px: hard at 130");
+  /* variance > 0: class (0.3, 2): impulse variance 2 n exactly (1e-12 relative), mean round(0.3 n) */
+  CHECK(ics_kernel1d_init(&k, ICS_KERNEL_TOPHAT, 0.3, 2.0) == ICS_OK, "tophat 0.3, 2");
+  o.boundary = ICS_BOUNDARY_CONSTANT;
+  for (int i = 0; i < N; i++) buf[i] = 0;
+  buf[100] = 1;
+  ics_conv_stats st;
+  CHECK(ics_conv1d_run(buf, N, &sch, 0, 50, &o, &st) == ICS_OK, "tophat run");
+  double w = 0, m = 0, v = 0;
+  for (int i = 0; i < N; i++) w += buf[i], m += buf[i] * (i - 100);
+  m /= w;
+  for (int i = 0; i < N; i++) v += buf[i] * (i - 100 - m) * (i - 100 - m);
+  v /= w;
+  CHECK(fabs(m - 15) <= 1e-9 && fabs(v / 100 - 1) <= 1e-12, "tophat integer: mean %.17g var %.17g", m, v);
+  CHECK(fabs(st.residual[0]) <= 1e-12, "residual %g", st.residual[0]);
+  /* 2D: not supported */
+  float img[16] = {0}, out[16];
+  ics_tap2d t2 = {0.3, 0, 1};
+  CHECK(ics_conv2d_step(img, out, 4, 4, &t2, 1, &o) == ICS_ERR_UNSUPPORTED, "2D integer mode");
+}
+
 static void test_mixed(void) {
   enum { N = 500, X0 = 250, STEPS = 100 };
   static double b[N];
@@ -510,6 +574,7 @@ static void test_errors(void) {
 }
 
 int main(void) {
+  test_integer_shift();
   test_binomial();
   test_moments_add();
   test_linear_shift_boundary();

@@ -418,11 +418,40 @@ ics_status ics_taps2d_compensate(const ics_tap2d *in, int n, ics_comp_mode mode,
 }
 
 /* ---------------------------------------------------------------- engine */
+/* ICS_COMP_INTEGER: the taps of step `step` moved so that their mean is the whole-pixel shift
+ * round((step + 1) m) - round(step m) (m = their mean; round half up), into out[0 .. n-1] */
+static ics_status integer_shift1d(const ics_tap1d *in, int n, uint64_t step, ics_tap1d *out) {
+  double W, m, V;
+  ics_taps1d_moments(in, n, &W, &m, &V);
+  if (!(W > 0)) return ICS_ERR_RANGE;
+  double i = (double)step;
+  double shift = floor((i + 1) * m + 0.5) - floor(i * m + 0.5);
+  for (int j = 0; j < n; j++) out[j] = (ics_tap1d){in[j].x - m + shift, in[j].w};
+  return ICS_OK;
+}
+
 static ics_status prepare1d(const ics_tap1d *taps, int ntaps, const ics_conv_opts *o,
-                            ics_tap1d **out, int *nout, double *resid) {
-  ics_tap1d *t = malloc(sizeof *t * (2 * (size_t)(ntaps > 0 ? ntaps : 1) + 3));
+                            uint64_t step, ics_tap1d **out, int *nout, double *resid) {
+  size_t cap = 2 * (size_t)(ntaps > 0 ? ntaps : 1) + 3;
+  ics_tap1d *t = malloc(sizeof *t * cap);
   if (!t) return ICS_ERR_NOMEM;
-  ics_status st = ics_taps1d_compensate(taps, ntaps, o->compensate, t, 2 * ntaps + 3, nout, resid);
+  ics_comp_mode mode = o->compensate;
+  ics_tap1d *sh = NULL;
+  if (mode == ICS_COMP_INTEGER) {
+    ics_status cst = check_taps1d(taps, ntaps);
+    sh = cst == ICS_OK ? malloc(sizeof *sh * (size_t)ntaps) : NULL;
+    if (cst == ICS_OK && !sh) cst = ICS_ERR_NOMEM;
+    if (cst == ICS_OK) cst = integer_shift1d(taps, ntaps, step, sh);
+    if (cst != ICS_OK) {
+      free(sh);
+      free(t);
+      return cst;
+    }
+    taps = sh;
+    mode = ICS_COMP_NONNEG; /* integer mean: f(1 - f) = 0, so the variance is always exact */
+  }
+  ics_status st = ics_taps1d_compensate(taps, ntaps, mode, t, (int)cap, nout, resid);
+  free(sh);
   if (st != ICS_OK) {
     free(t);
     return st;
@@ -436,7 +465,7 @@ static ics_status check_opts(const ics_conv_opts *o) {
     return ICS_ERR_RANGE;
   if (isnan(o->constant)) return ICS_ERR_NAN;
   if (o->compensate != ICS_COMP_NONE && o->compensate != ICS_COMP_NONNEG &&
-      o->compensate != ICS_COMP_SIGNED)
+      o->compensate != ICS_COMP_SIGNED && o->compensate != ICS_COMP_INTEGER)
     return ICS_ERR_RANGE;
   return ICS_OK;
 }
@@ -470,7 +499,7 @@ ics_status ics_conv1d_step(const double *in, double *out, size_t n, const ics_ta
   if (st != ICS_OK) return st;
   ics_tap1d *t;
   int nt;
-  st = prepare1d(taps, ntaps, &o, &t, &nt, NULL);
+  st = prepare1d(taps, ntaps, &o, 0, &t, &nt, NULL);
   if (st != ICS_OK) return st;
   apply1d(in, out, n, t, nt, &o);
   free(t);
@@ -532,6 +561,7 @@ ics_status ics_conv2d_step(const float *in, float *out, size_t w, size_t h, cons
   if (!in || !out || !taps || ntaps <= 0 || in == out) return ICS_ERR_INVALID_ARG;
   if (bad_size2d(w, h)) return ICS_ERR_SIZE;
   ics_status st = check_opts(&o);
+  if (st == ICS_OK && o.compensate == ICS_COMP_INTEGER) return ICS_ERR_UNSUPPORTED; /* 1D only */
   if (st != ICS_OK) return st;
   ics_tap2d *t;
   int nt;
@@ -581,7 +611,7 @@ ics_status ics_conv1d_run(double *buf, size_t n, const ics_schedule1d *s, uint64
     ics_tap1d *d;
     int nd;
     double resid;
-    st = prepare1d(taps, nt, &o, &d, &nd, &resid);
+    st = prepare1d(taps, nt, &o, first_step + (uint64_t)k, &d, &nd, &resid);
     if (st != ICS_OK) break;
     apply1d(buf, tmp, n, d, nd, &o);
     free(d);
@@ -609,6 +639,7 @@ ics_status ics_conv2d_run(float *buf, size_t w, size_t h, const ics_schedule2d *
   if (!buf || !s || nsteps < 0) return ICS_ERR_INVALID_ARG;
   if (bad_size2d(w, h)) return ICS_ERR_SIZE;
   ics_status st = check_opts(&o);
+  if (st == ICS_OK && o.compensate == ICS_COMP_INTEGER) return ICS_ERR_UNSUPPORTED; /* 1D only */
   if (st != ICS_OK) return st;
   int cap = ics_schedule2d_max_taps(s);
   if (cap <= 0) { /* name the first invalid member's problem */

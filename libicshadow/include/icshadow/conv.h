@@ -48,7 +48,16 @@ typedef enum ics_boundary {
 typedef enum ics_comp_mode {
   ICS_COMP_NONE = 0,   /* taps as given; interpolation adds sum w f (1 - f) per step */
   ICS_COMP_NONNEG = 1, /* exact when possible, else closest non-negative taps + residual */
-  ICS_COMP_SIGNED = 2  /* exact always; signed weights when non-negative ones cannot be exact */
+  ICS_COMP_SIGNED = 2, /* exact always; signed weights when non-negative ones cannot be exact */
+  ICS_COMP_INTEGER = 3 /* engine runs, 1D only (2D: ICS_ERR_UNSUPPORTED): the integer-shift
+                          schedule. Step i (absolute index; a single ics_conv1d_step is step 0)
+                          moves the taps so that their mean is the whole-pixel shift
+                          round((i + 1) m) - round(i m), m = the taps' mean (round half up),
+                          carrying the fractional mean over the steps, then compensates them
+                          exactly (NONNEG; with an integer mean every variance >= 0 is
+                          reachable). Zero interpolation variance: a zero-variance (hard) shadow
+                          stays hard, at most 1/2 px from n m after n steps from step 0. Not a
+                          mode of ics_taps*_compensate (ICS_ERR_RANGE there). */
 } ics_comp_mode;
 
 typedef struct ics_conv_opts {
