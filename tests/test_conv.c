@@ -462,6 +462,23 @@ static void test_integer_shift(void) {
   v /= w;
   CHECK(fabs(m - 15) <= 1e-9 && fabs(v / 100 - 1) <= 1e-12, "tophat integer: mean %.17g var %.17g", m, v);
   CHECK(fabs(st.residual[0]) <= 1e-12, "residual %g", st.residual[0]);
+  /* check_opts: a non-finite constant is rejected */
+  {
+    ics_conv_opts c = ics_conv_opts_default();
+    c.boundary = ICS_BOUNDARY_CONSTANT;
+    c.constant = INFINITY;
+    double a[4] = {0, 0, 1, 1}, b[4];
+    ics_tap1d t1 = {0.5, 1};
+    CHECK(ics_conv1d_step(a, b, 4, &t1, 1, &c) == ICS_ERR_INFINITE, "constant = inf");
+    c.constant = -INFINITY;
+    CHECK(ics_conv1d_step(a, b, 4, &t1, 1, &c) == ICS_ERR_INFINITE, "constant = -inf");
+    /* NaN pixels propagate (documented): a NaN reaches the pixels whose taps read it */
+    double an[4] = {0, NAN, 1, 1};
+    c.constant = 0;
+    CHECK(ics_conv1d_step(an, b, 4, &t1, 1, &c) == ICS_OK && isnan(b[1]) && isnan(b[2]) &&
+              !isnan(b[0]) && !isnan(b[3]),
+          "NaN propagation: %g %g %g %g", b[0], b[1], b[2], b[3]);
+  }
   /* 2D: not supported */
   float img[16] = {0}, out[16];
   ics_tap2d t2 = {0.3, 0, 1};

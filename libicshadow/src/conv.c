@@ -20,6 +20,8 @@
 
 #include "icshadow/conv.h"
 
+#include <limits.h>
+
 #define MAX_OFFSET 0x1p30
 
 ics_conv_opts ics_conv_opts_default(void) {
@@ -432,7 +434,8 @@ static ics_status integer_shift1d(const ics_tap1d *in, int n, uint64_t step, ics
 
 static ics_status prepare1d(const ics_tap1d *taps, int ntaps, const ics_conv_opts *o,
                             uint64_t step, ics_tap1d **out, int *nout, double *resid) {
-  size_t cap = 2 * (size_t)(ntaps > 0 ? ntaps : 1) + 3;
+  size_t cap = 2 * (size_t)(ntaps > 0 ? ntaps : 1) + 3; /* in size_t: no int overflow */
+  if (cap > INT_MAX) return ICS_ERR_SIZE;
   ics_tap1d *t = malloc(sizeof *t * cap);
   if (!t) return ICS_ERR_NOMEM;
   ics_comp_mode mode = o->compensate;
@@ -464,6 +467,7 @@ static ics_status check_opts(const ics_conv_opts *o) {
   if (o->boundary != ICS_BOUNDARY_CLAMP && o->boundary != ICS_BOUNDARY_CONSTANT)
     return ICS_ERR_RANGE;
   if (isnan(o->constant)) return ICS_ERR_NAN;
+  if (isinf(o->constant)) return ICS_ERR_INFINITE; /* inf x 0-weight taps would give NaN */
   if (o->compensate != ICS_COMP_NONE && o->compensate != ICS_COMP_NONNEG &&
       o->compensate != ICS_COMP_SIGNED && o->compensate != ICS_COMP_INTEGER)
     return ICS_ERR_RANGE;
@@ -540,9 +544,11 @@ static void apply2d(const float *in, float *out, size_t w, size_t h, const ics_t
 
 static ics_status prepare2d(const ics_tap2d *taps, int ntaps, const ics_conv_opts *o,
                             ics_tap2d **out, int *nout, double *resid) {
-  ics_tap2d *t = malloc(sizeof *t * (4 * (size_t)(ntaps > 0 ? ntaps : 1) + 9));
+  size_t cap = 4 * (size_t)(ntaps > 0 ? ntaps : 1) + 9; /* in size_t: no int overflow */
+  if (cap > INT_MAX) return ICS_ERR_SIZE;
+  ics_tap2d *t = malloc(sizeof *t * cap);
   if (!t) return ICS_ERR_NOMEM;
-  ics_status st = ics_taps2d_compensate(taps, ntaps, o->compensate, t, 4 * ntaps + 9, nout, resid);
+  ics_status st = ics_taps2d_compensate(taps, ntaps, o->compensate, t, (int)cap, nout, resid);
   if (st != ICS_OK) {
     free(t);
     return st;

@@ -12,7 +12,10 @@
  * Boundary: reads outside the buffer take the nearest edge pixel (ICS_BOUNDARY_CLAMP, default:
  * outside the light buffer is lit like its edge) or a constant (ICS_BOUNDARY_CONSTANT).
  * 1D lines are double; 2D images float (row-major, width w, height h, y = row index), summed in
- * double per pixel and rounded once.
+ * double per pixel and rounded once. opts.constant must be finite (ICS_ERR_NAN /
+ * ICS_ERR_INFINITE). NaN pixels are not checked: a NaN (or inf) pixel propagates to every output
+ * pixel whose taps read it, spreading by the kernel's reach each step (it is the caller's job
+ * to keep buffers finite).
  *
  * Variance compensation (ics_taps*_compensate): replace taps by INTEGER taps whose discrete
  * moments (total weight, mean, covariance) equal the moments of the input taps exactly, so the
