@@ -7,6 +7,7 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -166,4 +167,16 @@ int cli_output_commit(cli_output *out) {
   out->tmp_path = NULL;
   out->target = NULL;
   return bad ? -1 : 0;
+}
+
+int cli_parse_seed(const char *s, uint64_t *out) {
+  if (!s || !*s) return -1;
+  for (const char *p = s; *p; p++)
+    if (*p < '0' || *p > '9') return -1; /* decimal digits only: no sign, blanks, 1e3, 0x */
+  char *end;
+  errno = 0;
+  unsigned long long v = strtoull(s, &end, 10);
+  if (errno || *end || v > UINT64_MAX) return -1; /* ERANGE beyond 2^64 - 1 */
+  *out = (uint64_t)v;
+  return 0;
 }

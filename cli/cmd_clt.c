@@ -86,7 +86,8 @@ int cmd_clt(int argc, char **argv) {
     return 0;
   }
   const char *kname = NULL, *comp = "nonneg";
-  double var = NAN, mean = 0, seed = 0;
+  double var = NAN, mean = 0;
+  uint64_t seed = 0;
   int samples = 0, refine = 1, rate = 0, nsteps = 0, have_steps = 0;
   int steps[MAX_STEPS_LIST];
   for (int i = 1; i < argc; i++) {
@@ -127,9 +128,8 @@ int cmd_clt(int argc, char **argv) {
     } else if (!strcmp(opt, "--mean"))
       bad = cli_option_double("clt", opt, val, 0, &mean);
     else if (!strcmp(opt, "--seed")) {
-      bad = cli_option_double("clt", opt, val, 0, &seed);
-      if (!bad && (seed < 0 || seed != floor(seed) || seed > 9007199254740992.0)) {
-        fprintf(stderr, "icshadow clt: --seed: expected an integer in 0..2^53, got '%s'\n", val);
+      if (cli_parse_seed(val, &seed) != 0) {
+        fprintf(stderr, "icshadow clt: --seed: expected " CLI_SEED_RANGE ", got '%s'\n", val);
         bad = 1;
       }
     } else if (!strcmp(opt, "--steps")) {

@@ -176,7 +176,8 @@ int cmd_isoline(int argc, char **argv) {
     return 0;
   }
   const char *spec = NULL, *model = NULL, *kname = "dirac";
-  double level = NAN, dist = NAN, d1 = NAN, slab = NAN, seed = 0;
+  double level = NAN, dist = NAN, d1 = NAN, slab = NAN;
+  uint64_t seed = 0;
   int samples = 0;
   for (int i = 1; i < argc; i++) {
     const char *opt = argv[i];
@@ -210,10 +211,8 @@ int cmd_isoline(int argc, char **argv) {
     else if (!strcmp(opt, "--slab"))
       bad = cli_option_double("isoline", opt, val, 0, &slab);
     else if (!strcmp(opt, "--seed")) {
-      bad = cli_option_double("isoline", opt, val, 0, &seed);
-      if (!bad && (seed < 0 || seed != floor(seed) || seed > 9007199254740992.0)) {
-        fprintf(stderr, "icshadow isoline: --seed: expected an integer in 0..2^53, got '%s'\n",
-                val);
+      if (cli_parse_seed(val, &seed) != 0) {
+        fprintf(stderr, "icshadow isoline: --seed: expected " CLI_SEED_RANGE ", got '%s'\n", val);
         bad = 1;
       }
     } else if (cli_parse_int(val, 0, 4096, &samples) != 0) {

@@ -229,11 +229,12 @@ static int iterate_main(int argc, char **argv, int **steps_out) {
       }
       break;
     case 6: {
-      char *end;
-      if (val[0] == '-' || val[0] == '\0' || (seed = strtoull(val, &end, 10), *end != '\0')) {
-        ERR("--seed: expected a non-negative integer, got '%s'", val);
+      uint64_t sv;
+      if (cli_parse_seed(val, &sv) != 0) {
+        ERR("--seed: expected " CLI_SEED_RANGE ", got '%s'", val);
         bad = 1;
-      }
+      } else
+        seed = sv;
       break;
     }
     case 7:

@@ -381,11 +381,12 @@ int cmd_kernel_table(int argc, char **argv) {
         return 2;
       }
     } else {
-      char *end;
-      if (val[0] == '-' || val[0] == '\0' || (seed = strtoull(val, &end, 10), *end != '\0')) {
-        ERR("--seed: expected a non-negative integer, got '%s'", val);
+      uint64_t sv;
+      if (cli_parse_seed(val, &sv) != 0) {
+        ERR("--seed: expected " CLI_SEED_RANGE ", got '%s'", val);
         return 2;
       }
+      seed = sv;
     }
   }
   if (dims == 1 && (!isnan(vary) || angle != 0)) {

@@ -2,6 +2,7 @@
 #ifndef ICS_CLI_COMMANDS_H
 #define ICS_CLI_COMMANDS_H
 
+#include <stdint.h>
 #include <stdio.h>
 
 /* Each subcommand gets argv[0] = its own name; returns the process exit status
@@ -27,6 +28,9 @@ int bench_occtex(int argc, char **argv);
  * Return 0 on success, -1 otherwise. */
 int cli_parse_double(const char *s, double *out);
 int cli_parse_int(const char *s, long lo, long hi, int *out);
+/* A seed: a decimal integer in 0..2^64 - 1 (digits only; overflow is an error). 0 or -1. */
+int cli_parse_seed(const char *s, uint64_t *out);
+#define CLI_SEED_RANGE "a non-negative integer in 0..18446744073709551615 (decimal digits)"
 
 /* An option's number for subcommand `cmd`: finite, and >= 0 when `variance` is set. Returns 0,
  * or -1 after "icshadow CMD: OPT: not a number: 'S'" (or "NaN is not allowed", "negative

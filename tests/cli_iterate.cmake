@@ -89,3 +89,12 @@ ics_cli_test(NAME cli_kernel_table_tiny_var RC 0 ARGS "kernel-table|--var|1e-300
 # and the edge stays hard (0 at x = 2.5, 1 at x = 3.5; nothing in between)
 ics_cli_test(NAME cli_iterate_integer_shift RC 0 ARGS "iterate|--kernel|dirac|--var|0|--mean|0.3|--steps|10|--width|8|--compensate|integer"
   OUT "^steps,x,value,gauss_cdf\n10,-3\\.5,0,${num}\n10,-2\\.5,0,${num}\n10,-1\\.5,0,${num}\n10,-0\\.5,0,${num}\n10,0\\.5,0,${num}\n10,1\\.5,0,${num}\n10,2\\.5,0,${num}\n10,3\\.5,1,${num}\n$")
+# seeds: one strict parser (decimal digits, 0..2^64 - 1, overflow checked) in all four commands
+ics_cli_test(NAME cli_iterate_seed_overflow RC 2 ARGS "iterate|--kernel|stochastic-dirac|--var|1|--steps|1|--seed|18446744073709551616"
+  OUT "^$" ERR "--seed: expected a non-negative integer in 0..18446744073709551615")
+ics_cli_test(NAME cli_iterate_seed_exponent RC 2 ARGS "iterate|--kernel|stochastic-dirac|--var|1|--steps|1|--seed|1e23"
+  OUT "^$" ERR "--seed: expected a non-negative integer in 0..18446744073709551615")
+ics_cli_test(NAME cli_iterate_seed_max RC 0 ARGS "iterate|--kernel|stochastic-dirac|--var|1|--steps|1|--width|4|--seed|18446744073709551615"
+  OUT "^steps,x,value,gauss_cdf\n")
+ics_cli_test(NAME cli_kernel_table_seed_overflow RC 2 ARGS "kernel-table|--seed|18446744073709551616"
+  OUT "^$" ERR "--seed: expected a non-negative integer in 0..18446744073709551615")

@@ -99,3 +99,7 @@ ics_cli_test(NAME cli_clt_tiny_var RC 0 ARGS "clt|--kernel|tophat|--var|1e-300|-
 # non-negative integer taps: clt warns with the residual 0.25 - 0.1 = 0.15 px^2 per step
 ics_cli_test(NAME cli_clt_unreachable RC 0 ARGS "clt|--kernel|dirac|--var|0.1|--mean|0.5|--steps|4,16|--no-refine"
   OUT "^steps,sup_error" ERR "cannot be reached by non-negative integer taps \\(least variance f\\(1 - f\\) = 0.25\\): each step adds a compensation residual of 0.15 px\\^2")
+ics_cli_test(NAME cli_clt_seed_exponent RC 2 ARGS "clt|--kernel|stochastic-dirac|--var|1|--steps|4|--seed|1e3"
+  OUT "^$" ERR "--seed: expected a non-negative integer in 0..18446744073709551615")
+ics_cli_test(NAME cli_isoline_seed_exponent RC 2 ARGS "isoline|--light|gauss:0,1|--level|0.5|--distance|1|--model|correct|--seed|1e3"
+  OUT "^$" ERR "--seed: expected a non-negative integer in 0..18446744073709551615")
