@@ -707,9 +707,9 @@ static void test_ssat(void) {
       double be = st > 0 && al / st < PI_T ? al / st : PI_T; /* phi half-width */
       double th1 = th + al < PI_T ? th + al : PI_T;
       double smax_box = th - al <= PI_T / 2 && th1 >= PI_T / 2 ? 1.0 : fmax(sin(th1), sin(th - al));
-      /* one brute-force cell: theta extent (largest at the end nearest a pole: at most the
-       * whole theta range / sqrt(npatch) ... bounded by the full range / 1 for safety below)
-       * and phi extent sin(theta) * 2 be / npatch */
+      /* diameter of one brute-force ray cell at R: its largest theta extent (the cells are
+       * uniform in cos(theta), so computed cell by cell) and its phi extent, at most
+       * max sin(theta) over the box times 2 be / npatch */
       double c0 = cos(fmax(th - al, 0.0)), c1 = cos(th1), dth_bf = 0;
       for (int j = 0; j < npatch; j++) {
         double t0 = acos(c0 + (c1 - c0) * j / npatch), t1 = acos(c0 + (c1 - c0) * (j + 1) / npatch);
