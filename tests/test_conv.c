@@ -485,6 +485,62 @@ static void test_integer_shift(void) {
   CHECK(ics_conv2d_step(img, out, 4, 4, &t2, 1, &o) == ICS_ERR_UNSUPPORTED, "2D integer mode");
 }
 
+/* 2D Lyapunov mixing: a schedule alternating the elliptical (N = 2) and Poisson-disk (N = 8)
+ * members of one class (ellipse with N = 4: two diameters, a full-rank step; integer class mean,
+ * so no lattice bound applies), propagated from an impulse with non-negative compensation: the
+ * applied integer taps have exactly each step's tap moments (residual 0). Moments add: the image's mean and
+ * covariance must equal the sums over the steps of the taps' own moments (computed from
+ * ics_schedule2d_taps, independently of the engine), to float storage (1e-6 relative). */
+static void test_mixed_2d(void) {
+  enum { W = 256, H = 256, STEPS = 20, CAP2 = 4096 }; /* mean (20, -40) from (96, 176) */
+  static float img[W * H];
+  static ics_tap2d t2[CAP2];
+  ics_class2d cls;
+  CHECK(ics_class2d_from_axes(1, -2, 6, 2, 30, &cls) == ICS_OK, "class");
+  ics_kernel2d m[2];
+  CHECK(ics_kernel2d_init(&m[0], ICS_KERNEL_ELLIPSE, &cls) == ICS_OK, "ellipse");
+  CHECK(ics_kernel2d_init(&m[1], ICS_KERNEL_POISSON, &cls) == ICS_OK, "poisson");
+  m[0].seed = 5, m[1].seed = 9;
+  m[0].nsamples = 4;
+  ics_schedule2d s = {m, 2};
+  double sm[2] = {0, 0}, sc[3] = {0, 0, 0};
+  for (int i = 0; i < STEPS; i++) {
+    int n = 0;
+    CHECK(ics_schedule2d_taps(&s, (uint64_t)i, t2, CAP2, &n) == ICS_OK, "taps %d", i);
+    double w, mm[2], cv[3];
+    ics_taps2d_moments(t2, n, &w, mm, cv);
+    sm[0] += mm[0], sm[1] += mm[1];
+    for (int j = 0; j < 3; j++) sc[j] += cv[j];
+  }
+  for (int i = 0; i < W * H; i++) img[i] = 0;
+  img[176 * W + 96] = 1;
+  ics_conv_opts o = ics_conv_opts_default();
+  o.boundary = ICS_BOUNDARY_CONSTANT;
+  o.compensate = ICS_COMP_NONNEG;
+  ics_conv_stats st;
+  CHECK(ics_conv2d_run(img, W, H, &s, 0, STEPS, &o, &st) == ICS_OK, "2D mixed run");
+  double s0 = 0, sx = 0, sy = 0;
+  for (int y = 0; y < H; y++)
+    for (int x = 0; x < W; x++) s0 += img[y * W + x], sx += img[y * W + x] * (x - 96.0), sy += img[y * W + x] * (y - 176.0);
+  double mx = sx / s0, my = sy / s0, c[3] = {0, 0, 0};
+  for (int y = 0; y < H; y++)
+    for (int x = 0; x < W; x++) {
+      double v = img[y * W + x], dx = x - 96.0 - mx, dy = y - 176.0 - my;
+      c[0] += v * dx * dx, c[1] += v * dx * dy, c[2] += v * dy * dy;
+    }
+  for (int j = 0; j < 3; j++) c[j] /= s0;
+  double tr = sc[0] + sc[2], dev = fmax(fabs(mx - sm[0]), fabs(my - sm[1])) / sqrt(tr);
+  for (int j = 0; j < 3; j++) dev = fmax(dev, fabs(c[j] - sc[j]) / tr);
+  CHECK(dev <= 1e-6 && fabs(st.residual[0]) + fabs(st.residual[1]) <= 1e-9,
+        "2D mixed: moments off the sums by %.3g (residual %g %g)", dev, st.residual[0], st.residual[1]);
+  /* the Poisson steps are exact every step and the ellipse steps in expectation: the sums are
+   * near n Sigma (10 ellipse draws: within 35 %) */
+  CHECK(fabs(sc[0] / (STEPS * cls.cxx) - 1) < 0.35, "sum cxx %.4g vs n cxx %.4g", sc[0], STEPS * cls.cxx);
+  printf("2D mixed (ellipse 4, poisson 8), %d steps: mean (%.6g, %.6g) vs sums (%.6g, %.6g), cov "
+         "(%.6g, %.6g, %.6g) vs sums (%.6g, %.6g, %.6g): max rel dev %.2g\n", STEPS, mx, my, sm[0],
+         sm[1], c[0], c[1], c[2], sc[0], sc[1], sc[2], dev);
+}
+
 static void test_mixed(void) {
   enum { N = 500, X0 = 250, STEPS = 100 };
   static double b[N];
@@ -591,6 +647,7 @@ static void test_errors(void) {
 }
 
 int main(void) {
+  test_mixed_2d();
   test_integer_shift();
   test_binomial();
   test_moments_add();
