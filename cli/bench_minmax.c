@@ -32,27 +32,8 @@
 #define MM_MAX_BYTES ((double)MM_MAX_GIB * 1073741824.0)
 #define MM_MAX_WORK 68719476736.0 /* 2^36 */
 
-/* progress on stderr: when stderr is a terminal, or with --progress */
-static int g_progress, g_tty;
-static void progress(const char *fmt, ...) {
-  if (!g_progress) return;
-  va_list ap;
-  va_start(ap, fmt);
-  fputs(g_tty ? "\ricshadow bench minmax: " : "icshadow bench minmax: ", stderr);
-  vfprintf(stderr, fmt, ap);
-  fputs(g_tty ? "\033[K" : "\n", stderr);
-  va_end(ap);
-}
-static void progress_done(void) {
-  if (g_progress && g_tty) fputs("\r\033[K", stderr);
-}
-
-/* flush stdout; on failure name it (exit status 1 follows) */
-static int stdout_failed(void) {
-  if (fflush(stdout) == 0 && !ferror(stdout)) return 0;
-  fprintf(stderr, "icshadow bench minmax: cannot write stdout: %s\n", strerror(errno ? errno : EIO));
-  return 1;
-}
+static cli_progress g_prog; /* set up once the options are parsed */
+static int g_progress;    /* --progress given */
 
 static void help(FILE *f) {
   fprintf(f,
@@ -193,7 +174,7 @@ static void setup_free(setup *S) {
 /* returns 0, or 1 on a runtime failure (message printed) */
 static int setup_init(setup *S, size_t d, size_t rows, size_t rays, size_t nterms, int noise) {
   memset(S, 0, sizeof *S);
-  progress("samples %zu: scene, shadow map, rectification and low-rank factors...", d);
+  cli_progress_say(&g_prog, "samples %zu: scene, shadow map, rectification and low-rank factors...", d);
   S->d = d;
   S->rows = rows;
   S->rays = rays;
@@ -312,7 +293,7 @@ static int bench_one(const setup *S, int reps) {
   size_t *seg = malloc(2 * maxseg * sizeof *seg);
   if (!cls || !seg) st = ICS_ERR_NOMEM;
   for (int rep = 0; rep < reps && st == ICS_OK; rep++) {
-    progress("samples %zu: repetition %d/%d", d, rep + 1, reps);
+    cli_progress_say(&g_prog, "samples %zu: repetition %d/%d", d, rep + 1, reps);
     ics_minmax *t = NULL;
     double t0 = cli_now_s();
     st = ics_minmax_create(&t, S->rect, S->rows, d, d);
@@ -379,7 +360,7 @@ static int bench_one(const setup *S, int reps) {
   free(Lt);
   free(Lm);
   free(pre);
-  return stdout_failed();
+  return cli_stdout_failed("icshadow bench minmax");
 }
 
 /* Low-rank error against N: on the grid, at full resolution, and on the in-scattering. */
@@ -412,7 +393,7 @@ static int svd_table(setup *S) {
   }
   printf("N,sigma_rel,grid_fro_rel,grid_max_rel,fullres_max_rel,inscatter_max_rel\n");
   for (size_t N = 1; N <= MAX_TERMS; N++) {
-    progress("samples %zu: N = %zu/%d", d, N, MAX_TERMS);
+    cli_progress_say(&g_prog, "samples %zu: N = %zu/%d", d, N, MAX_TERMS);
     ics_svd_truncate(S->U, S->s, S->V, GRID, GRID, N, AN);
     double fe = 0, me = 0;
     for (size_t i = 0; i < GRID * GRID; i++) {
@@ -442,7 +423,7 @@ static int svd_table(setup *S) {
   }
   free(AN);
   free(Lx);
-  return stdout_failed();
+  return cli_stdout_failed("icshadow bench minmax");
 }
 
 /* Chen Fig. 4: the row with the most lit runs for the middle ray; all its samples, its tree
@@ -642,14 +623,13 @@ int bench_minmax(int argc, char **argv) {
       return 2;
     }
   }
-  g_tty = isatty(2);
-  if (g_tty) g_progress = 1;
+  cli_progress_init(&g_prog, "icshadow bench minmax", g_progress);
   setup S;
   if (figpath || table) {
     int rc = setup_init(&S, (size_t)dlist[0], (size_t)rows, (size_t)rays, figpath ? (size_t)terms : MAX_TERMS, noise);
     if (rc == 0) rc = figpath ? fig4(&S, figpath) : svd_table(&S);
     setup_free(&S);
-    progress_done();
+    cli_progress_done(&g_prog);
     return rc;
   }
   printf("samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,tree_bytes,march_bytes,speedup,"
@@ -659,10 +639,10 @@ int bench_minmax(int argc, char **argv) {
     if (rc == 0) rc = bench_one(&S, reps);
     setup_free(&S);
     if (rc) {
-      progress_done();
+      cli_progress_done(&g_prog);
       return rc;
     }
   }
-  progress_done();
+  cli_progress_done(&g_prog);
   return 0;
 }

@@ -23,27 +23,8 @@
 #define OT_MAX_BYTES ((double)OT_MAX_GIB * 1073741824.0)
 #define OT_MAX_WORK 68719476736.0 /* 2^36 */
 
-/* progress on stderr: when stderr is a terminal, or with --progress */
-static int g_progress, g_tty;
-static void progress(const char *fmt, ...) {
-  if (!g_progress) return;
-  va_list ap;
-  va_start(ap, fmt);
-  fputs(g_tty ? "\ricshadow bench occtex: " : "icshadow bench occtex: ", stderr);
-  vfprintf(stderr, fmt, ap);
-  fputs(g_tty ? "\033[K" : "\n", stderr);
-  va_end(ap);
-}
-static void progress_done(void) {
-  if (g_progress && g_tty) fputs("\r\033[K", stderr);
-}
-
-/* flush stdout; on failure name it (exit status 1 follows) */
-static int stdout_failed(void) {
-  if (fflush(stdout) == 0 && !ferror(stdout)) return 0;
-  fprintf(stderr, "icshadow bench occtex: cannot write stdout: %s\n", strerror(errno ? errno : EIO));
-  return 1;
-}
+static cli_progress g_prog; /* set up once the options are parsed */
+static int g_progress;    /* --progress given */
 
 /* Peak bytes of one configuration (n x n textures, K slices): the bench's and the object's
  * texture copies, the slicing bitmap, the largest prefilter (N-Buffers: levels of side
@@ -379,8 +360,7 @@ int bench_occtex(int argc, char **argv) {
   options o;
   if (parse(argc, argv, &o) != 0) return 2;
   if (check_limits(&o) != 0) return 2;
-  g_tty = isatty(2);
-  if (g_tty) g_progress = 1;
+  cli_progress_init(&g_prog, "icshadow bench occtex", g_progress);
 
   const size_t R = (size_t)o.receivers, nr = R * R;
   int maxb = 0, maxn = 0, maxk = 0;
@@ -408,7 +388,7 @@ int bench_occtex(int argc, char **argv) {
     ics_occtex *ot = NULL;
     double ms;
     const int nb = scene_boxes(&o, o.scenes[0]);
-    progress("fig3: slicing, prefilter, shadows and brute force");
+    cli_progress_say(&g_prog, "fig3: slicing, prefilter, shadows and brute force");
     st = ics_occ_scene_make(o.scenes[0], nb, (uint64_t)o.seed, boxes);
     if (!st) st = build(&o, boxes, nb, o.sizes[0], o.slices[0], o.fig3_pf, tex, &ot, &ms);
     for (int c = 0; c < 3 && !st; c++) st = ics_occtex_shadow(ot, &light, o.fig3_pf, (ics_occ_combine)c, P, nr, occ + c * nr);
@@ -449,7 +429,7 @@ int bench_occtex(int argc, char **argv) {
         }
     /* each repetition runs the brute force and every method once: side by side in one run */
     for (int rep = 0; rep < o.reps; rep++) {
-      progress("%s: repetition %d/%d: brute force", scene_names[o.scenes[sc]], rep + 1, o.reps);
+      cli_progress_say(&g_prog, "%s: repetition %d/%d: brute force", scene_names[o.scenes[sc]], rep + 1, o.reps);
       double t0 = cli_now_s();
       if ((st = ics_occ_exact(boxes, (size_t)nb, &light, o.m, P, nr, ref))) {
         rc = fail("brute force", st);
@@ -462,7 +442,7 @@ int bench_occtex(int argc, char **argv) {
           for (int p = 0; p < NPF; p++) {
             ics_occtex *ot = NULL;
             double ms;
-            progress("%s: repetition %d/%d: size %d, %d slices, %s", scene_names[o.scenes[sc]], rep + 1,
+            cli_progress_say(&g_prog, "%s: repetition %d/%d: size %d, %d slices, %s", scene_names[o.scenes[sc]], rep + 1,
                      o.reps, o.sizes[a], o.slices[b], ics_occ_prefilter_name((ics_occ_prefilter)p));
             st = build(&o, boxes, nb, o.sizes[a], o.slices[b], (ics_occ_prefilter)p, tex, &ot, &ms);
             if (st) {
@@ -512,9 +492,9 @@ int bench_occtex(int argc, char **argv) {
                    ebias[a][b][p][c], brute / t);
           }
   }
-  if (stdout_failed()) rc = 1;
+  if (cli_stdout_failed("icshadow bench occtex")) rc = 1;
 done:
-  progress_done();
+  cli_progress_done(&g_prog);
   free(boxes);
   free(P);
   free(ref);

@@ -72,13 +72,7 @@ static void help(FILE *f, int dims) {
 /* Flush stdout; on a write error (full disk, closed pipe, /dev/full) say so on stderr and
  * return 0, so the command exits 1 instead of pretending the CSV was written. */
 static int stdout_ok(int dims) {
-  errno = 0;
-  if (fflush(stdout) != 0 || ferror(stdout)) {
-    fprintf(stderr, "icshadow bench sat%dd: cannot write stdout: %s\n", dims,
-            errno ? strerror(errno) : "write error");
-    return 0;
-  }
-  return 1;
+  return !cli_stdout_failed(dims == 2 ? "icshadow bench sat2d" : "icshadow bench sat3d");
 }
 
 static int usage_error(int dims, const char *msg, const char *arg) {

@@ -5,6 +5,7 @@
 #include "commands.h"
 
 #include <ctype.h>
+#include <stdarg.h>
 #include <errno.h>
 #include <math.h>
 #include <stdint.h>
@@ -66,6 +67,33 @@ double cli_now_s(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void cli_progress_init(cli_progress *p, const char *who, int forced) {
+  p->who = who;
+  p->tty = isatty(2);
+  p->on = forced || p->tty;
+}
+
+void cli_progress_say(const cli_progress *p, const char *fmt, ...) {
+  if (!p->on) return;
+  va_list ap;
+  va_start(ap, fmt);
+  fprintf(stderr, "%s%s: ", p->tty ? "\r" : "", p->who);
+  vfprintf(stderr, fmt, ap);
+  fputs(p->tty ? "\033[K" : "\n", stderr);
+  va_end(ap);
+}
+
+void cli_progress_done(const cli_progress *p) {
+  if (p->on && p->tty) fputs("\r\033[K", stderr);
+}
+
+int cli_stdout_failed(const char *who) {
+  errno = 0;
+  if (fflush(stdout) == 0 && !ferror(stdout)) return 0;
+  fprintf(stderr, "%s: cannot write stdout: %s\n", who, strerror(errno ? errno : EIO));
+  return 1;
 }
 
 int cli_wants_help(int argc, char **argv) {

@@ -40,6 +40,19 @@ int cli_option_double(const char *cmd, const char *opt, const char *s, int varia
 /* Seconds on the monotonic clock (CLOCK_MONOTONIC), for elapsed times. */
 double cli_now_s(void);
 
+/* Progress of a long job on stderr (DESIGN.md): shown when stderr is a terminal (one line that
+ * rewrites itself) or when asked for (--progress: one line per update), silent otherwise. */
+typedef struct cli_progress {
+  const char *who; /* e.g. "icshadow bench minmax" */
+  int on, tty;
+} cli_progress;
+void cli_progress_init(cli_progress *p, const char *who, int forced);
+void cli_progress_say(const cli_progress *p, const char *fmt, ...);
+void cli_progress_done(const cli_progress *p);
+
+/* Flush stdout; on failure print "WHO: cannot write stdout: <reason>" and return 1, else 0. */
+int cli_stdout_failed(const char *who);
+
 /* True when argv holds -h or --help. */
 int cli_wants_help(int argc, char **argv);
 
