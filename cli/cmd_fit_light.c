@@ -141,7 +141,7 @@ int cmd_fit_light(int argc, char **argv) {
     return 2;
   }
   ics_image env;
-  char msg[768];
+  char msg[CLI_MSG_MAX];
   ics_status st = ics_exr_read(inp, &env, msg, sizeof msg);
   if (st != ICS_OK) {
     fprintf(stderr, "icshadow fit-light: %s\n", msg);

@@ -134,7 +134,7 @@ int cmd_make_env(int argc, char **argv) {
   }
   ics_light *lights = NULL;
   int n = 0;
-  char err[768];
+  char err[CLI_MSG_MAX];
   if (lights_arg) {
     int rc = lights_load(lights_arg, &lights, &n, err, sizeof err);
     if (rc) {

@@ -32,6 +32,10 @@ int cli_parse_int(const char *s, long lo, long hi, int *out);
 int cli_parse_seed(const char *s, uint64_t *out);
 #define CLI_SEED_RANGE "a non-negative integer in 0..18446744073709551615 (decimal digits)"
 
+/* Size of an error-message buffer that names a file: a PATH_MAX (4096) path, a JSON location
+ * and the explanation fit without truncation. */
+#define CLI_MSG_MAX 8192
+
 /* An option's number for subcommand `cmd`: finite, and >= 0 when `variance` is set. Returns 0,
  * or -1 after "icshadow CMD: OPT: not a number: 'S'" (or "NaN is not allowed", "negative
  * variance S (must be >= 0)", "must be finite, got 'S'", checked in that order) on stderr. */

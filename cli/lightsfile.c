@@ -177,7 +177,7 @@ int lights_read_file(const char *path, ics_light **out, int *n, char *err, size_
   }
   for (size_t k = 0; k < cnt; k++) {
     json_t *o = json_array_get(arr, k), *x;
-    char where[64];
+    char where[CLI_MSG_MAX / 2]; /* the path and "lights[k]", never truncated short of PATH_MAX */
     snprintf(where, sizeof where, "%s: lights[%zu]", path, k);
     double v[4];
     if (!json_is_object(o)) {
@@ -297,7 +297,7 @@ int lights_load(const char *arg, ics_light **out, int *n, char *err, size_t errl
     return lights_read_file(arg, out, n, err, errlen);
   }
   if (lights_parse_spec(arg, out, n, err, errlen) == 0) return 0;
-  char spec_err[256];
+  char spec_err[CLI_MSG_MAX / 2];
   snprintf(spec_err, sizeof spec_err, "%s", err);
   seterr(err, errlen, "'%s' is neither an existing lights file nor a valid SPEC (%s)", arg,
          spec_err);

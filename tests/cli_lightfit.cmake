@@ -62,6 +62,14 @@ if(ICS_HAVE_JANSSON)
   # silently, even an invalid one) are refused by name
   ics_cli_test(NAME cli_make_env_unknown_key RC 2 ARGS "make-env|--lights|${DATA}/unknown_key.json|--size|64x32|-o|${D}/lf_bad.exr"
     ERR "unknown_key\\.json: lights\\[0\\]: unknown key \"weigth\"" NOFILE ${D}/lf_bad.exr)
+  # the same under a 1000-character directory: the message keeps the whole path and location
+  # (a 64-byte prefix buffer once cut it to "lights[0" when the checkout lived at a longer path)
+  string(REPEAT "d" 200 LONGSEG)
+  set(LONGDIR ${D}/${LONGSEG}/${LONGSEG}/${LONGSEG}/${LONGSEG}/${LONGSEG})
+  file(MAKE_DIRECTORY ${LONGDIR})
+  configure_file(${DATA}/unknown_key.json ${LONGDIR}/unknown_key.json COPYONLY)
+  ics_cli_test(NAME cli_make_env_unknown_key_long_path RC 2 ARGS "make-env|--lights|${LONGDIR}/unknown_key.json|--size|64x32|-o|${D}/lf_bad.exr"
+    ERR "${LONGSEG}/unknown_key\\.json: lights\\[0\\]: unknown key \"weigth\"" NOFILE ${D}/lf_bad.exr)
   ics_cli_test(NAME cli_make_env_unknown_top RC 2 ARGS "make-env|--lights|${DATA}/unknown_top.json|--size|64x32|-o|${D}/lf_bad.exr"
     ERR "unknown_top\\.json: unknown key \"light\" at the top level" NOFILE ${D}/lf_bad.exr)
   ics_cli_test(NAME cli_make_env_both_mean RC 2 ARGS "make-env|--lights|${DATA}/both_mean.json|--size|64x32|-o|${D}/lf_bad.exr"
