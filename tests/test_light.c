@@ -69,6 +69,19 @@ static void test_normal(void) {
             isnan(ics_light_phiinv(NAN)),
         "phiinv outside [0, 1] must be NaN");
   CHECK(ics_light_phiinv(0) == -INFINITY && ics_light_phiinv(1) == INFINITY, "phiinv ends");
+  /* subnormal and tiny p (Phi(x) subnormal, exp(x^2/2) overflows: once NaN). Reference: mpmath
+   * 1.2.1 at 50 digits, x = findroot(log(ncdf(t)) - log(p), -sqrt(-2 log p)) for p the exact
+   * double; ncdf(x)/p - 1 < 2e-51 at each. */
+  static const double tiny[][2] = {
+      {0x1p-1074, -38.467405617144346251},  {0x3p-1074, -38.438854734569955022},
+      {1e-315, -37.967300351067357735},     {1e-310, -37.663060331949523732},
+      {0x1p-1022, -37.519379347144499821},  {1e-300, -37.047096299361199237},
+      {1e-200, -30.205594179579643063}};
+  for (size_t j = 0; j < sizeof tiny / sizeof tiny[0]; j++) {
+    double x = ics_light_phiinv(tiny[j][0]);
+    CHECK(rel(x, tiny[j][1]) < 4e-16, "phiinv(%a) = %.17g, mpmath %.17g", tiny[j][0], x,
+          tiny[j][1]);
+  }
 }
 
 static void test_gauss(void) {

@@ -196,6 +196,33 @@ double ics_light_phic(double z) {
   return 0.5 * erfc_noerrno(z * 0.70710678118654752440);
 }
 
+/* Phi^-1 for subnormal p (x < -37.5), where Phi(x) itself is subnormal (the Halley residual keeps
+ * too few bits) and exp(x^2/2) overflows: Newton on log Phi(x) = log p with the asymptotic series
+ *   log Phi(x) = -x^2/2 - log(-x) - log(2 pi)/2 + log1p(S),  S = sum_{k=1..8} (-1)^k (2k-1)!! / x^{2k}
+ * (truncation < 2e-19 relative for x^2 > 1369), d/dx log Phi = -x / (1 + S). Start: Acklam's tail
+ * approximation (relative error ~1e-9), so two or three steps reach rounding. */
+static double phiinv_subnormal(double p) {
+  double lp = log(p); /* finite: p >= 2^-1074 */
+  double q = sqrt(-2 * lp);
+  double x = -(((((-7.784894002430293e-03 * q - 3.223964580411365e-01) * q - 2.400758277161838e+00) * q -
+                 2.549732539343734e+00) * q + 4.374664141464968e+00) * q + 2.938163982698783e+00) /
+             ((((7.784695709041462e-03 * q + 3.224671290700398e-01) * q + 2.445134137142996e+00) * q +
+               3.754408661907416e+00) * q + 1);
+  x = -fabs(x);
+  for (int it = 0; it < 6; it++) {
+    double r = 1 / (x * x), term = 1, s = 0;
+    for (int k = 1; k <= 8; k++) {
+      term *= -(2 * k - 1) * r;
+      s += term;
+    }
+    double g = (-0.5 * x * x - lp) - log(-x) - 0.91893853320467274178 + log1p(s);
+    double step = g * (1 + s) / (-x);
+    x -= step;
+    if (fabs(step) <= 1e-16 * fabs(x)) break;
+  }
+  return x;
+}
+
 double ics_light_phiinv(double p) {
   if (isnan(p) || p < 0 || p > 1) return NAN;
   if (p == 0) return -INFINITY;
@@ -213,6 +240,7 @@ double ics_light_phiinv(double p) {
                              2.445134137142996e+00, 3.754408661907416e+00};
   double q, x;
   double pl = p < 0.5 ? p : 1.0 - p; /* tail mass on the near side (exact for p >= 0.5 near 1) */
+  if (p < DBL_MIN) return phiinv_subnormal(p);
   if (pl < 0.02425) {
     q = sqrt(-2 * log(pl));
     x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /

@@ -127,7 +127,7 @@ double ics_light1d_var(const ics_light1d *l);
 double ics_light1d_skewness(const ics_light1d *l);
 
 /* Standard normal helpers used above: Phi(z), Phi(-z) without cancellation, Phi^-1(p)
- * (relative error ~1e-15 over (0, 1); -inf / inf at 0 / 1, NaN outside). */
+ * (relative error ~1e-15 over (0, 1), subnormal p included; -inf / inf at 0 / 1, NaN outside). */
 double ics_light_phi(double z);
 double ics_light_phic(double z);
 double ics_light_phiinv(double p);
