@@ -52,3 +52,13 @@ set_tests_properties(cli_lut_writes_file PROPERTIES LABELS fast)
 # --report: CSV with a header, one row per size and the exact functions' timing.
 ics_cli_test(NAME cli_lut_report RC 0 ARGS "lut|--report|--sizes|8,16"
   OUT "^method,size,ratio_max_rel_err,vx_max_rel_err,radii_max_rel_err,ratio_float_max_rel_err,vx_float_max_rel_err,radii_float_max_rel_err,ratio_order,vx_order,ratio_ns_per_call,vx_ns_per_call,grid_points\nlut,8,[^\n]+\nlut,16,[^\n]+\nexact,[^\n]+\n$")
+
+# The driver's NOFILE check under a path holding glob syntax ('[', '*', '?'): a run that does
+# write the file must be caught ("output left behind"); unescaped, the pattern matched nothing
+# and the check passed whatever was left.
+set(ics_lut_glob_dir "${ics_lut_cli_dir}/glob[1]*?")
+file(MAKE_DIRECTORY "${ics_lut_glob_dir}")
+ics_cli_test(NAME cli_expect_nofile_glob RC 0 ARGS "lut|--size|8|--lang|c|-o|${ics_lut_glob_dir}/x.h"
+  NOFILE "${ics_lut_glob_dir}/x.h")
+set_tests_properties(cli_expect_nofile_glob PROPERTIES
+  PASS_REGULAR_EXPRESSION "output left behind:.*/glob\\[1\\]\\*\\?/x\\.h")

@@ -10,6 +10,11 @@ if(ICS_PYTHON3_NB)
     RESULT_VARIABLE ics_nb_rc OUTPUT_QUIET ERROR_QUIET)
 endif()
 set(ics_nb_dir ${CMAKE_CURRENT_BINARY_DIR}/notebooks)
+# nbconvert globs its input: the notebook's path with '[', '*', '?' escaped as Python's
+# glob.escape does (under /tmp/a[1]/main the pattern "matched no files")
+string(REPLACE "[" "[[]" ics_nb_input "${CMAKE_SOURCE_DIR}/notebooks/iterative_shadows.ipynb")
+string(REPLACE "*" "[*]" ics_nb_input "${ics_nb_input}")
+string(REPLACE "?" "[?]" ics_nb_input "${ics_nb_input}")
 if(ICS_PYTHON3_NB AND ics_nb_rc EQUAL 0)
   add_test(NAME notebook_iterative_shadows COMMAND ${CMAKE_COMMAND} -E env
     JUPYTER_PATH=${CMAKE_SOURCE_DIR}/notebooks
@@ -20,10 +25,13 @@ if(ICS_PYTHON3_NB AND ics_nb_rc EQUAL 0)
     ICSHADOW_CLI=$<TARGET_FILE:icshadow_cli>
     ${ICS_PYTHON3_NB} -m nbconvert --to notebook --execute
       --ExecutePreprocessor.kernel_name=python3 --ExecutePreprocessor.timeout=600
-      --output-dir ${ics_nb_dir} ${CMAKE_SOURCE_DIR}/notebooks/iterative_shadows.ipynb)
+      --output-dir ${ics_nb_dir} ${ics_nb_input})
   set_tests_properties(notebook_iterative_shadows PROPERTIES LABELS medium TIMEOUT 900)
+  # paths go in as arguments, never into the script text (a checkout path with blanks)
   add_test(NAME notebook_generated COMMAND sh -c
-    "mkdir -p ${ics_nb_dir} && ${ICS_PYTHON3_NB} ${CMAKE_SOURCE_DIR}/scripts/make_notebook.py ${ics_nb_dir}/generated.ipynb && cmp ${ics_nb_dir}/generated.ipynb ${CMAKE_SOURCE_DIR}/notebooks/iterative_shadows.ipynb")
+    "mkdir -p \"$1\" && \"$2\" \"$3\" \"$1/generated.ipynb\" && cmp \"$1/generated.ipynb\" \"$4\""
+    notebook_generated ${ics_nb_dir} ${ICS_PYTHON3_NB} ${CMAKE_SOURCE_DIR}/scripts/make_notebook.py
+    ${CMAKE_SOURCE_DIR}/notebooks/iterative_shadows.ipynb)
   set_tests_properties(notebook_generated PROPERTIES LABELS fast)
 else()
   foreach(t notebook_iterative_shadows notebook_generated)
