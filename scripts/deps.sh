@@ -18,10 +18,13 @@ packages=(
   jupyter-nbconvert python3-ipykernel python3-nbformat
 )
 
+# Installed means dpkg's package state "installed", whatever the selection: a package on hold
+# ("hold ok installed") is installed too (it was reported missing, and deps.sh failed as
+# non-root). One line per installed architecture of a Multi-Arch: same package.
 missing=()
 for p in "${packages[@]}"; do
-  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
-  [ "$status" = "install ok installed" ] || missing+=("$p")
+  status=$(dpkg-query -W -f='${db:Status-Status}\n' "$p" 2>/dev/null || true)
+  printf '%s\n' "$status" | grep -qx installed || missing+=("$p")
 done
 
 [ ${#missing[@]} -eq 0 ] && exit 0
