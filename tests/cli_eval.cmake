@@ -14,3 +14,8 @@ set_tests_properties(cli_eval_bad_line PROPERTIES LABELS fast)
 add_test(NAME cli_output_targets
   COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/output_targets.sh $<TARGET_FILE:icshadow_cli>)
 set_tests_properties(cli_output_targets PROPERTIES LABELS fast)
+# numbers printed and parsed do not change with the caller's locale (LC_NUMERIC with a decimal
+# comma, when such a locale is installed; skipped otherwise)
+add_test(NAME cli_locale_numbers
+  COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/locale_numbers.sh $<TARGET_FILE:icshadow_cli>)
+set_tests_properties(cli_locale_numbers PROPERTIES LABELS fast SKIP_RETURN_CODE 77)
