@@ -5,7 +5,7 @@
 # leaves an existing file exactly as it was.
 set -u
 cli=$1
-dir=$(mktemp -d)
+dir=$(mktemp -d) && [ -d "$dir" ] || { echo "FAILED: mktemp -d"; exit 1; }
 trap 'rm -rf "$dir"' EXIT
 fail=0 pass=0
 expect() { if eval "$1"; then pass=$((pass + 1)); else echo "FAILED: $1"; fail=$((fail + 1)); fi; }
