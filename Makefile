@@ -63,9 +63,10 @@ figs: deps all
 	@set -e; for f in paper_figs/*.py; do echo "== $$f"; $(PYTHON) $$f --cli $(BUILD)/bin/icshadow --out out/figs; done
 
 # Execute notebooks/iterative_shadows.ipynb headless into out/notebooks (kernel python3 = /usr/bin/python3 through
-# the repo's kernel spec in notebooks/kernels; the CLI path goes in as ICSHADOW_CLI).
+# the repo's kernel spec in notebooks/kernels; the CLI path goes in as ICSHADOW_CLI). The absolute
+# paths come from the shell, quoted: $(CURDIR) and $(abspath) split a checkout path with blanks.
 notebooks: deps all
-	JUPYTER_PATH=$(CURDIR)/notebooks PYDEVD_DISABLE_FILE_VALIDATION=1 ICSHADOW_CLI=$(abspath $(BUILD))/bin/icshadow $(PYTHON) -m nbconvert \
+	JUPYTER_PATH="$$(pwd)/notebooks" PYDEVD_DISABLE_FILE_VALIDATION=1 ICSHADOW_CLI="$$(cd "$(BUILD)" && pwd)/bin/icshadow" $(PYTHON) -m nbconvert \
 	  --to notebook --execute --ExecutePreprocessor.kernel_name=python3 --ExecutePreprocessor.timeout=600 \
 	  --output-dir out/notebooks notebooks/iterative_shadows.ipynb
 
