@@ -24,6 +24,7 @@
 #include "icshadow/light.h"
 #include "icshadow/conv.h"
 #include "icshadow/shadow1d.h"
+#include "icshadow/clt2d.h"
 #include "icshadow/sat.h"
 #include "icshadow/minmax.h"
 #include "icshadow/occtex.h"

@@ -1,0 +1,435 @@
+/* clt2d.c — CLT convergence of the 2D kernel members (API and conventions in icshadow/clt2d.h).
+ *
+ * What is measured. An occluder image O (half-plane or quadrant, through the origin) is iterated
+ * n times with the taps of a 2D generator by the engine of conv.c (ics_conv2d_step: bilinear
+ * taps, float image, clamp boundary), the taps being first made integer by ics_taps2d_compensate
+ * in the requested mode (NONNEG: exact class moments when reachable). The result r_n is compared
+ * with the Gaussian limit with the same moments, sup over a window of nodes.
+ *
+ * Why the limit has a pixel term (the 2D form of shadow1d.c's 1/12). Node p (pixel centre, grid
+ * units) starts as the exact AREA COVERAGE of its pixel square by the opaque region A:
+ *   r_0(p) = P(p + U in A),  U uniform on (-1/2, 1/2)^2.
+ * With integer taps K (distribution of one step) the engine computes r_{k+1}(p) =
+ * sum_q P(K = q) r_k(p - q), so r_n(p) = P(p - K_n + U in A), K_n the sum of the n steps' taps.
+ * U is symmetric, so for the half-plane A = {u . x > 0} (unit normal u):
+ *   r_n(p) = P(u . (K_n + U) < u . p)          — the cdf of the projected (kernel sum + pixel)
+ * and for the quadrant A = {x > 0, y > 0}:
+ *   r_n(p) = P(K_n + U < p componentwise)      — the bivariate cdf of (kernel sum + pixel).
+ * These are exact on the infinite grid for every n (no interpolation enters: all taps are
+ * integer). Var(u . U) = (ux^2 + uy^2)/12 = 1/12 for every edge angle and Cov(U) = I/12, so the
+ * CLT limit with the same moments is
+ *   edge:   Phi((u . p - n u . mu) / sqrt(n u^T Sigma u + 1/12)),
+ *   corner: Phi2 of N(n mu, n Sigma + I/12) at p (ics_bvn_cdf, standardised, rho = C_xy /
+ *           sqrt(C_xx C_yy)),
+ * mu, Sigma the per-step class. The coverage of a pixel by the half-plane is the trapezoid cdf
+ * of ux U1 + uy U2 at u . p (ics_clt2d_edge_coverage: with a = max(|ux|, |uy|), b = the other,
+ * F(t) = 1/2 + t/a for |t| <= (a - b)/2, 1 - ((a + b)/2 - t)^2 / (2 a b) above, symmetric);
+ * the quadrant's corner lies on a pixel corner of the base grid (coverage 0/1) and on a pixel
+ * centre of the fine grid (coverage products of 0, 1/2, 1). Had the occluder been POINT-sampled,
+ * the projected sum u . K_n would be a lattice variable for rational edge slopes (span
+ * 1/sqrt(a^2 + b^2) for u ~ (a, b)) and dense for irrational ones, so the pixel term would depend
+ * on the angle (1/12 at 0 degrees, 1/24 at 45, ~0 at 30); the coverage image makes it 1/12 always.
+ * The "realised" limit uses, instead of n mu and n Sigma, the sums of the applied integer taps'
+ * own means and covariances (ics_taps2d_moments): they differ from the class for stochastic
+ * members (exact in expectation only) and when the compensation cannot be exact (the rank-one
+ * 2-sample ellipse: ics_taps2d_compensate falls back to a trace-matching shrink).
+ *
+ * Grid and window. Base grid: nodes at x = xlo + i + 1/2, y = ylo + j + 1/2 (pixels of the base
+ * grid = the world unit), covering [min(0, N mu) - R, max(0, N mu) + R] per axis, N the largest
+ * step count, R = 10.5 sd_N + 4, sd_n = sqrt(n lambda_max(Sigma) + 1/12). The sup runs over the
+ * window |x - n mu|_inf <= 4.5 sd_n (the Edgeworth terms beyond 4.5 sd are < 1e-2 of their
+ * peak); the 6 sd_N + 4 left between window and border keep the clamp boundary's wrong values
+ * (where the edge's band leaves the image) out of the window (Gaussian tail exp(-18) ~ 1.5e-8).
+ * Discretisation check: the same iteration on a grid twice as fine (scale 2: taps' positions
+ * doubled — the same continuous kernel; stochastic draws depend on the step index only) whose
+ * nodes x = xlo + k/2 include every base node (k = 2i + 1); its limit has the pixel term
+ * 1/(12 * 4). disc_err = max over the window of |(r_n - G_n)_base - (r_n - G_n)_fine|: the change
+ * of the error profile, which bounds the change of the reported sup error. A point is a
+ * measurement only when disc_err < sup_err / 10 (the CLI and the tests apply that rule).
+ *
+ * Floating point: the image is float (engine contract), each step rounds every pixel once
+ * (2^-24 relative), i.e. below ~n 6e-8 absolute after n steps (< 4e-6 at n = 64): reported
+ * errors in the docs are all above 1e-5.
+ *
+ * Bivariate normal cdf (ics_bvn_cdf): Plackett's identity dPhi2/dr = phi2(a, b; r) with r =
+ * sin(t): Phi2(a, b; r) = Phi(a) Phi(b) + (1/2pi) int_0^asin(r) f(t) dt for |r| < 0.925, and
+ * Phi(min(a, b)) - (1/2pi) int_asin(r)^(pi/2) f(t) dt for r >= 0.925 (r <= -0.925:
+ * Phi(a) - Phi2(a, -b; -r)), f(t) = exp(-(a - b)^2 / (2 cos^2 t) - a b / (1 + sin t)) (the same
+ * exponent (a^2 + b^2 - 2 a b sin t) / (2 cos^2 t) written without cancellation near t = pi/2).
+ * Integrated by adaptive 20-point Gauss-Legendre (node table from mpmath, 20 digits), panel
+ * split until two halves agree with the whole to 1e-15. tests/test_clt_convergence.c checks it
+ * against the closed form Phi2(0, 0; r) = 1/4 + asin(r)/(2 pi), against Phi(a) Phi(b) at r = 0
+ * and against an independent adaptive Simpson quadrature of phi(x) Phi((b - r x)/sqrt(1 - r^2))
+ * (max difference asserted 1e-12). */
+#include "icshadow/clt2d.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "icshadow/ellipse.h"
+#include "icshadow/light.h"
+
+static const double PI = 3.14159265358979323846;
+
+/* 20-point Gauss-Legendre on [-1, 1]: the positive nodes and their weights (mpmath, 40 digits,
+ * Newton on P_20; the weights sum to 2 to 1e-17) */
+static const double GL20[10][2] = {
+    {0.076526521133497333755, 0.1527533871307258507},
+    {0.22778585114164507808, 0.14917298647260374679},
+    {0.37370608871541956067, 0.14209610931838205133},
+    {0.510867001950827098, 0.1316886384491766269},
+    {0.63605368072651502545, 0.11819453196151841731},
+    {0.74633190646015079261, 0.10193011981724043504},
+    {0.83911697182221882339, 0.083276741576704748725},
+    {0.91223442825132590587, 0.06267204833410906357},
+    {0.96397192727791379127, 0.040601429800386941331},
+    {0.99312859918509492479, 0.017614007139152118312},
+};
+
+static double plackett_f(double a, double b, double t) {
+  double s = sin(t), c = cos(t);
+  double d = a - b;
+  double e = (c > 0 ? d * d / (2 * c * c) : (d == 0 ? 0 : INFINITY)) + a * b / (1 + s);
+  return exp(-e);
+}
+
+static double gl20(double a, double b, double t0, double t1) {
+  double m = 0.5 * (t0 + t1), h = 0.5 * (t1 - t0), s = 0;
+  for (int i = 0; i < 10; i++)
+    s += GL20[i][1] * (plackett_f(a, b, m - h * GL20[i][0]) + plackett_f(a, b, m + h * GL20[i][0]));
+  return s * h;
+}
+
+static double gl_adapt(double a, double b, double t0, double t1, double whole, int depth) {
+  double m = 0.5 * (t0 + t1);
+  double l = gl20(a, b, t0, m), r = gl20(a, b, m, t1);
+  if (depth >= 40 || fabs(l + r - whole) <= 1e-15) return l + r;
+  return gl_adapt(a, b, t0, m, l, depth + 1) + gl_adapt(a, b, m, t1, r, depth + 1);
+}
+
+static double plackett_int(double a, double b, double t0, double t1) {
+  if (t0 == t1) return 0;
+  return gl_adapt(a, b, t0, t1, gl20(a, b, t0, t1), 0);
+}
+
+double ics_bvn_cdf(double a, double b, double r) {
+  if (isnan(a) || isnan(b) || isnan(r) || r < -1 || r > 1) return NAN;
+  if (a == -INFINITY || b == -INFINITY) return 0;
+  if (a == INFINITY) return ics_light_phi(b);
+  if (b == INFINITY) return ics_light_phi(a);
+  if (r <= -0.925) { /* P(X < a, Y < b) = P(X < a) - P(X < a, -Y < -b) */
+    double v = ics_light_phi(a) - ics_bvn_cdf(a, -b, -r);
+    return v < 0 ? 0 : v;
+  }
+  if (r < 0.925) {
+    double v = ics_light_phi(a) * ics_light_phi(b) + plackett_int(a, b, 0, asin(r)) / (2 * PI);
+    return v < 0 ? 0 : (v > 1 ? 1 : v);
+  }
+  double v = ics_light_phi(fmin(a, b)) - plackett_int(a, b, asin(r), PI / 2) / (2 * PI);
+  return v < 0 ? 0 : (v > 1 ? 1 : v);
+}
+
+double ics_clt2d_edge_coverage(double ux, double uy, double t) {
+  if (isnan(ux) || isnan(uy) || isnan(t)) return NAN;
+  double a = fabs(ux), b = fabs(uy);
+  if (b > a) {
+    double s = a;
+    a = b;
+    b = s;
+  }
+  double x = fabs(t), up; /* up: F(x) for x >= 0; the t < 0 side is 1 - F(|t|), formed directly */
+  double lo;
+  if (x >= 0.5 * (a + b)) {
+    up = 1, lo = 0;
+  } else if (x <= 0.5 * (a - b)) {
+    up = 0.5 + x / a, lo = 0.5 - x / a;
+  } else {
+    double d = 0.5 * (a + b) - x;
+    lo = d * d / (2 * a * b);
+    up = 1 - lo;
+  }
+  return t >= 0 ? up : lo;
+}
+
+/* ---- generators ---- */
+
+ics_status ics_clt2d_member_gen(void *ctx, uint64_t step, double scale, ics_tap2d *taps, int cap,
+                                int *ntaps) {
+  if (!ctx) return ICS_ERR_INVALID_ARG;
+  ics_kernel2d k = *(const ics_kernel2d *)ctx;
+  k.cls.mean[0] *= scale;
+  k.cls.mean[1] *= scale;
+  k.cls.cxx *= scale * scale;
+  k.cls.cxy *= scale * scale;
+  k.cls.cyy *= scale * scale;
+  return ics_kernel2d_taps(&k, step, taps, cap, ntaps);
+}
+
+ics_status ics_clt2d_ellipse_gen(void *ctx, uint64_t step, double scale, ics_tap2d *taps, int cap,
+                                 int *ntaps) {
+  const ics_clt2d_ellipse *e = ctx;
+  if (!e || !taps || !ntaps) return ICS_ERR_INVALID_ARG;
+  if (isnan(e->offset) || isnan(e->rot)) return ICS_ERR_NAN;
+  if (isinf(e->offset) || isinf(e->rot)) return ICS_ERR_INFINITE;
+  if (e->nsamples < 1 || e->nsamples > ICS_ELLIPSE_MAX_SAMPLES) return ICS_ERR_RANGE;
+  if (cap < e->nsamples) return ICS_ERR_SIZE;
+  double o = fmod(e->offset + fmod(e->rot * (double)step, 1.0), 1.0); /* offset + i rot mod 1 */
+  if (o < 0) o += 1;
+  double xy[2 * ICS_ELLIPSE_MAX_SAMPLES];
+  ics_ellipse_shape sh;
+  ics_status st = ics_ellipse_kernel(e->varx * scale * scale, e->vary * scale * scale,
+                                     e->angle_deg, e->nsamples, o, &sh, xy);
+  if (st != ICS_OK) return st;
+  for (int j = 0; j < sh.nsamples; j++) {
+    taps[j].x = e->mean[0] * scale + xy[2 * j];
+    taps[j].y = e->mean[1] * scale + xy[2 * j + 1];
+    taps[j].w = 1.0 / sh.nsamples;
+  }
+  *ntaps = sh.nsamples;
+  return ICS_OK;
+}
+
+/* ---- measurement ---- */
+
+ics_clt2d_setup ics_clt2d_setup_default(void) {
+  ics_clt2d_setup s;
+  memset(&s, 0, sizeof s);
+  s.occluder = ICS_CLT2D_EDGE;
+  s.comp = ICS_COMP_NONNEG;
+  s.refine = 1;
+  return s;
+}
+
+typedef struct plan2 {
+  double ux, uy;       /* edge normal */
+  double lmax;         /* largest eigenvalue of Sigma */
+  long xlo, ylo;       /* base node i is at x = xlo + i + 1/2 */
+  size_t w, h;         /* base grid */
+} plan2;
+
+static double sd_at(const plan2 *p, int n) { return sqrt(n * p->lmax + 1.0 / 12.0); }
+
+static ics_status check2(ics_clt2d_gen gen, const ics_clt2d_setup *s, const int *steps,
+                         int nsteps, plan2 *p) {
+  if (!gen || !s || !steps || nsteps <= 0) return ICS_ERR_INVALID_ARG;
+  if (s->occluder != ICS_CLT2D_EDGE && s->occluder != ICS_CLT2D_CORNER) return ICS_ERR_INVALID_ARG;
+  double v[6] = {s->mean[0], s->mean[1], s->cov[0], s->cov[1], s->cov[2], s->edge_angle_deg};
+  for (int i = 0; i < 6; i++)
+    if (isnan(v[i])) return ICS_ERR_NAN;
+  for (int i = 0; i < 6; i++)
+    if (isinf(v[i])) return ICS_ERR_INFINITE;
+  double cxx = s->cov[0], cxy = s->cov[1], cyy = s->cov[2], tr = cxx + cyy;
+  if (!(cxx >= 0 && cyy >= 0 && tr > 0 && cxx * cyy - cxy * cxy >= -1e-12 * tr * tr))
+    return ICS_ERR_NEGATIVE_VARIANCE;
+  if (s->comp == ICS_COMP_INTEGER) return ICS_ERR_UNSUPPORTED;
+  if (s->comp != ICS_COMP_NONE && s->comp != ICS_COMP_NONNEG && s->comp != ICS_COMP_SIGNED)
+    return ICS_ERR_RANGE;
+  for (int k = 0; k < nsteps; k++)
+    if (steps[k] < 1 || steps[k] > ICS_CLT2D_MAX_STEPS || (k && steps[k] <= steps[k - 1]))
+      return ICS_ERR_RANGE;
+  double a = s->edge_angle_deg * (PI / 180);
+  p->ux = cos(a);
+  p->uy = sin(a);
+  /* exact axes at multiples of 90 degrees */
+  double r90 = fmod(s->edge_angle_deg, 90.0);
+  if (r90 == 0) {
+    p->ux = nearbyint(p->ux);
+    p->uy = nearbyint(p->uy);
+  }
+  p->lmax = 0.5 * tr + hypot(0.5 * (cxx - cyy), cxy);
+  int nmax = steps[nsteps - 1];
+  double R = 10.5 * sd_at(p, nmax) + 4;
+  double lox = fmin(0.0, nmax * s->mean[0]) - R, hix = fmax(0.0, nmax * s->mean[0]) + R;
+  double loy = fmin(0.0, nmax * s->mean[1]) - R, hiy = fmax(0.0, nmax * s->mean[1]) + R;
+  double wx = ceil(hix) - floor(lox), wy = ceil(hiy) - floor(loy);
+  if (!(wx * wy <= ICS_CLT2D_MAX_PIXELS)) return ICS_ERR_SIZE;
+  p->xlo = (long)floor(lox);
+  p->ylo = (long)floor(loy);
+  p->w = (size_t)wx;
+  p->h = (size_t)wy;
+  return ICS_OK;
+}
+
+/* the window of step count n: base node index ranges [i0, i1] x [j0, j1] */
+typedef struct win2 {
+  long i0, i1, j0, j1;
+} win2;
+
+static win2 window_at(const plan2 *p, const ics_clt2d_setup *s, int n) {
+  double R = 4.5 * sd_at(p, n);
+  double cx = n * s->mean[0], cy = n * s->mean[1];
+  win2 w;
+  w.i0 = (long)ceil(cx - R - (double)p->xlo - 0.5);
+  w.i1 = (long)floor(cx + R - (double)p->xlo - 0.5);
+  w.j0 = (long)ceil(cy - R - (double)p->ylo - 0.5);
+  w.j1 = (long)floor(cy + R - (double)p->ylo - 0.5);
+  if (w.i0 < 0) w.i0 = 0;
+  if (w.j0 < 0) w.j0 = 0;
+  if (w.i1 > (long)p->w - 1) w.i1 = (long)p->w - 1;
+  if (w.j1 > (long)p->h - 1) w.j1 = (long)p->h - 1;
+  return w;
+}
+
+static size_t win_size(const win2 *w) {
+  return (size_t)(w->i1 - w->i0 + 1) * (size_t)(w->j1 - w->j0 + 1);
+}
+
+/* limit at world point (x, y) for mean m and covariance c (pixel term included) */
+static double limit_at(const plan2 *p, ics_clt2d_occluder occ, double x, double y,
+                       const double m[2], const double c[3]) {
+  if (occ == ICS_CLT2D_EDGE) {
+    double v = p->ux * p->ux * c[0] + 2 * p->ux * p->uy * c[1] + p->uy * p->uy * c[2];
+    return ics_light_phi((p->ux * (x - m[0]) + p->uy * (y - m[1])) / sqrt(v));
+  }
+  double sx = sqrt(c[0]), sy = sqrt(c[2]);
+  double r = c[1] / (sx * sy);
+  if (r > 1) r = 1;
+  if (r < -1) r = -1;
+  return ics_bvn_cdf((x - m[0]) / sx, (y - m[1]) / sy, r);
+}
+
+/* One run on the grid refined by `scale` (1 or 2). prof[k] (if prof) receives the class error
+ * profile over window k (row-major); out (if not NULL) the points. */
+static ics_status run2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, const plan2 *p,
+                       const int *steps, int nsteps, int scale, double **prof,
+                       ics_clt_point *out) {
+  size_t W = scale == 1 ? p->w : 2 * p->w + 1, H = scale == 1 ? p->h : 2 * p->h + 1;
+  /* node (i, j) of this grid at world x = xw0 + i / scale */
+  double xw0 = scale == 1 ? (double)p->xlo + 0.5 : (double)p->xlo;
+  double yw0 = scale == 1 ? (double)p->ylo + 0.5 : (double)p->ylo;
+  float *buf = malloc(W * H * sizeof *buf), *tmp = malloc(W * H * sizeof *tmp);
+  int cap = ICS_KERNEL_MAX_TAPS, dcap = 4 * ICS_KERNEL_MAX_TAPS + 9;
+  ics_tap2d *taps = malloc((size_t)cap * sizeof *taps);
+  ics_tap2d *dt = malloc((size_t)dcap * sizeof *dt);
+  ics_status st = (buf && tmp && taps && dt) ? ICS_OK : ICS_ERR_NOMEM;
+  double sc = (double)scale;
+  if (st == ICS_OK)
+    for (size_t j = 0; j < H; j++)
+      for (size_t i = 0; i < W; i++) {
+        double gx = (xw0 + (double)i / sc) * sc, gy = (yw0 + (double)j / sc) * sc; /* grid units */
+        double v;
+        if (s->occluder == ICS_CLT2D_EDGE)
+          v = ics_clt2d_edge_coverage(p->ux, p->uy, p->ux * gx + p->uy * gy);
+        else
+          v = fmin(fmax(gx + 0.5, 0.0), 1.0) * fmin(fmax(gy + 0.5, 0.0), 1.0);
+        buf[j * W + i] = (float)v;
+      }
+  ics_conv_opts co = ics_conv_opts_default();
+  co.boundary = ICS_BOUNDARY_CLAMP;
+  co.compensate = ICS_COMP_NONE; /* the taps handed over are already integer */
+  double cost = 0, rm[2] = {0, 0}, rc[3] = {0, 0, 0}, secs = 0;
+  int nmax = steps[nsteps - 1], k = 0;
+  for (int n = 1; st == ICS_OK && n <= nmax; n++) {
+    clock_t t0 = clock();
+    int nt = 0, nd = 0;
+    st = gen(ctx, (uint64_t)(n - 1), sc, taps, cap, &nt);
+    if (st == ICS_OK) st = ics_taps2d_compensate(taps, nt, s->comp, dt, dcap, &nd, NULL);
+    if (st == ICS_OK) st = ics_conv2d_step(buf, tmp, W, H, dt, nd, &co);
+    secs += (double)(clock() - t0) / CLOCKS_PER_SEC;
+    if (st != ICS_OK) break;
+    float *sw = buf;
+    buf = tmp;
+    tmp = sw;
+    cost += nd;
+    double ws, tm[2], tc[3];
+    ics_taps2d_moments(dt, nd, &ws, tm, tc);
+    rm[0] += tm[0], rm[1] += tm[1];
+    rc[0] += tc[0], rc[1] += tc[1], rc[2] += tc[2];
+    if (n != steps[k]) continue;
+    double pix = 1.0 / (12.0 * sc * sc);
+    double cm[2] = {n * s->mean[0], n * s->mean[1]};
+    double cc[3] = {n * s->cov[0] + pix, n * s->cov[1], n * s->cov[2] + pix};
+    double qm[2] = {rm[0] / sc, rm[1] / sc};
+    double qc[3] = {rc[0] / (sc * sc) + pix, rc[1] / (sc * sc), rc[2] / (sc * sc) + pix};
+    win2 w = window_at(p, s, n);
+    double worst = 0, worst_r = 0;
+    size_t q = 0;
+    for (long j = w.j0; j <= w.j1; j++)
+      for (long i = w.i0; i <= w.i1; i++, q++) {
+        double x = (double)p->xlo + (double)i + 0.5, y = (double)p->ylo + (double)j + 0.5;
+        size_t gi = scale == 1 ? (size_t)i : 2 * (size_t)i + 1;
+        size_t gj = scale == 1 ? (size_t)j : 2 * (size_t)j + 1;
+        double r = buf[gj * W + gi];
+        double e = r - limit_at(p, s->occluder, x, y, cm, cc);
+        double er = r - limit_at(p, s->occluder, x, y, qm, qc);
+        if (fabs(e) > worst) worst = fabs(e);
+        if (fabs(er) > worst_r) worst_r = fabs(er);
+        if (prof) prof[k][q] = e;
+      }
+    if (out) {
+      out[k].steps = n;
+      out[k].sup_err = worst;
+      out[k].sup_err_realized = worst_r;
+      out[k].disc_err = NAN;
+      out[k].cost = cost;
+      out[k].seconds = secs;
+    }
+    k++;
+  }
+  free(buf);
+  free(tmp);
+  free(taps);
+  free(dt);
+  return st;
+}
+
+ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
+                          const int *steps, int nsteps, double *pixels, double *work) {
+  plan2 p;
+  ics_status st = check2(gen, s, steps, nsteps, &p);
+  if (st != ICS_OK) return st;
+  int cap = ICS_KERNEL_MAX_TAPS, dcap = 4 * ICS_KERNEL_MAX_TAPS + 9;
+  ics_tap2d *taps = malloc((size_t)cap * sizeof *taps);
+  ics_tap2d *dt = malloc((size_t)dcap * sizeof *dt);
+  double wk = 0;
+  if (!taps || !dt) st = ICS_ERR_NOMEM;
+  for (int r = 0; st == ICS_OK && r <= (s->refine ? 1 : 0); r++) {
+    double sc = r ? 2.0 : 1.0;
+    double px = r ? (2.0 * p.w + 1) * (2.0 * p.h + 1) : (double)p.w * p.h;
+    int nt = 0, nd = 0;
+    st = gen(ctx, 0, sc, taps, cap, &nt);
+    if (st == ICS_OK) st = ics_taps2d_compensate(taps, nt, s->comp, dt, dcap, &nd, NULL);
+    wk += (double)steps[nsteps - 1] * (px * nd + ICS_WORK_COMP_PASSES * (double)nt);
+  }
+  free(taps);
+  free(dt);
+  if (st != ICS_OK) return st;
+  if (pixels) *pixels = (double)p.w * p.h;
+  if (work) *work = wk;
+  return ICS_OK;
+}
+
+ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
+                             const int *steps, int nsteps, ics_clt_point *out) {
+  if (!out) return ICS_ERR_INVALID_ARG;
+  plan2 p;
+  ics_status st = check2(gen, s, steps, nsteps, &p);
+  if (st != ICS_OK) return st;
+  if (!s->refine) return run2(gen, ctx, s, &p, steps, nsteps, 1, NULL, out);
+  double **e1 = calloc((size_t)nsteps, sizeof *e1), **e2 = calloc((size_t)nsteps, sizeof *e2);
+  st = (e1 && e2) ? ICS_OK : ICS_ERR_NOMEM;
+  for (int k = 0; st == ICS_OK && k < nsteps; k++) {
+    win2 w = window_at(&p, s, steps[k]);
+    e1[k] = malloc(win_size(&w) * sizeof **e1);
+    e2[k] = malloc(win_size(&w) * sizeof **e2);
+    if (!e1[k] || !e2[k]) st = ICS_ERR_NOMEM;
+  }
+  if (st == ICS_OK) st = run2(gen, ctx, s, &p, steps, nsteps, 1, e1, out);
+  if (st == ICS_OK) st = run2(gen, ctx, s, &p, steps, nsteps, 2, e2, NULL);
+  for (int k = 0; st == ICS_OK && k < nsteps; k++) {
+    win2 w = window_at(&p, s, steps[k]);
+    size_t m = win_size(&w);
+    double d = 0;
+    for (size_t q = 0; q < m; q++) d = fmax(d, fabs(e1[k][q] - e2[k][q]));
+    out[k].disc_err = d;
+  }
+  for (int k = 0; k < nsteps; k++) {
+    if (e1) free(e1[k]);
+    if (e2) free(e2[k]);
+  }
+  free(e1);
+  free(e2);
+  return st;
+}
