@@ -11,8 +11,11 @@
  *            policy), through bench_ellint_boost.cpp when the headers are found; not for m < 0.
  * Data sets (4096 inputs each, precomputed): m uniform in [0,1); m near 1 (m1 log-uniform in
  * [1e-300, 1e-2], ours through the *_m1 entry points; no Boost: its k = sqrt(m) rounds to 1);
- * m near 1 with k < 1 (m1 log-uniform in [1e-15, 1e-2], Boost included); m < 0 (m = -10^u,
- * u uniform in [-3, 6]; no Boost: it takes a real modulus).
+ * m near 1 with k < 1 (m1 log-uniform in [1e-15, 1e-2], Boost included); subnormal m1
+ * (binary exponent uniform in [-1074, -1023], random significand; through *_m1, no Boost);
+ * m < 0 (m = -10^u, u uniform in [-3, 6]; no Boost: it takes a real modulus), and its two
+ * halves: m uniform in (-127, 0] (transformed argument in the pieces) and m = -10^u,
+ * u uniform in [2.11, 6] (m < -128: transformed argument in the log series).
  * Throughput loop over the array, repeated; the minimum time is reported.  A checksum of the
  * results is printed so that nothing is optimised away.
  * Output: CSV  dataset,function,impl,ns_per_call,ratio_to_ours,checksum */
@@ -243,12 +246,31 @@ int main(void) {
     k_[i] = sqrt(m_[i]);
   }
   run("m_near_1_k_lt_1", 1, 1);
+  for (int i = 0; i < N; i++) { /* subnormal m1 (E = 1, K = ln(16/m1)/2 to double precision) */
+    m1_[i] = ldexp(1.0 + unit(), -1074 + (int)(52.0 * unit()));
+    if (m1_[i] == 0) m1_[i] = 0x1p-1074;
+    m_[i] = 1.0 - m1_[i];
+    k_[i] = 1.0;
+  }
+  run("m1_subnormal", 1, 0);
   for (int i = 0; i < N; i++) {
     m_[i] = -pow(10.0, -3.0 + 9.0 * unit());
     m1_[i] = 1.0 - m_[i];
     k_[i] = 0;
   }
   run("m_negative", 0, 0);
+  for (int i = 0; i < N; i++) {
+    m_[i] = -127.0 * unit();
+    m1_[i] = 1.0 - m_[i];
+    k_[i] = 0;
+  }
+  run("m_negative_pieces", 0, 0);
+  for (int i = 0; i < N; i++) {
+    m_[i] = -pow(10.0, 2.11 + 3.89 * unit());
+    m1_[i] = 1.0 - m_[i];
+    k_[i] = 0;
+  }
+  run("m_negative_log", 0, 0);
 #ifndef ICS_BENCH_BOOST
   fprintf(stderr, "bench_ellint: Boost.Math headers not found at configure time; boost rows omitted\n");
 #endif

@@ -3,13 +3,12 @@
 
 Parameter convention: m = k^2, x = m1 = 1 - m (complementary parameter).
 
-Two tables, both built at 256-bit precision with mpmath:
+Three tables, all built at 256-bit precision with mpmath:
 
 1. LOG region, 0 < x < X0 (DLMF 19.12.1, 19.12.2 with L = ln(16/x)):
        K(1-x) = (L/2) A(x) + B(x),            A(x) = 1 + x Pa(x),  B(x) = x Pb(x)
        E(1-x) = 1 + x ((L/2) C(x) + D(x)),    C(x) = 1/2 + x Pc(x), D(x) = -1/4 + x Pd(x)
-   so that E(1-x) = 1 + x ((L - 1)/4 + x ((L/2) Pc(x) + Pd(x))), whose leading part (L_hi - 1)/4
-   is exact in C.
+   so that E(1-x) = 1 + x ((L - 1)/4 + x ((L/2) Pc(x) + Pd(x))).
    A, B, C, D are the power series with EXACT rational coefficients
        A = sum a_n x^n,           a_n = ((1/2)_n / n!)^2
        B = sum a_n (d_n - d_0) x^n,   d_n - d_0 = H_n - sum_{j<n} 2/(2j+1)   (psi differences)
@@ -18,21 +17,34 @@ Two tables, both built at 256-bit precision with mpmath:
    (summed with exact fractions, 400 terms).  The formulas are first checked against
    mpmath.ellipk / mpmath.ellipe at many points (an independent algorithm); then Pa, Pb, Pc, Pd
    are replaced by their Chebyshev interpolants on [0, X0] (near-minimax, lower degree than the
-   truncated Taylor series), written in the monomial basis and rounded to double.
+   truncated Taylor series), written in the monomial basis and rounded to double.  They are
+   stored as Pa, 2 Pb, 2 Pc, 4 Pd (exact scalings) for the form ellint.c evaluates,
+       K = (1/2) [L + x (L Pa + 2Pb)],   E = 1 + (x/4) [L - 1 + x (L 2Pc + 4Pd)].
 
 2. PIECES, X0 <= x <= 1: each binade [2^-j, 2^(1-j)) is cut into 2^S equal pieces of half-width
    h around a dyadic centre c.  On each piece
        K(1-x) = k0_hi + (k0_lo + t Pk(t)),   t = x - c,   k0_hi + k0_lo = K(1-c) (double-double)
    and the same for E; Pk, Pe are Chebyshev interpolants of (K(1-c-t) - K(1-c))/t on [-h, h].
 
-For every table the maximum approximation error (double coefficients evaluated exactly, against
-mpmath.ellipk/ellipe at dense points) is measured, written into the output, and asserted to be
-below the target.  The error is in units of the last place of the result (ulp of K or E).
+3. LOGARITHM: ellint.c computes L = ln(16/x) (and ln(16 m1) for m < 0) inline as H + T with H
+   exact: x = 2^k z, z in [sqrt(1/2), sqrt(2)), 2^LOG_B intervals of z with centre c (a double),
+   1/c rounded, ln c = lhi + llo with lhi a multiple of 2^-32 (like n * LN2_HI, so their sum is
+   exact), and log1p(r) = r + r^2 P(r) with P the Chebyshev interpolant of (log1p(r) - r)/r^2
+   on the range of r.  Each ln c is checked against an independent logarithm (2 atanh), and the
+   C evaluation of L is emulated here in doubles (Python floats are IEEE doubles with the same
+   rounding) at thousands of points, interval ends and subnormals included, against mpmath.log.
+
+For the K/E tables the maximum approximation error (double coefficients evaluated exactly,
+against mpmath.ellipk/ellipe at dense points) is measured, written into the output, and
+asserted to be below the target.  The error is in units of the last place of the result (ulp of
+K or E).  For the logarithm the emulated absolute error of L is asserted below 2^LN_TARGET_LOG2
+(L/2 is the leading term of K, so 2^-58 costs at most 0.004 ulp of K).
 
 Usage: /usr/bin/python3 scripts/gen_ellint_coeffs.py [OUTDIR]   (default libicshadow/src)
 Running it again must reproduce the checked-in files byte for byte.
 """
 import os
+import struct
 import sys
 from fractions import Fraction
 
@@ -41,14 +53,19 @@ from mpmath import mp, mpf
 
 mp.prec = 256
 
-X0_LOG2 = -5          # log region is 0 < x < X0 = 2^-5 = 1/32
+X0_LOG2 = -7          # log region is 0 < x < X0 = 2^-7 = 1/128
 X0 = mpf(2) ** X0_LOG2
 S = 3                 # 2^S pieces per binade
-NLOG = 7              # degree of Pa, Pb, Pc, Pd
+NLOGK = 5             # degree of Pa, Pb (K)
+NLOGE = 5             # degree of Pc, Pd (E)
 NK = 10               # degree of Pk (pieces)
 NE = 9                # degree of Pe (pieces)
 TARGET_ULP = 0.02     # approximation error target per table (ulp of the result)
 NSERIES = 400
+LOG_B = 7             # inline logarithm: 2^LOG_B intervals of f in [sqrt(1/2), sqrt(2))
+NLOG1P = 4            # degree of P in log1p(r) = r + r^2 P(r)
+LOG_OFF = 0x3fe6a09e667f3bcd   # bits of the double nearest sqrt(1/2)
+LN_TARGET_LOG2 = -58  # asserted bound on the absolute error of the inline L = H + T
 
 
 def ulp_of(v):
@@ -178,10 +195,10 @@ def peval(coeffs, x):
 
 # ---------------------------------------------------------------- log region
 def log_tables():
-    pa = [d(v) for v in cheb_fit(fPa, mpf(0), X0, NLOG)]
-    pb = [d(v) for v in cheb_fit(fPb, mpf(0), X0, NLOG)]
-    pc = [d(v) for v in cheb_fit(fPc, mpf(0), X0, NLOG)]
-    pd = [d(v) for v in cheb_fit(fPd, mpf(0), X0, NLOG)]
+    pa = [d(v) for v in cheb_fit(fPa, mpf(0), X0, NLOGK)]
+    pb = [d(v) for v in cheb_fit(fPb, mpf(0), X0, NLOGK)]
+    pc = [d(v) for v in cheb_fit(fPc, mpf(0), X0, NLOGE)]
+    pd = [d(v) for v in cheb_fit(fPd, mpf(0), X0, NLOGE)]
     errk = mpf(0)
     erre = mpf(0)
     npts = 400
@@ -249,6 +266,134 @@ def pieces():
     return out, float(errk_all), float(erre_all)
 
 
+
+# ---------------------------------------------------------------- inline logarithm
+# ellint.c needs L = ln(16/x) (m >= 0) and L = ln(16 m1) (m < 0) as H + T with H exact and
+# |T| < 2^-7 small.  x = 2^k z, z in [sqrt(1/2), sqrt(2)) from the bits; the top LOG_B mantissa
+# bits of (bits(x) - LOG_OFF) select an interval i of z with centre c_i (a double), and
+#     ln z = ln c_i + log1p(r),  r = (z - c_i) * invc_i   (z - c_i is exact: Sterbenz)
+# ln c_i = lhi_i + llo_i with lhi_i a multiple of 2^-32, so that n LN2_HI -+ lhi_i is exact
+# (LN2_HI has 32 significant bits, the last at 2^-32).  log1p(r) = r + r^2 P(r), P the
+# Chebyshev interpolant of (log1p(r) - r)/r^2 on the range of r.
+def as_u64(v):
+    return struct.unpack("<Q", struct.pack("<d", v))[0]
+
+
+def as_f64(u):
+    return struct.unpack("<d", struct.pack("<Q", u & 0xFFFFFFFFFFFFFFFF))[0]
+
+
+LN2_HI = float(mpmath.floor(mpmath.log(2) * 2 ** 32)) / 2 ** 32
+LN2_LO = d(mpmath.log(2) - mpf(LN2_HI))
+
+
+def ln_indep(v):
+    """ln v for v > 0 by a route other than mpmath.log: 2 atanh((v-1)/(v+1)), 320 bits"""
+    with mpmath.workprec(320):
+        v = mpf(v)
+        r = 2 * mpmath.atanh((v - 1) / (v + 1))
+    return r
+
+
+def lnc_table():
+    n = 1 << LOG_B
+    tab = []
+    rmin = rmax = mpf(0)
+    for i in range(n):
+        zlo = as_f64(LOG_OFF + (i << (52 - LOG_B)))
+        zhi = as_f64(LOG_OFF + ((i + 1) << (52 - LOG_B)) - 1)
+        c = d((mpf(zlo) + mpf(zhi)) / 2)
+        invc = d(1 / mpf(c))
+        lnc = mpmath.log(mpf(c))
+        lhi = float(mpmath.nint(lnc * 2 ** 32)) / 2 ** 32
+        llo = d(lnc - mpf(lhi))
+        # checks against an independent logarithm and the exactness conditions
+        assert zlo <= c <= zhi
+        assert lhi * 2 ** 32 == int(lhi * 2 ** 32) and abs(mpf(lhi) - lnc) <= mpf(2) ** -33
+        assert abs(mpf(lhi) + mpf(llo) - ln_indep(c)) < mpf(2) ** -86, i
+        assert abs(mpf(invc) * c - 1) <= mpf(2) ** -53
+        rmin = min(rmin, (mpf(zlo) - c) / c)
+        rmax = max(rmax, (mpf(zhi) - c) / c)
+        tab.append((c, invc, lhi, llo))
+    rlo, rhi = rmin * (1 + mpf(2) ** -20), rmax * (1 + mpf(2) ** -20)
+
+    def g(r):
+        return mpf(-0.5) if r == 0 else (mpmath.log1p(r) - r) / r ** 2
+    p = [d(v) for v in cheb_fit(g, rlo, rhi, NLOG1P)]
+    # the polynomial (double coefficients, exact arithmetic) against mpmath.log1p
+    perr = mpf(0)
+    for j in range(401):
+        r = rlo + (rhi - rlo) * j / 400
+        perr = max(perr, abs(r + r * r * peval(p, r) - mpmath.log1p(r)))
+    assert perr < mpf(2) ** (LN_TARGET_LOG2 - 4), perr
+    return tab, p, rlo, rhi
+
+
+def log_parts_emul(tab, x):
+    """ellint.c log_parts() in doubles: returns (k, i, r) with x = 2^k z"""
+    u = as_u64(x)
+    kadj = 0
+    if u < 0x0010000000000000:
+        u = as_u64(float(u))
+        kadj = -1074
+    tmp = (u - LOG_OFF) & 0xFFFFFFFFFFFFFFFF
+    i = (tmp >> (52 - LOG_B)) & ((1 << LOG_B) - 1)
+    k = tmp >> 52
+    if k >= 2048:
+        k -= 4096
+    z = as_f64(u - (tmp & 0xFFF0000000000000))
+    c, invc, lhi, llo = tab[i]
+    r = (z - c) * invc
+    return float(k + kadj), i, r
+
+
+def log1p_tail_emul(p, r):
+    """r^2 P(r) exactly as ellint.c evaluates it (Estrin, degree 4)"""
+    r2 = r * r
+    return r2 * ((p[0] + p[1] * r) + r2 * ((p[2] + p[3] * r) + r2 * p[4]))
+
+
+def ln16_emul(tab, p, x, sign):
+    """sign = -1: ln(16/x);  sign = +1: ln(16 x), as (H, T) in doubles, like ellint.c"""
+    k, i, r = log_parts_emul(tab, x)
+    c, invc, lhi, llo = tab[i]
+    if sign < 0:
+        n = 4.0 - k
+        h = n * LN2_HI - lhi
+        t = ((n * LN2_LO - llo) - r) - log1p_tail_emul(p, r)
+    else:
+        n = 4.0 + k
+        h = n * LN2_HI + lhi
+        t = ((n * LN2_LO + llo) + r) + log1p_tail_emul(p, r)
+    return h, t
+
+
+def check_ln(tab, p):
+    """max |H + T - ln(16/x)| (and ln(16 x)) over interval ends, random points, subnormals"""
+    import random
+    rnd = random.Random(12345)
+    xs = []
+    for i in range(1 << LOG_B):
+        for off in (0, 1, 2, (1 << (52 - LOG_B)) // 2, (1 << (52 - LOG_B)) - 2, (1 << (52 - LOG_B)) - 1):
+            z = as_f64(LOG_OFF + (i << (52 - LOG_B)) + off)
+            for e in (-1070, -1030, -1022, -300, -60, -6):
+                xs.append(z * 2.0 ** e if e >= -1022 else mpmath.ldexp(z, e))
+    for _ in range(4000):
+        xs.append(float(mpmath.ldexp(1 + rnd.random(), rnd.randint(-1074, -6))))
+    xs = [float(v) for v in xs if float(v) > 0]
+    worst = mpf(0)
+    for x in xs:
+        h, t = ln16_emul(tab, p, x, -1)
+        assert h == float(mpf(h))
+        worst = max(worst, abs(mpf(h) + mpf(t) - mpmath.log(16 / mpf(x))))
+        y = 1 / x if x > 2.0 ** -1000 else 2.0 ** 1000   # the m < 0 form: ln(16 m1), m1 > 32
+        y = max(y, 32.0)
+        h, t = ln16_emul(tab, p, y, +1)
+        worst = max(worst, abs(mpf(h) + mpf(t) - mpmath.log(16 * mpf(y))))
+    assert worst < mpf(2) ** LN_TARGET_LOG2, worst
+    return float(mpmath.log(worst, 2)), len(xs)
+
+
 def hexs(v):
     return float(v).hex()
 
@@ -259,6 +404,8 @@ def main():
     serr = check_series()
     pa, pb, pc, pd, lek, lee = log_tables()
     pcs, pek, pee = pieces()
+    lntab, l1p, rlo, rhi = lnc_table()
+    lnerr, lnn = check_ln(lntab, l1p)
     npieces = len(pcs)
     cmd = "/usr/bin/python3 scripts/gen_ellint_coeffs.py"
     stamp = ("generated by scripts/gen_ellint_coeffs.py - do not edit.\n"
@@ -273,16 +420,19 @@ def main():
     h.append("#define ICS_ELLINT_X0_LOG2 (%d)" % X0_LOG2)
     h.append("#define ICS_ELLINT_S %d /* 2^S pieces per binade of x in [X0, 1] */" % S)
     h.append("#define ICS_ELLINT_NPIECES %d" % npieces)
-    h.append("#define ICS_ELLINT_NLOG %d /* degree of Pa, Pb, Pc, Pd */" % NLOG)
+    h.append("#define ICS_ELLINT_NLOGK %d /* degree of Pa, Pb */" % NLOGK)
+    h.append("#define ICS_ELLINT_NLOGE %d /* degree of Pc, Pd */" % NLOGE)
     h.append("#define ICS_ELLINT_NK %d /* degree of the K piece polynomials */" % NK)
     h.append("#define ICS_ELLINT_NE %d /* degree of the E piece polynomials */" % NE)
     h.append("")
     h.append("/* Log region 0 < x < X0, L = ln(16/x):")
-    h.append(" *   K = (L/2)(1 + x Pa(x)) + x Pb(x),   E = 1 + x ((L - 1)/4 + x ((L/2) Pc(x) + Pd(x))).")
+    h.append(" *   K = (L/2)(1 + x Pa(x)) + x Pb(x),   E = 1 + x ((L - 1)/4 + x ((L/2) Pc(x) + Pd(x))),")
+    h.append(" * stored as pa = Pa, pb2 = 2 Pb, pc2 = 2 Pc, pd4 = 4 Pd (exact scalings) for the form")
+    h.append(" *   K = (1/2) [L + x (L Pa + 2 Pb)],   E = 1 + (x/4) [L - 1 + x (L 2Pc + 4Pd)].")
     h.append(" * Coefficients in increasing degree. */")
     h.append("struct ics_ellint_log_table {")
-    h.append("  double pa[ICS_ELLINT_NLOG + 1], pb[ICS_ELLINT_NLOG + 1];")
-    h.append("  double pc[ICS_ELLINT_NLOG + 1], pd[ICS_ELLINT_NLOG + 1];")
+    h.append("  double pa[ICS_ELLINT_NLOGK + 1], pb2[ICS_ELLINT_NLOGK + 1];")
+    h.append("  double pc2[ICS_ELLINT_NLOGE + 1], pd4[ICS_ELLINT_NLOGE + 1];")
     h.append("};")
     h.append("")
     h.append("/* Piece i covers x in [c - w/2, c + w/2]; t = x - c:")
@@ -296,7 +446,23 @@ def main():
     h.append("  struct ics_ellint_piece p[ICS_ELLINT_NPIECES];")
     h.append("};")
     h.append("")
+    h.append("/* Inline logarithm: x = 2^k z, z in [sqrt(1/2), sqrt(2)) (bits(x) - LOG_OFF), interval")
+    h.append(" * i = top LOG_B mantissa bits of bits(x) - LOG_OFF;  ln z = (lhi + llo) + log1p(r),")
+    h.append(" * r = (z - c) invc,  log1p(r) = r + r^2 P(r).  lhi is a multiple of 2^-32 like")
+    h.append(" * n LN2_HI (|n| < 2^21), so n LN2_HI -+ lhi is exact. */")
+    h.append("#define ICS_ELLINT_LOG_B %d" % LOG_B)
+    h.append("#define ICS_ELLINT_LOG_N %d" % (1 << LOG_B))
+    h.append("#define ICS_ELLINT_LOG_OFF 0x%xULL /* bits of sqrt(1/2) */" % LOG_OFF)
+    h.append("#define ICS_ELLINT_NLOG1P %d /* degree of P */" % NLOG1P)
+    h.append("#define ICS_ELLINT_LN2_HI %s /* ln 2 to 32 bits */" % hexs(LN2_HI))
+    h.append("#define ICS_ELLINT_LN2_LO %s" % hexs(LN2_LO))
+    h.append("struct ics_ellint_lnc {")
+    h.append("  double c, invc, lhi, llo;")
+    h.append("};")
+    h.append("")
     h.append("extern const struct ics_ellint_log_table ics_ellint_log;")
+    h.append("extern const struct ics_ellint_lnc ics_ellint_lnc[ICS_ELLINT_LOG_N];")
+    h.append("extern const double ics_ellint_log1p[ICS_ELLINT_NLOG1P + 1];")
     h.append("extern const struct ics_ellint_piece_table ics_ellint_pieces;")
     h.append("")
     h.append("#endif")
@@ -307,22 +473,34 @@ def main():
     c.append(" * Maximum approximation error (double coefficients evaluated exactly, against mpmath")
     c.append(" * ellipk/ellipe at dense points), in ulps of the result; the rounding errors of the")
     c.append(" * double evaluation come on top and are measured by tests/test_ellint.c:")
-    c.append(" *   ics_ellint_log    (x in (0, 2^%d], degree %d):  K %.4f ulp, E %.4f ulp"
-             % (X0_LOG2, NLOG, lek, lee))
+    c.append(" *   ics_ellint_log    (x in (0, 2^%d], degree %d/%d):  K %.4f ulp, E %.4f ulp"
+             % (X0_LOG2, NLOGK, NLOGE, lek, lee))
     c.append(" *   ics_ellint_pieces (x in [2^%d, 1], %d pieces, degree %d/%d):  K %.4f ulp, E %.4f ulp"
              % (X0_LOG2, npieces, NK, NE, pek, pee))
     c.append(" * Series check (DLMF 19.12.1/2 vs mpmath ellipk/ellipe, 40 points): rel. diff %.2e"
              % float(serr))
+    c.append(" *   inline logarithm (%d intervals, log1p degree %d, r in [%.3g, %.3g]): the C evaluation"
+             % (1 << LOG_B, NLOG1P + 2, float(rlo), float(rhi)))
+    c.append(" *   of L = ln(16/x), ln(16 x) emulated in doubles at %d points: max |H + T - L| = 2^%.2f"
+             % (lnn, lnerr))
     c.append(" */")
     c.append('#include "ellint_data.h"')
     c.append("")
     c.append("const struct ics_ellint_log_table ics_ellint_log = {")
-    for name, arr in (("pa", pa), ("pb", pb), ("pc", pc), ("pd", pd)):
+    for name, arr in (("pa", pa), ("pb2", [2 * v for v in pb]), ("pc2", [2 * v for v in pc]),
+                      ("pd4", [4 * v for v in pd])):
         c.append("  .%s = {" % name)
         for v in arr:
             c.append("    %s," % hexs(v))
         c.append("  },")
     c.append("};")
+    c.append("")
+    c.append("const struct ics_ellint_lnc ics_ellint_lnc[ICS_ELLINT_LOG_N] = {")
+    for (cc, invc, lhi, llo) in lntab:
+        c.append("  {%s, %s, %s, %s}," % (hexs(cc), hexs(invc), hexs(lhi), hexs(llo)))
+    c.append("};")
+    c.append("")
+    c.append("const double ics_ellint_log1p[ICS_ELLINT_NLOG1P + 1] = {%s};" % ", ".join(hexs(v) for v in l1p))
     c.append("")
     c.append("const struct ics_ellint_piece_table ics_ellint_pieces = {.p = {")
     for (cc, k0h, k0l, pk, e0h, e0l, pe) in pcs:
@@ -338,7 +516,8 @@ def main():
         f.write(htext)
     with open(os.path.join(outdir, "ellint_data.c"), "w") as f:
         f.write(ctext)
-    print("log table: K %.4f ulp, E %.4f ulp; pieces: K %.4f ulp, E %.4f ulp" % (lek, lee, pek, pee))
+    print("log table: K %.4f ulp, E %.4f ulp; pieces: K %.4f ulp, E %.4f ulp; inline log 2^%.2f"
+          % (lek, lee, pek, pee, lnerr))
 
 
 if __name__ == "__main__":

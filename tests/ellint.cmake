@@ -22,3 +22,12 @@ else()
     "SKIPPED: test_ellint_data_regen needs python3 with mpmath (apt-get install python3-mpmath)")
   set_tests_properties(test_ellint_data_regen PROPERTIES LABELS fast SKIP_REGULAR_EXPRESSION "SKIPPED:")
 endif()
+
+# Long runs restricted to the log-series region (m1 < X0) and to m < 0 (label exhaustive):
+# 10^6 random inputs each, every one checked for K and E against MPFR.
+ics_add_test(NAME test_ellint_focus_log
+  SOURCES ${CMAKE_SOURCE_DIR}/tests/test_ellint.c ${CMAKE_SOURCE_DIR}/tests/ref_mpfr.c
+  LABELS exhaustive LIBS ${ICS_MPFR_LIBS} ARGS --focus log --n 1000000 NEEDS MPFR)
+ics_add_test(NAME test_ellint_focus_neg
+  SOURCES ${CMAKE_SOURCE_DIR}/tests/test_ellint.c ${CMAKE_SOURCE_DIR}/tests/ref_mpfr.c
+  LABELS exhaustive LIBS ${ICS_MPFR_LIBS} ARGS --focus neg --n 1000000 NEEDS MPFR)

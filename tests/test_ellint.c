@@ -1,9 +1,12 @@
 /* test_ellint.c — K(m), E(m) (icshadow/ellint.h) against the 320-bit MPFR AGM (ref_mpfr.c).
  *
  * Parameter convention: m = k^2, m1 = 1 - m.
- * Usage: test_ellint [--exhaustive] [SEED]
+ * Usage: test_ellint [--exhaustive] [--focus log|neg] [--n N] [SEED]
  *   default: ~10^5 MPFR comparisons (label fast, also run under ASan+UBSan);
- *   --exhaustive: 3 * 10^6 comparisons (label exhaustive).
+ *   --exhaustive: 3 * 10^6 random inputs (label exhaustive);
+ *   --focus log: the random inputs only in the log-series region (m1 < X0, both entry points,
+ *     subnormals included); --focus neg: only m < 0 (pieces of 1/m1, log series, scaled);
+ *   --n N: N random inputs (each checked for K and E).
  * Random inputs are weighted toward m -> 1 (log-uniform m1 down to the smallest subnormal)
  * and toward large negative m (log-uniform down to -DBL_MAX); both sides (+-8 ulps) of every
  * algorithm switch in ellint.c are tested, and the worst inputs in ellint_worst.h.
@@ -39,10 +42,10 @@ static const char *fname[NF] = {"K", "E"};
 enum { R_SUB, R_LOG, R_PIECE, R_NEGPIECE, R_NEGLOG, R_HUGE, NR };
 static const char *rname[NR] = {
     "m1 in (0, 2^-1022)   log series, subnormal",
-    "m1 in [2^-1022,1/32) log series",
-    "m1 in [1/32, 1]      pieces",
-    "m1 in (1, 32]        m<0: pieces of 1/m1",
-    "m1 in (32, 2^512]    m<0: log series",
+    "m1 in [2^-1022, X0)  log series",
+    "m1 in [X0, 1]        pieces",
+    "m1 in (1, 1/X0]      m<0: pieces of 1/m1",
+    "m1 in (1/X0, 2^512]  m<0: log series",
     "m1 > 2^512           m<0: scaled sqrt",
 };
 enum { E_M1, E_M, NE_ };
@@ -142,6 +145,8 @@ static void test_switches(void) {
   around_m1(0x1p512, 8);       /* m < 0: scaled square root */
   around_m(-0x1p512, 8);
   around_m1(0x1p-1022, 8);     /* subnormal rescaling in the logarithm */
+  around_m1(0x1p-64, 8);       /* polynomial argument clamp */
+  around_m1(0x1p-1021, 8);     /* outer factor x clamp */
   around_m1(1.0, 16);          /* m = 0 */
   around_m(0.0, 8);            /* m = 0 from both sides (tiny negative m) */
   around_m(0.5, 8);            /* 1 - m exact / rounded */
@@ -154,10 +159,62 @@ static void test_switches(void) {
   around_m(-1e300, 4);
 }
 
+/* The inline logarithm's table: both ends of each of its ICS_ELLINT_LOG_N intervals of z in
+ * [sqrt(1/2), sqrt(2)) (bit patterns LOG_OFF + i 2^(52 - LOG_B)), scaled into the log region
+ * (m1 < X0, normal and subnormal) and into the m < 0 log route (m1 > 1/X0). */
+static void test_log_table_ends(void) {
+  const int exps_small[] = {-8, -9, -40, -300, -1000, -1022};
+  const int exps_big[] = {8, 9, 60, 511, 512, 513, 1000};
+  for (int i = 0; i <= ICS_ELLINT_LOG_N; i++) {
+    uint64_t b = ICS_ELLINT_LOG_OFF + ((uint64_t)i << (52 - ICS_ELLINT_LOG_B));
+    double z;
+    memcpy(&z, &b, sizeof z); /* i = LOG_N: sqrt(2), the next binade's sqrt(1/2) times 2 */
+    for (size_t j = 0; j < sizeof exps_small / sizeof exps_small[0]; j++) {
+      double x = ldexp(z, exps_small[j]);
+      if (x < ICS_ELLINT_X0) around_m1(x, 2);
+    }
+    for (size_t j = 0; j < sizeof exps_big / sizeof exps_big[0]; j++) around_m1(ldexp(z, exps_big[j]), 2);
+    /* subnormal m1 whose rescaled significand lands on the interval ends */
+    around_m1(ldexp(z, -1060), 1);
+  }
+}
+
+/* m < 0 where the square root or the reciprocal is exact or nearly so (the 26-bit heads are
+ * then the whole value or the tails vanish): m1 = 2^k, j^2, 1/(2^k) inverses, j^2 +- 1 ulp. */
+static void test_neg_exact_cases(void) {
+  for (int k = 1; k <= 1023; k++) around_m1(ldexp(1.0, k), 1);
+  for (int j = 2; j <= 3000; j += (j < 100 ? 1 : 37)) {
+    double v = (double)j * (double)j;
+    around_m1(v, 1);
+    around_m(1.0 - v, 1);
+  }
+}
+
 #include "ellint_worst.h"
+
+static int focus; /* 0: all regions, 1: log series, 2: m < 0 */
 
 static void test_random(long n) {
   for (long i = 0; i < n; i++) {
+    if (focus == 1) {
+      switch (i % 4) {
+        case 0: test_m1(rng_logu(-1074, ICS_ELLINT_X0_LOG2 - 1)); break; /* subnormals too */
+        case 1: test_m1(rng_logu(-64, ICS_ELLINT_X0_LOG2 - 1)); break;
+        default: test_m(1.0 - rng_logu(-53, ICS_ELLINT_X0_LOG2 - 1)); break;
+      }
+      continue;
+    }
+    if (focus == 2) {
+      switch (i % 6) {
+        case 0: test_m1(1.0 + rng_logu(-60, -ICS_ELLINT_X0_LOG2)); break;  /* pieces of 1/m1 */
+        case 1: test_m1(rng_logu(1 - ICS_ELLINT_X0_LOG2, 1023)); break;    /* log, scaled */
+        case 2: test_m(-rng_logu(-1074, -ICS_ELLINT_X0_LOG2)); break;     /* pieces, from m */
+        case 3: test_m(-rng_logu(-ICS_ELLINT_X0_LOG2, 1023)); break;      /* log, from m */
+        case 4: test_m(-(1.0 - ICS_ELLINT_X0) / ICS_ELLINT_X0 * 1.25 * test_rng_unit()); break;
+        default: test_m1(1.0 + (1.0 / ICS_ELLINT_X0) * test_rng_unit()); break;
+      }
+      continue;
+    }
     switch (i % 8) {
       case 0: test_m1(rng_logu(-1074, -1)); break;           /* m -> 1, down to subnormals */
       case 1: test_m1(rng_logu(-60, -1)); break;
@@ -283,7 +340,21 @@ int main(int argc, char **argv) {
   long n = 60000; /* MPFR comparisons in the random part (fast label) */
   for (int i = 1; i < argc; i++) {
     if (strcmp(argv[i], "--exhaustive") == 0) n = 3000000;
-    else test_rng_state ^= (uint64_t)strtoull(argv[i], NULL, 0);
+    else if (strcmp(argv[i], "--focus") == 0 && i + 1 < argc) {
+      i++;
+      focus = strcmp(argv[i], "log") == 0 ? 1 : strcmp(argv[i], "neg") == 0 ? 2 : -1;
+      if (focus < 0) {
+        fprintf(stderr, "test_ellint: --focus takes log or neg, not '%s'\n", argv[i]);
+        return 2;
+      }
+    } else if (strcmp(argv[i], "--n") == 0 && i + 1 < argc) {
+      char *end;
+      n = strtol(argv[++i], &end, 10);
+      if (*end || n < 0) {
+        fprintf(stderr, "test_ellint: --n takes a count, not '%s'\n", argv[i]);
+        return 2;
+      }
+    } else test_rng_state ^= (uint64_t)strtoull(argv[i], NULL, 0);
   }
   mpfr_inits2(REF_PREC, rK, rE, (mpfr_ptr)0);
   mpfr_init2(rm1, 2200);
@@ -291,6 +362,8 @@ int main(int argc, char **argv) {
   test_special();
   test_errno();
   test_switches();
+  test_log_table_ends();
+  test_neg_exact_cases();
   for (size_t i = 0; i < sizeof ellint_worst_m1 / sizeof ellint_worst_m1[0]; i++)
     test_m1(ellint_worst_m1[i]);
   for (size_t i = 0; i < sizeof ellint_worst_m / sizeof ellint_worst_m[0]; i++)
@@ -298,8 +371,8 @@ int main(int argc, char **argv) {
   test_random(n);
   test_legendre(n / 10);
 
-  printf("max error in ulps against MPFR (bounds: K %.2f, E %.2f), worst inputs:\n", BOUND_K,
-         BOUND_E);
+  printf("max error in ulps against MPFR (bounds: K %.2f, E %.2f; X0 = %a), worst inputs:\n",
+         BOUND_K, BOUND_E, ICS_ELLINT_X0);
   for (int en = 0; en < NE_; en++)
     for (int r = 0; r < NR; r++) {
       if (!count[en][r]) continue;

@@ -6,43 +6,47 @@
  * Below, x denotes the complementary parameter of the argument actually evaluated.
  *
  * METHOD (all coefficients in ellint_data.c, made by scripts/gen_ellint_coeffs.py with mpmath):
- *  1. 0 < x < X0 = 1/32 (m > 31/32): logarithmic series, DLMF 19.12.1 / 19.12.2, L = ln(16/x):
- *       K = (L/2)(1 + x Pa(x)) + x Pb(x),   E = 1 + x ((L - 1)/4 + x ((L/2) Pc(x) + Pd(x))),
- *     Pa..Pd being degree-7 Chebyshev interpolants (on [0, X0]) of the exact rational series
- *     (A = 1 + x Pa = sum ((1/2)_n/n!)^2 x^n etc., see the generator).
- *     L is formed as a double-double: x = f 2^k with f in [sqrt(1/2), sqrt(2)] (subnormal x is
- *     rescaled first, so x down to 2^-1074 works and 16/x is never formed), then
- *     L = (4 - k) ln2_hi + ((4 - k) ln2_lo - log(f)); (4 - k) ln2_hi is exact.  The leading term
- *     L_hi/2 is exact, everything else is a small correction, so the last addition dominates.
- *  2. X0 <= x <= 1 (0 <= m <= 31/32): 40 pieces, 8 per binade of x ([1/32,1/16) ... [1/2,1]),
+ *  1. 0 < x < X0 = 1/128 (m > 127/128): logarithmic series, DLMF 19.12.1 / 19.12.2,
+ *     L = ln(16/x):  K = (L/2)(1 + x Pa(x)) + x Pb(x),   E = 1 + x ((L - 1)/4 + x ((L/2) Pc(x) + Pd(x))),
+ *     Pa..Pd being degree-5 Chebyshev interpolants (on [0, X0]) of the exact rational series
+ *     (A = 1 + x Pa = sum ((1/2)_n/n!)^2 x^n etc., see the generator), evaluated as
+ *       K = (1/2) [H + (T (1 + x Pa) + x (H Pa + 2Pb))],
+ *       E = 1 + (x/4) [(H - 1) + (T (1 + x 2Pc) + x (H 2Pc + 4Pd))]
+ *     with L = H + T from an inline table-driven logarithm: x = 2^k z, z in [sqrt(1/2), sqrt(2))
+ *     from the bits (a subnormal x is rescaled exactly through its integer significand), one of
+ *     128 intervals of z with centre c, ln z = ln c + log1p(r), r = (z - c)/c, log1p by a degree-6
+ *     polynomial; H = (4 - k) ln2_hi - lnc_hi is exact (both multiples of 2^-32) and
+ *     |T| < 2^-7, so |H + T - L| < 2^-60 (the generator emulates this code and asserts it).
+ *     H/2 and H - 1 are exact, everything else is a correction of < 1.3 % of the result, so the
+ *     last addition dominates; T enters last (it has the longest dependency chain).
+ *  2. X0 <= x <= 1 (0 <= m <= 127/128): 56 pieces, 8 per binade of x ([1/128,1/64) ... [1/2,1]),
  *     selected from the exponent and top 3 mantissa bits of x.  About each piece centre c,
  *       K = k0_hi + (k0_lo + t Pk(t)),  t = x - c (exact; from m it is (1 - c) - m),
  *     with K(1 - c) = k0_hi + k0_lo stored as a double-double and Pk of degree 10 (E: degree 9);
- *     |t Pk(t)| < 1.2 % of K, so the final addition again dominates the error.
- *     The switch at x = 1/32 keeps the log-series correction x ((L-1)/4 + ...) to E below
- *     4 % of E (at 1/16 its rounding errors reached 0.08 ulp); the pieces follow the binades
- *     because K's derivative grows like 1/x.
+ *     |t Pk(t)| < 1.2 % of K, so the final addition again dominates the error.  The pieces
+ *     follow the binades because K's derivative grows like 1/x.
  *  3. m < 0 (m1 > 1): imaginary-modulus transformation (DLMF 19.7.5 / A&S 17.4.17-18)
- *       K(m) = K(m') / sqrt(m1),   E(m) = sqrt(m1) E(m'),   m' = m/(m - 1), 1 - m' = 1/m1,
- *     done in double-double: m1 = 1 - m exactly (two-sum), x' = 1/m1 (one division plus its
- *     exact residual), sqrt(m1) and 1/sqrt(m1) = sqrt(m1)/m1 (each with one Newton correction),
- *     and the two final products
- *     (Dekker/Veltkamp products, or fma() where the target has a fast one).  When x' < X0 the
- *     log series takes L = ln(16 m1) straight from m1 (no rounding of 1/m1 inside the log);
- *     above m1 = 2^512 the square roots are taken of m1 2^-600 (exact scaling: no overflow,
- *     no subnormal 1/m1), so m down to -DBL_MAX works.
+ *       K(m) = K(m') / sqrt(m1),   E(m) = E(m') sqrt(m1),   m' = m/(m - 1), x' = 1 - m' = 1/m1,
+ *     with m1 = 1 - m exactly (two-sum), one division q = 1/m1 and one square root.  Heads cut
+ *     to 26 bits (bit mask) make the products that matter exact:  x' = q26 + xl from
+ *     e = 1 - q26 m1, sqrt(m1) = s26 + sl and 1/sqrt(m1) = r26 + rl from one correction each,
+ *     and the final products K(m') r, E(m') s as head26 * head26 (exact) + small corrections.
+ *     When m1 > 1/X0 the log series takes L = ln(16 m1) straight from m1; above m1 = 2^512 all
+ *     of this is done on m1 2^-600 (exact scaling: no overflow, no subnormal; x' < 2^-512 is
+ *     then dropped), so m down to -DBL_MAX works.
  *
- * SWITCH POINTS (all tested from both sides): x = 1/32 (log series / pieces); the piece
- * boundaries x = 2^-j (1 + i/8); m = 0 (m1 = 1: direct / transformed); m1 = 32 (x' = 1/32 on
+ * SWITCH POINTS (all tested from both sides): x = 1/128 (log series / pieces); the piece
+ * boundaries x = 2^-j (1 + i/8); m = 0 (m1 = 1: direct / transformed); m1 = 128 (x' = 1/128 on
  * the transformed route); m1 = 2^512 (scaled square roots); x = 2^-64 (polynomials evaluated at
- * 0 below it: Estrin's x^8 must not go subnormal, which is slow); x = 2^-1022 (subnormal x
- * rescaled before the exponent is read).
+ * 0 below it: their x^4 must not go subnormal, which is slow); x = 2^-1021 (the outer factor x
+ * is dropped below it, for the same reason); x = 2^-1022 (subnormal x rescaled in the log);
+ * the 128 interval ends of the logarithm's table.
  *
  * ERROR BOUND (measured against a 320-bit MPFR AGM, tests/test_ellint.c; docs/ellint.md):
  *   K: 0.60 ulp,  E: 0.60 ulp  over the whole domain, for every entry point
  *   (the final rounding contributes 0.5 ulp; the tables' approximation error is < 0.007 ulp;
- *   largest errors found in 6e6 random inputs: K 0.556 ulp at m1 = 0x1.4c0a15965244p-7,
- *   E 0.557 ulp at m = -0x1.2dbd6187e79d4p+5).
+ *   the worst errors found in the exhaustive runs are listed in docs/ellint.md and
+ *   tests/ellint_worst.h).
  *
  * SPECIAL CASES (no errno is ever touched):
  *   m = 1 (m1 = 0): K = +inf, E = 1.      m > 1 (m1 < 0) or NaN: NaN.
@@ -56,8 +60,6 @@
 
 #include "ellint_data.h"
 
-#define LN2_HI 0x1.62e42fee00000p-1 /* 21 trailing zero bits: n * LN2_HI exact, |n| < 2^21 */
-#define LN2_LO 0x1.a39ef35793c76p-33
 
 typedef struct {
   double hi, lo;
@@ -70,47 +72,12 @@ typedef struct {
 #define ICS_INLINE static inline
 #endif
 
-/* ---- error-free transformations ------------------------------------------------------- */
-static inline ics_dd fast_two_sum(double a, double b) { /* |a| >= |b| or a == 0 */
-  ics_dd r;
-  r.hi = a + b;
-  r.lo = b - (r.hi - a);
-  return r;
-}
-
+/* ---- error-free transformation (no multiplication: safe under FMA contraction) --------- */
 static inline ics_dd two_sum(double a, double b) {
   ics_dd r;
   r.hi = a + b;
   double bb = r.hi - a;
   r.lo = (a - (r.hi - bb)) + (b - bb);
-  return r;
-}
-
-static inline ics_dd two_prod(double a, double b) { /* |a|, |b| < 2^995 */
-  ics_dd r;
-  r.hi = a * b;
-#ifdef FP_FAST_FMA
-  r.lo = fma(a, b, -r.hi);
-#else
-  const double split = 134217729.0; /* 2^27 + 1 (Veltkamp) */
-  double ca = split * a, cb = split * b;
-  double ah = ca - (ca - a), al = a - ah;
-  double bh = cb - (cb - b), bl = b - bh;
-  r.lo = ((ah * bh - r.hi) + ah * bl + al * bh) + al * bl;
-#endif
-  return r;
-}
-
-static inline ics_dd two_sqr(double a) { /* |a| < 2^995 */
-  ics_dd r;
-  r.hi = a * a;
-#ifdef FP_FAST_FMA
-  r.lo = fma(a, a, -r.hi);
-#else
-  double ca = 134217729.0 * a;
-  double ah = ca - (ca - a), al = a - ah;
-  r.lo = ((ah * ah - r.hi) + 2.0 * ah * al) + al * al;
-#endif
   return r;
 }
 
@@ -127,74 +94,95 @@ static inline double as_f64(uint64_t u) {
   return x;
 }
 
-/* x = f * 2^k with f in [sqrt(1/2), sqrt(2)); x > 0 finite (subnormals included). */
-static inline double split_log2(double x, int *k) {
-  int adj = 0;
-  if (x < 0x1p-1022) {
-    x *= 0x1p54;
-    adj = -54;
-  }
+/* Inline logarithm (tables ics_ellint_lnc, ics_ellint_log1p; the generator emulates exactly this
+ * code in doubles and asserts its error).  x > 0 finite, subnormals included: x = 2^k z with
+ * z in [sqrt(1/2), sqrt(2)); the interval entry e has ln c = lhi + llo and r = (z - c)/c.
+ * Returns k; *pe = e, *r = r.  A subnormal x = u 2^-1074 is rescaled exactly by
+ * converting its integer significand u (no floating-point operation on a subnormal). */
+static inline int64_t log_parts(double x, const struct ics_ellint_lnc **pe, double *r) {
   uint64_t u = as_u64(x);
-  /* subtracting the bits of sqrt(1/2) puts the binade boundary at sqrt(1/2) */
-  uint64_t tmp = u - 0x3fe6a09e667f3bcdULL;
-  int e = (int)((int64_t)tmp >> 52); /* f = x / 2^e lies in [sqrt(1/2), sqrt(2)) */
-  *k = e + adj;
-  return as_f64(u - ((uint64_t)(int64_t)e << 52));
+  int64_t kadj = 0;
+  if (u < 0x0010000000000000ULL) {
+    u = as_u64((double)(int64_t)u);
+    kadj = -1074;
+  }
+  uint64_t tmp = u - ICS_ELLINT_LOG_OFF;
+  const struct ics_ellint_lnc *e =
+      &ics_ellint_lnc[(tmp >> (52 - ICS_ELLINT_LOG_B)) & (ICS_ELLINT_LOG_N - 1)];
+  double z = as_f64(u - (tmp & 0xfff0000000000000ULL));
+  *r = (z - e->c) * e->invc;
+  *pe = e;
+  return ((int64_t)tmp >> 52) + kadj;
 }
 
-/* Estrin's scheme (shorter dependency chains than Horner; n is a compile-time constant). */
+/* log1p(r) - r = r^2 P(r) (Estrin; the generator emulates the same order) */
+_Static_assert(ICS_ELLINT_NLOG1P == 4, "log1p_tail is written for degree 4");
+_Static_assert(ICS_ELLINT_NLOGK >= 5 && ICS_ELLINT_NLOGE >= 5, "poly() needs n >= 5");
+static inline double log1p_tail(double r) {
+  const double *p = ics_ellint_log1p;
+  double r2 = r * r;
+  return r2 * ((p[0] + p[1] * r) + r2 * ((p[2] + p[3] * r) + r2 * p[4]));
+}
+
+/* Estrin's scheme (shorter dependency chains than Horner, which measured slower here;
+ * n is a compile-time constant, 5 <= n <= 10). */
 static inline double poly(const double *p, int n, double t) {
   double t2 = t * t, t4 = t2 * t2;
   double a = (p[0] + p[1] * t) + t2 * (p[2] + p[3] * t);
+  if (n == 5) return a + t4 * (p[4] + p[5] * t);
   double b = (p[4] + p[5] * t) + t2 * (p[6] + (n >= 7 ? p[7] * t : 0.0));
   if (n <= 7) return a + t4 * b;
   double c = n == 8 ? p[8] : n == 9 ? p[8] + p[9] * t : (p[8] + p[9] * t) + t2 * p[10];
   return a + t4 * (b + t4 * c);
 }
 
-/* L = ln(16/x) as a double-double; x > 0 finite. */
+/* L = ln(16/x) = H + T, H exact (a multiple of 2^-32), |T| < 2^-7; x > 0 finite. */
 static inline ics_dd ln16_over(double x) {
-  int k;
-  double f = split_log2(x, &k);
-  double n = 4.0 - k;
-  return fast_two_sum(n * LN2_HI, n * LN2_LO - log(f));
+  const struct ics_ellint_lnc *e;
+  double r, n = (double)(4 - log_parts(x, &e, &r));
+  return (ics_dd){n * ICS_ELLINT_LN2_HI - e->lhi,
+                  ((n * ICS_ELLINT_LN2_LO - e->llo) - r) - log1p_tail(r)};
 }
 
-/* L = ln(16 (x + xl)) as a double-double; x > 1 finite, |xl| <= ulp(x)/2, xinv ~ 1/x. */
-static inline ics_dd ln16_times(double x, double xl, double xinv) {
-  int k;
-  double f = split_log2(x, &k);
-  double n = 4.0 + k;
-  return fast_two_sum(n * LN2_HI, n * LN2_LO + (log(f) + xl * xinv));
+/* L = ln(16 x (1 + rel)) = H + T; x > 1 finite, |rel| <= 2^-53 (the low part of m1 over m1). */
+static inline ics_dd ln16_times(double x, double rel) {
+  const struct ics_ellint_lnc *e;
+  double r, n = (double)(4 + log_parts(x, &e, &r));
+  return (ics_dd){n * ICS_ELLINT_LN2_HI + e->lhi,
+                  ((n * ICS_ELLINT_LN2_LO + e->llo) + (r + rel)) + log1p_tail(r)};
 }
 
 /* ---- the two approximations in x = complementary parameter ----------------------------- */
-/* Log region, 0 < x < X0, L = ln(16/x) (or ln(16 m1) for the transformed argument).
- * log_k, log_e, piece_k, piece_e return {leading term, correction}: the leading term is exact
- * (a table double or L_hi/2 or 1), the correction is at most 4 % of the result, and the caller
- * adds them in one final rounding (or keeps them apart for the m < 0 products). */
-/* The argument is x + xl (xl = 0 except for the transformed argument 1/m1 of m < 0). */
-/* The polynomials get xp = 0 below 2^-64 (their x-dependence is then far below an ulp): this
- * keeps x^8 in Estrin's scheme from going subnormal, which is very slow on x86. */
+/* log_k, log_e, piece_k, piece_e return {leading term, correction}: the leading term is exact
+ * (a table double, H/2 or 1), the correction is at most 1.3 % of the result, and the caller
+ * adds them in one final rounding (or keeps them apart for the m < 0 products).
+ * Log region, 0 < x < X0, L = H + T = ln(16/x) (or ln(16 m1) for the transformed argument,
+ * whose x' = x + xl, |xl| <= ulp(x)/2, enters through a first-order term).
+ * The polynomials get xp = 0 below 2^-64 (their x-dependence is then far below an ulp) and the
+ * outer factor xm = 0 below 2^-1021 (its terms are then 2^-1021 of the result): operations with
+ * subnormal operands or results are very slow on x86 (36 ns per call before). */
 static inline double poly_arg(double x) { return x > 0x1p-64 ? x : 0.0; }
+static inline double outer_arg(double x) { return x >= 0x1p-1021 ? x : 0.0; }
 
+/* K = (1/2) [H + (T (1 + x Pa) + x (H Pa + 2 Pb)) + xl (H/4 - 1/2)]  (|xl| <= ulp(x)/2):
+ * returns {H/2 (exact), the rest / 2}.  T enters late (it has the longest dependency chain). */
 static inline ics_dd log_k(double x, double xl, ics_dd L) {
   const struct ics_ellint_log_table *T = &ics_ellint_log;
-  double hl = 0.5 * L.hi, xp = poly_arg(x);
-  double corr = 0.5 * L.lo + x * (hl * poly(T->pa, ICS_ELLINT_NLOG, xp) +
-                                  poly(T->pb, ICS_ELLINT_NLOG, xp));
-  corr += xl * (0.125 * L.hi - 0.25); /* first-order term of the xl correction */
-  return (ics_dd){hl, corr};
+  double xp = poly_arg(x), xm = outer_arg(x);
+  double pa = poly(T->pa, ICS_ELLINT_NLOGK, xp), pb2 = poly(T->pb2, ICS_ELLINT_NLOGK, xp);
+  double w = 1.0 + xm * pa, v = xm * (L.hi * pa + pb2);
+  double corr = (L.lo * w + v) + xl * (0.25 * L.hi - 0.5); /* xl: first-order term */
+  return (ics_dd){0.5 * L.hi, 0.5 * corr};
 }
 
-/* E = 1 + x ((L - 1)/4 + x ((L/2) Pc(x) + Pd(x))); (L_hi - 1)/4 is exact (L_hi > 4). */
+/* E = 1 + (x/4) [(H - 1) + (T (1 + x 2Pc) + x (H 2Pc + 4Pd))] + xl (L - 1)/4; H - 1 exact. */
 static inline ics_dd log_e(double x, double xl, ics_dd L) {
   const struct ics_ellint_log_table *T = &ics_ellint_log;
-  double xp = poly_arg(x);
-  double r = 0.25 * L.lo + x * (0.5 * L.hi * poly(T->pc, ICS_ELLINT_NLOG, xp) +
-                                poly(T->pd, ICS_ELLINT_NLOG, xp));
-  double b = 0.25 * (L.hi - 1.0);
-  double corr = x * (b + r) + xl * b;
+  double xp = poly_arg(x), xm = outer_arg(x);
+  double pc2 = poly(T->pc2, ICS_ELLINT_NLOGE, xp), pd4 = poly(T->pd4, ICS_ELLINT_NLOGE, xp);
+  double w = 1.0 + xm * pc2, v = xm * (L.hi * pc2 + pd4);
+  double b = L.hi - 1.0;
+  double corr = (0.25 * xm) * (b + (L.lo * w + v)) + xl * (0.25 * b);
   return (ics_dd){1.0, corr};
 }
 
@@ -243,48 +231,67 @@ ICS_INLINE void route_pos(double x, double m, int from_m, int wk, int we, double
   }
 }
 
+/* a truncated to its leading 26 bits (a bit mask: unlike a Veltkamp split it stays exact
+ * when the compiler contracts a * b + c into an FMA). */
+static inline double head26(double a) { return as_f64(as_u64(a) & 0xfffffffff8000000ULL); }
+
+/* (a.hi + a.lo) (h26 + l), |a.lo| < 1.3 % of a.hi, h26 of <= 26 bits, |l| < 2^-24 h26: a.hi
+ * is cut to 26 bits, so the leading product is exact and only small corrections are rounded
+ * before the final addition. */
+static inline double mul_dd26(ics_dd a, double h26, double l) {
+  double a26 = head26(a.hi);
+  double alo = (a.hi - a26) + a.lo; /* exact tail + correction (< 1.2 % of a) */
+  return a26 * h26 + ((a26 + alo) * l + alo * h26);
+}
+
 /* m < 0: m1 = m1h + m1l > 1 (double-double), finite.
- * With x' = 1/m1 (the complementary parameter of m' = m/(m-1)) and r = sqrt(x') = 1/sqrt(m1):
- *   K(m) = K(m') r,   E(m) = E(m') sqrt(m1),
- * all as double-double products (no division but 1/m1).  Above m1 = 2^512 the square roots are
- * taken of m1 2^-600 (exact scaling) so that no product overflows and 1/m1 stays normal. */
+ * With x' = 1/m1 (the complementary parameter of m' = m/(m-1)):
+ *   K(m) = K(m') / sqrt(m1),   E(m) = E(m') sqrt(m1).
+ * One division and one square root; heads of 26 bits make the products that matter exact.
+ * The piece index and t come from q = 1/m1 (not from the square root): the longest
+ * dependency chains run in parallel.  Above m1 = 2^512 everything is done on m1 2^-600
+ * (exact scaling): no overflow, no subnormal, and x' < 2^-512 is then dropped (its terms are
+ * 2^-512 of K and of E - 1). */
 ICS_INLINE void route_neg(double m1h, double m1l, int wk, int we, double *K, double *E) {
   ics_dd kt = {0, 0}, et = {0, 0};
   double sc = 1.0, rsc = 1.0, ssc = 1.0;
-  if (m1h > 0x1p512) {
+  int scaled = m1h > 0x1p512;
+  if (scaled) {
     sc = 0x1p-600;
     rsc = 0x1p-300;
     ssc = 0x1p300;
   }
   double ms = m1h * sc, mls = m1l * sc; /* exact */
-  double qs = 1.0 / ms;
-  ics_dd p = two_prod(qs, ms);
-  double qsl = qs * (((1.0 - p.hi) - p.lo) - qs * mls); /* 1/(ms + mls) = qs + qsl */
-  double q = qs * sc, ql = qsl * sc;                     /* x' = q + ql (exact scaling) */
-  double sh = sqrt(ms), rh = sh * qs; /* rh ~ 1/sqrt(ms) within 2 ulps: corrected below */
-  if (q < ICS_ELLINT_X0) {
-    ics_dd L = ln16_times(m1h, m1l, q);
-    if (wk) kt = log_k(q, ql, L);
-    if (we) et = log_e(q, ql, L);
+  double q = 1.0 / ms, sh = sqrt(ms);
+  /* x' = 1/(ms + mls) = q26 + xl:  with e = 1 - q26 (ms + mls) (|e| < 2^-24, formed exactly up
+   * to the rounding of the last two small terms), 1/(ms + mls) = q26 (1 + e + e^2 + ...). */
+  double m26 = head26(ms), mlo = ms - m26, q26 = head26(q);
+  double e = ((1.0 - q26 * m26) - q26 * mlo) - q26 * mls; /* q26 m26, q26 mlo, 1 - q26 m26 exact */
+  double xl = (q26 * e) * (1.0 + e);
+  if (m1h > 1.0 / ICS_ELLINT_X0) {
+    ics_dd L = ln16_times(m1h, mls * q);
+    double xr = xl - (q - q26); /* x' = q + xr */
+    double x = q;
+    if (scaled) x = xr = 0.0; /* x' < 2^-512 */
+    if (wk) kt = log_k(x, xr, L);
+    if (we) et = log_e(x, xr, L);
   } else {
     const struct ics_ellint_piece *P = piece_of(q);
-    double t = (q - P->c) + ql;
+    double t = (q26 - P->c) + xl; /* q26 - c exact (Sterbenz) */
     if (wk) kt = piece_k(P, t);
     if (we) et = piece_e(P, t);
   }
-  if (wk) { /* r = sqrt(qs + qsl) = rh + rl;  K = kt r 2^-300 (or 1) */
-    ics_dd r2 = two_sqr(rh); /* one Newton step: rl absorbs rh's error and qsl */
-    double rl = (((qs - r2.hi) - r2.lo) + qsl) * (0.5 * sh);
-    ics_dd pk = two_prod(kt.hi, rh); /* kt.hi is the exact leading term, kt.lo < 1.2 % */
-    *K = (pk.hi + (pk.lo + (kt.hi * rl + kt.lo * rh))) * rsc;
+  /* s = sqrt(ms + mls) = s26 + sl:  s - s26 = delta / (s + s26), delta = (ms - s26^2) + mls
+   * (ms - s26^2 exact), and 1/(s + s26) = (rh/2)(1 + (sh - s26) rh/2) to 2^-51 relative. */
+  double rh = sh * q; /* ~ 1/sqrt(ms) within 2 ulps */
+  double s26 = head26(sh);
+  double sl = (((ms - s26 * s26) + mls) * (0.5 * rh)) * (1.0 + (0.5 * rh) * (sh - s26));
+  if (wk) { /* r = 1/s = r26 + rl:  r - r26 = (1 - r26 s) r;  1 - r26 s26 exact */
+    double r26 = head26(rh);
+    double rl = ((1.0 - r26 * s26) - r26 * sl) * rh;
+    *K = mul_dd26(kt, r26, rl) * rsc;
   }
-  if (we) { /* s = sqrt(ms + mls) = sh + sl;  E = et s 2^300 (or 1) */
-    et = fast_two_sum(et.hi, et.lo);
-    ics_dd s2 = two_sqr(sh);
-    double sl = (((ms - s2.hi) - s2.lo) + mls) * (0.5 * rh);
-    ics_dd pe = two_prod(et.hi, sh);
-    *E = (pe.hi + (pe.lo + (et.hi * sl + et.lo * sh))) * ssc;
-  }
+  if (we) *E = mul_dd26(et, s26, sl) * ssc;
 }
 
 /* ---- public entry points ----------------------------------------------------------------- */

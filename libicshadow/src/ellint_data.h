@@ -3,20 +3,23 @@
 #ifndef ICS_ELLINT_DATA_H
 #define ICS_ELLINT_DATA_H
 
-#define ICS_ELLINT_X0 0x1p-5 /* log series below x = m1 = X0 */
-#define ICS_ELLINT_X0_LOG2 (-5)
+#define ICS_ELLINT_X0 0x1p-7 /* log series below x = m1 = X0 */
+#define ICS_ELLINT_X0_LOG2 (-7)
 #define ICS_ELLINT_S 3 /* 2^S pieces per binade of x in [X0, 1] */
-#define ICS_ELLINT_NPIECES 40
-#define ICS_ELLINT_NLOG 7 /* degree of Pa, Pb, Pc, Pd */
+#define ICS_ELLINT_NPIECES 56
+#define ICS_ELLINT_NLOGK 5 /* degree of Pa, Pb */
+#define ICS_ELLINT_NLOGE 5 /* degree of Pc, Pd */
 #define ICS_ELLINT_NK 10 /* degree of the K piece polynomials */
 #define ICS_ELLINT_NE 9 /* degree of the E piece polynomials */
 
 /* Log region 0 < x < X0, L = ln(16/x):
- *   K = (L/2)(1 + x Pa(x)) + x Pb(x),   E = 1 + x ((L - 1)/4 + x ((L/2) Pc(x) + Pd(x))).
+ *   K = (L/2)(1 + x Pa(x)) + x Pb(x),   E = 1 + x ((L - 1)/4 + x ((L/2) Pc(x) + Pd(x))),
+ * stored as pa = Pa, pb2 = 2 Pb, pc2 = 2 Pc, pd4 = 4 Pd (exact scalings) for the form
+ *   K = (1/2) [L + x (L Pa + 2 Pb)],   E = 1 + (x/4) [L - 1 + x (L 2Pc + 4Pd)].
  * Coefficients in increasing degree. */
 struct ics_ellint_log_table {
-  double pa[ICS_ELLINT_NLOG + 1], pb[ICS_ELLINT_NLOG + 1];
-  double pc[ICS_ELLINT_NLOG + 1], pd[ICS_ELLINT_NLOG + 1];
+  double pa[ICS_ELLINT_NLOGK + 1], pb2[ICS_ELLINT_NLOGK + 1];
+  double pc2[ICS_ELLINT_NLOGE + 1], pd4[ICS_ELLINT_NLOGE + 1];
 };
 
 /* Piece i covers x in [c - w/2, c + w/2]; t = x - c:
@@ -30,7 +33,23 @@ struct ics_ellint_piece_table {
   struct ics_ellint_piece p[ICS_ELLINT_NPIECES];
 };
 
+/* Inline logarithm: x = 2^k z, z in [sqrt(1/2), sqrt(2)) (bits(x) - LOG_OFF), interval
+ * i = top LOG_B mantissa bits of bits(x) - LOG_OFF;  ln z = (lhi + llo) + log1p(r),
+ * r = (z - c) invc,  log1p(r) = r + r^2 P(r).  lhi is a multiple of 2^-32 like
+ * n LN2_HI (|n| < 2^21), so n LN2_HI -+ lhi is exact. */
+#define ICS_ELLINT_LOG_B 7
+#define ICS_ELLINT_LOG_N 128
+#define ICS_ELLINT_LOG_OFF 0x3fe6a09e667f3bcdULL /* bits of sqrt(1/2) */
+#define ICS_ELLINT_NLOG1P 4 /* degree of P */
+#define ICS_ELLINT_LN2_HI 0x1.62e42fee00000p-1 /* ln 2 to 32 bits */
+#define ICS_ELLINT_LN2_LO 0x1.a39ef35793c76p-33
+struct ics_ellint_lnc {
+  double c, invc, lhi, llo;
+};
+
 extern const struct ics_ellint_log_table ics_ellint_log;
+extern const struct ics_ellint_lnc ics_ellint_lnc[ICS_ELLINT_LOG_N];
+extern const double ics_ellint_log1p[ICS_ELLINT_NLOG1P + 1];
 extern const struct ics_ellint_piece_table ics_ellint_pieces;
 
 #endif
