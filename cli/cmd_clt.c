@@ -1,6 +1,8 @@
 /* cmd_clt.c — `icshadow clt --kernel K --var V --steps N1,N2,...`: CLT convergence of the
  * actually iterated kappa^{*n} * H (Patel et al. 2013, Eq. 5-6) against the Gaussian cdf with
- * the same moments, as CSV: steps, sup error, discretisation estimate, cost, run time. */
+ * the same moments, as CSV: steps, sup error, discretisation estimate, cost, run time.
+ * With --cov VX,VY,ANGLE the kernel is a 2D member (ellipse, poisson, gauss) and the occluder a
+ * half-plane (--edge-angle) or a quadrant (--corner): ics_clt2d_measure (icshadow/clt2d.h). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +17,10 @@ static void help(FILE *f) {
   fprintf(f,
           "usage: icshadow clt --kernel K --var V --steps N1,N2,... [--mean M] [--samples N]\n"
           "                    [--seed U] [--comp nonneg|signed|none] [--no-refine] [--rate]\n"
+          "       icshadow clt --kernel K2 --cov VX,VY,ANGLE --steps N1,N2,... [--mean MX,MY]\n"
+          "                    [--edge-angle DEG | --corner] [--samples N] [--seed U]\n"
+          "                    [--offsets random|fixed|golden] [--offset U]\n"
+          "                    [--comp nonneg|signed|none] [--no-refine] [--rate]\n"
           "Iterates an edge H (0 for x < 0, 1 for x > 0) n times with the 1D kernel member K of\n"
           "the class (mean M, variance V) in pixels on a unit grid, and prints CSV:\n"
           "  steps,sup_error,disc_error,taps_x_steps,seconds\n"
@@ -35,16 +41,39 @@ static void help(FILE *f) {
           "  --no-refine  skip the 2x finer run (disc_error is then nan)\n"
           "  --rate       print the fitted rate exponent (slope of log error vs log n) on stderr,\n"
           "               over the resolved points only\n"
+          "\n2D (--cov): the kernel K2 is a 2D member of the class with mean (MX, MY) (default 0,0)\n"
+          "and covariance R(ANGLE) diag(VX, VY) R(ANGLE)^T in pixels (VX, VY >= 0, not both 0;\n"
+          "ANGLE in degrees ccw from +x); the occluder image (exact pixel area coverage) is\n"
+          "  --edge-angle DEG  the half-plane u.x > 0, u = (cos DEG, sin DEG) (default 0), limit\n"
+          "                    Phi((u.x - n u.mu) / sqrt(n u'Sigma u + 1/12)), or\n"
+          "  --corner          the quadrant x > 0, y > 0, limit the bivariate normal cdf of\n"
+          "                    N(n mu, n Sigma + I/12),\n"
+          "and the CSV is\n"
+          "  steps,sup_error,sup_error_realized,disc_error,taps_x_steps,seconds\n"
+          "sup_error: max over the nodes x with |x - n mu|_inf <= 4.5 sd_n of |r_n - limit|;\n"
+          "sup_error_realized: the same with the summed moments of the integer taps actually\n"
+          "applied (stochastic members, rank-one 2-sample ellipse); seconds: CPU time of the\n"
+          "iteration only.\n"
+          "  --kernel K2  ellipse | poisson | gauss (2D forms of kernel.h)\n"
+          "  --samples N  ellipse 1..4096 (default 2), poisson 3..64 (default 8), gauss N x N\n"
+          "               (default 5)\n"
+          "  --offsets O  ellipse only: random (default: offset ~ U[0,1) per step from the seed,\n"
+          "               the kernel member), fixed (the same taps every step, at --offset U),\n"
+          "               golden (--offset U + step x 0.618...: rotated by the golden ratio)\n"
+          "  --offset U   start offset in [0, 1) for fixed / golden (default 0)\n"
+          "  steps up to %d; the base image must hold at most %.0f pixels (it spans the path\n"
+          "  +- 10.5 sd at the last step).\n\n"
           "A point whose disc_error >= sup_error / 10 is not resolved by the grid: a warning\n"
           "names it on stderr (it is still printed) and --rate leaves it out.\n"
           "Work budget: runs whose estimated work (steps x grid nodes x applied taps, plus the\n"
-          "compensation's passes over the member's taps; x5 with the 2x finer run) exceeds %.0e\n"
-          "tap-updates (a few minutes) are refused with exit 2.\n"
+          "compensation's passes over the member's taps; x5 with the 2x finer run; 2D: plus the\n"
+          "limits at the window's nodes) exceeds %.0e tap-updates (a few minutes) are refused\n"
+          "with exit 2.\n"
           "Exit status: 0 ok, 1 runtime failure, 2 bad input (message on stderr).\n",
-          MAX_STEPS_LIST, ICS_WORK_BUDGET);
+          MAX_STEPS_LIST, ICS_CLT2D_MAX_STEPS, ICS_CLT2D_MAX_PIXELS, ICS_WORK_BUDGET);
 }
 
-static int parse_steps(const char *s, int *steps, int *n) {
+static int parse_steps(const char *s, int *steps, int *n, int maxv) {
   *n = 0;
   const char *p = s;
   for (;;) {
@@ -59,9 +88,9 @@ static int parse_steps(const char *s, int *steps, int *n) {
     }
     memcpy(buf, p, len);
     buf[len] = 0;
-    if (cli_parse_int(buf, 1, 1000000, &v) != 0) {
-      fprintf(stderr, "icshadow clt: --steps: expected an integer in 1..1000000 at position %d "
-                      "of '%s'\n", (int)(p - s) + 1, s);
+    if (cli_parse_int(buf, 1, maxv, &v) != 0) {
+      fprintf(stderr, "icshadow clt: --steps: expected an integer in 1..%d at position %d "
+                      "of '%s'\n", maxv, (int)(p - s) + 1, s);
       return -1;
     }
     if (*n && v <= steps[*n - 1]) {
@@ -80,6 +109,223 @@ static int parse_steps(const char *s, int *steps, int *n) {
   return 0;
 }
 
+/* comma-separated list of exactly n finite numbers for option opt; 0 or -1 (message printed) */
+static int parse_list(const char *opt, const char *s, double *v, int n) {
+  const char *p = s;
+  for (int k = 0; k < n; k++) {
+    const char *q = strchr(p, ',');
+    if (k < n - 1 && !q) {
+      fprintf(stderr, "icshadow clt: %s: expected %d comma-separated numbers, got '%s'\n", opt, n,
+              s);
+      return -1;
+    }
+    if (k == n - 1 && q) {
+      fprintf(stderr, "icshadow clt: %s: more than %d numbers in '%s'\n", opt, n, s);
+      return -1;
+    }
+    size_t len = q ? (size_t)(q - p) : strlen(p);
+    char buf[64];
+    if (len == 0 || len >= sizeof buf) {
+      fprintf(stderr, "icshadow clt: %s: empty or too long entry at position %d of '%s'\n", opt,
+              (int)(p - s) + 1, s);
+      return -1;
+    }
+    memcpy(buf, p, len);
+    buf[len] = 0;
+    if (cli_parse_double(buf, &v[k]) != 0 || isnan(v[k]) || isinf(v[k])) {
+      fprintf(stderr, "icshadow clt: %s: expected a finite number at position %d of '%s'\n", opt,
+              (int)(p - s) + 1, s);
+      return -1;
+    }
+    if (q) p = q + 1;
+  }
+  return 0;
+}
+
+/* the 2D path (--cov): ics_clt2d_measure */
+static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const char *steps_s,
+                 const char *samples_s, const char *edge_s, int corner, const char *offsets_s,
+                 const char *offset_s, uint64_t seed, const char *comp, int refine, int rate) {
+  double cv[3], mv[2] = {0, 0}, edge = 0, offset = 0;
+  int steps[MAX_STEPS_LIST], nsteps = 0, samples = 0;
+  if (parse_list("--cov", cov_s, cv, 3) != 0) return 2;
+  if (cv[0] < 0 || cv[1] < 0 || !(cv[0] + cv[1] > 0)) {
+    fprintf(stderr, "icshadow clt: --cov: variances VX, VY must be >= 0 and not both 0, got "
+                    "'%s'\n", cov_s);
+    return 2;
+  }
+  if (mean_s && parse_list("--mean", mean_s, mv, 2) != 0) return 2;
+  if (edge_s && cli_option_double("clt", "--edge-angle", edge_s, 0, &edge) != 0) return 2;
+  if (edge_s && corner) {
+    fprintf(stderr, "icshadow clt: give either --edge-angle or --corner, not both\n");
+    return 2;
+  }
+  if (!kname || !steps_s) {
+    fprintf(stderr, "icshadow clt: %s is required\n", !kname ? "--kernel" : "--steps");
+    return 2;
+  }
+  if (parse_steps(steps_s, steps, &nsteps, ICS_CLT2D_MAX_STEPS) != 0) return 2;
+  ics_kernel_member member;
+  if (!strcmp(kname, "ellipse"))
+    member = ICS_KERNEL_ELLIPSE;
+  else if (!strcmp(kname, "poisson"))
+    member = ICS_KERNEL_POISSON;
+  else if (!strcmp(kname, "gauss"))
+    member = ICS_KERNEL_GAUSS;
+  else {
+    fprintf(stderr, "icshadow clt: --kernel: unknown 2D kernel '%s' (ellipse, poisson, gauss)\n",
+            kname);
+    return 2;
+  }
+  if (samples_s) {
+    int lo = member == ICS_KERNEL_POISSON ? 3 : member == ICS_KERNEL_GAUSS ? 2 : 1;
+    int hi = member == ICS_KERNEL_POISSON ? 64 : member == ICS_KERNEL_GAUSS ? 256 : 4096;
+    if (cli_parse_int(samples_s, lo, hi, &samples) != 0) {
+      fprintf(stderr, "icshadow clt: --samples: expected an integer in %d..%d for %s, got '%s'\n",
+              lo, hi, kname, samples_s);
+      return 2;
+    }
+  }
+  int offsets = 0; /* 0 random, 1 fixed, 2 golden */
+  if (offsets_s) {
+    if (member != ICS_KERNEL_ELLIPSE) {
+      fprintf(stderr, "icshadow clt: --offsets applies to the ellipse kernel only\n");
+      return 2;
+    }
+    if (!strcmp(offsets_s, "random"))
+      offsets = 0;
+    else if (!strcmp(offsets_s, "fixed"))
+      offsets = 1;
+    else if (!strcmp(offsets_s, "golden"))
+      offsets = 2;
+    else {
+      fprintf(stderr, "icshadow clt: --offsets: unknown schedule '%s' (random, fixed, golden)\n",
+              offsets_s);
+      return 2;
+    }
+  }
+  if (offset_s) {
+    if (offsets == 0) {
+      fprintf(stderr, "icshadow clt: --offset needs --offsets fixed or golden\n");
+      return 2;
+    }
+    if (cli_option_double("clt", "--offset", offset_s, 0, &offset) != 0) return 2;
+    if (offset < 0 || offset >= 1) {
+      fprintf(stderr, "icshadow clt: --offset: must be in [0, 1), got '%s'\n", offset_s);
+      return 2;
+    }
+  }
+  ics_comp_mode cm;
+  if (!strcmp(comp, "nonneg"))
+    cm = ICS_COMP_NONNEG;
+  else if (!strcmp(comp, "signed"))
+    cm = ICS_COMP_SIGNED;
+  else if (!strcmp(comp, "none"))
+    cm = ICS_COMP_NONE;
+  else {
+    fprintf(stderr, "icshadow clt: --comp: unknown mode '%s' (nonneg, signed, none)\n", comp);
+    return 2;
+  }
+  ics_class2d cls;
+  ics_status st = ics_class2d_from_axes(mv[0], mv[1], cv[0], cv[1], cv[2], &cls);
+  if (st != ICS_OK) {
+    fprintf(stderr, "icshadow clt: --cov '%s': %s\n", cov_s, ics_status_str(st));
+    return 2;
+  }
+  ics_kernel2d k;
+  ics_clt2d_ellipse el = {{mv[0], mv[1]}, cv[0], cv[1], cv[2], samples ? samples : 2, offset,
+                          offsets == 2 ? ICS_CLT2D_GOLDEN : 0};
+  ics_clt2d_gen gen;
+  void *ctx;
+  st = ics_kernel2d_init(&k, member, &cls);
+  k.nsamples = samples;
+  k.seed = seed;
+  if (member == ICS_KERNEL_ELLIPSE && offsets) {
+    gen = ics_clt2d_ellipse_gen;
+    ctx = &el;
+  } else {
+    gen = ics_clt2d_member_gen;
+    ctx = &k;
+  }
+  ics_clt2d_setup su = ics_clt2d_setup_default();
+  su.occluder = corner ? ICS_CLT2D_CORNER : ICS_CLT2D_EDGE;
+  su.edge_angle_deg = edge;
+  su.mean[0] = cls.mean[0], su.mean[1] = cls.mean[1];
+  su.cov[0] = cls.cxx, su.cov[1] = cls.cxy, su.cov[2] = cls.cyy;
+  su.comp = cm;
+  su.refine = refine;
+  double pixels = 0, work = 0;
+  if (st == ICS_OK) st = ics_clt2d_cost(gen, ctx, &su, steps, nsteps, &pixels, &work);
+  if (st == ICS_ERR_SIZE) {
+    fprintf(stderr, "icshadow clt: the image for %d steps of this class would exceed %.0f pixels "
+                    "(give smaller --steps, --cov or --mean)\n", steps[nsteps - 1],
+            ICS_CLT2D_MAX_PIXELS);
+    return 2;
+  }
+  if (st != ICS_OK) {
+    fprintf(stderr, "icshadow clt: kernel %s: %s\n", kname, ics_status_str(st));
+    return 2;
+  }
+  if (work > ICS_WORK_BUDGET) {
+    fprintf(stderr, "icshadow clt: estimated work %.3g tap-updates (%.0f pixels, %d steps%s) "
+                    "exceeds the budget of %.0e (give smaller --steps, --cov or --samples%s)\n",
+            work, pixels, steps[nsteps - 1], refine ? ", x5 for the 2x finer run" : "",
+            ICS_WORK_BUDGET, refine ? ", or --no-refine" : "");
+    return 2;
+  }
+  if (cm == ICS_COMP_NONNEG) { /* can non-negative integer taps reach the step's covariance? */
+    static ics_tap2d tg[ICS_KERNEL_MAX_TAPS], td[4 * ICS_KERNEL_MAX_TAPS + 9];
+    int nt = 0, nd = 0;
+    double res[3] = {0, 0, 0};
+    if (gen(ctx, 0, 1.0, tg, ICS_KERNEL_MAX_TAPS, &nt) == ICS_OK &&
+        ics_taps2d_compensate(tg, nt, cm, td, 4 * ICS_KERNEL_MAX_TAPS + 9, &nd, res) == ICS_OK &&
+        fabs(res[0]) + fabs(res[1]) + fabs(res[2]) > 1e-9 * (cls.cxx + cls.cyy))
+      fprintf(stderr, "icshadow clt: warning: the integer taps of step 0 miss the taps' own "
+                      "covariance by (%.3g, %.3g, %.3g) px^2 (rank-deficient or too narrow taps): "
+                      "compare sup_error_realized\n", res[0], res[1], res[2]);
+  }
+  ics_clt_point pts[MAX_STEPS_LIST];
+  st = ics_clt2d_measure(gen, ctx, &su, steps, nsteps, pts);
+  if (st != ICS_OK) {
+    fprintf(stderr, "icshadow clt: %s\n", ics_status_str(st));
+    return st == ICS_ERR_NOMEM ? 1 : 2;
+  }
+  printf("steps,sup_error,sup_error_realized,disc_error,taps_x_steps,seconds\n");
+  for (int i = 0; i < nsteps; i++)
+    printf("%d,%.17g,%.17g,%.17g,%.17g,%.17g\n", pts[i].steps, pts[i].sup_err,
+           pts[i].sup_err_realized, pts[i].disc_err, pts[i].cost, pts[i].seconds);
+  ics_clt_point kept[MAX_STEPS_LIST], kept_r[MAX_STEPS_LIST];
+  int nkept = 0, nkept_r = 0;
+  for (int i = 0; i < nsteps; i++) {
+    if (refine && !(pts[i].disc_err < 0.1 * pts[i].sup_err))
+      fprintf(stderr, "icshadow clt: warning: n = %d: disc_error %.3g >= sup_error / 10 (%.3g): "
+                      "the grid does not resolve this error%s\n", pts[i].steps, pts[i].disc_err,
+              0.1 * pts[i].sup_err, rate ? "; left out of the rate" : "");
+    else
+      kept[nkept++] = pts[i];
+    if (!refine || pts[i].disc_err < 0.1 * pts[i].sup_err_realized) {
+      kept_r[nkept_r] = pts[i];
+      kept_r[nkept_r++].sup_err = pts[i].sup_err_realized;
+    }
+  }
+  if (rate) {
+    if (!refine)
+      fprintf(stderr, "icshadow clt: warning: --no-refine: the grid is not checked; the rate may "
+                      "be a discretisation artefact\n");
+    if (nkept < 2)
+      fprintf(stderr, "rate exponent: nan (fewer than 2 resolved points)\n");
+    else
+      fprintf(stderr, "rate exponent: %.4g (%d of %d points)\n", ics_clt_rate(kept, nkept, 1),
+              nkept, nsteps);
+    if (nkept_r < 2)
+      fprintf(stderr, "rate exponent (realised moments): nan (fewer than 2 resolved points)\n");
+    else
+      fprintf(stderr, "rate exponent (realised moments): %.4g (%d of %d points)\n",
+              ics_clt_rate(kept_r, nkept_r, 1), nkept_r, nsteps);
+  }
+  return fflush(stdout) != 0 ? 1 : 0;
+}
+
 int cmd_clt(int argc, char **argv) {
   if (cli_wants_help(argc, argv)) {
     help(stdout);
@@ -88,8 +334,10 @@ int cmd_clt(int argc, char **argv) {
   const char *kname = NULL, *comp = "nonneg";
   double var = NAN, mean = 0;
   uint64_t seed = 0;
-  int samples = 0, refine = 1, rate = 0, nsteps = 0, have_steps = 0;
+  int samples = 0, refine = 1, rate = 0, nsteps = 0, corner = 0;
   int steps[MAX_STEPS_LIST];
+  const char *steps_s = NULL, *mean_s = NULL, *cov_s = NULL, *edge_s = NULL, *offsets_s = NULL,
+             *offset_s = NULL, *var_s = NULL, *samples_s = NULL;
   for (int i = 1; i < argc; i++) {
     const char *opt = argv[i];
     if (!strcmp(opt, "--no-refine")) {
@@ -100,8 +348,13 @@ int cmd_clt(int argc, char **argv) {
       rate = 1;
       continue;
     }
-    static const char *known[] = {"--kernel", "--var", "--steps", "--mean",
-                                  "--samples", "--seed", "--comp"};
+    if (!strcmp(opt, "--corner")) {
+      corner = 1;
+      continue;
+    }
+    static const char *known[] = {"--kernel", "--var",        "--steps",   "--mean",
+                                  "--samples", "--seed",      "--comp",    "--cov",
+                                  "--edge-angle", "--offsets", "--offset"};
     int ok = 0;
     for (size_t j = 0; j < sizeof known / sizeof *known; j++) ok |= !strcmp(opt, known[j]);
     if (!ok) {
@@ -118,30 +371,62 @@ int cmd_clt(int argc, char **argv) {
       kname = val;
     else if (!strcmp(opt, "--comp"))
       comp = val;
-    else if (!strcmp(opt, "--var")) {
-      bad = cli_option_double("clt", opt, val, 0, &var);
-      if (!bad && !(var > 0)) {
-        fprintf(stderr, "icshadow clt: --var: %s variance %s (must be > 0)\n",
-                var < 0 ? "negative" : "zero", val);
-        bad = 1;
-      }
-    } else if (!strcmp(opt, "--mean"))
-      bad = cli_option_double("clt", opt, val, 0, &mean);
+    else if (!strcmp(opt, "--var"))
+      var_s = val;
+    else if (!strcmp(opt, "--mean"))
+      mean_s = val;
+    else if (!strcmp(opt, "--cov"))
+      cov_s = val;
+    else if (!strcmp(opt, "--edge-angle"))
+      edge_s = val;
+    else if (!strcmp(opt, "--offsets"))
+      offsets_s = val;
+    else if (!strcmp(opt, "--offset"))
+      offset_s = val;
     else if (!strcmp(opt, "--seed")) {
       if (cli_parse_seed(val, &seed) != 0) {
         fprintf(stderr, "icshadow clt: --seed: expected " CLI_SEED_RANGE ", got '%s'\n", val);
         bad = 1;
       }
-    } else if (!strcmp(opt, "--steps")) {
-      bad = parse_steps(val, steps, &nsteps);
-      have_steps = 1;
-    } else if (cli_parse_int(val, 0, 4096, &samples) != 0) {
-      fprintf(stderr, "icshadow clt: --samples: expected an integer in 0..4096, got '%s'\n", val);
-      bad = 1;
-    }
+    } else if (!strcmp(opt, "--steps"))
+      steps_s = val;
+    else
+      samples_s = val;
     if (bad) return 2;
   }
-  if (!kname || isnan(var) || !have_steps) {
+  if (cov_s) { /* 2D: --var and the 1D-only kernels do not apply */
+    if (var_s) {
+      fprintf(stderr, "icshadow clt: give either --var (1D kernel) or --cov (2D kernel), not both\n");
+      return 2;
+    }
+    return clt2d(kname, cov_s, mean_s, steps_s, samples_s, edge_s, corner, offsets_s, offset_s,
+                 seed, comp, refine, rate);
+  }
+  {
+    const char *only2d = edge_s ? "--edge-angle" : corner ? "--corner" : offsets_s ? "--offsets"
+                         : offset_s ? "--offset" : NULL;
+    if (only2d) {
+      fprintf(stderr, "icshadow clt: %s applies to 2D kernels only (give --cov VX,VY,ANGLE)\n",
+              only2d);
+      return 2;
+    }
+  }
+  if (var_s) {
+    if (cli_option_double("clt", "--var", var_s, 0, &var) != 0) return 2;
+    if (!(var > 0)) {
+      fprintf(stderr, "icshadow clt: --var: %s variance %s (must be > 0)\n",
+              var < 0 ? "negative" : "zero", var_s);
+      return 2;
+    }
+  }
+  if (mean_s && cli_option_double("clt", "--mean", mean_s, 0, &mean) != 0) return 2;
+  if (steps_s && parse_steps(steps_s, steps, &nsteps, 1000000) != 0) return 2;
+  if (samples_s && cli_parse_int(samples_s, 0, 4096, &samples) != 0) {
+    fprintf(stderr, "icshadow clt: --samples: expected an integer in 0..4096, got '%s'\n",
+            samples_s);
+    return 2;
+  }
+  if (!kname || isnan(var) || !steps_s) {
     fprintf(stderr, "icshadow clt: %s is required\n",
             !kname ? "--kernel" : isnan(var) ? "--var" : "--steps");
     return 2;

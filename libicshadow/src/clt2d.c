@@ -392,6 +392,12 @@ ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s
     st = gen(ctx, 0, sc, taps, cap, &nt);
     if (st == ICS_OK) st = ics_taps2d_compensate(taps, nt, s->comp, dt, dcap, &nd, NULL);
     wk += (double)steps[nsteps - 1] * (px * nd + ICS_WORK_COMP_PASSES * (double)nt);
+    /* the limits at every window node, class and realised: Phi ~10 ns, ics_bvn_cdf ~0.8-1.7 us,
+     * i.e. ~20 and ~3000 tap-updates of 0.5 ns */
+    for (int k = 0; k < nsteps; k++) {
+      win2 w = window_at(&p, s, steps[k]);
+      wk += (double)win_size(&w) * 2 * (s->occluder == ICS_CLT2D_CORNER ? 3000 : 20);
+    }
   }
   free(taps);
   free(dt);
