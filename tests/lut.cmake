@@ -84,4 +84,6 @@ set_tests_properties(lut_glsl_450_size64 PROPERTIES FIXTURES_REQUIRED lut_gen_gl
 ics_add_test(NAME test_lut_opencl SOURCES test_lut_opencl.c LABELS fast
   LIBS OpenCL::OpenCL m NEEDS OPENCL
   ARGS ${CMAKE_SOURCE_DIR}/gpu/cl/icshadow_lut.cl ${ics_lut_dir}/icshadow_lut_64.cl)
-set_tests_properties(test_lut_opencl PROPERTIES FIXTURES_REQUIRED lut_gen_opencl_64)
+# PoCL's kernel cache in the build tree, not in ~/.cache/pocl (nothing written to HOME)
+set_tests_properties(test_lut_opencl PROPERTIES FIXTURES_REQUIRED lut_gen_opencl_64
+  ENVIRONMENT POCL_CACHE_DIR=${ics_lut_dir}/pocl_cache)

@@ -2,7 +2,9 @@
 # (label medium): nbconvert exits non-zero when any cell raises, and the notebook's cells assert
 # what they rely on (class moments, moments adding up, clt == iterate for deterministic members).
 # Kernel "python3" resolves to /usr/bin/python3 through notebooks/kernels (JUPYTER_PATH comes
-# first in Jupyter's search path). A second test checks that the checked-in notebook is exactly
+# first in Jupyter's search path). Jupyter's and IPython's per-user directories are in the build
+# tree: nothing is read from or written to HOME (jupyter created ~/.jupyter, and failed where HOME
+# is not writable, e.g. HOME=/nonexistent). A second test checks that the checked-in notebook is exactly
 # what scripts/make_notebook.py generates (outputs cleared).
 find_program(ICS_PYTHON3_NB NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
 if(ICS_PYTHON3_NB)
@@ -19,6 +21,8 @@ if(ICS_PYTHON3_NB AND ics_nb_rc EQUAL 0)
   add_test(NAME notebook_iterative_shadows COMMAND ${CMAKE_COMMAND} -E env
     JUPYTER_PATH=${CMAKE_SOURCE_DIR}/notebooks
     JUPYTER_RUNTIME_DIR=${ics_nb_dir}/runtime
+    JUPYTER_CONFIG_DIR=${ics_nb_dir}/config
+    JUPYTER_DATA_DIR=${ics_nb_dir}/data
     IPYTHONDIR=${ics_nb_dir}/ipython
     MPLCONFIGDIR=${ics_nb_dir}/mpl
     PYDEVD_DISABLE_FILE_VALIDATION=1
