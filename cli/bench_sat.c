@@ -256,8 +256,6 @@ static int bench_lights(void) {
   for (int ui = 0; ui < 3; ui++) {
     double t0 = now_s();
     for (int i = 0; i < nvalid; i++) {
-      double R = 0;
-      for (int a = 0; a < 3; a++) R += (spts[i][a] - lp[a]) * (spts[i][a] - lp[a]);
       int np = (int)ceil(2 * Uss[ui] / 0.5);
       ics_tau_bruteforce_point(&vol, lp, spts[i], Uss[ui], np, 0.25, &sref[ui][i]);
     }
