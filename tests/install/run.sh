@@ -10,18 +10,23 @@ prefix=$tmp/prefix
 cmake --install "$build" --prefix "$prefix" >/dev/null
 test -x "$prefix/bin/icshadow" && test -f "$prefix/include/icshadow.h"
 pc=$(dirname "$(find "$prefix" -name icshadow.pc | head -1)")
-libdir=$(PKG_CONFIG_PATH=$pc pkg-config --variable=libdir icshadow)
+# pkg-config's words, as a shell would read them: it escapes blanks (and [ ]) in paths with '\',
+# which plain $(...) splitting kept (the prefix under a build path with blanks broke the flags);
+# read without -r undoes the escapes
+pcwords() { local out; out=$(PKG_CONFIG_PATH=$pc pkg-config "$@" icshadow) && read -a words <<< "$out"; }
+pcwords --variable=libdir; libdir=${words[*]}
 
 echo "== pkg-config, shared"
-# shellcheck disable=SC2046
-"$cc" -std=c11 "$src/tests/install/consumer.c" -o "$tmp/c_shared" \
-  $(PKG_CONFIG_PATH=$pc pkg-config --cflags --libs icshadow) -Wl,-rpath,"$libdir"
+pcwords --cflags --libs
+"$cc" -std=c11 "$src/tests/install/consumer.c" -o "$tmp/c_shared" "${words[@]}" -Wl,-rpath,"$libdir"
 "$tmp/c_shared"
 echo "== pkg-config, static"
-# shellcheck disable=SC2046
+pcwords --cflags; cflags=("${words[@]}")
+pcwords --static --libs-only-l
+libs=()
+for w in "${words[@]}"; do [ "$w" = -licshadow ] || libs+=("$w"); done
 "$cc" -std=c11 "$src/tests/install/consumer.c" -o "$tmp/c_static" \
-  $(PKG_CONFIG_PATH=$pc pkg-config --cflags icshadow) "$libdir/libicshadow.a" \
-  $(PKG_CONFIG_PATH=$pc pkg-config --static --libs-only-l icshadow | sed 's/-licshadow//')
+  "${cflags[@]}" "$libdir/libicshadow.a" "${libs[@]}"
 "$tmp/c_static"
 echo "== find_package(icshadow)"
 cmake -S "$src/tests/install" -B "$tmp/cm" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_C_COMPILER="$cc" >/dev/null
