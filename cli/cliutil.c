@@ -143,6 +143,14 @@ int cli_output_open(cli_output *out, const char *path) {
   }
   snprintf(out->tmp_path, n, "%s.tmpXXXXXX", out->target);
   int fd = mkstemp(out->tmp_path);
+  if (fd < 0 && errno == ENAMETOOLONG) {
+    /* a target name within 10 bytes of NAME_MAX (255) cannot take ".tmpXXXXXX": the same
+     * directory (rename stays on one file system), the name's first 64 bytes */
+    const char *slash = strrchr(out->target, '/');
+    int dirlen = slash ? (int)(slash - out->target) + 1 : 0;
+    snprintf(out->tmp_path, n, "%.*s%.64s.tmpXXXXXX", dirlen, out->target, out->target + dirlen);
+    fd = mkstemp(out->tmp_path);
+  }
   if (fd < 0) {
     fprintf(stderr, "icshadow: cannot create %s: %s\n", path, strerror(errno));
     free(out->tmp_path);

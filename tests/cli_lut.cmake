@@ -62,3 +62,19 @@ ics_cli_test(NAME cli_expect_nofile_glob RC 0 ARGS "lut|--size|8|--lang|c|-o|${i
   NOFILE "${ics_lut_glob_dir}/x.h")
 set_tests_properties(cli_expect_nofile_glob PROPERTIES
   PASS_REGULAR_EXPRESSION "output left behind:.*/glob\\[1\\]\\*\\?/x\\.h")
+
+# -o FILE whose name is as long as the file system allows (NAME_MAX, 255 here): written, with no
+# temporary left behind (the temporary FILE.tmpXXXXXX was too long: "File name too long")
+file(WRITE ${ics_lut_cli_dir}/long_name.sh [=[
+cli=$1; dir=$2
+rm -rf "$dir" && mkdir -p "$dir" || exit 1
+max=$(getconf NAME_MAX "$dir") || exit 1
+name=$(head -c $((max - 2)) /dev/zero | tr "\\0" n).h
+"$cli" lut --size 8 --lang c -o "$dir/$name" || { echo "FAIL: exit $?"; exit 1; }
+grep -q "^ \* Command: icshadow lut --size 8 --lang c$" "$dir/$name" || { echo "FAIL: no stamp"; exit 1; }
+if [ "$(ls "$dir")" != "$name" ]; then echo "FAIL: left in $dir:"; ls "$dir"; exit 1; fi
+echo "OK: a ${#name}-byte name"
+]=])
+add_test(NAME cli_lut_long_file_name COMMAND sh ${ics_lut_cli_dir}/long_name.sh ${ics_lut_cli}
+  ${ics_lut_cli_dir}/long_name)
+set_tests_properties(cli_lut_long_file_name PROPERTIES LABELS fast)
