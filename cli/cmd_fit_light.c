@@ -245,5 +245,5 @@ int cmd_fit_light(int argc, char **argv) {
     printf("%d,%d,%.17g,%.17g,%.17g,%.17g,%d,%d,%.17g\n", k, q->k_fit, q->l1, q->l2, q->edge,
            secs[k - 1], q->iterations, q->samples, q->cutoff_loss);
   }
-  return fflush(stdout) ? 1 : 0;
+  return cli_stdout_failed("icshadow fit-light");
 }

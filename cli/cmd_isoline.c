@@ -313,5 +313,5 @@ int cmd_isoline(int argc, char **argv) {
     return 2;
   }
   printf("%.17g\n", x);
-  return fflush(stdout) != 0 ? 1 : 0;
+  return cli_stdout_failed("icshadow isoline");
 }

@@ -382,7 +382,7 @@ static int iterate_main(int argc, char **argv, int **steps_out) {
     }
   }
   free(buf);
-  return fflush(stdout) != 0 ? 1 : 0;
+  return cli_stdout_failed("icshadow iterate");
 }
 
 int cmd_iterate(int argc, char **argv) {

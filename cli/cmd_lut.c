@@ -222,7 +222,7 @@ static int report(const int *sizes, int nsizes, int progress) {
     printf("exact,,,,,,,,,,%.3g,%.3g,\n", ns_r, ns_v);
   }
   ics_lut_grid_free(grid);
-  return fflush(stdout) ? 1 : status;
+  return cli_stdout_failed("icshadow lut") ? 1 : status;
 }
 
 int cmd_lut(int argc, char **argv) {

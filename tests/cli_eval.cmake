@@ -19,3 +19,7 @@ set_tests_properties(cli_output_targets PROPERTIES LABELS fast)
 add_test(NAME cli_locale_numbers
   COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/locale_numbers.sh $<TARGET_FILE:icshadow_cli>)
 set_tests_properties(cli_locale_numbers PROPERTIES LABELS fast SKIP_RETURN_CODE 77)
+# every command reports a stdout it cannot write (full device, closed) with exit status 1
+add_test(NAME cli_stdout_full
+  COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/stdout_full.sh $<TARGET_FILE:icshadow_cli>)
+set_tests_properties(cli_stdout_full PROPERTIES LABELS fast)
