@@ -48,8 +48,9 @@
  * measurement only when disc_err < sup_err / 10 (the CLI and the tests apply that rule).
  *
  * Floating point: the image is float (engine contract), each step rounds every pixel once
- * (2^-24 relative), i.e. below ~n 6e-8 absolute after n steps (< 4e-6 at n = 64): reported
- * errors in the docs are all above 1e-5.
+ * (2^-24 relative), i.e. below ~n 6e-8 absolute after n steps (< 8e-6 at n = 128; the exactness
+ * check at n = 1..3 in the tests sees 3.2e-8); the resolved errors in docs/theory.md are all
+ * above 2e-4.
  *
  * Bivariate normal cdf (ics_bvn_cdf): Plackett's identity dPhi2/dr = phi2(a, b; r) with r =
  * sin(t): Phi2(a, b; r) = Phi(a) Phi(b) + (1/2pi) int_0^asin(r) f(t) dt for |r| < 0.925, and
