@@ -323,7 +323,7 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
       fprintf(stderr, "rate exponent (realised moments): %.4g (%d of %d points)\n",
               ics_clt_rate(kept_r, nkept_r, 1), nkept_r, nsteps);
   }
-  return fflush(stdout) != 0 ? 1 : 0;
+  return cli_stdout_failed("icshadow clt");
 }
 
 int cmd_clt(int argc, char **argv) {
@@ -547,5 +547,5 @@ int cmd_clt(int argc, char **argv) {
       fprintf(stderr, "rate exponent: %.4g (%d of %d points)\n", ics_clt_rate(kept, nkept, 1),
               nkept, nsteps);
   }
-  return fflush(stdout) != 0 ? 1 : 0;
+  return cli_stdout_failed("icshadow clt");
 }
