@@ -196,22 +196,24 @@ static int focus; /* 0: all regions, 1: log series, 2: m < 0 */
 
 static void test_random(long n) {
   for (long i = 0; i < n; i++) {
-    if (focus == 1) {
+    if (focus == 1) { /* m1 < X0: a quarter each subnormal, normal, near X0, through m */
       switch (i % 4) {
-        case 0: test_m1(rng_logu(-1074, ICS_ELLINT_X0_LOG2 - 1)); break; /* subnormals too */
-        case 1: test_m1(rng_logu(-64, ICS_ELLINT_X0_LOG2 - 1)); break;
+        case 0: test_m1(rng_logu(-1074, -1023)); break;
+        case 1: test_m1(rng_logu(-1022, ICS_ELLINT_X0_LOG2 - 1)); break;
+        case 2: test_m1(rng_logu(-64, ICS_ELLINT_X0_LOG2 - 1)); break;
         default: test_m(1.0 - rng_logu(-53, ICS_ELLINT_X0_LOG2 - 1)); break;
       }
       continue;
     }
-    if (focus == 2) {
+    if (focus == 2) { /* m < 0: a sixth each for (m1 | m entry) x (pieces | log | scaled) */
+      const int lg = -ICS_ELLINT_X0_LOG2; /* m1 = 2^lg = 1/X0 */
       switch (i % 6) {
-        case 0: test_m1(1.0 + rng_logu(-60, -ICS_ELLINT_X0_LOG2)); break;  /* pieces of 1/m1 */
-        case 1: test_m1(rng_logu(1 - ICS_ELLINT_X0_LOG2, 1023)); break;    /* log, scaled */
-        case 2: test_m(-rng_logu(-1074, -ICS_ELLINT_X0_LOG2)); break;     /* pieces, from m */
-        case 3: test_m(-rng_logu(-ICS_ELLINT_X0_LOG2, 1023)); break;      /* log, from m */
-        case 4: test_m(-(1.0 - ICS_ELLINT_X0) / ICS_ELLINT_X0 * 1.25 * test_rng_unit()); break;
-        default: test_m1(1.0 + (1.0 / ICS_ELLINT_X0) * test_rng_unit()); break;
+        case 0: test_m1(i % 12 ? 1.0 + rng_logu(-52, lg - 1) : 1.0 + (1.0 / ICS_ELLINT_X0 - 1.0) * test_rng_unit()); break;
+        case 1: test_m1(rng_logu(lg, 511)); break;
+        case 2: test_m1(rng_logu(512, 1023)); break;
+        case 3: test_m(i % 12 ? -rng_logu(-52, lg - 1) : -(1.0 / ICS_ELLINT_X0 - 1.0) * test_rng_unit()); break;
+        case 4: test_m(-rng_logu(lg, 511)); break;
+        default: test_m(-rng_logu(512, 1023)); break;
       }
       continue;
     }
