@@ -5,6 +5,14 @@
 set -euo pipefail
 build=$1 src=$2 cc=$3
 tmp=$(mktemp -d)
+case $tmp in
+  *[][*?]*)
+    # CMake's generated icshadowTargets.cmake globs its own directory, so find_package fails
+    # from a prefix whose path holds '[', '*' or '?' (a CMake limitation, not ours): under such
+    # a build path the prefix goes to /tmp
+    rmdir "$tmp"
+    tmp=$(mktemp -d /tmp/icshadow-install.XXXXXX) ;;
+esac
 trap 'rm -rf "$tmp"' EXIT
 prefix=$tmp/prefix
 cmake --install "$build" --prefix "$prefix" >/dev/null
