@@ -14,8 +14,10 @@ if(ICS_PYTHON3_MPMATH)
 endif()
 if(ICS_PYTHON3_MPMATH AND ics_mpmath_rc EQUAL 0)
   set(ics_regen ${CMAKE_CURRENT_BINARY_DIR}/ellint_regen)
+  # paths go in as arguments, never into the script text (a checkout path with blanks)
   add_test(NAME test_ellint_data_regen COMMAND sh -c
-    "mkdir -p ${ics_regen} && ${ICS_PYTHON3_MPMATH} ${CMAKE_SOURCE_DIR}/scripts/gen_ellint_coeffs.py ${ics_regen} && cmp ${ics_regen}/ellint_data.c ${CMAKE_SOURCE_DIR}/libicshadow/src/ellint_data.c && cmp ${ics_regen}/ellint_data.h ${CMAKE_SOURCE_DIR}/libicshadow/src/ellint_data.h")
+    "mkdir -p \"$1\" && \"$2\" \"$3/scripts/gen_ellint_coeffs.py\" \"$1\" && cmp \"$1/ellint_data.c\" \"$3/libicshadow/src/ellint_data.c\" && cmp \"$1/ellint_data.h\" \"$3/libicshadow/src/ellint_data.h\""
+    test_ellint_data_regen ${ics_regen} ${ICS_PYTHON3_MPMATH} ${CMAKE_SOURCE_DIR})
   set_tests_properties(test_ellint_data_regen PROPERTIES LABELS fast)
 else()
   add_test(NAME test_ellint_data_regen COMMAND ${CMAKE_COMMAND} -E echo

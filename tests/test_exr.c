@@ -139,6 +139,11 @@ static void copy_prefix(const char *src, const char *dst, long n, long flip_at) 
  * tests (tests/cli_lightfit.cmake) and exits */
 static int write_bad(const char *d) {
   static const char *const rgb[] = {"R", "G", "B"}, *const rg[] = {"R", "G"};
+  if (strlen(d) + sizeof "/trunc.exr" > sizeof dir) { /* tmpf() would cut the path */
+    fprintf(stderr, "test_exr: --write-bad: directory name longer than %zu bytes\n",
+            sizeof dir - sizeof "/trunc.exr");
+    return 1;
+  }
   snprintf(dir, sizeof dir, "%s", d);
   char msg[256];
   ics_image a;
