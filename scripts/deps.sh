@@ -9,6 +9,8 @@ packages=(
   build-essential cmake pkg-config
   # tests: MPFR references, GLSL and OpenCL compile checks of the generated LUT headers
   libmpfr-dev libgmp-dev glslang-tools pocl-opencl-icd ocl-icd-opencl-dev opencl-headers
+  # tests: locale sources, so cli_locale_numbers can compile a decimal-comma locale (localedef)
+  locales
   # benchmarks: Boost.Math as a peer for the elliptic integrals
   libboost-dev
   # optional components: OpenEXR environment maps, jansson for lights/scene JSON

@@ -3,7 +3,9 @@
 # whose decimal separator is ',' (de_DE.UTF-8 and the like, when one is installed) every command
 # below prints byte for byte what it prints under LC_ALL=C, and reads "0.5" as one half. The CLI
 # never calls setlocale; this fails if it ever does (printf would write "0,5", strtod stop at '.').
-# Without a comma locale on the machine there is nothing to compare: reported skipped (77).
+# Without a comma locale installed, one is compiled into the test's scratch directory with
+# localedef (sources from Debian's `locales` package, installed by scripts/deps.sh) and used
+# through LOCPATH; only if that fails too is the test reported skipped (77).
 set -u
 cli=$1
 loc=
@@ -11,9 +13,19 @@ for l in $(locale -a 2>/dev/null); do
   if [ "$(LC_ALL=$l locale decimal_point 2>/dev/null)" = "," ]; then loc=$l; break; fi
 done
 if [ -z "$loc" ]; then
-  echo "SKIPPED: no locale with a comma decimal separator (e.g. localedef -i de_DE -f UTF-8 de_DE.UTF-8)"
+  locdir=$(mktemp -d "${TMPDIR:-/tmp}/icshadow-locale.XXXXXX") || { echo "mktemp -d failed"; exit 1; }
+  trap 'rm -rf "$locdir"' EXIT
+  if localedef -i de_DE -f UTF-8 "$locdir/de_DE.UTF-8" >/dev/null 2>&1 &&
+     [ "$(LOCPATH=$locdir LC_ALL=de_DE.UTF-8 locale decimal_point 2>/dev/null)" = "," ]; then
+    export LOCPATH=$locdir
+    loc=de_DE.UTF-8
+  fi
+fi
+if [ -z "$loc" ]; then
+  echo "SKIPPED: no locale with a comma decimal separator, and localedef -i de_DE -f UTF-8 failed (Debian package 'locales' missing?)"
   exit 77
 fi
+echo "comparing LC_ALL=C with LC_ALL=$loc${LOCPATH:+ (compiled into $LOCPATH)}"
 fail=0 pass=0
 same() { # name, stdin text, then the command's arguments
   local name=$1 input=$2; shift 2
