@@ -571,6 +571,53 @@ static void test_2d_exact(void) {
   }
 }
 
+/* ASSERTION (2D, realised mean away from the class path): a generator whose integer taps
+ * (x = 0, 1, 2 with weights 1/4, 1/2, 1/4, y = 0) have mean (1, 0) per step while the setup's
+ * class has mean 0 (class covariance = the taps' own, (1/2, 0, 0)). The nodes hold exactly
+ * P(Binomial(2n, 1/2) <= m) at x = m + 1/2 (K_n + U < m + 1/2 iff K_n <= m), so the test forms
+ * both errors itself: realised limit Phi((x - n) / sqrt(n/2 + 1/12)), class limit
+ * Phi(x / sqrt(n/2 + 1/12)), sup over the union of the two windows |x|, |x - n| <= 4.5 sd_n. At
+ * n = 64, 256 the realised mean lies 11 and 23 sd from n mu: a window that follows only n mu
+ * misses the realised error's peak (it reported 1.3e-12 and 5.6e-74 there). */
+static ics_status drift_gen(void *ctx, uint64_t step, double scale, ics_tap2d *taps, int cap,
+                            int *ntaps) {
+  (void)ctx, (void)step;
+  if (cap < 3) return ICS_ERR_SIZE;
+  for (int i = 0; i < 3; i++) taps[i].x = i * scale, taps[i].y = 0, taps[i].w = i == 1 ? 0.5 : 0.25;
+  *ntaps = 3;
+  return ICS_OK;
+}
+
+static void drift_ref(int n, double *err_class, double *err_real) {
+  double sd = sqrt(0.5 * n + 1.0 / 12), W = 4.5 * sd, ec = 0, er = 0;
+  for (double x = -floor(W + 0.5) + 0.5; x <= n + W; x += 1) {
+    if (fabs(x) > W && fabs(x - n) > W) continue;
+    double m = x - 0.5, cdf = 0; /* P(Bin(2n, 1/2) <= m) */
+    for (int k = 0; k <= 2 * n && k <= m; k++)
+      cdf += exp(lgamma(2 * n + 1.0) - lgamma(k + 1.0) - lgamma(2 * n - k + 1.0) - 2 * n * log(2.0));
+    ec = fmax(ec, fabs(cdf - phic(x / sd)));
+    er = fmax(er, fabs(cdf - phic((x - n) / sd)));
+  }
+  *err_class = ec, *err_real = er;
+}
+
+static void test_2d_drift(void) {
+  ics_clt2d_setup s = ics_clt2d_setup_default();
+  s.cov[0] = 0.5;
+  static const int ST[] = {16, 64, 256};
+  ics_clt_point p[3];
+  CHECK(ics_clt2d_measure(drift_gen, NULL, &s, ST, 3, p) == ICS_OK, "drift measure");
+  print2("integer taps of mean (1, 0) per step, class mean 0, edge 0 deg", p, 3);
+  for (int i = 0; i < 3; i++) {
+    double ec, er;
+    drift_ref(ST[i], &ec, &er);
+    printf("    n = %-4d reference: class %.6e, realised %.6e (binomial cdf)\n", ST[i], ec, er);
+    CHECK(fabs(p[i].sup_err - ec) <= 1e-6 && fabs(p[i].sup_err_realized - er) <= 1e-6,
+          "drift n = %d: class %.9g vs %.9g, realised %.9g vs %.9g", ST[i], p[i].sup_err, ec,
+          p[i].sup_err_realized, er);
+  }
+}
+
 static void test_2d_members(void) {
   /* class: sigma^2 = (9, 4.5) px^2 rotated 30 degrees, mean 0 */
   ics_class2d c;
@@ -685,6 +732,7 @@ int main(void) {
   test_2d_mapping();
   test_bvn();
   test_2d_exact();
+  test_2d_drift();
   test_2d_members();
   test_2d_corner();
   return test_summary("test_clt_convergence");

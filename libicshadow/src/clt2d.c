@@ -34,12 +34,18 @@
  * members (exact in expectation only) and when the compensation cannot be exact (the rank-one
  * 2-sample ellipse: ics_taps2d_compensate falls back to a trace-matching shrink).
  *
- * Grid and window. Base grid: nodes at x = xlo + i + 1/2, y = ylo + j + 1/2 (pixels of the base
- * grid = the world unit), covering [min(0, N mu) - R, max(0, N mu) + R] per axis, N the largest
- * step count, R = 10.5 sd_N + 4, sd_n = sqrt(n lambda_max(Sigma) + 1/12). The sup runs over the
- * window |x - n mu|_inf <= 4.5 sd_n (the Edgeworth terms beyond 4.5 sd are < 1e-2 of their
- * peak); the 6 sd_N + 4 left between window and border keep the clamp boundary's wrong values
- * (where the edge's band leaves the image) out of the window (Gaussian tail exp(-18) ~ 1.5e-8).
+ * Grid and window. The realised path is computed first (check2: every step's taps generated
+ * and compensated once; m_n, C_n summed). Base grid: nodes at x = xlo + i + 1/2,
+ * y = ylo + j + 1/2 (pixels of the base grid = the world unit), covering per axis
+ * [min(0, N mu, min_n m_n) - R, max(0, N mu, max_n m_n) + R], N the largest step count,
+ * R = 10.5 max(sd_N, sdr_N) + 4, sd_n = sqrt(n lambda_max(Sigma) + 1/12), sdr_n =
+ * sqrt(lambda_max(C_n) + 1/12). The sup runs over the union of the class window
+ * |x - n mu|_inf <= 4.5 sd_n and the realised window |x - m_n|_inf <= 4.5 sdr_n (the Edgeworth
+ * terms beyond 4.5 sd are < 1e-2 of their peak): when m_n drifts away from n mu (a fixed odd-N
+ * ellipse, the compensation's fallback) the realised limit's error peak stays inside (a window
+ * following n mu only reported 4.7e-11 at n = 4096 for an error of 4.8e-4). The 6 sd + 4 left
+ * between window and border keep the clamp boundary's wrong values (where the edge's band
+ * leaves the image) out of the window (Gaussian tail exp(-18) ~ 1.5e-8).
  * Discretisation check: the same iteration on a grid twice as fine (scale 2: taps' positions
  * doubled — the same continuous kernel; stochastic draws depend on the step index only) whose
  * nodes x = xlo + k/2 include every base node (k = 2i + 1); its limit has the pixel term
@@ -208,12 +214,31 @@ typedef struct plan2 {
   double lmax;         /* largest eigenvalue of Sigma */
   long xlo, ylo;       /* base node i is at x = xlo + i + 1/2 */
   size_t w, h;         /* base grid */
+  double *rm, *rc;     /* realised (applied taps') summed mean [2 k] and covariance [3 k] at
+                          the requested step count k (base grid, pixel term excluded) */
 } plan2;
 
 static double sd_at(const plan2 *p, int n) { return sqrt(n * p->lmax + 1.0 / 12.0); }
 
-static ics_status check2(ics_clt2d_gen gen, const ics_clt2d_setup *s, const int *steps,
+static double lmax_of(double cxx, double cxy, double cyy) {
+  return 0.5 * (cxx + cyy) + hypot(0.5 * (cxx - cyy), cxy);
+}
+
+/* sd of the realised limit at requested step k (largest axis, pixel term included) */
+static double sdr_at(const plan2 *p, int k) {
+  const double *c = p->rc + 3 * k;
+  return sqrt(lmax_of(c[0], c[1], c[2]) + 1.0 / 12.0);
+}
+
+static void plan2_free(plan2 *p) {
+  free(p->rm);
+  free(p->rc);
+  p->rm = p->rc = NULL;
+}
+
+static ics_status check2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, const int *steps,
                          int nsteps, plan2 *p) {
+  p->rm = p->rc = NULL;
   if (!gen || !s || !steps || nsteps <= 0) return ICS_ERR_INVALID_ARG;
   if (s->occluder != ICS_CLT2D_EDGE && s->occluder != ICS_CLT2D_CORNER) return ICS_ERR_INVALID_ARG;
   double v[6] = {s->mean[0], s->mean[1], s->cov[0], s->cov[1], s->cov[2], s->edge_angle_deg};
@@ -239,13 +264,53 @@ static ics_status check2(ics_clt2d_gen gen, const ics_clt2d_setup *s, const int 
     p->ux = nearbyint(p->ux);
     p->uy = nearbyint(p->uy);
   }
-  p->lmax = 0.5 * tr + hypot(0.5 * (cxx - cyy), cxy);
-  int nmax = steps[nsteps - 1];
-  double R = 10.5 * sd_at(p, nmax) + 4;
-  double lox = fmin(0.0, nmax * s->mean[0]) - R, hix = fmax(0.0, nmax * s->mean[0]) + R;
-  double loy = fmin(0.0, nmax * s->mean[1]) - R, hiy = fmax(0.0, nmax * s->mean[1]) + R;
+  p->lmax = lmax_of(cxx, cxy, cyy);
+  /* The realised path: the applied integer taps of every step (generated and compensated as
+   * run2 does; the generators are deterministic in the step index), their summed mean and
+   * covariance. Its mean can drift away from n mu (compensation fallback, stochastic members):
+   * the grid covers both paths and the window is the union of both windows. */
+  int nmax = steps[nsteps - 1], cap = ICS_KERNEL_MAX_TAPS, dcap = 4 * ICS_KERNEL_MAX_TAPS + 9;
+  ics_tap2d *taps = malloc((size_t)cap * sizeof *taps);
+  ics_tap2d *dt = malloc((size_t)dcap * sizeof *dt);
+  p->rm = malloc((size_t)nsteps * 2 * sizeof *p->rm);
+  p->rc = malloc((size_t)nsteps * 3 * sizeof *p->rc);
+  ics_status st = (taps && dt && p->rm && p->rc) ? ICS_OK : ICS_ERR_NOMEM;
+  double rm[2] = {0, 0}, rc[3] = {0, 0, 0}, plo[2] = {0, 0}, phi[2] = {0, 0};
+  for (int n = 1, k = 0; st == ICS_OK && n <= nmax; n++) {
+    int nt = 0, nd = 0;
+    st = gen(ctx, (uint64_t)(n - 1), 1.0, taps, cap, &nt);
+    if (st == ICS_OK) st = ics_taps2d_compensate(taps, nt, s->comp, dt, dcap, &nd, NULL);
+    if (st != ICS_OK) break;
+    double ws, tm[2], tc[3];
+    ics_taps2d_moments(dt, nd, &ws, tm, tc);
+    rm[0] += tm[0], rm[1] += tm[1];
+    rc[0] += tc[0], rc[1] += tc[1], rc[2] += tc[2];
+    for (int d = 0; d < 2; d++) plo[d] = fmin(plo[d], rm[d]), phi[d] = fmax(phi[d], rm[d]);
+    if (n == steps[k]) {
+      memcpy(p->rm + 2 * k, rm, sizeof rm);
+      memcpy(p->rc + 3 * k, rc, sizeof rc);
+      k++;
+    }
+  }
+  free(taps);
+  free(dt);
+  if (st == ICS_OK && !(isfinite(rm[0]) && isfinite(rm[1]) && isfinite(rc[0]) && isfinite(rc[1]) &&
+                        isfinite(rc[2])))
+    st = ICS_ERR_INFINITE;
+  if (st != ICS_OK) {
+    plan2_free(p);
+    return st;
+  }
+  double R = 10.5 * fmax(sd_at(p, nmax), sdr_at(p, nsteps - 1)) + 4;
+  double lox = fmin(fmin(0.0, nmax * s->mean[0]), plo[0]) - R;
+  double hix = fmax(fmax(0.0, nmax * s->mean[0]), phi[0]) + R;
+  double loy = fmin(fmin(0.0, nmax * s->mean[1]), plo[1]) - R;
+  double hiy = fmax(fmax(0.0, nmax * s->mean[1]), phi[1]) + R;
   double wx = ceil(hix) - floor(lox), wy = ceil(hiy) - floor(loy);
-  if (!(wx * wy <= ICS_CLT2D_MAX_PIXELS)) return ICS_ERR_SIZE;
+  if (!(wx * wy <= ICS_CLT2D_MAX_PIXELS)) {
+    plan2_free(p);
+    return ICS_ERR_SIZE;
+  }
   p->xlo = (long)floor(lox);
   p->ylo = (long)floor(loy);
   p->w = (size_t)wx;
@@ -253,15 +318,19 @@ static ics_status check2(ics_clt2d_gen gen, const ics_clt2d_setup *s, const int 
   return ICS_OK;
 }
 
-/* the window of step count n: base node index ranges [i0, i1] x [j0, j1] */
-typedef struct win2 {
+/* The window of requested step k: the union of the class window |x - n mu|_inf <= 4.5 sd_n and
+ * the realised window |x - m_k|_inf <= 4.5 sdr_k (m_k the realised mean), as base node index
+ * ranges [i0, i1] x [j0, j1] of the two squares (a: class, b: realised). */
+typedef struct rect2 {
   long i0, i1, j0, j1;
+} rect2;
+typedef struct win2 {
+  rect2 a, b;
+  long i0, i1, j0, j1; /* bounding box */
 } win2;
 
-static win2 window_at(const plan2 *p, const ics_clt2d_setup *s, int n) {
-  double R = 4.5 * sd_at(p, n);
-  double cx = n * s->mean[0], cy = n * s->mean[1];
-  win2 w;
+static rect2 rect_at(const plan2 *p, double cx, double cy, double R) {
+  rect2 w;
   w.i0 = (long)ceil(cx - R - (double)p->xlo - 0.5);
   w.i1 = (long)floor(cx + R - (double)p->xlo - 0.5);
   w.j0 = (long)ceil(cy - R - (double)p->ylo - 0.5);
@@ -273,8 +342,34 @@ static win2 window_at(const plan2 *p, const ics_clt2d_setup *s, int n) {
   return w;
 }
 
+static win2 window_at(const plan2 *p, const ics_clt2d_setup *s, const int *steps, int k) {
+  int n = steps[k];
+  win2 w;
+  w.a = rect_at(p, n * s->mean[0], n * s->mean[1], 4.5 * sd_at(p, n));
+  w.b = rect_at(p, p->rm[2 * k], p->rm[2 * k + 1], 4.5 * sdr_at(p, k));
+  w.i0 = w.a.i0 < w.b.i0 ? w.a.i0 : w.b.i0;
+  w.i1 = w.a.i1 > w.b.i1 ? w.a.i1 : w.b.i1;
+  w.j0 = w.a.j0 < w.b.j0 ? w.a.j0 : w.b.j0;
+  w.j1 = w.a.j1 > w.b.j1 ? w.a.j1 : w.b.j1;
+  return w;
+}
+
+static int in_rect(const rect2 *r, long i, long j) {
+  return i >= r->i0 && i <= r->i1 && j >= r->j0 && j <= r->j1;
+}
+
+static int in_win(const win2 *w, long i, long j) { return in_rect(&w->a, i, j) || in_rect(&w->b, i, j); }
+
+static double rect_size(const rect2 *r) {
+  if (r->i1 < r->i0 || r->j1 < r->j0) return 0;
+  return (double)(r->i1 - r->i0 + 1) * (double)(r->j1 - r->j0 + 1);
+}
+
+/* nodes in the union */
 static size_t win_size(const win2 *w) {
-  return (size_t)(w->i1 - w->i0 + 1) * (size_t)(w->j1 - w->j0 + 1);
+  rect2 c = {w->a.i0 > w->b.i0 ? w->a.i0 : w->b.i0, w->a.i1 < w->b.i1 ? w->a.i1 : w->b.i1,
+             w->a.j0 > w->b.j0 ? w->a.j0 : w->b.j0, w->a.j1 < w->b.j1 ? w->a.j1 : w->b.j1};
+  return (size_t)(rect_size(&w->a) + rect_size(&w->b) - rect_size(&c));
 }
 
 /* limit at world point (x, y) for mean m and covariance c (pixel term included) */
@@ -320,7 +415,7 @@ static ics_status run2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, c
   ics_conv_opts co = ics_conv_opts_default();
   co.boundary = ICS_BOUNDARY_CLAMP;
   co.compensate = ICS_COMP_NONE; /* the taps handed over are already integer */
-  double cost = 0, rm[2] = {0, 0}, rc[3] = {0, 0, 0}, secs = 0;
+  double cost = 0, secs = 0;
   int nmax = steps[nsteps - 1], k = 0;
   for (int n = 1; st == ICS_OK && n <= nmax; n++) {
     clock_t t0 = clock();
@@ -334,21 +429,19 @@ static ics_status run2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, c
     buf = tmp;
     tmp = sw;
     cost += nd;
-    double ws, tm[2], tc[3];
-    ics_taps2d_moments(dt, nd, &ws, tm, tc);
-    rm[0] += tm[0], rm[1] += tm[1];
-    rc[0] += tc[0], rc[1] += tc[1], rc[2] += tc[2];
     if (n != steps[k]) continue;
+    const double *rm = p->rm + 2 * k, *rc = p->rc + 3 * k;
     double pix = 1.0 / (12.0 * sc * sc);
     double cm[2] = {n * s->mean[0], n * s->mean[1]};
     double cc[3] = {n * s->cov[0] + pix, n * s->cov[1], n * s->cov[2] + pix};
     double qm[2] = {rm[0] / sc, rm[1] / sc};
     double qc[3] = {rc[0] / (sc * sc) + pix, rc[1] / (sc * sc), rc[2] / (sc * sc) + pix};
-    win2 w = window_at(p, s, n);
+    win2 w = window_at(p, s, steps, k);
     double worst = 0, worst_r = 0;
     size_t q = 0;
     for (long j = w.j0; j <= w.j1; j++)
-      for (long i = w.i0; i <= w.i1; i++, q++) {
+      for (long i = w.i0; i <= w.i1; i++) {
+        if (!in_win(&w, i, j)) continue;
         double x = (double)p->xlo + (double)i + 0.5, y = (double)p->ylo + (double)j + 0.5;
         size_t gi = scale == 1 ? (size_t)i : 2 * (size_t)i + 1;
         size_t gj = scale == 1 ? (size_t)j : 2 * (size_t)j + 1;
@@ -358,6 +451,7 @@ static ics_status run2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, c
         if (fabs(e) > worst) worst = fabs(e);
         if (fabs(er) > worst_r) worst_r = fabs(er);
         if (prof) prof[k][q] = e;
+        q++;
       }
     if (out) {
       out[k].steps = n;
@@ -379,7 +473,7 @@ static ics_status run2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, c
 ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
                           const int *steps, int nsteps, double *pixels, double *work) {
   plan2 p;
-  ics_status st = check2(gen, s, steps, nsteps, &p);
+  ics_status st = check2(gen, ctx, s, steps, nsteps, &p);
   if (st != ICS_OK) return st;
   int cap = ICS_KERNEL_MAX_TAPS, dcap = 4 * ICS_KERNEL_MAX_TAPS + 9;
   ics_tap2d *taps = malloc((size_t)cap * sizeof *taps);
@@ -396,12 +490,13 @@ ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s
     /* the limits at every window node, class and realised: Phi ~10 ns, ics_bvn_cdf ~0.8-1.7 us,
      * i.e. ~20 and ~3000 tap-updates of 0.5 ns */
     for (int k = 0; k < nsteps; k++) {
-      win2 w = window_at(&p, s, steps[k]);
+      win2 w = window_at(&p, s, steps, k);
       wk += (double)win_size(&w) * 2 * (s->occluder == ICS_CLT2D_CORNER ? 3000 : 20);
     }
   }
   free(taps);
   free(dt);
+  plan2_free(&p);
   if (st != ICS_OK) return st;
   if (pixels) *pixels = (double)p.w * p.h;
   if (work) *work = wk;
@@ -412,13 +507,17 @@ ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup
                              const int *steps, int nsteps, ics_clt_point *out) {
   if (!out) return ICS_ERR_INVALID_ARG;
   plan2 p;
-  ics_status st = check2(gen, s, steps, nsteps, &p);
+  ics_status st = check2(gen, ctx, s, steps, nsteps, &p);
   if (st != ICS_OK) return st;
-  if (!s->refine) return run2(gen, ctx, s, &p, steps, nsteps, 1, NULL, out);
+  if (!s->refine) {
+    st = run2(gen, ctx, s, &p, steps, nsteps, 1, NULL, out);
+    plan2_free(&p);
+    return st;
+  }
   double **e1 = calloc((size_t)nsteps, sizeof *e1), **e2 = calloc((size_t)nsteps, sizeof *e2);
   st = (e1 && e2) ? ICS_OK : ICS_ERR_NOMEM;
   for (int k = 0; st == ICS_OK && k < nsteps; k++) {
-    win2 w = window_at(&p, s, steps[k]);
+    win2 w = window_at(&p, s, steps, k);
     e1[k] = malloc(win_size(&w) * sizeof **e1);
     e2[k] = malloc(win_size(&w) * sizeof **e2);
     if (!e1[k] || !e2[k]) st = ICS_ERR_NOMEM;
@@ -426,7 +525,7 @@ ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup
   if (st == ICS_OK) st = run2(gen, ctx, s, &p, steps, nsteps, 1, e1, out);
   if (st == ICS_OK) st = run2(gen, ctx, s, &p, steps, nsteps, 2, e2, NULL);
   for (int k = 0; st == ICS_OK && k < nsteps; k++) {
-    win2 w = window_at(&p, s, steps[k]);
+    win2 w = window_at(&p, s, steps, k);
     size_t m = win_size(&w);
     double d = 0;
     for (size_t q = 0; q < m; q++) d = fmax(d, fabs(e1[k][q] - e2[k][q]));
@@ -438,5 +537,6 @@ ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup
   }
   free(e1);
   free(e2);
+  plan2_free(&p);
   return st;
 }

@@ -74,14 +74,20 @@ ics_clt2d_setup ics_clt2d_setup_default(void);
 #define ICS_CLT2D_MAX_PIXELS ((double)(1 << 22)) /* base grid (the fine grid holds ~4x this:
                                                      2 float buffers of 4 * 2^22 = 128 MiB) */
 
-/* Iterates the occluder image with the generator's taps (compensation s->comp, clamp boundary,
+/* First generates and compensates every step's taps once (the realised path m_n, C_n; the
+ * generator must be deterministic in the step index), sizes the grid to hold both paths, then
+ * iterates the occluder image with the generator's taps (compensation s->comp, clamp boundary,
  * float image as the engine) and at each steps[k] (strictly increasing, 1..ICS_CLT2D_MAX_STEPS)
  * fills out[k] (the 1D point type of shadow1d.h):
- *   sup_err          max over the nodes x of the window |x - n mu|_inf <= 4.5 sd_n (sd_n^2 =
- *                    n lambda_max(Sigma) + 1/12) of |r_n(x) - G_n(x)|, G_n the class limit above;
- *   sup_err_realized the same against the limit with the moments of the integer taps actually
- *                    applied (summed over the steps: differs for stochastic members and when
- *                    compensation leaves a residual, e.g. the rank-one 2-sample ellipse);
+ *   sup_err          max over the nodes x of the window of |r_n(x) - G_n(x)|, G_n the class
+ *                    limit above; the window is the union of |x - n mu|_inf <= 4.5 sd_n
+ *                    (sd_n^2 = n lambda_max(Sigma) + 1/12) and |x - m_n|_inf <= 4.5 sdr_n, m_n,
+ *                    sdr_n^2 = lambda_max(C_n) + 1/12 from the realised moments below (they
+ *                    can drift apart: a fixed odd-N ellipse, the compensation's fallback);
+ *   sup_err_realized the same against the limit N(m_n, C_n + I/12), m_n and C_n the summed
+ *                    means and covariances of the integer taps actually applied (differ from
+ *                    n mu, n Sigma for stochastic members and when compensation leaves a
+ *                    residual, e.g. the rank-one 2-sample ellipse);
  *   disc_err         max over the same nodes of the change of the class error profile
  *                    r_n - G_n on the 2x finer grid (whose nodes include the base nodes);
  *   cost             integer taps applied, summed over the steps (base grid);
