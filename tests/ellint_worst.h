@@ -51,4 +51,8 @@ static const double ellint_worst_m[] = {
     -0x1.ec60de09e06d9p-3, /* 0.5222 E */
     -0x1.8a623761448eep+7, /* 0.5200 E, m < 0 log series */
     -0x1.31b394bc40292p+7, /* 0.5176 E */
+    /* review of c3a7d0e/e1d8ce4: with the 26-bit mask on 1/m1 dropped (q26 = q) these gave
+     * K 0.5921 and E 0.5927 (reviewer's mpmath driver), inside 0.60: kept as tripwire inputs */
+    -0x1.5c149d993cec5p+2, /* K, m < 0 pieces of 1/m1 */
+    -0x1.659e3f4e0e5f9p-23, /* E, m < 0 pieces of 1/m1, tiny |m| */
 };
