@@ -110,7 +110,10 @@ typedef struct {
   EDGE1(F, "m just above 31/32 (old log/pieces switch; now a piece boundary)", SV_ONE_MINUS, 0x1p-5, 0, LO_SIDE), \
   EDGE1(F, "m at/just below 31/32 (old log/pieces switch; now a piece boundary)", SV_ONE_MINUS, 0x1p-5, 0, HI_SIDE), \
   RG(F, "m in [0, 2^-30] (at/just above m = 0: direct)", 0.0, 0x1p-30, LIN),                     \
-  RG(F, "m in [-2^-30, 0) (just below m = 0: transform)", -0x1p-30, 0.0, LIN),                    \
+  RG(F, "m in [-2^-30, 0) (just below m = 0: transform below -2^-60)", -0x1p-30, 0.0, LIN),       \
+  EDGE1(F, "m at/just below -2^-60 (transform)", SV_ID, -0x1p-60, 1, LO_SIDE),                      \
+  EDGE1(F, "m just above -2^-60 (tiny m < 0: direct, x = 1)", SV_ID, -0x1p-60, 1, HI_SIDE),         \
+  RG(F, "m in (-2^-60, 0) log-uniform (tiny m < 0: direct)", 0x1p-1074, 0x1p-60, NEG_LOG),          \
   RG(F, "m in (-127, 0) (transform, pieces)", -(1 / X0 - 1), 0.0, LIN),                          \
   EDGES(F, "1/(1-m) just below a piece boundary (transform, pieces)", ES_PIECES, SV_RECIP_ONE_MINUS, 0, 0, LO_SIDE), \
   EDGES(F, "1/(1-m) at/just above a piece boundary (transform, pieces)", ES_PIECES, SV_RECIP_ONE_MINUS, 0, 0, HI_SIDE), \
@@ -135,8 +138,8 @@ typedef struct {
   EDGES(F, "m1 subnormal, at/just above a log table interval end", ES_LOGTAB, SV_ID_SUB, -1072, -1023, HI_SIDE), \
   EDGE1(F, "m1 just below 2^-1022 (subnormal: rescaled)", SV_ID, 0x1p-1022, 0, LO_SIDE),          \
   EDGE1(F, "m1 at/just above 2^-1022 (normal)", SV_ID, 0x1p-1022, 0, HI_SIDE),                     \
-  EDGE1(F, "m1 just below 2^-1021 (outer factor x dropped)", SV_ID, 0x1p-1021, 0, LO_SIDE),       \
-  EDGE1(F, "m1 at/just above 2^-1021 (outer factor x kept)", SV_ID, 0x1p-1021, 0, HI_SIDE),       \
+  EDGE1(F, "m1 just below 2^-1019 (outer factor x dropped)", SV_ID, 0x1p-1019, 0, LO_SIDE),       \
+  EDGE1(F, "m1 at/just above 2^-1019 (outer factor x kept)", SV_ID, 0x1p-1019, 0, HI_SIDE),       \
   RG(F, "m1 in [2^-1022, 2^-64] (log series, polynomials at 0)", 0x1p-1022, 0x1p-64, LOG),        \
   EDGE1(F, "m1 at/just below 2^-64 (polynomials at 0)", SV_ID, 0x1p-64, 1, LO_SIDE),              \
   EDGE1(F, "m1 just above 2^-64 (polynomials in x)", SV_ID, 0x1p-64, 1, HI_SIDE),                 \

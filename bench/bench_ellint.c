@@ -15,7 +15,12 @@
  * (binary exponent uniform in [-1074, -1023], random significand; through *_m1, no Boost);
  * m < 0 (m = -10^u, u uniform in [-3, 6]; no Boost: it takes a real modulus), and its two
  * halves: m uniform in (-127, 0] (transformed argument in the pieces) and m = -10^u,
- * u uniform in [2.11, 6] (m < -128: transformed argument in the log series).
+ * u uniform in [2.11, 6] (m < -128: transformed argument in the log series); two edge sets:
+ * m1 in the binade [2^-1021, 2^-1020) (random significand, through *_m1: just above the old
+ * 2^-1021 outer-factor clamp, where subnormal products used to cost 18-26 ns), m1 in
+ * [2^-1019, 2^-1018) (just above the new clamp: the smallest products kept are normal) and subnormal
+ * negative m (-2^-1022 < m < 0, exponent uniform, through *_m: 69 ns for K+E before they went
+ * to the m >= 0 route).
  * Throughput loop over the array, repeated; the minimum time is reported.  A checksum of the
  * results is printed so that nothing is optimised away.
  * Output: CSV  dataset,function,impl,ns_per_call,ratio_to_ours,checksum */
@@ -271,6 +276,27 @@ int main(void) {
     k_[i] = 0;
   }
   run("m_negative_log", 0, 0);
+  for (int i = 0; i < N; i++) { /* m1 in [2^-1021, 2^-1020) */
+    m1_[i] = ldexp(1.0 + unit(), -1021);
+    if (m1_[i] >= 0x1p-1020) m1_[i] = 0x1p-1021;
+    m_[i] = 1.0 - m1_[i];
+    k_[i] = 1.0;
+  }
+  run("m1_binade_2^-1021", 1, 0);
+  for (int i = 0; i < N; i++) { /* m1 in [2^-1019, 2^-1018) */
+    m1_[i] = ldexp(1.0 + unit(), -1019);
+    if (m1_[i] >= 0x1p-1018) m1_[i] = 0x1p-1019;
+    m_[i] = 1.0 - m1_[i];
+    k_[i] = 1.0;
+  }
+  run("m1_binade_2^-1019", 1, 0);
+  for (int i = 0; i < N; i++) { /* subnormal negative m */
+    m_[i] = -ldexp(1.0 + unit(), -1074 + (int)(52.0 * unit()));
+    if (m_[i] == 0) m_[i] = -0x1p-1074;
+    m1_[i] = 1.0 - m_[i]; /* = 1 */
+    k_[i] = 0;
+  }
+  run("m_negative_subnormal", 0, 0);
 #ifndef ICS_BENCH_BOOST
   fprintf(stderr, "bench_ellint: Boost.Math headers not found at configure time; boost rows omitted\n");
 #endif

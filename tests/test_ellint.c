@@ -159,7 +159,9 @@ static void test_switches(void) {
   around_m(-0x1p512, 8);
   around_m1(0x1p-1022, 8);     /* subnormal rescaling in the logarithm */
   around_m1(0x1p-64, 8);       /* polynomial argument clamp */
-  around_m1(0x1p-1021, 8);     /* outer factor x clamp */
+  around_m1(0x1p-1019, 8);     /* outer factor x clamp */
+  around_m1(0x1p-1021, 8);     /* the old outer clamp (now inside the clamped range) */
+  around_m(-0x1p-60, 8);       /* tiny m < 0: m >= 0 route above, transformation below */
   around_m1(1.0, 16);          /* m = 0 */
   around_m(0.0, 8);            /* m = 0 from both sides (tiny negative m) */
   around_m(0.5, 8);            /* 1 - m exact / rounded */
@@ -226,6 +228,17 @@ static void test_neg_exact_cases(void) {
     double v = (double)j * (double)j;
     around_m1(v, 1);
     around_m(1.0 - v, 1);
+  }
+}
+
+/* Both sides of the two speed switches, densely: m1 log-uniform in [2^-1023, 2^-1016] (outer
+ * factor x dropped below 2^-1019, kept above) and m = -2^u, u in [-1074, -40] (m >= 0 route
+ * above -2^-60, transformation below), and m in (-2^-50, 2^-50) uniformly. */
+static void test_speed_switches(void) {
+  for (int i = 0; i < 3000; i++) {
+    test_m1(rng_logu(-1023, -1017));
+    test_m(-rng_logu(-1074, -40));
+    test_m(0x1p-50 * (2.0 * test_rng_unit() - 1.0));
   }
 }
 
@@ -406,6 +419,7 @@ int main(int argc, char **argv) {
   test_log_table();
   test_log_table_ends();
   test_neg_exact_cases();
+  test_speed_switches();
   for (size_t i = 0; i < sizeof ellint_worst_m1 / sizeof ellint_worst_m1[0]; i++)
     test_m1(ellint_worst_m1[i]);
   for (size_t i = 0; i < sizeof ellint_worst_m / sizeof ellint_worst_m[0]; i++)

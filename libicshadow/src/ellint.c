@@ -36,11 +36,14 @@
  *     then dropped), so m down to -DBL_MAX works.
  *
  * SWITCH POINTS (all tested from both sides): x = 1/128 (log series / pieces); the piece
- * boundaries x = 2^-j (1 + i/8); m = 0 (m1 = 1: direct / transformed); m1 = 128 (x' = 1/128 on
- * the transformed route); m1 = 2^512 (scaled square roots); x = 2^-64 (polynomials evaluated at
- * 0 below it: their x^4 must not go subnormal, which is slow); x = 2^-1021 (the outer factor x
- * is dropped below it, for the same reason); x = 2^-1022 (subnormal x rescaled in the log);
- * the 128 interval ends of the logarithm's table.
+ * boundaries x = 2^-j (1 + i/8); m = -2^-60 (m entry: direct / transformed; tiny negative m
+ * takes the m >= 0 route with x = 1 - m = 1 and t = (1 - c) - m, because the transformation
+ * would run on subnormal 1 - m tails, which is slow); m1 = 1 (m1 entry: direct / transformed);
+ * m1 = 128 (x' = 1/128 on the transformed route); m1 = 2^512 (scaled square roots); x = 2^-64
+ * (polynomials evaluated at 0 below it: their x^4 must not go subnormal, which is slow);
+ * x = 2^-1019 (the outer factor x is dropped below it, so that x Pa, x 2Pc and x/4 never go
+ * subnormal: at the old 2^-1021 they did, 18-26 ns per call); x = 2^-1022 (subnormal x rescaled
+ * in the log); the 128 interval ends of the logarithm's table.
  *
  * ERROR BOUND (measured against a 320-bit MPFR AGM, tests/test_ellint.c; docs/ellint.md):
  *   K: 0.60 ulp,  E: 0.60 ulp  over the whole domain, for every entry point
@@ -159,10 +162,12 @@ static inline ics_dd ln16_times(double x, double rel) {
  * Log region, 0 < x < X0, L = H + T = ln(16/x) (or ln(16 m1) for the transformed argument,
  * whose x' = x + xl, |xl| <= ulp(x)/2, enters through a first-order term).
  * The polynomials get xp = 0 below 2^-64 (their x-dependence is then far below an ulp) and the
- * outer factor xm = 0 below 2^-1021 (its terms are then 2^-1021 of the result): operations with
- * subnormal operands or results are very slow on x86 (36 ns per call before). */
+ * outer factor xm = 0 below 2^-1019 (the terms dropped are then < 2^-1021 of K and, with
+ * L < 745, < 2^-1011 of E: far below an ulp): operations with subnormal operands or results are very slow on x86 (36 ns per
+ * call for subnormal x before the clamps).  At xm >= 2^-1019 the products xm Pa (Pa ~ 1/4),
+ * xm 2Pc (~3/8) and xm/4 are >= 2^-1022, i.e. normal (at 2^-1021 they were not: 18-26 ns). */
 static inline double poly_arg(double x) { return x > 0x1p-64 ? x : 0.0; }
-static inline double outer_arg(double x) { return x >= 0x1p-1021 ? x : 0.0; }
+static inline double outer_arg(double x) { return x >= 0x1p-1019 ? x : 0.0; }
 
 /* K = (1/2) [H + (T (1 + x Pa) + x (H Pa + 2 Pb)) + xl (H/4 - 1/2)]  (|xl| <= ulp(x)/2):
  * returns {H/2 (exact), the rest / 2}.  T enters late (it has the longest dependency chain). */
@@ -204,7 +209,7 @@ static inline ics_dd piece_e(const struct ics_ellint_piece *P, double t) {
 }
 
 /* ---- routes ---------------------------------------------------------------------------- */
-/* 0 <= m < 1, x = 1 - m; from_m: t is formed from m (x may be rounded), else x is exact. */
+/* -2^-60 < m < 1, x = 1 - m; from_m: t is formed from m (x may be rounded), else x is exact. */
 ICS_INLINE void route_pos(double x, double m, int from_m, int wk, int we, double *K,
                              double *E) {
   if (x < ICS_ELLINT_X0) {
@@ -300,7 +305,8 @@ ICS_INLINE void ke_m(double m, int wk, int we, double *K, double *E) {
     double k = (m == 1.0) ? INFINITY : NAN, e = (m == 1.0) ? 1.0 : NAN;
     if (wk) *K = k;
     if (we) *E = e;
-  } else if (m >= 0.0) {
+  } else if (m > -0x1p-60) { /* also tiny m < 0: x = 1 - m = 1, t = (1 - c) - m, in the last
+                               * piece; route_neg would work on a subnormal tail of 1 - m */
     route_pos(1.0 - m, m, 1, wk, we, K, E);
   } else if (m == -INFINITY) {
     if (wk) *K = 0.0;
