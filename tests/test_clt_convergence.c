@@ -498,40 +498,67 @@ static ics_clt2d_setup setup2(ics_clt2d_occluder occ, double angle, const ics_cl
 
 
 /* ASSERTION (2D exactness, small n): the nodes hold exactly the cdf of u . (K_n + U) (edge) /
- * of K_n + U (corner) and the limit carries the pixel's 1/12: for n = 1, 2, 3 the test convolves
+ * of K_n + U (corner) and the limits carry the pixel's 1/12: for n = 1, 2, 3 the test convolves
  * the applied integer taps itself (double, no engine), forms the node values from the pixel
- * coverage and takes the sup of |node - limit| over the documented window |x|_inf <= 4.5 sd_n
- * (nodes at half-integers, sd_n^2 = n lambda_max + 1/12); ics_clt2d_measure must report the same
- * number to float storage (tol 2e-7; measured <= 3.2e-8). */
-static double exact_sup(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, int n) {
+ * coverage, sums the applied taps' means and covariances itself (m, C) and takes the sup of
+ * |node - limit| for the class limit N(n mu, n Sigma + I/12) (*cls) and the realised one
+ * N(m, C + I/12) (*real) over the documented window: the union of |x - n mu|_inf <= 4.5 sd_n
+ * and |x - m|_inf <= 4.5 sdr_n (nodes at half-integers, sd_n^2 = n lambda_max + 1/12, sdr_n^2 =
+ * lambda_max(C) + 1/12); ics_clt2d_measure must report the same numbers to float storage
+ * (tol 2e-7; measured <= 3.2e-8). */
+static double lmax2(double cxx, double cxy, double cyy) {
+  return 0.5 * (cxx + cyy) + sqrt(0.25 * (cxx - cyy) * (cxx - cyy) + cxy * cxy);
+}
+static double limit2(const ics_clt2d_setup *s, double ux, double uy, double px, double py,
+                     const double m[2], double vx, double vxy, double vy) {
+  px -= m[0], py -= m[1];
+  if (s->occluder == ICS_CLT2D_EDGE)
+    return phic((ux * px + uy * py) / sqrt(ux * ux * vx + 2 * ux * uy * vxy + uy * uy * vy));
+  return bvn_ref(px / sqrt(vx), py / sqrt(vy), vxy / sqrt(vx * vy));
+}
+static void exact_sup(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, int n, double *cls,
+                      double *real) {
   enum { R = 40, D = 2 * R + 1 };
   static double P[D * D], Q[D * D];
   static ics_tap2d t[4 * 4096 + 9];
+  double m[2] = {0, 0}, C[3] = {0, 0, 0};
+  *cls = *real = NAN;
   for (int i = 0; i < D * D; i++) P[i] = 0;
   P[R * D + R] = 1;
   for (int k = 0; k < n; k++) {
     int nt = applied2(gen, ctx, (uint64_t)k, t, 4 * 4096 + 9);
+    double w = 0, mx = 0, my = 0, cxx = 0, cxy = 0, cyy = 0;
+    for (int j = 0; j < nt; j++) w += t[j].w, mx += t[j].w * t[j].x, my += t[j].w * t[j].y;
+    mx /= w, my /= w;
+    for (int j = 0; j < nt; j++) {
+      double dx = t[j].x - mx, dy = t[j].y - my;
+      cxx += t[j].w * dx * dx, cxy += t[j].w * dx * dy, cyy += t[j].w * dy * dy;
+    }
+    m[0] += mx, m[1] += my, C[0] += cxx / w, C[1] += cxy / w, C[2] += cyy / w;
     for (int i = 0; i < D * D; i++) Q[i] = 0;
     for (int y = 0; y < D; y++)
       for (int x = 0; x < D; x++) {
         if (P[y * D + x] == 0) continue;
         for (int j = 0; j < nt; j++) {
           int xx = x + (int)t[j].x, yy = y + (int)t[j].y;
-          if (xx < 0 || yy < 0 || xx >= D || yy >= D) return NAN;
+          if (xx < 0 || yy < 0 || xx >= D || yy >= D) return;
           Q[yy * D + xx] += P[y * D + x] * t[j].w;
         }
       }
     for (int i = 0; i < D * D; i++) P[i] = Q[i];
   }
-  double cxx = s->cov[0], cxy = s->cov[1], cyy = s->cov[2];
-  double lmax = 0.5 * (cxx + cyy) + sqrt(0.25 * (cxx - cyy) * (cxx - cyy) + cxy * cxy);
-  double W = 4.5 * sqrt(n * lmax + 1.0 / 12), ux = cos(s->edge_angle_deg * PI / 180),
-         uy = sin(s->edge_angle_deg * PI / 180), worst = 0;
-  double vx = n * cxx + 1.0 / 12, vy = n * cyy + 1.0 / 12, vxy = n * cxy;
-  for (double py = -floor(W + 0.5) + 0.5; py <= W; py += 1)
-    for (double px = -floor(W + 0.5) + 0.5; px <= W; px += 1) {
-      if (fabs(px) > W || fabs(py) > W) continue;
-      double r = 0, g;
+  double cxx = s->cov[0], cxy = s->cov[1], cyy = s->cov[2], pix = 1.0 / 12;
+  double W = 4.5 * sqrt(n * lmax2(cxx, cxy, cyy) + pix);
+  double Wr = 4.5 * sqrt(lmax2(C[0], C[1], C[2]) + pix);
+  double ux = cos(s->edge_angle_deg * PI / 180), uy = sin(s->edge_angle_deg * PI / 180);
+  double cm[2] = {n * s->mean[0], n * s->mean[1]}, wc = 0, wr = 0;
+  double lo = fmin(-W, fmin(m[0], m[1]) - Wr), hi = fmax(W, fmax(m[0], m[1]) + Wr);
+  for (double py = floor(lo) - 0.5; py <= hi + 1; py += 1)
+    for (double px = floor(lo) - 0.5; px <= hi + 1; px += 1) {
+      int in_c = fabs(px - cm[0]) <= W && fabs(py - cm[1]) <= W;
+      int in_r = fabs(px - m[0]) <= Wr && fabs(py - m[1]) <= Wr;
+      if (!in_c && !in_r) continue;
+      double r = 0;
       for (int y = 0; y < D; y++)
         for (int x = 0; x < D; x++) {
           double w = P[y * D + x];
@@ -542,13 +569,10 @@ static double exact_sup(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, 
           else
             r += w * (qx > 0 && qy > 0);
         }
-      if (s->occluder == ICS_CLT2D_EDGE)
-        g = phic((ux * px + uy * py) / sqrt(ux * ux * vx + 2 * ux * uy * vxy + uy * uy * vy));
-      else
-        g = bvn_ref(px / sqrt(vx), py / sqrt(vy), vxy / sqrt(vx * vy));
-      worst = fmax(worst, fabs(r - g));
+      wc = fmax(wc, fabs(r - limit2(s, ux, uy, px, py, cm, n * cxx + pix, n * cxy, n * cyy + pix)));
+      wr = fmax(wr, fabs(r - limit2(s, ux, uy, px, py, m, C[0] + pix, C[1], C[2] + pix)));
     }
-  return worst;
+  *cls = wc, *real = wr;
 }
 
 static void test_2d_exact(void) {
@@ -556,20 +580,51 @@ static void test_2d_exact(void) {
   CHECK(ics_class2d_from_axes(0, 0, 3, 1.5, 30, &c) == ICS_OK, "class");
   ics_kernel2d pk;
   CHECK(ics_kernel2d_init(&pk, ICS_KERNEL_POISSON, &c) == ICS_OK, "poisson");
+  /* the golden-ratio 2-sample ellipse at start offset 0.25 (rank-one steps: the compensation's
+   * fallback makes the realised moments differ from the class) */
+  ics_clt2d_ellipse eg = {{0, 0}, 3, 1.5, 30, 2, 0.25, ICS_CLT2D_GOLDEN};
   static const int ST[] = {1, 2, 3};
-  for (int occ = 0; occ < 2; occ++) {
+  for (int cs = 0; cs < 3; cs++) {
+    int occ = cs == 1, golden = cs == 2;
     ics_clt2d_setup s = setup2(occ ? ICS_CLT2D_CORNER : ICS_CLT2D_EDGE, 30, &c);
     s.refine = 0;
+    ics_clt2d_gen gen = golden ? ics_clt2d_ellipse_gen : ics_clt2d_member_gen;
+    void *ctx = golden ? (void *)&eg : (void *)&pk;
+    const char *name = golden ? "edge 30 deg, golden 2-sample ellipse (offset 0.25)"
+                              : occ ? "corner, poisson" : "edge 30 deg, poisson";
     ics_clt_point p[3];
-    CHECK(ics_clt2d_measure(ics_clt2d_member_gen, &pk, &s, ST, 3, p) == ICS_OK, "measure");
+    CHECK(ics_clt2d_measure(gen, ctx, &s, ST, 3, p) == ICS_OK, "measure");
     for (int i = 0; i < 3; i++) {
-      double ref = exact_sup(ics_clt2d_member_gen, &pk, &s, ST[i]);
-      printf("  exact %s, poisson (3, 1.5, 30 deg), n = %d: measured sup %.6e, direct "
-             "convolution %.6e\n", occ ? "corner" : "edge 30 deg", ST[i], p[i].sup_err, ref);
-      CHECK(fabs(p[i].sup_err - ref) <= 2e-7, "%s n = %d: %.9g vs %.9g", occ ? "corner" : "edge",
-            ST[i], p[i].sup_err, ref);
+      double ref, ref_r;
+      exact_sup(gen, ctx, &s, ST[i], &ref, &ref_r);
+      printf("  exact %s (3, 1.5, 30 deg), n = %d: measured sup %.6e / realised %.6e, direct "
+             "convolution %.6e / %.6e\n", name, ST[i], p[i].sup_err, p[i].sup_err_realized, ref,
+             ref_r);
+      CHECK(fabs(p[i].sup_err - ref) <= 2e-7, "%s n = %d: %.9g vs %.9g", name, ST[i],
+            p[i].sup_err, ref);
+      CHECK(fabs(p[i].sup_err_realized - ref_r) <= 2e-7, "%s n = %d: realised %.9g vs %.9g",
+            name, ST[i], p[i].sup_err_realized, ref_r);
     }
   }
+  /* the golden schedule itself: step i's taps are ics_ellipse_kernel at offset frac(U + i phi)
+   * (phi = (sqrt 5 - 1)/2, formed here in long double), moved to the mean */
+  ics_clt2d_ellipse e3 = {{0.5, -1.25}, 3, 1.5, 30, 5, 0.25, ICS_CLT2D_GOLDEN};
+  double worst = 0;
+  for (int i = 0; i < 40; i++) {
+    ics_tap2d t[16];
+    int nt = 0;
+    long double u = 0.25L + (long double)i * ((sqrtl(5.0L) - 1) / 2);
+    double off = (double)(u - floorl(u)), xy[2 * 16];
+    ics_ellipse_shape sh;
+    CHECK(ics_clt2d_ellipse_gen(&e3, (uint64_t)i, 1.0, t, 16, &nt) == ICS_OK &&
+              ics_ellipse_kernel(3, 1.5, 30, 5, off, &sh, xy) == ICS_OK && nt == sh.nsamples,
+          "golden step %d", i);
+    for (int j = 0; j < nt && j < sh.nsamples; j++)
+      worst = fmax(worst, fmax(fabs(t[j].x - 0.5 - xy[2 * j]), fabs(t[j].y + 1.25 - xy[2 * j + 1])));
+  }
+  printf("  golden schedule: steps 0..39 vs ics_ellipse_kernel at frac(0.25 + i phi): max tap "
+         "difference %.2e\n", worst);
+  CHECK(worst <= 1e-9, "golden schedule taps off by %.3g", worst);
 }
 
 /* ASSERTION (2D, realised mean away from the class path): a generator whose integer taps
