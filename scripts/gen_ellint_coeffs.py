@@ -30,9 +30,13 @@ Three tables, all built at 256-bit precision with mpmath:
    exact: x = 2^k z, z in [sqrt(1/2), sqrt(2)), 2^LOG_B intervals of z with centre c (a double),
    1/c rounded, ln c = lhi + llo with lhi a multiple of 2^-32 (like n * LN2_HI, so their sum is
    exact), and log1p(r) = r + r^2 P(r) with P the Chebyshev interpolant of (log1p(r) - r)/r^2
-   on the range of r.  Each ln c is checked against an independent logarithm (2 atanh), and the
-   C evaluation of L is emulated here in doubles (Python floats are IEEE doubles with the same
-   rounding) at thousands of points, interval ends and subnormals included, against mpmath.log.
+   on the range of r.  Each ln c is checked against a logarithm that shares no code with mpmath
+   (Python's decimal module, Decimal.ln at 70 significant digits; c and lhi + llo converted
+   exactly), and the C evaluation of L is emulated here in doubles (Python floats are IEEE
+   doubles with the same rounding) at thousands of points, interval ends and subnormals
+   included, against mpmath.log: ln(16/x) for the log series, and ln(16 m1) for m < 0 from
+   m1 = m1h + m1l (two-sum of 1 - m) with the low part entering as rel = m1l/m1h, as in
+   ellint.c's ln16_times.
 
 For the K/E tables the maximum approximation error (double coefficients evaluated exactly,
 against mpmath.ellipk/ellipe at dense points) is measured, written into the output, and
@@ -287,12 +291,15 @@ LN2_HI = float(mpmath.floor(mpmath.log(2) * 2 ** 32)) / 2 ** 32
 LN2_LO = d(mpmath.log(2) - mpf(LN2_HI))
 
 
-def ln_indep(v):
-    """ln v for v > 0 by a route other than mpmath.log: 2 atanh((v-1)/(v+1)), 320 bits"""
-    with mpmath.workprec(320):
-        v = mpf(v)
-        r = 2 * mpmath.atanh((v - 1) / (v + 1))
-    return r
+def ln_indep_err(v, approx):
+    """|approx - ln v| for doubles v > 0 and approx = (hi, lo), by Python's decimal module
+    (Decimal.ln, 70 significant digits), which shares no code with mpmath (mpmath's atanh, the
+    check used before, is computed through its own log).  Returns a float."""
+    import decimal
+    ctx = decimal.Context(prec=70)
+    lnv = ctx.ln(decimal.Decimal(v))           # Decimal(float) is exact
+    s = ctx.add(decimal.Decimal(approx[0]), decimal.Decimal(approx[1]))  # exact at 70 digits
+    return abs(float(ctx.subtract(s, lnv)))
 
 
 def lnc_table():
@@ -307,10 +314,10 @@ def lnc_table():
         lnc = mpmath.log(mpf(c))
         lhi = float(mpmath.nint(lnc * 2 ** 32)) / 2 ** 32
         llo = d(lnc - mpf(lhi))
-        # checks against an independent logarithm and the exactness conditions
+        # checks against an independent logarithm (decimal) and the exactness conditions
         assert zlo <= c <= zhi
         assert lhi * 2 ** 32 == int(lhi * 2 ** 32) and abs(mpf(lhi) - lnc) <= mpf(2) ** -33
-        assert abs(mpf(lhi) + mpf(llo) - ln_indep(c)) < mpf(2) ** -86, i
+        assert ln_indep_err(c, (lhi, llo)) < 2.0 ** -86, i
         assert abs(mpf(invc) * c - 1) <= mpf(2) ** -53
         rmin = min(rmin, (mpf(zlo) - c) / c)
         rmax = max(rmax, (mpf(zhi) - c) / c)
@@ -353,8 +360,9 @@ def log1p_tail_emul(p, r):
     return r2 * ((p[0] + p[1] * r) + r2 * ((p[2] + p[3] * r) + r2 * p[4]))
 
 
-def ln16_emul(tab, p, x, sign):
-    """sign = -1: ln(16/x);  sign = +1: ln(16 x), as (H, T) in doubles, like ellint.c"""
+def ln16_emul(tab, p, x, sign, rel=0.0):
+    """sign = -1: ln(16/x) (ln16_over);  sign = +1: ln(16 x (1 + rel)) (ln16_times), as (H, T)
+    in doubles, like ellint.c"""
     k, i, r = log_parts_emul(tab, x)
     c, invc, lhi, llo = tab[i]
     if sign < 0:
@@ -364,34 +372,67 @@ def ln16_emul(tab, p, x, sign):
     else:
         n = 4.0 + k
         h = n * LN2_HI + lhi
-        t = ((n * LN2_LO + llo) + r) + log1p_tail_emul(p, r)
+        t = ((n * LN2_LO + llo) + (r + rel)) + log1p_tail_emul(p, r)
     return h, t
 
 
+def neg_m1_parts(m):
+    """ellint.c for m < 0: m1h + m1l = 1 - m (two-sum, exact), and rel = mls q as ln16_times
+    gets it (q = 1/ms, ms = m1h sc, mls = m1l sc, sc = 2^-600 above m1h = 2^512)"""
+    m1h = 1.0 - m
+    m1l = float(mpf(1) - mpf(m) - mpf(m1h))  # exact (two-sum)
+    sc = 2.0 ** -600 if m1h > 2.0 ** 512 else 1.0
+    q = 1.0 / (m1h * sc)
+    return m1h, m1l, (m1l * sc) * q
+
+
 def check_ln(tab, p):
-    """max |H + T - ln(16/x)| (and ln(16 x)) over interval ends, random points, subnormals"""
+    """max |H + T - L| of the emulated C code, L = ln(16/x) (log series, x < X0) over interval
+    ends, random points, subnormals; and L = ln(16 m1), m1 = m1h + m1l > 1/X0 (m < 0: the m1
+    entry with m1l = 0 at interval ends, and the m entry, whose two-sum low part m1l enters
+    through rel = m1l/m1h).  Returns (log2 of the max, number of points, number with m1l != 0)."""
     import random
     rnd = random.Random(12345)
-    xs = []
+    ends = []
     for i in range(1 << LOG_B):
         for off in (0, 1, 2, (1 << (52 - LOG_B)) // 2, (1 << (52 - LOG_B)) - 2, (1 << (52 - LOG_B)) - 1):
-            z = as_f64(LOG_OFF + (i << (52 - LOG_B)) + off)
-            for e in (-1070, -1030, -1022, -300, -60, -6):
-                xs.append(z * 2.0 ** e if e >= -1022 else mpmath.ldexp(z, e))
+            ends.append(as_f64(LOG_OFF + (i << (52 - LOG_B)) + off))
+    xs = []
+    for z in ends:
+        for e in (-1070, -1030, -1022, -300, -60, -8):
+            xs.append(z * 2.0 ** e if e >= -1022 else mpmath.ldexp(z, e))
     for _ in range(4000):
-        xs.append(float(mpmath.ldexp(1 + rnd.random(), rnd.randint(-1074, -6))))
-    xs = [float(v) for v in xs if float(v) > 0]
+        xs.append(float(mpmath.ldexp(1 + rnd.random(), rnd.randint(-1074, X0_LOG2 - 1))))
+    xs = [float(v) for v in xs if 0 < float(v) < 2.0 ** X0_LOG2]
+    ms = []  # m < 0 with 1 - m > 1/X0
+    for z in ends:
+        for e in (-X0_LOG2, -X0_LOG2 + 1, 60, 511, 512, 513, 1000, 1023):
+            y = z * 2.0 ** e
+            if y > 2.0 ** -X0_LOG2 and y < float("inf"):
+                ms.append(1.0 - y)   # m entry, mostly m1l = 0
+    for _ in range(4000):
+        e = rnd.randint(-X0_LOG2, 1023)
+        m = -float(mpmath.ldexp(1 + rnd.random(), e))
+        if rnd.random() < 0.5 and e < 1023:  # just below a binade: 1 - m crosses it, m1l != 0
+            m = -float(mpmath.ldexp(2 - rnd.random() * 2.0 ** -40, e))
+        if 1.0 - m > 2.0 ** -X0_LOG2 and m > -float("inf"):
+            ms.append(m)
     worst = mpf(0)
     for x in xs:
         h, t = ln16_emul(tab, p, x, -1)
         assert h == float(mpf(h))
         worst = max(worst, abs(mpf(h) + mpf(t) - mpmath.log(16 / mpf(x))))
-        y = 1 / x if x > 2.0 ** -1000 else 2.0 ** 1000   # the m < 0 form: ln(16 m1), m1 > 32
-        y = max(y, 32.0)
-        h, t = ln16_emul(tab, p, y, +1)
-        worst = max(worst, abs(mpf(h) + mpf(t) - mpmath.log(16 * mpf(y))))
+    nrel = 0
+    for m in ms:
+        m1h, m1l, rel = neg_m1_parts(m)
+        nrel += m1l != 0
+        for mm in ((m1h, 0.0, 0.0), (m1h, m1l, rel)):  # m1 entry (m1l = 0), m entry
+            h, t = ln16_emul(tab, p, mm[0], +1, mm[2])
+            assert h == float(mpf(h))
+            worst = max(worst, abs(mpf(h) + mpf(t) - mpmath.log(16 * (mpf(mm[0]) + mpf(mm[1])))))
+    assert nrel > 1000, nrel
     assert worst < mpf(2) ** LN_TARGET_LOG2, worst
-    return float(mpmath.log(worst, 2)), len(xs)
+    return float(mpmath.log(worst, 2)), len(xs) + 2 * len(ms), nrel
 
 
 def hexs(v):
@@ -405,7 +446,7 @@ def main():
     pa, pb, pc, pd, lek, lee = log_tables()
     pcs, pek, pee = pieces()
     lntab, l1p, rlo, rhi = lnc_table()
-    lnerr, lnn = check_ln(lntab, l1p)
+    lnerr, lnn, lnrel = check_ln(lntab, l1p)
     npieces = len(pcs)
     cmd = "/usr/bin/python3 scripts/gen_ellint_coeffs.py"
     stamp = ("generated by scripts/gen_ellint_coeffs.py - do not edit.\n"
@@ -481,8 +522,11 @@ def main():
              % float(serr))
     c.append(" *   inline logarithm (%d intervals, log1p degree %d, r in [%.3g, %.3g]): the C evaluation"
              % (1 << LOG_B, NLOG1P + 2, float(rlo), float(rhi)))
-    c.append(" *   of L = ln(16/x), ln(16 x) emulated in doubles at %d points: max |H + T - L| = 2^%.2f"
-             % (lnn, lnerr))
+    c.append(" *   of L = ln(16/x), ln(16 m1) emulated in doubles at %d points (%d with a two-sum low part"
+             % (lnn, lnrel))
+    c.append(" *   of m1 = 1 - m): max |H + T - L| = 2^%.2f (asserted < 2^%d); each ln c checked against"
+             % (lnerr, LN_TARGET_LOG2))
+    c.append(" *   Python decimal's ln (70 digits): |lhi + llo - ln c| < 2^-86")
     c.append(" */")
     c.append('#include "ellint_data.h"')
     c.append("")

@@ -7,7 +7,9 @@
  *   ics_ellint_pieces (x in [2^-7, 1], 56 pieces, degree 10/9):  K 0.0066 ulp, E 0.0038 ulp
  * Series check (DLMF 19.12.1/2 vs mpmath ellipk/ellipe, 40 points): rel. diff 1.73e-77
  *   inline logarithm (128 intervals, log1p degree 6, r in [-0.00389, 0.00389]): the C evaluation
- *   of L = ln(16/x), ln(16 x) emulated in doubles at 8608 points: max |H + T - L| = 2^-60.15
+ *   of L = ln(16/x), ln(16 m1) emulated in doubles at 28000 points (1648 with a two-sum low part
+ *   of m1 = 1 - m): max |H + T - L| = 2^-60.05 (asserted < 2^-58); each ln c checked against
+ *   Python decimal's ln (70 digits): |lhi + llo - ln c| < 2^-86
  */
 #include "ellint_data.h"
 
