@@ -101,10 +101,11 @@ ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup
 
 /* Base-grid pixel count and estimated work (tap-updates as ICS_WORK_BUDGET of shadow1d.h:
  * steps x pixels x applied taps + ICS_WORK_COMP_PASSES x generated taps, per grid, plus the
- * limits at the window's nodes: 20 per node for the edge's Phi, 3000 for the corner's
- * ics_bvn_cdf, x 2 (class and realised); the finer grid counts when s->refine) of
- * ics_clt2d_measure, without running it. Same argument errors. Measured here: ~0.13 ns per
- * engine tap-update (Release), so the 1D budget ICS_WORK_BUDGET of 1e11 is 15-50 s. */
+ * limits at the window's nodes: 60 per node for the edge's Phi, 4000 for the corner's
+ * ics_bvn_cdf (10000 when |rho| >= 0.9), x 2 (class and realised); the finer grid counts when
+ * s->refine) of ics_clt2d_measure, without running it. Same argument errors. Measured here
+ * (clt2d.c): 0.21 ns per engine tap-update (Release; 0.21-0.41 under load), so the 1D budget
+ * ICS_WORK_BUDGET of 1e11 is 21-41 s. */
 ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
                           const int *steps, int nsteps, double *pixels, double *work);
 
