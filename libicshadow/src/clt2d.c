@@ -51,7 +51,9 @@
  * following n mu only reported 4.7e-11 at n = 4096 for an error of 4.8e-4). The 6 sd + 4 left
  * between window and border keep the clamp boundary's wrong values (where the edge's band
  * leaves the image) out of the window (Gaussian tail exp(-18) ~ 1.5e-8).
- * Discretisation check: the same iteration on a grid twice as fine (scale 2: taps' positions
+ * Discretisation check: the same iteration, in lockstep with the base grid (run2: the profiles
+ * are compared node by node at each requested step, never stored), on a grid twice as fine
+ * (scale 2: taps' positions
  * doubled — the same continuous kernel; stochastic draws depend on the step index only) whose
  * nodes x = xlo + k/2 include every base node (k = 2i + 1); its limit has the pixel term
  * 1/(12 * 4). disc_err = max over the window of |(r_n - G_n)_base - (r_n - G_n)_fine|: the change
@@ -391,85 +393,118 @@ static double limit_at(const plan2 *p, ics_clt2d_occluder occ, double x, double 
   return ics_bvn_cdf((x - m[0]) / sx, (y - m[1]) / sy, r);
 }
 
-/* One run on the grid refined by `scale` (1 or 2). prof[k] (if prof) receives the class error
- * profile over window k (row-major); out (if not NULL) the points. */
-static ics_status run2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, const plan2 *p,
-                       const int *steps, int nsteps, int scale, double **prof,
-                       ics_clt_point *out) {
-  size_t W = scale == 1 ? p->w : 2 * p->w + 1, H = scale == 1 ? p->h : 2 * p->h + 1;
-  /* node (i, j) of this grid at world x = xw0 + i / scale */
-  double xw0 = scale == 1 ? (double)p->xlo + 0.5 : (double)p->xlo;
-  double yw0 = scale == 1 ? (double)p->ylo + 0.5 : (double)p->ylo;
-  float *buf = malloc(W * H * sizeof *buf), *tmp = malloc(W * H * sizeof *tmp);
-  int cap = ICS_KERNEL_MAX_TAPS, dcap = 4 * ICS_KERNEL_MAX_TAPS + 9;
-  ics_tap2d *taps = malloc((size_t)cap * sizeof *taps);
-  ics_tap2d *dt = malloc((size_t)dcap * sizeof *dt);
-  ics_status st = (buf && tmp && taps && dt) ? ICS_OK : ICS_ERR_NOMEM;
-  double sc = (double)scale;
-  if (st == ICS_OK)
-    for (size_t j = 0; j < H; j++)
-      for (size_t i = 0; i < W; i++) {
-        double gx = (xw0 + (double)i / sc) * sc, gy = (yw0 + (double)j / sc) * sc; /* grid units */
-        double v;
-        if (s->occluder == ICS_CLT2D_EDGE)
-          v = ics_clt2d_edge_coverage(p->ux, p->uy, p->ux * gx + p->uy * gy);
-        else
-          v = fmin(fmax(gx + 0.5, 0.0), 1.0) * fmin(fmax(gy + 0.5, 0.0), 1.0);
-        buf[j * W + i] = (float)v;
-      }
+/* One grid: the image (2 float buffers) refined by `scale` (1 or 2), its node (i, j) at world
+ * x = xw0 + i / scale. */
+typedef struct grid2 {
+  size_t W, H;
+  double xw0, yw0, sc;
+  float *buf, *tmp;
+} grid2;
+
+static ics_status grid_init(grid2 *g, const ics_clt2d_setup *s, const plan2 *p, int scale) {
+  g->W = scale == 1 ? p->w : 2 * p->w + 1;
+  g->H = scale == 1 ? p->h : 2 * p->h + 1;
+  g->xw0 = scale == 1 ? (double)p->xlo + 0.5 : (double)p->xlo;
+  g->yw0 = scale == 1 ? (double)p->ylo + 0.5 : (double)p->ylo;
+  g->sc = (double)scale;
+  g->buf = malloc(g->W * g->H * sizeof *g->buf);
+  g->tmp = malloc(g->W * g->H * sizeof *g->tmp);
+  if (!g->buf || !g->tmp) return ICS_ERR_NOMEM;
+  for (size_t j = 0; j < g->H; j++)
+    for (size_t i = 0; i < g->W; i++) {
+      double gx = (g->xw0 + (double)i / g->sc) * g->sc, gy = (g->yw0 + (double)j / g->sc) * g->sc;
+      double v; /* grid units */
+      if (s->occluder == ICS_CLT2D_EDGE)
+        v = ics_clt2d_edge_coverage(p->ux, p->uy, p->ux * gx + p->uy * gy);
+      else
+        v = fmin(fmax(gx + 0.5, 0.0), 1.0) * fmin(fmax(gy + 0.5, 0.0), 1.0);
+      g->buf[j * g->W + i] = (float)v;
+    }
+  return ICS_OK;
+}
+
+static void grid_free(grid2 *g) {
+  free(g->buf);
+  free(g->tmp);
+}
+
+/* one step of the grid with step n's taps (generated for its scale, compensated) */
+static ics_status grid_step(grid2 *g, ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
+                            int n, ics_tap2d *taps, int cap, ics_tap2d *dt, int dcap, int *nd) {
   ics_conv_opts co = ics_conv_opts_default();
   co.boundary = ICS_BOUNDARY_CLAMP;
   co.compensate = ICS_COMP_NONE; /* the taps handed over are already integer */
+  int nt = 0;
+  ics_status st = gen(ctx, (uint64_t)(n - 1), g->sc, taps, cap, &nt);
+  if (st == ICS_OK) st = ics_taps2d_compensate(taps, nt, s->comp, dt, dcap, nd, NULL);
+  if (st == ICS_OK) st = ics_conv2d_step(g->buf, g->tmp, g->W, g->H, dt, *nd, &co);
+  if (st != ICS_OK) return st;
+  float *sw = g->buf;
+  g->buf = g->tmp;
+  g->tmp = sw;
+  return ICS_OK;
+}
+
+/* value of the grid at base node (i, j) */
+static double grid_at(const grid2 *g, long i, long j) {
+  size_t gi = g->sc == 1 ? (size_t)i : 2 * (size_t)i + 1;
+  size_t gj = g->sc == 1 ? (size_t)j : 2 * (size_t)j + 1;
+  return g->buf[gj * g->W + gi];
+}
+
+/* The base grid and (s->refine) the 2x finer grid iterated in lockstep, so the error profiles
+ * are compared node by node at each requested step and never stored: memory is the two grids'
+ * buffers only. At requested step k: class and realised errors on the base grid, the class
+ * error on the fine grid at the base nodes (only its change is needed: disc_err). */
+static ics_status run2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, const plan2 *p,
+                       const int *steps, int nsteps, ics_clt_point *out) {
+  grid2 gb = {0}, gf = {0};
+  int cap = ICS_KERNEL_MAX_TAPS, dcap = 4 * ICS_KERNEL_MAX_TAPS + 9;
+  ics_tap2d *taps = malloc((size_t)cap * sizeof *taps);
+  ics_tap2d *dt = malloc((size_t)dcap * sizeof *dt);
+  ics_status st = (taps && dt) ? ICS_OK : ICS_ERR_NOMEM;
+  if (st == ICS_OK) st = grid_init(&gb, s, p, 1);
+  if (st == ICS_OK && s->refine) st = grid_init(&gf, s, p, 2);
   double cost = 0, secs = 0;
   int nmax = steps[nsteps - 1], k = 0;
   for (int n = 1; st == ICS_OK && n <= nmax; n++) {
+    int nd = 0, ndf = 0;
     clock_t t0 = clock();
-    int nt = 0, nd = 0;
-    st = gen(ctx, (uint64_t)(n - 1), sc, taps, cap, &nt);
-    if (st == ICS_OK) st = ics_taps2d_compensate(taps, nt, s->comp, dt, dcap, &nd, NULL);
-    if (st == ICS_OK) st = ics_conv2d_step(buf, tmp, W, H, dt, nd, &co);
+    st = grid_step(&gb, gen, ctx, s, n, taps, cap, dt, dcap, &nd);
     secs += (double)(clock() - t0) / CLOCKS_PER_SEC;
+    if (st == ICS_OK && s->refine) st = grid_step(&gf, gen, ctx, s, n, taps, cap, dt, dcap, &ndf);
     if (st != ICS_OK) break;
-    float *sw = buf;
-    buf = tmp;
-    tmp = sw;
     cost += nd;
     if (n != steps[k]) continue;
     const double *rm = p->rm + 2 * k, *rc = p->rc + 3 * k;
-    double pix = 1.0 / (12.0 * sc * sc);
+    double pix = 1.0 / 12.0, pixf = 1.0 / 48.0;
     double cm[2] = {n * s->mean[0], n * s->mean[1]};
     double cc[3] = {n * s->cov[0] + pix, n * s->cov[1], n * s->cov[2] + pix};
-    double qm[2] = {rm[0] / sc, rm[1] / sc};
-    double qc[3] = {rc[0] / (sc * sc) + pix, rc[1] / (sc * sc), rc[2] / (sc * sc) + pix};
+    double ccf[3] = {n * s->cov[0] + pixf, n * s->cov[1], n * s->cov[2] + pixf};
+    double qc[3] = {rc[0] + pix, rc[1], rc[2] + pix};
     win2 w = window_at(p, s, steps, k);
-    double worst = 0, worst_r = 0;
-    size_t q = 0;
+    double worst = 0, worst_r = 0, disc = 0;
     for (long j = w.j0; j <= w.j1; j++)
       for (long i = w.i0; i <= w.i1; i++) {
         if (!in_win(&w, i, j)) continue;
         double x = (double)p->xlo + (double)i + 0.5, y = (double)p->ylo + (double)j + 0.5;
-        size_t gi = scale == 1 ? (size_t)i : 2 * (size_t)i + 1;
-        size_t gj = scale == 1 ? (size_t)j : 2 * (size_t)j + 1;
-        double r = buf[gj * W + gi];
-        double e = r - limit_at(p, s->occluder, x, y, cm, cc);
-        double er = r - limit_at(p, s->occluder, x, y, qm, qc);
-        if (fabs(e) > worst) worst = fabs(e);
-        if (fabs(er) > worst_r) worst_r = fabs(er);
-        if (prof) prof[k][q] = e;
-        q++;
+        double e = grid_at(&gb, i, j) - limit_at(p, s->occluder, x, y, cm, cc);
+        double er = grid_at(&gb, i, j) - limit_at(p, s->occluder, x, y, rm, qc);
+        worst = fmax(worst, fabs(e));
+        worst_r = fmax(worst_r, fabs(er));
+        if (s->refine)
+          disc = fmax(disc, fabs(e - (grid_at(&gf, i, j) - limit_at(p, s->occluder, x, y, cm, ccf))));
       }
-    if (out) {
-      out[k].steps = n;
-      out[k].sup_err = worst;
-      out[k].sup_err_realized = worst_r;
-      out[k].disc_err = NAN;
-      out[k].cost = cost;
-      out[k].seconds = secs;
-    }
+    out[k].steps = n;
+    out[k].sup_err = worst;
+    out[k].sup_err_realized = worst_r;
+    out[k].disc_err = s->refine ? disc : NAN;
+    out[k].cost = cost;
+    out[k].seconds = secs;
     k++;
   }
-  free(buf);
-  free(tmp);
+  grid_free(&gb);
+  grid_free(&gf);
   free(taps);
   free(dt);
   return st;
@@ -501,15 +536,15 @@ ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s
     st = gen(ctx, 0, sc, taps, cap, &nt);
     if (st == ICS_OK) st = ics_taps2d_compensate(taps, nt, s->comp, dt, dcap, &nd, NULL);
     wk += (double)steps[nsteps - 1] * (px * nd + ICS_WORK_COMP_PASSES * (double)nt);
-    /* the limits at every window node, class and realised */
+    /* the limits at every window node */
     double cn = (double)steps[nsteps - 1], pix = 1.0 / 12;
     double rho = cn * s->cov[1] / sqrt((cn * s->cov[0] + pix) * (cn * s->cov[2] + pix));
     double per = s->occluder == ICS_CLT2D_EDGE ? COST_PHI
                  : fabs(rho) < 0.9                ? COST_BVN
                                                   : COST_BVN_HIGH;
-    for (int k = 0; k < nsteps; k++) {
+    for (int k = 0; k < nsteps; k++) { /* base: class and realised; fine: class */
       win2 w = window_at(&p, s, steps, k);
-      wk += (double)win_size(&w) * 2 * per;
+      wk += (double)win_size(&w) * (r ? 1 : 2) * per;
     }
   }
   free(taps);
@@ -527,34 +562,7 @@ ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup
   plan2 p;
   ics_status st = check2(gen, ctx, s, steps, nsteps, &p);
   if (st != ICS_OK) return st;
-  if (!s->refine) {
-    st = run2(gen, ctx, s, &p, steps, nsteps, 1, NULL, out);
-    plan2_free(&p);
-    return st;
-  }
-  double **e1 = calloc((size_t)nsteps, sizeof *e1), **e2 = calloc((size_t)nsteps, sizeof *e2);
-  st = (e1 && e2) ? ICS_OK : ICS_ERR_NOMEM;
-  for (int k = 0; st == ICS_OK && k < nsteps; k++) {
-    win2 w = window_at(&p, s, steps, k);
-    e1[k] = malloc(win_size(&w) * sizeof **e1);
-    e2[k] = malloc(win_size(&w) * sizeof **e2);
-    if (!e1[k] || !e2[k]) st = ICS_ERR_NOMEM;
-  }
-  if (st == ICS_OK) st = run2(gen, ctx, s, &p, steps, nsteps, 1, e1, out);
-  if (st == ICS_OK) st = run2(gen, ctx, s, &p, steps, nsteps, 2, e2, NULL);
-  for (int k = 0; st == ICS_OK && k < nsteps; k++) {
-    win2 w = window_at(&p, s, steps, k);
-    size_t m = win_size(&w);
-    double d = 0;
-    for (size_t q = 0; q < m; q++) d = fmax(d, fabs(e1[k][q] - e2[k][q]));
-    out[k].disc_err = d;
-  }
-  for (int k = 0; k < nsteps; k++) {
-    if (e1) free(e1[k]);
-    if (e2) free(e2[k]);
-  }
-  free(e1);
-  free(e2);
+  st = run2(gen, ctx, s, &p, steps, nsteps, out);
   plan2_free(&p);
   return st;
 }

@@ -71,8 +71,11 @@ typedef struct ics_clt2d_setup {
 ics_clt2d_setup ics_clt2d_setup_default(void);
 
 #define ICS_CLT2D_MAX_STEPS 100000
-#define ICS_CLT2D_MAX_PIXELS ((double)(1 << 22)) /* base grid (the fine grid holds ~4x this:
-                                                     2 float buffers of 4 * 2^22 = 128 MiB) */
+/* Base grid cap. Memory of ics_clt2d_measure: 2 float buffers per grid, the base and (refine)
+ * the 2x finer grid iterated in lockstep, the error profiles compared node by node and never
+ * stored: 8 bytes a base pixel + ~32 for the fine grid, i.e. <= 160 MiB at the cap, plus
+ * 40 bytes per requested step count. */
+#define ICS_CLT2D_MAX_PIXELS ((double)(1 << 22))
 
 /* First generates and compensates every step's taps once (the realised path m_n, C_n; the
  * generator must be deterministic in the step index), sizes the grid to hold both paths, then
@@ -102,8 +105,8 @@ ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup
 /* Base-grid pixel count and estimated work (tap-updates as ICS_WORK_BUDGET of shadow1d.h:
  * steps x pixels x applied taps + ICS_WORK_COMP_PASSES x generated taps, per grid, plus the
  * limits at the window's nodes: 60 per node for the edge's Phi, 4000 for the corner's
- * ics_bvn_cdf (10000 when |rho| >= 0.9), x 2 (class and realised); the finer grid counts when
- * s->refine) of ics_clt2d_measure, without running it. Same argument errors. Measured here
+ * ics_bvn_cdf (10000 when |rho| >= 0.9), x 2 on the base grid (class and realised), x 1 on the
+ * finer grid (class), which counts when s->refine) of ics_clt2d_measure, without running it. Same argument errors. Measured here
  * (clt2d.c): 0.21 ns per engine tap-update (Release; 0.21-0.41 under load), so the 1D budget
  * ICS_WORK_BUDGET of 1e11 is 21-41 s. */
 ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
