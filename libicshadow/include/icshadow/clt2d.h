@@ -62,7 +62,8 @@ typedef struct ics_clt2d_setup {
   ics_clt2d_occluder occluder;
   double edge_angle_deg; /* EDGE: direction of the opaque side's normal, degrees ccw from +x */
   double mean[2];        /* the class per step (pixels): the Gaussian the error is measured to */
-  double cov[3];         /* cxx, cxy, cyy (pixels^2), positive definite */
+  double cov[3];         /* cxx, cxy, cyy (pixels^2): positive SEMIdefinite (rank one, e.g. a
+                            line light, is accepted; det >= -1e-12 trace^2), trace > 0 */
   ics_comp_mode comp;    /* NONE, NONNEG or SIGNED (INTEGER: ICS_ERR_UNSUPPORTED, as the engine) */
   int refine;            /* 1: also run a grid twice as fine and report disc_err; 0: NaN */
 } ics_clt2d_setup;
@@ -96,7 +97,8 @@ ics_clt2d_setup ics_clt2d_setup_default(void);
  *   cost             integer taps applied, summed over the steps (base grid);
  *   seconds          CPU time of the base grid's iteration up to n (measurement excluded).
  * Errors: ICS_ERR_INVALID_ARG (NULL, nsteps <= 0, unknown occluder), ICS_ERR_NAN /
- * ICS_ERR_INFINITE (mean, cov, angle), ICS_ERR_NEGATIVE_VARIANCE (cov not positive definite),
+ * ICS_ERR_INFINITE (mean, cov, angle), ICS_ERR_NEGATIVE_VARIANCE (cov not positive
+ * semidefinite or trace 0),
  * ICS_ERR_RANGE (steps), ICS_ERR_UNSUPPORTED (comp INTEGER), ICS_ERR_SIZE (base grid over
  * ICS_CLT2D_MAX_PIXELS), generator/engine errors passed through, ICS_ERR_NOMEM. */
 ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
