@@ -63,6 +63,41 @@ int cli_option_double(const char *cmd, const char *opt, const char *s, int varia
   return 0;
 }
 
+int cli_parse_numbers(const char *cmd, const char *opt, const char *spec, const char *s,
+                      const char *end, int n, double *v) {
+  if (!end) end = s + strlen(s);
+  const char *p = s;
+  for (int i = 0; i < n; i++) {
+    const char *q = p;
+    while (q < end && *q != ',') q++;
+    if (i < n - 1 && q >= end) {
+      fprintf(stderr, "icshadow %s: %s: expected %d comma-separated numbers at position %d of "
+                      "'%s'\n", cmd, opt, n, (int)(p - spec) + 1, spec);
+      return -1;
+    }
+    if (i == n - 1 && q < end) {
+      fprintf(stderr, "icshadow %s: %s: too many numbers at position %d of '%s'\n", cmd, opt,
+              (int)(q - spec) + 1, spec);
+      return -1;
+    }
+    char buf[128];
+    size_t len = (size_t)(q - p);
+    if (len == 0 || len >= sizeof buf || (memcpy(buf, p, len), buf[len] = 0, 0) ||
+        cli_parse_double(buf, &v[i]) != 0) {
+      fprintf(stderr, "icshadow %s: %s: not a number at position %d of '%s'\n", cmd, opt,
+              (int)(p - spec) + 1, spec);
+      return -1;
+    }
+    if (!isfinite(v[i])) {
+      fprintf(stderr, "icshadow %s: %s: %s at position %d of '%s' (must be finite)\n", cmd, opt,
+              isnan(v[i]) ? "NaN" : "infinite number", (int)(p - spec) + 1, spec);
+      return -1;
+    }
+    p = q + 1;
+  }
+  return 0;
+}
+
 double cli_now_s(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);

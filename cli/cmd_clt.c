@@ -110,52 +110,19 @@ static int parse_steps(const char *s, int *steps, int *n, int maxv) {
   return 0;
 }
 
-/* comma-separated list of exactly n finite numbers for option opt; 0 or -1 (message printed) */
-static int parse_list(const char *opt, const char *s, double *v, int n) {
-  const char *p = s;
-  for (int k = 0; k < n; k++) {
-    const char *q = strchr(p, ',');
-    if (k < n - 1 && !q) {
-      fprintf(stderr, "icshadow clt: %s: expected %d comma-separated numbers, got '%s'\n", opt, n,
-              s);
-      return -1;
-    }
-    if (k == n - 1 && q) {
-      fprintf(stderr, "icshadow clt: %s: more than %d numbers in '%s'\n", opt, n, s);
-      return -1;
-    }
-    size_t len = q ? (size_t)(q - p) : strlen(p);
-    char buf[64];
-    if (len == 0 || len >= sizeof buf) {
-      fprintf(stderr, "icshadow clt: %s: empty or too long entry at position %d of '%s'\n", opt,
-              (int)(p - s) + 1, s);
-      return -1;
-    }
-    memcpy(buf, p, len);
-    buf[len] = 0;
-    if (cli_parse_double(buf, &v[k]) != 0 || isnan(v[k]) || isinf(v[k])) {
-      fprintf(stderr, "icshadow clt: %s: expected a finite number at position %d of '%s'\n", opt,
-              (int)(p - s) + 1, s);
-      return -1;
-    }
-    if (q) p = q + 1;
-  }
-  return 0;
-}
-
 /* the 2D path (--cov): ics_clt2d_measure */
 static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const char *steps_s,
                  const char *samples_s, const char *edge_s, int corner, const char *offsets_s,
                  const char *offset_s, uint64_t seed, const char *comp, int refine, int rate) {
   double cv[3], mv[2] = {0, 0}, edge = 0, offset = 0;
   int steps[MAX_STEPS_LIST], nsteps = 0, samples = 0;
-  if (parse_list("--cov", cov_s, cv, 3) != 0) return 2;
+  if (cli_parse_numbers("clt", "--cov", cov_s, cov_s, NULL, 3, cv) != 0) return 2;
   if (cv[0] < 0 || cv[1] < 0 || !(cv[0] + cv[1] > 0)) {
     fprintf(stderr, "icshadow clt: --cov: variances VX, VY must be >= 0 and not both 0, got "
                     "'%s'\n", cov_s);
     return 2;
   }
-  if (mean_s && parse_list("--mean", mean_s, mv, 2) != 0) return 2;
+  if (mean_s && cli_parse_numbers("clt", "--mean", mean_s, mean_s, NULL, 2, mv) != 0) return 2;
   if (edge_s && cli_option_double("clt", "--edge-angle", edge_s, 0, &edge) != 0) return 2;
   if (edge_s && corner) {
     fprintf(stderr, "icshadow clt: give either --edge-angle or --corner, not both\n");

@@ -41,43 +41,6 @@ static void help(FILE *f) {
           ICS_LIGHT1D_MAX_MIX, ICS_WORK_BUDGET);
 }
 
-/* parse "a,b[,c]" at s into v (exactly n numbers); on error, report the character offset
- * within the whole SPEC */
-static int parse_tuple(const char *spec, const char *s, const char *end, int n, double *v) {
-  const char *p = s;
-  for (int i = 0; i < n; i++) {
-    const char *q = p;
-    while (q < end && *q != ',') q++;
-    if (i < n - 1 && q >= end) {
-      fprintf(stderr,
-              "icshadow isoline: --light: expected %d comma-separated numbers at position %d "
-              "of '%s'\n",
-              n, (int)(p - spec) + 1, spec);
-      return -1;
-    }
-    if (i == n - 1 && q < end) {
-      fprintf(stderr, "icshadow isoline: --light: too many numbers at position %d of '%s'\n",
-              (int)(q - spec) + 1, spec);
-      return -1;
-    }
-    char buf[128];
-    size_t len = (size_t)(q - p);
-    if (len == 0 || len >= sizeof buf || (memcpy(buf, p, len), buf[len] = 0, 0) ||
-        cli_parse_double(buf, &v[i]) != 0) {
-      fprintf(stderr, "icshadow isoline: --light: not a number at position %d of '%s'\n",
-              (int)(p - spec) + 1, spec);
-      return -1;
-    }
-    if (!isfinite(v[i])) {
-      fprintf(stderr, "icshadow isoline: --light: %s at position %d of '%s' (must be finite)\n",
-              isnan(v[i]) ? "NaN" : "infinite number", (int)(p - spec) + 1, spec);
-      return -1;
-    }
-    p = q + 1;
-  }
-  return 0;
-}
-
 static int parse_light(const char *spec, ics_light1d *l) {
   const char *colon = strchr(spec, ':');
   const char *end = spec + strlen(spec);
@@ -91,7 +54,7 @@ static int parse_light(const char *spec, ics_light1d *l) {
   ics_status st;
   if (kl == 5 && !strncmp(spec, "gauss", 5)) {
     double v[2];
-    if (parse_tuple(spec, a, end, 2, v)) return -1;
+    if (cli_parse_numbers("isoline", "--light", spec, a, end, 2, v)) return -1;
     if (v[1] < 0) {
       fprintf(stderr, "icshadow isoline: --light: negative variance at position %d of '%s'\n",
               (int)(strrchr(spec, ',') - spec) + 2, spec);
@@ -100,7 +63,7 @@ static int parse_light(const char *spec, ics_light1d *l) {
     st = ics_light1d_gauss(l, v[0], v[1]);
   } else if (kl == 3 && !strncmp(spec, "box", 3)) {
     double v[2];
-    if (parse_tuple(spec, a, end, 2, v)) return -1;
+    if (cli_parse_numbers("isoline", "--light", spec, a, end, 2, v)) return -1;
     if (!(v[0] < v[1])) {
       fprintf(stderr, "icshadow isoline: --light: box needs LO < HI (position %d of '%s')\n",
               (int)(a - spec) + 1, spec);
@@ -120,7 +83,7 @@ static int parse_light(const char *spec, ics_light1d *l) {
         return -1;
       }
       double v[3];
-      if (parse_tuple(spec, p, q, 3, v)) return -1;
+      if (cli_parse_numbers("isoline", "--light", spec, p, q, 3, v)) return -1;
       if (v[0] < 0) {
         fprintf(stderr, "icshadow isoline: --light: negative weight at position %d of '%s'\n",
                 (int)(p - spec) + 1, spec);

@@ -41,6 +41,14 @@ int cli_parse_seed(const char *s, uint64_t *out);
  * variance S (must be >= 0)", "must be finite, got 'S'", checked in that order) on stderr. */
 int cli_option_double(const char *cmd, const char *opt, const char *s, int variance, double *out);
 
+/* Exactly n comma-separated finite numbers in [s, end) (end NULL: to the end of s), a part of
+ * the option value `spec` (positions in messages count from spec's first character, 1-based).
+ * Returns 0, or -1 after "icshadow CMD: OPT: " + "expected N comma-separated numbers at position
+ * P of 'SPEC'" / "too many numbers at position P of 'SPEC'" / "not a number at position P of
+ * 'SPEC'" / "NaN (or: infinite number) at position P of 'SPEC' (must be finite)" on stderr. */
+int cli_parse_numbers(const char *cmd, const char *opt, const char *spec, const char *s,
+                      const char *end, int n, double *v);
+
 /* Seconds on the monotonic clock (CLOCK_MONOTONIC), for elapsed times. */
 double cli_now_s(void);
 

@@ -45,17 +45,17 @@ ics_cli_test(NAME cli_clt2d_gauss_comb RC 0
 ics_cli_test(NAME cli_clt2d_kernel_1d RC 2 ARGS "clt|--kernel|tophat|--cov|1,1,0|--steps|4"
   OUT "^$" ERR "unknown 2D kernel 'tophat' \\(ellipse, poisson, gauss\\)")
 ics_cli_test(NAME cli_clt2d_cov_short RC 2 ARGS "clt|--kernel|ellipse|--cov|1,1|--steps|4"
-  OUT "^$" ERR "--cov: expected 3 comma-separated numbers, got '1,1'")
+  OUT "^$" ERR "--cov: expected 3 comma-separated numbers at position 3 of '1,1'")
 ics_cli_test(NAME cli_clt2d_cov_long RC 2 ARGS "clt|--kernel|ellipse|--cov|1,1,0,2|--steps|4"
-  OUT "^$" ERR "--cov: more than 3 numbers in '1,1,0,2'")
+  OUT "^$" ERR "--cov: too many numbers at position 6 of '1,1,0,2'")
 ics_cli_test(NAME cli_clt2d_cov_negative RC 2 ARGS "clt|--kernel|ellipse|--cov|1,-1,0|--steps|4"
   OUT "^$" ERR "--cov: variances VX, VY must be >= 0 and not both 0")
 ics_cli_test(NAME cli_clt2d_cov_zero RC 2 ARGS "clt|--kernel|poisson|--cov|0,0,0|--steps|4"
   OUT "^$" ERR "not both 0, got '0,0,0'")
 ics_cli_test(NAME cli_clt2d_cov_nan RC 2 ARGS "clt|--kernel|ellipse|--cov|4,2,nan|--steps|4"
-  OUT "^$" ERR "--cov: expected a finite number at position 5 of '4,2,nan'")
+  OUT "^$" ERR "--cov: NaN at position 5 of '4,2,nan' \\(must be finite\\)")
 ics_cli_test(NAME cli_clt2d_mean_short RC 2 ARGS "clt|--kernel|ellipse|--cov|4,2,0|--mean|1|--steps|4"
-  OUT "^$" ERR "--mean: expected 2 comma-separated numbers, got '1'")
+  OUT "^$" ERR "--mean: expected 2 comma-separated numbers at position 1 of '1'")
 ics_cli_test(NAME cli_clt2d_var_and_cov RC 2 ARGS "clt|--kernel|ellipse|--cov|4,2,0|--var|3|--steps|4"
   OUT "^$" ERR "give either --var \\(1D kernel\\) or --cov \\(2D kernel\\), not both")
 ics_cli_test(NAME cli_clt2d_corner_1d RC 2 ARGS "clt|--kernel|tophat|--var|3|--steps|4|--corner"

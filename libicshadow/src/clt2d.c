@@ -227,8 +227,11 @@ typedef struct plan2 {
 
 static double sd_at(const plan2 *p, int n) { return sqrt(n * p->lmax + 1.0 / 12.0); }
 
+/* largest eigenvalue (kernel.h's ics_class2d_to_axes); NaN for a covariance it rejects */
 static double lmax_of(double cxx, double cxy, double cyy) {
-  return 0.5 * (cxx + cyy) + hypot(0.5 * (cxx - cyy), cxy);
+  ics_class2d c = {{0, 0}, cxx, cxy, cyy};
+  double vx, vy, ang;
+  return ics_class2d_to_axes(&c, &vx, &vy, &ang) == ICS_OK ? vx : NAN;
 }
 
 /* sd of the realised limit at requested step k (largest axis, pixel term included) */
@@ -272,6 +275,7 @@ static ics_status check2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
     p->uy = nearbyint(p->uy);
   }
   p->lmax = lmax_of(cxx, cxy, cyy);
+  if (isnan(p->lmax)) return ICS_ERR_NEGATIVE_VARIANCE;
   /* The realised path: the applied integer taps of every step (generated and compensated as
    * run2 does; the generators are deterministic in the step index), their summed mean and
    * covariance. Its mean can drift away from n mu (compensation fallback, stochastic members):
@@ -304,6 +308,8 @@ static ics_status check2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
   if (st == ICS_OK && !(isfinite(rm[0]) && isfinite(rm[1]) && isfinite(rc[0]) && isfinite(rc[1]) &&
                         isfinite(rc[2])))
     st = ICS_ERR_INFINITE;
+  for (int k = 0; st == ICS_OK && k < nsteps; k++) /* the applied taps' summed covariance */
+    if (isnan(sdr_at(p, k))) st = ICS_ERR_NEGATIVE_VARIANCE;
   if (st != ICS_OK) {
     plan2_free(p);
     return st;
