@@ -62,6 +62,8 @@ static void help(FILE *f) {
           "               the kernel member), fixed (the same taps every step, at --offset U),\n"
           "               golden (--offset U + step x 0.618...: rotated by the golden ratio)\n"
           "  --offset U   start offset in [0, 1) for fixed / golden (default 0)\n"
+          "  --seed U     poisson and random-offset ellipse only (gauss and fixed / golden\n"
+          "               offsets are deterministic: --seed is refused there)\n"
           "  steps up to %d; the base image must hold at most %.0f pixels (it spans both paths\n"
           "  +- 10.5 sd at the last step).\n\n"
           "A point whose disc_error >= sup_error / 10 is not resolved by the grid: a warning\n"
@@ -113,7 +115,8 @@ static int parse_steps(const char *s, int *steps, int *n, int maxv) {
 /* the 2D path (--cov): ics_clt2d_measure */
 static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const char *steps_s,
                  const char *samples_s, const char *edge_s, int corner, const char *offsets_s,
-                 const char *offset_s, uint64_t seed, const char *comp, int refine, int rate) {
+                 const char *offset_s, uint64_t seed, int seed_given, const char *comp,
+                 int refine, int rate) {
   double cv[3], mv[2] = {0, 0}, edge = 0, offset = 0;
   int steps[MAX_STEPS_LIST], nsteps = 0, samples = 0;
   if (cli_parse_numbers("clt", "--cov", cov_s, cov_s, NULL, 3, cv) != 0) return 2;
@@ -182,6 +185,14 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
       fprintf(stderr, "icshadow clt: --offset: must be in [0, 1), got '%s'\n", offset_s);
       return 2;
     }
+  }
+  if (seed_given && (member == ICS_KERNEL_GAUSS || offsets)) {
+    fprintf(stderr, "icshadow clt: --seed: the %s is deterministic (the seed applies to poisson "
+                    "and to ellipse with --offsets random)\n",
+            member == ICS_KERNEL_GAUSS ? "gauss kernel"
+            : offsets == 1             ? "ellipse with --offsets fixed"
+                                       : "ellipse with --offsets golden");
+    return 2;
   }
   ics_comp_mode cm;
   if (!strcmp(comp, "nonneg"))
@@ -302,6 +313,7 @@ int cmd_clt(int argc, char **argv) {
   const char *kname = NULL, *comp = "nonneg";
   double var = NAN, mean = 0;
   uint64_t seed = 0;
+  int seed_given = 0;
   int samples = 0, refine = 1, rate = 0, nsteps = 0, corner = 0;
   int steps[MAX_STEPS_LIST];
   const char *steps_s = NULL, *mean_s = NULL, *cov_s = NULL, *edge_s = NULL, *offsets_s = NULL,
@@ -352,6 +364,7 @@ int cmd_clt(int argc, char **argv) {
     else if (!strcmp(opt, "--offset"))
       offset_s = val;
     else if (!strcmp(opt, "--seed")) {
+      seed_given = 1;
       if (cli_parse_seed(val, &seed) != 0) {
         fprintf(stderr, "icshadow clt: --seed: expected " CLI_SEED_RANGE ", got '%s'\n", val);
         bad = 1;
@@ -368,7 +381,7 @@ int cmd_clt(int argc, char **argv) {
       return 2;
     }
     return clt2d(kname, cov_s, mean_s, steps_s, samples_s, edge_s, corner, offsets_s, offset_s,
-                 seed, comp, refine, rate);
+                 seed, seed_given, comp, refine, rate);
   }
   {
     const char *only2d = edge_s ? "--edge-angle" : corner ? "--corner" : offsets_s ? "--offsets"

@@ -96,3 +96,10 @@ ics_cli_test(NAME cli_clt2d_work_budget RC 2 ARGS "clt|--kernel|ellipse|--cov|4,
 ics_cli_test(NAME cli_clt2d_realised_drift RC 0
   ARGS "clt|--kernel|ellipse|--samples|3|--offsets|fixed|--cov|0.25,0.01,0|--steps|2048|--no-refine"
   OUT "\n2048,0\\.9999[0-9]*,0\\.000(2[3-4][0-9]|25[0-6])[0-9]*,nan,")
+# --seed only where a seed is used (poisson, random-offset ellipse): refused, not ignored
+ics_cli_test(NAME cli_clt2d_seed_gauss RC 2 ARGS "clt|--kernel|gauss|--cov|4,2,0|--steps|4|--seed|3"
+  OUT "^$" ERR "--seed: the gauss kernel is deterministic")
+ics_cli_test(NAME cli_clt2d_seed_fixed RC 2 ARGS "clt|--kernel|ellipse|--cov|4,2,0|--steps|4|--offsets|fixed|--seed|3"
+  OUT "^$" ERR "--seed: the ellipse with --offsets fixed is deterministic")
+ics_cli_test(NAME cli_clt2d_seed_golden RC 2 ARGS "clt|--kernel|ellipse|--cov|4,2,0|--steps|4|--offsets|golden|--seed|3"
+  OUT "^$" ERR "--seed: the ellipse with --offsets golden is deterministic")
