@@ -298,7 +298,8 @@ static void test_2d_mapping(void) {
  *   pixel) because the occluder image is the exact area coverage (clt2d.c). So the projected
  *   sum has cumulants k2 = sum_steps c2 + 1/12, k3 = sum c3, k4 = sum (c4 - 3 c2^2) -
  *   (ux^4 + uy^4)/120 (c_j: central moments of u . x over one step's APPLIED integer taps) and
- *   the 1D Edgeworth formula above applies to a sum of non-identical steps (cumulants add).
+ *   the 1D Edgeworth formula above is applied to the sum of non-identical steps: the cumulants
+ *   add exactly; the expansion is asymptotic.
  * - Independent references for the bivariate normal cdf: Phi2(0, 0; r) = 1/4 + asin(r)/(2 pi)
  *   (closed form), Phi(a) Phi(b) at r = 0, and an adaptive Simpson quadrature of
  *   phi(x) Phi((b - r x) / sqrt(1 - r^2)) written here.
