@@ -246,8 +246,23 @@ static void plan2_free(plan2 *p) {
   p->rm = p->rc = NULL;
 }
 
+/* grid extent: the paths' box [lo, hi] (both axes) +- R */
+static ics_status extent2(plan2 *p, const double lo[2], const double hi[2], double R) {
+  double lox = lo[0] - R, hix = hi[0] + R, loy = lo[1] - R, hiy = hi[1] + R;
+  double wx = ceil(hix) - floor(lox), wy = ceil(hiy) - floor(loy);
+  if (!(wx * wy <= ICS_CLT2D_MAX_PIXELS)) return ICS_ERR_SIZE;
+  p->xlo = (long)floor(lox);
+  p->ylo = (long)floor(loy);
+  p->w = (size_t)wx;
+  p->h = (size_t)wy;
+  return ICS_OK;
+}
+
+/* Arguments checked and the plan made. path = 0: the class path only (no realised moments, no
+ * windows: the grid is a lower bound of the real one, for the cost's early refusal); path = 1:
+ * the realised path too (one pass over every step's taps). */
 static ics_status check2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, const int *steps,
-                         int nsteps, plan2 *p) {
+                         int nsteps, plan2 *p, int path) {
   p->rm = p->rc = NULL;
   if (!gen || !s || !steps || nsteps <= 0) return ICS_ERR_INVALID_ARG;
   if (s->occluder != ICS_CLT2D_EDGE && s->occluder != ICS_CLT2D_CORNER) return ICS_ERR_INVALID_ARG;
@@ -276,16 +291,21 @@ static ics_status check2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
   }
   p->lmax = lmax_of(cxx, cxy, cyy);
   if (isnan(p->lmax)) return ICS_ERR_NEGATIVE_VARIANCE;
+  int nmax = steps[nsteps - 1];
+  double clo[2] = {fmin(0.0, nmax * s->mean[0]), fmin(0.0, nmax * s->mean[1])};
+  double chi[2] = {fmax(0.0, nmax * s->mean[0]), fmax(0.0, nmax * s->mean[1])};
+  ics_status st = extent2(p, clo, chi, 10.5 * sd_at(p, nmax) + 4);
+  if (st != ICS_OK || !path) return st;
   /* The realised path: the applied integer taps of every step (generated and compensated as
    * run2 does; the generators are deterministic in the step index), their summed mean and
    * covariance. Its mean can drift away from n mu (compensation fallback, stochastic members):
    * the grid covers both paths and the window is the union of both windows. */
-  int nmax = steps[nsteps - 1], cap = ICS_KERNEL_MAX_TAPS, dcap = 4 * ICS_KERNEL_MAX_TAPS + 9;
+  int cap = ICS_KERNEL_MAX_TAPS, dcap = 4 * ICS_KERNEL_MAX_TAPS + 9;
   ics_tap2d *taps = malloc((size_t)cap * sizeof *taps);
   ics_tap2d *dt = malloc((size_t)dcap * sizeof *dt);
   p->rm = malloc((size_t)nsteps * 2 * sizeof *p->rm);
   p->rc = malloc((size_t)nsteps * 3 * sizeof *p->rc);
-  ics_status st = (taps && dt && p->rm && p->rc) ? ICS_OK : ICS_ERR_NOMEM;
+  st = (taps && dt && p->rm && p->rc) ? ICS_OK : ICS_ERR_NOMEM;
   double rm[2] = {0, 0}, rc[3] = {0, 0, 0}, plo[2] = {0, 0}, phi[2] = {0, 0};
   for (int n = 1, k = 0; st == ICS_OK && n <= nmax; n++) {
     int nt = 0, nd = 0;
@@ -314,21 +334,10 @@ static ics_status check2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
     plan2_free(p);
     return st;
   }
-  double R = 10.5 * fmax(sd_at(p, nmax), sdr_at(p, nsteps - 1)) + 4;
-  double lox = fmin(fmin(0.0, nmax * s->mean[0]), plo[0]) - R;
-  double hix = fmax(fmax(0.0, nmax * s->mean[0]), phi[0]) + R;
-  double loy = fmin(fmin(0.0, nmax * s->mean[1]), plo[1]) - R;
-  double hiy = fmax(fmax(0.0, nmax * s->mean[1]), phi[1]) + R;
-  double wx = ceil(hix) - floor(lox), wy = ceil(hiy) - floor(loy);
-  if (!(wx * wy <= ICS_CLT2D_MAX_PIXELS)) {
-    plan2_free(p);
-    return ICS_ERR_SIZE;
-  }
-  p->xlo = (long)floor(lox);
-  p->ylo = (long)floor(loy);
-  p->w = (size_t)wx;
-  p->h = (size_t)wy;
-  return ICS_OK;
+  for (int d = 0; d < 2; d++) plo[d] = fmin(plo[d], clo[d]), phi[d] = fmax(phi[d], chi[d]);
+  st = extent2(p, plo, phi, 10.5 * fmax(sd_at(p, nmax), sdr_at(p, nsteps - 1)) + 4);
+  if (st != ICS_OK) plan2_free(p);
+  return st;
 }
 
 /* The window of requested step k: the union of the class window |x - n mu|_inf <= 4.5 sd_n and
@@ -527,21 +536,42 @@ static ics_status run2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, c
 
 ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
                           const int *steps, int nsteps, double *pixels, double *work) {
+  /* First the class path's grid only (a lower bound of the real grid): a run refused on it is
+   * refused before the realised path's pass over every step's taps (itself up to
+   * ICS_WORK_COMP_PASSES x generated taps a step). */
   plan2 p;
-  ics_status st = check2(gen, ctx, s, steps, nsteps, &p);
+  ics_status st = check2(gen, ctx, s, steps, nsteps, &p, 0);
   if (st != ICS_OK) return st;
   int cap = ICS_KERNEL_MAX_TAPS, dcap = 4 * ICS_KERNEL_MAX_TAPS + 9;
   ics_tap2d *taps = malloc((size_t)cap * sizeof *taps);
   ics_tap2d *dt = malloc((size_t)dcap * sizeof *dt);
-  double wk = 0;
+  double wk = 0, nmax = (double)steps[nsteps - 1];
+  int nt0 = 0, nd0 = 0, ntf = 0, ndf = 0;
   if (!taps || !dt) st = ICS_ERR_NOMEM;
-  for (int r = 0; st == ICS_OK && r <= (s->refine ? 1 : 0); r++) {
-    double sc = r ? 2.0 : 1.0;
+  if (st == ICS_OK) st = gen(ctx, 0, 1.0, taps, cap, &nt0);
+  if (st == ICS_OK) st = ics_taps2d_compensate(taps, nt0, s->comp, dt, dcap, &nd0, NULL);
+  if (st == ICS_OK && s->refine) st = gen(ctx, 0, 2.0, taps, cap, &ntf);
+  if (st == ICS_OK && s->refine) st = ics_taps2d_compensate(taps, ntf, s->comp, dt, dcap, &ndf, NULL);
+  free(taps);
+  free(dt);
+  if (st != ICS_OK) return st;
+  /* the realised path's pass, then the engine per grid */
+  double lower = nmax * ICS_WORK_COMP_PASSES * (double)nt0;
+  lower += nmax * ((double)p.w * p.h * nd0 + ICS_WORK_COMP_PASSES * (double)nt0);
+  if (s->refine)
+    lower += nmax * ((2.0 * p.w + 1) * (2.0 * p.h + 1) * ndf + ICS_WORK_COMP_PASSES * (double)ntf);
+  if (lower > ICS_WORK_BUDGET) {
+    if (pixels) *pixels = (double)p.w * p.h;
+    if (work) *work = lower;
+    return ICS_OK;
+  }
+  st = check2(gen, ctx, s, steps, nsteps, &p, 1);
+  if (st != ICS_OK) return st;
+  wk = nmax * ICS_WORK_COMP_PASSES * (double)nt0; /* the realised path's pass */
+  for (int r = 0; r <= (s->refine ? 1 : 0); r++) {
     double px = r ? (2.0 * p.w + 1) * (2.0 * p.h + 1) : (double)p.w * p.h;
-    int nt = 0, nd = 0;
-    st = gen(ctx, 0, sc, taps, cap, &nt);
-    if (st == ICS_OK) st = ics_taps2d_compensate(taps, nt, s->comp, dt, dcap, &nd, NULL);
-    wk += (double)steps[nsteps - 1] * (px * nd + ICS_WORK_COMP_PASSES * (double)nt);
+    int nt = r ? ntf : nt0, nd = r ? ndf : nd0;
+    wk += nmax * (px * nd + ICS_WORK_COMP_PASSES * (double)nt);
     /* the limits at every window node */
     double cn = (double)steps[nsteps - 1], pix = 1.0 / 12;
     double rho = cn * s->cov[1] / sqrt((cn * s->cov[0] + pix) * (cn * s->cov[2] + pix));
@@ -553,10 +583,7 @@ ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s
       wk += (double)win_size(&w) * (r ? 1 : 2) * per;
     }
   }
-  free(taps);
-  free(dt);
   plan2_free(&p);
-  if (st != ICS_OK) return st;
   if (pixels) *pixels = (double)p.w * p.h;
   if (work) *work = wk;
   return ICS_OK;
@@ -566,7 +593,7 @@ ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup
                              const int *steps, int nsteps, ics_clt_point *out) {
   if (!out) return ICS_ERR_INVALID_ARG;
   plan2 p;
-  ics_status st = check2(gen, ctx, s, steps, nsteps, &p);
+  ics_status st = check2(gen, ctx, s, steps, nsteps, &p, 1);
   if (st != ICS_OK) return st;
   st = run2(gen, ctx, s, &p, steps, nsteps, out);
   plan2_free(&p);

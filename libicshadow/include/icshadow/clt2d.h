@@ -108,7 +108,10 @@ ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup
  * steps x pixels x applied taps + ICS_WORK_COMP_PASSES x generated taps, per grid, plus the
  * limits at the window's nodes: 60 per node for the edge's Phi, 4000 for the corner's
  * ics_bvn_cdf (10000 when |rho| >= 0.9), x 2 on the base grid (class and realised), x 1 on the
- * finer grid (class), which counts when s->refine) of ics_clt2d_measure, without running it. Same argument errors. Measured here
+ * finer grid (class), which counts when s->refine; plus the realised path's pass,
+ * ICS_WORK_COMP_PASSES x generated taps a step) of ics_clt2d_measure, without running it. When
+ * the estimate on the class path's grid alone (a lower bound) already exceeds ICS_WORK_BUDGET,
+ * that lower bound is returned without the realised pass, so a refusal costs no step's taps. Same argument errors. Measured here
  * (clt2d.c): 0.21 ns per engine tap-update (Release; 0.21-0.41 under load), so the 1D budget
  * ICS_WORK_BUDGET of 1e11 is 21-41 s. */
 ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
