@@ -4,6 +4,8 @@
 #define _XOPEN_SOURCE 700 /* realpath, mkstemp, fchmod */
 #include "commands.h"
 
+#include "icshadow.h"
+
 #include <ctype.h>
 #include <stdarg.h>
 #include <errno.h>
@@ -249,5 +251,19 @@ int cli_parse_seed(const char *s, uint64_t *out) {
   unsigned long long v = strtoull(s, &end, 10);
   if (errno || *end || v > UINT64_MAX) return -1; /* ERANGE beyond 2^64 - 1 */
   *out = (uint64_t)v;
+  return 0;
+}
+
+int cli_parse_comp(const char *s, int allow_integer, ics_comp_mode *mode) {
+  if (!strcmp(s, "none"))
+    *mode = ICS_COMP_NONE;
+  else if (!strcmp(s, "nonneg"))
+    *mode = ICS_COMP_NONNEG;
+  else if (!strcmp(s, "signed"))
+    *mode = ICS_COMP_SIGNED;
+  else if (allow_integer && !strcmp(s, "integer"))
+    *mode = ICS_COMP_INTEGER;
+  else
+    return -1;
   return 0;
 }

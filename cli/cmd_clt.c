@@ -195,13 +195,7 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
     return 2;
   }
   ics_comp_mode cm;
-  if (!strcmp(comp, "nonneg"))
-    cm = ICS_COMP_NONNEG;
-  else if (!strcmp(comp, "signed"))
-    cm = ICS_COMP_SIGNED;
-  else if (!strcmp(comp, "none"))
-    cm = ICS_COMP_NONE;
-  else {
+  if (cli_parse_comp(comp, 0, &cm) != 0) {
     fprintf(stderr, "icshadow clt: --comp: unknown mode '%s' (nonneg, signed, none)\n", comp);
     return 2;
   }
@@ -413,13 +407,7 @@ int cmd_clt(int argc, char **argv) {
     return 2;
   }
   ics_comp_mode cm;
-  if (!strcmp(comp, "nonneg"))
-    cm = ICS_COMP_NONNEG;
-  else if (!strcmp(comp, "signed"))
-    cm = ICS_COMP_SIGNED;
-  else if (!strcmp(comp, "none"))
-    cm = ICS_COMP_NONE;
-  else {
+  if (cli_parse_comp(comp, 0, &cm) != 0) {
     fprintf(stderr, "icshadow clt: --comp: unknown mode '%s' (nonneg, signed, none)\n", comp);
     return 2;
   }

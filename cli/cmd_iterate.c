@@ -244,15 +244,7 @@ static int iterate_main(int argc, char **argv, int **steps_out) {
       }
       break;
     case 8:
-      if (!strcmp(val, "none"))
-        comp = ICS_COMP_NONE;
-      else if (!strcmp(val, "nonneg"))
-        comp = ICS_COMP_NONNEG;
-      else if (!strcmp(val, "signed"))
-        comp = ICS_COMP_SIGNED;
-      else if (!strcmp(val, "integer"))
-        comp = ICS_COMP_INTEGER;
-      else {
+      if (cli_parse_comp(val, 1, &comp) != 0) {
         ERR("--compensate: expected none, nonneg or signed (or integer), got '%s'", val);
         bad = 1;
       }

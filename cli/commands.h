@@ -5,6 +5,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "icshadow.h"
+
 /* Each subcommand gets argv[0] = its own name; returns the process exit status
  * (0 ok, 1 runtime failure, 2 usage / bad input). */
 int cmd_eval(int argc, char **argv);
@@ -48,6 +50,11 @@ int cli_option_double(const char *cmd, const char *opt, const char *s, int varia
  * 'SPEC'" / "NaN (or: infinite number) at position P of 'SPEC' (must be finite)" on stderr. */
 int cli_parse_numbers(const char *cmd, const char *opt, const char *spec, const char *s,
                       const char *end, int n, double *v);
+
+/* An interpolation-variance compensation mode by name: "none", "nonneg", "signed", and
+ * "integer" when allow_integer is set. Returns 0, or -1 for an unknown name (the caller
+ * reports it). */
+int cli_parse_comp(const char *s, int allow_integer, ics_comp_mode *mode);
 
 /* Seconds on the monotonic clock (CLOCK_MONOTONIC), for elapsed times. */
 double cli_now_s(void);
