@@ -70,7 +70,7 @@ static void help(FILE *f) {
           "names it on stderr (it is still printed) and --rate leaves it out.\n"
           "Work budget: runs whose estimated work (steps x grid nodes x applied taps, plus the\n"
           "compensation's passes over the member's taps; x5 with the 2x finer run; 2D: plus the\n"
-          "limits at the window's nodes) exceeds %.0e tap-updates (a few minutes) are refused\n"
+          "limits at the window's nodes) exceeds %.0e tap-updates (under a minute here) are refused\n"
           "with exit 2.\n"
           "Exit status: 0 ok, 1 runtime failure, 2 bad input (message on stderr).\n",
           MAX_STEPS_LIST, ICS_CLT2D_MAX_STEPS, ICS_CLT2D_MAX_PIXELS, ICS_WORK_BUDGET);

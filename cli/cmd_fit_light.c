@@ -20,7 +20,8 @@
 static void help(FILE *f) {
   fprintf(f,
           "usage: icshadow fit-light ENV.exr --lights K [--max-angle DEG] [--seed S]\n"
-          "                          [--max-samples N] [--max-iter N] [--sweep] [--progress]\n"
+          "                          [--max-samples N] [--max-iter N] [--sweep] [--plane-csv FILE]\n"
+          "                          [--progress]\n"
           "                          -o LIGHTS.json\n"
           "Projects the hemisphere behind the viewer of a latitude-longitude OpenEXR map onto the\n"
           "virtual light plane (l = L dw/dA) and fits K anisotropic Gaussians (greedy start, EM).\n"

@@ -36,7 +36,7 @@ static void help(FILE *f) {
           "  --seed U         seed of stochastic members (default 0)\n"
           "Work budget (iterative): runs whose estimated work (slabs x grid nodes x applied taps,\n"
           "plus the compensation's passes over the member's taps, for both grids) exceeds %.0e\n"
-          "tap-updates (about a minute) are refused with exit 2.\n"
+          "tap-updates (under a minute here) are refused with exit 2.\n"
           "Exit status: 0 ok, 1 runtime failure, 2 bad input (message on stderr).\n",
           ICS_LIGHT1D_MAX_MIX, ICS_WORK_BUDGET);
 }

@@ -58,7 +58,7 @@ static void help(FILE *f) {
           "               zero-variance (hard) shadow stays hard, at most 1/2 px off\n"
           "Budgets: runs whose estimated work (steps x width x applied taps, plus the per-step\n"
           "cost of generating and compensating the member's taps) exceeds %.0e tap-updates\n"
-          "(about a minute), or whose output would exceed %.0e bytes (~%.0f bytes a line), are\n"
+          "(under a minute here), or whose output would exceed %.0e bytes (~%.0f bytes a line), are\n"
           "refused with exit 2.\n"
           "Exit status: 0 ok, 1 runtime failure, 2 bad input (message on stderr).\n",
           MAX_STEPS, MAX_WIDTH, ICS_WORK_BUDGET, OUT_BUDGET, OUT_LINE_BYTES);
