@@ -76,6 +76,20 @@ static void help(FILE *f) {
           MAX_STEPS_LIST, ICS_CLT2D_MAX_STEPS, ICS_CLT2D_MAX_PIXELS, ICS_WORK_BUDGET);
 }
 
+/* --rate on stderr: the fitted exponent over the kept (grid-resolved) points, with a warning
+ * first when the grid was not checked (refine 0). */
+static void print_rate(int refine, const char *what, const ics_clt_point *kept, int nkept,
+                       int nsteps) {
+  if (!refine)
+    fprintf(stderr, "icshadow clt: warning: --no-refine: the grid is not checked; the rate may "
+                    "be a discretisation artefact\n");
+  if (nkept < 2)
+    fprintf(stderr, "rate exponent%s: nan (fewer than 2 resolved points)\n", what);
+  else
+    fprintf(stderr, "rate exponent%s: %.4g (%d of %d points)\n", what,
+            ics_clt_rate(kept, nkept, 1), nkept, nsteps);
+}
+
 static int parse_steps(const char *s, int *steps, int *n, int maxv) {
   *n = 0;
   const char *p = s;
@@ -282,19 +296,8 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
     }
   }
   if (rate) {
-    if (!refine)
-      fprintf(stderr, "icshadow clt: warning: --no-refine: the grid is not checked; the rate may "
-                      "be a discretisation artefact\n");
-    if (nkept < 2)
-      fprintf(stderr, "rate exponent: nan (fewer than 2 resolved points)\n");
-    else
-      fprintf(stderr, "rate exponent: %.4g (%d of %d points)\n", ics_clt_rate(kept, nkept, 1),
-              nkept, nsteps);
-    if (nkept_r < 2)
-      fprintf(stderr, "rate exponent (realised moments): nan (fewer than 2 resolved points)\n");
-    else
-      fprintf(stderr, "rate exponent (realised moments): %.4g (%d of %d points)\n",
-              ics_clt_rate(kept_r, nkept_r, 1), nkept_r, nsteps);
+    print_rate(refine, "", kept, nkept, nsteps);
+    print_rate(1, " (realised moments)", kept_r, nkept_r, nsteps);
   }
   return cli_stdout_failed("icshadow clt");
 }
@@ -506,15 +509,6 @@ int cmd_clt(int argc, char **argv) {
     }
     kept[nkept++] = pts[i];
   }
-  if (rate) {
-    if (!refine)
-      fprintf(stderr, "icshadow clt: warning: --no-refine: the grid is not checked; the rate may "
-                      "be a discretisation artefact\n");
-    if (nkept < 2)
-      fprintf(stderr, "rate exponent: nan (fewer than 2 resolved points)\n");
-    else
-      fprintf(stderr, "rate exponent: %.4g (%d of %d points)\n", ics_clt_rate(kept, nkept, 1),
-              nkept, nsteps);
-  }
+  if (rate) print_rate(refine, "", kept, nkept, nsteps);
   return cli_stdout_failed("icshadow clt");
 }
