@@ -41,6 +41,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "raybox.h"
+
 #define ICS_PI_ 3.14159265358979323846
 
 struct ics_minmax {
@@ -542,22 +544,7 @@ double ics_hf_scene_hit(const ics_hf_scene *s, const double o[3], const double d
   for (size_t b = 0; b < s->nboxes; b++) { /* slabs */
     double lo[3] = {s->box[b][0], 0.0, s->box[b][2]}, hi[3] = {s->box[b][1], s->box_h[b], s->box[b][3]};
     double t0 = -INFINITY, t1 = INFINITY;
-    int miss = 0;
-    for (int i = 0; i < 3 && !miss; i++) {
-      if (dir[i] == 0) {
-        if (o[i] < lo[i] || o[i] > hi[i]) miss = 1;
-        continue;
-      }
-      double a = (lo[i] - o[i]) / dir[i], c = (hi[i] - o[i]) / dir[i];
-      if (a > c) {
-        double tmp = a;
-        a = c;
-        c = tmp;
-      }
-      if (a > t0) t0 = a;
-      if (c < t1) t1 = c;
-    }
-    if (miss || t0 > t1) continue;
+    if (!ics_ray_box_clip(o, dir, lo, hi, &t0, &t1)) continue;
     double t = t0 > tmin ? t0 : (t1 > tmin ? t1 : INFINITY);
     if (t < best) best = t;
   }

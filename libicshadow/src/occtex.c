@@ -40,6 +40,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "raybox.h"
+
 struct ics_occtex {
   int n, K, L; /* side, slices, top level (n = 2^L) */
   double x0, y0, texel, z_near, z_far;
@@ -615,23 +617,7 @@ ics_status ics_occtex_shadow(const ics_occtex *ot, const ics_occ_light *light, i
 static int seg_hits(const double *P, const double *d, const ics_occ_box *B) {
   double lo = 1e-12, hi = 1;
   const double bmin[3] = {B->x0, B->y0, B->z0}, bmax[3] = {B->x1, B->y1, B->z1};
-  for (int a = 0; a < 3; a++) {
-    if (d[a] == 0) {
-      if (P[a] < bmin[a] || P[a] > bmax[a]) return 0;
-      continue;
-    }
-    double inv = 1 / d[a];
-    double t0 = (bmin[a] - P[a]) * inv, t1 = (bmax[a] - P[a]) * inv;
-    if (t0 > t1) {
-      double t = t0;
-      t0 = t1;
-      t1 = t;
-    }
-    if (t0 > lo) lo = t0;
-    if (t1 < hi) hi = t1;
-    if (lo > hi) return 0;
-  }
-  return 1;
+  return ics_ray_box_clip(P, d, bmin, bmax, &lo, &hi);
 }
 
 ics_status ics_occ_exact(const ics_occ_box *boxes, size_t nboxes, const ics_occ_light *light, int m,
