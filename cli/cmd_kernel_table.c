@@ -71,28 +71,45 @@ typedef struct row {
   double param;
 } row;
 
+/* The fastest of repeated runs of `steps` engine steps (3 .. 50 runs, until 50 ms in all; run r
+ * starts at step r * steps): 0 and *best in seconds, or -1 when a run fails. */
+static int best_seconds(ics_status (*run)(void *ctx, uint64_t first, int steps), void *ctx,
+                        int steps, double *best) {
+  double t_total = 0;
+  *best = INFINITY;
+  for (int rep = 0; rep < 50 && (rep < 3 || t_total < 0.05); rep++) {
+    double t0 = cli_now_s();
+    ics_status st = run(ctx, (uint64_t)rep * steps, steps);
+    double t = cli_now_s() - t0;
+    if (st != ICS_OK) return -1;
+    t_total += t;
+    if (t < *best) *best = t;
+  }
+  return 0;
+}
+
+typedef struct run1d_ctx {
+  double *buf;
+  ics_schedule1d s;
+  ics_conv_opts opts;
+} run1d_ctx;
+
+static ics_status run1d(void *ctx, uint64_t first, int steps) {
+  run1d_ctx *c = ctx;
+  return ics_conv1d_run(c->buf, TIMING_LEN, &c->s, first, steps, &c->opts, NULL);
+}
+
 /* seconds per pixel and step of the engine, median-free but repeated until >= 50 ms */
 static int time_member(const ics_kernel1d *k, double *ns) {
   double *buf = malloc(sizeof *buf * TIMING_LEN);
   if (!buf) return -1;
   for (size_t i = 0; i < TIMING_LEN; i++) buf[i] = i >= TIMING_LEN / 2 ? 1.0 : 0.0;
-  ics_schedule1d s = {k, 1};
-  ics_conv_opts opts = ics_conv_opts_default();
+  run1d_ctx c = {buf, {k, 1}, ics_conv_opts_default()};
   int steps = 8;
-  double best = INFINITY;
-  double t_total = 0;
-  for (int rep = 0; rep < 50 && (rep < 3 || t_total < 0.05); rep++) {
-    double t0 = cli_now_s();
-    ics_status st = ics_conv1d_run(buf, TIMING_LEN, &s, (uint64_t)rep * steps, steps, &opts, NULL);
-    double t = cli_now_s() - t0;
-    if (st != ICS_OK) {
-      free(buf);
-      return -1;
-    }
-    t_total += t;
-    if (t < best) best = t;
-  }
+  double best;
+  int rc = best_seconds(run1d, &c, steps, &best);
   free(buf);
+  if (rc) return -1;
   *ns = 1e9 * best / ((double)TIMING_LEN * steps);
   return 0;
 }
@@ -206,28 +223,28 @@ typedef struct row2d {
 
 #define TIMING_SIDE 256
 
+typedef struct run2d_ctx {
+  float *buf;
+  ics_schedule2d s;
+  ics_conv_opts opts;
+} run2d_ctx;
+
+static ics_status run2d(void *ctx, uint64_t first, int steps) {
+  run2d_ctx *c = ctx;
+  return ics_conv2d_run(c->buf, TIMING_SIDE, TIMING_SIDE, &c->s, first, steps, &c->opts, NULL);
+}
+
 static int time_member2d(const ics_kernel2d *k, double *ns) {
   size_t n = (size_t)TIMING_SIDE * TIMING_SIDE;
   float *buf = malloc(sizeof *buf * n);
   if (!buf) return -1;
   for (size_t i = 0; i < n; i++) buf[i] = (i % TIMING_SIDE) >= TIMING_SIDE / 2 ? 1.0f : 0.0f;
-  ics_schedule2d s = {k, 1};
-  ics_conv_opts opts = ics_conv_opts_default();
+  run2d_ctx c = {buf, {k, 1}, ics_conv_opts_default()};
   int steps = 4;
-  double best = INFINITY, t_total = 0;
-  for (int rep = 0; rep < 50 && (rep < 3 || t_total < 0.05); rep++) {
-    double t0 = cli_now_s();
-    ics_status st = ics_conv2d_run(buf, TIMING_SIDE, TIMING_SIDE, &s, (uint64_t)rep * steps, steps,
-                                   &opts, NULL);
-    double t = cli_now_s() - t0;
-    if (st != ICS_OK) {
-      free(buf);
-      return -1;
-    }
-    t_total += t;
-    if (t < best) best = t;
-  }
+  double best;
+  int rc = best_seconds(run2d, &c, steps, &best);
   free(buf);
+  if (rc) return -1;
   *ns = 1e9 * best / ((double)n * steps);
   return 0;
 }
