@@ -5,10 +5,7 @@
 # different seed a different one.
 set -u
 cli=$1
-dir=$(mktemp -d) && [ -d "$dir" ] || { echo "FAILED: mktemp -d"; exit 1; }
-trap 'rm -rf "$dir"' EXIT
-fail=0 pass=0
-expect() { if eval "$1"; then pass=$((pass + 1)); else echo "FAILED: $1"; fail=$((fail + 1)); fi; }
+. "$(dirname "$0")/checks.sh"
 M3="0.35,0.25,0.004,0.004,0,1,0.2,1,0.2:-0.45,-0.05,0.02,0.012,20,2,1,0.25,0.15:0.15,-0.55,0.012,0.0012,-70,1.5,0.2,0.3,1"
 
 "$cli" make-env --lights "$M3" --size 384x192 -o "$dir/m3.exr"; rc=$?
@@ -35,5 +32,4 @@ expect 'awk -F, '"'"'NR == 2 { ok = $1 == 3 && $8 > 0 && $8 <= 2000 } END { exit
 expect 'cmp -s "$dir/s7.1.json" "$dir/s7.2.json"'
 expect '! cmp -s "$dir/s7.1.json" "$dir/s8.3.json"'
 
-echo "cli_lightfit_files: $pass passed, $fail failed"
-exit $((fail > 0))
+finish cli_lightfit_files

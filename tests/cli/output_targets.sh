@@ -5,10 +5,7 @@
 # leaves an existing file exactly as it was.
 set -u
 cli=$1
-dir=$(mktemp -d) && [ -d "$dir" ] || { echo "FAILED: mktemp -d"; exit 1; }
-trap 'rm -rf "$dir"' EXIT
-fail=0 pass=0
-expect() { if eval "$1"; then pass=$((pass + 1)); else echo "FAILED: $1"; fail=$((fail + 1)); fi; }
+. "$(dirname "$0")/checks.sh"
 
 echo old > "$dir/real.h"
 ln -s "$dir/real.h" "$dir/link.h"
@@ -37,5 +34,4 @@ echo keep > "$dir/keep.h"
 expect '[ $rc -eq 2 ] && [ "$(cat "$dir/keep.h")" = keep ]'
 expect '[ -z "$(ls "$dir" | grep tmp)" ]'
 
-echo "cli_output_targets: $pass passed, $fail failed"
-exit $((fail > 0))
+finish cli_output_targets
