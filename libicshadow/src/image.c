@@ -28,6 +28,26 @@ void ics_image_free(ics_image *img) {
   img->width = img->height = img->channels = 0;
 }
 
+ics_status ics_image_create(ics_image **out, int width, int height, int channels) {
+  if (!out) return ICS_ERR_INVALID_ARG;
+  *out = NULL;
+  ics_image *img = malloc(sizeof *img);
+  if (!img) return ICS_ERR_NOMEM;
+  ics_status st = ics_image_init(img, width, height, channels);
+  if (st != ICS_OK) {
+    free(img);
+    return st;
+  }
+  *out = img;
+  return ICS_OK;
+}
+
+void ics_image_destroy(ics_image *img) {
+  if (!img) return;
+  free(img->data);
+  free(img);
+}
+
 int ics_image_find_bad(const ics_image *img, int *i, int *j, int *c) {
   for (int y = 0; y < img->height; y++)
     for (int x = 0; x < img->width; x++) {

@@ -26,6 +26,10 @@ ics_status ics_image_init(ics_image *img, int width, int height, int channels);
 /* Frees the pixels and empties the struct (safe on an empty or zeroed struct). */
 void ics_image_free(ics_image *img);
 
+/* The same on the heap: *out is a new image (ics_image_destroy it); NULL on failure. */
+ics_status ics_image_create(ics_image **out, int width, int height, int channels);
+void ics_image_destroy(ics_image *img); /* NULL is allowed */
+
 /* First pixel whose R, G or B is NaN, infinite or negative (alpha is not checked):
  * returns 0 and sets *i, *j (column, row) and *c (channel) for it; 1 when all are finite
  * and >= 0. NULL out-pointers are allowed. */

@@ -1,0 +1,61 @@
+/* icshadow/renderer.h — renderers and the backend table. A backend is an entry in a runtime
+ * table: "cpu" always builds (the reference the others are compared against); others ("gl",
+ * "cl", "mc") are entries when built. A renderer owns a backend's context (threads, a GL context,
+ * an OpenCL queue) and renders plans into RGBA float images (row 0 at the top; RGB composited
+ * over the scene's background, A = accumulated opacity). */
+#ifndef ICSHADOW_RENDERER_H
+#define ICSHADOW_RENDERER_H
+
+#include <stddef.h>
+
+#include "icshadow/api.h"
+#include "icshadow/image.h"
+#include "icshadow/plan.h"
+#include "icshadow/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Options; a zero-initialised struct is the default (backend "auto", all cores, no progress). */
+typedef struct ics_render_opts {
+  const char *backend; /* NULL or "auto": the best available (says which in the stats) */
+  int threads;         /* 0: all cores */
+  /* called after each slab from the rendering thread (slab = 1..nslabs); may be NULL */
+  void (*progress)(void *ctx, int slab, int nslabs);
+  void *progress_ctx;
+} ics_render_opts;
+
+/* Time per pass and what ran. */
+typedef struct ics_render_stats {
+  char backend[16];
+  char device[128];  /* e.g. "CPU, 2 threads" */
+  int threads;
+  int slabs;
+  double ms_total;   /* the render call, geometry pass excluded (ics_plan_geometry_seconds) */
+  double ms_convolution, ms_shading, ms_detail;
+  double ns_per_px_slab; /* ms_convolution per (buffer pixel x slab x light) */
+} ics_render_stats;
+
+typedef struct ics_renderer ics_renderer;
+
+ICS_API ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts,
+                                       char *msg, size_t msg_size);
+ICS_API void ics_renderer_destroy(ics_renderer *r); /* NULL is allowed */
+ICS_API const char *ics_renderer_backend(const ics_renderer *r);
+
+/* Renders the plan into a new RGBA image (*out; ics_image_destroy it). stats may be NULL. */
+ICS_API ics_status ics_renderer_render(ics_renderer *r, const ics_plan *plan, ics_image **out,
+                                       ics_render_stats *stats, char *msg, size_t msg_size);
+
+/* The backend table. */
+ICS_API int ics_backend_count(void);
+ICS_API const char *ics_backend_name(int i);        /* NULL out of range */
+ICS_API const char *ics_backend_description(int i); /* NULL out of range */
+/* 1 when backend `name` can run here; else 0 with the reason in why. */
+ICS_API int ics_backend_available(const char *name, char *why, size_t why_size);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,105 @@
+/* backend.c — the backend table and the renderer object (icshadow/renderer.h). "auto" takes the
+ * first available entry in table order, which lists the preferred backends first and "cpu" last
+ * (always available). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "backend.h"
+#include "plan_internal.h"
+
+static const ics_backend *const table[] = {&ics_backend_cpu};
+#define NBACKENDS ((int)(sizeof table / sizeof *table))
+
+int ics_backend_count(void) { return NBACKENDS; }
+const char *ics_backend_name(int i) { return i >= 0 && i < NBACKENDS ? table[i]->name : NULL; }
+const char *ics_backend_description(int i) {
+  return i >= 0 && i < NBACKENDS ? table[i]->description : NULL;
+}
+
+static const ics_backend *find(const char *name) {
+  for (int i = 0; i < NBACKENDS; i++)
+    if (!strcmp(table[i]->name, name)) return table[i];
+  return NULL;
+}
+
+int ics_backend_available(const char *name, char *why, size_t why_size) {
+  const ics_backend *b = name ? find(name) : NULL;
+  if (!b) {
+    if (why) {
+      int n = snprintf(why, why_size, "no backend named '%s' (built:", name ? name : "(null)");
+      for (int i = 0; i < NBACKENDS && n >= 0 && (size_t)n < why_size; i++)
+        n += snprintf(why + n, why_size - (size_t)n, " %s", table[i]->name);
+      if (n >= 0 && (size_t)n < why_size) snprintf(why + n, why_size - (size_t)n, ")");
+    }
+    return 0;
+  }
+  return b->available(why, why_size);
+}
+
+struct ics_renderer {
+  const ics_backend *b;
+  void *state;
+  ics_render_opts opts;
+};
+
+ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, char *msg,
+                               size_t msg_size) {
+  *out = NULL;
+  ics_render_opts o = {0};
+  if (opts) o = *opts;
+  const ics_backend *b = NULL;
+  if (!o.backend || !strcmp(o.backend, "auto")) {
+    for (int i = 0; i < NBACKENDS && !b; i++)
+      if (table[i]->available(NULL, 0)) b = table[i];
+  } else {
+    char why[256];
+    if (!ics_backend_available(o.backend, why, sizeof why)) {
+      if (msg) snprintf(msg, msg_size, "backend %s", why);
+      return ICS_ERR_UNSUPPORTED;
+    }
+    b = find(o.backend);
+  }
+  ics_renderer *r = calloc(1, sizeof *r);
+  if (!r) return ICS_ERR_NOMEM;
+  r->b = b;
+  r->opts = o;
+  ics_status st = b->create(&r->state, &o, msg, msg_size);
+  if (st != ICS_OK) {
+    free(r);
+    return st;
+  }
+  *out = r;
+  return ICS_OK;
+}
+
+void ics_renderer_destroy(ics_renderer *r) {
+  if (!r) return;
+  r->b->destroy(r->state);
+  free(r);
+}
+
+const char *ics_renderer_backend(const ics_renderer *r) { return r->b->name; }
+
+ics_status ics_renderer_render(ics_renderer *r, const ics_plan *plan, ics_image **out,
+                               ics_render_stats *stats, char *msg, size_t msg_size) {
+  *out = NULL;
+  ics_render_stats local;
+  if (!stats) stats = &local;
+  memset(stats, 0, sizeof *stats);
+  snprintf(stats->backend, sizeof stats->backend, "%s", r->b->name);
+  ics_image *img;
+  ics_status st = ics_image_create(&img, plan->W, plan->H, 4);
+  if (st != ICS_OK) {
+    if (msg) snprintf(msg, msg_size, "cannot allocate the %dx%d image: %s", plan->W, plan->H,
+                      ics_status_str(st));
+    return st;
+  }
+  st = r->b->render(r->state, plan, &r->opts, img, stats, msg, msg_size);
+  if (st != ICS_OK) {
+    ics_image_destroy(img);
+    return st;
+  }
+  *out = img;
+  return ICS_OK;
+}

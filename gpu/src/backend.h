@@ -1,0 +1,21 @@
+/* backend.h — the backend table's entries: a backend is a name, a description, an availability
+ * test and create / render / destroy over its own state (sokol's backends, c-ray's opaque
+ * renderer are the models). "cpu" always builds. */
+#ifndef ICS_RENDER_BACKEND_H
+#define ICS_RENDER_BACKEND_H
+
+#include "icshadow/renderer.h"
+
+typedef struct ics_backend {
+  const char *name;
+  const char *description;
+  int (*available)(char *why, size_t why_size);
+  ics_status (*create)(void **state, const ics_render_opts *opts, char *msg, size_t msg_size);
+  ics_status (*render)(void *state, const ics_plan *plan, const ics_render_opts *opts,
+                       ics_image *img, ics_render_stats *stats, char *msg, size_t msg_size);
+  void (*destroy)(void *state);
+} ics_backend;
+
+extern const ics_backend ics_backend_cpu;
+
+#endif

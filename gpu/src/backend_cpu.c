@@ -1,0 +1,341 @@
+/* backend_cpu.c — the CPU backend: Patel Sec. 4.2 per slab and pixel (docs/renderer.md),
+ * threads over row bands with one barrier per slab. Per slab, each band first propagates every
+ * light buffer over its rows (propagate.c), then shades its pixels: the fragments of the LDI in
+ * this slab and the volume pieces between them are composited front to back with the light
+ * arriving at the slab, and filtered into the outgoing light by their transport colours. Every
+ * per-pixel quantity depends only on (seed, slab, pixel), so the image does not depend on the
+ * thread count. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "backend.h"
+#include "icshadow/rng.h"
+#include "plan_internal.h"
+#include "pool.h"
+#include "propagate.h"
+#include "scene_internal.h"
+
+#define JITTER_STREAM 0x6a69747400000000ULL /* "jitt": the sample depth inside a slab piece */
+
+static double now_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+typedef struct {
+  ics_pool *pool;
+} cpu_state;
+
+static int cpu_available(char *why, size_t why_size) {
+  (void)why, (void)why_size;
+  return 1;
+}
+
+static ics_status cpu_create(void **state, const ics_render_opts *o, char *msg, size_t msg_size) {
+  cpu_state *s = calloc(1, sizeof *s);
+  if (!s) return ICS_ERR_NOMEM;
+  s->pool = ics_pool_create(o->threads);
+  if (!s->pool) {
+    free(s);
+    if (msg) snprintf(msg, msg_size, "cannot start %d worker threads", o->threads);
+    return ICS_ERR_NOMEM;
+  }
+  *state = s;
+  return ICS_OK;
+}
+
+static void cpu_destroy(void *state) {
+  cpu_state *s = state;
+  if (!s) return;
+  ics_pool_destroy(s->pool);
+  free(s);
+}
+
+typedef struct {
+  const ics_plan *p;
+  ics_image *img;
+  int k;                 /* current slab */
+  float **src, **dst;    /* per light: nch planes */
+  ics_prop_taps *pt;     /* per light */
+  uint32_t *cursor;      /* per pixel: first fragment not yet reached (colour, volumes) */
+  uint32_t *acursor;     /* per pixel: first fragment whose occlusion may still be due */
+  uint64_t *mask;        /* NULL without volumes */
+  int vol_obj[ICS_MAX_VOLUMES];
+  uint32_t *scratch;     /* per thread: Wb words (table entries of a row) */
+  double prop_s[256], shade_s[256], detail_s[256];
+} job_t;
+
+/* one volume piece of depth extent dz ending the events at (pixel p, depth za..za+dz) */
+static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, double za, double dz,
+                         const double L[3], float *C, int inview, int t) {
+  const ics_plan *P = j->p;
+  const ics_scene *s = P->scene;
+  double sig[ICS_MAX_VOLUMES], col[ICS_MAX_VOLUMES][3];
+  int objs[ICS_MAX_VOLUMES], nv = 0;
+  double o[3], d[3], pt[3];
+  int have_ray = 0;
+  double t0 = 0;
+  double sum = 0;
+  for (uint64_t m = mask; m; m &= m - 1) {
+    int bit = __builtin_ctzll(m), obj = j->vol_obj[bit];
+    const ics_material *mat = &s->materials[s->objects[obj].material];
+    double scale = 1, c[3] = {mat->color[0], mat->color[1], mat->color[2]};
+    if (mat->detail.fn != ICS_DETAIL_NONE) {
+      if (!have_ray) {
+        t0 = now_s();
+        ics_plan_ray(P, bi, bj, o, d);
+        double xi = ics_rng_uniform_at(P->rs.seed, JITTER_STREAM | (uint64_t)j->k, p);
+        double zs = za + xi * dz;
+        for (int i = 0; i < 3; i++) pt[i] = o[i] + zs * d[i];
+        have_ray = 1;
+      }
+      double v = ics_detail_value(&P->detail[obj], pt);
+      ics_material_transfer(mat, v, c, &scale);
+    }
+    sig[nv] = mat->extinction * scale;
+    memcpy(col[nv], c, sizeof c);
+    objs[nv++] = obj;
+    sum += sig[nv - 1];
+  }
+  if (have_ray) j->detail_s[t] += now_s() - t0;
+  if (!(sum > 0)) return;
+  if (inview && C[3] < 1) {
+    double dl = 1; /* camera path per unit depth */
+    if (P->cam.projection == ICS_PROJ_PERSPECTIVE) {
+      if (!have_ray) ics_plan_ray(P, bi, bj, o, d);
+      dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    }
+    double a = 1 - exp(-sum * dz * dl), wgt = (1 - C[3]) * a;
+    for (int c = 0; c < 3; c++) {
+      double cc = 0;
+      for (int i = 0; i < nv; i++) cc += sig[i] * col[i][c];
+      C[c] += (float)(wgt * (cc / sum) * L[c]);
+    }
+    C[3] += (float)wgt;
+  }
+  size_t plane = (size_t)P->Wb * P->Hb;
+  for (int l = 0; l < P->nlights; l++) {
+    double pass[3] = {1, 1, 1};
+    for (int i = 0; i < nv; i++) {
+      const double *T = s->materials[s->objects[objs[i]].material].transport;
+      double aL = 1 - exp(-sig[i] * dz * P->light_path[l]);
+      for (int c = 0; c < P->nch; c++) pass[c] *= 1 - aL * (1 - T[c]);
+    }
+    for (int c = 0; c < P->nch; c++) j->dst[l][(size_t)c * plane + p] *= (float)pass[c];
+  }
+}
+
+/* a surface seen at this slab: its colour, lit by the light arriving here */
+static void surface_colour(const job_t *j, int obj, const double L[3], float *C) {
+  const ics_plan *P = j->p;
+  const ics_material *m = &P->scene->materials[P->scene->objects[obj].material];
+  double a = m->opacity;
+  if (!(a > 0) || !(C[3] < 1)) return;
+  double wgt = (1 - C[3]) * a;
+  for (int c = 0; c < 3; c++) C[c] += (float)(wgt * m->color[c] * L[c]);
+  C[3] += (float)wgt;
+}
+
+/* a surface's occlusion of the light leaving this slab (its slab + its bias) */
+static void surface_occlusion(job_t *j, size_t p, int obj) {
+  const ics_plan *P = j->p;
+  const ics_material *m = &P->scene->materials[P->scene->objects[obj].material];
+  double a = m->opacity;
+  if (!(a > 0)) return;
+  size_t plane = (size_t)P->Wb * P->Hb;
+  for (int l = 0; l < P->nlights; l++)
+    for (int c = 0; c < P->nch; c++)
+      j->dst[l][(size_t)c * plane + p] *= (float)(1 - a * (1 - m->transport[c]));
+}
+
+static void shade_rows(job_t *j, int y0, int y1, int t) {
+  const ics_plan *P = j->p;
+  const ics_scene *s = P->scene;
+  const ics_ldi *ldi = &P->ldi;
+  int k = j->k;
+  size_t plane = (size_t)P->Wb * P->Hb;
+  double zf = P->z0 + k * P->e, zb = zf + P->e;
+  for (int bj = y0; bj < y1; bj++)
+    for (int bi = 0; bi < P->Wb; bi++) {
+      size_t p = (size_t)bj * P->Wb + bi;
+      uint32_t cur = j->cursor[p], end = ldi->offset[p + 1], acur = j->acursor[p];
+      uint64_t mask = j->mask ? j->mask[p] : 0;
+      int has = cur < end && ics_frag_slab(&ldi->frag[cur]) == k;
+      int occl = acur < end && ics_frag_slab(&ldi->frag[acur]) <= k;
+      if (!has && !mask && !occl) continue;
+      int ii = bi - P->pad[0], jj = bj - P->pad[2];
+      int inview = ii >= 0 && ii < P->W && jj >= 0 && jj < P->H;
+      float dummy[4] = {0, 0, 0, 1};
+      float *C = inview ? j->img->data + ((size_t)jj * P->W + ii) * 4 : dummy;
+      double L[3] = {0, 0, 0};
+      for (int l = 0; l < P->nlights; l++) {
+        const ics_light *lt = &s->lights[l];
+        for (int c = 0; c < 3; c++)
+          L[c] += lt->color[c] * lt->weight * j->dst[l][(size_t)(P->nch == 3 ? c : 0) * plane + p];
+      }
+      /* surface occlusions due at this slab (fragment slab + bias == k), after the light
+       * arriving here was read: a surface never shadows its own slab */
+      for (uint32_t f = acur; f < end && ics_frag_slab(&ldi->frag[f]) <= k; f++) {
+        const ics_fragment *fr = &ldi->frag[f];
+        int obj = ics_frag_obj(fr);
+        if (P->vol_bit[obj] < 0 && ics_frag_slab(fr) + ics_frag_bias(fr) == k)
+          surface_occlusion(j, p, obj);
+      }
+      while (acur < end && ics_frag_slab(&ldi->frag[acur]) + ICS_FRAG_MAX_BIAS <= k) acur++;
+      j->acursor[p] = acur;
+      if (!has && !mask) continue;
+      double za = zf;
+      for (;;) {
+        double zn = has ? ldi->frag[cur].z : zb;
+        if (zn < za) zn = za;
+        if (zn > zb) zn = zb;
+        if (mask && zn > za) volume_piece(j, p, bi, bj, mask, za, zn - za, L, C, inview, t);
+        if (!has) break;
+        int obj = ics_frag_obj(&ldi->frag[cur]);
+        if (P->vol_bit[obj] >= 0)
+          mask ^= 1ull << P->vol_bit[obj];
+        else if (inview)
+          surface_colour(j, obj, L, C);
+        za = zn;
+        cur++;
+        has = cur < end && ics_frag_slab(&ldi->frag[cur]) == k;
+      }
+      j->cursor[p] = cur;
+      if (j->mask) j->mask[p] = mask;
+    }
+}
+
+static void slab_job(void *ctx, int t, int n) {
+  job_t *j = ctx;
+  const ics_plan *P = j->p;
+  int y0, y1;
+  ics_pool_band(P->Hb, t, n, &y0, &y1);
+  double t0 = now_s();
+  for (int l = 0; l < P->nlights; l++)
+    ics_prop_rows(&j->pt[l], j->src[l], j->dst[l], P->Wb, P->Hb, P->nch, y0, y1,
+                  j->scratch + (size_t)t * P->Wb);
+  double t1 = now_s();
+  shade_rows(j, y0, y1, t);
+  double t2 = now_s();
+  j->prop_s[t] += t1 - t0;
+  j->shade_s[t] += t2 - t1;
+}
+
+static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_opts *o,
+                             ics_image *img, ics_render_stats *st, char *msg, size_t msg_size) {
+  cpu_state *cs = state;
+  double t_start = now_s();
+  int nl = P->nlights, nt = ics_pool_size(cs->pool);
+  size_t plane = (size_t)P->Wb * P->Hb, npx = plane;
+  job_t *j = calloc(1, sizeof *j);
+  float **bufs = calloc(2 * (size_t)(nl ? nl : 1), sizeof *bufs);
+  ics_tap2d **scratch = calloc((size_t)(nl ? nl : 1), sizeof *scratch);
+  double(*cum)[2] = calloc((size_t)(nl ? nl : 1), sizeof *cum);
+  ics_status status = ICS_OK;
+  if (!j || !bufs || !scratch || !cum) goto nomem;
+  j->p = P;
+  j->img = img;
+  j->src = bufs;
+  j->dst = bufs + nl;
+  j->pt = calloc((size_t)(nl ? nl : 1), sizeof *j->pt);
+  j->cursor = malloc(sizeof *j->cursor * npx);
+  j->acursor = malloc(sizeof *j->acursor * npx);
+  j->scratch = malloc(sizeof *j->scratch * (size_t)P->Wb * (size_t)nt);
+  j->mask = P->nvol ? malloc(sizeof *j->mask * npx) : NULL;
+  if (!j->pt || !j->cursor || !j->acursor || !j->scratch || (P->nvol && !j->mask)) goto nomem;
+  for (int l = 0; l < nl; l++) {
+    j->src[l] = malloc(sizeof(float) * (size_t)P->nch * plane);
+    j->dst[l] = malloc(sizeof(float) * (size_t)P->nch * plane);
+    const ics_slab_kernel *sk = &P->kernels[l];
+    scratch[l] = malloc(sizeof **scratch * (size_t)sk->entries * (size_t)sk->cap);
+    if (!j->src[l] || !j->dst[l] || !scratch[l]) goto nomem;
+    for (size_t i = 0; i < (size_t)P->nch * plane; i++) j->src[l][i] = 1;
+  }
+  memcpy(j->cursor, P->ldi.offset, sizeof *j->cursor * npx);
+  memcpy(j->acursor, P->ldi.offset, sizeof *j->acursor * npx);
+  if (j->mask) {
+    if (P->ldi.inside0)
+      memcpy(j->mask, P->ldi.inside0, sizeof *j->mask * npx);
+    else
+      memset(j->mask, 0, sizeof *j->mask * npx);
+  }
+  for (int i = 0; i < P->scene->nobjects; i++)
+    if (P->vol_bit[i] >= 0) j->vol_obj[P->vol_bit[i]] = i;
+  int persp = P->cam.projection == ICS_PROJ_PERSPECTIVE;
+  for (int k = 0; k < P->K; k++) {
+    j->k = k;
+    double zk = ics_plan_slab_depth(P, k), zp = ics_plan_slab_depth(P, k > 0 ? k - 1 : 0);
+    double q = persp ? ics_plan_pixel_size(P, zk) : P->q_ref, s = persp ? zk / zp : 1;
+    for (int l = 0; l < nl; l++) {
+      const ics_slab_kernel *sk = &P->kernels[l];
+      int n;
+      status = ics_slab_kernel_taps(sk, (uint64_t)k, q, cum[l], scratch[l], &n);
+      if (status != ICS_OK) {
+        if (msg) snprintf(msg, msg_size, "light %d, slab %d: kernel taps: %s", l, k,
+                          ics_status_str(status));
+        goto done;
+      }
+      if (ics_prop_prepare(&j->pt[l], scratch[l], sk->out_entries, n / sk->out_entries, sk->cap, s,
+                           P->cx, P->cy, P->Wb))
+        goto nomem;
+      j->pt[l].seed = P->rs.seed;
+      j->pt[l].light = (uint32_t)l;
+      j->pt[l].slab = (uint32_t)k;
+    }
+    ics_pool_run(cs->pool, slab_job, j);
+    for (int l = 0; l < nl; l++) {
+      float *tmp = j->src[l];
+      j->src[l] = j->dst[l];
+      j->dst[l] = tmp;
+    }
+    if (o->progress) o->progress(o->progress_ctx, k + 1, P->K);
+  }
+  /* over the background */
+  for (size_t i = 0; i < (size_t)P->W * P->H; i++) {
+    float *C = img->data + 4 * i;
+    for (int c = 0; c < 3; c++) C[c] += (1 - C[3]) * (float)P->rs.background[c];
+  }
+  st->threads = nt;
+  st->slabs = P->K;
+  snprintf(st->device, sizeof st->device, "CPU, %d thread%s", nt, nt == 1 ? "" : "s");
+  for (int t = 0; t < nt; t++) {
+    st->ms_convolution += 1e3 * j->prop_s[t] / nt;
+    st->ms_shading += 1e3 * j->shade_s[t] / nt;
+    st->ms_detail += 1e3 * j->detail_s[t] / nt;
+  }
+  if (nl && P->K)
+    st->ns_per_px_slab = 1e6 * st->ms_convolution / ((double)npx * P->K * nl);
+  st->ms_total = 1e3 * (now_s() - t_start);
+  goto done;
+nomem:
+  status = ICS_ERR_NOMEM;
+  if (msg) snprintf(msg, msg_size, "out of memory for the light buffers (%zu bytes)", P->backend_bytes);
+done:
+  if (j && j->pt)
+    for (int l = 0; l < nl; l++) ics_prop_release(&j->pt[l]);
+  if (bufs)
+    for (int l = 0; l < 2 * nl; l++) free(bufs[l]);
+  if (scratch)
+    for (int l = 0; l < nl; l++) free(scratch[l]);
+  if (j) {
+    free(j->pt);
+    free(j->cursor);
+    free(j->acursor);
+    free(j->scratch);
+    free(j->mask);
+  }
+  free(bufs);
+  free(scratch);
+  free(cum);
+  free(j);
+  return status;
+}
+
+const ics_backend ics_backend_cpu = {
+    "cpu", "the slab renderer on the CPU (threads; always built; the reference backend)",
+    cpu_available, cpu_create, cpu_render, cpu_destroy};

@@ -1,0 +1,127 @@
+/* detail.c — detail functions and transfer functions (see detail.h).
+ *
+ * Improved noise (Perlin 2002, "Improving Noise"): fade 6t^5 - 15t^4 + 10t^3 and the 12 edge
+ * gradients picked by the low 4 bits of the hash; the permutation is a Fisher-Yates shuffle of
+ * 0..255 drawn from the counter RNG under the detail's seed (so a seed names a field). fBm sums
+ * `octaves` octaves with amplitude gain^i at frequency lacunarity^i. Ridged multifractal
+ * (Musgrave, "Texturing and Modeling", 3rd ed., RidgedMultifractal with H = 1): signal =
+ * (offset - |noise|)^2, each octave weighted by the previous signal times gain (clamped to
+ * [0, 1]) and by lacunarity^-i. Time moves the field along the fixed direction
+ * (0.3713, 0.5129, 0.7731) at one unit of noise space per unit of time. */
+#include "detail.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "icshadow/rng.h"
+#include "icshadow/sat.h" /* ics_volume (moves to icshadow/volume.h) */
+
+static double fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
+static double lerp(double t, double a, double b) { return a + t * (b - a); }
+static double grad(int hash, double x, double y, double z) {
+  int h = hash & 15;
+  double u = h < 8 ? x : y, v = h < 4 ? y : (h == 12 || h == 14 ? x : z);
+  return ((h & 1) ? -u : u) + ((h & 2) ? -v : v);
+}
+
+double ics_perlin_noise(const uint8_t p[512], double x, double y, double z) {
+  double fx = floor(x), fy = floor(y), fz = floor(z);
+  int X = (int)((long long)fx & 255), Y = (int)((long long)fy & 255), Z = (int)((long long)fz & 255);
+  x -= fx, y -= fy, z -= fz;
+  double u = fade(x), v = fade(y), w = fade(z);
+  int A = p[X] + Y, AA = p[A] + Z, AB = p[A + 1] + Z;
+  int B = p[X + 1] + Y, BA = p[B] + Z, BB = p[B + 1] + Z;
+  return lerp(w,
+              lerp(v, lerp(u, grad(p[AA], x, y, z), grad(p[BA], x - 1, y, z)),
+                   lerp(u, grad(p[AB], x, y - 1, z), grad(p[BB], x - 1, y - 1, z))),
+              lerp(v, lerp(u, grad(p[AA + 1], x, y, z - 1), grad(p[BA + 1], x - 1, y, z - 1)),
+                   lerp(u, grad(p[AB + 1], x, y - 1, z - 1), grad(p[BB + 1], x - 1, y - 1, z - 1))));
+}
+
+void ics_detail_prepare(ics_detail_eval *e, const ics_detail *d, const double lo[3],
+                        const double hi[3]) {
+  memset(e, 0, sizeof *e);
+  e->d = d;
+  memcpy(e->lo, lo, sizeof e->lo);
+  memcpy(e->hi, hi, sizeof e->hi);
+  uint8_t perm[256];
+  for (int i = 0; i < 256; i++) perm[i] = (uint8_t)i;
+  ics_rng r = ics_rng_make(d->seed, 0x6e6f697365ULL /* "noise" */);
+  for (int i = 255; i > 0; i--) {
+    int j = (int)(ics_rng_uniform(&r) * (i + 1));
+    uint8_t t = perm[i];
+    perm[i] = perm[j];
+    perm[j] = t;
+  }
+  for (int i = 0; i < 512; i++) e->perm[i] = perm[i & 255];
+}
+
+double ics_detail_value(const ics_detail_eval *e, const double p[3]) {
+  const ics_detail *d = e->d;
+  double f;
+  if (d->fn == ICS_DETAIL_GRID) {
+    ics_volume vol = {d->grid, (size_t)d->size[0], (size_t)d->size[1], (size_t)d->size[2]};
+    double q[3];
+    for (int i = 0; i < 3; i++)
+      q[i] = e->hi[i] > e->lo[i] ? (p[i] - e->lo[i]) / (e->hi[i] - e->lo[i]) * d->size[i] : 0;
+    f = ics_volume_sample(&vol, q);
+  } else {
+    static const double drift[3] = {0.3713, 0.5129, 0.7731};
+    double x = d->frequency * p[0] + d->time * drift[0];
+    double y = d->frequency * p[1] + d->time * drift[1];
+    double z = d->frequency * p[2] + d->time * drift[2];
+    if (d->fn == ICS_DETAIL_PERLIN) {
+      f = ics_perlin_noise(e->perm, x, y, z);
+    } else if (d->fn == ICS_DETAIL_FBM) {
+      f = 0;
+      double amp = 1;
+      for (int o = 0; o < d->octaves; o++) {
+        f += amp * ics_perlin_noise(e->perm, x, y, z);
+        amp *= d->gain;
+        x *= d->lacunarity, y *= d->lacunarity, z *= d->lacunarity;
+      }
+    } else { /* ridged */
+      double signal = d->offset - fabs(ics_perlin_noise(e->perm, x, y, z));
+      signal *= signal;
+      f = signal;
+      double expo = 1;
+      for (int o = 1; o < d->octaves; o++) {
+        x *= d->lacunarity, y *= d->lacunarity, z *= d->lacunarity;
+        expo /= d->lacunarity;
+        double weight = signal * d->gain;
+        weight = weight < 0 ? 0 : weight > 1 ? 1 : weight;
+        signal = d->offset - fabs(ics_perlin_noise(e->perm, x, y, z));
+        signal *= signal * weight;
+        f += signal * expo;
+      }
+    }
+  }
+  return d->bias + d->scale * f;
+}
+
+void ics_material_transfer(const ics_material *m, double v, double rgb[3], double *scale) {
+  int n = m->ntransfer;
+  if (n == 0) {
+    memcpy(rgb, m->color, 3 * sizeof *rgb);
+    *scale = v > 0 ? v : 0;
+    return;
+  }
+  const double(*t)[5] = m->transfer;
+  int k = 0;
+  if (v <= t[0][0]) {
+    k = -1;
+  } else if (v >= t[n - 1][0]) {
+    k = n - 1;
+  } else {
+    while (k + 1 < n && t[k + 1][0] <= v) k++;
+  }
+  if (k < 0 || k == n - 1) {
+    const double *row = t[k < 0 ? 0 : n - 1];
+    rgb[0] = row[1], rgb[1] = row[2], rgb[2] = row[3];
+    *scale = row[4];
+    return;
+  }
+  double a = (v - t[k][0]) / (t[k + 1][0] - t[k][0]);
+  for (int c = 0; c < 3; c++) rgb[c] = t[k][1 + c] + a * (t[k + 1][1 + c] - t[k][1 + c]);
+  *scale = t[k][4] + a * (t[k + 1][4] - t[k][4]);
+}

@@ -1,0 +1,83 @@
+/* json_util.c — strict JSON value readers shared by the scene and lights readers. */
+#include "json_util.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+int ics_jerr(const ics_jctx *c, const char *fmt, ...) {
+  if (c->msg && c->msg_size) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(c->msg, c->msg_size, fmt, ap);
+    va_end(ap);
+  }
+  return -1;
+}
+
+int ics_jkeys(const ics_jctx *c, const char *where, json_t *o, const char *const *known,
+              size_t nknown) {
+  const char *key;
+  json_t *val;
+  json_object_foreach(o, key, val) {
+    size_t q = 0;
+    while (q < nknown && strcmp(key, known[q])) q++;
+    if (q < nknown) continue;
+    char list[512];
+    size_t len = 0;
+    list[0] = 0;
+    for (size_t i = 0; i < nknown && len + 1 < sizeof list; i++)
+      len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "", known[i]);
+    return ics_jerr(c, "%s: unknown key \"%s\" (expected %s)", where, key, list);
+  }
+  return 0;
+}
+
+int ics_jnum(const ics_jctx *c, const char *where, json_t *v, double *out) {
+  if (!json_is_number(v)) return ics_jerr(c, "%s: expected a number", where);
+  double x = json_number_value(v);
+  if (!isfinite(x)) return ics_jerr(c, "%s: must be finite", where);
+  *out = x;
+  return 0;
+}
+
+int ics_jvec(const ics_jctx *c, const char *where, json_t *v, size_t n, double *out,
+             const char *what) {
+  if (!json_is_array(v) || json_array_size(v) != n)
+    return ics_jerr(c, "%s: expected [%s]", where, what);
+  for (size_t i = 0; i < n; i++) {
+    json_t *x = json_array_get(v, i);
+    if (!json_is_number(x)) return ics_jerr(c, "%s: expected [%s]", where, what);
+    out[i] = json_number_value(x);
+    if (!isfinite(out[i])) return ics_jerr(c, "%s: must be finite", where);
+  }
+  return 0;
+}
+
+int ics_jint(const ics_jctx *c, const char *where, json_t *v, long long lo, long long hi,
+             long long *out) {
+  if (!json_is_integer(v))
+    return ics_jerr(c, "%s: expected an integer in %lld..%lld", where, lo, hi);
+  long long x = (long long)json_integer_value(v);
+  if (x < lo || x > hi) return ics_jerr(c, "%s: %lld is out of range %lld..%lld", where, x, lo, hi);
+  *out = x;
+  return 0;
+}
+
+int ics_jenum(const ics_jctx *c, const char *where, json_t *v, const char *const *names, int n,
+              int *out) {
+  char list[256];
+  size_t len = 0;
+  list[0] = 0;
+  for (int i = 0; i < n && len + 1 < sizeof list; i++)
+    len += (size_t)snprintf(list + len, sizeof list - len, "%s\"%s\"", i ? ", " : "", names[i]);
+  if (!json_is_string(v)) return ics_jerr(c, "%s: expected one of %s", where, list);
+  const char *s = json_string_value(v);
+  for (int i = 0; i < n; i++)
+    if (!strcmp(s, names[i])) {
+      *out = i;
+      return 0;
+    }
+  return ics_jerr(c, "%s: unknown value \"%s\" (expected one of %s)", where, s, list);
+}

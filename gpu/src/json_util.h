@@ -1,0 +1,38 @@
+/* json_util.h — strict reading of JSON values for the scene and lights readers (jansson): every
+ * failure writes "WHERE: reason" into the caller's message buffer, where WHERE is the value's
+ * path ("scene.json: objects[1].radius"). Returns 0 on success, -1 on failure. */
+#ifndef ICS_RENDER_JSON_UTIL_H
+#define ICS_RENDER_JSON_UTIL_H
+
+#include <jansson.h>
+#include <stddef.h>
+
+typedef struct ics_jctx {
+  char *msg;       /* the message buffer (may be NULL) */
+  size_t msg_size;
+} ics_jctx;
+
+/* printf into the message buffer; returns -1 so that `return ics_jerr(...)` reads well */
+int ics_jerr(const ics_jctx *c, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* Every key of object `o` must be in known[0..nknown-1]; else "WHERE: unknown key "K" (expected
+ * LIST)". */
+int ics_jkeys(const ics_jctx *c, const char *where, json_t *o, const char *const *known,
+              size_t nknown);
+/* A finite number. */
+int ics_jnum(const ics_jctx *c, const char *where, json_t *v, double *out);
+/* An array of exactly n finite numbers ("expected [what]" names the shape in the message). */
+int ics_jvec(const ics_jctx *c, const char *where, json_t *v, size_t n, double *out,
+             const char *what);
+/* An integer in [lo, hi]. */
+int ics_jint(const ics_jctx *c, const char *where, json_t *v, long long lo, long long hi,
+             long long *out);
+/* A string that is one of names[0..n-1]; *out = its index. */
+int ics_jenum(const ics_jctx *c, const char *where, json_t *v, const char *const *names,
+              int n, int *out);
+
+#endif

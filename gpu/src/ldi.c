@@ -1,0 +1,235 @@
+/* ldi.c — the layered depth image (Patel Sec. 4.1) over the light-buffer grid, built by ray
+ * casting: for every buffer pixel all crossings of its camera ray with every object, sorted
+ * front to back, in a CSR layout sized exactly by a counting pass (so no layer beyond the
+ * scene's depth complexity is allocated). The counting pass also finds the depth range, which
+ * fixes the slabs; the fill pass stores each fragment's slab index with its object. Rows are
+ * split over threads; every pixel's list depends on that pixel alone. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geometry.h"
+#include "plan_internal.h"
+#include "pool.h"
+#include "scene_internal.h"
+
+void ics_ldi_release(ics_ldi *l) {
+  free(l->offset);
+  free(l->frag);
+  free(l->inside0);
+  memset(l, 0, sizeof *l);
+}
+
+typedef struct {
+  double t;
+  int obj;
+  double n[3];
+} hit_t;
+
+static int cmp_hit(const void *a, const void *b) {
+  const hit_t *x = a, *y = b;
+  if (x->t != y->t) return (x->t > y->t) - (x->t < y->t);
+  return (x->obj > y->obj) - (x->obj < y->obj);
+}
+
+typedef struct {
+  ics_plan *p;
+  int fill;        /* 0: count, 1: fill */
+  int failed;      /* out of memory in some thread */
+  double zmin[256], zmax[256];
+  int layers[256];
+  int any_inside[256];
+} job_t;
+
+/* all crossings of pixel (bi, bj), sorted, into *hv (grown as needed); returns the count or -1 */
+static int pixel_hits(const ics_plan *p, int bi, int bj, ics_hits *h, hit_t **hv, int *hcap,
+                      uint64_t *inside) {
+  const ics_scene *s = p->scene;
+  double o[3], d[3];
+  ics_plan_ray(p, bi, bj, o, d);
+  int n = 0;
+  *inside = 0;
+  for (int k = 0; k < s->nobjects; k++) {
+    h->n = 0;
+    int behind = 0;
+    if (ics_object_hits(&s->objects[k], o, d, h, &behind)) return -1;
+    if (p->vol_bit[k] >= 0 && (behind & 1)) *inside |= 1ull << p->vol_bit[k];
+    if (n + h->n > *hcap) {
+      int cap = 2 * (n + h->n) + 16;
+      hit_t *nv = realloc(*hv, sizeof *nv * (size_t)cap);
+      if (!nv) return -1;
+      *hv = nv;
+      *hcap = cap;
+    }
+    for (int i = 0; i < h->n; i++) {
+      hit_t *x = &(*hv)[n++];
+      x->t = h->h[i].t;
+      x->obj = k;
+      memcpy(x->n, h->h[i].n, sizeof x->n);
+    }
+  }
+  qsort(*hv, (size_t)n, sizeof **hv, cmp_hit);
+  return n;
+}
+
+/* Slabs by which a surface's occlusion of the light buffers is delayed (docs/renderer.md
+ * "Surface bias"): a surface tilted against the slabs changes depth by s slabs per pixel, and a
+ * whole pixel's occlusion entering at the slab of its centre would shadow the neighbours that lie
+ * slightly deeper on the same surface ("acne", rows of stripes). bias = ceil(s) + 1 (0 for a
+ * surface parallel to the slabs, at most ICS_FRAG_MAX_BIAS). */
+static int surface_bias(const ics_plan *p, const double n[3], double z) {
+  const ics_camera *c = &p->cam;
+  double nr = 0, nu = 0, nf = 0;
+  for (int i = 0; i < 3; i++) {
+    nr += n[i] * c->r[i];
+    nu += n[i] * c->u[i];
+    nf += n[i] * c->f[i];
+  }
+  double lat = sqrt(nr * nr + nu * nu);
+  if (!(lat > 1e-12 * fabs(nf))) return 0;
+  double s = fabs(nf) > 0 ? lat / fabs(nf) * ics_plan_pixel_size(p, z) / p->e : INFINITY;
+  if (!(s < ICS_FRAG_MAX_BIAS)) return ICS_FRAG_MAX_BIAS;
+  int b = (int)ceil(s) + 1;
+  return b > ICS_FRAG_MAX_BIAS ? ICS_FRAG_MAX_BIAS : b;
+}
+
+static void ldi_rows(void *ctx, int t, int nt) {
+  job_t *j = ctx;
+  ics_plan *p = j->p;
+  ics_ldi *l = &p->ldi;
+  ics_hits h = {0};
+  hit_t *hv = NULL;
+  int hcap = 0;
+  double zmin = INFINITY, zmax = -INFINITY;
+  int layers = 0, any_inside = 0;
+  int lo, hi;
+  ics_pool_band(l->h, t, nt, &lo, &hi);
+  for (int bj = lo; bj < hi && !j->failed; bj++)
+    for (int bi = 0; bi < l->w; bi++) {
+      size_t px = (size_t)bj * l->w + bi;
+      uint64_t inside;
+      int n = pixel_hits(p, bi, bj, &h, &hv, &hcap, &inside);
+      if (n < 0) {
+        j->failed = 1;
+        break;
+      }
+      if (!j->fill) {
+        l->offset[px + 1] = (uint32_t)n; /* counts; prefix-summed afterwards */
+        if (n > layers) layers = n;
+        if (n) {
+          zmin = fmin(zmin, hv[0].t);
+          zmax = fmax(zmax, hv[n - 1].t);
+        }
+        if (inside) any_inside = 1;
+        continue;
+      }
+      ics_fragment *f = l->frag + l->offset[px];
+      for (int i = 0; i < n; i++) {
+        double k = floor((hv[i].t - p->z0) / p->e + 1e-6);
+        if (k < 0) k = 0;
+        if (k > p->K - 1) k = p->K - 1;
+        f[i].z = (float)hv[i].t;
+        f[i].code = ics_frag_code(hv[i].obj, surface_bias(p, hv[i].n, hv[i].t), (int)k);
+      }
+      if (l->inside0) l->inside0[px] = inside;
+    }
+  ics_hits_free(&h);
+  free(hv);
+  j->zmin[t] = zmin;
+  j->zmax[t] = zmax;
+  j->layers[t] = layers;
+  j->any_inside[t] = any_inside;
+}
+
+ics_status ics_ldi_build(ics_plan *p, int threads, char *msg, size_t msg_size) {
+  ics_ldi *l = &p->ldi;
+  l->w = p->Wb;
+  l->h = p->Hb;
+  size_t npx = (size_t)l->w * l->h;
+  l->offset = calloc(npx + 1, sizeof *l->offset);
+  if (!l->offset) {
+    if (msg) snprintf(msg, msg_size, "out of memory for the layered depth image (%zu pixels)", npx);
+    return ICS_ERR_NOMEM;
+  }
+  ics_pool *pool = ics_pool_create(threads);
+  if (!pool) pool = ics_pool_create(1);
+  if (!pool) return ICS_ERR_NOMEM;
+  job_t *j = calloc(1, sizeof *j);
+  if (!j) {
+    ics_pool_destroy(pool);
+    return ICS_ERR_NOMEM;
+  }
+  j->p = p;
+  ics_pool_run(pool, ldi_rows, j);
+  int nt = ics_pool_size(pool);
+  double zmin = INFINITY, zmax = -INFINITY;
+  int any_inside = 0;
+  for (int t = 0; t < nt; t++) {
+    zmin = fmin(zmin, j->zmin[t]);
+    zmax = fmax(zmax, j->zmax[t]);
+    if (j->layers[t] > l->max_layers) l->max_layers = j->layers[t];
+    any_inside |= j->any_inside[t];
+  }
+  ics_status st = ICS_OK;
+  if (j->failed) {
+    if (msg) snprintf(msg, msg_size, "out of memory in the geometry pass");
+    st = ICS_ERR_NOMEM;
+    goto done;
+  }
+  /* prefix sums; the total must fit the 32-bit offsets */
+  unsigned long long total = 0;
+  for (size_t i = 1; i <= npx; i++) {
+    total += l->offset[i];
+    if (total > 0xffffffffull) {
+      if (msg) snprintf(msg, msg_size, "more than 2^32 fragments in the layered depth image");
+      st = ICS_ERR_SIZE;
+      goto done;
+    }
+    l->offset[i] = (uint32_t)total;
+  }
+  l->nfrag = (size_t)total;
+  /* slabs: from the nearest crossing (or the eye when a volume contains it) to the farthest */
+  if (l->nfrag == 0) {
+    p->z0 = 0;
+    p->K = 1;
+  } else {
+    p->z0 = any_inside ? 0 : zmin;
+    double k = floor((zmax - p->z0) / p->e + 1e-6) + 1;
+    if (k > ICS_FRAG_MAX_SLABS) {
+      if (msg)
+        snprintf(msg, msg_size, "%.0f slabs (depth range %.6g / slab_spacing %.6g) exceed the "
+                 "limit %d: increase render.slab_spacing", k, zmax - p->z0, p->e, ICS_FRAG_MAX_SLABS);
+      st = ICS_ERR_SIZE;
+      goto done;
+    }
+    p->K = (int)k;
+  }
+  size_t fbytes = l->nfrag * sizeof *l->frag + (any_inside ? npx * sizeof *l->inside0 : 0);
+  double limit = p->rs.memory_limit_mib * 1048576.0;
+  if ((double)(fbytes + p->memory_bytes) > limit) {
+    if (msg)
+      snprintf(msg, msg_size, "the plan needs %.1f MiB (layered depth image %zu fragments, %.1f "
+               "MiB), over render.memory_limit_mib = %g", (fbytes + p->memory_bytes) / 1048576.0,
+               l->nfrag, fbytes / 1048576.0, p->rs.memory_limit_mib);
+    st = ICS_ERR_SIZE;
+    goto done;
+  }
+  l->frag = malloc(l->nfrag ? l->nfrag * sizeof *l->frag : 1);
+  l->inside0 = any_inside ? calloc(npx, sizeof *l->inside0) : NULL;
+  if (!l->frag || (any_inside && !l->inside0)) {
+    if (msg) snprintf(msg, msg_size, "out of memory for %zu fragments", l->nfrag);
+    st = ICS_ERR_NOMEM;
+    goto done;
+  }
+  j->fill = 1;
+  ics_pool_run(pool, ldi_rows, j);
+  if (j->failed) {
+    if (msg) snprintf(msg, msg_size, "out of memory in the geometry pass");
+    st = ICS_ERR_NOMEM;
+  }
+done:
+  free(j);
+  ics_pool_destroy(pool);
+  return st;
+}

@@ -1,0 +1,371 @@
+/* mesh.c — triangle meshes: Assimp loading (when built with it), a BVH (median split on the
+ * longest centroid axis, leaves of up to 4 triangles), all crossings of a ray (Moller-Trumbore in
+ * double precision; crossings closer than 1e-9 of the mesh's diagonal are merged so that a ray
+ * through a shared edge counts once), and the closedness test used to decide whether a mesh
+ * bounds a volume. */
+#include "mesh.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef ICS_HAVE_ASSIMP
+#include <assimp/cimport.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#endif
+
+typedef struct {
+  double v0[3], e1[3], e2[3];
+} tri_t;
+
+typedef struct {
+  double lo[3], hi[3];
+  int left, right; /* children, or -1 for a leaf */
+  int first, count;
+} node_t;
+
+struct ics_mesh {
+  int ntris;
+  tri_t *tris;
+  int *order; /* triangle indices in BVH leaf order */
+  node_t *nodes;
+  int nnodes;
+  int closed;
+  double lo[3], hi[3], eps;
+};
+
+static void tri_bounds(const tri_t *t, double lo[3], double hi[3]) {
+  for (int i = 0; i < 3; i++) {
+    double a = t->v0[i], b = a + t->e1[i], c = a + t->e2[i];
+    lo[i] = fmin(a, fmin(b, c));
+    hi[i] = fmax(a, fmax(b, c));
+  }
+}
+
+static double tri_centroid(const tri_t *t, int axis) {
+  return t->v0[axis] + (t->e1[axis] + t->e2[axis]) / 3;
+}
+
+typedef struct {
+  const tri_t *tris;
+  int axis;
+} sort_ctx;
+
+static sort_ctx g_sort; /* qsort has no context argument; build is single-threaded */
+
+static int cmp_centroid(const void *a, const void *b) {
+  double ca = tri_centroid(&g_sort.tris[*(const int *)a], g_sort.axis);
+  double cb = tri_centroid(&g_sort.tris[*(const int *)b], g_sort.axis);
+  return (ca > cb) - (ca < cb);
+}
+
+static int build(ics_mesh *m, int first, int count) {
+  int id = m->nnodes++;
+  node_t *n = &m->nodes[id];
+  for (int i = 0; i < 3; i++) n->lo[i] = INFINITY, n->hi[i] = -INFINITY;
+  double clo[3] = {INFINITY, INFINITY, INFINITY}, chi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (int k = first; k < first + count; k++) {
+    double lo[3], hi[3];
+    const tri_t *t = &m->tris[m->order[k]];
+    tri_bounds(t, lo, hi);
+    for (int i = 0; i < 3; i++) {
+      n->lo[i] = fmin(n->lo[i], lo[i]);
+      n->hi[i] = fmax(n->hi[i], hi[i]);
+      double c = tri_centroid(t, i);
+      clo[i] = fmin(clo[i], c);
+      chi[i] = fmax(chi[i], c);
+    }
+  }
+  n->first = first;
+  n->count = count;
+  n->left = n->right = -1;
+  if (count <= 4) return id;
+  int axis = 0;
+  for (int i = 1; i < 3; i++)
+    if (chi[i] - clo[i] > chi[axis] - clo[axis]) axis = i;
+  if (!(chi[axis] > clo[axis])) return id; /* all centroids equal: one leaf */
+  g_sort.tris = m->tris;
+  g_sort.axis = axis;
+  qsort(m->order + first, (size_t)count, sizeof *m->order, cmp_centroid);
+  int half = count / 2;
+  int l = build(m, first, half);
+  int r = build(m, first + half, count - half);
+  m->nodes[id].left = l;
+  m->nodes[id].right = r;
+  m->nodes[id].count = 0;
+  return id;
+}
+
+/* edges keyed by (min, max) vertex index: closed iff every edge appears exactly twice */
+static int cmp_u64(const void *a, const void *b) {
+  uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+  return (x > y) - (x < y);
+}
+
+static const double *g_xyz; /* for cmp_pos (qsort has no context); build is single-threaded */
+
+static int cmp_pos(const void *a, const void *b) {
+  const double *p = g_xyz + 3 * *(const int *)a, *q = g_xyz + 3 * *(const int *)b;
+  for (int i = 0; i < 3; i++)
+    if (p[i] != q[i]) return (p[i] > q[i]) - (p[i] < q[i]);
+  return 0;
+}
+
+/* Closedness on positions, not indices: files often split a vertex by its normal or texture
+ * coordinate, which would make every edge of a closed model look like a boundary. */
+static int is_closed(const double *xyz, int nverts, const int *tri, int ntris) {
+  size_t ne = 3 * (size_t)ntris;
+  uint64_t *e = malloc(sizeof *e * ne);
+  int *ord = malloc(sizeof *ord * (size_t)nverts), *canon = malloc(sizeof *canon * (size_t)nverts);
+  if (!e || !ord || !canon) {
+    free(e), free(ord), free(canon);
+    return 0;
+  }
+  for (int i = 0; i < nverts; i++) ord[i] = i;
+  g_xyz = xyz;
+  qsort(ord, (size_t)nverts, sizeof *ord, cmp_pos);
+  for (int i = 0; i < nverts; i++)
+    canon[ord[i]] = i > 0 && cmp_pos(&ord[i], &ord[i - 1]) == 0 ? canon[ord[i - 1]] : ord[i];
+  free(ord);
+  for (int t = 0; t < ntris; t++)
+    for (int k = 0; k < 3; k++) {
+      uint64_t a = (uint32_t)canon[tri[3 * t + k]], b = (uint32_t)canon[tri[3 * t + (k + 1) % 3]];
+      e[3 * (size_t)t + k] = a < b ? a << 32 | b : b << 32 | a;
+    }
+  qsort(e, ne, sizeof *e, cmp_u64);
+  int closed = 1;
+  for (size_t i = 0; i < ne && closed;) {
+    size_t j = i;
+    while (j < ne && e[j] == e[i]) j++;
+    if (j - i != 2) closed = 0;
+    i = j;
+  }
+  free(e);
+  free(canon);
+  return closed;
+}
+
+ics_status ics_mesh_create_triangles(ics_mesh **out, const double *xyz, int nverts,
+                                     const int *tri, int ntris) {
+  *out = NULL;
+  if (!xyz || !tri || nverts < 3 || ntris < 1) return ICS_ERR_SIZE;
+  if (ntris > ICS_MESH_MAX_TRIANGLES) return ICS_ERR_SIZE;
+  for (int i = 0; i < 3 * ntris; i++)
+    if (tri[i] < 0 || tri[i] >= nverts) return ICS_ERR_INVALID_ARG;
+  for (int i = 0; i < 3 * nverts; i++)
+    if (!isfinite(xyz[i])) return ICS_ERR_NAN;
+  ics_mesh *m = calloc(1, sizeof *m);
+  if (!m) return ICS_ERR_NOMEM;
+  m->ntris = ntris;
+  m->tris = malloc(sizeof *m->tris * (size_t)ntris);
+  m->order = malloc(sizeof *m->order * (size_t)ntris);
+  m->nodes = malloc(sizeof *m->nodes * (2 * (size_t)ntris));
+  if (!m->tris || !m->order || !m->nodes) {
+    ics_mesh_destroy(m);
+    return ICS_ERR_NOMEM;
+  }
+  for (int t = 0; t < ntris; t++) {
+    const double *a = xyz + 3 * tri[3 * t], *b = xyz + 3 * tri[3 * t + 1],
+                 *c = xyz + 3 * tri[3 * t + 2];
+    for (int i = 0; i < 3; i++) {
+      m->tris[t].v0[i] = a[i];
+      m->tris[t].e1[i] = b[i] - a[i];
+      m->tris[t].e2[i] = c[i] - a[i];
+    }
+    m->order[t] = t;
+  }
+  build(m, 0, ntris);
+  memcpy(m->lo, m->nodes[0].lo, sizeof m->lo);
+  memcpy(m->hi, m->nodes[0].hi, sizeof m->hi);
+  double diag = 0;
+  for (int i = 0; i < 3; i++) diag += (m->hi[i] - m->lo[i]) * (m->hi[i] - m->lo[i]);
+  m->eps = 1e-9 * sqrt(diag);
+  m->closed = is_closed(xyz, nverts, tri, ntris);
+  *out = m;
+  return ICS_OK;
+}
+
+void ics_mesh_destroy(ics_mesh *m) {
+  if (!m) return;
+  free(m->tris);
+  free(m->order);
+  free(m->nodes);
+  free(m);
+}
+
+int ics_mesh_closed(const ics_mesh *m) { return m->closed; }
+int ics_mesh_triangle_count(const ics_mesh *m) { return m->ntris; }
+size_t ics_mesh_bytes(const ics_mesh *m) {
+  return sizeof *m + (size_t)m->ntris * (sizeof *m->tris + sizeof *m->order) +
+         (size_t)m->nnodes * sizeof *m->nodes;
+}
+void ics_mesh_bounds(const ics_mesh *m, double lo[3], double hi[3]) {
+  memcpy(lo, m->lo, sizeof m->lo);
+  memcpy(hi, m->hi, sizeof m->hi);
+}
+
+static int box_hit(const node_t *n, const double o[3], const double inv[3]) {
+  double t0 = -INFINITY, t1 = INFINITY;
+  for (int i = 0; i < 3; i++) {
+    double a = (n->lo[i] - o[i]) * inv[i], b = (n->hi[i] - o[i]) * inv[i];
+    if (isnan(a) || isnan(b)) { /* direction 0 along i, origin on a face: inside test */
+      if (o[i] < n->lo[i] || o[i] > n->hi[i]) return 0;
+      continue;
+    }
+    if (a > b) {
+      double t = a;
+      a = b;
+      b = t;
+    }
+    t0 = fmax(t0, a);
+    t1 = fmin(t1, b);
+  }
+  return t0 <= t1;
+}
+
+static int cmp_hit_t(const void *a, const void *b) {
+  double x = ((const ics_hit *)a)->t, y = ((const ics_hit *)b)->t;
+  return (x > y) - (x < y);
+}
+
+int ics_mesh_hits(const ics_mesh *m, const double orig[3], const double dir[3], ics_hits *h,
+                  int *behind) {
+  double inv[3] = {1 / dir[0], 1 / dir[1], 1 / dir[2]};
+  int stack[128], sp = 0;
+  int start = h->n;
+  int nbehind = 0;
+  double dlen = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+  stack[sp++] = 0;
+  while (sp) {
+    const node_t *n = &m->nodes[stack[--sp]];
+    if (!box_hit(n, orig, inv)) continue;
+    if (n->left >= 0) {
+      if (sp + 2 > (int)(sizeof stack / sizeof *stack)) return -1;
+      stack[sp++] = n->left;
+      stack[sp++] = n->right;
+      continue;
+    }
+    for (int k = n->first; k < n->first + n->count; k++) {
+      const tri_t *t = &m->tris[m->order[k]];
+      double p[3] = {dir[1] * t->e2[2] - dir[2] * t->e2[1], dir[2] * t->e2[0] - dir[0] * t->e2[2],
+                     dir[0] * t->e2[1] - dir[1] * t->e2[0]};
+      double det = t->e1[0] * p[0] + t->e1[1] * p[1] + t->e1[2] * p[2];
+      if (det == 0) continue;
+      double s[3] = {orig[0] - t->v0[0], orig[1] - t->v0[1], orig[2] - t->v0[2]};
+      double u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) / det;
+      if (u < 0 || u > 1) continue;
+      double q[3] = {s[1] * t->e1[2] - s[2] * t->e1[1], s[2] * t->e1[0] - s[0] * t->e1[2],
+                     s[0] * t->e1[1] - s[1] * t->e1[0]};
+      double v = (dir[0] * q[0] + dir[1] * q[1] + dir[2] * q[2]) / det;
+      if (v < 0 || u + v > 1) continue;
+      double tt = (t->e2[0] * q[0] + t->e2[1] * q[1] + t->e2[2] * q[2]) / det;
+      double nrm[3] = {t->e1[1] * t->e2[2] - t->e1[2] * t->e2[1],
+                       t->e1[2] * t->e2[0] - t->e1[0] * t->e2[2],
+                       t->e1[0] * t->e2[1] - t->e1[1] * t->e2[0]};
+      if (ics_hits_push(h, tt, nrm)) return -1;
+    }
+  }
+  /* sort this mesh's crossings, merge coincident ones, count and drop those at t <= 0 */
+  int n = h->n - start;
+  ics_hit *t = h->h + start;
+  qsort(t, (size_t)n, sizeof *t, cmp_hit_t);
+  int w = 0;
+  double tol = dlen > 0 ? m->eps / dlen : 0;
+  for (int i = 0; i < n; i++) {
+    if (w > 0 && t[i].t - t[w - 1].t <= tol) continue;
+    t[w++] = t[i];
+  }
+  int keep = 0;
+  for (int i = 0; i < w; i++) {
+    if (t[i].t > 0)
+      t[keep++] = t[i];
+    else
+      nbehind++;
+  }
+  h->n = start + keep;
+  *behind += nbehind;
+  return 0;
+}
+
+int ics_mesh_files_supported(void) {
+#ifdef ICS_HAVE_ASSIMP
+  return 1;
+#else
+  return 0;
+#endif
+}
+
+ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double scale[3],
+                                const double rot_deg[3], const double translate[3], char *msg,
+                                size_t msg_size) {
+  *out = NULL;
+#ifndef ICS_HAVE_ASSIMP
+  (void)scale, (void)rot_deg, (void)translate;
+  if (msg)
+    snprintf(msg, msg_size, "%s: mesh files need Assimp, which was not found when the renderer "
+             "was built (install libassimp-dev and rebuild)", path);
+  return ICS_ERR_UNSUPPORTED;
+#else
+  FILE *probe = fopen(path, "rb");
+  if (!probe) {
+    if (msg) snprintf(msg, msg_size, "%s: cannot open mesh file", path);
+    return ICS_ERR_IO;
+  }
+  fclose(probe);
+  const struct aiScene *sc = aiImportFile(
+      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);
+  if (!sc) {
+    if (msg) snprintf(msg, msg_size, "%s: cannot read mesh: %s", path, aiGetErrorString());
+    return ICS_ERR_PARSE;
+  }
+  size_t nv = 0, nt = 0;
+  for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+    nv += sc->mMeshes[i]->mNumVertices;
+    for (unsigned f = 0; f < sc->mMeshes[i]->mNumFaces; f++)
+      nt += sc->mMeshes[i]->mFaces[f].mNumIndices == 3;
+  }
+  if (nt == 0 || nt > ICS_MESH_MAX_TRIANGLES || nv > (size_t)INT32_MAX / 3) {
+    aiReleaseImport(sc);
+    if (msg)
+      snprintf(msg, msg_size, "%s: %zu triangles (expected 1..%d)", path, nt,
+               ICS_MESH_MAX_TRIANGLES);
+    return ICS_ERR_SIZE;
+  }
+  double *xyz = malloc(sizeof *xyz * 3 * nv);
+  int *tri = malloc(sizeof *tri * 3 * nt);
+  if (!xyz || !tri) {
+    free(xyz);
+    free(tri);
+    aiReleaseImport(sc);
+    return ICS_ERR_NOMEM;
+  }
+  double ax[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  ics_frame_rotate(ax, rot_deg);
+  /* ax's rows are the rotated world axes; a point's rotated image is sum_i p_i ax[i] */
+  size_t vbase = 0, tk = 0;
+  for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+    const struct aiMesh *me = sc->mMeshes[i];
+    for (unsigned v = 0; v < me->mNumVertices; v++) {
+      double p[3] = {me->mVertices[v].x * scale[0], me->mVertices[v].y * scale[1],
+                     me->mVertices[v].z * scale[2]};
+      for (int w = 0; w < 3; w++)
+        xyz[3 * (vbase + v) + w] = p[0] * ax[0][w] + p[1] * ax[1][w] + p[2] * ax[2][w] + translate[w];
+    }
+    for (unsigned f = 0; f < me->mNumFaces; f++) {
+      if (me->mFaces[f].mNumIndices != 3) continue;
+      for (int k = 0; k < 3; k++) tri[3 * tk + k] = (int)(vbase + me->mFaces[f].mIndices[k]);
+      tk++;
+    }
+    vbase += me->mNumVertices;
+  }
+  aiReleaseImport(sc);
+  ics_status st = ics_mesh_create_triangles(out, xyz, (int)nv, tri, (int)nt);
+  free(xyz);
+  free(tri);
+  if (st != ICS_OK && msg) snprintf(msg, msg_size, "%s: %s", path, ics_status_str(st));
+  return st;
+#endif
+}

@@ -1,0 +1,407 @@
+/* plan.c — the render plan (icshadow/plan.h, docs/renderer.md): what the scene needs, sized
+ * before anything large is allocated.
+ *
+ * Order: settings and camera in force; reference depth and pixel size from the objects'
+ * bounding boxes; each light's slab kernel (slab_kernel.c); the light-buffer padding from the
+ * kernels' total shift and spread over the (bounding-box) slab range, so casters outside the view
+ * still shadow it; volume bits and light-buffer channels from the materials; a memory check;
+ * then the geometry pass (ldi.c) fixes the exact depth range and slab count; a work check; and
+ * the passes and omissions that `icshadow plan` prints. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "geometry.h"
+#include "mesh.h"
+#include "plan_internal.h"
+#include "scene_internal.h"
+
+static double now_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void ics_plan_ray(const ics_plan *p, int bi, int bj, double o[3], double d[3]) {
+  const ics_camera *c = &p->cam;
+  double s = (bi - p->pad[0] + 0.5) / p->W, t = (bj - p->pad[2] + 0.5) / p->H;
+  if (c->projection == ICS_PROJ_ORTHOGRAPHIC) {
+    double h = c->height, w = h * p->W / p->H;
+    for (int i = 0; i < 3; i++) {
+      o[i] = c->eye[i] + (s - 0.5) * w * c->r[i] + (0.5 - t) * h * c->u[i];
+      d[i] = c->f[i];
+    }
+  } else {
+    double th = tan(c->fov_deg * (3.14159265358979323846 / 360)), asp = (double)p->W / p->H;
+    for (int i = 0; i < 3; i++) {
+      o[i] = c->eye[i];
+      d[i] = c->f[i] + (2 * s - 1) * th * asp * c->r[i] + (1 - 2 * t) * th * c->u[i];
+    }
+  }
+}
+
+double ics_plan_pixel_size(const ics_plan *p, double z) {
+  if (p->cam.projection == ICS_PROJ_ORTHOGRAPHIC) return p->cam.height / p->H;
+  return 2 * z * tan(p->cam.fov_deg * (3.14159265358979323846 / 360)) / p->H;
+}
+
+double ics_plan_slab_depth(const ics_plan *p, int k) { return p->z0 + (k + 0.5) * p->e; }
+
+static void add_pass(ics_plan *p, const char *name, size_t bytes, int light, int taps,
+                     const char *detail) {
+  ics_plan_pass *q = &p->passes[p->npasses++];
+  snprintf(q->name, sizeof q->name, "%s", name);
+  q->bytes = bytes;
+  q->light = light;
+  q->taps = taps;
+  snprintf(q->detail, sizeof q->detail, "%s", detail ? detail : "");
+}
+
+static void add_omitted(ics_plan *p, const char *name, const char *reason) {
+  ics_plan_omitted *q = &p->omitted[p->nomitted++];
+  snprintf(q->name, sizeof q->name, "%s", name);
+  snprintf(q->reason, sizeof q->reason, "%s", reason);
+}
+
+/* depth range of the objects' bounding boxes (clamped to depths > 0) */
+static void bounds_depth(const ics_scene *s, const ics_camera *c, double *zlo, double *zhi) {
+  *zlo = INFINITY;
+  *zhi = -INFINITY;
+  for (int k = 0; k < s->nobjects; k++) {
+    double lo[3], hi[3];
+    ics_object_bounds(&s->objects[k], lo, hi);
+    for (int m = 0; m < 8; m++) {
+      double pnt[3] = {m & 1 ? hi[0] : lo[0], m & 2 ? hi[1] : lo[1], m & 4 ? hi[2] : lo[2]};
+      double z = 0;
+      for (int i = 0; i < 3; i++) z += (pnt[i] - c->eye[i]) * c->f[i];
+      *zlo = fmin(*zlo, z);
+      *zhi = fmax(*zhi, z);
+    }
+  }
+  double eps = 1e-6 * fmax(fabs(*zhi), 1);
+  if (*zlo < eps) *zlo = eps;
+  if (*zhi < *zlo) *zhi = *zlo;
+}
+
+static int grey(const double t[3]) { return t[0] == t[1] && t[1] == t[2]; }
+
+ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_opts *opts,
+                           char *msg, size_t msg_size) {
+  ics_plan_opts o = {0};
+  if (opts) o = *opts;
+  *out = NULL;
+  if (!s) return ICS_ERR_INVALID_ARG;
+  ics_plan *p = calloc(1, sizeof *p);
+  if (!p) return ICS_ERR_NOMEM;
+  ics_status st = ICS_OK;
+  p->scene = s;
+  p->rs = o.settings ? *o.settings : s->settings;
+  p->cam = s->camera;
+  if (o.width > 0) p->cam.width = o.width;
+  if (o.height > 0) p->cam.height_px = o.height;
+  if (p->cam.width > ICS_SCENE_MAX_RES || p->cam.height_px > ICS_SCENE_MAX_RES) {
+    if (msg) snprintf(msg, msg_size, "resolution %dx%d exceeds %d per axis", p->cam.width,
+                      p->cam.height_px, ICS_SCENE_MAX_RES);
+    free(p);
+    return ICS_ERR_SIZE;
+  }
+  if (!(p->rs.slab_spacing > 0) || !(p->rs.d1 > 0) || !isfinite(p->rs.slab_spacing) ||
+      !isfinite(p->rs.d1)) {
+    if (msg) snprintf(msg, msg_size, "slab_spacing and d1 must be finite and > 0");
+    free(p);
+    return ICS_ERR_RANGE;
+  }
+  p->W = p->cam.width;
+  p->H = p->cam.height_px;
+  p->e = p->rs.slab_spacing;
+  p->nlights = s->nlights;
+  int persp = p->cam.projection == ICS_PROJ_PERSPECTIVE;
+
+  double zlo, zhi;
+  bounds_depth(s, &p->cam, &zlo, &zhi);
+  p->q_ref = ics_plan_pixel_size(p, 0.5 * (zlo + zhi));
+  double k_est = floor((zhi - zlo) / p->e) + 2;
+  if (k_est > ICS_FRAG_MAX_SLABS) {
+    if (msg)
+      snprintf(msg, msg_size, "about %.0f slabs (depth range %.6g / slab_spacing %.6g) exceed "
+               "the limit %d: increase render.slab_spacing", k_est, zhi - zlo, p->e,
+               ICS_FRAG_MAX_SLABS);
+    free(p);
+    return ICS_ERR_SIZE;
+  }
+
+  /* kernels */
+  p->kernels = calloc((size_t)p->nlights, sizeof *p->kernels);
+  p->vol_bit = malloc(sizeof *p->vol_bit * (size_t)(s->nobjects ? s->nobjects : 1));
+  p->detail = calloc((size_t)(s->nobjects ? s->nobjects : 1), sizeof *p->detail);
+  if (!p->kernels || !p->vol_bit || !p->detail) {
+    st = ICS_ERR_NOMEM;
+    goto fail;
+  }
+  {
+    ics_scene tmp = *s; /* the kernels read the settings in force */
+    tmp.settings = p->rs;
+    for (int k = 0; k < p->nlights; k++) {
+      st = ics_slab_kernel_init(&p->kernels[k], &tmp, k, p->q_ref, msg, msg_size);
+      if (st != ICS_OK) goto fail;
+      p->light_path[k] = sqrt(1 + s->lights[k].mean[0] * s->lights[k].mean[0] +
+                              s->lights[k].mean[1] * s->lights[k].mean[1]);
+    }
+  }
+
+  /* padding: content moves by +mean per slab and spreads by the covariance */
+  {
+    double padl = 0, padr = 0, padt = 0, padb = 0;
+    for (int k = 0; k < p->nlights; k++) {
+      const ics_slab_kernel *sk = &p->kernels[k];
+      double mx = 0, my = 0, vmax = 0;
+      for (int i = 0; i < (int)k_est; i++) {
+        double z = zlo + (i + 0.5) * p->e, q = persp ? ics_plan_pixel_size(p, z) : p->q_ref;
+        mx += sk->mean_w[0] / q;
+        my += sk->mean_w[1] / q;
+        double c0 = sk->cov_w[0] / (q * q), c1 = sk->cov_w[1] / (q * q), c2 = sk->cov_w[2] / (q * q);
+        vmax += 0.5 * (c0 + c2) + sqrt(0.25 * (c0 - c2) * (c0 - c2) + c1 * c1);
+        if (!persp) { /* constant per slab: multiply instead of summing */
+          mx *= k_est, my *= k_est, vmax *= k_est;
+          break;
+        }
+      }
+      double spread = 4 * sqrt(vmax) + 2;
+      if (sk->mode == ICS_SLAB_SHIFT || vmax == 0) spread = 1;
+      padl = fmax(padl, fmax(0, mx) + spread);
+      padr = fmax(padr, fmax(0, -mx) + spread);
+      padt = fmax(padt, fmax(0, my) + spread);
+      padb = fmax(padb, fmax(0, -my) + spread);
+    }
+    if (persp) { /* content shrinks toward the principal point as depth grows */
+      double g = zhi / zlo - 1;
+      padl += 0.5 * p->W * g, padr += 0.5 * p->W * g;
+      padt += 0.5 * p->H * g, padb += 0.5 * p->H * g;
+    }
+    int cap = p->rs.max_pad >= 0 ? p->rs.max_pad : (p->W > p->H ? p->W : p->H);
+    double pads[4] = {padl, padr, padt, padb};
+    p->cx = 0;
+    int clipped = 0;
+    for (int i = 0; i < 4; i++) {
+      double v = ceil(pads[i]);
+      if (v > cap) v = cap, clipped = 1;
+      p->pad[i] = (int)v;
+    }
+    p->Wb = p->W + p->pad[0] + p->pad[1];
+    p->Hb = p->H + p->pad[2] + p->pad[3];
+    p->cx = p->pad[0] + 0.5 * p->W - 0.5;
+    p->cy = p->pad[2] + 0.5 * p->H - 0.5;
+    if (clipped) {
+      char r[160];
+      snprintf(r, sizeof r, "padding capped at %d px per side (render.max_pad): casters further "
+               "outside the view do not shadow it", cap);
+      add_omitted(p, "padding beyond max_pad", r);
+    } else if (p->pad[0] + p->pad[1] + p->pad[2] + p->pad[3] == 0) {
+      add_omitted(p, "padding", "no light moves or spreads shadows across the view's edge");
+    }
+  }
+
+  /* volumes, channels, detail */
+  {
+    int coloured = 0, nvol = 0;
+    for (int k = 0; k < s->nobjects; k++) {
+      const ics_material *m = &s->materials[s->objects[k].material];
+      p->vol_bit[k] = -1;
+      if (!grey(m->transport)) coloured = 1;
+      if (m->volumetric && s->objects[k].closed) {
+        if (nvol == ICS_MAX_VOLUMES) {
+          if (msg)
+            snprintf(msg, msg_size, "more than %d objects with volumetric materials",
+                     ICS_MAX_VOLUMES);
+          st = ICS_ERR_SIZE;
+          goto fail;
+        }
+        p->vol_bit[k] = nvol++;
+      }
+      if (m->volumetric && m->detail.fn != ICS_DETAIL_NONE) {
+        double lo[3], hi[3];
+        ics_object_bounds(&s->objects[k], lo, hi);
+        ics_detail_prepare(&p->detail[k], &m->detail, lo, hi);
+        p->any_detail = 1;
+      }
+    }
+    p->nvol = nvol;
+    p->nch = coloured ? 3 : 1;
+  }
+
+  /* memory before the geometry pass */
+  size_t npx = (size_t)p->Wb * p->Hb, nimg = (size_t)p->W * p->H;
+  size_t buf_bytes = 2 * (size_t)p->nch * npx * sizeof(float);
+  size_t state_bytes = npx * (2 * sizeof(uint32_t) + (p->nvol ? sizeof(uint64_t) : 0));
+  size_t image_bytes = nimg * 4 * sizeof(float);
+  size_t tap_bytes = 0;
+  for (int k = 0; k < p->nlights; k++)
+    tap_bytes += (size_t)p->kernels[k].entries * (size_t)p->kernels[k].cap * sizeof(ics_tap2d);
+  p->backend_bytes = (size_t)p->nlights * buf_bytes + state_bytes + image_bytes + tap_bytes;
+  size_t offset_bytes = (npx + 1) * sizeof(uint32_t);
+  size_t mesh_bytes = 0, grid_bytes = 0;
+  for (int i = 0; i < s->nmeshes; i++) mesh_bytes += ics_mesh_bytes(s->meshes[i]);
+  for (int i = 0; i < s->nmaterials; i++)
+    if (s->materials[i].detail.fn == ICS_DETAIL_GRID)
+      grid_bytes += (size_t)s->materials[i].detail.size[0] * s->materials[i].detail.size[1] *
+                    s->materials[i].detail.size[2] * sizeof(float);
+  p->memory_bytes = p->backend_bytes + offset_bytes + mesh_bytes + grid_bytes;
+  if ((double)p->memory_bytes > p->rs.memory_limit_mib * 1048576.0) {
+    if (msg)
+      snprintf(msg, msg_size, "the plan needs at least %.1f MiB (%d x %d light buffers for %d "
+               "light(s), %d channel(s)), over render.memory_limit_mib = %g",
+               p->memory_bytes / 1048576.0, p->Wb, p->Hb, p->nlights, p->nch,
+               p->rs.memory_limit_mib);
+    st = ICS_ERR_SIZE;
+    goto fail;
+  }
+
+  double t0 = now_s();
+  st = ics_ldi_build(p, o.threads, msg, msg_size);
+  p->geometry_s = now_s() - t0;
+  if (st != ICS_OK) goto fail;
+  size_t ldi_bytes = offset_bytes + p->ldi.nfrag * sizeof(ics_fragment) +
+                     (p->ldi.inside0 ? npx * sizeof(uint64_t) : 0);
+  p->memory_bytes = p->backend_bytes + ldi_bytes + mesh_bytes + grid_bytes;
+  double work = (double)p->K * (double)npx * (p->nlights ? p->nlights : 1);
+  if (work > ICS_PLAN_MAX_WORK) {
+    if (msg)
+      snprintf(msg, msg_size, "%d slabs x %d x %d buffer pixels x %d light(s) = %.3g updates "
+               "exceed the work limit %.3g: increase render.slab_spacing or lower the resolution",
+               p->K, p->Wb, p->Hb, p->nlights, work, ICS_PLAN_MAX_WORK);
+    st = ICS_ERR_SIZE;
+    goto fail;
+  }
+
+  /* passes and omissions */
+  {
+    char d[192];
+    snprintf(d, sizeof d, "%d layer(s) max, %zu fragments, ray cast over %d x %d", p->ldi.max_layers,
+             p->ldi.nfrag, p->Wb, p->Hb);
+    add_pass(p, "layered_depth_image", ldi_bytes, -1, 0, d);
+    if (mesh_bytes) {
+      snprintf(d, sizeof d, "%d mesh(es)", s->nmeshes);
+      add_pass(p, "mesh_bvh", mesh_bytes, -1, 0, d);
+    } else {
+      add_omitted(p, "mesh_bvh", "no meshes");
+    }
+    for (int k = 0; k < p->nlights; k++) {
+      const ics_slab_kernel *sk = &p->kernels[k];
+      static const char *const modes[] = {"shift", "integer", "taps", "table"};
+      snprintf(d, sizeof d, "%s %d, %s: %s", ics_render_kernel_name(sk->run_member),
+               sk->run_samples, modes[sk->mode], sk->why);
+      size_t kb = buf_bytes + (size_t)sk->entries * (size_t)sk->cap * sizeof(ics_tap2d);
+      add_pass(p, sk->mode == ICS_SLAB_SHIFT ? "shift" : "convolution", kb, k, sk->taps, d);
+      if (sk->mode == ICS_SLAB_SHIFT) {
+        char nm[48];
+        snprintf(nm, sizeof nm, "convolution taps (light %d)", k);
+        add_omitted(p, nm, "zero variance: integer shifts instead");
+      }
+    }
+    if (p->nch == 1) add_omitted(p, "colour light buffers", "every transport colour is grey: one channel per light");
+    if (p->any_detail) {
+      snprintf(d, sizeof d, "detail functions of volumetric materials, one sample per slab piece");
+      add_pass(p, "detail", grid_bytes, -1, 0, d);
+    } else {
+      add_omitted(p, "detail", "no material has volumetric detail");
+    }
+    if (!p->nvol) add_omitted(p, "volume tracking", "no volumetric objects (surfaces only)");
+    snprintf(d, sizeof d, "front-to-back compositing into the RGBA image, per-pixel layer cursors");
+    add_pass(p, "shading", state_bytes + image_bytes, -1, 0, d);
+  }
+  *out = p;
+  return ICS_OK;
+fail:
+  ics_plan_destroy(p);
+  return st;
+}
+
+void ics_plan_destroy(ics_plan *p) {
+  if (!p) return;
+  if (p->kernels)
+    for (int k = 0; k < p->nlights; k++) ics_slab_kernel_release(&p->kernels[k]);
+  free(p->kernels);
+  free(p->vol_bit);
+  free(p->detail);
+  ics_ldi_release(&p->ldi);
+  free(p);
+}
+
+const ics_scene *ics_plan_scene(const ics_plan *p) { return p->scene; }
+int ics_plan_slabs(const ics_plan *p) { return p->K; }
+size_t ics_plan_memory_bytes(const ics_plan *p) { return p->memory_bytes; }
+int ics_plan_pass_count(const ics_plan *p) { return p->npasses; }
+const ics_plan_pass *ics_plan_pass_at(const ics_plan *p, int i) {
+  return i >= 0 && i < p->npasses ? &p->passes[i] : NULL;
+}
+int ics_plan_omitted_count(const ics_plan *p) { return p->nomitted; }
+const ics_plan_omitted *ics_plan_omitted_at(const ics_plan *p, int i) {
+  return i >= 0 && i < p->nomitted ? &p->omitted[i] : NULL;
+}
+void ics_plan_sizes(const ics_plan *p, int *w, int *h, int *bw, int *bh) {
+  if (w) *w = p->W;
+  if (h) *h = p->H;
+  if (bw) *bw = p->Wb;
+  if (bh) *bh = p->Hb;
+}
+double ics_plan_geometry_seconds(const ics_plan *p) { return p->geometry_s; }
+
+static void json_string(FILE *f, const char *s) {
+  fputc('"', f);
+  for (; *s; s++) {
+    unsigned char ch = (unsigned char)*s;
+    if (ch == '"' || ch == '\\')
+      fprintf(f, "\\%c", ch);
+    else if (ch < 0x20)
+      fprintf(f, "\\u%04x", ch);
+    else
+      fputc(ch, f);
+  }
+  fputc('"', f);
+}
+
+ics_status ics_plan_write_json(const ics_plan *p, FILE *f) {
+  fprintf(f, "{\n  \"scene\": ");
+  json_string(f, ics_scene_name(p->scene));
+  fprintf(f, ",\n  \"resolution\": [%d, %d],\n  \"light_buffer\": [%d, %d],\n", p->W, p->H, p->Wb,
+          p->Hb);
+  fprintf(f, "  \"padding\": {\"left\": %d, \"right\": %d, \"top\": %d, \"bottom\": %d},\n",
+          p->pad[0], p->pad[1], p->pad[2], p->pad[3]);
+  fprintf(f, "  \"slabs\": %d,\n  \"slab_spacing\": %.17g,\n  \"depth_range\": [%.17g, %.17g],\n",
+          p->K, p->e, p->z0, p->z0 + p->K * p->e);
+  fprintf(f, "  \"channels_per_light\": %d,\n  \"memory_bytes\": %zu,\n  \"passes\": [", p->nch,
+          p->memory_bytes);
+  for (int i = 0; i < p->npasses; i++) {
+    const ics_plan_pass *q = &p->passes[i];
+    fprintf(f, "%s\n    {\"name\": ", i ? "," : "");
+    json_string(f, q->name);
+    fprintf(f, ", \"bytes\": %zu", q->bytes);
+    if (q->light >= 0) {
+      const ics_slab_kernel *sk = &p->kernels[q->light];
+      static const char *const modes[] = {"shift", "integer", "taps", "table"};
+      fprintf(f, ", \"light\": %d, \"taps\": %d, \"kernel\": \"%s\", \"samples\": %d, "
+              "\"runs\": \"%s\", \"run_samples\": %d, \"mode\": \"%s\", \"compensate\": \"%s\", "
+              "\"mean_px\": [%.17g, %.17g], \"cov_px\": [%.17g, %.17g, %.17g]",
+              q->light, q->taps, ics_render_kernel_name(sk->member), sk->samples,
+              ics_render_kernel_name(sk->run_member), sk->run_samples, modes[sk->mode],
+              ics_render_comp_name(sk->comp), sk->mean_px[0], sk->mean_px[1], sk->cov_px[0],
+              sk->cov_px[1], sk->cov_px[2]);
+    }
+    fprintf(f, ", \"detail\": ");
+    json_string(f, q->detail);
+    fputc('}', f);
+  }
+  fprintf(f, "\n  ],\n  \"omitted\": [");
+  for (int i = 0; i < p->nomitted; i++) {
+    fprintf(f, "%s\n    {\"name\": ", i ? "," : "");
+    json_string(f, p->omitted[i].name);
+    fprintf(f, ", \"reason\": ");
+    json_string(f, p->omitted[i].reason);
+    fputc('}', f);
+  }
+  fprintf(f, "\n  ]\n}\n");
+  return ferror(f) ? ICS_ERR_IO : ICS_OK;
+}

@@ -1,0 +1,87 @@
+/* plan_internal.h — the plan behind the opaque ics_plan, as the backends read it: buffer
+ * geometry, the layered depth image, slabs, per-light kernels, per-object volume bits, detail
+ * evaluators. Written once by ics_plan_create, read-only afterwards (backends may render the same
+ * plan from several threads). */
+#ifndef ICS_RENDER_PLAN_INTERNAL_H
+#define ICS_RENDER_PLAN_INTERNAL_H
+
+#include <stdint.h>
+
+#include "detail.h"
+#include "icshadow/plan.h"
+#include "slab_kernel.h"
+
+#define ICS_MAX_VOLUMES 64 /* volumetric objects: one bit each in a per-pixel inside mask */
+#define ICS_FRAG_OBJ_BITS 12  /* object index */
+#define ICS_FRAG_BIAS_BITS 4  /* surface bias in slabs */
+#define ICS_FRAG_MAX_BIAS 15
+#define ICS_FRAG_SLAB_SHIFT (ICS_FRAG_OBJ_BITS + ICS_FRAG_BIAS_BITS)
+#define ICS_FRAG_MAX_SLABS (1 << (32 - ICS_FRAG_SLAB_SHIFT))
+
+/* One crossing of a buffer pixel's camera ray: depth and (object | bias << 12 | slab << 16). */
+typedef struct ics_fragment {
+  float z;
+  uint32_t code;
+} ics_fragment;
+
+static inline uint32_t ics_frag_code(int obj, int bias, int slab) {
+  return (uint32_t)obj | (uint32_t)bias << ICS_FRAG_OBJ_BITS | (uint32_t)slab << ICS_FRAG_SLAB_SHIFT;
+}
+static inline int ics_frag_obj(const ics_fragment *f) {
+  return (int)(f->code & ((1u << ICS_FRAG_OBJ_BITS) - 1));
+}
+static inline int ics_frag_bias(const ics_fragment *f) {
+  return (int)(f->code >> ICS_FRAG_OBJ_BITS & ((1u << ICS_FRAG_BIAS_BITS) - 1));
+}
+static inline int ics_frag_slab(const ics_fragment *f) { return (int)(f->code >> ICS_FRAG_SLAB_SHIFT); }
+
+typedef struct ics_ldi {
+  int w, h;            /* the buffer grid */
+  uint32_t *offset;    /* w h + 1: pixel p's fragments are frag[offset[p] .. offset[p + 1]) */
+  ics_fragment *frag;
+  uint64_t *inside0;   /* per pixel: volumes containing the ray's origin (NULL: none anywhere) */
+  int max_layers;
+  size_t nfrag;
+} ics_ldi;
+
+struct ics_plan {
+  const ics_scene *scene;
+  ics_render_settings rs; /* the settings in force (scene's or overridden) */
+  ics_camera cam;         /* the camera in force (resolution overridden) */
+  int W, H;               /* image */
+  int Wb, Hb;             /* light buffers = LDI grid */
+  int pad[4];             /* left, right, top, bottom */
+  double cx, cy;          /* principal point in buffer pixel-index coordinates */
+  double z0, e;           /* slab k covers [z0 + k e, z0 + (k + 1) e) */
+  int K;                  /* slabs */
+  double q_ref;           /* pixel size at the reference depth (orthographic: the pixel size) */
+  int nch;                /* channels per light buffer: 1 (grey transport) or 3 */
+  int nlights;
+  ics_slab_kernel *kernels; /* nlights */
+  int nvol;               /* volumetric objects */
+  int *vol_bit;           /* per object: its bit in the inside mask, or -1 */
+  int any_detail;
+  ics_detail_eval *detail; /* per object with a detail material (NULL otherwise) */
+  double light_path[ICS_SCENE_MAX_LIGHTS]; /* sqrt(1 + |mu_k|^2): light path per unit depth */
+  ics_ldi ldi;
+  double geometry_s;
+  int npasses, nomitted;
+  ics_plan_pass passes[ICS_SCENE_MAX_LIGHTS + 8];
+  ics_plan_omitted omitted[ICS_SCENE_MAX_LIGHTS + 8];
+  size_t memory_bytes;
+  size_t backend_bytes;   /* what a backend allocates per render (buffers, state, image) */
+};
+
+/* The camera ray of buffer pixel (bi, bj) (origin, direction with direction . forward = 1, so
+ * the ray parameter is the depth). */
+void ics_plan_ray(const ics_plan *p, int bi, int bj, double o[3], double d[3]);
+/* Pixel size (world units) at depth z. */
+double ics_plan_pixel_size(const ics_plan *p, double z);
+/* Depth of slab k's light plane (its middle). */
+double ics_plan_slab_depth(const ics_plan *p, int k);
+
+/* Builds the LDI over the plan's buffer grid (geometry pass; ldi.c). */
+ics_status ics_ldi_build(ics_plan *p, int threads, char *msg, size_t msg_size);
+void ics_ldi_release(ics_ldi *l);
+
+#endif

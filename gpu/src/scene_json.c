@@ -1,0 +1,787 @@
+/* scene_json.c — the scene-file reader (docs/scene-format.md): strict, every error names its
+ * JSON path ("scene.json: objects[1].radius: expected a number"), malformed JSON its line and
+ * column. Fences are expanded into boxes here; meshes are loaded (mesh.c); relative paths
+ * (lights_file, mesh and grid files) are relative to the scene file's folder. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geometry.h"
+#include "icshadow/lightsfile.h"
+#include "json_util.h"
+#include "lights_json.h"
+#include "mesh.h"
+#include "scene_internal.h"
+
+typedef struct {
+  ics_jctx j;
+  const char *name; /* the file, for messages */
+  const char *dir;  /* folder of relative paths (NULL: working directory) */
+  ics_status st;    /* status of the first error */
+  char *where;      /* "NAME: path" buffer */
+  size_t where_size;
+  ics_scene *s;
+  int obj_cap;
+} rctx;
+
+/* "NAME: " + printf(path) in the context's buffer (valid until the next call) */
+static const char *W(rctx *c, const char *fmt, ...) {
+  int n = snprintf(c->where, c->where_size, "%s: ", c->name);
+  va_list ap;
+  va_start(ap, fmt);
+  if (n >= 0 && (size_t)n < c->where_size) vsnprintf(c->where + n, c->where_size - (size_t)n, fmt, ap);
+  va_end(ap);
+  return c->where;
+}
+
+static int fail(rctx *c, ics_status st, const char *fmt, ...) {
+  if (c->j.msg && c->j.msg_size) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(c->j.msg, c->j.msg_size, fmt, ap);
+    va_end(ap);
+  }
+  c->st = st;
+  return -1;
+}
+
+/* the ics_j* readers report parse errors; keep the status ICS_ERR_PARSE for those */
+#define J(call) ((call) ? (c->st = ICS_ERR_PARSE, -1) : 0)
+
+static int positive(rctx *c, const char *where, json_t *v, double *out) {
+  if (J(ics_jnum(&c->j, where, v, out))) return -1;
+  if (!(*out > 0)) return fail(c, ICS_ERR_RANGE, "%s: must be > 0, got %.17g", where, *out);
+  return 0;
+}
+
+static int nonneg_vec(rctx *c, const char *where, json_t *v, size_t n, double *out,
+                      const char *what, double hi) {
+  if (J(ics_jvec(&c->j, where, v, n, out, what))) return -1;
+  for (size_t i = 0; i < n; i++)
+    if (out[i] < 0 || out[i] > hi)
+      return fail(c, ICS_ERR_RANGE, "%s: component %zu is %.17g (must be in [0, %g])", where, i,
+                  out[i], hi);
+  return 0;
+}
+
+static int nonzero_vec3(rctx *c, const char *where, json_t *v, double out[3]) {
+  if (J(ics_jvec(&c->j, where, v, 3, out, "x, y, z"))) return -1;
+  if (out[0] == 0 && out[1] == 0 && out[2] == 0)
+    return fail(c, ICS_ERR_RANGE, "%s: must not be the zero vector", where);
+  return 0;
+}
+
+static char *join_path(const char *dir, const char *path) {
+  if (!dir || path[0] == '/') return strdup(path);
+  size_t n = strlen(dir) + strlen(path) + 2;
+  char *p = malloc(n);
+  if (p) snprintf(p, n, "%s/%s", dir, path);
+  return p;
+}
+
+/* ---- camera ------------------------------------------------------------------------------ */
+static int read_camera(rctx *c, json_t *o) {
+  static const char *const known[] = {"projection", "eye", "target", "up", "height", "fov_deg",
+                                      "resolution"};
+  ics_camera *cam = &c->s->camera;
+  if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", W(c, "camera"));
+  if (J(ics_jkeys(&c->j, W(c, "camera"), o, known, 7))) return -1;
+  static const char *const proj[] = {"orthographic", "perspective"};
+  int p = 0;
+  json_t *x;
+  if ((x = json_object_get(o, "projection")) && J(ics_jenum(&c->j, W(c, "camera.projection"), x, proj, 2, &p)))
+    return -1;
+  cam->projection = p ? ICS_PROJ_PERSPECTIVE : ICS_PROJ_ORTHOGRAPHIC;
+  const char *req[] = {"eye", "target", "resolution"};
+  for (int i = 0; i < 3; i++)
+    if (!json_object_get(o, req[i]))
+      return fail(c, ICS_ERR_PARSE, "%s: missing \"%s\"", W(c, "camera"), req[i]);
+  if (J(ics_jvec(&c->j, W(c, "camera.eye"), json_object_get(o, "eye"), 3, cam->eye, "x, y, z")) ||
+      J(ics_jvec(&c->j, W(c, "camera.target"), json_object_get(o, "target"), 3, cam->target,
+                 "x, y, z")))
+    return -1;
+  cam->up[0] = 0, cam->up[1] = 1, cam->up[2] = 0;
+  if ((x = json_object_get(o, "up")) && J(ics_jvec(&c->j, W(c, "camera.up"), x, 3, cam->up, "x, y, z")))
+    return -1;
+  json_t *res = json_object_get(o, "resolution");
+  long long wh[2];
+  if (!json_is_array(res) || json_array_size(res) != 2)
+    return fail(c, ICS_ERR_PARSE, "%s: expected [W, H]", W(c, "camera.resolution"));
+  for (int i = 0; i < 2; i++)
+    if (J(ics_jint(&c->j, W(c, "camera.resolution[%d]", i), json_array_get(res, (size_t)i), 1,
+                   ICS_SCENE_MAX_RES, &wh[i])))
+      return -1;
+  cam->width = (int)wh[0];
+  cam->height_px = (int)wh[1];
+  json_t *h = json_object_get(o, "height"), *fov = json_object_get(o, "fov_deg");
+  if (cam->projection == ICS_PROJ_ORTHOGRAPHIC) {
+    if (fov)
+      return fail(c, ICS_ERR_PARSE, "%s: \"fov_deg\" is for perspective cameras (orthographic "
+                  "ones take \"height\")", W(c, "camera"));
+    if (!h) return fail(c, ICS_ERR_PARSE, "%s: an orthographic camera needs \"height\"", W(c, "camera"));
+    if (positive(c, W(c, "camera.height"), h, &cam->height)) return -1;
+  } else {
+    if (h)
+      return fail(c, ICS_ERR_PARSE, "%s: \"height\" is for orthographic cameras (perspective "
+                  "ones take \"fov_deg\")", W(c, "camera"));
+    if (!fov) return fail(c, ICS_ERR_PARSE, "%s: a perspective camera needs \"fov_deg\"", W(c, "camera"));
+    if (J(ics_jnum(&c->j, W(c, "camera.fov_deg"), fov, &cam->fov_deg))) return -1;
+    if (!(cam->fov_deg > 0 && cam->fov_deg < 170))
+      return fail(c, ICS_ERR_RANGE, "%s: %.17g is out of range (0, 170)", W(c, "camera.fov_deg"),
+                  cam->fov_deg);
+  }
+  char msg[256];
+  if (ics_camera_derive(cam, msg, sizeof msg) != ICS_OK)
+    return fail(c, ICS_ERR_RANGE, "%s: %s", c->name, msg);
+  return 0;
+}
+
+/* ---- render settings --------------------------------------------------------------------- */
+static int read_render(rctx *c, json_t *o) {
+  static const char *const known[] = {"slab_spacing", "d1", "kernel", "samples", "compensate",
+                                      "radii", "seed", "background", "max_pad",
+                                      "memory_limit_mib"};
+  ics_render_settings *r = &c->s->settings;
+  if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", W(c, "render"));
+  if (J(ics_jkeys(&c->j, W(c, "render"), o, known, 10))) return -1;
+  json_t *x;
+  if (!json_object_get(o, "slab_spacing"))
+    return fail(c, ICS_ERR_PARSE, "%s: missing \"slab_spacing\"", W(c, "render"));
+  if (!json_object_get(o, "d1")) return fail(c, ICS_ERR_PARSE, "%s: missing \"d1\"", W(c, "render"));
+  if (positive(c, W(c, "render.slab_spacing"), json_object_get(o, "slab_spacing"), &r->slab_spacing) ||
+      positive(c, W(c, "render.d1"), json_object_get(o, "d1"), &r->d1))
+    return -1;
+  static const char *const kn[] = {"ellipse", "poisson", "gauss", "tophat"};
+  int k = 0;
+  if ((x = json_object_get(o, "kernel")) && J(ics_jenum(&c->j, W(c, "render.kernel"), x, kn, 4, &k)))
+    return -1;
+  r->kernel = (ics_render_kernel)k;
+  static const int lo[] = {2, 3, 2, 2}, dflt[] = {2, 8, 19, 5};
+  r->samples = dflt[k];
+  if ((x = json_object_get(o, "samples"))) {
+    long long n;
+    if (J(ics_jint(&c->j, W(c, "render.samples"), x, lo[k], 64, &n))) return -1;
+    r->samples = (int)n;
+  }
+  static const char *const cn[] = {"expected", "integer", "nonneg", "signed", "none"};
+  int cm;
+  if ((x = json_object_get(o, "compensate"))) {
+    if (J(ics_jenum(&c->j, W(c, "render.compensate"), x, cn, 5, &cm))) return -1;
+    r->compensate = (ics_render_comp)(cm + 1);
+  }
+  static const char *const rn[] = {"exact", "lut"};
+  int rad = 0;
+  if ((x = json_object_get(o, "radii")) && J(ics_jenum(&c->j, W(c, "render.radii"), x, rn, 2, &rad)))
+    return -1;
+  r->lut_radii = rad;
+  if ((x = json_object_get(o, "seed"))) {
+    long long sd;
+    if (J(ics_jint(&c->j, W(c, "render.seed"), x, 0, INT64_MAX, &sd))) return -1;
+    r->seed = (uint64_t)sd;
+  }
+  if ((x = json_object_get(o, "background")) &&
+      nonneg_vec(c, W(c, "render.background"), x, 3, r->background, "r, g, b", INFINITY))
+    return -1;
+  if ((x = json_object_get(o, "max_pad"))) {
+    long long mp;
+    if (J(ics_jint(&c->j, W(c, "render.max_pad"), x, 0, ICS_SCENE_MAX_RES, &mp))) return -1;
+    r->max_pad = (int)mp;
+  }
+  if ((x = json_object_get(o, "memory_limit_mib")) &&
+      positive(c, W(c, "render.memory_limit_mib"), x, &r->memory_limit_mib))
+    return -1;
+  return 0;
+}
+
+/* ---- lights -------------------------------------------------------------------------------- */
+static int read_lights(rctx *c, json_t *arr, json_t *file) {
+  ics_scene *s = c->s;
+  if (arr && file)
+    return fail(c, ICS_ERR_PARSE, "%s: both \"lights\" and \"lights_file\": give one", c->name);
+  if (!arr && !file)
+    return fail(c, ICS_ERR_PARSE, "%s: needs \"lights\" or \"lights_file\"", c->name);
+  if (file) {
+    if (!json_is_string(file))
+      return fail(c, ICS_ERR_PARSE, "%s: expected a file name", W(c, "lights_file"));
+    char *path = join_path(c->dir, json_string_value(file));
+    if (!path) return fail(c, ICS_ERR_NOMEM, "out of memory");
+    ics_light *l;
+    int n;
+    ics_status st = ics_lightsfile_read(path, &l, &n, c->j.msg, c->j.msg_size);
+    free(path);
+    if (st != ICS_OK) {
+      /* the lights reader's message names the lights file; say which scene asked for it */
+      if (c->j.msg && c->j.msg_size) {
+        size_t len = strlen(c->j.msg);
+        snprintf(c->j.msg + len, c->j.msg_size - len, " (lights_file of %s)", c->name);
+      }
+      c->st = st;
+      return -1;
+    }
+    if (n > ICS_SCENE_MAX_LIGHTS) {
+      free(l);
+      return fail(c, ICS_ERR_SIZE, "%s: %d lights, at most %d in a scene", W(c, "lights_file"),
+                  n, ICS_SCENE_MAX_LIGHTS);
+    }
+    memcpy(s->lights, l, sizeof *l * (size_t)n);
+    s->nlights = n;
+    free(l);
+    return 0;
+  }
+  if (!json_is_array(arr)) return fail(c, ICS_ERR_PARSE, "%s: expected an array", W(c, "lights"));
+  size_t n = json_array_size(arr);
+  if (n == 0 || n > ICS_SCENE_MAX_LIGHTS)
+    return fail(c, ICS_ERR_SIZE, "%s: must hold 1..%d lights, not %zu", W(c, "lights"),
+                ICS_SCENE_MAX_LIGHTS, n);
+  for (size_t k = 0; k < n; k++)
+    if (ics_light_from_json(&c->j, W(c, "lights[%zu]", k), json_array_get(arr, k), &s->lights[k])) {
+      c->st = ICS_ERR_PARSE;
+      return -1;
+    }
+  s->nlights = (int)n;
+  return 0;
+}
+
+/* ---- materials ----------------------------------------------------------------------------- */
+static int read_grid(rctx *c, const char *where, json_t *o, ics_detail *d) {
+  json_t *f = json_object_get(o, "file"), *sz = json_object_get(o, "size");
+  if (!f || !sz) return fail(c, ICS_ERR_PARSE, "%s: a grid needs \"file\" and \"size\"", where);
+  if (!json_is_string(f)) return fail(c, ICS_ERR_PARSE, "%s.file: expected a file name", where);
+  if (!json_is_array(sz) || json_array_size(sz) != 3)
+    return fail(c, ICS_ERR_PARSE, "%s.size: expected [nx, ny, nz]", where);
+  size_t cells = 1;
+  for (int i = 0; i < 3; i++) {
+    json_t *v = json_array_get(sz, (size_t)i);
+    if (!json_is_integer(v) || json_integer_value(v) < 1 || json_integer_value(v) > 4096)
+      return fail(c, ICS_ERR_RANGE, "%s.size[%d]: expected an integer in 1..4096", where, i);
+    d->size[i] = (int)json_integer_value(v);
+    cells *= (size_t)d->size[i];
+  }
+  if (cells > ((size_t)1 << 28))
+    return fail(c, ICS_ERR_SIZE, "%s.size: %zu cells (at most 2^28)", where, cells);
+  char *path = join_path(c->dir, json_string_value(f));
+  if (!path) return fail(c, ICS_ERR_NOMEM, "out of memory");
+  FILE *fp = fopen(path, "rb");
+  if (!fp) {
+    int e = errno;
+    fail(c, ICS_ERR_IO, "%s.file: cannot open '%s': %s", where, path, strerror(e));
+    free(path);
+    return -1;
+  }
+  d->grid = malloc(sizeof *d->grid * cells);
+  if (!d->grid) {
+    fclose(fp);
+    free(path);
+    return fail(c, ICS_ERR_NOMEM, "%s: out of memory for %zu cells", where, cells);
+  }
+  size_t got = fread(d->grid, sizeof *d->grid, cells, fp);
+  int extra = fgetc(fp) != EOF;
+  fclose(fp);
+  if (got != cells || extra) {
+    fail(c, ICS_ERR_PARSE, "%s.file: '%s' %s (expected exactly %zu float32 values, %zu bytes)",
+         where, path, got != cells ? "is too short" : "is too long", cells, cells * 4);
+    free(path);
+    return -1;
+  }
+  free(path);
+  for (size_t i = 0; i < cells; i++)
+    if (!isfinite(d->grid[i]) || d->grid[i] < 0)
+      return fail(c, ICS_ERR_RANGE, "%s.file: value %zu is %g (must be finite and >= 0)", where,
+                  i, (double)d->grid[i]);
+  return 0;
+}
+
+static int read_detail(rctx *c, const char *mwhere, json_t *o, ics_detail *d) {
+  static const char *const known[] = {"function", "frequency", "octaves", "lacunarity", "gain",
+                                      "offset", "time", "seed", "scale", "bias", "file", "size"};
+  char where[4096 + 320];
+  snprintf(where, sizeof where, "%s.detail", mwhere);
+  if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", where);
+  if (J(ics_jkeys(&c->j, where, o, known, 12))) return -1;
+  static const char *const fn[] = {"perlin", "fbm", "ridged", "grid"};
+  int f;
+  json_t *x = json_object_get(o, "function");
+  if (!x) return fail(c, ICS_ERR_PARSE, "%s: missing \"function\"", where);
+  char w2[sizeof where + 32];
+  snprintf(w2, sizeof w2, "%s.function", where);
+  if (J(ics_jenum(&c->j, w2, x, fn, 4, &f))) return -1;
+  d->fn = (ics_detail_fn)(f + 1);
+  d->frequency = 1, d->octaves = 4, d->lacunarity = 2, d->gain = d->fn == ICS_DETAIL_RIDGED ? 2 : 0.5;
+  d->offset = 1, d->time = 0, d->seed = 0, d->scale = 1, d->bias = 0;
+  if (d->fn == ICS_DETAIL_GRID) {
+    static const char *const noise_only[] = {"frequency", "octaves", "lacunarity", "gain",
+                                             "offset", "time", "seed"};
+    for (int i = 0; i < 7; i++)
+      if (json_object_get(o, noise_only[i]))
+        return fail(c, ICS_ERR_PARSE, "%s: \"%s\" is for noise functions, not grids", where,
+                    noise_only[i]);
+  } else if (json_object_get(o, "file") || json_object_get(o, "size")) {
+    return fail(c, ICS_ERR_PARSE, "%s: \"file\" and \"size\" are for \"function\": \"grid\"", where);
+  }
+  struct {
+    const char *key;
+    double *v;
+    double lo, hi;
+  } nums[] = {{"frequency", &d->frequency, 1e-12, 1e12}, {"lacunarity", &d->lacunarity, 1e-6, 1e6},
+              {"gain", &d->gain, 0, 1e6},                {"offset", &d->offset, -1e12, 1e12},
+              {"time", &d->time, -1e12, 1e12},           {"scale", &d->scale, -1e12, 1e12},
+              {"bias", &d->bias, -1e12, 1e12}};
+  for (size_t i = 0; i < sizeof nums / sizeof *nums; i++) {
+    if (!(x = json_object_get(o, nums[i].key))) continue;
+    snprintf(w2, sizeof w2, "%s.%s", where, nums[i].key);
+    if (J(ics_jnum(&c->j, w2, x, nums[i].v))) return -1;
+    if (*nums[i].v < nums[i].lo || *nums[i].v > nums[i].hi)
+      return fail(c, ICS_ERR_RANGE, "%s: %.17g is out of range [%g, %g]", w2, *nums[i].v,
+                  nums[i].lo, nums[i].hi);
+  }
+  long long iv;
+  if ((x = json_object_get(o, "octaves"))) {
+    snprintf(w2, sizeof w2, "%s.octaves", where);
+    if (J(ics_jint(&c->j, w2, x, 1, 16, &iv))) return -1;
+    d->octaves = (int)iv;
+  }
+  if ((x = json_object_get(o, "seed"))) {
+    snprintf(w2, sizeof w2, "%s.seed", where);
+    if (J(ics_jint(&c->j, w2, x, 0, INT64_MAX, &iv))) return -1;
+    d->seed = (uint64_t)iv;
+  }
+  if (d->fn == ICS_DETAIL_GRID) return read_grid(c, where, o, d);
+  return 0;
+}
+
+static int read_material(rctx *c, const char *name, json_t *o, ics_material *m) {
+  static const char *const known[] = {"color", "opacity", "extinction", "transport", "detail",
+                                      "transfer"};
+  char where[4096 + 256];
+  snprintf(where, sizeof where, "%s: materials.%s", c->name, name);
+  char w2[sizeof where + 32];
+  if (strlen(name) >= sizeof m->name)
+    return fail(c, ICS_ERR_RANGE, "%s: material name longer than %zu bytes", where,
+                sizeof m->name - 1);
+  snprintf(m->name, sizeof m->name, "%s", name);
+  if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", where);
+  if (J(ics_jkeys(&c->j, where, o, known, 6))) return -1;
+  json_t *x;
+  m->color[0] = m->color[1] = m->color[2] = 1;
+  snprintf(w2, sizeof w2, "%s.color", where);
+  if ((x = json_object_get(o, "color")) && nonneg_vec(c, w2, x, 3, m->color, "r, g, b", INFINITY))
+    return -1;
+  snprintf(w2, sizeof w2, "%s.transport", where);
+  if ((x = json_object_get(o, "transport")) && nonneg_vec(c, w2, x, 3, m->transport, "r, g, b", 1))
+    return -1;
+  json_t *op = json_object_get(o, "opacity"), *ex = json_object_get(o, "extinction");
+  if (op && ex)
+    return fail(c, ICS_ERR_PARSE, "%s: both \"opacity\" (a surface) and \"extinction\" (a "
+                "volume): give one", where);
+  m->opacity = 1;
+  if (op) {
+    snprintf(w2, sizeof w2, "%s.opacity", where);
+    if (J(ics_jnum(&c->j, w2, op, &m->opacity))) return -1;
+    if (m->opacity < 0 || m->opacity > 1)
+      return fail(c, ICS_ERR_RANGE, "%s: %.17g is out of range [0, 1]", w2, m->opacity);
+  }
+  if (ex) {
+    m->volumetric = 1;
+    m->opacity = 0;
+    snprintf(w2, sizeof w2, "%s.extinction", where);
+    if (J(ics_jnum(&c->j, w2, ex, &m->extinction))) return -1;
+    if (m->extinction < 0)
+      return fail(c, ICS_ERR_RANGE, "%s: negative extinction %.17g (must be >= 0 per world unit)",
+                  w2, m->extinction);
+  }
+  json_t *det = json_object_get(o, "detail"), *tf = json_object_get(o, "transfer");
+  if (det && !ex)
+    return fail(c, ICS_ERR_PARSE, "%s: \"detail\" needs a volumetric material (\"extinction\")",
+                where);
+  if (tf && !det)
+    return fail(c, ICS_ERR_PARSE, "%s: \"transfer\" maps detail values: it needs \"detail\"", where);
+  if (det && read_detail(c, where, det, &m->detail)) return -1;
+  if (tf) {
+    snprintf(w2, sizeof w2, "%s.transfer", where);
+    if (!json_is_array(tf) || json_array_size(tf) < 2 || json_array_size(tf) > ICS_SCENE_MAX_TRANSFER)
+      return fail(c, ICS_ERR_PARSE, "%s: expected 2..%d rows [v, r, g, b, extinction_scale]", w2,
+                  ICS_SCENE_MAX_TRANSFER);
+    m->ntransfer = (int)json_array_size(tf);
+    for (int i = 0; i < m->ntransfer; i++) {
+      char w3[sizeof w2 + 32];
+      snprintf(w3, sizeof w3, "%s[%d]", w2, i);
+      if (J(ics_jvec(&c->j, w3, json_array_get(tf, (size_t)i), 5, m->transfer[i],
+                     "v, r, g, b, extinction_scale")))
+        return -1;
+      for (int k = 1; k < 5; k++)
+        if (m->transfer[i][k] < 0)
+          return fail(c, ICS_ERR_RANGE, "%s: colour and extinction scale must be >= 0", w3);
+      if (i > 0 && !(m->transfer[i][0] > m->transfer[i - 1][0]))
+        return fail(c, ICS_ERR_RANGE, "%s: values v must increase (%.17g after %.17g)", w3,
+                    m->transfer[i][0], m->transfer[i - 1][0]);
+    }
+  }
+  return 0;
+}
+
+static int read_materials(rctx *c, json_t *o) {
+  if (!o) return fail(c, ICS_ERR_PARSE, "%s: missing \"materials\"", c->name);
+  if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", W(c, "materials"));
+  size_t n = json_object_size(o);
+  if (n == 0 || n > ICS_SCENE_MAX_MATERIALS)
+    return fail(c, ICS_ERR_SIZE, "%s: must hold 1..%d materials, not %zu", W(c, "materials"),
+                ICS_SCENE_MAX_MATERIALS, n);
+  c->s->materials = calloc(n, sizeof *c->s->materials);
+  if (!c->s->materials) return fail(c, ICS_ERR_NOMEM, "out of memory");
+  const char *key;
+  json_t *val;
+  json_object_foreach(o, key, val) {
+    if (read_material(c, key, val, &c->s->materials[c->s->nmaterials])) return -1;
+    c->s->nmaterials++;
+  }
+  return 0;
+}
+
+/* ---- objects ------------------------------------------------------------------------------- */
+static ics_object *new_object(rctx *c) {
+  ics_scene *s = c->s;
+  if (s->nobjects == ICS_SCENE_MAX_OBJECTS) {
+    fail(c, ICS_ERR_SIZE, "%s: more than %d objects (after fences are expanded)", c->name,
+         ICS_SCENE_MAX_OBJECTS);
+    return NULL;
+  }
+  if (s->nobjects == c->obj_cap) {
+    int cap = c->obj_cap ? 2 * c->obj_cap : 16;
+    ics_object *p = realloc(s->objects, sizeof *p * (size_t)cap);
+    if (!p) {
+      fail(c, ICS_ERR_NOMEM, "out of memory");
+      return NULL;
+    }
+    s->objects = p;
+    c->obj_cap = cap;
+  }
+  ics_object *o = &s->objects[s->nobjects++];
+  memset(o, 0, sizeof *o);
+  return o;
+}
+
+static int has_only(rctx *c, const char *where, json_t *o, const char *shape,
+                    const char *const *keys, size_t n) {
+  const char *key;
+  json_t *val;
+  json_object_foreach(o, key, val) {
+    if (!strcmp(key, "shape") || !strcmp(key, "material")) continue;
+    size_t q = 0;
+    while (q < n && strcmp(key, keys[q])) q++;
+    if (q < n) continue;
+    char list[256];
+    size_t len = 0;
+    list[0] = 0;
+    for (size_t i = 0; i < n; i++)
+      len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "", keys[i]);
+    return fail(c, ICS_ERR_PARSE, "%s: unknown key \"%s\" for a %s (expected shape, material, %s)",
+                where, key, shape, list);
+  }
+  for (size_t i = 0; i < n; i++) (void)keys[i];
+  return 0;
+}
+
+static json_t *need(rctx *c, const char *where, json_t *o, const char *key) {
+  json_t *v = json_object_get(o, key);
+  if (!v) fail(c, ICS_ERR_PARSE, "%s: missing \"%s\"", where, key);
+  return v;
+}
+
+static int read_object(rctx *c, int idx, json_t *o) {
+  char where[4096 + 64];
+  snprintf(where, sizeof where, "%s: objects[%d]", c->name, idx);
+  char w2[sizeof where + 32];
+#define KEY(k) (snprintf(w2, sizeof w2, "%s.%s", where, k), w2)
+  if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", where);
+  json_t *sh = json_object_get(o, "shape"), *mat = json_object_get(o, "material");
+  if (!sh) return fail(c, ICS_ERR_PARSE, "%s: missing \"shape\"", where);
+  if (!mat) return fail(c, ICS_ERR_PARSE, "%s: missing \"material\"", where);
+  static const char *const shapes[] = {"rect", "disk", "box", "sphere", "torus", "mesh", "fence"};
+  int kind;
+  if (J(ics_jenum(&c->j, KEY("shape"), sh, shapes, 7, &kind))) return -1;
+  if (!json_is_string(mat)) return fail(c, ICS_ERR_PARSE, "%s: expected a material name", KEY("material"));
+  int mi = -1;
+  for (int i = 0; i < c->s->nmaterials; i++)
+    if (!strcmp(c->s->materials[i].name, json_string_value(mat))) mi = i;
+  if (mi < 0)
+    return fail(c, ICS_ERR_PARSE, "%s: no material named \"%s\" in \"materials\"", KEY("material"),
+                json_string_value(mat));
+  const ics_material *m = &c->s->materials[mi];
+  double center[3], v3[3], n3[3], rot[3] = {0, 0, 0};
+  json_t *x;
+  if (kind == 0 || kind == 1) { /* rect, disk: open surfaces */
+    static const char *const rk[] = {"center", "normal", "size", "up"};
+    static const char *const dk[] = {"center", "normal", "radius"};
+    if (has_only(c, where, o, shapes[kind], kind == 0 ? rk : dk, kind == 0 ? 4 : 3)) return -1;
+    if (m->volumetric)
+      return fail(c, ICS_ERR_PARSE, "%s: volumetric material \"%s\" on an open shape (%s): only "
+                  "closed shapes bound volumes", KEY("material"), m->name, shapes[kind]);
+    if (!(x = need(c, where, o, "center")) || J(ics_jvec(&c->j, KEY("center"), x, 3, center, "x, y, z")))
+      return -1;
+    if (!(x = need(c, where, o, "normal")) || nonzero_vec3(c, KEY("normal"), x, n3)) return -1;
+    ics_object *ob = new_object(c);
+    if (!ob) return -1;
+    ob->shape = kind == 0 ? ICS_SHAPE_RECT : ICS_SHAPE_DISK;
+    memcpy(ob->center, center, sizeof center);
+    ob->material = mi;
+    ob->source = idx;
+    if (kind == 0) {
+      double sz[2], up[3], *upp = NULL;
+      if (!(x = need(c, where, o, "size")) || J(ics_jvec(&c->j, KEY("size"), x, 2, sz, "sx, sy")))
+        return -1;
+      if (!(sz[0] > 0 && sz[1] > 0)) return fail(c, ICS_ERR_RANGE, "%s: sides must be > 0", KEY("size"));
+      if ((x = json_object_get(o, "up"))) {
+        if (nonzero_vec3(c, KEY("up"), x, up)) return -1;
+        upp = up;
+      }
+      ics_frame_from_normal(n3, upp, ob->ax);
+      ob->half[0] = sz[0] / 2, ob->half[1] = sz[1] / 2;
+    } else {
+      if (!(x = need(c, where, o, "radius")) || positive(c, KEY("radius"), x, &ob->half[0])) return -1;
+      ics_frame_from_normal(n3, NULL, ob->ax);
+    }
+    return 0;
+  }
+  if (kind == 2 || kind == 3 || kind == 4) { /* box, sphere, torus */
+    static const char *const bk[] = {"center", "size", "rotate_deg"};
+    static const char *const sk[] = {"center", "radius"};
+    static const char *const tk[] = {"center", "normal", "major_radius", "minor_radius"};
+    const char *const *keys = kind == 2 ? bk : kind == 3 ? sk : tk;
+    if (has_only(c, where, o, shapes[kind], keys, kind == 2 ? 3 : kind == 3 ? 2 : 4)) return -1;
+    if (!(x = need(c, where, o, "center")) || J(ics_jvec(&c->j, KEY("center"), x, 3, center, "x, y, z")))
+      return -1;
+    ics_object *ob = new_object(c);
+    if (!ob) return -1;
+    ob->shape = kind == 2 ? ICS_SHAPE_BOX : kind == 3 ? ICS_SHAPE_SPHERE : ICS_SHAPE_TORUS;
+    ob->closed = 1;
+    ob->material = mi;
+    ob->source = idx;
+    memcpy(ob->center, center, sizeof center);
+    double id[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    memcpy(ob->ax, id, sizeof id);
+    if (kind == 2) {
+      if (!(x = need(c, where, o, "size")) || J(ics_jvec(&c->j, KEY("size"), x, 3, v3, "sx, sy, sz")))
+        return -1;
+      if (!(v3[0] > 0 && v3[1] > 0 && v3[2] > 0))
+        return fail(c, ICS_ERR_RANGE, "%s: sides must be > 0", KEY("size"));
+      for (int i = 0; i < 3; i++) ob->half[i] = v3[i] / 2;
+      if ((x = json_object_get(o, "rotate_deg"))) {
+        if (J(ics_jvec(&c->j, KEY("rotate_deg"), x, 3, rot, "rx, ry, rz"))) return -1;
+        ics_frame_rotate(ob->ax, rot);
+      }
+    } else if (kind == 3) {
+      if (!(x = need(c, where, o, "radius")) || positive(c, KEY("radius"), x, &ob->half[0])) return -1;
+    } else {
+      if (!(x = need(c, where, o, "normal")) || nonzero_vec3(c, KEY("normal"), x, n3)) return -1;
+      if (!(x = need(c, where, o, "major_radius")) || positive(c, KEY("major_radius"), x, &ob->half[0]) ||
+          !(x = need(c, where, o, "minor_radius")) || positive(c, KEY("minor_radius"), x, &ob->half[1]))
+        return -1;
+      if (!(ob->half[1] < ob->half[0]))
+        return fail(c, ICS_ERR_RANGE, "%s: must be smaller than major_radius", KEY("minor_radius"));
+      ics_frame_from_normal(n3, NULL, ob->ax);
+    }
+    return 0;
+  }
+  if (kind == 6) { /* fence: poles and a bar, expanded into boxes */
+    static const char *const fk[] = {"center", "poles", "pole_size", "spacing", "bar_size",
+                                     "rotate_deg"};
+    if (has_only(c, where, o, "fence", fk, 6)) return -1;
+    double ps[3], bs[2], spacing;
+    long long np;
+    if (!(x = need(c, where, o, "center")) || J(ics_jvec(&c->j, KEY("center"), x, 3, center, "x, y, z")) ||
+        !(x = need(c, where, o, "poles")) || J(ics_jint(&c->j, KEY("poles"), x, 1, 1000, &np)) ||
+        !(x = need(c, where, o, "pole_size")) ||
+        J(ics_jvec(&c->j, KEY("pole_size"), x, 3, ps, "width, height, depth")) ||
+        !(x = need(c, where, o, "spacing")) || positive(c, KEY("spacing"), x, &spacing) ||
+        !(x = need(c, where, o, "bar_size")) ||
+        J(ics_jvec(&c->j, KEY("bar_size"), x, 2, bs, "height, depth")))
+      return -1;
+    if (!(ps[0] > 0 && ps[1] > 0 && ps[2] > 0))
+      return fail(c, ICS_ERR_RANGE, "%s: sizes must be > 0", KEY("pole_size"));
+    if (!(bs[0] > 0 && bs[1] > 0 && bs[0] < ps[1]))
+      return fail(c, ICS_ERR_RANGE, "%s: sizes must be > 0 and the bar lower than the poles",
+                  KEY("bar_size"));
+    if (!(spacing > ps[0]))
+      return fail(c, ICS_ERR_RANGE, "%s: must exceed the pole width (poles may not overlap)",
+                  KEY("spacing"));
+    if ((x = json_object_get(o, "rotate_deg")) &&
+        J(ics_jvec(&c->j, KEY("rotate_deg"), x, 3, rot, "rx, ry, rz")))
+      return -1;
+    double ax[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    ics_frame_rotate(ax, rot);
+    double span = (double)(np - 1) * spacing;
+    for (long long i = 0; i <= np; i++) {
+      /* i < np: a pole from the ground to the bar's underside; i == np: the bar */
+      double local[3], half[3];
+      if (i < np) {
+        local[0] = -span / 2 + (double)i * spacing, local[1] = (ps[1] - bs[0]) / 2, local[2] = 0;
+        half[0] = ps[0] / 2, half[1] = (ps[1] - bs[0]) / 2, half[2] = ps[2] / 2;
+      } else {
+        local[0] = 0, local[1] = ps[1] - bs[0] / 2, local[2] = 0;
+        half[0] = (span + ps[0]) / 2, half[1] = bs[0] / 2, half[2] = bs[1] / 2;
+      }
+      ics_object *ob = new_object(c);
+      if (!ob) return -1;
+      ob->shape = ICS_SHAPE_BOX;
+      ob->closed = 1;
+      ob->material = mi;
+      ob->source = idx;
+      memcpy(ob->ax, ax, sizeof ax);
+      memcpy(ob->half, half, sizeof half);
+      for (int w = 0; w < 3; w++)
+        ob->center[w] = center[w] + local[0] * ax[0][w] + local[1] * ax[1][w] + local[2] * ax[2][w];
+    }
+    return 0;
+  }
+  /* mesh */
+  static const char *const mk[] = {"file", "translate", "scale", "rotate_deg"};
+  if (has_only(c, where, o, "mesh", mk, 4)) return -1;
+  double tr[3] = {0, 0, 0}, sc[3] = {1, 1, 1};
+  if (!(x = need(c, where, o, "file"))) return -1;
+  if (!json_is_string(x)) return fail(c, ICS_ERR_PARSE, "%s: expected a file name", KEY("file"));
+  json_t *t;
+  if ((t = json_object_get(o, "translate")) && J(ics_jvec(&c->j, KEY("translate"), t, 3, tr, "x, y, z")))
+    return -1;
+  if ((t = json_object_get(o, "scale"))) {
+    if (json_is_number(t)) {
+      sc[0] = sc[1] = sc[2] = json_number_value(t);
+    } else if (J(ics_jvec(&c->j, KEY("scale"), t, 3, sc, "sx, sy, sz"))) {
+      return -1;
+    }
+    if (!(sc[0] != 0 && sc[1] != 0 && sc[2] != 0) || !isfinite(sc[0] * sc[1] * sc[2]))
+      return fail(c, ICS_ERR_RANGE, "%s: must be finite and non-zero", KEY("scale"));
+  }
+  if ((t = json_object_get(o, "rotate_deg")) && J(ics_jvec(&c->j, KEY("rotate_deg"), t, 3, rot, "rx, ry, rz")))
+    return -1;
+  char *path = join_path(c->dir, json_string_value(x));
+  if (!path) return fail(c, ICS_ERR_NOMEM, "out of memory");
+  ics_mesh *mesh;
+  char mmsg[4096 + 512];
+  ics_status st = ics_mesh_create_file(&mesh, path, sc, rot, tr, mmsg, sizeof mmsg);
+  free(path);
+  if (st != ICS_OK) return fail(c, st, "%s: %s", KEY("file"), mmsg);
+  ics_mesh **mp = realloc(c->s->meshes, sizeof *mp * (size_t)(c->s->nmeshes + 1));
+  if (!mp) {
+    ics_mesh_destroy(mesh);
+    return fail(c, ICS_ERR_NOMEM, "out of memory");
+  }
+  c->s->meshes = mp;
+  mp[c->s->nmeshes++] = mesh;
+  if (m->volumetric && !ics_mesh_closed(mesh))
+    return fail(c, ICS_ERR_PARSE, "%s: volumetric material \"%s\" on an open mesh (some edge is "
+                "not shared by exactly two triangles): only closed meshes bound volumes",
+                KEY("material"), m->name);
+  ics_object *ob = new_object(c);
+  if (!ob) return -1;
+  ob->shape = ICS_SHAPE_MESH;
+  ob->closed = ics_mesh_closed(mesh);
+  ob->material = mi;
+  ob->source = idx;
+  ob->mesh = mesh;
+  double id[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  memcpy(ob->ax, id, sizeof id);
+  return 0;
+#undef KEY
+}
+
+static int read_objects(rctx *c, json_t *arr) {
+  if (!arr) return fail(c, ICS_ERR_PARSE, "%s: missing \"objects\"", c->name);
+  if (!json_is_array(arr)) return fail(c, ICS_ERR_PARSE, "%s: expected an array", W(c, "objects"));
+  size_t n = json_array_size(arr);
+  if (n == 0) return fail(c, ICS_ERR_SIZE, "%s: no objects", W(c, "objects"));
+  if (n > ICS_SCENE_MAX_OBJECTS)
+    return fail(c, ICS_ERR_SIZE, "%s: %zu objects (at most %d)", W(c, "objects"), n,
+                ICS_SCENE_MAX_OBJECTS);
+  for (size_t i = 0; i < n; i++)
+    if (read_object(c, (int)i, json_array_get(arr, i))) return -1;
+  return 0;
+}
+
+static ics_status read_root(rctx *c, json_t *root) {
+  static const char *const known[] = {"camera", "render", "lights", "lights_file", "materials",
+                                      "objects"};
+  if (!json_is_object(root)) return fail(c, ICS_ERR_PARSE, "%s: expected a JSON object", c->name), c->st;
+  if (J(ics_jkeys(&c->j, c->name, root, known, 6))) return c->st;
+  json_t *cam = json_object_get(root, "camera"), *ren = json_object_get(root, "render");
+  if (!cam) return fail(c, ICS_ERR_PARSE, "%s: missing \"camera\"", c->name), c->st;
+  if (!ren) return fail(c, ICS_ERR_PARSE, "%s: missing \"render\"", c->name), c->st;
+  if (read_camera(c, cam) || read_render(c, ren) ||
+      read_lights(c, json_object_get(root, "lights"), json_object_get(root, "lights_file")) ||
+      read_materials(c, json_object_get(root, "materials")) ||
+      read_objects(c, json_object_get(root, "objects")))
+    return c->st;
+  return ICS_OK;
+}
+
+static ics_status create(ics_scene **out, json_t *root, const char *name, const char *dir,
+                         char *msg, size_t msg_size) {
+  rctx c = {{msg, msg_size}, name, dir, ICS_ERR_PARSE, NULL, strlen(name) + 256, NULL, 0};
+  c.where = malloc(c.where_size);
+  c.s = calloc(1, sizeof *c.s);
+  if (!c.where || !c.s) {
+    free(c.where);
+    free(c.s);
+    json_decref(root);
+    if (msg) snprintf(msg, msg_size, "out of memory");
+    return ICS_ERR_NOMEM;
+  }
+  snprintf(c.s->name, sizeof c.s->name, "%s", name);
+  ics_render_settings_defaults(&c.s->settings);
+  ics_status st = read_root(&c, root);
+  json_decref(root);
+  free(c.where);
+  if (st != ICS_OK) {
+    ics_scene_destroy(c.s);
+    return st;
+  }
+  *out = c.s;
+  return ICS_OK;
+}
+
+ics_status ics_scene_create_json(ics_scene **out, const char *json, const char *name,
+                                 const char *dir, char *msg, size_t msg_size) {
+  *out = NULL;
+  json_error_t je;
+  json_t *root = json_loads(json, JSON_REJECT_DUPLICATES, &je);
+  if (!root) {
+    if (msg) snprintf(msg, msg_size, "%s:%d:%d: %s", name, je.line, je.column, je.text);
+    return ICS_ERR_PARSE;
+  }
+  return create(out, root, name, dir, msg, msg_size);
+}
+
+ics_status ics_scene_create_file(ics_scene **out, const char *path, char *msg, size_t msg_size) {
+  *out = NULL;
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    int e = errno;
+    if (msg) snprintf(msg, msg_size, "%s: cannot open scene file: %s", path, strerror(e));
+    return ICS_ERR_IO;
+  }
+  json_error_t je;
+  json_t *root = json_loadf(f, JSON_REJECT_DUPLICATES, &je);
+  fclose(f);
+  if (!root) {
+    if (msg) snprintf(msg, msg_size, "%s:%d:%d: %s", path, je.line, je.column, je.text);
+    return ICS_ERR_PARSE;
+  }
+  /* the scene's folder resolves relative paths */
+  char *dir = strdup(path);
+  if (!dir) {
+    json_decref(root);
+    return ICS_ERR_NOMEM;
+  }
+  char *slash = strrchr(dir, '/');
+  if (slash)
+    *slash = 0;
+  else
+    strcpy(dir, ".");
+  if (slash == dir) strcpy(dir, "/");
+  ics_status st = create(out, root, path, dir, msg, msg_size);
+  free(dir);
+  return st;
+}

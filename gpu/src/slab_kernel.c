@@ -1,0 +1,407 @@
+/* slab_kernel.c — per-light slab kernels (see slab_kernel.h and docs/renderer.md).
+ *
+ * Class (Eq. 7/15): mean -e mu, covariance d1 e Sigma in world units, expressed along the
+ * buffer axes (x = camera right, y = down the rows: y components change sign), then divided by
+ * the pixel size q (mean) and q^2 (covariance).
+ * Members: ellipse = ics_ellipse_kernel with M = ICS_SLAB_TABLE_M points equidistant in arc
+ * length; tap j of entry k is point (k + j M / N) mod M (exact covariance averaged over the M
+ * entries: the trapezoid rule on a smooth periodic integrand). LUT radii rescale the points in
+ * the kernel's own frame by (a_lut / a, b_lut / b). Poisson = ics_kernel2d_taps with iteration k
+ * for entry k (exact covariance for each rotation). Gauss = the core's N x N grid. Top-hat = an
+ * N x N uniform grid z_k = -T + 2 T k / (N - 1), T = sqrt(3 (N - 1) / (N + 1)) (unit variance) in
+ * the whitened frame, mapped by Sigma^(1/2).
+ * Compensation: "expected" solves C' + D(C') = C by fixed-point iteration, D = the bilinear
+ * interpolation variance w f (1 - f) per axis averaged over the table (f = fraction of the tap
+ * offset including the mean); "integer" = the integer-shift schedule (shift = round(cum + m) -
+ * round(cum), round half up) with the exact integer taps of the core's NONNEG compensation
+ * centred on 0; "nonneg" / "signed" = the core's compensation of the per-slab taps. */
+#include "slab_kernel.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "icshadow/constants.h"
+#include "icshadow/conv.h"
+#include "icshadow/ellipse.h"
+#include "icshadow/light.h"
+#include "icshadow/lut.h"
+#include "icshadow/rng.h"
+
+/* Sigma^(1/2) of a PSD 2x2 matrix (cxx, cxy, cyy) as a row-major 2x2 */
+static int sqrtm(const double c[3], double S[4]) {
+  double vx, vy, ang;
+  if (ics_cov_to_eig(c, &vx, &vy, &ang) != ICS_OK) return -1;
+  double a = ang * (ICS_PI / 180), co = cos(a), si = sin(a);
+  double s1 = sqrt(vx), s2 = sqrt(vy);
+  S[0] = co * co * s1 + si * si * s2;
+  S[1] = S[2] = co * si * (s1 - s2);
+  S[3] = si * si * s1 + co * co * s2;
+  return 0;
+}
+
+/* the taps of the member that runs (sk->run_member, sk->run_samples) for class covariance cls
+ * (pixels^2), zero mean: entries * n into out */
+static ics_status member_taps(const ics_slab_kernel *sk, const double cls[3], ics_tap2d *out) {
+  int n = sk->run_samples, M = sk->entries;
+  ics_render_kernel member = sk->run_member;
+  if (member == ICS_RK_ELLIPSE) {
+    double vx, vy, ang;
+    if (ics_cov_to_eig(cls, &vx, &vy, &ang) != ICS_OK) return ICS_ERR_NEGATIVE_VARIANCE;
+    double *xy = malloc(sizeof *xy * 2 * (size_t)M);
+    if (!xy) return ICS_ERR_NOMEM;
+    ics_ellipse_shape sh;
+    ics_status st = ics_ellipse_kernel(vx, vy, ang, M, 0.0, &sh, xy);
+    if (st != ICS_OK) {
+      free(xy);
+      return st;
+    }
+    if (sh.nsamples == 1)
+      for (int i = 1; i < M; i++) xy[2 * i] = xy[2 * i + 1] = 0;
+    if (sk->lut_radii && sh.nsamples > 1) {
+      double al, bl;
+      ics_lut_ellipse_radii(vx, vy, &al, &bl);
+      double fx = sh.a > 0 ? al / sh.a : 1, fy = sh.b > 0 ? bl / sh.b : 1;
+      double a = sh.angle_deg * (ICS_PI / 180), co = cos(a), si = sin(a);
+      for (int i = 0; i < M; i++) {
+        double x = xy[2 * i], y = xy[2 * i + 1];
+        double u = co * x + si * y, v = -si * x + co * y; /* kernel frame */
+        u *= fx, v *= fy;
+        xy[2 * i] = co * u - si * v;
+        xy[2 * i + 1] = si * u + co * v;
+      }
+    }
+    for (int k = 0; k < M; k++)
+      for (int j = 0; j < n; j++) {
+        int p = (k + j * (M / n)) % M;
+        out[k * n + j] = (ics_tap2d){xy[2 * p], xy[2 * p + 1], 1.0 / n};
+      }
+    free(xy);
+    return ICS_OK;
+  }
+  if (member == ICS_RK_POISSON || member == ICS_RK_GAUSS) {
+    ics_class2d c = {{0, 0}, cls[0], cls[1], cls[2]};
+    ics_kernel2d kk;
+    ics_status st = ics_kernel2d_init(
+        &kk, member == ICS_RK_POISSON ? ICS_KERNEL_POISSON : ICS_KERNEL_GAUSS, &c);
+    if (st != ICS_OK) return st;
+    kk.nsamples = n;
+    kk.seed = sk->seed;
+    int per = member == ICS_RK_POISSON ? n : n * n;
+    for (int k = 0; k < M; k++) {
+      int got;
+      st = ics_kernel2d_taps(&kk, (uint64_t)k, out + (size_t)k * per, per, &got);
+      if (st != ICS_OK) return st;
+      for (int j = got; j < per; j++) out[k * per + j] = (ics_tap2d){0, 0, 0};
+    }
+    return ICS_OK;
+  }
+  /* tophat */
+  double S[4];
+  if (sqrtm(cls, S)) return ICS_ERR_NEGATIVE_VARIANCE;
+  double T = sqrt(3.0 * (n - 1) / (n + 1));
+  for (int a = 0; a < n; a++)
+    for (int b = 0; b < n; b++) {
+      double zx = -T + 2 * T * a / (n - 1), zy = -T + 2 * T * b / (n - 1);
+      out[a * n + b] = (ics_tap2d){S[0] * zx + S[1] * zy, S[2] * zx + S[3] * zy, 1.0 / (n * n)};
+    }
+  return ICS_OK;
+}
+
+static double frac_var(double x) {
+  double f = x - floor(x);
+  return f * (1 - f);
+}
+
+/* bilinear interpolation variance averaged over the table, per axis */
+static void interp_var(const ics_tap2d *t, int count, const double mean[2], double D[2]) {
+  double sx = 0, sy = 0, sw = 0;
+  for (int i = 0; i < count; i++) {
+    sx += t[i].w * frac_var(t[i].x + mean[0]);
+    sy += t[i].w * frac_var(t[i].y + mean[1]);
+    sw += t[i].w;
+  }
+  D[0] = sx / sw;
+  D[1] = sy / sw;
+}
+
+static int psd(const double c[3]) {
+  return c[0] > 0 && c[2] > 0 && c[0] * c[2] - c[1] * c[1] > 1e-12 * (c[0] + c[2]) * (c[0] + c[2]);
+}
+
+/* exact integer taps of covariance cov (pixels^2) about 0: the core's NONNEG compensation of a
+ * 5 x 5 Gaussian grid on an integer mean (always exact: residual 0 up to rounding) */
+static ics_status integer_taps(const double cov[3], ics_tap2d **out, int *n, double resid[3]) {
+  ics_class2d c = {{0, 0}, cov[0], cov[1], cov[2]};
+  ics_kernel2d kk;
+  ics_status st = ics_kernel2d_init(&kk, ICS_KERNEL_GAUSS, &c);
+  if (st != ICS_OK) return st;
+  kk.nsamples = 5;
+  ics_tap2d g[25];
+  int ng;
+  st = ics_kernel2d_taps(&kk, 0, g, 25, &ng);
+  if (st != ICS_OK) return st;
+  int cap = 4 * ng + 9;
+  ics_tap2d *t = malloc(sizeof *t * (size_t)cap);
+  if (!t) return ICS_ERR_NOMEM;
+  st = ics_taps2d_compensate(g, ng, ICS_COMP_NONNEG, t, cap, n, resid);
+  if (st != ICS_OK) {
+    free(t);
+    return st;
+  }
+  *out = t;
+  return ICS_OK;
+}
+
+static int member_stochastic(ics_render_kernel m) {
+  return m == ICS_RK_ELLIPSE || m == ICS_RK_POISSON;
+}
+
+static int member_taps_per_entry(ics_render_kernel m, int n) {
+  return m == ICS_RK_GAUSS || m == ICS_RK_TOPHAT ? n * n : n;
+}
+
+static ics_status set_integer(ics_slab_kernel *sk, const char *why) {
+  free(sk->base);
+  sk->base = NULL;
+  sk->mode = ICS_SLAB_INTEGER;
+  sk->entries = 1;
+  sk->integer = 1;
+  snprintf(sk->why, sizeof sk->why, "%s", why);
+  ics_status st = integer_taps(sk->cov_px, &sk->base, &sk->base_taps, sk->residual);
+  sk->taps = sk->base_taps;
+  sk->cap = 4 * 25 + 9; /* integer_taps' largest output (perspective recomputes per depth) */
+  memcpy(sk->class_px, sk->cov_px, sizeof sk->class_px);
+  return st;
+}
+
+static ics_status init(ics_slab_kernel *sk, const ics_scene *s, int k, double q, char *msg,
+                       size_t msg_size);
+
+/* mode TAPS with the core's per-slab compensation (sk->comp NONNEG or SIGNED); a deterministic
+ * member's compensated taps are the same every slab at the reference depth: computed once */
+static ics_status per_slab_compensation(ics_slab_kernel *sk, double q, char *msg, size_t msg_size,
+                                        int k) {
+  sk->mode = ICS_SLAB_TAPS;
+  sk->taps = sk->cap = 4 * sk->base_taps + 9; /* the compensated set's capacity */
+  if (member_stochastic(sk->run_member)) return ICS_OK;
+  ics_tap2d *fixed = malloc(sizeof *fixed * (size_t)sk->cap);
+  if (!fixed) return ICS_ERR_NOMEM;
+  double cum[2] = {0, 0};
+  int nfixed;
+  ics_status st = ics_slab_kernel_taps(sk, 0, q, cum, fixed, &nfixed); /* sk->fixed NULL: computes */
+  if (st != ICS_OK) {
+    free(fixed);
+    if (msg) snprintf(msg, msg_size, "light %d: compensation: %s", k, ics_status_str(st));
+    return st;
+  }
+  sk->fixed = fixed;
+  sk->nfixed = sk->taps = nfixed;
+  return ICS_OK;
+}
+
+ics_status ics_slab_kernel_init(ics_slab_kernel *sk, const ics_scene *s, int k, double q,
+                                char *msg, size_t msg_size) {
+  ics_status st = init(sk, s, k, q, msg, msg_size);
+  sk->out_entries = sk->mode == ICS_SLAB_TABLE ? sk->entries : 1;
+  return st;
+}
+
+static ics_status init(ics_slab_kernel *sk, const ics_scene *s, int k, double q, char *msg,
+                       size_t msg_size) {
+  memset(sk, 0, sizeof *sk);
+  const ics_render_settings *rs = ics_scene_settings(s);
+  const ics_light *L = ics_scene_light(s, k);
+  double e = rs->slab_spacing, d1 = rs->d1;
+  sk->light = k;
+  sk->member = sk->run_member = rs->kernel;
+  sk->samples = sk->run_samples = rs->samples;
+  sk->lut_radii = rs->lut_radii;
+  sk->seed = rs->seed;
+  sk->comp = rs->compensate;
+  if (sk->comp == ICS_RC_DEFAULT)
+    sk->comp = member_stochastic(sk->member) ? ICS_RC_EXPECTED : ICS_RC_NONNEG;
+  sk->mean_w[0] = -e * L->mean[0];
+  sk->mean_w[1] = e * L->mean[1];
+  sk->cov_w[0] = d1 * e * L->cov[0];
+  sk->cov_w[1] = -d1 * e * L->cov[1];
+  sk->cov_w[2] = d1 * e * L->cov[2];
+  sk->q_ref = q;
+  sk->mean_px[0] = sk->mean_w[0] / q;
+  sk->mean_px[1] = sk->mean_w[1] / q;
+  for (int i = 0; i < 3; i++) sk->cov_px[i] = sk->cov_w[i] / (q * q);
+  if (sk->cov_px[0] == 0 && sk->cov_px[1] == 0 && sk->cov_px[2] == 0) {
+    sk->mode = ICS_SLAB_SHIFT;
+    sk->entries = 1;
+    sk->taps = sk->cap = 1;
+    sk->integer = 1;
+    snprintf(sk->why, sizeof sk->why, "zero variance: one integer shift per slab, no taps");
+    return ICS_OK;
+  }
+  if (sk->comp == ICS_RC_INTEGER) {
+    ics_status st = set_integer(sk, "compensate = integer: integer shifts and exact integer taps");
+    if (st != ICS_OK && msg)
+      snprintf(msg, msg_size, "light %d: integer taps: %s", k, ics_status_str(st));
+    return st;
+  }
+  int stoch = member_stochastic(sk->member);
+  int per_slab = sk->comp == ICS_RC_NONNEG || sk->comp == ICS_RC_SIGNED;
+  sk->entries = stoch ? ICS_SLAB_TABLE_M : 1;
+  sk->base_taps = member_taps_per_entry(sk->member, sk->samples);
+  sk->taps = sk->cap = sk->base_taps;
+  sk->base = malloc(sizeof *sk->base * (size_t)sk->entries * (size_t)sk->base_taps);
+  if (!sk->base) return ICS_ERR_NOMEM;
+  double cls[3] = {sk->cov_px[0], sk->cov_px[1], sk->cov_px[2]};
+  ics_status st;
+  if (sk->comp == ICS_RC_EXPECTED) {
+    int ok = 0;
+    for (int it = 0; it < 60; it++) {
+      st = member_taps(sk, cls, sk->base);
+      if (st != ICS_OK) break;
+      double D[2];
+      interp_var(sk->base, sk->entries * sk->base_taps, sk->mean_px, D);
+      double nc[3] = {sk->cov_px[0] - D[0], sk->cov_px[1], sk->cov_px[2] - D[1]};
+      if (!psd(nc)) break;
+      double change = fabs(nc[0] - cls[0]) + fabs(nc[2] - cls[2]);
+      memcpy(cls, nc, sizeof cls);
+      if (change <= 1e-13 * (sk->cov_px[0] + sk->cov_px[2])) {
+        st = member_taps(sk, cls, sk->base);
+        ok = st == ICS_OK;
+        break;
+      }
+    }
+    if (!ok) {
+      /* too narrow for per-pixel random taps: a deterministic 3 x 3 Gaussian with signed
+       * compensation per slab keeps the exact mean and covariance */
+      char why[160];
+      snprintf(why, sizeof why, "per-slab variance (%.3g, %.3g) px^2 is too small for expected "
+               "compensation: 3 x 3 Gaussian taps with signed compensation instead",
+               sk->cov_px[0], sk->cov_px[2]);
+      sk->run_member = ICS_RK_GAUSS;
+      sk->run_samples = 3;
+      sk->comp = ICS_RC_SIGNED;
+      stoch = 0;
+      sk->entries = 1;
+      sk->base_taps = 9;
+      memcpy(cls, sk->cov_px, sizeof cls);
+      st = member_taps(sk, cls, sk->base);
+      if (st == ICS_OK) st = per_slab_compensation(sk, q, msg, msg_size, k);
+      snprintf(sk->why, sizeof sk->why, "%s", why);
+      return st;
+    }
+    memcpy(sk->class_px, cls, sizeof cls);
+    sk->mode = stoch ? ICS_SLAB_TABLE : ICS_SLAB_TAPS;
+    snprintf(sk->why, sizeof sk->why, "%s; class reduced by the expected interpolation "
+             "variance (%.3g, %.3g) px^2", stoch ? "random tap set per slab and pixel" :
+             "one tap set per slab", sk->cov_px[0] - cls[0], sk->cov_px[2] - cls[2]);
+    return ICS_OK;
+  }
+  st = member_taps(sk, cls, sk->base);
+  if (st != ICS_OK) {
+    if (msg) snprintf(msg, msg_size, "light %d: kernel taps: %s", k, ics_status_str(st));
+    return st;
+  }
+  memcpy(sk->class_px, cls, sizeof cls);
+  if (sk->comp == ICS_RC_NONE) {
+    sk->mode = stoch ? ICS_SLAB_TABLE : ICS_SLAB_TAPS;
+    snprintf(sk->why, sizeof sk->why, "%s; no compensation (interpolation adds its variance)",
+             stoch ? "random tap set per slab and pixel" : "one tap set per slab");
+    return ICS_OK;
+  }
+  (void)per_slab;
+  st = per_slab_compensation(sk, q, msg, msg_size, k);
+  snprintf(sk->why, sizeof sk->why, "%s; %s compensation of each slab's taps",
+           stoch ? "one random tap set per slab (compensation needs one set per slab)"
+                 : "one tap set per slab",
+           sk->comp == ICS_RC_NONNEG ? "non-negative" : "signed");
+  return st;
+}
+
+void ics_slab_kernel_release(ics_slab_kernel *sk) {
+  free(sk->base);
+  free(sk->fixed);
+  sk->base = sk->fixed = NULL;
+}
+
+static double round_half_up(double x) { return floor(x + 0.5); }
+
+ics_status ics_slab_kernel_taps(const ics_slab_kernel *sk, uint64_t slab, double q,
+                                double cum_mean[2], ics_tap2d *out, int *nout) {
+  double m[2] = {sk->mean_w[0] / q, sk->mean_w[1] / q};
+  if (sk->mode == ICS_SLAB_SHIFT || sk->mode == ICS_SLAB_INTEGER) {
+    double sh[2];
+    for (int i = 0; i < 2; i++) {
+      sh[i] = round_half_up(cum_mean[i] + m[i]) - round_half_up(cum_mean[i]);
+      cum_mean[i] += m[i];
+    }
+    if (sk->mode == ICS_SLAB_SHIFT) {
+      out[0] = (ics_tap2d){sh[0], sh[1], 1};
+      *nout = 1;
+      return ICS_OK;
+    }
+    if (q != sk->q_ref) {
+      /* perspective: the exact integer taps of this depth's covariance */
+      double cov[3] = {sk->cov_w[0] / (q * q), sk->cov_w[1] / (q * q), sk->cov_w[2] / (q * q)};
+      ics_tap2d *t;
+      int n;
+      double r[3];
+      ics_status st = integer_taps(cov, &t, &n, r);
+      if (st != ICS_OK) return st;
+      if (n > sk->cap) { /* cannot happen: integer_taps returns at most 4 * 25 + 9 */
+        free(t);
+        return ICS_ERR_SIZE;
+      }
+      for (int j = 0; j < n; j++) out[j] = (ics_tap2d){t[j].x + sh[0], t[j].y + sh[1], t[j].w};
+      free(t);
+      *nout = n;
+      return ICS_OK;
+    }
+    for (int j = 0; j < sk->base_taps; j++)
+      out[j] = (ics_tap2d){sk->base[j].x + sh[0], sk->base[j].y + sh[1], sk->base[j].w};
+    *nout = sk->base_taps;
+    return ICS_OK;
+  }
+  double scale = sk->q_ref / q;
+  if (sk->mode == ICS_SLAB_TABLE ||
+      (sk->mode == ICS_SLAB_TAPS && (sk->comp == ICS_RC_EXPECTED || sk->comp == ICS_RC_NONE))) {
+    int n = sk->entries * sk->base_taps;
+    for (int j = 0; j < n; j++)
+      out[j] = (ics_tap2d){sk->base[j].x * scale + m[0], sk->base[j].y * scale + m[1], sk->base[j].w};
+    *nout = n;
+    return ICS_OK;
+  }
+  /* nonneg / signed: this slab's tap set, compensated by the core (deterministic members at the
+   * reference depth: the same every slab, computed once in init) */
+  if (sk->fixed && q == sk->q_ref) {
+    memcpy(out, sk->fixed, sizeof *out * (size_t)sk->nfixed);
+    *nout = sk->nfixed;
+    return ICS_OK;
+  }
+  int entry = 0;
+  if (member_stochastic(sk->run_member))
+    entry = (int)ics_slab_entry(sk->seed, (uint32_t)sk->light, (uint32_t)slab, UINT32_MAX);
+  ics_tap2d *raw = malloc(sizeof *raw * (size_t)sk->base_taps);
+  if (!raw) return ICS_ERR_NOMEM;
+  const ics_tap2d *b = sk->base + (size_t)entry * (size_t)sk->base_taps;
+  for (int j = 0; j < sk->base_taps; j++)
+    raw[j] = (ics_tap2d){b[j].x * scale + m[0], b[j].y * scale + m[1], b[j].w};
+  ics_status st = ics_taps2d_compensate(raw, sk->base_taps,
+                                        sk->comp == ICS_RC_NONNEG ? ICS_COMP_NONNEG : ICS_COMP_SIGNED,
+                                        out, sk->cap, nout, NULL);
+  free(raw);
+  return st;
+}
+
+void ics_slab_entry_block(uint64_t seed, uint32_t light, uint32_t slab, uint32_t block,
+                          uint32_t out[4]) {
+  const uint32_t key[2] = {(uint32_t)seed, (uint32_t)(seed >> 32)};
+  const uint32_t ctr[4] = {block, slab, light, 0x736c6162u /* "slab" */};
+  ics_philox4x32_10(ctr, key, out);
+}
+
+uint32_t ics_slab_entry(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel) {
+  uint32_t w[4];
+  ics_slab_entry_block(seed, light, slab, pixel / 4, w);
+  return (uint32_t)(((uint64_t)w[pixel % 4] * ICS_SLAB_TABLE_M) >> 32);
+}

@@ -1,0 +1,76 @@
+/* slab_kernel.h — the convolution kernel of one light for each slab (docs/renderer.md "The
+ * light buffers"): the kernel class of Eq. 7/15 in buffer pixels, the member's taps, and the
+ * interpolation-variance compensation, resolved once per light (the plan) and evaluated per
+ * slab by the backends. The gather convention is the engine's (icshadow/conv.h): a slab step is
+ * I1(p) = sum_j w_j I0(c + s (p - c) - x_j) with taps (x_j, w_j) in pixels (mean included),
+ * s the perspective magnification (1 for orthographic cameras) and c the principal point. */
+#ifndef ICS_RENDER_SLAB_KERNEL_H
+#define ICS_RENDER_SLAB_KERNEL_H
+
+#include <stdint.h>
+
+#include "icshadow/kernel.h"
+#include "icshadow/scene.h"
+
+#define ICS_SLAB_TABLE_M 384 /* offsets / rotations of the per-pixel random members */
+
+typedef enum ics_slab_mode {
+  ICS_SLAB_SHIFT = 0, /* zero variance: one integer tap per slab (integer-shift schedule) */
+  ICS_SLAB_INTEGER,   /* integer-shift schedule + exact integer taps (no interpolation) */
+  ICS_SLAB_TAPS,      /* one tap set per slab, bilinear */
+  ICS_SLAB_TABLE      /* a table of tap sets, one chosen per pixel by the counter RNG */
+} ics_slab_mode;
+
+/* The resolved kernel of one light. */
+typedef struct ics_slab_kernel {
+  int light;
+  ics_render_kernel member;   /* what the scene asked for */
+  int samples;
+  ics_render_kernel run_member; /* what runs (a low-variance light falls back to a 3 x 3 Gaussian) */
+  int run_samples;
+  ics_render_comp comp;  /* what was asked (resolved default) */
+  ics_slab_mode mode;    /* what runs */
+  char why[160];         /* why this mode (plan JSON) */
+  int lut_radii;
+  uint64_t seed;
+  double mean_w[2];      /* per-slab mean in world units along the buffer axes (x right, y down) */
+  double cov_w[3];       /* per-slab covariance, world units^2, buffer axes */
+  double mean_px[2], cov_px[3]; /* the same in pixels at the reference depth (orthographic: all) */
+  double class_px[3];    /* the class handed to the taps after compensation (expected mode) */
+  double residual[3];    /* compensation residual, pixels^2 (achieved - target), per slab */
+  int taps;              /* taps per pixel (after discretisation for integer modes) */
+  int cap;               /* capacity per entry that ics_slab_kernel_taps needs */
+  int entries;           /* tap sets held in base (the stochastic members: ICS_SLAB_TABLE_M) */
+  int out_entries;       /* tap sets ics_slab_kernel_taps returns per slab (ICS_SLAB_TABLE:
+                            entries; the other modes: 1) */
+  int integer;           /* offsets are integers (no bilinear read) */
+  ics_tap2d *base;       /* TABLE / TAPS / INTEGER: entries * taps taps WITHOUT the mean (integer
+                            modes: centred exact integer taps) */
+  int base_taps;
+  double q_ref;          /* the pixel size the kernel was resolved for */
+  ics_tap2d *fixed;      /* deterministic nonneg / signed: the compensated taps at q_ref */
+  int nfixed;
+} ics_slab_kernel;
+
+/* Resolves light `k` of the scene for pixel size q (world units per pixel at the reference
+ * depth; for orthographic cameras the only one). ICS_OK, or an error with msg. */
+ics_status ics_slab_kernel_init(ics_slab_kernel *sk, const ics_scene *s, int k, double q,
+                                char *msg, size_t msg_size);
+void ics_slab_kernel_release(ics_slab_kernel *sk);
+
+/* Taps of slab `slab` for pixel size q (perspective: the slab's depth) into out (capacity
+ * sk->entries * sk->cap; *nout gets the count); the mean is included. cum_mean[2] carries the integer-shift
+ * schedule's cumulative mean between slabs (start at {0, 0}, update in place). */
+ics_status ics_slab_kernel_taps(const ics_slab_kernel *sk, uint64_t slab, double q,
+                                double cum_mean[2], ics_tap2d *out, int *nout);
+
+/* The per-pixel table index of buffer pixel `pixel` at slab `slab` for light `light`:
+ * Philox-4x32-10 under key (seed low, seed high), counter (pixel / 4, slab, light, 0x736c6162),
+ * word pixel % 4, scaled to [0, M): floor(word * M / 2^32). One definition for every backend. */
+uint32_t ics_slab_entry(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel);
+
+/* 32-bit words 4 pixels at a time (pixels 4 b .. 4 b + 3): for the backends' inner loops. */
+void ics_slab_entry_block(uint64_t seed, uint32_t light, uint32_t slab, uint32_t block,
+                          uint32_t out[4]);
+
+#endif
