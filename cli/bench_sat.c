@@ -104,7 +104,7 @@ static int chirp_csv(const char *path) {
   }
   for (int x = 0; x < W; x++) {
     double xc = x + 0.5, ph = f0 * xc + (f1 - f0) * xc * xc / (2.0 * W);
-    sig[x] = s0 * 0.5 * (1.0 + cos(2 * 3.14159265358979323846 * ph));
+    sig[x] = s0 * 0.5 * (1.0 + cos(2 * ICS_PI * ph));
     for (int y = y0; y < y1; y++) img[(size_t)y * W + x] = (float)sig[x];
   }
   ics_sat2d *sat = NULL;

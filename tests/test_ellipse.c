@@ -55,7 +55,7 @@ static double ulp_of(double x) {
 static void quad_var(double A, double B, int n, double *vx, double *vy) {
   ksum s = {0, 0}, sx = {0, 0}, sy = {0, 0};
   for (int i = 0; i < n; i++) {
-    double th = 6.283185307179586 * (i + 0.5) / n;
+    double th = 2 * ICS_PI * (i + 0.5) / n;
     double c = cos(th), sn = sin(th);
     double w = sqrt(A * A * sn * sn + B * B * c * c);
     kadd(&s, w);

@@ -13,8 +13,6 @@
 #include "icshadow.h"
 #include "testutil.h"
 
-static const double PI = 3.14159265358979323846;
-
 static double rel(double a, double b) { return fabs(a - b) / fmax(fabs(b), DBL_MIN); }
 
 /* moments of the pdf by the trapezoid rule on [lo, hi] (independent of the closed forms) */
@@ -209,7 +207,7 @@ static void test_tilt(void) {
             isnan(ics_tan_deg(NAN)) && isnan(ics_tan_deg(INFINITY)),
         "tilt at or beyond 90 degrees must be NaN");
   CHECK(!isnan(ics_tan_deg(nextafter(90.0, 0))), "largest angle below 90 is accepted");
-  CHECK(rel(ics_tilt_condition(45), PI / 2) < 4e-16, "cond(45) = %.17g", ics_tilt_condition(45));
+  CHECK(rel(ics_tilt_condition(45), ICS_PI / 2) < 4e-16, "cond(45) = %.17g", ics_tilt_condition(45));
   CHECK(ics_tilt_condition(0) == 1 && isnan(ics_tilt_condition(90)), "cond ends");
 
   /* precision near 90: eps = 2^-k degrees, reference cot(eps pi/180) by series */
@@ -218,8 +216,8 @@ static void test_tilt(void) {
          "rel.change per 1-ulp angle step\n");
   for (int k = 6; k <= 46; k += 4) {
     double eps = ldexp(1.0, -k), w = 90.0 - eps; /* exact */
-    double ref = cot_series(eps * (PI / 180.0));
-    double got = ics_tan_deg(w), naive = tan(w * (PI / 180.0));
+    double ref = cot_series(eps * (ICS_PI / 180.0));
+    double got = ics_tan_deg(w), naive = tan(w * (ICS_PI / 180.0));
     double e1 = rel(got, ref), e2 = rel(naive, ref);
     double step = rel(ics_tan_deg(nextafter(w, 0)), got);
     printf("  %-14.6g  %-12.4g %-20.3g %-28.3g %.3g\n", eps, ics_tilt_condition(w), e1, e2, step);

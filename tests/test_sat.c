@@ -23,7 +23,6 @@
 #include "icshadow.h"
 #include "testutil.h"
 
-#define PI_T 3.14159265358979323846
 static uint64_t rs = 0x1234567;
 static uint64_t rnd(void) { /* splitmix64 */
   uint64_t z = (rs += 0x9e3779b97f4a7c15ull);
@@ -690,7 +689,7 @@ static void test_ssat(void) {
       double r = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
       if (r > rmax) rmax = r;
     }
-    double dphi = 2 * PI_T / nphi, dth = PI_T / nth, dr = rmax / nr;
+    double dphi = 2 * ICS_PI / nphi, dth = ICS_PI / nth, dr = rmax / nr;
     double worst = 0, worst_abs = 0, worst_rel = 0;
     const int npatch = 16;
     const double step = 0.25;
@@ -704,9 +703,9 @@ static void test_ssat(void) {
       CHECK(ics_tau_bruteforce_point(&vol, lights[li], p, U, npatch, step, &tb) == ICS_OK, "bf");
       double th = ssat_theta(s, q), al = atan(U / R), st = sin(th);
       double Dcell = sqrt(dr * dr + (rmax * dth) * (rmax * dth) + (rmax * dphi) * (rmax * dphi));
-      double be = st > 0 && al / st < PI_T ? al / st : PI_T; /* phi half-width */
-      double th1 = th + al < PI_T ? th + al : PI_T;
-      double smax_box = th - al <= PI_T / 2 && th1 >= PI_T / 2 ? 1.0 : fmax(sin(th1), sin(th - al));
+      double be = st > 0 && al / st < ICS_PI ? al / st : ICS_PI; /* phi half-width */
+      double th1 = th + al < ICS_PI ? th + al : ICS_PI;
+      double smax_box = th - al <= ICS_PI / 2 && th1 >= ICS_PI / 2 ? 1.0 : fmax(sin(th1), sin(th - al));
       /* diameter of one brute-force ray cell at R: its largest theta extent (the cells are
        * uniform in cos(theta), so computed cell by cell) and its phi extent, at most
        * max sin(theta) over the box times 2 be / npatch */
@@ -769,7 +768,7 @@ static void test_ssat_pole(void) {
             double R = Rs[ri], al = atan(Us[ui] / R);
             /* polar angles: on the north pole, 0.3 al, al (edge of the cap), 3 al, the
              * equator, pi - 0.5 al, the south pole; azimuth 0.7 */
-            const double ths[8] = {0, 0.3 * al, al, 3 * al, PI_T / 2, PI_T - 0.5 * al, PI_T, 2 * al};
+            const double ths[8] = {0, 0.3 * al, al, 3 * al, ICS_PI / 2, ICS_PI - 0.5 * al, ICS_PI, 2 * al};
             double th = ths[di], ph = 0.7 + di;
             double d[3], p[3], t;
             for (int k = 0; k < 3; k++)
@@ -833,7 +832,7 @@ static void test_ssat_pole(void) {
       ics_ssat_frame(s, e[0], e[1], e[2], NULL);
       for (int di = 0; di < 6; di++) {
         const double R = 8, U = di < 3 ? 1.0 : 0.3, al = atan(U / R);
-        const double ths[6] = {0, 0.5 * al, 2 * al, 0, PI_T - 0.5 * al, PI_T};
+        const double ths[6] = {0, 0.5 * al, 2 * al, 0, ICS_PI - 0.5 * al, ICS_PI};
         double th = ths[di], ph = 1.3 * di, p[3], t, tb;
         for (int k = 0; k < 3; k++)
           p[k] = L[k] + R * (sin(th) * (cos(ph) * e[0][k] + sin(ph) * e[1][k]) + cos(th) * e[2][k]);

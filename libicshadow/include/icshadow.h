@@ -15,6 +15,7 @@
 #define ICS_VERSION_MINOR 1
 #define ICS_VERSION_PATCH 0
 
+#include "icshadow/constants.h"
 #include "icshadow/status.h"
 #include "icshadow/ellint.h"
 #include "icshadow/ellipse.h"

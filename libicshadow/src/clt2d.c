@@ -76,6 +76,7 @@
  * and against an independent adaptive Simpson quadrature of phi(x) Phi((b - r x)/sqrt(1 - r^2))
  * (max difference asserted 1e-12). */
 #include "icshadow/clt2d.h"
+#include "icshadow/constants.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -84,8 +85,6 @@
 
 #include "icshadow/ellipse.h"
 #include "icshadow/light.h"
-
-static const double PI = 3.14159265358979323846;
 
 /* 20-point Gauss-Legendre on [-1, 1]: the positive nodes and their weights (mpmath, 40 digits,
  * Newton on P_20; the weights sum to 2 to 1e-17) */
@@ -138,10 +137,10 @@ double ics_bvn_cdf(double a, double b, double r) {
     return v < 0 ? 0 : v;
   }
   if (r < 0.925) {
-    double v = ics_light_phi(a) * ics_light_phi(b) + plackett_int(a, b, 0, asin(r)) / (2 * PI);
+    double v = ics_light_phi(a) * ics_light_phi(b) + plackett_int(a, b, 0, asin(r)) / (2 * ICS_PI);
     return v < 0 ? 0 : (v > 1 ? 1 : v);
   }
-  double v = ics_light_phi(fmin(a, b)) - plackett_int(a, b, asin(r), PI / 2) / (2 * PI);
+  double v = ics_light_phi(fmin(a, b)) - plackett_int(a, b, asin(r), ICS_PI / 2) / (2 * ICS_PI);
   return v < 0 ? 0 : (v > 1 ? 1 : v);
 }
 
@@ -280,7 +279,7 @@ static ics_status check2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
   for (int k = 0; k < nsteps; k++)
     if (steps[k] < 1 || steps[k] > ICS_CLT2D_MAX_STEPS || (k && steps[k] <= steps[k - 1]))
       return ICS_ERR_RANGE;
-  double a = s->edge_angle_deg * (PI / 180);
+  double a = s->edge_angle_deg * (ICS_PI / 180);
   p->ux = cos(a);
   p->uy = sin(a);
   /* exact axes at multiples of 90 degrees */

@@ -66,6 +66,7 @@
  * 6.7e-16, arc spacing equal to 3.7e-16 of the perimeter, covariance averaged over the offset
  * exact to 8.9e-16 relative for ratios 1e+-12, lines and vary > varx. */
 #include "icshadow/ellipse.h"
+#include "icshadow/constants.h"
 
 #include <float.h>
 #include <math.h>
@@ -414,10 +415,9 @@ static double arc_from_major(double beta, double psi) {
  * f(psi) = arc - sigma is increasing and convex, so Newton from an upper bound converges
  * monotonically; upper bounds: arc >= 1 - cos psi and arc >= beta psi. */
 static double arc_invert(double beta, double sigma, double Q) {
-  const double half_pi = 1.5707963267948966;
   if (sigma <= 0.0) return 0.0;
-  if (sigma >= Q) return half_pi;
-  double psi = half_pi;
+  if (sigma >= Q) return ICS_PI / 2;
+  double psi = ICS_PI / 2;
   if (sigma < 2.0) psi = fmin(psi, 2.0 * asin(sqrt(0.5 * sigma))); /* 1 - cos psi = sigma */
   psi = fmin(psi, sigma / beta);
   double lo = 0.0, hi = psi; /* the root is in [lo, hi] */
@@ -446,7 +446,7 @@ void ics_sincos_deg(double deg, double *s, double *c) {
   double r = fmod(deg, 360.0); /* exact */
   double q = nearbyint(r / 90.0);
   double rem = r - 90.0 * q; /* exact: |rem| <= 45 */
-  double x = rem * (3.14159265358979323846 / 180.0);
+  double x = rem * (ICS_PI / 180.0);
   double sx = sin(x), cx = cos(x);
   int k = ((int)q % 4 + 4) % 4;
   switch (k) {
@@ -501,7 +501,7 @@ ics_status ics_ellipse_kernel(double varx, double vary, double angle_deg, int ns
    * the major-axis end (no cancellation, see arc_from_major) on the normalised ellipse. */
   double beta = s / (1.0 - s); /* minor / major */
   int segment = beta < 0x1p-500; /* beta^2 would underflow: a segment to O(beta^2) relative */
-  double Q = segment ? 1.0 : arc_from_major(beta, 1.5707963267948966);
+  double Q = segment ? 1.0 : arc_from_major(beta, ICS_PI / 2);
   double sa, ca;
   ics_sincos_deg(angle_deg, &sa, &ca);
   double u0 = offset - floor(offset);

@@ -13,6 +13,7 @@
 
 #include "icshadow/ellipse.h"
 #include "icshadow/kernel.h"
+#include "icshadow/constants.h"
 #include "icshadow/light.h"
 #include "icshadow/rng.h"
 #include "sym2.h"
@@ -579,7 +580,7 @@ ics_status ics_kernel2d_taps(const ics_kernel2d *k, uint64_t iter, ics_tap2d *ta
     double *p = malloc(sizeof(double) * 2 * (size_t)N);
     if (!p) return ICS_ERR_NOMEM;
     poisson_pattern(k->seed, N, p, p + N);
-    double th = 6.283185307179586476925286766559 * ics_rng_uniform_at(k->seed, iter, 0);
+    double th = 2 * ICS_PI * ics_rng_uniform_at(k->seed, iter, 0);
     double s = sin(th), co = cos(th);
     for (int j = 0; j < N; j++) {
       double u = co * p[j] - s * p[N + j], v = s * p[j] + co * p[N + j];

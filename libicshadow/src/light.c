@@ -16,6 +16,7 @@
  *   the cancellation-free form u = 2r / (p_i + sqrt(p_i^2 + 2 s r)); moments by 3-point
  *   Gauss-Legendre per segment (exact for the degree-4 integrands). */
 #include "icshadow/light.h"
+#include "icshadow/constants.h"
 
 #include <errno.h>
 #include <float.h>
@@ -26,8 +27,6 @@
 #include "degtrig.h"
 #include "sym2.h"
 
-static const double PI = 3.14159265358979323846;
-
 /* ---- tilt ---- */
 
 double ics_tan_deg(double w) {
@@ -35,18 +34,18 @@ double ics_tan_deg(double w) {
   double a = fabs(w);
   double t;
   if (a <= 45.0)
-    t = tan(a * (PI / 180.0));
+    t = tan(a * (ICS_PI / 180.0));
   else
-    t = 1.0 / tan((90.0 - a) * (PI / 180.0));
+    t = 1.0 / tan((90.0 - a) * (ICS_PI / 180.0));
   return w < 0 ? -t : t;
 }
 
 double ics_tilt_condition(double w) {
   if (!(fabs(w) < 90.0)) return NAN;
   if (w == 0) return 1.0;
-  double r = fabs(w) * (PI / 180.0);
+  double r = fabs(w) * (ICS_PI / 180.0);
   /* sin(2r) = 2 sin r cos r; near 90 degrees use cos r = sin((90 - w) deg) (exact argument) */
-  double c = fabs(w) <= 45.0 ? cos(r) : sin((90.0 - fabs(w)) * (PI / 180.0));
+  double c = fabs(w) <= 45.0 ? cos(r) : sin((90.0 - fabs(w)) * (ICS_PI / 180.0));
   return r / (sin(r) * c);
 }
 
@@ -85,7 +84,7 @@ void ics_sym2_eig(double a, double b, double d, double *l1, double *l2, double *
   *l1 = big;
   *l2 = (big > 0) ? (a * d - b * b) / big : m - r; /* no cancellation in the small one */
   if (alpha_deg) {
-    double ang = (r == 0) ? 0.0 : 0.5 * atan2(b, h) * (180.0 / PI);
+    double ang = (r == 0) ? 0.0 : 0.5 * atan2(b, h) * (180.0 / ICS_PI);
     if (ang <= -90.0) ang += 180.0;
     *alpha_deg = ang;
   }
@@ -422,14 +421,14 @@ double ics_light1d_pdf(const ics_light1d *l, double x) {
   switch (l->kind) {
   case ICS_LIGHT1D_GAUSS:
     if (l->b == 0) return x == l->a ? INFINITY : 0.0;
-    return exp_noerrno(-0.5 * (x - l->a) * (x - l->a) / l->b) / sqrt(2 * PI * l->b);
+    return exp_noerrno(-0.5 * (x - l->a) * (x - l->a) / l->b) / sqrt(2 * ICS_PI * l->b);
   case ICS_LIGHT1D_BOX:
     return (x >= l->a && x <= l->b) ? 1.0 / (l->b - l->a) : 0.0;
   case ICS_LIGHT1D_MIX: {
     double s = 0;
     for (int i = 0; i < l->n; i++)
       s += l->w[i] * exp_noerrno(-0.5 * (x - l->mu[i]) * (x - l->mu[i]) / l->var[i]) /
-           sqrt(2 * PI * l->var[i]);
+           sqrt(2 * ICS_PI * l->var[i]);
     return s;
   }
   case ICS_LIGHT1D_TAB: {

@@ -31,6 +31,7 @@
  * density (1 + r^2)^(-3/2) has infinite variance on the plane: the cut-off is what makes it
  * fittable at all). */
 #include "icshadow/lightfit.h"
+#include "icshadow/constants.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -38,7 +39,6 @@
 
 #include "icshadow/rng.h"
 
-#define PI 3.14159265358979323846
 #define ONE_MINUS_LN2 0.30685281944005469 /* 1 - ln 2 */
 
 typedef struct px {
@@ -59,12 +59,12 @@ typedef struct pixset {
 static double lum(const float *c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
 
 int ics_envmap_pixel(int width, int height, int i, int j, double *x, double *y, double *domega) {
-  double th = PI * (j + 0.5) / height, ph = 2 * PI * (i + 0.5) / width - PI;
+  double th = ICS_PI * (j + 0.5) / height, ph = 2 * ICS_PI * (i + 0.5) / width - ICS_PI;
   double st = sin(th), dz = st * cos(ph);
   if (!(dz > 0)) return -1;
   if (x) *x = tan(ph);
   if (y) *y = cos(th) / dz;
-  if (domega) *domega = (cos(PI * j / height) - cos(PI * (j + 1.0) / height)) * (2 * PI / width);
+  if (domega) *domega = (cos(ICS_PI * j / height) - cos(ICS_PI * (j + 1.0) / height)) * (2 * ICS_PI / width);
   return 0;
 }
 
@@ -72,8 +72,8 @@ int ics_envmap_pixel(int width, int height, int i, int j, double *x, double *y, 
  * positive and unimodal on the pixel when the pixel is behind the viewer, so its minimum is at
  * the corner farthest from the equator and from phi = 0 */
 static double pixel_min_dz(int w, int h, int i, int j) {
-  double t0 = PI * j / h, t1 = PI * (j + 1.0) / h;
-  double p0 = 2 * PI * i / w - PI, p1 = 2 * PI * (i + 1.0) / w - PI;
+  double t0 = ICS_PI * j / h, t1 = ICS_PI * (j + 1.0) / h;
+  double p0 = 2 * ICS_PI * i / w - ICS_PI, p1 = 2 * ICS_PI * (i + 1.0) / w - ICS_PI;
   double st = fmin(sin(t0), sin(t1)), cp = fmin(cos(p0), cos(p1));
   return st > 0 && cp > 0 ? st * cp : 0;
 }
@@ -87,15 +87,15 @@ int ics_envmap_pixel_kept(int width, int height, int i, int j, double max_angle_
   if (width < 1 || height < 1 || i < 0 || i >= width || j < 0 || j >= height ||
       !(max_angle_deg > 0 && max_angle_deg < 90))
     return 0;
-  double th = PI * (j + 0.5) / height, ph = 2 * PI * (i + 0.5) / width - PI;
+  double th = ICS_PI * (j + 0.5) / height, ph = 2 * ICS_PI * (i + 0.5) / width - ICS_PI;
   double dzc = sin(th) * cos(ph);
-  return dzc > 0 && pixel_kept(width, height, i, j, dzc, cos(max_angle_deg * PI / 180));
+  return dzc > 0 && pixel_kept(width, height, i, j, dzc, cos(max_angle_deg * ICS_PI / 180));
 }
 
 static void footprint(int w, int h, int i, int j, double s[3]) {
-  double th = PI * (j + 0.5) / h, ph = 2 * PI * (i + 0.5) / w - PI;
+  double th = ICS_PI * (j + 0.5) / h, ph = 2 * ICS_PI * (i + 0.5) / w - ICS_PI;
   double cp = cos(ph), sp = sin(ph), st = sin(th), ct = cos(th);
-  double dph = 2 * PI / w, dth = PI / h;
+  double dph = 2 * ICS_PI / w, dth = ICS_PI / h;
   double a = dph * dph / 12, b = dth * dth / 12;
   double j00 = 1 / (cp * cp), j10 = ct / st * sp / (cp * cp), j11 = -1 / (st * st * cp);
   s[0] = j00 * j00 * a;
@@ -124,16 +124,16 @@ static ics_status pixset_build(const ics_image *env, double max_angle_deg, pixse
     pixset_free(ps);
     return ICS_ERR_NOMEM;
   }
-  double cosmax = cos(max_angle_deg * PI / 180);
+  double cosmax = cos(max_angle_deg * ICS_PI / 180);
   for (int j = 0; j < h; j++) {
-    double dw = (cos(PI * j / h) - cos(PI * (j + 1.0) / h)) * (2 * PI / w);
-    double th = PI * (j + 0.5) / h, st = sin(th), ct = cos(th);
+    double dw = (cos(ICS_PI * j / h) - cos(ICS_PI * (j + 1.0) / h)) * (2 * ICS_PI / w);
+    double th = ICS_PI * (j + 0.5) / h, st = sin(th), ct = cos(th);
     for (int i = 0; i < w; i++) {
       const float *c = env->data + ((size_t)j * w + i) * env->channels;
       double m = lum(c) * dw;
       ps->grid[(size_t)j * w + i] = -1;
       ps->e_total += m;
-      double ph = 2 * PI * (i + 0.5) / w - PI, dz = st * cos(ph);
+      double ph = 2 * ICS_PI * (i + 0.5) / w - ICS_PI, dz = st * cos(ph);
       if (!(dz > 0)) {
         ps->e_front += m;
         continue;
@@ -179,7 +179,7 @@ static int gauss_make(gauss *g, double mx, double my, const double c[3]) {
   g->ixx = c[2] / det;
   g->ixy = -c[1] / det;
   g->iyy = c[0] / det;
-  g->lnorm = -log(2 * PI) - 0.5 * log(det);
+  g->lnorm = -log(2 * ICS_PI) - 0.5 * log(det);
   return 0;
 }
 
@@ -281,7 +281,7 @@ static ics_status errors(const pixset *ps, const ics_light *l, int n, ics_lightf
   double *diff = bins + G + 1, *hw = t + ps->n;
   double worst = 0;
   for (int o = 0; o < 4; o++) {
-    double ang = o * PI / 4, nx = cos(ang), ny = sin(ang), lo = INFINITY, hi = -INFINITY;
+    double ang = o * ICS_PI / 4, nx = cos(ang), ny = sin(ang), lo = INFINITY, hi = -INFINITY;
     for (int q = 0; q < ps->n; q++) {
       const px *p = &ps->p[q];
       t[q] = nx * p->x + ny * p->y;
@@ -661,7 +661,7 @@ ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
     double r2 = l->mean[0] * l->mean[0] + l->mean[1] * l->mean[1], nr = sqrt(1 + r2);
     double dx = l->mean[0] / nr, dy = l->mean[1] / nr, dz = 1 / nr;
     double th = acos(dy), ph = atan2(dx, dz);
-    int pi = (int)floor((ph + PI) / (2 * PI) * w), pj = (int)floor(th / PI * h);
+    int pi = (int)floor((ph + ICS_PI) / (2 * ICS_PI) * w), pj = (int)floor(th / ICS_PI * h);
     pi = pi < 0 ? 0 : pi >= w ? w - 1 : pi;
     pj = pj < 0 ? 0 : pj >= h ? h - 1 : pj;
     double fs[3], f1, f2, fa;
@@ -686,7 +686,7 @@ ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
       double acc[3] = {0, 0, 0};
       for (int b = 0; b < s; b++)
         for (int a = 0; a < s; a++) {
-          double th = PI * (j + (b + 0.5) / s) / h, ph = 2 * PI * (i + (a + 0.5) / s) / w - PI;
+          double th = ICS_PI * (j + (b + 0.5) / s) / h, ph = 2 * ICS_PI * (i + (a + 0.5) / s) / w - ICS_PI;
           double st = sin(th), dz = st * cos(ph);
           if (!(dz > 0)) continue;
           double x = st * sin(ph) / dz, y = cos(th) / dz, r2 = x * x + y * y;
@@ -706,7 +706,7 @@ ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
   for (int k = 0; k < n; k++) {
     if (delta[k] < 0) continue;
     int pi = delta[k] % w, pj = delta[k] / w;
-    double dw = (cos(PI * pj / h) - cos(PI * (pj + 1.0) / h)) * (2 * PI / w);
+    double dw = (cos(ICS_PI * pj / h) - cos(ICS_PI * (pj + 1.0) / h)) * (2 * ICS_PI / w);
     float *p = env->data + ((size_t)pj * w + pi) * env->channels;
     for (int c = 0; c < 3; c++) p[c] += (float)(lights[k].weight * lights[k].color[c] / dw);
   }

@@ -34,6 +34,7 @@
  * V. Sweep until no rotation happens (quadratic convergence, typically 6-10 sweeps for 64 x 64).
  * s_j = |a_j|, U_j = a_j / s_j, sorted descending. */
 #include "icshadow/minmax.h"
+#include "icshadow/constants.h"
 
 #include <float.h>
 #include <math.h>
@@ -42,8 +43,6 @@
 #include <string.h>
 
 #include "raybox.h"
-
-#define ICS_PI_ 3.14159265358979323846
 
 struct ics_minmax {
   size_t rows, d, P;
@@ -449,7 +448,7 @@ ics_status ics_epi_locate(const ics_epi_frame *f, const double p[3], double *alp
   double r[3] = {p[0] - f->eye[0], p[1] - f->eye[1], p[2] - f->eye[2]};
   double du = dot3(r, f->U), dv = dot3(r, f->V);
   double a = atan2(dv, du);
-  if (a < 0) a += 2 * ICS_PI_;
+  if (a < 0) a += 2 * ICS_PI;
   *alpha = a;
   *gamma = hypot(du, dv) / f->dgamma;
   *depth = f->depth_eye - dot3(r, f->L);
@@ -468,9 +467,9 @@ ics_status ics_epi_ray(const ics_epi_frame *f, const double dir[3], double *alph
   double n = sqrt(du * du + dv * dv + dl * dl);
   if (!(perp > 1e-12 * n)) return ICS_ERR_RANGE;
   double a = atan2(dv, du);
-  if (a < 0) a += 2 * ICS_PI_;
+  if (a < 0) a += 2 * ICS_PI;
   *alpha = a;
-  double x = a / (2 * ICS_PI_) * (double)f->rows; /* row r is centred at x = r + 1/2 */
+  double x = a / (2 * ICS_PI) * (double)f->rows; /* row r is centred at x = r + 1/2 */
   size_t r = (size_t)floor(x);
   if (r >= f->rows) r = f->rows - 1;
   *row = r;
@@ -483,8 +482,8 @@ ics_status ics_epi_ray_dir(const ics_epi_frame *f, size_t row, double beta, doub
   if (!f || !dir) return ICS_ERR_INVALID_ARG;
   if (isnan(beta)) return ICS_ERR_NAN;
   if (row >= f->rows) return ICS_ERR_RANGE;
-  if (!(beta > 0 && beta < ICS_PI_)) return ICS_ERR_RANGE;
-  double a = 2 * ICS_PI_ * ((double)row + 0.5) / (double)f->rows;
+  if (!(beta > 0 && beta < ICS_PI)) return ICS_ERR_RANGE;
+  double a = 2 * ICS_PI * ((double)row + 0.5) / (double)f->rows;
   double ca = cos(a), sa = sin(a), sb = sin(beta), cb = cos(beta);
   for (int i = 0; i < 3; i++) dir[i] = sb * (ca * f->U[i] + sa * f->V[i]) + cb * f->L[i];
   return ICS_OK;
@@ -498,7 +497,7 @@ ics_status ics_epi_rectify(const ics_epi_frame *f, const float *smap, size_t w, 
   if (isnan(u0) || isnan(v0) || isnan(texel)) return ICS_ERR_NAN;
   if (!(texel > 0) || isinf(texel) || isinf(u0) || isinf(v0)) return ICS_ERR_RANGE;
   for (size_t r = 0; r < f->rows; r++) {
-    double a = 2 * ICS_PI_ * ((double)r + 0.5) / (double)f->rows;
+    double a = 2 * ICS_PI * ((double)r + 0.5) / (double)f->rows;
     double ca = cos(a), sa = sin(a);
     for (size_t g = 0; g < f->d; g++) {
       double rad = (double)g * f->dgamma;

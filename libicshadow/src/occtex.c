@@ -34,6 +34,7 @@
  *   not occluded by that box; boxes are closed otherwise (zero-thickness plates occlude).
  * Special cases: NaN/Inf and bad sizes are rejected with a status before any work. */
 #include "icshadow/occtex.h"
+#include "icshadow/constants.h"
 #include "icshadow/sat.h"
 
 #include <math.h>
@@ -152,7 +153,7 @@ ics_status ics_occ_scene_make(ics_occ_scene_kind kind, int nboxes, uint64_t seed
     if (kind == ICS_OCC_SCENE_FOLIAGE) {
       sx = sy = sz = uni(&s, 0.06, 0.16);
       /* a canopy: denser toward its centre (x, y) and its middle depth */
-      double r = 0.85 * sqrt(uni(&s, 0, 1)), a = uni(&s, 0, 6.283185307179586);
+      double r = 0.85 * sqrt(uni(&s, 0, 1)), a = uni(&s, 0, 2 * ICS_PI);
       cx = r * cos(a);
       cy = r * sin(a);
       cz = 1.5 + 0.42 * (uni(&s, 0, 1) + uni(&s, 0, 1) - 1);

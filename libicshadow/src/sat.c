@@ -36,8 +36,7 @@
 #include <string.h>
 
 #include "icshadow/sat.h"
-
-#define PI_ 3.14159265358979323846
+#include "icshadow/constants.h"
 
 struct ics_sat3d {
   size_t w, h, d;
@@ -1088,7 +1087,7 @@ ics_status ics_ssat_build(ics_ssat **out, const ics_volume *vol, const double li
     free(s);
     return ICS_ERR_NOMEM;
   }
-  double dphi = 2 * PI_ / (double)n_phi, dth = PI_ / (double)n_theta, dr = rm / (double)n_r;
+  double dphi = 2 * ICS_PI / (double)n_phi, dth = ICS_PI / (double)n_theta, dr = rm / (double)n_r;
   for (size_t k = 0; k < n_r; k++) {
     double r = ((double)k + 0.5) * dr;
     for (size_t j = 0; j < n_theta; j++) {
@@ -1096,7 +1095,7 @@ ics_status ics_ssat_build(ics_ssat **out, const ics_volume *vol, const double li
       double omega = dphi * (cos((double)j * dth) - cos((double)(j + 1) * dth));
       double st_ = sin(th), ct = cos(th);
       for (size_t i = 0; i < n_phi; i++) {
-        double ph = -PI_ + ((double)i + 0.5) * dphi;
+        double ph = -ICS_PI + ((double)i + 0.5) * dphi;
         double c1 = r * st_ * cos(ph), c2 = r * st_ * sin(ph), c3 = r * ct, p[3];
         for (int a = 0; a < 3; a++)
           p[a] = light_pos[a] + c1 * s->e[0][a] + c2 * s->e[1][a] + c3 * s->e[2][a];
@@ -1145,10 +1144,10 @@ static ics_status ssat_box(const double light[3], const double e[3][3], const do
   double al = atan(U / r);
   double sn = sin(th);
   double be = sn > 0.0 ? al / sn : INFINITY; /* phi half-width */
-  *th0 = clampd(th - al, 0.0, PI_);
-  *th1 = clampd(th + al, 0.0, PI_);
-  if (!(be < PI_)) { /* clamped to pi: the whole ring (then th0 = 0 or th1 = pi) */
-    *ph0 = -PI_, *ph1 = PI_;
+  *th0 = clampd(th - al, 0.0, ICS_PI);
+  *th1 = clampd(th + al, 0.0, ICS_PI);
+  if (!(be < ICS_PI)) { /* clamped to pi: the whole ring (then th0 = 0 or th1 = pi) */
+    *ph0 = -ICS_PI, *ph1 = ICS_PI;
   } else {
     *ph0 = ph - be, *ph1 = ph + be;
   }
@@ -1176,7 +1175,7 @@ ics_status ics_ssat_tau(const ics_ssat *s, const double p[3], double half_width,
   double ph0, ph1, th0, th1, R;
   ics_status st = ssat_box(s->light, s->e, p, half_width, &ph0, &ph1, &th0, &th1, &R);
   if (st != ICS_OK) return st;
-  double dphi = 2 * PI_ / (double)s->n[0], dth = PI_ / (double)s->n[1];
+  double dphi = 2 * ICS_PI / (double)s->n[0], dth = ICS_PI / (double)s->n[1];
   double dr = s->r_max / (double)s->n[2];
   double lo[3] = {0, theta_coord(th0, s->n[1], dth), 0.0};
   double hi[3] = {0, theta_coord(th1, s->n[1], dth), R / dr};
@@ -1184,20 +1183,20 @@ ics_status ics_ssat_tau(const ics_ssat *s, const double p[3], double half_width,
   /* phi intervals inside [-pi, pi]: the whole ring, or one interval that wraps at most once */
   double seg[2][2];
   int ns = 0;
-  if (ph1 - ph0 >= 2 * PI_) {
-    seg[ns][0] = -PI_, seg[ns++][1] = PI_;
-  } else if (ph0 < -PI_) {
-    seg[ns][0] = ph0 + 2 * PI_, seg[ns++][1] = PI_;
-    seg[ns][0] = -PI_, seg[ns++][1] = ph1;
-  } else if (ph1 > PI_) {
-    seg[ns][0] = ph0, seg[ns++][1] = PI_;
-    seg[ns][0] = -PI_, seg[ns++][1] = ph1 - 2 * PI_;
+  if (ph1 - ph0 >= 2 * ICS_PI) {
+    seg[ns][0] = -ICS_PI, seg[ns++][1] = ICS_PI;
+  } else if (ph0 < -ICS_PI) {
+    seg[ns][0] = ph0 + 2 * ICS_PI, seg[ns++][1] = ICS_PI;
+    seg[ns][0] = -ICS_PI, seg[ns++][1] = ph1;
+  } else if (ph1 > ICS_PI) {
+    seg[ns][0] = ph0, seg[ns++][1] = ICS_PI;
+    seg[ns][0] = -ICS_PI, seg[ns++][1] = ph1 - 2 * ICS_PI;
   } else {
     seg[ns][0] = ph0, seg[ns++][1] = ph1;
   }
   for (int k = 0; k < ns; k++) {
-    lo[0] = (seg[k][0] + PI_) / dphi;
-    hi[0] = (seg[k][1] + PI_) / dphi;
+    lo[0] = (seg[k][0] + ICS_PI) / dphi;
+    hi[0] = (seg[k][1] + ICS_PI) / dphi;
     double v;
     st = ics_sat3d_integral(s->sat, lo, hi, &v);
     if (st != ICS_OK) return st;
