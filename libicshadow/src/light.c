@@ -76,20 +76,6 @@ ics_status ics_cov_from_eig(double varx, double vary, double alpha, double cov[3
   return ICS_OK;
 }
 
-void ics_sym2_eig(double a, double b, double d, double *l1, double *l2, double *alpha_deg) {
-  double h = 0.5 * (a - d);
-  double r = hypot(h, b);
-  double m = 0.5 * (a + d);
-  double big = m + r;
-  *l1 = big;
-  *l2 = (big > 0) ? (a * d - b * b) / big : m - r; /* no cancellation in the small one */
-  if (alpha_deg) {
-    double ang = (r == 0) ? 0.0 : 0.5 * atan2(b, h) * (180.0 / ICS_PI);
-    if (ang <= -90.0) ang += 180.0;
-    *alpha_deg = ang;
-  }
-}
-
 ics_status ics_cov_to_eig(const double cov[3], double *varx, double *vary, double *alpha) {
   ics_status s;
   for (int i = 0; i < 3; i++)

@@ -38,6 +38,7 @@
 #include <string.h>
 
 #include "icshadow/rng.h"
+#include "sym2.h"
 
 #define ONE_MINUS_LN2 0.30685281944005469 /* 1 - ln 2 */
 
@@ -196,14 +197,6 @@ static double light_at(const ics_light *l, const px *q) {
   return l->weight * exp(gauss_log(&g, q->x, q->y));
 }
 
-static void sym_eig(const double c[3], double *l1, double *l2, double *angle) {
-  double tr = c[0] + c[2], df = c[0] - c[2];
-  double r = hypot(0.5 * df, c[1]);
-  *l1 = 0.5 * tr + r;
-  *l2 = 0.5 * tr - r;
-  *angle = 0.5 * atan2(2 * c[1], df);
-}
-
 /* Sigma = C - F with the floor Sigma >= F: with F = L L^T (Cholesky), the eigenvalues of
  * L^-1 (C - F) L^-T are clamped to >= 1. sig = C - F unchanged when no clamp is needed. */
 static void cov_deconv(const double c[3], const double f[3], double sig[3]) {
@@ -218,21 +211,17 @@ static void cov_deconv(const double c[3], const double f[3], double sig[3]) {
   double m10 = (d[1] - l10 * m00) / l11, m11 = (d[2] - l10 * m01) / l11;
   double A0 = m00 / l00, A1 = (m01 - l10 * A0) / l11;
   double A2 = (m11 - l10 * (m10 / l00)) / l11;
-  double e1, e2, ang;
-  sym_eig((double[3]){A0, A1, A2}, &e1, &e2, &ang);
-  if (e2 >= 1) {
+  double e1, e2, ang, B[3];
+  ics_sym2_eig(A0, A1, A2, &e1, &e2, &ang);
+  /* no clamp needed, or NaN / overflowed moments (no floor to apply): C - F */
+  if (e2 >= 1 || ics_cov_from_eig(e1 < 1 ? 1 : e1, 1, ang, B) != ICS_OK) {
     memcpy(sig, d, 3 * sizeof *sig);
     return;
   }
-  if (e1 < 1) e1 = 1;
-  e2 = 1;
-  double co = cos(ang), sn = sin(ang);
-  double B0 = e1 * co * co + e2 * sn * sn, B1 = (e1 - e2) * co * sn;
-  double B2 = e1 * sn * sn + e2 * co * co;
   /* sig = L B L^T, L = [[l00, 0], [l10, l11]] */
-  sig[0] = l00 * l00 * B0;
-  sig[1] = l00 * (l10 * B0 + l11 * B1);
-  sig[2] = l10 * l10 * B0 + 2 * l10 * l11 * B1 + l11 * l11 * B2;
+  sig[0] = l00 * l00 * B[0];
+  sig[1] = l00 * (l10 * B[0] + l11 * B[1]);
+  sig[2] = l10 * l10 * B[0] + 2 * l10 * l11 * B[1] + l11 * l11 * B[2];
 }
 
 /* ---- errors ---- */
@@ -648,7 +637,7 @@ ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
     for (int c = 0; c < 3; c++) ok = ok && l->color[c] >= 0 && isfinite(l->color[c]);
     double l1 = 0, l2 = 0, ang = 0;
     if (ok) {
-      sym_eig(l->cov, &l1, &l2, &ang);
+      ics_sym2_eig(l->cov[0], l->cov[1], l->cov[2], &l1, &l2, &ang);
       double tr = l->cov[0] + l->cov[2];
       ok = l->cov[0] >= 0 && l->cov[2] >= 0 && l2 >= -1e-12 * tr;
     }
@@ -664,9 +653,9 @@ ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
     int pi = (int)floor((ph + ICS_PI) / (2 * ICS_PI) * w), pj = (int)floor(th / ICS_PI * h);
     pi = pi < 0 ? 0 : pi >= w ? w - 1 : pi;
     pj = pj < 0 ? 0 : pj >= h ? h - 1 : pj;
-    double fs[3], f1, f2, fa;
+    double fs[3], f1, f2;
     footprint(w, h, pi, pj, fs);
-    sym_eig(fs, &f1, &f2, &fa);
+    ics_sym2_eig(fs[0], fs[1], fs[2], &f1, &f2, NULL);
     double floor_var = 12 * f2 / 16; /* (smallest pixel extent / 4)^2 */
     delta[k] = -1;
     if (l1 < floor_var) {
@@ -674,10 +663,12 @@ ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
       continue;
     }
     if (l2 < floor_var) l2 = floor_var;
-    double c = cos(ang), sn = sin(ang), cv[3];
-    cv[0] = l1 * c * c + l2 * sn * sn;
-    cv[1] = (l1 - l2) * c * sn;
-    cv[2] = l1 * sn * sn + l2 * c * c;
+    double cv[3];
+    if (ics_cov_from_eig(l1, l2, ang, cv) != ICS_OK) { /* eigenvalues overflowed */
+      free(g);
+      free(delta);
+      return ICS_ERR_INVALID_ARG;
+    }
     gauss_make(&g[k], l->mean[0], l->mean[1], cv);
   }
   for (int j = 0; j < h; j++) {
