@@ -22,6 +22,7 @@
 #include "icshadow/lut.h"
 #include "icshadow/rng.h"
 #include "icshadow/kernel.h"
+#include "icshadow/normal.h"
 #include "icshadow/light.h"
 #include "icshadow/conv.h"
 #include "icshadow/shadow1d.h"

@@ -6,25 +6,23 @@
  *   45 < |w| < 90: 1 / tan((90 - |w|) * pi/180), where 90 - |w| is exact (Sterbenz), so the
  *   result keeps ~2 ulp up to the last representable angle below 90 (measured in
  *   tests/test_light.c against the series cot x = 1/x - x/3 - x^3/45 - 2x^5/945).
- * - Phi, Phi^c: 0.5 erfc(-z/sqrt2), 0.5 erfc(z/sqrt2) (libm erfc; relative error ~1e-15 in both
- *   tails). Phi^-1: Acklam's rational approximation (rel. error 1.15e-9) refined by one Halley
- *   step on erfc, giving ~1e-15 relative.
- * - Mixture cdf/sf: weighted sums of Phi/Phi^c (no cancellation). Mixture quantile: bracket
- *   [min_i q_i(p), max_i q_i(p)] of the component quantiles (L is between them), then
- *   safeguarded Newton (bisection fallback) to 4 ulp in x.
+ * - Gaussian and mixture cdf/sf: (weighted sums of) Phi/Phi^c of normal.c (no cancellation).
+ *   Mixture quantile: bracket [min_i q_i(p), max_i q_i(p)] of the component quantiles (L is
+ *   between them), then safeguarded Newton (bisection fallback) to 4 ulp in x.
  * - Table lights: piecewise-linear density; cdf is piecewise quadratic, its inverse is solved in
  *   the cancellation-free form u = 2r / (p_i + sqrt(p_i^2 + 2 s r)); moments by 3-point
  *   Gauss-Legendre per segment (exact for the degree-4 integrands). */
 #include "icshadow/light.h"
 #include "icshadow/constants.h"
+#include "icshadow/normal.h"
 
-#include <errno.h>
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "degtrig.h"
+#include "noerrno.h"
 #include "sym2.h"
 
 /* ---- tilt ---- */
@@ -149,104 +147,6 @@ ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, double mea
   mean_k[1] = -e * l->mean[1];
   for (int i = 0; i < 3; i++) cov_k[i] = d1 * e * l->cov[i];
   return ICS_OK;
-}
-
-/* ---- standard normal ---- */
-
-/* glibc's erfc and exp set errno = ERANGE when the result underflows or overflows (erfc(x) for
- * x >~ 26.5, i.e. Phi(z) for z < -37.5; exp in the pdf's tails and Phi^-1's Halley step for
- * subnormal p). The math functions never touch errno: these calls save and restore it (the
- * results are libm's, unchanged). */
-static double erfc_noerrno(double x) {
-  int saved = errno;
-  double r = erfc(x);
-  errno = saved;
-  return r;
-}
-
-static double exp_noerrno(double x) {
-  int saved = errno;
-  double r = exp(x);
-  errno = saved;
-  return r;
-}
-
-double ics_light_phi(double z) {
-  if (isnan(z)) return NAN;
-  return 0.5 * erfc_noerrno(-z * 0.70710678118654752440);
-}
-
-double ics_light_phic(double z) {
-  if (isnan(z)) return NAN;
-  return 0.5 * erfc_noerrno(z * 0.70710678118654752440);
-}
-
-/* Phi^-1 for subnormal p (x < -37.5), where Phi(x) itself is subnormal (the Halley residual keeps
- * too few bits) and exp(x^2/2) overflows: Newton on log Phi(x) = log p with the asymptotic series
- *   log Phi(x) = -x^2/2 - log(-x) - log(2 pi)/2 + log1p(S),  S = sum_{k=1..8} (-1)^k (2k-1)!! / x^{2k}
- * (truncation < 2e-19 relative for x^2 > 1369), d/dx log Phi = -x / (1 + S). Start: Acklam's tail
- * approximation (relative error ~1e-9), so two or three steps reach rounding. */
-static double phiinv_subnormal(double p) {
-  double lp = log(p); /* finite: p >= 2^-1074 */
-  double q = sqrt(-2 * lp);
-  double x = -(((((-7.784894002430293e-03 * q - 3.223964580411365e-01) * q - 2.400758277161838e+00) * q -
-                 2.549732539343734e+00) * q + 4.374664141464968e+00) * q + 2.938163982698783e+00) /
-             ((((7.784695709041462e-03 * q + 3.224671290700398e-01) * q + 2.445134137142996e+00) * q +
-               3.754408661907416e+00) * q + 1);
-  x = -fabs(x);
-  for (int it = 0; it < 6; it++) {
-    double r = 1 / (x * x), term = 1, s = 0;
-    for (int k = 1; k <= 8; k++) {
-      term *= -(2 * k - 1) * r;
-      s += term;
-    }
-    double g = (-0.5 * x * x - lp) - log(-x) - 0.91893853320467274178 + log1p(s);
-    double step = g * (1 + s) / (-x);
-    x -= step;
-    if (fabs(step) <= 1e-16 * fabs(x)) break;
-  }
-  return x;
-}
-
-double ics_light_phiinv(double p) {
-  if (isnan(p) || p < 0 || p > 1) return NAN;
-  if (p == 0) return -INFINITY;
-  if (p == 1) return INFINITY;
-  static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,
-                             -2.759285104469687e+02, 1.383577518672690e+02,
-                             -3.066479806614716e+01, 2.506628277459239e+00};
-  static const double b[] = {-5.447609879822406e+01, 1.615858368580409e+02,
-                             -1.556989798598866e+02, 6.680131188771972e+01,
-                             -1.328068155288572e+01};
-  static const double c[] = {-7.784894002430293e-03, -3.223964580411365e-01,
-                             -2.400758277161838e+00, -2.549732539343734e+00,
-                             4.374664141464968e+00,  2.938163982698783e+00};
-  static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01,
-                             2.445134137142996e+00, 3.754408661907416e+00};
-  double q, x;
-  double pl = p < 0.5 ? p : 1.0 - p; /* tail mass on the near side (exact for p >= 0.5 near 1) */
-  if (p < DBL_MIN) return phiinv_subnormal(p);
-  if (pl < 0.02425) {
-    q = sqrt(-2 * log(pl));
-    x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
-        ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
-    if (p >= 0.5) x = -x;
-  } else {
-    q = p - 0.5;
-    double r = q * q;
-    x = (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
-        (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1);
-  }
-  /* one Halley step; the residual is taken in the tail nearest to x to avoid cancellation */
-  double e, u;
-  if (x < 0) {
-    e = ics_light_phi(x) - p;
-  } else {
-    e = -(ics_light_phic(x) - (1.0 - p)); /* 1 - p exact for p >= 0.5 */
-  }
-  u = e * 2.50662827463100050242 * exp_noerrno(0.5 * x * x);
-  x = x - u / (1 + 0.5 * x * u);
-  return x;
 }
 
 /* ---- 1D lights ---- */
@@ -407,13 +307,13 @@ double ics_light1d_pdf(const ics_light1d *l, double x) {
   switch (l->kind) {
   case ICS_LIGHT1D_GAUSS:
     if (l->b == 0) return x == l->a ? INFINITY : 0.0;
-    return exp_noerrno(-0.5 * (x - l->a) * (x - l->a) / l->b) / sqrt(2 * ICS_PI * l->b);
+    return ics_exp_noerrno(-0.5 * (x - l->a) * (x - l->a) / l->b) / sqrt(2 * ICS_PI * l->b);
   case ICS_LIGHT1D_BOX:
     return (x >= l->a && x <= l->b) ? 1.0 / (l->b - l->a) : 0.0;
   case ICS_LIGHT1D_MIX: {
     double s = 0;
     for (int i = 0; i < l->n; i++)
-      s += l->w[i] * exp_noerrno(-0.5 * (x - l->mu[i]) * (x - l->mu[i]) / l->var[i]) /
+      s += l->w[i] * ics_exp_noerrno(-0.5 * (x - l->mu[i]) * (x - l->mu[i]) / l->var[i]) /
            sqrt(2 * ICS_PI * l->var[i]);
     return s;
   }
@@ -442,14 +342,14 @@ double ics_light1d_cdf(const ics_light1d *l, double x) {
   switch (l->kind) {
   case ICS_LIGHT1D_GAUSS:
     if (l->b == 0) return x >= l->a ? 1.0 : 0.0;
-    return ics_light_phi((x - l->a) / sqrt(l->b));
+    return ics_normal_cdf((x - l->a) / sqrt(l->b));
   case ICS_LIGHT1D_BOX:
     if (x <= l->a) return 0.0;
     if (x >= l->b) return 1.0;
     return (x - l->a) / (l->b - l->a);
   case ICS_LIGHT1D_MIX: {
     double s = 0;
-    for (int i = 0; i < l->n; i++) s += l->w[i] * ics_light_phi((x - l->mu[i]) / sqrt(l->var[i]));
+    for (int i = 0; i < l->n; i++) s += l->w[i] * ics_normal_cdf((x - l->mu[i]) / sqrt(l->var[i]));
     return s > 1.0 ? 1.0 : s;
   }
   case ICS_LIGHT1D_TAB:
@@ -463,7 +363,7 @@ double ics_light1d_sf(const ics_light1d *l, double x) {
   switch (l->kind) {
   case ICS_LIGHT1D_GAUSS:
     if (l->b == 0) return x >= l->a ? 0.0 : 1.0;
-    return ics_light_phic((x - l->a) / sqrt(l->b));
+    return ics_normal_sf((x - l->a) / sqrt(l->b));
   case ICS_LIGHT1D_BOX:
     if (x <= l->a) return 1.0;
     if (x >= l->b) return 0.0;
@@ -471,7 +371,7 @@ double ics_light1d_sf(const ics_light1d *l, double x) {
   case ICS_LIGHT1D_MIX: {
     double s = 0;
     for (int i = 0; i < l->n; i++)
-      s += l->w[i] * ics_light_phic((x - l->mu[i]) / sqrt(l->var[i]));
+      s += l->w[i] * ics_normal_sf((x - l->mu[i]) / sqrt(l->var[i]));
     return s > 1.0 ? 1.0 : s;
   }
   case ICS_LIGHT1D_TAB:
@@ -485,7 +385,7 @@ static double mix_solve(const ics_light1d *l, double t, int upper) {
   double lo = INFINITY, hi = -INFINITY;
   for (int i = 0; i < l->n; i++) {
     if (l->w[i] == 0) continue;
-    double z = upper ? -ics_light_phiinv(t) : ics_light_phiinv(t);
+    double z = upper ? -ics_normal_quantile(t) : ics_normal_quantile(t);
     double q = l->mu[i] + sqrt(l->var[i]) * z;
     if (q < lo) lo = q;
     if (q > hi) hi = q;
@@ -545,7 +445,7 @@ double ics_light1d_quantile(const ics_light1d *l, double p) {
   switch (l->kind) {
   case ICS_LIGHT1D_GAUSS:
     if (l->b == 0) return l->a;
-    return l->a + sqrt(l->b) * ics_light_phiinv(p);
+    return l->a + sqrt(l->b) * ics_normal_quantile(p);
   case ICS_LIGHT1D_BOX:
     return p <= 0.5 ? l->a + p * (l->b - l->a) : l->b - (1.0 - p) * (l->b - l->a);
   case ICS_LIGHT1D_MIX:
@@ -563,7 +463,7 @@ double ics_light1d_isf(const ics_light1d *l, double q) {
   switch (l->kind) {
   case ICS_LIGHT1D_GAUSS:
     if (l->b == 0) return l->a;
-    return l->a - sqrt(l->b) * ics_light_phiinv(q);
+    return l->a - sqrt(l->b) * ics_normal_quantile(q);
   case ICS_LIGHT1D_BOX:
     return q <= 0.5 ? l->b - q * (l->b - l->a) : l->a + (1.0 - q) * (l->b - l->a);
   case ICS_LIGHT1D_MIX:

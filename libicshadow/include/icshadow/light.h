@@ -126,12 +126,6 @@ double ics_light1d_var(const ics_light1d *l);
 /* Third standardised moment E[(X - mu)^3] / sigma^3 (0 for a point light). */
 double ics_light1d_skewness(const ics_light1d *l);
 
-/* Standard normal helpers used above: Phi(z), Phi(-z) without cancellation, Phi^-1(p)
- * (relative error ~1e-15 over (0, 1), subnormal p included; -inf / inf at 0 / 1, NaN outside). */
-double ics_light_phi(double z);
-double ics_light_phic(double z);
-double ics_light_phiinv(double p);
-
 #ifdef __cplusplus
 }
 #endif
