@@ -445,7 +445,7 @@ static void test_bad_input(void) {
         "beyond ICS_SSAT_MAX_DISTANCE diagonals");
   CHECK(ics_ssat_build(&s, &vol, inf3, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_RANGE, "inf");
   CHECK(ics_ssat_build(&s, &vol, nanv, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_NAN, "NaN light");
-  CHECK(ics_tau_bruteforce_point(&vol, far, p, 1.0, 2, 0.5, &v) == ICS_ERR_RANGE, "bf 1e300");
+  CHECK(ics_volume_tau_point(&vol, far, p, 1.0, 2, 0.5, &v) == ICS_ERR_RANGE, "bf 1e300");
   CHECK(ics_ssat_build(&s, &vol, lp, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_OK, "ssat");
   CHECK(ics_ssat_tau(s, lp, 1.0, &v) == ICS_ERR_RANGE, "p at the light");
   CHECK(ics_ssat_tau(s, far, 1.0, &v) == ICS_OK && isfinite(v), "p at 1e300 (valid: whole ray)");
@@ -560,8 +560,7 @@ static void test_csat_rotated(void) {
       double U = (k % 4) * 2.0; /* 0, 2, 4, 6 */
       double tc, tb;
       CHECK(ics_csat_tau(c, ICS_CSAT_PLUS_W, p, U, &tc) == ICS_OK, "csat tau");
-      CHECK(ics_tau_bruteforce_directional(&vol, ru, rv, rw, p, U, npatch, step, &tb) == ICS_OK,
-            "bf");
+      CHECK(ics_volume_tau_directional(&vol, ru, rv, rw, p, U, npatch, step, &tb) == ICS_OK, "bf");
       /* first-order bound (docs/sat.md): CSAT resampling sqrt(3) h / 2, the U = 0 patch of
        * half-width h / 2 (h / sqrt(2)), brute-force midpoint cells of the patch grid x step */
       double du = U > 0 ? 2 * U / npatch : 0;
@@ -700,7 +699,7 @@ static void test_ssat(void) {
       if (R < 6) continue;
       double ts, tb;
       CHECK(ics_ssat_tau(s, p, U, &ts) == ICS_OK, "ssat tau");
-      CHECK(ics_tau_bruteforce_point(&vol, lights[li], p, U, npatch, step, &tb) == ICS_OK, "bf");
+      CHECK(ics_volume_tau_point(&vol, lights[li], p, U, npatch, step, &tb) == ICS_OK, "bf");
       double th = ssat_theta(s, q), al = atan(U / R), st = sin(th);
       double Dcell = sqrt(dr * dr + (rmax * dth) * (rmax * dth) + (rmax * dphi) * (rmax * dphi));
       double be = st > 0 && al / st < ICS_PI ? al / st : ICS_PI; /* phi half-width */
@@ -793,8 +792,7 @@ static void test_ssat_pole(void) {
     double tb[3][2];
     for (int pi = 0; pi < 3; pi++)
       for (int ui = 0; ui < 2; ui++)
-        CHECK(ics_tau_bruteforce_point(&vol, L, pts[pi], Us[ui], 32, step, &tb[pi][ui]) == ICS_OK,
-              "bf");
+        CHECK(ics_volume_tau_point(&vol, L, pts[pi], Us[ui], 32, step, &tb[pi][ui]) == ICS_OK, "bf");
     for (int gi = 0; gi < 3; gi++) {
       ics_ssat *s = NULL;
       CHECK(ics_ssat_build(&s, &vol, L, grids[gi][0], grids[gi][1], grids[gi][2], ICS_SAT_DOUBLE) ==
@@ -837,7 +835,7 @@ static void test_ssat_pole(void) {
         for (int k = 0; k < 3; k++)
           p[k] = L[k] + R * (sin(th) * (cos(ph) * e[0][k] + sin(ph) * e[1][k]) + cos(th) * e[2][k]);
         CHECK(ics_ssat_tau(s, p, U, &t) == ICS_OK, "tau");
-        CHECK(ics_tau_bruteforce_point(&vb, L, p, U, 24, 0.05, &tb) == ICS_OK, "bf");
+        CHECK(ics_volume_tau_point(&vb, L, p, U, 24, 0.05, &tb) == ICS_OK, "bf");
         if (fabs(t - tb) > err[gi]) err[gi] = fabs(t - tb);
         if (gi == 2)
           CHECK(fabs(t - tb) <= 0.05 * tb + 0.002, "pole point %d: ssat %.6g bf %.6g", di, t, tb);
