@@ -21,6 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "check_finite.h"
 #include "degtrig.h"
 #include "noerrno.h"
 #include "sym2.h"
@@ -49,14 +50,8 @@ double ics_tilt_condition(double w) {
 
 /* ---- 2D lights ---- */
 
-static ics_status check_finite(double v) {
-  if (isnan(v)) return ICS_ERR_NAN;
-  if (isinf(v)) return ICS_ERR_INFINITE;
-  return ICS_OK;
-}
-
 static ics_status check_var(double v) {
-  ics_status s = check_finite(v);
+  ics_status s = ics_check_finite(v);
   if (s != ICS_OK) return s;
   return v < 0 ? ICS_ERR_NEGATIVE_VARIANCE : ICS_OK;
 }
@@ -64,7 +59,7 @@ static ics_status check_var(double v) {
 ics_status ics_cov_from_eig(double varx, double vary, double alpha, double cov[3]) {
   ics_status s;
   if ((s = check_var(varx)) != ICS_OK || (s = check_var(vary)) != ICS_OK ||
-      (s = check_finite(alpha)) != ICS_OK)
+      (s = ics_check_finite(alpha)) != ICS_OK)
     return s;
   double c, sn;
   ics_sincos_deg(alpha, &sn, &c);
@@ -77,7 +72,7 @@ ics_status ics_cov_from_eig(double varx, double vary, double alpha, double cov[3
 ics_status ics_cov_to_eig(const double cov[3], double *varx, double *vary, double *alpha) {
   ics_status s;
   for (int i = 0; i < 3; i++)
-    if ((s = check_finite(cov[i])) != ICS_OK) return s;
+    if ((s = ics_check_finite(cov[i])) != ICS_OK) return s;
   double a = cov[0], d = cov[2];
   double tol = 8 * DBL_EPSILON * fabs(a + d);
   if (a < -tol || d < -tol) return ICS_ERR_INVALID_ARG;
@@ -94,16 +89,16 @@ ics_status ics_cov_to_eig(const double cov[3], double *varx, double *vary, doubl
 ics_status ics_light_from_tilt(ics_light *out, double wx, double wy, double varx, double vary,
                                double alpha, const double color[3], double weight) {
   ics_status s;
-  if ((s = check_finite(wx)) != ICS_OK || (s = check_finite(wy)) != ICS_OK) return s;
+  if ((s = ics_check_finite(wx)) != ICS_OK || (s = ics_check_finite(wy)) != ICS_OK) return s;
   if (!(fabs(wx) < 90.0) || !(fabs(wy) < 90.0)) return ICS_ERR_RANGE;
-  if ((s = check_finite(weight)) != ICS_OK) return s;
+  if ((s = ics_check_finite(weight)) != ICS_OK) return s;
   if (weight < 0) return ICS_ERR_INVALID_ARG;
   double cov[3];
   if ((s = ics_cov_from_eig(varx, vary, alpha, cov)) != ICS_OK) return s;
   double col[3] = {1, 1, 1};
   if (color)
     for (int i = 0; i < 3; i++) {
-      if ((s = check_finite(color[i])) != ICS_OK) return s;
+      if ((s = ics_check_finite(color[i])) != ICS_OK) return s;
       if (color[i] < 0) return ICS_ERR_INVALID_ARG;
       col[i] = color[i];
     }
@@ -117,14 +112,14 @@ ics_status ics_light_from_tilt(ics_light *out, double wx, double wy, double varx
 
 static ics_status check_e_d1(double e, double d1) {
   ics_status s;
-  if ((s = check_finite(e)) != ICS_OK || (s = check_finite(d1)) != ICS_OK) return s;
+  if ((s = ics_check_finite(e)) != ICS_OK || (s = ics_check_finite(d1)) != ICS_OK) return s;
   return (e > 0 && d1 > 0) ? ICS_OK : ICS_ERR_RANGE;
 }
 
 ics_status ics_kernel_map_1d(double mu_l, double var_l, double e, double d1, double *mu_k,
                              double *var_k) {
   ics_status s;
-  if ((s = check_finite(mu_l)) != ICS_OK || (s = check_var(var_l)) != ICS_OK) return s;
+  if ((s = ics_check_finite(mu_l)) != ICS_OK || (s = check_var(var_l)) != ICS_OK) return s;
   if ((s = check_e_d1(e, d1)) != ICS_OK) return s;
   *mu_k = -e * mu_l;
   *var_k = d1 * e * var_l;
@@ -136,9 +131,9 @@ ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, double mea
   ics_status s;
   if (!l) return ICS_ERR_INVALID_ARG;
   for (int i = 0; i < 2; i++)
-    if ((s = check_finite(l->mean[i])) != ICS_OK) return s;
+    if ((s = ics_check_finite(l->mean[i])) != ICS_OK) return s;
   for (int i = 0; i < 3; i++)
-    if ((s = check_finite(l->cov[i])) != ICS_OK) return s;
+    if ((s = ics_check_finite(l->cov[i])) != ICS_OK) return s;
   if (l->cov[0] < 0 || l->cov[2] < 0) return ICS_ERR_NEGATIVE_VARIANCE;
   double vx, vy, ang; /* positive semidefinite (ics_cov_to_eig's check, -8 eps trace) */
   if (ics_cov_to_eig(l->cov, &vx, &vy, &ang) != ICS_OK) return ICS_ERR_NEGATIVE_VARIANCE;
@@ -157,7 +152,7 @@ static void l1_zero(ics_light1d *l) {
 
 ics_status ics_light1d_gauss(ics_light1d *l, double mean, double var) {
   ics_status s;
-  if ((s = check_finite(mean)) != ICS_OK || (s = check_var(var)) != ICS_OK) return s;
+  if ((s = ics_check_finite(mean)) != ICS_OK || (s = check_var(var)) != ICS_OK) return s;
   l1_zero(l);
   l->kind = ICS_LIGHT1D_GAUSS;
   l->n = 1;
@@ -170,7 +165,7 @@ ics_status ics_light1d_gauss(ics_light1d *l, double mean, double var) {
 
 ics_status ics_light1d_box(ics_light1d *l, double lo, double hi) {
   ics_status s;
-  if ((s = check_finite(lo)) != ICS_OK || (s = check_finite(hi)) != ICS_OK) return s;
+  if ((s = ics_check_finite(lo)) != ICS_OK || (s = ics_check_finite(hi)) != ICS_OK) return s;
   if (!(lo < hi)) return ICS_ERR_RANGE;
   l1_zero(l);
   l->kind = ICS_LIGHT1D_BOX;
@@ -192,7 +187,7 @@ ics_status ics_light1d_mix(ics_light1d *l, int n, const double *w, const double 
   ics_status s;
   double sw = 0;
   for (int i = 0; i < n; i++) {
-    if ((s = check_finite(w[i])) != ICS_OK || (s = check_finite(mu[i])) != ICS_OK ||
+    if ((s = ics_check_finite(w[i])) != ICS_OK || (s = ics_check_finite(mu[i])) != ICS_OK ||
         (s = check_var(var[i])) != ICS_OK)
       return s;
     if (w[i] < 0) return ICS_ERR_INVALID_ARG;
@@ -245,7 +240,7 @@ ics_status ics_light1d_tab(ics_light1d *l, int n, const double *x, const double 
   if (n < 2) return ICS_ERR_SIZE;
   ics_status s;
   for (int i = 0; i < n; i++) {
-    if ((s = check_finite(x[i])) != ICS_OK || (s = check_finite(p[i])) != ICS_OK) return s;
+    if ((s = ics_check_finite(x[i])) != ICS_OK || (s = ics_check_finite(p[i])) != ICS_OK) return s;
     if (p[i] < 0) return ICS_ERR_INVALID_ARG;
     if (i && !(x[i] > x[i - 1])) return ICS_ERR_INVALID_ARG;
   }

@@ -250,15 +250,13 @@ static inline ff ff_addf(ff a, float b) {
 /* Compensated pass: the x prefixes of 8 rows run as 8 interleaved double-float chains (one
  * chain is ~7 dependent float adds per cell), then the y and z accumulations are double-float
  * adds across x (independent per x: vectorised by the compiler; the same IEEE operations). */
-#define FF_ADD_(H, L, AH, AL, BH, BL)                                                          \
-  do {                                                                                       \
-    float s_ = (AH) + (BH), bb_ = s_ - (AH);                                                 \
-    float e_ = ((AH) - (s_ - bb_)) + ((BH) - bb_);                                           \
-    e_ += (AL) + (BL);                                                                       \
-    float h_ = s_ + e_;                                                                      \
-    (L) = e_ - (h_ - s_);                                                                    \
-    (H) = h_;                                                                                \
-  } while (0)
+static inline void ff_accumulate(float *hi, float *lo, const float *bh, const float *bl, size_t w) {
+  for (size_t x = 0; x < w; x++) {
+    ff r = ff_add((ff){hi[x], lo[x]}, (ff){bh[x], bl[x]});
+    hi[x] = r.hi, lo[x] = r.lo;
+  }
+}
+
 
 void ics_sat_build_compensated(float *hi, float *lo, const float *in, size_t w, size_t h,
                                size_t d, size_t stride, size_t sstride, void *scratch) {
@@ -293,7 +291,7 @@ void ics_sat_build_compensated(float *hi, float *lo, const float *in, size_t w, 
         size_t o = (z * h + y + r) * w;
         const float *rh = ph + r * pw, *rl = pl + r * pw;
         float *zrh = d > 1 ? zh + (y + r) * w : NULL, *zrl = d > 1 ? zl + (y + r) * w : NULL;
-        for (size_t x = 0; x < w; x++) FF_ADD_(th[x], tl[x], th[x], tl[x], rh[x], rl[x]);
+        ff_accumulate(th, tl, rh, rl, w);
         if (d == 1) {
           memcpy(hi + o, th, w * sizeof(float));
           memcpy(lo + o, tl, w * sizeof(float));
@@ -303,7 +301,7 @@ void ics_sat_build_compensated(float *hi, float *lo, const float *in, size_t w, 
           memcpy(hi + o, th, w * sizeof(float));
           memcpy(lo + o, tl, w * sizeof(float));
         } else {
-          for (size_t x = 0; x < w; x++) FF_ADD_(zrh[x], zrl[x], zrh[x], zrl[x], th[x], tl[x]);
+          ff_accumulate(zrh, zrl, th, tl, w);
           memcpy(hi + o, zrh, w * sizeof(float));
           memcpy(lo + o, zrl, w * sizeof(float));
         }
