@@ -36,5 +36,6 @@
 #include "icshadow/image.h"
 #include "icshadow/exr.h"
 #include "icshadow/lightfit.h"
+#include "icshadow/deprecated.h"
 
 #endif
