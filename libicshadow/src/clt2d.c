@@ -73,7 +73,6 @@
 #include <time.h>
 
 #include "icshadow/ellipse.h"
-#include "icshadow/light.h"
 #include "icshadow/normal.h"
 
 double ics_clt2d_edge_coverage(double ux, double uy, double t) {
