@@ -248,7 +248,7 @@ static void test_special(void) {
   }
 }
 
-/* DESIGN contract: math functions never touch errno. All nine `icshadow eval` functions on the
+/* docs/architecture.md "Contracts": math functions never touch errno. All nine eval functions on the
  * extremes of (and beyond) their domains: 0, subnormals, DBL_MIN, 1e-300, 1 - 2^-53, 1, huge,
  * DBL_MAX, +-inf, NaN, negative. (ldexp's underflow in vy/ratio's scaled square set ERANGE.) */
 static void test_errno(void) {

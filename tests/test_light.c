@@ -291,7 +291,7 @@ static void test_mapping(void) {
   }
 }
 
-/* DESIGN contract: math functions never touch errno (glibc's erfc and exp set ERANGE on
+/* docs/architecture.md "Contracts": math functions never touch errno (glibc's erfc, exp set ERANGE on
  * underflow/overflow: Phi far in the tails, the pdf, Phi^-1's Halley step for subnormal p). */
 static void test_errno(void) {
   const double xs[] = {0.0,  0x1p-1074, DBL_MIN, 1e-300, 0.5,     1.0 - 0x1p-53, 1.0,
