@@ -32,6 +32,7 @@
 #include <time.h>
 
 #include "icshadow/ellint.h"
+#include "icshadow/constants.h"
 
 #define N 4096
 #define REPEAT 40
@@ -42,7 +43,6 @@ double ics_bench_boost_ellint_2(double k);
 #endif
 
 #define NOINLINE __attribute__((noinline))
-static const double PI_2 = 1.5707963267948966;
 
 /* ---- peer 1: AGM in double -------------------------------------------------------------- */
 static inline void agm_ke(double m1, double *K, double *E) {
@@ -56,7 +56,7 @@ static inline void agm_ke(double m1, double *K, double *E) {
     a = an;
     if (fabs(c) <= 1e-16 * a) break;
   }
-  double k = PI_2 / a;
+  double k = ICS_PI / 2 / a;
   *K = k;
   if (E) *E = k * (1.0 - sum);
 }

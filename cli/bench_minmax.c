@@ -120,8 +120,7 @@ static const double sigma_t = 0.08, sigma_s = 0.05, hg_g = 0.6;
  * Henyey-Greenstein phase with scattering angle beta. */
 static double integrand(double beta, double gamma, double dgamma) {
   double sb = sin(beta);
-  double ph = (1 - hg_g * hg_g) / (4 * 3.14159265358979323846 *
-                                   pow(1 + hg_g * hg_g - 2 * hg_g * cos(beta), 1.5));
+  double ph = (1 - hg_g * hg_g) / (4 * ICS_PI * pow(1 + hg_g * hg_g - 2 * hg_g * cos(beta), 1.5));
   return sigma_s * ph * exp(-sigma_t * gamma * dgamma / sb) * dgamma / sb;
 }
 
@@ -209,8 +208,8 @@ static int setup_init(setup *S, size_t d, size_t rows, size_t rays, size_t nterm
     st = ics_epi_rectify(&S->f, smap, W, W, S->f.eu - R, S->f.ev - R, 2 * R / (double)W, S->rect);
   free(smap);
   /* low-rank integrand on a GRID x GRID (beta, gamma) grid */
-  S->beta_lo = 0.12 * 3.14159265358979323846;
-  S->beta_hi = 0.88 * 3.14159265358979323846;
+  S->beta_lo = 0.12 * ICS_PI;
+  S->beta_hi = 0.88 * ICS_PI;
   for (size_t j = 0; j < GRID; j++)
     for (size_t k = 0; k < GRID; k++)
       S->grid[j * GRID + k] = integrand(grid_beta(S, j), grid_gamma(S, k), S->f.dgamma);

@@ -104,7 +104,7 @@ static int chirp_csv(const char *path) {
   }
   for (int x = 0; x < W; x++) {
     double xc = x + 0.5, ph = f0 * xc + (f1 - f0) * xc * xc / (2.0 * W);
-    sig[x] = s0 * 0.5 * (1.0 + cos(2 * 3.14159265358979323846 * ph));
+    sig[x] = s0 * 0.5 * (1.0 + cos(2 * ICS_PI * ph));
     for (int y = y0; y < y1; y++) img[(size_t)y * W + x] = (float)sig[x];
   }
   ics_sat2d *sat = NULL;
@@ -213,8 +213,8 @@ static int bench_lights(void) {
           int np = Us[ui] > 0 ? (int)ceil(2 * Us[ui] / 0.5) : 1;
           t0 = now_s();
           for (int i = 0; i < NP; i++)
-            ics_tau_bruteforce_directional(&vol, ru, rv, rw, pts[i], Us[ui], np, 0.25,
-                                           &tau_ref[ui][i]);
+            ics_volume_tau_directional(&vol, ru, rv, rw, pts[i], Us[ui], np, 0.25,
+                                       &tau_ref[ui][i]);
           bf_ns[ui] = (now_s() - t0) / NP * 1e9;
         }
         have_ref = 1;
@@ -257,7 +257,7 @@ static int bench_lights(void) {
     double t0 = now_s();
     for (int i = 0; i < nvalid; i++) {
       int np = (int)ceil(2 * Uss[ui] / 0.5);
-      ics_tau_bruteforce_point(&vol, lp, spts[i], Uss[ui], np, 0.25, &sref[ui][i]);
+      ics_volume_tau_point(&vol, lp, spts[i], Uss[ui], np, 0.25, &sref[ui][i]);
     }
     sbf_ns[ui] = (now_s() - t0) / nvalid * 1e9;
   }

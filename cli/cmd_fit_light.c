@@ -208,8 +208,8 @@ int cmd_fit_light(int argc, char **argv) {
     return 1;
   }
   if (planep) {
-    /* written from the map directly (not from the library's internals): the same frame
-     * formulas as DESIGN.md, density = radiance * (1 + r^2)^(-3/2) */
+    /* written from the map directly (not from the library's internals): the frame formulas of
+     * docs/architecture.md "Frames and file formats", density = radiance * (1 + r^2)^(-3/2) */
     ics_image env2;
     if (ics_exr_read(inp, &env2, msg, sizeof msg) != ICS_OK) {
       fprintf(stderr, "icshadow fit-light: %s\n", msg);

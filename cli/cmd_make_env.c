@@ -21,7 +21,7 @@ static void help(FILE *f) {
           "usage: icshadow make-env [--lights FILE|SPEC] [--sky R,G,B] --size WxH "
           "[--supersample N] [--half] [--progress] -o ENV.exr\n"
           "Draws Gaussian lights on the virtual light plane into a latitude-longitude OpenEXR\n"
-          "environment map (DESIGN.md frames: the image centre is +z, behind the viewer).\n"
+          "environment map (docs/architecture.md: the image centre is +z, behind the viewer).\n"
           "Light k has radiance weight*color*g(x; mean, cov)*(1 + |x|^2)^(3/2) at the direction\n"
           "of plane point x, so its luminance power is weight for colours of luminance 1.\n"
           "Lights narrower than a quarter pixel are drawn into one pixel (a sun).\n\n"

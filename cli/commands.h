@@ -59,7 +59,7 @@ int cli_parse_comp(const char *s, int allow_integer, ics_comp_mode *mode);
 /* Seconds on the monotonic clock (CLOCK_MONOTONIC), for elapsed times. */
 double cli_now_s(void);
 
-/* Progress of a long job on stderr (DESIGN.md): shown when stderr is a terminal (one line that
+/* Progress on stderr (docs/architecture.md "Contracts"): shown on a terminal (one line that
  * rewrites itself) or when asked for (--progress: one line per update), silent otherwise. */
 typedef struct cli_progress {
   const char *who; /* e.g. "icshadow bench minmax" */

@@ -1,6 +1,7 @@
-/* lightsfile.h — the lights file (JSON, DESIGN.md "Frames and file formats"; docs/lights_format.md)
- * and the lights SPEC strings of the CLI. Writing needs no library; reading a file uses jansson
- * (line/column in error messages) when the CLI was built with it (ICS_HAVE_JANSSON). */
+/* lightsfile.h — the lights file (JSON: docs/lights_format.md; frames in docs/architecture.md
+ * "Frames and file formats") and the lights SPEC strings of the CLI. Writing needs no library;
+ * reading a file uses jansson (line/column in error messages) when the CLI was built with it
+ * (ICS_HAVE_JANSSON). */
 #ifndef ICS_CLI_LIGHTSFILE_H
 #define ICS_CLI_LIGHTSFILE_H
 

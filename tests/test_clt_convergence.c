@@ -23,11 +23,10 @@
 #include "icshadow.h"
 #include "testutil.h"
 
-static const double PI = 3.14159265358979323846;
 static const int STEPS[] = {16, 64, 256, 1024};
 #define NS 4
 
-static double phi(double z) { return exp(-0.5 * z * z) / sqrt(2 * PI); }
+static double phi(double z) { return exp(-0.5 * z * z) / sqrt(2 * ICS_PI); }
 
 /* sup_z |Edgeworth correction| for the applied taps after n steps */
 static double edgeworth_sup(const ics_tap1d *t, int nt, int n) {
@@ -339,25 +338,25 @@ static void test_bvn(void) {
   double worst_c = 0, worst_p = 0, worst_q = 0;
   double rs[] = {-0.999, -0.95, -0.9, -0.5, -0.1, 0, 0.2, 0.6, 0.92, 0.93, 0.97, 0.999};
   for (size_t i = 0; i < sizeof rs / sizeof *rs; i++)
-    worst_c = fmax(worst_c, fabs(ics_bvn_cdf(0, 0, rs[i]) - (0.25 + asin(rs[i]) / (2 * PI))));
+    worst_c = fmax(worst_c, fabs(ics_normal_bvn_cdf(0, 0, rs[i]) - (0.25 + asin(rs[i]) / (2 * ICS_PI))));
   for (double a = -6; a <= 6; a += 0.75)
     for (double b = -6; b <= 6; b += 0.75) {
-      worst_p = fmax(worst_p, fabs(ics_bvn_cdf(a, b, 0) - phic(a) * phic(b)));
+      worst_p = fmax(worst_p, fabs(ics_normal_bvn_cdf(a, b, 0) - phic(a) * phic(b)));
       for (size_t i = 0; i < sizeof rs / sizeof *rs; i++)
-        worst_q = fmax(worst_q, fabs(ics_bvn_cdf(a, b, rs[i]) - bvn_ref(a, b, rs[i])));
+        worst_q = fmax(worst_q, fabs(ics_normal_bvn_cdf(a, b, rs[i]) - bvn_ref(a, b, rs[i])));
     }
   printf("  bvn: |Phi2(0,0;r) - 1/4 - asin r/2pi| <= %.2e, |r = 0 - Phi Phi| <= %.2e, "
          "vs Simpson quadrature <= %.2e (17 x 17 x 12 points)\n", worst_c, worst_p, worst_q);
   CHECK(worst_c <= 1e-15, "bvn closed form %.3g", worst_c);
   CHECK(worst_p <= 1e-15, "bvn r = 0 %.3g", worst_p);
   CHECK(worst_q <= 1e-12, "bvn vs quadrature %.3g", worst_q);
-  CHECK(isnan(ics_bvn_cdf(0, 0, 1.5)) && isnan(ics_bvn_cdf(NAN, 0, 0)), "bvn domain");
+  CHECK(isnan(ics_normal_bvn_cdf(0, 0, 1.5)) && isnan(ics_normal_bvn_cdf(NAN, 0, 0)), "bvn domain");
   /* edge coverage vs the exact area of the pixel square clipped by the half-plane
    * (Sutherland-Hodgman clip of the 4 corners, shoelace area) */
   double wc = 0;
   double angs[] = {0, 17, 30, 45, 60, 90, 123, 200, 315};
   for (size_t k = 0; k < sizeof angs / sizeof *angs; k++) {
-    double ux = cos(angs[k] * PI / 180), uy = sin(angs[k] * PI / 180);
+    double ux = cos(angs[k] * ICS_PI / 180), uy = sin(angs[k] * ICS_PI / 180);
     for (double t = -0.9; t <= 0.9; t += 0.05) {
       double sq[4][2] = {{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}}, poly[8][2];
       int np = 0;
@@ -457,7 +456,7 @@ static double rate_realised(const ics_clt_point *p, int np, int nmin) {
 static int edge2d_judge(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
                         const ics_clt_point *p, int ns, int vs_class, int nmin, double rate,
                         double rtol, double rel, int verbose) {
-  double ux = cos(s->edge_angle_deg * PI / 180), uy = sin(s->edge_angle_deg * PI / 180);
+  double ux = cos(s->edge_angle_deg * ICS_PI / 180), uy = sin(s->edge_angle_deg * ICS_PI / 180);
   double r = vs_class ? ics_clt_rate(p, ns, nmin) : rate_realised(p, ns, nmin);
   int ok = fabs(r - rate) <= rtol;
   if (verbose) printf("    fitted rate (%s, n >= %d) %.4f, expected %.2f +- %.2f\n",
@@ -550,7 +549,7 @@ static void exact_sup(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, in
   double cxx = s->cov[0], cxy = s->cov[1], cyy = s->cov[2], pix = 1.0 / 12;
   double W = 4.5 * sqrt(n * lmax2(cxx, cxy, cyy) + pix);
   double Wr = 4.5 * sqrt(lmax2(C[0], C[1], C[2]) + pix);
-  double ux = cos(s->edge_angle_deg * PI / 180), uy = sin(s->edge_angle_deg * PI / 180);
+  double ux = cos(s->edge_angle_deg * ICS_PI / 180), uy = sin(s->edge_angle_deg * ICS_PI / 180);
   double cm[2] = {n * s->mean[0], n * s->mean[1]}, wc = 0, wr = 0;
   double lo = fmin(-W, fmin(m[0], m[1]) - Wr), hi = fmax(W, fmax(m[0], m[1]) + Wr);
   for (double py = floor(lo) - 0.5; py <= hi + 1; py += 1)

@@ -55,7 +55,7 @@ static double ulp_of(double x) {
 static void quad_var(double A, double B, int n, double *vx, double *vy) {
   ksum s = {0, 0}, sx = {0, 0}, sy = {0, 0};
   for (int i = 0; i < n; i++) {
-    double th = 6.283185307179586 * (i + 0.5) / n;
+    double th = 2 * ICS_PI * (i + 0.5) / n;
     double c = cos(th), sn = sin(th);
     double w = sqrt(A * A * sn * sn + B * B * c * c);
     kadd(&s, w);
@@ -248,7 +248,7 @@ static void test_special(void) {
   }
 }
 
-/* DESIGN contract: math functions never touch errno. All nine `icshadow eval` functions on the
+/* docs/architecture.md "Contracts": math functions never touch errno. All nine eval functions on the
  * extremes of (and beyond) their domains: 0, subnormals, DBL_MIN, 1e-300, 1 - 2^-53, 1, huge,
  * DBL_MAX, +-inf, NaN, negative. (ldexp's underflow in vy/ratio's scaled square set ERANGE.) */
 static void test_errno(void) {

@@ -30,7 +30,6 @@
 #ifndef TS_LEVEL
 #define TS_LEVEL 24 /* tanh-sinh nodes per unit of tau (12 is not converged at b/a ~ 0.1) */
 #endif
-static const double PI = 3.14159265358979323846;
 
 
 static int cmp_double(const void *a, const void *b) {
@@ -64,9 +63,9 @@ static moments average_moments(double varx, double vary, double alpha, int N) {
     double half = 0.5 * (hi - lo);
     for (int k = -(int)(3.34 * TS_LEVEL); k <= (int)(3.34 * TS_LEVEL); k++) {
       double tau = k * h;
-      double sh = 0.5 * PI * sinh(tau);
+      double sh = 0.5 * ICS_PI * sinh(tau);
       double ch = cosh(sh);
-      double w = half * h * 0.5 * PI * cosh(tau) / (ch * ch);
+      double w = half * h * 0.5 * ICS_PI * cosh(tau) / (ch * ch);
       /* distance to the nearer end, computed without cancellation: 1 - tanh(|sh|) */
       double e = exp(-2.0 * fabs(sh));
       double d = half * 2.0 * e / (1.0 + e);
@@ -102,7 +101,7 @@ static char worst_cov_at[160];
 
 static void test_moments(double varx, double vary, double alpha, int N) {
   moments m = average_moments(varx, vary, alpha, N);
-  double c = cos(alpha * PI / 180.0), s = sin(alpha * PI / 180.0);
+  double c = cos(alpha * ICS_PI / 180.0), s = sin(alpha * ICS_PI / 180.0);
   double txx = varx * c * c + vary * s * s, tyy = varx * s * s + vary * c * c;
   double txy = (varx - vary) * s * c;
   double exx = fabs(m.xx - txx) / txx, eyy = fabs(m.yy - tyy) / tyy;
@@ -155,7 +154,7 @@ static void test_single(double varx, double vary, double alpha, int N, double of
   ics_status st = ics_ellipse_kernel(varx, vary, alpha, N, offset, &sh, xy);
   CHECK(st == ICS_OK, "kernel: %s", ics_status_str(st));
   if (st != ICS_OK || !(sh.a > 0 && sh.b > 0)) return;
-  double c = cos(alpha * PI / 180.0), s = sin(alpha * PI / 180.0);
+  double c = cos(alpha * ICS_PI / 180.0), s = sin(alpha * ICS_PI / 180.0);
   double th[65];
   for (int j = 0; j < N; j++) {
     double x = xy[2 * j] * c + xy[2 * j + 1] * s, y = -xy[2 * j] * s + xy[2 * j + 1] * c;
@@ -167,10 +166,10 @@ static void test_single(double varx, double vary, double alpha, int N, double of
   }
   /* first tap at arc fraction `offset` from the end of the MAJOR axis: (a, 0) when varx >= vary,
    * (0, b) (parameter angle pi/2) when vary > varx */
-  double P = 4.0 * arc(sh.a, sh.b, 0.0, PI / 2, 1e-17 * (sh.a + sh.b));
-  double th_start = varx >= vary ? 0.0 : PI / 2;
+  double P = 4.0 * arc(sh.a, sh.b, 0.0, ICS_PI / 2, 1e-17 * (sh.a + sh.b));
+  double th_start = varx >= vary ? 0.0 : ICS_PI / 2;
   double t0 = th[0];
-  while (t0 < th_start) t0 += 2 * PI;
+  while (t0 < th_start) t0 += 2 * ICS_PI;
   double u0 = offset - floor(offset);
   double d0 = fabs(arc(sh.a, sh.b, th_start, t0, 1e-17 * P) - u0 * P) / P;
   double e0 = fmin(d0, 1.0 - d0); /* modulo the perimeter */
@@ -178,8 +177,8 @@ static void test_single(double varx, double vary, double alpha, int N, double of
         varx, vary, alpha, N, offset, e0);
   for (int j = 0; j < N; j++) {
     double a0 = th[j], a1 = th[(j + 1) % N];
-    while (a1 <= a0) a1 += 2 * PI;
-    if (N == 1) a1 = a0 + 2 * PI;
+    while (a1 <= a0) a1 += 2 * ICS_PI;
+    if (N == 1) a1 = a0 + 2 * ICS_PI;
     double L = arc(sh.a, sh.b, a0, a1, 1e-17 * P);
     double e = fabs(L - P / N) / (P / N) / N; /* relative to the perimeter */
     if (e > worst_arc) worst_arc = e;

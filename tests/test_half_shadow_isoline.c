@@ -26,7 +26,6 @@
 #include "icshadow.h"
 #include "testutil.h"
 
-static const double PI = 3.14159265358979323846;
 static const double E_SLAB = 1.0 / 64; /* slab spacing: n = 16 .. 256 steps for d = 0.25 .. 4 */
 static const double DS[] = {0.25, 0.5, 1, 2, 4};
 #define ND 5
@@ -240,10 +239,10 @@ static int isolines_meet_at_d1(const ics_light1d *l, const ics_iter1d_opts *o, d
    * max|He3 phi|; position error = that / density(x) <= that / (phi(1.2816) / sigma_n) */
   double mhe3 = 0;
   for (double z = 0; z < 5; z += 1e-4)
-    mhe3 = fmax(mhe3, fabs((z * z * z - 3 * z) * exp(-z * z / 2) / sqrt(2 * PI)));
+    mhe3 = fmax(mhe3, fabs((z * z * z - 3 * z) * exp(-z * z / 2) / sqrt(2 * ICS_PI)));
   int n = (int)nearbyint(d1 / E_SLAB);
   double cdf_tol = 1.5 * 1.2 / 24 / n * mhe3;
-  double pos_tol = cdf_tol / (exp(-0.5 * 1.2816 * 1.2816) / sqrt(2 * PI)) + TOL_SYM;
+  double pos_tol = cdf_tol / (exp(-0.5 * 1.2816 * 1.2816) / sqrt(2 * ICS_PI)) + TOL_SYM;
   ics_iter1d it;
   if (ics_shadow1d_iterate(l, d1, d1, E_SLAB, o, &it) != ICS_OK) return 0;
   double sd = sqrt(d1 * d1 * ics_light1d_var(l)), w = 0;

@@ -9,14 +9,12 @@
 #include "icshadow.h"
 #include "testutil.h"
 
-#define PI 3.14159265358979323846
-
 static double lumf(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
 
 static ics_light mk(double mx, double my, double varx, double vary, double adeg, double w,
                        double r, double g, double b) {
   ics_light l;
-  double a = adeg * PI / 180, c = cos(a), s = sin(a);
+  double a = adeg * ICS_PI / 180, c = cos(a), s = sin(a);
   l.mean[0] = mx;
   l.mean[1] = my;
   l.cov[0] = varx * c * c + vary * s * s;
@@ -35,8 +33,8 @@ static ics_light mk(double mx, double my, double varx, double vary, double adeg,
 static double map_energy(const ics_image *im) {
   double e = 0;
   for (int j = 0; j < im->height; j++) {
-    double t0 = PI * j / im->height, t1 = PI * (j + 1) / im->height;
-    double dw = (cos(t0) - cos(t1)) * 2 * PI / im->width;
+    double t0 = ICS_PI * j / im->height, t1 = ICS_PI * (j + 1) / im->height;
+    double dw = (cos(t0) - cos(t1)) * 2 * ICS_PI / im->width;
     for (int i = 0; i < im->width; i++) {
       const float *p = im->data + ((size_t)j * im->width + i) * im->channels;
       e += (0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]) * dw;
@@ -102,7 +100,7 @@ int main(void) {
   {
     double x, y, dw;
     CHECK(ics_envmap_pixel(512, 256, 256, 128, &x, &y, &dw) == 0, "centre pixel behind viewer");
-    double ph = 2 * PI * 256.5 / 512 - PI, th = PI * 128.5 / 256;
+    double ph = 2 * ICS_PI * 256.5 / 512 - ICS_PI, th = ICS_PI * 128.5 / 256;
     double dx = sin(th) * sin(ph), dy = cos(th), dz = sin(th) * cos(ph);
     CHECK(fabs(x - dx / dz) <= 1e-15 && fabs(y - dy / dz) <= 1e-15, "plane point (%g %g)", x, y);
     CHECK(ics_envmap_pixel(512, 256, 10, 128, &x, &y, &dw) == -1, "left edge is in front");
@@ -176,7 +174,7 @@ int main(void) {
     p.k = 3;
     CHECK(ics_lightfit(&env, &p, fit, &rep) == ICS_OK, "fit sun");
     CHECK(rep.k_fit == 1, "a sun gives one light, not %d", rep.k_fit);
-    double pix = 2 * PI / 256 * (1 + 0.2 * 0.2); /* pixel width on the plane near the sun */
+    double pix = 2 * ICS_PI / 256 * (1 + 0.2 * 0.2); /* pixel width on the plane near the sun */
     double d = hypot(fit[0].mean[0] - 0.2, fit[0].mean[1] + 0.1);
     CHECK(d <= pix, "sun mean (%g %g), %g from truth > one pixel %g", fit[0].mean[0],
           fit[0].mean[1], d, pix);
@@ -206,11 +204,11 @@ int main(void) {
     /* to 0.3%: the kept set follows the pixel centres (an unbiased boundary), so the loss
      * differs from the disc's cos 80 deg only by the jagged rim of pixels (measured 0.11% at
      * 256 x 128) */
-    double want = cos(80 * PI / 180);
+    double want = cos(80 * ICS_PI / 180);
     CHECK(fabs(rep.cutoff_loss / want - 1) <= 0.003, "cut-off loss %.6g, expected ~%.6g",
           rep.cutoff_loss, want);
-    CHECK(fabs(rep.energy_total / (4 * PI) - 1) <= 1e-12, "sky energy %.17g", rep.energy_total);
-    CHECK(fabs(rep.energy_front / (2 * PI) - 1) <= 1e-12, "front energy %.17g", rep.energy_front);
+    CHECK(fabs(rep.energy_total / (4 * ICS_PI) - 1) <= 1e-12, "sky energy %.17g", rep.energy_total);
+    CHECK(fabs(rep.energy_front / (2 * ICS_PI) - 1) <= 1e-12, "front energy %.17g", rep.energy_front);
     /* EM keeps the data's second moment: sum_k w_k (cov_k + mu_k mu_k^T) / sum w equals the
      * per-axis variance of (1 + r^2)^(-3/2) on the disc r < R = tan 80 deg:
      * (1/c + c - 2) / (2 (1 - c)), c = cos 80 deg = 2.3824 */

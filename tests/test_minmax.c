@@ -411,8 +411,8 @@ static void test_rectification(void) {
         double a, g, dep;
         ics_epi_locate(&f, p, &a, &g, &dep);
         double da = fabs(a - alpha);
-        if (da > 3.14159) da = fabs(da - 2 * 3.141592653589793);
-        size_t prow = (size_t)floor(a / (2 * 3.141592653589793) * (double)rows);
+        if (da > ICS_PI) da = fabs(da - 2 * ICS_PI);
+        size_t prow = (size_t)floor(a / (2 * ICS_PI) * (double)rows);
         if (prow >= rows) prow = rows - 1;
         if (da > 1e-13 || prow != row) bad_row++;
         double hl = ray.beta0 + ray.slope * g;
@@ -435,7 +435,7 @@ static void test_rectification(void) {
   for (size_t r = 0; r < rows; r += 7)
     for (size_t g = 0; g < d; g += 3) {
       double dir[3];
-      ics_epi_ray_dir(&f, r, 3.141592653589793 / 2, dir); /* perpendicular to L: radial */
+      ics_epi_ray_dir(&f, r, ICS_PI / 2, dir); /* perpendicular to L: radial */
       double p[3] = {eye[0] + g * 0.05 * dir[0], eye[1] + g * 0.05 * dir[1], eye[2] + g * 0.05 * dir[2]};
       double pu = p[0] * f.U[0] + p[1] * f.U[1] + p[2] * f.U[2];
       double pv = p[0] * f.V[0] + p[1] * f.V[1] + p[2] * f.V[2];

@@ -23,7 +23,6 @@
 #include "icshadow.h"
 #include "testutil.h"
 
-#define PI_T 3.14159265358979323846
 static uint64_t rs = 0x1234567;
 static uint64_t rnd(void) { /* splitmix64 */
   uint64_t z = (rs += 0x9e3779b97f4a7c15ull);
@@ -446,7 +445,7 @@ static void test_bad_input(void) {
         "beyond ICS_SSAT_MAX_DISTANCE diagonals");
   CHECK(ics_ssat_build(&s, &vol, inf3, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_RANGE, "inf");
   CHECK(ics_ssat_build(&s, &vol, nanv, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_NAN, "NaN light");
-  CHECK(ics_tau_bruteforce_point(&vol, far, p, 1.0, 2, 0.5, &v) == ICS_ERR_RANGE, "bf 1e300");
+  CHECK(ics_volume_tau_point(&vol, far, p, 1.0, 2, 0.5, &v) == ICS_ERR_RANGE, "bf 1e300");
   CHECK(ics_ssat_build(&s, &vol, lp, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_OK, "ssat");
   CHECK(ics_ssat_tau(s, lp, 1.0, &v) == ICS_ERR_RANGE, "p at the light");
   CHECK(ics_ssat_tau(s, far, 1.0, &v) == ICS_OK && isfinite(v), "p at 1e300 (valid: whole ray)");
@@ -561,8 +560,7 @@ static void test_csat_rotated(void) {
       double U = (k % 4) * 2.0; /* 0, 2, 4, 6 */
       double tc, tb;
       CHECK(ics_csat_tau(c, ICS_CSAT_PLUS_W, p, U, &tc) == ICS_OK, "csat tau");
-      CHECK(ics_tau_bruteforce_directional(&vol, ru, rv, rw, p, U, npatch, step, &tb) == ICS_OK,
-            "bf");
+      CHECK(ics_volume_tau_directional(&vol, ru, rv, rw, p, U, npatch, step, &tb) == ICS_OK, "bf");
       /* first-order bound (docs/sat.md): CSAT resampling sqrt(3) h / 2, the U = 0 patch of
        * half-width h / 2 (h / sqrt(2)), brute-force midpoint cells of the patch grid x step */
       double du = U > 0 ? 2 * U / npatch : 0;
@@ -690,7 +688,7 @@ static void test_ssat(void) {
       double r = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
       if (r > rmax) rmax = r;
     }
-    double dphi = 2 * PI_T / nphi, dth = PI_T / nth, dr = rmax / nr;
+    double dphi = 2 * ICS_PI / nphi, dth = ICS_PI / nth, dr = rmax / nr;
     double worst = 0, worst_abs = 0, worst_rel = 0;
     const int npatch = 16;
     const double step = 0.25;
@@ -701,12 +699,12 @@ static void test_ssat(void) {
       if (R < 6) continue;
       double ts, tb;
       CHECK(ics_ssat_tau(s, p, U, &ts) == ICS_OK, "ssat tau");
-      CHECK(ics_tau_bruteforce_point(&vol, lights[li], p, U, npatch, step, &tb) == ICS_OK, "bf");
+      CHECK(ics_volume_tau_point(&vol, lights[li], p, U, npatch, step, &tb) == ICS_OK, "bf");
       double th = ssat_theta(s, q), al = atan(U / R), st = sin(th);
       double Dcell = sqrt(dr * dr + (rmax * dth) * (rmax * dth) + (rmax * dphi) * (rmax * dphi));
-      double be = st > 0 && al / st < PI_T ? al / st : PI_T; /* phi half-width */
-      double th1 = th + al < PI_T ? th + al : PI_T;
-      double smax_box = th - al <= PI_T / 2 && th1 >= PI_T / 2 ? 1.0 : fmax(sin(th1), sin(th - al));
+      double be = st > 0 && al / st < ICS_PI ? al / st : ICS_PI; /* phi half-width */
+      double th1 = th + al < ICS_PI ? th + al : ICS_PI;
+      double smax_box = th - al <= ICS_PI / 2 && th1 >= ICS_PI / 2 ? 1.0 : fmax(sin(th1), sin(th - al));
       /* diameter of one brute-force ray cell at R: its largest theta extent (the cells are
        * uniform in cos(theta), so computed cell by cell) and its phi extent, at most
        * max sin(theta) over the box times 2 be / npatch */
@@ -769,7 +767,7 @@ static void test_ssat_pole(void) {
             double R = Rs[ri], al = atan(Us[ui] / R);
             /* polar angles: on the north pole, 0.3 al, al (edge of the cap), 3 al, the
              * equator, pi - 0.5 al, the south pole; azimuth 0.7 */
-            const double ths[8] = {0, 0.3 * al, al, 3 * al, PI_T / 2, PI_T - 0.5 * al, PI_T, 2 * al};
+            const double ths[8] = {0, 0.3 * al, al, 3 * al, ICS_PI / 2, ICS_PI - 0.5 * al, ICS_PI, 2 * al};
             double th = ths[di], ph = 0.7 + di;
             double d[3], p[3], t;
             for (int k = 0; k < 3; k++)
@@ -794,8 +792,7 @@ static void test_ssat_pole(void) {
     double tb[3][2];
     for (int pi = 0; pi < 3; pi++)
       for (int ui = 0; ui < 2; ui++)
-        CHECK(ics_tau_bruteforce_point(&vol, L, pts[pi], Us[ui], 32, step, &tb[pi][ui]) == ICS_OK,
-              "bf");
+        CHECK(ics_volume_tau_point(&vol, L, pts[pi], Us[ui], 32, step, &tb[pi][ui]) == ICS_OK, "bf");
     for (int gi = 0; gi < 3; gi++) {
       ics_ssat *s = NULL;
       CHECK(ics_ssat_build(&s, &vol, L, grids[gi][0], grids[gi][1], grids[gi][2], ICS_SAT_DOUBLE) ==
@@ -833,12 +830,12 @@ static void test_ssat_pole(void) {
       ics_ssat_frame(s, e[0], e[1], e[2], NULL);
       for (int di = 0; di < 6; di++) {
         const double R = 8, U = di < 3 ? 1.0 : 0.3, al = atan(U / R);
-        const double ths[6] = {0, 0.5 * al, 2 * al, 0, PI_T - 0.5 * al, PI_T};
+        const double ths[6] = {0, 0.5 * al, 2 * al, 0, ICS_PI - 0.5 * al, ICS_PI};
         double th = ths[di], ph = 1.3 * di, p[3], t, tb;
         for (int k = 0; k < 3; k++)
           p[k] = L[k] + R * (sin(th) * (cos(ph) * e[0][k] + sin(ph) * e[1][k]) + cos(th) * e[2][k]);
         CHECK(ics_ssat_tau(s, p, U, &t) == ICS_OK, "tau");
-        CHECK(ics_tau_bruteforce_point(&vb, L, p, U, 24, 0.05, &tb) == ICS_OK, "bf");
+        CHECK(ics_volume_tau_point(&vb, L, p, U, 24, 0.05, &tb) == ICS_OK, "bf");
         if (fabs(t - tb) > err[gi]) err[gi] = fabs(t - tb);
         if (gi == 2)
           CHECK(fabs(t - tb) <= 0.05 * tb + 0.002, "pole point %d: ssat %.6g bf %.6g", di, t, tb);

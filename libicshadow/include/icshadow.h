@@ -1,8 +1,9 @@
-/* icshadow.h — the one public header of libicshadow (C11; libm only).
+/* icshadow.h — the one public header of libicshadow (C11; libm only, OpenEXR optional).
  *
- * libicshadow computes the numerics behind convolution soft shadows (Patel et al. 2013):
- * complete elliptic integrals, the ellipse variance functions and elliptical kernels,
- * and lookup tables for shaders. Every symbol is prefixed ics_ / ICS_.
+ * libicshadow computes and measures the numerics behind convolution soft shadows (Patel et al.
+ * 2013) and the primitives of their peers. Including this header includes every module below;
+ * each module's own header states its conventions and measured accuracy, and the layers are
+ * described in docs/architecture.md. Every symbol is prefixed ics_ / ICS_.
  *
  * Conventions: math functions take plain doubles, return NaN outside their domain and never
  * touch errno; functions that build objects return an ics_status (ics_status_str() names it).
@@ -15,21 +16,36 @@
 #define ICS_VERSION_MINOR 1
 #define ICS_VERSION_PATCH 0
 
-#include "icshadow/status.h"
-#include "icshadow/ellint.h"
-#include "icshadow/ellipse.h"
-#include "icshadow/lut.h"
-#include "icshadow/rng.h"
-#include "icshadow/kernel.h"
-#include "icshadow/light.h"
-#include "icshadow/conv.h"
-#include "icshadow/shadow1d.h"
-#include "icshadow/clt2d.h"
-#include "icshadow/sat.h"
-#include "icshadow/minmax.h"
-#include "icshadow/occtex.h"
-#include "icshadow/image.h"
-#include "icshadow/exr.h"
-#include "icshadow/lightfit.h"
+/* ---- numerics ---- */
+#include "icshadow/status.h"    /* ics_status codes and ics_status_str */
+#include "icshadow/constants.h" /* ICS_PI */
+#include "icshadow/ellint.h"    /* complete elliptic integrals K(m), E(m), <= 0.60 ulp */
+#include "icshadow/ellipse.h"   /* ellipse variances (abToVarx, ratioToab), elliptical kernel */
+#include "icshadow/lut.h"       /* lookup tables for ratioToab / abToVarx, C/GLSL/OpenCL headers */
+#include "icshadow/normal.h"    /* the normal distribution: cdf, sf, quantile, bivariate cdf */
+
+/* ---- theory: kernels, lights, engine, shadows, CLT ---- */
+#include "icshadow/rng.h"      /* counter-based Philox RNG: reproducible stochastic kernels */
+#include "icshadow/kernel.h"   /* kernel equivalence classes and their members' taps */
+#include "icshadow/light.h"    /* virtual light plane, Gaussian lights, Eq. 7/15, 1D lights */
+#include "icshadow/conv.h"     /* iterative convolution engine (1D/2D), variance compensation */
+#include "icshadow/shadow1d.h" /* shadows and isolines behind an edge, 1D CLT convergence */
+#include "icshadow/clt2d.h"    /* CLT convergence of the 2D kernel members */
+
+/* ---- images and lights ---- */
+#include "icshadow/image.h"    /* float RGB(A) images, row 0 at the top */
+#include "icshadow/exr.h"      /* OpenEXR I/O (optional: ICS_ERR_UNSUPPORTED without it) */
+#include "icshadow/lightfit.h" /* environment map -> Gaussian lights on the light plane */
+
+/* ---- peer primitives ---- */
+#include "icshadow/sat.h"    /* summed-area tables 2D/3D in four precision modes (Ament 2014) */
+#include "icshadow/volume.h" /* volumes of extinction: sampling, ray-marched optical depth */
+#include "icshadow/csat.h"   /* light-aligned CSAT: box-filtered optical depth, six lights */
+#include "icshadow/ssat.h"   /* spherical SAT (SSAT) around a point light */
+#include "icshadow/minmax.h" /* 1D min-max mipmaps, epipolar rectification (Chen 2011) */
+#include "icshadow/occtex.h" /* occlusion textures (Eisemann & Decoret 2006) */
+
+/* ---- deprecated aliases (kept for one minor version; see CHANGELOG.md) ---- */
+#include "icshadow/deprecated.h"
 
 #endif

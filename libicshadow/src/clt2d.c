@@ -19,7 +19,7 @@
  * integer). Var(u . U) = (ux^2 + uy^2)/12 = 1/12 for every edge angle and Cov(U) = I/12, so the
  * CLT limit with the same moments is
  *   edge:   Phi((u . p - n u . mu) / sqrt(n u^T Sigma u + 1/12)),
- *   corner: Phi2 of N(n mu, n Sigma + I/12) at p (ics_bvn_cdf, standardised, rho = C_xy /
+ *   corner: Phi2 of N(n mu, n Sigma + I/12) at p (ics_normal_bvn_cdf, standardised, rho = C_xy /
  *           sqrt(C_xx C_yy)),
  * mu, Sigma the per-step class. The coverage of a pixel by the half-plane is the trapezoid cdf
  * of ux U1 + uy U2 at u . p (ics_clt2d_edge_coverage: with a = max(|ux|, |uy|), b = the other,
@@ -63,19 +63,9 @@
  * Floating point: the image is float (engine contract), each step rounds every pixel once
  * (2^-24 relative), i.e. below ~n 6e-8 absolute after n steps (< 8e-6 at n = 128; the exactness
  * check at n = 1..3 in the tests sees 3.2e-8); the resolved errors in docs/theory.md are all
- * above 2e-4.
- *
- * Bivariate normal cdf (ics_bvn_cdf): Plackett's identity dPhi2/dr = phi2(a, b; r) with r =
- * sin(t): Phi2(a, b; r) = Phi(a) Phi(b) + (1/2pi) int_0^asin(r) f(t) dt for |r| < 0.925, and
- * Phi(min(a, b)) - (1/2pi) int_asin(r)^(pi/2) f(t) dt for r >= 0.925 (r <= -0.925:
- * Phi(a) - Phi2(a, -b; -r)), f(t) = exp(-(a - b)^2 / (2 cos^2 t) - a b / (1 + sin t)) (the same
- * exponent (a^2 + b^2 - 2 a b sin t) / (2 cos^2 t) written without cancellation near t = pi/2).
- * Integrated by adaptive 20-point Gauss-Legendre (node table from mpmath, 20 digits), panel
- * split until two halves agree with the whole to 1e-15. tests/test_clt_convergence.c checks it
- * against the closed form Phi2(0, 0; r) = 1/4 + asin(r)/(2 pi), against Phi(a) Phi(b) at r = 0
- * and against an independent adaptive Simpson quadrature of phi(x) Phi((b - r x)/sqrt(1 - r^2))
- * (max difference asserted 1e-12). */
+ * above 2e-4. */
 #include "icshadow/clt2d.h"
+#include "icshadow/constants.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -83,67 +73,7 @@
 #include <time.h>
 
 #include "icshadow/ellipse.h"
-#include "icshadow/light.h"
-
-static const double PI = 3.14159265358979323846;
-
-/* 20-point Gauss-Legendre on [-1, 1]: the positive nodes and their weights (mpmath, 40 digits,
- * Newton on P_20; the weights sum to 2 to 1e-17) */
-static const double GL20[10][2] = {
-    {0.076526521133497333755, 0.1527533871307258507},
-    {0.22778585114164507808, 0.14917298647260374679},
-    {0.37370608871541956067, 0.14209610931838205133},
-    {0.510867001950827098, 0.1316886384491766269},
-    {0.63605368072651502545, 0.11819453196151841731},
-    {0.74633190646015079261, 0.10193011981724043504},
-    {0.83911697182221882339, 0.083276741576704748725},
-    {0.91223442825132590587, 0.06267204833410906357},
-    {0.96397192727791379127, 0.040601429800386941331},
-    {0.99312859918509492479, 0.017614007139152118312},
-};
-
-static double plackett_f(double a, double b, double t) {
-  double s = sin(t), c = cos(t);
-  double d = a - b;
-  double e = (c > 0 ? d * d / (2 * c * c) : (d == 0 ? 0 : INFINITY)) + a * b / (1 + s);
-  return exp(-e);
-}
-
-static double gl20(double a, double b, double t0, double t1) {
-  double m = 0.5 * (t0 + t1), h = 0.5 * (t1 - t0), s = 0;
-  for (int i = 0; i < 10; i++)
-    s += GL20[i][1] * (plackett_f(a, b, m - h * GL20[i][0]) + plackett_f(a, b, m + h * GL20[i][0]));
-  return s * h;
-}
-
-static double gl_adapt(double a, double b, double t0, double t1, double whole, int depth) {
-  double m = 0.5 * (t0 + t1);
-  double l = gl20(a, b, t0, m), r = gl20(a, b, m, t1);
-  if (depth >= 40 || fabs(l + r - whole) <= 1e-15) return l + r;
-  return gl_adapt(a, b, t0, m, l, depth + 1) + gl_adapt(a, b, m, t1, r, depth + 1);
-}
-
-static double plackett_int(double a, double b, double t0, double t1) {
-  if (t0 == t1) return 0;
-  return gl_adapt(a, b, t0, t1, gl20(a, b, t0, t1), 0);
-}
-
-double ics_bvn_cdf(double a, double b, double r) {
-  if (isnan(a) || isnan(b) || isnan(r) || r < -1 || r > 1) return NAN;
-  if (a == -INFINITY || b == -INFINITY) return 0;
-  if (a == INFINITY) return ics_light_phi(b);
-  if (b == INFINITY) return ics_light_phi(a);
-  if (r <= -0.925) { /* P(X < a, Y < b) = P(X < a) - P(X < a, -Y < -b) */
-    double v = ics_light_phi(a) - ics_bvn_cdf(a, -b, -r);
-    return v < 0 ? 0 : v;
-  }
-  if (r < 0.925) {
-    double v = ics_light_phi(a) * ics_light_phi(b) + plackett_int(a, b, 0, asin(r)) / (2 * PI);
-    return v < 0 ? 0 : (v > 1 ? 1 : v);
-  }
-  double v = ics_light_phi(fmin(a, b)) - plackett_int(a, b, asin(r), PI / 2) / (2 * PI);
-  return v < 0 ? 0 : (v > 1 ? 1 : v);
-}
+#include "icshadow/normal.h"
 
 double ics_clt2d_edge_coverage(double ux, double uy, double t) {
   if (isnan(ux) || isnan(uy) || isnan(t)) return NAN;
@@ -280,7 +210,7 @@ static ics_status check2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
   for (int k = 0; k < nsteps; k++)
     if (steps[k] < 1 || steps[k] > ICS_CLT2D_MAX_STEPS || (k && steps[k] <= steps[k - 1]))
       return ICS_ERR_RANGE;
-  double a = s->edge_angle_deg * (PI / 180);
+  double a = s->edge_angle_deg * (ICS_PI / 180);
   p->ux = cos(a);
   p->uy = sin(a);
   /* exact axes at multiples of 90 degrees */
@@ -399,13 +329,13 @@ static double limit_at(const plan2 *p, ics_clt2d_occluder occ, double x, double 
                        const double m[2], const double c[3]) {
   if (occ == ICS_CLT2D_EDGE) {
     double v = p->ux * p->ux * c[0] + 2 * p->ux * p->uy * c[1] + p->uy * p->uy * c[2];
-    return ics_light_phi((p->ux * (x - m[0]) + p->uy * (y - m[1])) / sqrt(v));
+    return ics_normal_cdf((p->ux * (x - m[0]) + p->uy * (y - m[1])) / sqrt(v));
   }
   double sx = sqrt(c[0]), sy = sqrt(c[2]);
   double r = c[1] / (sx * sy);
   if (r > 1) r = 1;
   if (r < -1) r = -1;
-  return ics_bvn_cdf((x - m[0]) / sx, (y - m[1]) / sy, r);
+  return ics_normal_bvn_cdf((x - m[0]) / sx, (y - m[1]) / sy, r);
 }
 
 /* One grid: the image (2 float buffers) refined by `scale` (1 or 2), its node (i, j) at world
@@ -527,7 +457,7 @@ static ics_status run2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, c
 
 /* Cost of one limit evaluation in engine tap-updates, measured side by side in one Release
  * process (960 x 960 float image, 32 integer taps, clamp; 3 runs, min-max): the engine 0.21 ns
- * a tap-update (0.21-0.41 under load), ics_light_phi 12.7-13.1 ns = 60, ics_bvn_cdf 0.83-0.89 us
+ * a tap-update (0.21-0.41 under load), ics_normal_cdf 12.7-13.1 ns = 60, ics_normal_bvn_cdf 0.83-0.89 us
  * = ~4000 for |rho| < 0.9 (arguments over [-3, 3]^2; 0.024 us at rho = 0) and 2.1-2.2 us =
  * ~10000 at |rho| = 0.95 (the integral from asin rho to pi/2). */
 #define COST_PHI 60.0

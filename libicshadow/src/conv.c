@@ -14,13 +14,13 @@
  * an isotropic shrink matching the trace (residual reported) when Sigma is singular or T leaves
  * the PSD cone. */
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "icshadow/conv.h"
-
-#include <limits.h>
+#include "sym2.h"
 
 #define MAX_OFFSET 0x1p30
 
@@ -262,28 +262,6 @@ ics_status ics_taps1d_compensate(const ics_tap1d *in, int n, ics_comp_mode mode,
 }
 
 /* ---------------------------------------------------------------- compensation, 2D */
-static void eig2(double a, double b, double c, double *l1, double *l2) {
-  double h = 0.5 * (a + c), d = hypot(0.5 * (a - c), b);
-  *l1 = h + d;
-  *l2 = h - d;
-  if (*l1 > 0 && fabs(*l2) < 4 * DBL_EPSILON * *l1) *l2 = (a * c - b * b) / *l1;
-}
-
-static int sqrtm2(double a, double b, double c, double out[3]) {
-  double l1, l2;
-  eig2(a, b, c, &l1, &l2);
-  if (l2 < 0) return 0;
-  double s = sqrt(l1) * sqrt(l2), t = sqrt(l1) + sqrt(l2);
-  if (t == 0) {
-    out[0] = out[1] = out[2] = 0;
-    return 1;
-  }
-  out[0] = (a + s) / t;
-  out[1] = b / t;
-  out[2] = (c + s) / t;
-  return 1;
-}
-
 /* apply x -> m + A (x - m) (A symmetric or general 2x2 {a00, a01, a10, a11}) */
 static void shrink2(const ics_tap2d *in, int n, const double m[2], const double A[4],
                     ics_tap2d *out) {
@@ -330,16 +308,16 @@ ics_status ics_taps2d_compensate(const ics_tap2d *in, int n, ics_comp_mode mode,
   }
   /* exact route: fixed point for A = T^(1/2) S^(-1/2) */
   double l1, l2;
-  eig2(S[0], S[1], S[2], &l1, &l2);
+  ics_sym2_eig(S[0], S[1], S[2], &l1, &l2, NULL);
   if (!done && l2 > 1e-9 * l1 && l2 > 0) {
     double R[3], Ri[3];
-    sqrtm2(S[0], S[1], S[2], R);
+    ics_sym2_sqrt(S[0], S[1], S[2], R);
     double det = R[0] * R[2] - R[1] * R[1];
     Ri[0] = R[2] / det, Ri[1] = -R[1] / det, Ri[2] = R[0] / det;
     double T[3] = {S[0], S[1], S[2]}, beta = 1.0, prev = INFINITY;
     for (int it = 0; it < 400; it++) {
       double Th[3];
-      if (!sqrtm2(T[0], T[1], T[2], Th)) break;
+      if (!ics_sym2_sqrt(T[0], T[1], T[2], Th)) break;
       double A[4] = {Th[0] * Ri[0] + Th[1] * Ri[1], Th[0] * Ri[1] + Th[1] * Ri[2],
                      Th[1] * Ri[0] + Th[2] * Ri[1], Th[1] * Ri[1] + Th[2] * Ri[2]};
       shrink2(in, n, m, A, sh);

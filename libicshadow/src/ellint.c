@@ -62,12 +62,8 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "dd.h"
 #include "ellint_data.h"
-
-
-typedef struct {
-  double hi, lo;
-} ics_dd;
 
 /* The routes are specialised per entry point (K only, E only, both): force inlining. */
 #if defined(__GNUC__) || defined(__clang__)
@@ -75,15 +71,6 @@ typedef struct {
 #else
 #define ICS_INLINE static inline
 #endif
-
-/* ---- error-free transformation (no multiplication: safe under FMA contraction) --------- */
-static inline ics_dd two_sum(double a, double b) {
-  ics_dd r;
-  r.hi = a + b;
-  double bb = r.hi - a;
-  r.lo = (a - (r.hi - bb)) + (b - bb);
-  return r;
-}
 
 /* ---- small helpers --------------------------------------------------------------------- */
 static inline uint64_t as_u64(double x) {
@@ -311,7 +298,7 @@ ICS_INLINE void ke_m(double m, int wk, int we, double *K, double *E) {
       if (wk) *K = 0.0;
       if (we) *E = INFINITY;
     } else {
-      ics_dd m1 = two_sum(1.0, -m);
+      ics_dd m1 = ics_dd_two_sum(1.0, -m);
       route_neg(m1.hi, m1.lo, wk, we, K, E);
     }
   } else if (m < 1.0) {

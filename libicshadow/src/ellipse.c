@@ -66,6 +66,7 @@
  * 6.7e-16, arc spacing equal to 3.7e-16 of the perimeter, covariance averaged over the offset
  * exact to 8.9e-16 relative for ratios 1e+-12, lines and vary > varx. */
 #include "icshadow/ellipse.h"
+#include "icshadow/constants.h"
 
 #include <float.h>
 #include <math.h>
@@ -73,61 +74,12 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "dd.h"
 #include "degtrig.h"
-
-/* ---- double-double helpers ---------------------------------------------------------------- */
-typedef struct {
-  double hi, lo;
-} dd;
-
-static dd dd_two_sum(double a, double b) {
-  dd r;
-  r.hi = a + b;
-  double bb = r.hi - a;
-  r.lo = (a - (r.hi - bb)) + (b - bb);
-  return r;
-}
-
-static dd dd_sqr(double a) { /* exact a^2 */
-  dd r;
-  r.hi = a * a;
-  r.lo = fma(a, a, -r.hi);
-  return r;
-}
-
-static dd dd_mul(dd a, dd b) {
-  dd r;
-  double p = a.hi * b.hi;
-  double e = fma(a.hi, b.hi, -p);
-  e += a.hi * b.lo + a.lo * b.hi;
-  r.hi = p + e;
-  r.lo = e - (r.hi - p);
-  return r;
-}
-
-static double dd_div_d(dd a, dd b) { /* (a.hi + a.lo) / (b.hi + b.lo), one final rounding */
-  double q = a.hi / b.hi;
-  double r = fma(-q, b.hi, a.hi); /* exact remainder */
-  r += a.lo - q * b.lo;
-  return q + r / b.hi;
-}
-
-static dd dd_div_dd(dd a, dd b) { /* quotient to ~2^-100 relative */
-  double q = a.hi / b.hi;
-  double r = fma(-q, b.hi, a.hi);
-  r += a.lo - q * b.lo;
-  return dd_two_sum(q, r / b.hi);
-}
 
 /* 1/3 and 2/3 as double-double */
 static const double THIRD_HI = 0x1.5555555555555p-2, THIRD_LO = 0x1.5555555555555p-56;
 static const double TWO3_HI = 0x1.5555555555555p-1, TWO3_LO = 0x1.5555555555555p-55;
-
-static dd dd_add(dd a, dd b) {
-  dd s = dd_two_sum(a.hi, b.hi);
-  s.lo += a.lo + b.lo;
-  return dd_two_sum(s.hi, s.lo);
-}
 
 /* ---- the core: w = rho / (3 (1 + rho)), rho = beta^2 D/B ------------------------------------
  * beta in [0, 1] is minor/major radius; dm = 1 - beta and sp = 1 + beta are passed in (callers
@@ -135,8 +87,8 @@ static dd dd_add(dd a, dd b) {
  * minor radii (any common scale, double-double), so that Y/X = beta^2 without rounding beta:
  *   w = Y S / (3 (X T + Y S)),  S = D/K = 1/2 + p,  T = B/K = 1/2 - p,
  * every term positive. p = sum_{n>=1} 2^(n-1) r_n from the AGM (see the file header). */
-static dd ellipse_w(double beta, double dm, double sp, dd X, dd Y) {
-  if (beta == 0.0 || Y.hi == 0.0) return (dd){0.0, 0.0};
+static ics_dd ellipse_w(double beta, double dm, double sp, ics_dd X, ics_dd Y) {
+  if (beta == 0.0 || Y.hi == 0.0) return (ics_dd){0.0, 0.0};
   double r1 = dm / (4.0 * sp); /* r_1 = c_1^2 / (1 - beta^2), c_1 = (1 - beta)/2 */
   double sum = 0.0;            /* sum_{n>=2} 2^(n-1) r_n */
   if (dm != 0.0) {
@@ -159,44 +111,44 @@ static dd ellipse_w(double beta, double dm, double sp, dd X, dd Y) {
     }
   }
   double p = r1 + sum;
-  dd S = dd_two_sum(0.5, p);
-  dd T;
+  ics_dd S = ics_dd_two_sum(0.5, p);
+  ics_dd T;
   if (p <= 0.25) {
-    T = dd_two_sum(0.5, -p);
+    T = ics_dd_two_sum(0.5, -p);
   } else { /* beta small: T = 1/2 - r_1 - sum = (1 + 3 beta)/(4 (1 + beta)) - sum, rho small */
-    dd num = {3.0 * beta, fma(3.0, beta, -3.0 * beta)};
-    num = dd_add((dd){1.0, 0.0}, num);
-    T = dd_add(dd_div_dd(num, (dd){4.0 * sp, 0.0}), (dd){-sum, 0.0});
+    ics_dd num = {3.0 * beta, fma(3.0, beta, -3.0 * beta)};
+    num = ics_dd_add((ics_dd){1.0, 0.0}, num);
+    T = ics_dd_add(ics_dd_div_dd(num, (ics_dd){4.0 * sp, 0.0}), (ics_dd){-sum, 0.0});
   }
-  dd ys = dd_mul(Y, S);
-  dd den = dd_add(dd_mul(X, T), ys);
+  ics_dd ys = ics_dd_mul(Y, S);
+  ics_dd den = ics_dd_add(ics_dd_mul(X, T), ys);
   double h3 = 3.0 * den.hi; /* times 3 in double-double (3 den.hi is not exact) */
-  den = dd_two_sum(h3, fma(3.0, den.hi, -h3) + 3.0 * den.lo);
-  return dd_div_dd(ys, den);
+  den = ics_dd_two_sum(h3, fma(3.0, den.hi, -h3) + 3.0 * den.lo);
+  return ics_dd_div_dd(ys, den);
 }
 
 /* 1/3 + w and 2/3 - w in double-double */
-static dd third_plus(dd w) { return dd_add((dd){THIRD_HI, THIRD_LO}, w); }
-static dd two3_minus(dd w) { return dd_add((dd){TWO3_HI, TWO3_LO}, (dd){-w.hi, -w.lo}); }
+static ics_dd third_plus(ics_dd w) { return ics_dd_add((ics_dd){THIRD_HI, THIRD_LO}, w); }
+static ics_dd two3_minus(ics_dd w) { return ics_dd_add((ics_dd){TWO3_HI, TWO3_LO}, (ics_dd){-w.hi, -w.lo}); }
 
 /* (1 - t)^2 exactly enough as double-double, t in [0, 1] */
-static dd one_minus_sq(double t) {
+static ics_dd one_minus_sq(double t) {
   double h = 1.0 - t;
   double l = (1.0 - h) - t; /* exact: 1 - t = h + l */
-  dd s = dd_sqr(h);
+  ics_dd s = ics_dd_sqr(h);
   s.lo += 2.0 * h * l;
-  return dd_two_sum(s.hi, s.lo);
+  return ics_dd_two_sum(s.hi, s.lo);
 }
 
 /* Parameters of the unit ellipse (1 - t, t), t in [0, 1/2]: beta = t / (1 - t). */
-static dd unit_w_small(double t) {
+static ics_dd unit_w_small(double t) {
   double om = 1.0 - t;
-  return ellipse_w(t / om, (1.0 - 2.0 * t) / om, 1.0 / om, one_minus_sq(t), dd_sqr(t));
+  return ellipse_w(t / om, (1.0 - 2.0 * t) / om, 1.0 / om, one_minus_sq(t), ics_dd_sqr(t));
 }
 /* t in [1/2, 1]: beta = (1 - t)/t, 1 - t exact. */
-static dd unit_w_large(double t) {
+static ics_dd unit_w_large(double t) {
   double u = 1.0 - t;
-  return ellipse_w(u / t, (2.0 * t - 1.0) / t, 1.0 / t, dd_sqr(t), dd_sqr(u));
+  return ellipse_w(u / t, (2.0 * t - 1.0) / t, 1.0 / t, ics_dd_sqr(t), ics_dd_sqr(u));
 }
 
 double ics_ellipse_varx(double b) {
@@ -204,16 +156,16 @@ double ics_ellipse_varx(double b) {
   if (b == 0.0) return THIRD_HI;
   if (isinf(b)) return TWO3_HI;
   if (b <= 1.0) {
-    dd one = {1.0, 0.0};
-    dd w = ellipse_w(b, 1.0 - b, 1.0 + b, one, dd_sqr(b));
-    dd v = third_plus(w);
+    ics_dd one = {1.0, 0.0};
+    ics_dd w = ellipse_w(b, 1.0 - b, 1.0 + b, one, ics_dd_sqr(b));
+    ics_dd v = third_plus(w);
     return v.hi + v.lo;
   }
-  dd one = {1.0, 0.0};
+  ics_dd one = {1.0, 0.0};
   double bi = 1.0 / b;
-  dd w = b < 0x1p500 ? ellipse_w(bi, (b - 1.0) / b, (b + 1.0) / b, dd_sqr(b), one)
-                         : ellipse_w(bi, 1.0 - bi, 1.0 + bi, one, dd_sqr(bi));
-  dd v = two3_minus(w);
+  ics_dd w = b < 0x1p500 ? ellipse_w(bi, (b - 1.0) / b, (b + 1.0) / b, ics_dd_sqr(b), one)
+                         : ellipse_w(bi, 1.0 - bi, 1.0 + bi, one, ics_dd_sqr(bi));
+  ics_dd v = two3_minus(w);
   return v.hi + v.lo;
 }
 
@@ -221,11 +173,11 @@ double ics_ellipse_vx(double t) {
   if (isnan(t) || t < 0.0 || t > 1.0) return NAN;
   if (t == 1.0) return 0.0;
   if (t <= 0.5) {
-    dd v = dd_mul(one_minus_sq(t), third_plus(unit_w_small(t)));
+    ics_dd v = ics_dd_mul(one_minus_sq(t), third_plus(unit_w_small(t)));
     return v.hi + v.lo;
   }
   double u = 1.0 - t;
-  dd v = dd_mul(dd_sqr(u), two3_minus(unit_w_large(t)));
+  ics_dd v = ics_dd_mul(ics_dd_sqr(u), two3_minus(unit_w_large(t)));
   return v.hi + v.lo;
 }
 
@@ -242,14 +194,14 @@ static double pow2i(int k) {
  * results twice: <= 1 ulp of 2^-1074). The exponent is applied by two multiplications, the first
  * exact (x 2^-600 is normal), the second rounding once: the same result as ldexp(x, 2e), which
  * would set errno = ERANGE on underflow (the math functions never touch errno). */
-static double sq_times(double t, dd f) {
+static double sq_times(double t, ics_dd f) {
   if (t >= 0x1p-480) {
-    dd v = dd_mul(dd_sqr(t), f);
+    ics_dd v = ics_dd_mul(ics_dd_sqr(t), f);
     return v.hi + v.lo;
   }
   int e;
   double m = frexp(t, &e); /* m in [1/2, 1), e <= -479 */
-  dd v = dd_mul(dd_sqr(m), f);
+  ics_dd v = ics_dd_mul(ics_dd_sqr(m), f);
   double x = v.hi + v.lo; /* in [1/8, 2] */
   int k = 2 * e;          /* <= -958 */
   if (k <= -1077) return 0.0; /* x 2^k <= 2^-1076 < 2^-1075: rounds to +0 */
@@ -260,7 +212,7 @@ double ics_ellipse_vy(double t) {
   if (isnan(t) || t < 0.0 || t > 1.0) return NAN;
   if (t == 0.0) return 0.0;
   if (t <= 0.5) return sq_times(t, two3_minus(unit_w_small(t)));
-  dd v = dd_mul(dd_sqr(t), third_plus(unit_w_large(t)));
+  ics_dd v = ics_dd_mul(ics_dd_sqr(t), third_plus(unit_w_large(t)));
   return v.hi + v.lo;
 }
 
@@ -269,31 +221,31 @@ double ics_ellipse_ratio(double t) {
   if (t == 0.0) return 0.0;
   if (t == 1.0) return INFINITY;
   if (t <= 0.5) {
-    dd w = unit_w_small(t);
-    dd g_num = two3_minus(w), g_den = third_plus(w);
+    ics_dd w = unit_w_small(t);
+    ics_dd g_num = two3_minus(w), g_den = third_plus(w);
     if (t < 0x1p-480) { /* 1 - t rounds to 1 (relative 2^-479): ratio = t^2 g, t^2 may underflow */
-      return sq_times(t, dd_div_dd(g_num, g_den));
+      return sq_times(t, ics_dd_div_dd(g_num, g_den));
     }
-    return dd_div_d(dd_mul(dd_sqr(t), g_num), dd_mul(one_minus_sq(t), g_den));
+    return ics_dd_div_d(ics_dd_mul(ics_dd_sqr(t), g_num), ics_dd_mul(one_minus_sq(t), g_den));
   }
-  dd w = unit_w_large(t);
+  ics_dd w = unit_w_large(t);
   double u = 1.0 - t;
-  return dd_div_d(dd_mul(dd_sqr(t), third_plus(w)), dd_mul(dd_sqr(u), two3_minus(w)));
+  return ics_dd_div_d(ics_dd_mul(ics_dd_sqr(t), third_plus(w)), ics_dd_mul(ics_dd_sqr(u), two3_minus(w)));
 }
 
 /* g(beta) = (2/3 - w)/(1/3 + w) */
-static dd g_of_beta(double beta) {
-  dd one = {1.0, 0.0};
-  dd w = ellipse_w(beta, 1.0 - beta, 1.0 + beta, one, dd_sqr(beta));
-  return dd_div_dd(two3_minus(w), third_plus(w));
+static ics_dd g_of_beta(double beta) {
+  ics_dd one = {1.0, 0.0};
+  ics_dd w = ellipse_w(beta, 1.0 - beta, 1.0 + beta, one, ics_dd_sqr(beta));
+  return ics_dd_div_dd(two3_minus(w), third_plus(w));
 }
 
 /* Solve beta^2 g(beta) = r for beta in (0, 1], r = fr 2^(2 e2) <= 1 (fr in [1/4, 1)):
  * secant iteration on the residual of the contraction beta = G(beta) = sqrt(r / g(beta)),
  * then one polishing step G and a Newton correction of the square root in double-double
  * (so the result's error is that of g alone, halved). */
-static dd solve_beta(double fr, int e2) {
-  dd gl;
+static ics_dd solve_beta(double fr, int e2) {
+  ics_dd gl;
 #define G_OF(bt) (gl = g_of_beta(bt), ldexp(sqrt(fr / gl.hi), e2))
   double x0 = ldexp(sqrt(fr * 0.5), e2);
   if (x0 > 1.0) x0 = 1.0;
@@ -315,14 +267,14 @@ static dd solve_beta(double fr, int e2) {
 #undef G_OF
   /* Newton for the square root on the scaled mantissas: ys^2 gl = fr, ys = y 2^-e2 */
   double ys = ldexp(y, -e2);
-  dd y2 = dd_sqr(ys);
-  dd y2g = dd_mul(y2, gl);
+  ics_dd y2 = ics_dd_sqr(ys);
+  ics_dd y2g = ics_dd_mul(y2, gl);
   double res = (fr - y2g.hi) - y2g.lo; /* fr - y2g.hi is exact (Sterbenz) near the root */
   double corr = res / (2.0 * ys * gl.hi);
-  dd beta = dd_two_sum(ys, corr);
+  ics_dd beta = ics_dd_two_sum(ys, corr);
   beta.hi = ldexp(beta.hi, e2);
   beta.lo = ldexp(beta.lo, e2);
-  if (beta.hi >= 1.0) beta = (dd){1.0, 0.0};
+  if (beta.hi >= 1.0) beta = (ics_dd){1.0, 0.0};
   return beta;
 }
 
@@ -343,12 +295,12 @@ double ics_ellipse_ratio_to_t(double rat) {
   }
   if (r < 0x1p-600) /* beta = sqrt(r/2) (rho < 2^-590), t = beta/(1 + beta) = beta */
     return ldexp(sqrt(fr * 0.5), e / 2);
-  dd beta = solve_beta(fr, e / 2);
-  dd den = dd_two_sum(1.0, beta.hi);
+  ics_dd beta = solve_beta(fr, e / 2);
+  ics_dd den = ics_dd_two_sum(1.0, beta.hi);
   den.lo += beta.lo;
-  den = dd_two_sum(den.hi, den.lo);
-  if (inverse) return dd_div_d((dd){1.0, 0.0}, den); /* t = 1 / (1 + beta') */
-  return dd_div_d(beta, den);                          /* t = beta / (1 + beta) */
+  den = ics_dd_two_sum(den.hi, den.lo);
+  if (inverse) return ics_dd_div_d((ics_dd){1.0, 0.0}, den); /* t = 1 / (1 + beta') */
+  return ics_dd_div_d(beta, den);                          /* t = beta / (1 + beta) */
 }
 
 /* ==== the elliptical kernel ================================================================= */
@@ -414,10 +366,9 @@ static double arc_from_major(double beta, double psi) {
  * f(psi) = arc - sigma is increasing and convex, so Newton from an upper bound converges
  * monotonically; upper bounds: arc >= 1 - cos psi and arc >= beta psi. */
 static double arc_invert(double beta, double sigma, double Q) {
-  const double half_pi = 1.5707963267948966;
   if (sigma <= 0.0) return 0.0;
-  if (sigma >= Q) return half_pi;
-  double psi = half_pi;
+  if (sigma >= Q) return ICS_PI / 2;
+  double psi = ICS_PI / 2;
   if (sigma < 2.0) psi = fmin(psi, 2.0 * asin(sqrt(0.5 * sigma))); /* 1 - cos psi = sigma */
   psi = fmin(psi, sigma / beta);
   double lo = 0.0, hi = psi; /* the root is in [lo, hi] */
@@ -446,7 +397,7 @@ void ics_sincos_deg(double deg, double *s, double *c) {
   double r = fmod(deg, 360.0); /* exact */
   double q = nearbyint(r / 90.0);
   double rem = r - 90.0 * q; /* exact: |rem| <= 45 */
-  double x = rem * (3.14159265358979323846 / 180.0);
+  double x = rem * (ICS_PI / 180.0);
   double sx = sin(x), cx = cos(x);
   int k = ((int)q % 4 + 4) % 4;
   switch (k) {
@@ -501,7 +452,7 @@ ics_status ics_ellipse_kernel(double varx, double vary, double angle_deg, int ns
    * the major-axis end (no cancellation, see arc_from_major) on the normalised ellipse. */
   double beta = s / (1.0 - s); /* minor / major */
   int segment = beta < 0x1p-500; /* beta^2 would underflow: a segment to O(beta^2) relative */
-  double Q = segment ? 1.0 : arc_from_major(beta, 1.5707963267948966);
+  double Q = segment ? 1.0 : arc_from_major(beta, ICS_PI / 2);
   double sa, ca;
   ics_sincos_deg(angle_deg, &sa, &ca);
   double u0 = offset - floor(offset);

@@ -13,6 +13,7 @@
 
 #include "icshadow/ellipse.h"
 #include "icshadow/kernel.h"
+#include "icshadow/constants.h"
 #include "icshadow/light.h"
 #include "icshadow/rng.h"
 #include "sym2.h"
@@ -170,23 +171,6 @@ ics_status ics_class2d_to_axes(const ics_class2d *c, double *varx, double *vary,
   if (vary) *vary = l2;
   if (angle_deg) *angle_deg = ang;
   return ICS_OK;
-}
-
-/* symmetric square root of a PSD 2x2 matrix {a, b, c}:
- * (M + sqrt(det) I) / sqrt(tr + 2 sqrt(det)) */
-static void sqrtm2(double a, double b, double c, double out[3]) {
-  double l1, l2;
-  ics_sym2_eig(a, b, c, &l1, &l2, NULL);
-  if (l1 < 0) l1 = 0;
-  if (l2 < 0) l2 = 0;
-  double s = sqrt(l1) * sqrt(l2), t = sqrt(l1) + sqrt(l2);
-  if (t == 0) {
-    out[0] = out[1] = out[2] = 0;
-    return;
-  }
-  out[0] = (a + s) / t;
-  out[1] = b / t;
-  out[2] = (c + s) / t;
 }
 
 /* ---------------------------------------------------------------- 1D members */
@@ -511,7 +495,7 @@ static void poisson_pattern(uint64_t seed, int N, double *px, double *py) {
   a /= N, b /= N, c /= N;
   /* S^(-1/2) = (S^(1/2))^(-1) */
   double h[3];
-  sqrtm2(a, b, c, h);
+  ics_sym2_sqrt(a, b, c, h);
   double det = h[0] * h[2] - h[1] * h[1];
   double i0 = h[2] / det, i1 = -h[1] / det, i2 = h[0] / det;
   for (int j = 0; j < N; j++) {
@@ -535,7 +519,7 @@ ics_status ics_kernel2d_taps(const ics_kernel2d *k, uint64_t iter, ics_tap2d *ta
   int N = nsamples2d(k);
   const ics_class2d *c = &k->cls;
   double L[3];
-  sqrtm2(c->cxx, c->cxy, c->cyy, L);
+  ics_sym2_sqrt(c->cxx, c->cxy, c->cyy, L);
   int n = 0;
   switch (k->member) {
   case ICS_KERNEL_GAUSS: {
@@ -579,7 +563,7 @@ ics_status ics_kernel2d_taps(const ics_kernel2d *k, uint64_t iter, ics_tap2d *ta
     double *p = malloc(sizeof(double) * 2 * (size_t)N);
     if (!p) return ICS_ERR_NOMEM;
     poisson_pattern(k->seed, N, p, p + N);
-    double th = 6.283185307179586476925286766559 * ics_rng_uniform_at(k->seed, iter, 0);
+    double th = 2 * ICS_PI * ics_rng_uniform_at(k->seed, iter, 0);
     double s = sin(th), co = cos(th);
     for (int j = 0; j < N; j++) {
       double u = co * p[j] - s * p[N + j], v = s * p[j] + co * p[N + j];

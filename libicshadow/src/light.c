@@ -6,27 +6,25 @@
  *   45 < |w| < 90: 1 / tan((90 - |w|) * pi/180), where 90 - |w| is exact (Sterbenz), so the
  *   result keeps ~2 ulp up to the last representable angle below 90 (measured in
  *   tests/test_light.c against the series cot x = 1/x - x/3 - x^3/45 - 2x^5/945).
- * - Phi, Phi^c: 0.5 erfc(-z/sqrt2), 0.5 erfc(z/sqrt2) (libm erfc; relative error ~1e-15 in both
- *   tails). Phi^-1: Acklam's rational approximation (rel. error 1.15e-9) refined by one Halley
- *   step on erfc, giving ~1e-15 relative.
- * - Mixture cdf/sf: weighted sums of Phi/Phi^c (no cancellation). Mixture quantile: bracket
- *   [min_i q_i(p), max_i q_i(p)] of the component quantiles (L is between them), then
- *   safeguarded Newton (bisection fallback) to 4 ulp in x.
+ * - Gaussian and mixture cdf/sf: (weighted sums of) Phi/Phi^c of normal.c (no cancellation).
+ *   Mixture quantile: bracket [min_i q_i(p), max_i q_i(p)] of the component quantiles (L is
+ *   between them), then safeguarded Newton (bisection fallback) to 4 ulp in x.
  * - Table lights: piecewise-linear density; cdf is piecewise quadratic, its inverse is solved in
  *   the cancellation-free form u = 2r / (p_i + sqrt(p_i^2 + 2 s r)); moments by 3-point
  *   Gauss-Legendre per segment (exact for the degree-4 integrands). */
 #include "icshadow/light.h"
+#include "icshadow/constants.h"
+#include "icshadow/normal.h"
 
-#include <errno.h>
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "check_finite.h"
 #include "degtrig.h"
+#include "noerrno.h"
 #include "sym2.h"
-
-static const double PI = 3.14159265358979323846;
 
 /* ---- tilt ---- */
 
@@ -35,31 +33,25 @@ double ics_tan_deg(double w) {
   double a = fabs(w);
   double t;
   if (a <= 45.0)
-    t = tan(a * (PI / 180.0));
+    t = tan(a * (ICS_PI / 180.0));
   else
-    t = 1.0 / tan((90.0 - a) * (PI / 180.0));
+    t = 1.0 / tan((90.0 - a) * (ICS_PI / 180.0));
   return w < 0 ? -t : t;
 }
 
 double ics_tilt_condition(double w) {
   if (!(fabs(w) < 90.0)) return NAN;
   if (w == 0) return 1.0;
-  double r = fabs(w) * (PI / 180.0);
+  double r = fabs(w) * (ICS_PI / 180.0);
   /* sin(2r) = 2 sin r cos r; near 90 degrees use cos r = sin((90 - w) deg) (exact argument) */
-  double c = fabs(w) <= 45.0 ? cos(r) : sin((90.0 - fabs(w)) * (PI / 180.0));
+  double c = fabs(w) <= 45.0 ? cos(r) : sin((90.0 - fabs(w)) * (ICS_PI / 180.0));
   return r / (sin(r) * c);
 }
 
 /* ---- 2D lights ---- */
 
-static ics_status check_finite(double v) {
-  if (isnan(v)) return ICS_ERR_NAN;
-  if (isinf(v)) return ICS_ERR_INFINITE;
-  return ICS_OK;
-}
-
 static ics_status check_var(double v) {
-  ics_status s = check_finite(v);
+  ics_status s = ics_check_finite(v);
   if (s != ICS_OK) return s;
   return v < 0 ? ICS_ERR_NEGATIVE_VARIANCE : ICS_OK;
 }
@@ -67,7 +59,7 @@ static ics_status check_var(double v) {
 ics_status ics_cov_from_eig(double varx, double vary, double alpha, double cov[3]) {
   ics_status s;
   if ((s = check_var(varx)) != ICS_OK || (s = check_var(vary)) != ICS_OK ||
-      (s = check_finite(alpha)) != ICS_OK)
+      (s = ics_check_finite(alpha)) != ICS_OK)
     return s;
   double c, sn;
   ics_sincos_deg(alpha, &sn, &c);
@@ -77,24 +69,10 @@ ics_status ics_cov_from_eig(double varx, double vary, double alpha, double cov[3
   return ICS_OK;
 }
 
-void ics_sym2_eig(double a, double b, double d, double *l1, double *l2, double *alpha_deg) {
-  double h = 0.5 * (a - d);
-  double r = hypot(h, b);
-  double m = 0.5 * (a + d);
-  double big = m + r;
-  *l1 = big;
-  *l2 = (big > 0) ? (a * d - b * b) / big : m - r; /* no cancellation in the small one */
-  if (alpha_deg) {
-    double ang = (r == 0) ? 0.0 : 0.5 * atan2(b, h) * (180.0 / PI);
-    if (ang <= -90.0) ang += 180.0;
-    *alpha_deg = ang;
-  }
-}
-
 ics_status ics_cov_to_eig(const double cov[3], double *varx, double *vary, double *alpha) {
   ics_status s;
   for (int i = 0; i < 3; i++)
-    if ((s = check_finite(cov[i])) != ICS_OK) return s;
+    if ((s = ics_check_finite(cov[i])) != ICS_OK) return s;
   double a = cov[0], d = cov[2];
   double tol = 8 * DBL_EPSILON * fabs(a + d);
   if (a < -tol || d < -tol) return ICS_ERR_INVALID_ARG;
@@ -111,16 +89,16 @@ ics_status ics_cov_to_eig(const double cov[3], double *varx, double *vary, doubl
 ics_status ics_light_from_tilt(ics_light *out, double wx, double wy, double varx, double vary,
                                double alpha, const double color[3], double weight) {
   ics_status s;
-  if ((s = check_finite(wx)) != ICS_OK || (s = check_finite(wy)) != ICS_OK) return s;
+  if ((s = ics_check_finite(wx)) != ICS_OK || (s = ics_check_finite(wy)) != ICS_OK) return s;
   if (!(fabs(wx) < 90.0) || !(fabs(wy) < 90.0)) return ICS_ERR_RANGE;
-  if ((s = check_finite(weight)) != ICS_OK) return s;
+  if ((s = ics_check_finite(weight)) != ICS_OK) return s;
   if (weight < 0) return ICS_ERR_INVALID_ARG;
   double cov[3];
   if ((s = ics_cov_from_eig(varx, vary, alpha, cov)) != ICS_OK) return s;
   double col[3] = {1, 1, 1};
   if (color)
     for (int i = 0; i < 3; i++) {
-      if ((s = check_finite(color[i])) != ICS_OK) return s;
+      if ((s = ics_check_finite(color[i])) != ICS_OK) return s;
       if (color[i] < 0) return ICS_ERR_INVALID_ARG;
       col[i] = color[i];
     }
@@ -134,14 +112,14 @@ ics_status ics_light_from_tilt(ics_light *out, double wx, double wy, double varx
 
 static ics_status check_e_d1(double e, double d1) {
   ics_status s;
-  if ((s = check_finite(e)) != ICS_OK || (s = check_finite(d1)) != ICS_OK) return s;
+  if ((s = ics_check_finite(e)) != ICS_OK || (s = ics_check_finite(d1)) != ICS_OK) return s;
   return (e > 0 && d1 > 0) ? ICS_OK : ICS_ERR_RANGE;
 }
 
 ics_status ics_kernel_map_1d(double mu_l, double var_l, double e, double d1, double *mu_k,
                              double *var_k) {
   ics_status s;
-  if ((s = check_finite(mu_l)) != ICS_OK || (s = check_var(var_l)) != ICS_OK) return s;
+  if ((s = ics_check_finite(mu_l)) != ICS_OK || (s = check_var(var_l)) != ICS_OK) return s;
   if ((s = check_e_d1(e, d1)) != ICS_OK) return s;
   *mu_k = -e * mu_l;
   *var_k = d1 * e * var_l;
@@ -153,9 +131,9 @@ ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, double mea
   ics_status s;
   if (!l) return ICS_ERR_INVALID_ARG;
   for (int i = 0; i < 2; i++)
-    if ((s = check_finite(l->mean[i])) != ICS_OK) return s;
+    if ((s = ics_check_finite(l->mean[i])) != ICS_OK) return s;
   for (int i = 0; i < 3; i++)
-    if ((s = check_finite(l->cov[i])) != ICS_OK) return s;
+    if ((s = ics_check_finite(l->cov[i])) != ICS_OK) return s;
   if (l->cov[0] < 0 || l->cov[2] < 0) return ICS_ERR_NEGATIVE_VARIANCE;
   double vx, vy, ang; /* positive semidefinite (ics_cov_to_eig's check, -8 eps trace) */
   if (ics_cov_to_eig(l->cov, &vx, &vy, &ang) != ICS_OK) return ICS_ERR_NEGATIVE_VARIANCE;
@@ -166,104 +144,6 @@ ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, double mea
   return ICS_OK;
 }
 
-/* ---- standard normal ---- */
-
-/* glibc's erfc and exp set errno = ERANGE when the result underflows or overflows (erfc(x) for
- * x >~ 26.5, i.e. Phi(z) for z < -37.5; exp in the pdf's tails and Phi^-1's Halley step for
- * subnormal p). The math functions never touch errno: these calls save and restore it (the
- * results are libm's, unchanged). */
-static double erfc_noerrno(double x) {
-  int saved = errno;
-  double r = erfc(x);
-  errno = saved;
-  return r;
-}
-
-static double exp_noerrno(double x) {
-  int saved = errno;
-  double r = exp(x);
-  errno = saved;
-  return r;
-}
-
-double ics_light_phi(double z) {
-  if (isnan(z)) return NAN;
-  return 0.5 * erfc_noerrno(-z * 0.70710678118654752440);
-}
-
-double ics_light_phic(double z) {
-  if (isnan(z)) return NAN;
-  return 0.5 * erfc_noerrno(z * 0.70710678118654752440);
-}
-
-/* Phi^-1 for subnormal p (x < -37.5), where Phi(x) itself is subnormal (the Halley residual keeps
- * too few bits) and exp(x^2/2) overflows: Newton on log Phi(x) = log p with the asymptotic series
- *   log Phi(x) = -x^2/2 - log(-x) - log(2 pi)/2 + log1p(S),  S = sum_{k=1..8} (-1)^k (2k-1)!! / x^{2k}
- * (truncation < 2e-19 relative for x^2 > 1369), d/dx log Phi = -x / (1 + S). Start: Acklam's tail
- * approximation (relative error ~1e-9), so two or three steps reach rounding. */
-static double phiinv_subnormal(double p) {
-  double lp = log(p); /* finite: p >= 2^-1074 */
-  double q = sqrt(-2 * lp);
-  double x = -(((((-7.784894002430293e-03 * q - 3.223964580411365e-01) * q - 2.400758277161838e+00) * q -
-                 2.549732539343734e+00) * q + 4.374664141464968e+00) * q + 2.938163982698783e+00) /
-             ((((7.784695709041462e-03 * q + 3.224671290700398e-01) * q + 2.445134137142996e+00) * q +
-               3.754408661907416e+00) * q + 1);
-  x = -fabs(x);
-  for (int it = 0; it < 6; it++) {
-    double r = 1 / (x * x), term = 1, s = 0;
-    for (int k = 1; k <= 8; k++) {
-      term *= -(2 * k - 1) * r;
-      s += term;
-    }
-    double g = (-0.5 * x * x - lp) - log(-x) - 0.91893853320467274178 + log1p(s);
-    double step = g * (1 + s) / (-x);
-    x -= step;
-    if (fabs(step) <= 1e-16 * fabs(x)) break;
-  }
-  return x;
-}
-
-double ics_light_phiinv(double p) {
-  if (isnan(p) || p < 0 || p > 1) return NAN;
-  if (p == 0) return -INFINITY;
-  if (p == 1) return INFINITY;
-  static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,
-                             -2.759285104469687e+02, 1.383577518672690e+02,
-                             -3.066479806614716e+01, 2.506628277459239e+00};
-  static const double b[] = {-5.447609879822406e+01, 1.615858368580409e+02,
-                             -1.556989798598866e+02, 6.680131188771972e+01,
-                             -1.328068155288572e+01};
-  static const double c[] = {-7.784894002430293e-03, -3.223964580411365e-01,
-                             -2.400758277161838e+00, -2.549732539343734e+00,
-                             4.374664141464968e+00,  2.938163982698783e+00};
-  static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01,
-                             2.445134137142996e+00, 3.754408661907416e+00};
-  double q, x;
-  double pl = p < 0.5 ? p : 1.0 - p; /* tail mass on the near side (exact for p >= 0.5 near 1) */
-  if (p < DBL_MIN) return phiinv_subnormal(p);
-  if (pl < 0.02425) {
-    q = sqrt(-2 * log(pl));
-    x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
-        ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
-    if (p >= 0.5) x = -x;
-  } else {
-    q = p - 0.5;
-    double r = q * q;
-    x = (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
-        (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1);
-  }
-  /* one Halley step; the residual is taken in the tail nearest to x to avoid cancellation */
-  double e, u;
-  if (x < 0) {
-    e = ics_light_phi(x) - p;
-  } else {
-    e = -(ics_light_phic(x) - (1.0 - p)); /* 1 - p exact for p >= 0.5 */
-  }
-  u = e * 2.50662827463100050242 * exp_noerrno(0.5 * x * x);
-  x = x - u / (1 + 0.5 * x * u);
-  return x;
-}
-
 /* ---- 1D lights ---- */
 
 static void l1_zero(ics_light1d *l) {
@@ -272,7 +152,7 @@ static void l1_zero(ics_light1d *l) {
 
 ics_status ics_light1d_gauss(ics_light1d *l, double mean, double var) {
   ics_status s;
-  if ((s = check_finite(mean)) != ICS_OK || (s = check_var(var)) != ICS_OK) return s;
+  if ((s = ics_check_finite(mean)) != ICS_OK || (s = check_var(var)) != ICS_OK) return s;
   l1_zero(l);
   l->kind = ICS_LIGHT1D_GAUSS;
   l->n = 1;
@@ -285,7 +165,7 @@ ics_status ics_light1d_gauss(ics_light1d *l, double mean, double var) {
 
 ics_status ics_light1d_box(ics_light1d *l, double lo, double hi) {
   ics_status s;
-  if ((s = check_finite(lo)) != ICS_OK || (s = check_finite(hi)) != ICS_OK) return s;
+  if ((s = ics_check_finite(lo)) != ICS_OK || (s = ics_check_finite(hi)) != ICS_OK) return s;
   if (!(lo < hi)) return ICS_ERR_RANGE;
   l1_zero(l);
   l->kind = ICS_LIGHT1D_BOX;
@@ -307,7 +187,7 @@ ics_status ics_light1d_mix(ics_light1d *l, int n, const double *w, const double 
   ics_status s;
   double sw = 0;
   for (int i = 0; i < n; i++) {
-    if ((s = check_finite(w[i])) != ICS_OK || (s = check_finite(mu[i])) != ICS_OK ||
+    if ((s = ics_check_finite(w[i])) != ICS_OK || (s = ics_check_finite(mu[i])) != ICS_OK ||
         (s = check_var(var[i])) != ICS_OK)
       return s;
     if (w[i] < 0) return ICS_ERR_INVALID_ARG;
@@ -360,7 +240,7 @@ ics_status ics_light1d_tab(ics_light1d *l, int n, const double *x, const double 
   if (n < 2) return ICS_ERR_SIZE;
   ics_status s;
   for (int i = 0; i < n; i++) {
-    if ((s = check_finite(x[i])) != ICS_OK || (s = check_finite(p[i])) != ICS_OK) return s;
+    if ((s = ics_check_finite(x[i])) != ICS_OK || (s = ics_check_finite(p[i])) != ICS_OK) return s;
     if (p[i] < 0) return ICS_ERR_INVALID_ARG;
     if (i && !(x[i] > x[i - 1])) return ICS_ERR_INVALID_ARG;
   }
@@ -422,14 +302,14 @@ double ics_light1d_pdf(const ics_light1d *l, double x) {
   switch (l->kind) {
   case ICS_LIGHT1D_GAUSS:
     if (l->b == 0) return x == l->a ? INFINITY : 0.0;
-    return exp_noerrno(-0.5 * (x - l->a) * (x - l->a) / l->b) / sqrt(2 * PI * l->b);
+    return ics_exp_noerrno(-0.5 * (x - l->a) * (x - l->a) / l->b) / sqrt(2 * ICS_PI * l->b);
   case ICS_LIGHT1D_BOX:
     return (x >= l->a && x <= l->b) ? 1.0 / (l->b - l->a) : 0.0;
   case ICS_LIGHT1D_MIX: {
     double s = 0;
     for (int i = 0; i < l->n; i++)
-      s += l->w[i] * exp_noerrno(-0.5 * (x - l->mu[i]) * (x - l->mu[i]) / l->var[i]) /
-           sqrt(2 * PI * l->var[i]);
+      s += l->w[i] * ics_exp_noerrno(-0.5 * (x - l->mu[i]) * (x - l->mu[i]) / l->var[i]) /
+           sqrt(2 * ICS_PI * l->var[i]);
     return s;
   }
   case ICS_LIGHT1D_TAB: {
@@ -457,14 +337,14 @@ double ics_light1d_cdf(const ics_light1d *l, double x) {
   switch (l->kind) {
   case ICS_LIGHT1D_GAUSS:
     if (l->b == 0) return x >= l->a ? 1.0 : 0.0;
-    return ics_light_phi((x - l->a) / sqrt(l->b));
+    return ics_normal_cdf((x - l->a) / sqrt(l->b));
   case ICS_LIGHT1D_BOX:
     if (x <= l->a) return 0.0;
     if (x >= l->b) return 1.0;
     return (x - l->a) / (l->b - l->a);
   case ICS_LIGHT1D_MIX: {
     double s = 0;
-    for (int i = 0; i < l->n; i++) s += l->w[i] * ics_light_phi((x - l->mu[i]) / sqrt(l->var[i]));
+    for (int i = 0; i < l->n; i++) s += l->w[i] * ics_normal_cdf((x - l->mu[i]) / sqrt(l->var[i]));
     return s > 1.0 ? 1.0 : s;
   }
   case ICS_LIGHT1D_TAB:
@@ -478,7 +358,7 @@ double ics_light1d_sf(const ics_light1d *l, double x) {
   switch (l->kind) {
   case ICS_LIGHT1D_GAUSS:
     if (l->b == 0) return x >= l->a ? 0.0 : 1.0;
-    return ics_light_phic((x - l->a) / sqrt(l->b));
+    return ics_normal_sf((x - l->a) / sqrt(l->b));
   case ICS_LIGHT1D_BOX:
     if (x <= l->a) return 1.0;
     if (x >= l->b) return 0.0;
@@ -486,7 +366,7 @@ double ics_light1d_sf(const ics_light1d *l, double x) {
   case ICS_LIGHT1D_MIX: {
     double s = 0;
     for (int i = 0; i < l->n; i++)
-      s += l->w[i] * ics_light_phic((x - l->mu[i]) / sqrt(l->var[i]));
+      s += l->w[i] * ics_normal_sf((x - l->mu[i]) / sqrt(l->var[i]));
     return s > 1.0 ? 1.0 : s;
   }
   case ICS_LIGHT1D_TAB:
@@ -500,7 +380,7 @@ static double mix_solve(const ics_light1d *l, double t, int upper) {
   double lo = INFINITY, hi = -INFINITY;
   for (int i = 0; i < l->n; i++) {
     if (l->w[i] == 0) continue;
-    double z = upper ? -ics_light_phiinv(t) : ics_light_phiinv(t);
+    double z = upper ? -ics_normal_quantile(t) : ics_normal_quantile(t);
     double q = l->mu[i] + sqrt(l->var[i]) * z;
     if (q < lo) lo = q;
     if (q > hi) hi = q;
@@ -560,7 +440,7 @@ double ics_light1d_quantile(const ics_light1d *l, double p) {
   switch (l->kind) {
   case ICS_LIGHT1D_GAUSS:
     if (l->b == 0) return l->a;
-    return l->a + sqrt(l->b) * ics_light_phiinv(p);
+    return l->a + sqrt(l->b) * ics_normal_quantile(p);
   case ICS_LIGHT1D_BOX:
     return p <= 0.5 ? l->a + p * (l->b - l->a) : l->b - (1.0 - p) * (l->b - l->a);
   case ICS_LIGHT1D_MIX:
@@ -578,7 +458,7 @@ double ics_light1d_isf(const ics_light1d *l, double q) {
   switch (l->kind) {
   case ICS_LIGHT1D_GAUSS:
     if (l->b == 0) return l->a;
-    return l->a - sqrt(l->b) * ics_light_phiinv(q);
+    return l->a - sqrt(l->b) * ics_normal_quantile(q);
   case ICS_LIGHT1D_BOX:
     return q <= 0.5 ? l->b - q * (l->b - l->a) : l->a + (1.0 - q) * (l->b - l->a);
   case ICS_LIGHT1D_MIX:

@@ -31,14 +31,15 @@
  * density (1 + r^2)^(-3/2) has infinite variance on the plane: the cut-off is what makes it
  * fittable at all). */
 #include "icshadow/lightfit.h"
+#include "icshadow/constants.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "icshadow/rng.h"
+#include "sym2.h"
 
-#define PI 3.14159265358979323846
 #define ONE_MINUS_LN2 0.30685281944005469 /* 1 - ln 2 */
 
 typedef struct px {
@@ -59,12 +60,12 @@ typedef struct pixset {
 static double lum(const float *c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
 
 int ics_envmap_pixel(int width, int height, int i, int j, double *x, double *y, double *domega) {
-  double th = PI * (j + 0.5) / height, ph = 2 * PI * (i + 0.5) / width - PI;
+  double th = ICS_PI * (j + 0.5) / height, ph = 2 * ICS_PI * (i + 0.5) / width - ICS_PI;
   double st = sin(th), dz = st * cos(ph);
   if (!(dz > 0)) return -1;
   if (x) *x = tan(ph);
   if (y) *y = cos(th) / dz;
-  if (domega) *domega = (cos(PI * j / height) - cos(PI * (j + 1.0) / height)) * (2 * PI / width);
+  if (domega) *domega = (cos(ICS_PI * j / height) - cos(ICS_PI * (j + 1.0) / height)) * (2 * ICS_PI / width);
   return 0;
 }
 
@@ -72,8 +73,8 @@ int ics_envmap_pixel(int width, int height, int i, int j, double *x, double *y, 
  * positive and unimodal on the pixel when the pixel is behind the viewer, so its minimum is at
  * the corner farthest from the equator and from phi = 0 */
 static double pixel_min_dz(int w, int h, int i, int j) {
-  double t0 = PI * j / h, t1 = PI * (j + 1.0) / h;
-  double p0 = 2 * PI * i / w - PI, p1 = 2 * PI * (i + 1.0) / w - PI;
+  double t0 = ICS_PI * j / h, t1 = ICS_PI * (j + 1.0) / h;
+  double p0 = 2 * ICS_PI * i / w - ICS_PI, p1 = 2 * ICS_PI * (i + 1.0) / w - ICS_PI;
   double st = fmin(sin(t0), sin(t1)), cp = fmin(cos(p0), cos(p1));
   return st > 0 && cp > 0 ? st * cp : 0;
 }
@@ -87,15 +88,15 @@ int ics_envmap_pixel_kept(int width, int height, int i, int j, double max_angle_
   if (width < 1 || height < 1 || i < 0 || i >= width || j < 0 || j >= height ||
       !(max_angle_deg > 0 && max_angle_deg < 90))
     return 0;
-  double th = PI * (j + 0.5) / height, ph = 2 * PI * (i + 0.5) / width - PI;
+  double th = ICS_PI * (j + 0.5) / height, ph = 2 * ICS_PI * (i + 0.5) / width - ICS_PI;
   double dzc = sin(th) * cos(ph);
-  return dzc > 0 && pixel_kept(width, height, i, j, dzc, cos(max_angle_deg * PI / 180));
+  return dzc > 0 && pixel_kept(width, height, i, j, dzc, cos(max_angle_deg * ICS_PI / 180));
 }
 
 static void footprint(int w, int h, int i, int j, double s[3]) {
-  double th = PI * (j + 0.5) / h, ph = 2 * PI * (i + 0.5) / w - PI;
+  double th = ICS_PI * (j + 0.5) / h, ph = 2 * ICS_PI * (i + 0.5) / w - ICS_PI;
   double cp = cos(ph), sp = sin(ph), st = sin(th), ct = cos(th);
-  double dph = 2 * PI / w, dth = PI / h;
+  double dph = 2 * ICS_PI / w, dth = ICS_PI / h;
   double a = dph * dph / 12, b = dth * dth / 12;
   double j00 = 1 / (cp * cp), j10 = ct / st * sp / (cp * cp), j11 = -1 / (st * st * cp);
   s[0] = j00 * j00 * a;
@@ -124,16 +125,16 @@ static ics_status pixset_build(const ics_image *env, double max_angle_deg, pixse
     pixset_free(ps);
     return ICS_ERR_NOMEM;
   }
-  double cosmax = cos(max_angle_deg * PI / 180);
+  double cosmax = cos(max_angle_deg * ICS_PI / 180);
   for (int j = 0; j < h; j++) {
-    double dw = (cos(PI * j / h) - cos(PI * (j + 1.0) / h)) * (2 * PI / w);
-    double th = PI * (j + 0.5) / h, st = sin(th), ct = cos(th);
+    double dw = (cos(ICS_PI * j / h) - cos(ICS_PI * (j + 1.0) / h)) * (2 * ICS_PI / w);
+    double th = ICS_PI * (j + 0.5) / h, st = sin(th), ct = cos(th);
     for (int i = 0; i < w; i++) {
       const float *c = env->data + ((size_t)j * w + i) * env->channels;
       double m = lum(c) * dw;
       ps->grid[(size_t)j * w + i] = -1;
       ps->e_total += m;
-      double ph = 2 * PI * (i + 0.5) / w - PI, dz = st * cos(ph);
+      double ph = 2 * ICS_PI * (i + 0.5) / w - ICS_PI, dz = st * cos(ph);
       if (!(dz > 0)) {
         ps->e_front += m;
         continue;
@@ -179,7 +180,7 @@ static int gauss_make(gauss *g, double mx, double my, const double c[3]) {
   g->ixx = c[2] / det;
   g->ixy = -c[1] / det;
   g->iyy = c[0] / det;
-  g->lnorm = -log(2 * PI) - 0.5 * log(det);
+  g->lnorm = -log(2 * ICS_PI) - 0.5 * log(det);
   return 0;
 }
 
@@ -196,14 +197,6 @@ static double light_at(const ics_light *l, const px *q) {
   return l->weight * exp(gauss_log(&g, q->x, q->y));
 }
 
-static void sym_eig(const double c[3], double *l1, double *l2, double *angle) {
-  double tr = c[0] + c[2], df = c[0] - c[2];
-  double r = hypot(0.5 * df, c[1]);
-  *l1 = 0.5 * tr + r;
-  *l2 = 0.5 * tr - r;
-  *angle = 0.5 * atan2(2 * c[1], df);
-}
-
 /* Sigma = C - F with the floor Sigma >= F: with F = L L^T (Cholesky), the eigenvalues of
  * L^-1 (C - F) L^-T are clamped to >= 1. sig = C - F unchanged when no clamp is needed. */
 static void cov_deconv(const double c[3], const double f[3], double sig[3]) {
@@ -218,21 +211,17 @@ static void cov_deconv(const double c[3], const double f[3], double sig[3]) {
   double m10 = (d[1] - l10 * m00) / l11, m11 = (d[2] - l10 * m01) / l11;
   double A0 = m00 / l00, A1 = (m01 - l10 * A0) / l11;
   double A2 = (m11 - l10 * (m10 / l00)) / l11;
-  double e1, e2, ang;
-  sym_eig((double[3]){A0, A1, A2}, &e1, &e2, &ang);
-  if (e2 >= 1) {
+  double e1, e2, ang, B[3];
+  ics_sym2_eig(A0, A1, A2, &e1, &e2, &ang);
+  /* no clamp needed, or NaN / overflowed moments (no floor to apply): C - F */
+  if (e2 >= 1 || ics_cov_from_eig(e1 < 1 ? 1 : e1, 1, ang, B) != ICS_OK) {
     memcpy(sig, d, 3 * sizeof *sig);
     return;
   }
-  if (e1 < 1) e1 = 1;
-  e2 = 1;
-  double co = cos(ang), sn = sin(ang);
-  double B0 = e1 * co * co + e2 * sn * sn, B1 = (e1 - e2) * co * sn;
-  double B2 = e1 * sn * sn + e2 * co * co;
   /* sig = L B L^T, L = [[l00, 0], [l10, l11]] */
-  sig[0] = l00 * l00 * B0;
-  sig[1] = l00 * (l10 * B0 + l11 * B1);
-  sig[2] = l10 * l10 * B0 + 2 * l10 * l11 * B1 + l11 * l11 * B2;
+  sig[0] = l00 * l00 * B[0];
+  sig[1] = l00 * (l10 * B[0] + l11 * B[1]);
+  sig[2] = l10 * l10 * B[0] + 2 * l10 * l11 * B[1] + l11 * l11 * B[2];
 }
 
 /* ---- errors ---- */
@@ -281,7 +270,7 @@ static ics_status errors(const pixset *ps, const ics_light *l, int n, ics_lightf
   double *diff = bins + G + 1, *hw = t + ps->n;
   double worst = 0;
   for (int o = 0; o < 4; o++) {
-    double ang = o * PI / 4, nx = cos(ang), ny = sin(ang), lo = INFINITY, hi = -INFINITY;
+    double ang = o * ICS_PI / 4, nx = cos(ang), ny = sin(ang), lo = INFINITY, hi = -INFINITY;
     for (int q = 0; q < ps->n; q++) {
       const px *p = &ps->p[q];
       t[q] = nx * p->x + ny * p->y;
@@ -648,7 +637,7 @@ ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
     for (int c = 0; c < 3; c++) ok = ok && l->color[c] >= 0 && isfinite(l->color[c]);
     double l1 = 0, l2 = 0, ang = 0;
     if (ok) {
-      sym_eig(l->cov, &l1, &l2, &ang);
+      ics_sym2_eig(l->cov[0], l->cov[1], l->cov[2], &l1, &l2, &ang);
       double tr = l->cov[0] + l->cov[2];
       ok = l->cov[0] >= 0 && l->cov[2] >= 0 && l2 >= -1e-12 * tr;
     }
@@ -661,12 +650,12 @@ ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
     double r2 = l->mean[0] * l->mean[0] + l->mean[1] * l->mean[1], nr = sqrt(1 + r2);
     double dx = l->mean[0] / nr, dy = l->mean[1] / nr, dz = 1 / nr;
     double th = acos(dy), ph = atan2(dx, dz);
-    int pi = (int)floor((ph + PI) / (2 * PI) * w), pj = (int)floor(th / PI * h);
+    int pi = (int)floor((ph + ICS_PI) / (2 * ICS_PI) * w), pj = (int)floor(th / ICS_PI * h);
     pi = pi < 0 ? 0 : pi >= w ? w - 1 : pi;
     pj = pj < 0 ? 0 : pj >= h ? h - 1 : pj;
-    double fs[3], f1, f2, fa;
+    double fs[3], f1, f2;
     footprint(w, h, pi, pj, fs);
-    sym_eig(fs, &f1, &f2, &fa);
+    ics_sym2_eig(fs[0], fs[1], fs[2], &f1, &f2, NULL);
     double floor_var = 12 * f2 / 16; /* (smallest pixel extent / 4)^2 */
     delta[k] = -1;
     if (l1 < floor_var) {
@@ -674,10 +663,12 @@ ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
       continue;
     }
     if (l2 < floor_var) l2 = floor_var;
-    double c = cos(ang), sn = sin(ang), cv[3];
-    cv[0] = l1 * c * c + l2 * sn * sn;
-    cv[1] = (l1 - l2) * c * sn;
-    cv[2] = l1 * sn * sn + l2 * c * c;
+    double cv[3];
+    if (ics_cov_from_eig(l1, l2, ang, cv) != ICS_OK) { /* eigenvalues overflowed */
+      free(g);
+      free(delta);
+      return ICS_ERR_INVALID_ARG;
+    }
     gauss_make(&g[k], l->mean[0], l->mean[1], cv);
   }
   for (int j = 0; j < h; j++) {
@@ -686,7 +677,7 @@ ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
       double acc[3] = {0, 0, 0};
       for (int b = 0; b < s; b++)
         for (int a = 0; a < s; a++) {
-          double th = PI * (j + (b + 0.5) / s) / h, ph = 2 * PI * (i + (a + 0.5) / s) / w - PI;
+          double th = ICS_PI * (j + (b + 0.5) / s) / h, ph = 2 * ICS_PI * (i + (a + 0.5) / s) / w - ICS_PI;
           double st = sin(th), dz = st * cos(ph);
           if (!(dz > 0)) continue;
           double x = st * sin(ph) / dz, y = cos(th) / dz, r2 = x * x + y * y;
@@ -706,7 +697,7 @@ ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
   for (int k = 0; k < n; k++) {
     if (delta[k] < 0) continue;
     int pi = delta[k] % w, pj = delta[k] / w;
-    double dw = (cos(PI * pj / h) - cos(PI * (pj + 1.0) / h)) * (2 * PI / w);
+    double dw = (cos(ICS_PI * pj / h) - cos(ICS_PI * (pj + 1.0) / h)) * (2 * ICS_PI / w);
     float *p = env->data + ((size_t)pj * w + pi) * env->channels;
     for (int c = 0; c < 3; c++) p[c] += (float)(lights[k].weight * lights[k].color[c] / dw);
   }

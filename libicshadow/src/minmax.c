@@ -34,6 +34,7 @@
  * V. Sweep until no rotation happens (quadratic convergence, typically 6-10 sweeps for 64 x 64).
  * s_j = |a_j|, U_j = a_j / s_j, sorted descending. */
 #include "icshadow/minmax.h"
+#include "icshadow/constants.h"
 
 #include <float.h>
 #include <math.h>
@@ -42,8 +43,7 @@
 #include <string.h>
 
 #include "raybox.h"
-
-#define ICS_PI_ 3.14159265358979323846
+#include "vec3.h"
 
 struct ics_minmax {
   size_t rows, d, P;
@@ -396,10 +396,6 @@ ics_status ics_svd_truncate(const double *U, const double *s, const double *V, s
 }
 
 /* ---- epipolar rectification --------------------------------------------------------- */
-static double dot3(const double a[3], const double b[3]) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 ics_status ics_epi_frame_init(ics_epi_frame *f, const double eye[3], const double to_light[3],
                               size_t rows, size_t d, double dgamma) {
   if (!f || !eye || !to_light) return ICS_ERR_INVALID_ARG;
@@ -411,7 +407,7 @@ ics_status ics_epi_frame_init(ics_epi_frame *f, const double eye[3], const doubl
   if (!(dgamma > 0) || isinf(dgamma)) return ICS_ERR_RANGE;
   if (rows == 0 || d == 0 || rows > ICS_MINMAX_MAX_ROWS || d > ICS_MINMAX_MAX_SAMPLES)
     return ICS_ERR_SIZE;
-  double nl = sqrt(dot3(to_light, to_light));
+  double nl = sqrt(ics_dot3(to_light, to_light));
   if (!(nl > 0)) return ICS_ERR_INVALID_ARG;
   memset(f, 0, sizeof *f);
   for (int i = 0; i < 3; i++) {
@@ -424,16 +420,16 @@ ics_status ics_epi_frame_init(ics_epi_frame *f, const double eye[3], const doubl
   for (int i = 1; i < 3; i++)
     if (fabs(f->L[i]) < fabs(f->L[k])) k = i;
   a[k] = 1.0;
-  double pr = dot3(a, f->L);
+  double pr = ics_dot3(a, f->L);
   for (int i = 0; i < 3; i++) f->U[i] = a[i] - pr * f->L[i];
-  double nu = sqrt(dot3(f->U, f->U));
+  double nu = sqrt(ics_dot3(f->U, f->U));
   for (int i = 0; i < 3; i++) f->U[i] /= nu;
   f->V[0] = f->L[1] * f->U[2] - f->L[2] * f->U[1];
   f->V[1] = f->L[2] * f->U[0] - f->L[0] * f->U[2];
   f->V[2] = f->L[0] * f->U[1] - f->L[1] * f->U[0];
-  f->eu = dot3(eye, f->U);
-  f->ev = dot3(eye, f->V);
-  f->depth_eye = -dot3(eye, f->L);
+  f->eu = ics_dot3(eye, f->U);
+  f->ev = ics_dot3(eye, f->V);
+  f->depth_eye = -ics_dot3(eye, f->L);
   f->dgamma = dgamma;
   f->rows = rows;
   f->d = d;
@@ -447,12 +443,12 @@ ics_status ics_epi_locate(const ics_epi_frame *f, const double p[3], double *alp
     if (isnan(p[i])) return ICS_ERR_NAN;
   /* relative to the eye first: the slice of E + s v is then exact up to rounding of s v */
   double r[3] = {p[0] - f->eye[0], p[1] - f->eye[1], p[2] - f->eye[2]};
-  double du = dot3(r, f->U), dv = dot3(r, f->V);
+  double du = ics_dot3(r, f->U), dv = ics_dot3(r, f->V);
   double a = atan2(dv, du);
-  if (a < 0) a += 2 * ICS_PI_;
+  if (a < 0) a += 2 * ICS_PI;
   *alpha = a;
   *gamma = hypot(du, dv) / f->dgamma;
-  *depth = f->depth_eye - dot3(r, f->L);
+  *depth = f->depth_eye - ics_dot3(r, f->L);
   return ICS_OK;
 }
 
@@ -463,14 +459,14 @@ ics_status ics_epi_ray(const ics_epi_frame *f, const double dir[3], double *alph
     if (isnan(dir[i])) return ICS_ERR_NAN;
     if (isinf(dir[i])) return ICS_ERR_INFINITE;
   }
-  double du = dot3(dir, f->U), dv = dot3(dir, f->V), dl = dot3(dir, f->L);
+  double du = ics_dot3(dir, f->U), dv = ics_dot3(dir, f->V), dl = ics_dot3(dir, f->L);
   double perp = hypot(du, dv);
   double n = sqrt(du * du + dv * dv + dl * dl);
   if (!(perp > 1e-12 * n)) return ICS_ERR_RANGE;
   double a = atan2(dv, du);
-  if (a < 0) a += 2 * ICS_PI_;
+  if (a < 0) a += 2 * ICS_PI;
   *alpha = a;
-  double x = a / (2 * ICS_PI_) * (double)f->rows; /* row r is centred at x = r + 1/2 */
+  double x = a / (2 * ICS_PI) * (double)f->rows; /* row r is centred at x = r + 1/2 */
   size_t r = (size_t)floor(x);
   if (r >= f->rows) r = f->rows - 1;
   *row = r;
@@ -483,8 +479,8 @@ ics_status ics_epi_ray_dir(const ics_epi_frame *f, size_t row, double beta, doub
   if (!f || !dir) return ICS_ERR_INVALID_ARG;
   if (isnan(beta)) return ICS_ERR_NAN;
   if (row >= f->rows) return ICS_ERR_RANGE;
-  if (!(beta > 0 && beta < ICS_PI_)) return ICS_ERR_RANGE;
-  double a = 2 * ICS_PI_ * ((double)row + 0.5) / (double)f->rows;
+  if (!(beta > 0 && beta < ICS_PI)) return ICS_ERR_RANGE;
+  double a = 2 * ICS_PI * ((double)row + 0.5) / (double)f->rows;
   double ca = cos(a), sa = sin(a), sb = sin(beta), cb = cos(beta);
   for (int i = 0; i < 3; i++) dir[i] = sb * (ca * f->U[i] + sa * f->V[i]) + cb * f->L[i];
   return ICS_OK;
@@ -498,7 +494,7 @@ ics_status ics_epi_rectify(const ics_epi_frame *f, const float *smap, size_t w, 
   if (isnan(u0) || isnan(v0) || isnan(texel)) return ICS_ERR_NAN;
   if (!(texel > 0) || isinf(texel) || isinf(u0) || isinf(v0)) return ICS_ERR_RANGE;
   for (size_t r = 0; r < f->rows; r++) {
-    double a = 2 * ICS_PI_ * ((double)r + 0.5) / (double)f->rows;
+    double a = 2 * ICS_PI * ((double)r + 0.5) / (double)f->rows;
     double ca = cos(a), sa = sin(a);
     for (size_t g = 0; g < f->d; g++) {
       double rad = (double)g * f->dgamma;
@@ -551,7 +547,7 @@ double ics_hf_scene_hit(const ics_hf_scene *s, const double o[3], const double d
   for (size_t c = 0; c < s->ncaps; c++) { /* sphere, the part with y >= 0 */
     double oc[3] = {o[0] - s->cap[c][0], o[1] - s->cap[c][1], o[2] - s->cap[c][2]};
     double rr = s->cap[c][3];
-    double A = dot3(dir, dir), B = dot3(oc, dir), C = dot3(oc, oc) - rr * rr;
+    double A = ics_dot3(dir, dir), B = ics_dot3(oc, dir), C = ics_dot3(oc, oc) - rr * rr;
     double disc = B * B - A * C;
     if (disc < 0) continue;
     double sq = sqrt(disc);
@@ -591,7 +587,7 @@ ics_status ics_hf_shadow_map(const ics_hf_scene *s, const ics_epi_frame *f, size
       if (f->L[1] > 0) lift = (top + 1.0 - o[1]) / f->L[1];
       for (int k = 0; k < 3; k++) o[k] += lift * f->L[k];
       double t = ics_hf_scene_hit(s, o, dir, 0.0);
-      smap[j * w + i] = isinf(t) ? INFINITY : (float)(-dot3(o, f->L) + t);
+      smap[j * w + i] = isinf(t) ? INFINITY : (float)(-ics_dot3(o, f->L) + t);
     }
   return ICS_OK;
 }

@@ -34,12 +34,14 @@
  *   not occluded by that box; boxes are closed otherwise (zero-thickness plates occlude).
  * Special cases: NaN/Inf and bad sizes are rejected with a status before any work. */
 #include "icshadow/occtex.h"
+#include "icshadow/constants.h"
 #include "icshadow/sat.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "check_finite.h"
 #include "raybox.h"
 
 struct ics_occtex {
@@ -64,12 +66,6 @@ const char *ics_occ_combine_name(ics_occ_combine c) {
 }
 
 /* ---- argument checks ------------------------------------------------------------------ */
-static ics_status check_num(double v) {
-  if (isnan(v)) return ICS_ERR_NAN;
-  if (isinf(v)) return ICS_ERR_INFINITE;
-  return ICS_OK;
-}
-
 static int log2_exact(int n) { /* log2 n for a power of two n >= 1, else -1 */
   if (n < 1 || (n & (n - 1))) return -1;
   int l = 0;
@@ -80,7 +76,7 @@ static int log2_exact(int n) { /* log2 n for a power of two n >= 1, else -1 */
 static ics_status check_grid(const ics_occ_grid *g) {
   if (!g) return ICS_ERR_INVALID_ARG;
   ics_status st;
-  if ((st = check_num(g->x0)) || (st = check_num(g->y0)) || (st = check_num(g->texel))) return st;
+  if ((st = ics_check_finite(g->x0)) || (st = ics_check_finite(g->y0)) || (st = ics_check_finite(g->texel))) return st;
   if (!(g->texel > 0)) return ICS_ERR_INVALID_ARG;
   if (g->n > ICS_OCC_MAX_SIZE || log2_exact(g->n) < 0) return ICS_ERR_SIZE;
   return ICS_OK;
@@ -88,7 +84,7 @@ static ics_status check_grid(const ics_occ_grid *g) {
 
 static ics_status check_slices(int slices, double z_near, double z_far) {
   ics_status st;
-  if ((st = check_num(z_near)) || (st = check_num(z_far))) return st;
+  if ((st = ics_check_finite(z_near)) || (st = ics_check_finite(z_far))) return st;
   if (slices < 1) return ICS_ERR_INVALID_ARG;
   if (slices > ICS_OCC_MAX_SLICES) return ICS_ERR_SIZE;
   if (!(z_near > 0) || !(z_far > z_near)) return ICS_ERR_INVALID_ARG;
@@ -98,8 +94,8 @@ static ics_status check_slices(int slices, double z_near, double z_far) {
 static ics_status check_light(const ics_occ_light *l) {
   if (!l) return ICS_ERR_INVALID_ARG;
   ics_status st;
-  if ((st = check_num(l->cx)) || (st = check_num(l->cy)) || (st = check_num(l->wx)) ||
-      (st = check_num(l->wy)))
+  if ((st = ics_check_finite(l->cx)) || (st = ics_check_finite(l->cy)) || (st = ics_check_finite(l->wx)) ||
+      (st = ics_check_finite(l->wy)))
     return st;
   if (l->wx < 0 || l->wy < 0) return ICS_ERR_INVALID_ARG;
   return ICS_OK;
@@ -110,7 +106,7 @@ static ics_status check_boxes(const ics_occ_box *b, size_t nb) {
   for (size_t i = 0; i < nb; i++) {
     const double v[6] = {b[i].x0, b[i].y0, b[i].z0, b[i].x1, b[i].y1, b[i].z1};
     for (int j = 0; j < 6; j++) {
-      ics_status st = check_num(v[j]);
+      ics_status st = ics_check_finite(v[j]);
       if (st) return st;
     }
     if (b[i].x1 < b[i].x0 || b[i].y1 < b[i].y0 || b[i].z1 < b[i].z0) return ICS_ERR_INVALID_ARG;
@@ -122,7 +118,7 @@ static ics_status check_points(const double *P, size_t n, const double *out) {
   if (n == 0) return ICS_ERR_SIZE;
   if (!P || !out) return ICS_ERR_INVALID_ARG;
   for (size_t i = 0; i < 3 * n; i++) {
-    ics_status st = check_num(P[i]);
+    ics_status st = ics_check_finite(P[i]);
     if (st) return st;
   }
   for (size_t i = 0; i < n; i++)
@@ -152,7 +148,7 @@ ics_status ics_occ_scene_make(ics_occ_scene_kind kind, int nboxes, uint64_t seed
     if (kind == ICS_OCC_SCENE_FOLIAGE) {
       sx = sy = sz = uni(&s, 0.06, 0.16);
       /* a canopy: denser toward its centre (x, y) and its middle depth */
-      double r = 0.85 * sqrt(uni(&s, 0, 1)), a = uni(&s, 0, 6.283185307179586);
+      double r = 0.85 * sqrt(uni(&s, 0, 1)), a = uni(&s, 0, 2 * ICS_PI);
       cx = r * cos(a);
       cy = r * sin(a);
       cz = 1.5 + 0.42 * (uni(&s, 0, 1) + uni(&s, 0, 1) - 1);
@@ -530,7 +526,7 @@ ics_status ics_occtex_box(const ics_occtex *ot, ics_occ_prefilter pf, int k, dou
   if (!ot || !out || (unsigned)pf >= ICS_OCC_PREFILTER_COUNT || k < 0 || k >= ot->K)
     return ICS_ERR_INVALID_ARG;
   ics_status st;
-  if ((st = check_num(u)) || (st = check_num(v)) || (st = check_num(su)) || (st = check_num(sv)))
+  if ((st = ics_check_finite(u)) || (st = ics_check_finite(v)) || (st = ics_check_finite(su)) || (st = ics_check_finite(sv)))
     return st;
   if (su < 0 || sv < 0) return ICS_ERR_INVALID_ARG;
   if (!is_built(ot, pf)) return ICS_ERR_UNSUPPORTED;

@@ -11,6 +11,7 @@
 #include <math.h>
 
 #include "icshadow/rng.h"
+#include "icshadow/constants.h"
 
 #define PHILOX_M0 UINT32_C(0xD2511F53)
 #define PHILOX_M1 UINT32_C(0xCD9E8D57)
@@ -69,6 +70,5 @@ double ics_rng_uniform(ics_rng *r) { return u64_to_uniform(ics_rng_next_u64(r));
 double ics_rng_normal(ics_rng *r) {
   double u1 = ics_rng_uniform(r);
   double u2 = ics_rng_uniform(r);
-  const double two_pi = 6.283185307179586476925286766559;
-  return sqrt(-2.0 * log1p(-u1)) * cos(two_pi * u2);
+  return sqrt(-2.0 * log1p(-u1)) * cos(2 * ICS_PI * u2);
 }

@@ -6,6 +6,7 @@
  * tails); isolines use the upper quantile (isf) so that levels near 0 and 1 keep their
  * precision. The CLT model is Phi of the standardised position. */
 #include "icshadow/shadow1d.h"
+#include "icshadow/normal.h"
 
 #include <math.h>
 
@@ -23,7 +24,7 @@ double ics_shadow1d_clt(const ics_light1d *l, double d, double d1, double x) {
   double m = -d * ics_light1d_mean(l);
   double sd = sqrt(d * d1 * ics_light1d_var(l));
   if (sd == 0) return x > m ? 1.0 : (x < m ? 0.0 : 0.5);
-  return ics_light_phi((x - m) / sd);
+  return ics_normal_cdf((x - m) / sd);
 }
 
 double ics_isoline_correct(const ics_light1d *l, double s, double d) {
@@ -34,7 +35,7 @@ double ics_isoline_correct(const ics_light1d *l, double s, double d) {
 
 double ics_isoline_clt(const ics_light1d *l, double s, double d, double d1) {
   if (!l || bad_d(d) || bad_s(s) || !(d1 > 0) || isinf(d1)) return NAN;
-  return -d * ics_light1d_mean(l) + ics_light_phiinv(s) * sqrt(d1 * ics_light1d_var(l) * d);
+  return -d * ics_light1d_mean(l) + ics_normal_quantile(s) * sqrt(d1 * ics_light1d_var(l) * d);
 }
 
 /* ---- iterated shadow ---- */
@@ -364,8 +365,8 @@ static ics_status clt_run(ics_clt_gen gen, void *ctx, double mean, double var, c
       double worst = 0, worst_r = 0, sdr = sqrt(rvar + 1.0 / 12.0);
       for (size_t i = 0; i < n; i++) {
         double x = x0 + (double)i;
-        double e = buf[i] - ics_light_phi((x - m) / sdv);
-        double er = buf[i] - ics_light_phi((x - rmean) / sdr);
+        double e = buf[i] - ics_normal_cdf((x - m) / sdv);
+        double er = buf[i] - ics_normal_cdf((x - rmean) / sdr);
         if (fabs(e) > worst) worst = fabs(e);
         if (fabs(er) > worst_r) worst_r = fabs(er);
       }
@@ -390,7 +391,7 @@ static ics_status clt_run(ics_clt_gen gen, void *ctx, double mean, double var, c
             double f = t - (double)j;
             r = buf[j] + f * (buf[j + 1] - buf[j]);
           }
-          errs[k][i] = r - ics_light_phi((xf - m) / sdv);
+          errs[k][i] = r - ics_normal_cdf((xf - m) / sdv);
         }
       k++;
     }

@@ -107,8 +107,8 @@ ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup
 /* Base-grid pixel count and estimated work (tap-updates as ICS_WORK_BUDGET of shadow1d.h:
  * steps x pixels x applied taps + ICS_WORK_COMP_PASSES x generated taps, per grid, plus the
  * limits at the window's nodes: 60 per node for the edge's Phi, 4000 for the corner's
- * ics_bvn_cdf (10000 when |rho| >= 0.9), x 2 on the base grid (class and realised), x 1 on the
- * finer grid (class), which counts when s->refine; plus the realised path's pass,
+ * ics_normal_bvn_cdf (10000 when |rho| >= 0.9), x 2 on the base grid (class and realised), x 1 on
+ * the finer grid (class), which counts when s->refine; plus the realised path's pass,
  * ICS_WORK_COMP_PASSES x generated taps a step) of ics_clt2d_measure, without running it. When
  * the estimate on the class path's grid alone (a lower bound) already exceeds ICS_WORK_BUDGET,
  * that lower bound is returned without the realised pass, so a refusal costs no step's taps. Same argument errors. Measured here
@@ -116,10 +116,6 @@ ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup
  * ICS_WORK_BUDGET of 1e11 is 21-41 s. */
 ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
                           const int *steps, int nsteps, double *pixels, double *work);
-
-/* Bivariate standard normal cdf P(X < a, Y < b), corr(X, Y) = r in [-1, 1] (Plackett's
- * identity integrated by Gauss-Legendre in asin r; accuracy in clt2d.c). NaN outside. */
-double ics_bvn_cdf(double a, double b, double r);
 
 /* Area of the unit pixel square centred at the node on the opaque side of an edge whose unit
  * normal is (ux, uy), at signed distance t = u . x of the node from the edge: the cdf of

@@ -4,10 +4,10 @@
  * One step: out(x) = sum_j w_j in(x - x_j) on integer pixels x, for taps (x_j, w_j) from
  * icshadow/kernel.h. A kernel of mean mu therefore shifts the buffer content by +mu pixels.
  * Off-grid taps are read with linear (1D) / bilinear (2D) interpolation. Each offset is split
- * as x_j = i_j + f_j, i_j = floor(x_j), f_j in [0, 1) (DESIGN.md: keeps precision); the tap is
- * then the two integer taps (i_j, w_j (1 - f_j)) and (i_j + 1, w_j f_j): it keeps the mean and
- * ADDS the variance w_j f_j (1 - f_j) per axis (no cross term in 2D: bilinear weights are a
- * product). ics_interp_var1d/2d give that added variance; ics_taps*_discretize the integer taps.
+ * as x_j = i_j + f_j, i_j = floor(x_j), f_j in [0, 1) (it keeps precision: docs/architecture.md
+ * "Stack facts measured here"); the tap is then the two integer taps (i_j, w_j (1 - f_j)) and
+ * (i_j + 1, w_j f_j): it keeps the mean and ADDS the variance w_j f_j (1 - f_j) per axis (no
+ * cross term in 2D: bilinear weights are a product). ics_interp_var1d/2d give that added variance; ics_taps*_discretize the integer taps.
  *
  * Boundary: reads outside the buffer take the nearest edge pixel (ICS_BOUNDARY_CLAMP, default:
  * outside the light buffer is lit like its edge) or a constant (ICS_BOUNDARY_CONSTANT).

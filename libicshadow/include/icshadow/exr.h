@@ -7,10 +7,10 @@
  * HALF or FLOAT, no subsampling. The image is the DISPLAY window (the latitude-longitude
  * frame): the data window is placed inside it at its offset, pixels outside the data window
  * are 0 and data outside the display window (overscan) is dropped; pixel positions in
- * messages are display-window positions from its top-left corner. Reading
- * decodes every channel PLANAR into float and interleaves afterwards: OpenEXR 3.1.5's
- * interleaved-RGBA fast path writes half data in reversed channel order (ABGR), measured
- * here (DESIGN.md "Known stack facts"); the planar path has no such special case.
+ * messages are display-window positions from its top-left corner. Reading decodes every
+ * channel PLANAR into float and interleaves afterwards: OpenEXR 3.1.5's interleaved-RGBA fast
+ * path writes half data in reversed channel order (ABGR), measured here (docs/architecture.md
+ * "Stack facts measured here"); the planar path has no such special case.
  * Pixels that are NaN, infinite or negative (R, G, B) are rejected with their position.
  * Written files are ZIP-compressed, INCREASING_Y, and carry envmap = latlong. */
 #ifndef ICSHADOW_EXR_H

@@ -1,6 +1,7 @@
 /* icshadow/image.h — a simple float image: W x H pixels, 3 (RGB) or 4 (RGBA) interleaved
- * channels, rows top to bottom (row 0 is the top row, as in OpenEXR and DESIGN.md's
- * latitude-longitude layout), linear values. Pure C, no dependencies. */
+ * channels, rows top to bottom (row 0 is the top row, as in OpenEXR and the latitude-longitude
+ * layout of docs/architecture.md "Frames and file formats"), linear values. Pure C, no
+ * dependencies. */
 #ifndef ICSHADOW_IMAGE_H
 #define ICSHADOW_IMAGE_H
 

@@ -1,8 +1,8 @@
 /* icshadow/light.h — lights on the virtual light plane (Patel et al. 2013, Sec. 3.2, 3.4,
  * Eq. 7/15) and 1D light functions for the analysis of shadows behind an edge.
  *
- * Frame (DESIGN.md "Frames and file formats"): a distant light behind the viewer, direction
- * toward the light (dx, dy, dz) with dz > 0, maps to the virtual light plane point
+ * Frame (docs/architecture.md "Frames and file formats"): a distant light behind the viewer,
+ * direction toward the light (dx, dy, dz) with dz > 0, maps to the virtual light plane point
  * (dx/dz, dy/dz) = (tan wx, tan wy); wx, wy are the x-tilt and y-tilt angles in DEGREES.
  * |w| >= 90 degrees has no point on the plane: rejected (NaN / ICS_ERR_RANGE).
  *
@@ -125,12 +125,6 @@ double ics_light1d_mean(const ics_light1d *l);
 double ics_light1d_var(const ics_light1d *l);
 /* Third standardised moment E[(X - mu)^3] / sigma^3 (0 for a point light). */
 double ics_light1d_skewness(const ics_light1d *l);
-
-/* Standard normal helpers used above: Phi(z), Phi(-z) without cancellation, Phi^-1(p)
- * (relative error ~1e-15 over (0, 1), subnormal p included; -inf / inf at 0 / 1, NaN outside). */
-double ics_light_phi(double z);
-double ics_light_phic(double z);
-double ics_light_phiinv(double p);
 
 #ifdef __cplusplus
 }

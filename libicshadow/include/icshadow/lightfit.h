@@ -2,8 +2,8 @@
  * (Patel et al. 2013, Sec. 3.2 last paragraphs: "project [the environment map] onto the
  * virtual light plane to define l(x), and perform Gaussian fitting on l(x)").
  *
- * Frames (DESIGN.md "Frames and file formats"): latitude-longitude map W x H, pixel (i, j)
- * centre u = (i + 1/2)/W, v = (j + 1/2)/H, theta = pi v from +y, phi = 2 pi u - pi,
+ * Frames (docs/architecture.md "Frames and file formats"): latitude-longitude map W x H,
+ * pixel (i, j) centre u = (i + 1/2)/W, v = (j + 1/2)/H, theta = pi v from +y, phi = 2 pi u - pi,
  * direction (sin theta sin phi, cos theta, sin theta cos phi). Directions with dz > 0 (behind
  * the viewer) map to the plane point (x, y) = (dx/dz, dy/dz) = (tan wx, tan wy), and the light
  * function is the density l(x, y) = L(w) dw/dA, dw/dA = (1 + x^2 + y^2)^(-3/2), so

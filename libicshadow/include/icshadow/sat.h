@@ -1,6 +1,6 @@
-/* icshadow/sat.h — summed-area tables (SATs) in 2D and 3D over float data, and the
- * light-aligned 3D SATs of Ament et al. 2014 (CSAT for directional lights, SSAT for point
- * lights) that give box-filtered optical depth and transmittance in constant time.
+/* icshadow/sat.h — summed-area tables (SATs) in 2D and 3D over float data and their precision
+ * modes; the light-aligned 3D SATs of Ament et al. 2014 built on them are in csat.h
+ * (directional lights) and ssat.h (point lights).
  *
  * CONVENTIONS (all SATs)
  * - Data are row-major floats: element (x, y) of a 2D table is data[y * stride + x], element
@@ -131,117 +131,6 @@ ics_status ics_sat3d_box_sum_clamped(const ics_sat3d *sat, long x0, long y0, lon
 ics_status ics_sat3d_integral(const ics_sat3d *sat, const double lo[3], const double hi[3],
                               double *sum);
 double ics_sat3d_at(const ics_sat3d *sat, size_t x, size_t y, size_t z);
-
-/* ---- Volumes and light-aligned SATs (Ament et al. 2014) ------------------------------- */
-/* An extinction volume sigma_t: nx x ny x nz floats (x fastest), unit voxels, world
- * coordinates in voxel units: voxel (i, j, k) covers [i, i+1) x [j, j+1) x [k, k+1) and its
- * value sits at the centre (i + 1/2, j + 1/2, k + 1/2). sigma_t(p) is the trilinear
- * interpolation (clamp-to-edge indices) inside the box [0, nx] x [0, ny] x [0, nz] and 0
- * outside. The view does not own the data. */
-typedef struct ics_volume {
-  const float *data;
-  size_t nx, ny, nz;
-} ics_volume;
-
-/* sigma_t at a world point (0 outside the volume box). */
-double ics_volume_sample(const ics_volume *vol, const double p[3]);
-
-/* CSAT: a 3D SAT in a frame (r_u, r_v, r_w) with r_u x r_v = r_w = l, the unit vector toward
- * a directional light. The grid has cubic cells of edge h, is centred on the volume centre and
- * covers the volume's bounding box seen in that frame; each cell holds sigma_t(cell centre) *
- * h^3. The box-filtered optical depth at p for a square filter patch of half-width U facing
- * the light (Ament Eq. 12-13) is
- *   tau_bar(p) = CSAT(C) / A,  C = {p + u r_u + v r_v + w l : |u|, |v| <= U, w >= 0},
- *   A = (2U)^2,
- * evaluated with ics_sat3d_integral in constant time, independent of U. U = 0 is the
- * unfiltered limit and is evaluated as the integral over a patch of half-width h/2 (one cell
- * column) The cell edge h must not exceed the volume's extent along any frame
- * axis (the projected box size): larger cells would lie mostly outside the volume yet carry
- * sigma_t of their centre (h = 1e6 gave tau = 5e4 on a 16^3 volume of sigma 0.1) ->
- * ICS_ERR_RANGE. */
-typedef struct ics_csat ics_csat;
-
-/* Frame from l alone (r_u chosen deterministically, perpendicular to l). */
-ics_status ics_csat_build(ics_csat **out, const ics_volume *vol, const double light_dir[3],
-                          double h, ics_sat_precision mode);
-/* Explicit orthonormal frame (checked to 1e-9; r_w = r_u x r_v is the primary light). */
-ics_status ics_csat_build_frame(ics_csat **out, const ics_volume *vol, const double r_u[3],
-                                const double r_v[3], double h, ics_sat_precision mode);
-void ics_csat_free(ics_csat *csat);
-/* Frame vectors and grid size (cells along u, v, w). Any output pointer may be NULL. */
-void ics_csat_frame(const ics_csat *csat, double r_u[3], double r_v[3], double r_w[3],
-                    size_t n[3]);
-
-/* The six orthodirectional lights of one CSAT (Ament Eq. 14-15). */
-typedef enum ics_csat_light {
-  ICS_CSAT_PLUS_W = 0, /* l = +r_w: the primary light */
-  ICS_CSAT_MINUS_W = 1,
-  ICS_CSAT_PLUS_U = 2,
-  ICS_CSAT_MINUS_U = 3,
-  ICS_CSAT_PLUS_V = 4,
-  ICS_CSAT_MINUS_V = 5
-} ics_csat_light;
-/* The world direction toward light `which` (unit vector). */
-ics_status ics_csat_light_dir(const ics_csat *csat, ics_csat_light which, double dir[3]);
-
-/* Box-filtered optical depth tau_bar at world point p for light `which`, half-width U >= 0
- * (world units). NaN p or U -> ICS_ERR_NAN, U < 0 -> ICS_ERR_INVALID_ARG. */
-ics_status ics_csat_tau(const ics_csat *csat, ics_csat_light which, const double p[3],
-                        double half_width, double *tau);
-/* exp(-tau_bar): the filtered transmittance. */
-ics_status ics_csat_transmittance(const ics_csat *csat, ics_csat_light which, const double p[3],
-                                  double half_width, double *transmittance);
-
-/* Reference: the same filtered optical depth by brute-force shadow-ray marching through the
- * original volume (trilinear sigma_t): an n_patch x n_patch grid of rays on the patch
- * (midpoint rule), each marched toward `dir` with step `step` (midpoint rule) until it leaves
- * the volume box. U = 0 marches the single ray through p. */
-ics_status ics_tau_bruteforce_directional(const ics_volume *vol, const double r_u[3],
-                                          const double r_v[3], const double dir[3],
-                                          const double p[3], double half_width, int n_patch,
-                                          double step, double *tau);
-
-/* SSAT: a 3D SAT in spherical coordinates (phi, theta, r) around a point light at x_L, in a
- * frame (e_x, e_y, e_z) derived from the light and the volume alone: e_x points from x_L to the
- * volume centre, the polar axis e_z is the world axis least aligned with e_x (orthogonalised),
- * e_y = e_z x e_x; a light exactly at the volume centre keeps the world axes. Direction
- * (phi, theta) is sin(theta) (cos(phi) e_x + sin(phi) e_y) + cos(theta) e_z: the volume lies
- * around phi = 0, theta = pi/2, away from the poles and the phi seam, whenever the light is
- * outside it. phi in [-pi, pi), theta in [0, pi], r in [0, r_max] with r_max the largest
- * distance from x_L to a volume corner. Cell (i, j, k) holds sigma_t(cell centre) *
- * dphi (cos(theta_j) - cos(theta_j+1)) dr (exact cell solid angle times dr), so a box sum
- * divided by the box's solid angle is the SOLID-ANGLE AVERAGE of the optical depth of the
- * rays from x_L through the box (the ray average that Eq. 23-24 approximate by dividing a
- * volume sum by the patch area A; see docs/sat.md). Inside a theta cell the box edge is
- * placed in cos(theta) (the solid angle is linear in cos(theta), not in theta), so a lookup is
- * the exact solid-angle integral of the cell-wise constant resampled field, also at the poles.
- * Light farther than ICS_SSAT_MAX_DISTANCE volume diagonals from the farthest volume corner,
- * or at an infinite coordinate -> ICS_ERR_RANGE (ray positions would lose all precision);
- * NaN light -> ICS_ERR_NAN. */
-#define ICS_SSAT_MAX_DISTANCE 4294967296.0 /* 2^32 volume diagonals */
-typedef struct ics_ssat ics_ssat;
-ics_status ics_ssat_build(ics_ssat **out, const ics_volume *vol, const double light_pos[3],
-                          size_t n_phi, size_t n_theta, size_t n_r, ics_sat_precision mode);
-void ics_ssat_free(ics_ssat *ssat);
-/* Frame axes and grid size (cells along phi, theta, r). Any output pointer may be NULL. */
-void ics_ssat_frame(const ics_ssat *ssat, double e_x[3], double e_y[3], double e_z[3],
-                    size_t n[3]);
-/* tau_bar at p for a square patch of half-width U at p facing the light: the angular box
- * phi_p +- min(atan(U/R) / sin(theta_p), pi), theta_p +- atan(U/R) clamped to [0, pi]
- * (R = |p - x_L|), r in [0, R]. When the phi half-width reaches pi (the patch covers a pole)
- * the box is the polar cap over the whole ring; otherwise phi wraps around at +-pi (two SAT
- * lookups). Constant time. Needs U > 0 (ICS_ERR_INVALID_ARG otherwise); p at the light (or
- * so far that |p - x_L| overflows) -> ICS_ERR_RANGE. */
-ics_status ics_ssat_tau(const ics_ssat *ssat, const double p[3], double half_width, double *tau);
-ics_status ics_ssat_transmittance(const ics_ssat *ssat, const double p[3], double half_width,
-                                  double *transmittance);
-/* Reference for the SSAT: n_patch x n_patch rays over the same angular box in the same frame
- * (derived from vol and light_pos as in ics_ssat_build; midpoint in phi and in cos(theta),
- * i.e. uniform in solid angle), each marched from the light to radius R with step `step`,
- * averaged. The same light limit as ics_ssat_build (ICS_ERR_RANGE). */
-ics_status ics_tau_bruteforce_point(const ics_volume *vol, const double light_pos[3],
-                                    const double p[3], double half_width, int n_patch,
-                                    double step, double *tau);
 
 #ifdef __cplusplus
 }

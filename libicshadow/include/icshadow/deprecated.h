@@ -1,0 +1,53 @@
+/* icshadow/deprecated.h — the old names of renamed public functions and types, kept as
+ * deprecated aliases for one minor version: added in 0.2.0, removed in 0.3.0 (CHANGELOG.md
+ * lists every rename). Each function alias is a static inline forwarder to its new name, so
+ * it returns exactly what the new name returns; GCC and Clang warn at each use
+ * (-Wdeprecated-declarations) with the name to use instead. icshadow.h includes this header
+ * last. */
+#ifndef ICSHADOW_DEPRECATED_H
+#define ICSHADOW_DEPRECATED_H
+
+#include "icshadow/normal.h"
+#include "icshadow/status.h"
+#include "icshadow/volume.h"
+
+#if defined(__GNUC__) || defined(__clang__)
+#define ICS_DEPRECATED(msg) __attribute__((deprecated(msg)))
+#else
+#define ICS_DEPRECATED(msg)
+#endif
+
+/* ---- 0.2.0: the normal distribution moved to normal.h (from light.h and clt2d.h) ---- */
+ICS_DEPRECATED("since 0.2.0: use ics_normal_cdf")
+static inline double ics_light_phi(double z) { return ics_normal_cdf(z); }
+
+ICS_DEPRECATED("since 0.2.0: use ics_normal_sf")
+static inline double ics_light_phic(double z) { return ics_normal_sf(z); }
+
+ICS_DEPRECATED("since 0.2.0: use ics_normal_quantile")
+static inline double ics_light_phiinv(double p) { return ics_normal_quantile(p); }
+
+ICS_DEPRECATED("since 0.2.0: use ics_normal_bvn_cdf")
+static inline double ics_bvn_cdf(double a, double b, double r) {
+  return ics_normal_bvn_cdf(a, b, r);
+}
+
+/* ---- 0.2.0: the brute-force ray marchers moved to volume.h (from sat.h) ---- */
+ICS_DEPRECATED("since 0.2.0: use ics_volume_tau_directional")
+static inline ics_status ics_tau_bruteforce_directional(const ics_volume *vol,
+                                                        const double r_u[3], const double r_v[3],
+                                                        const double dir[3], const double p[3],
+                                                        double half_width, int n_patch,
+                                                        double step, double *tau) {
+  return ics_volume_tau_directional(vol, r_u, r_v, dir, p, half_width, n_patch, step, tau);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_volume_tau_point")
+static inline ics_status ics_tau_bruteforce_point(const ics_volume *vol,
+                                                  const double light_pos[3], const double p[3],
+                                                  double half_width, int n_patch, double step,
+                                                  double *tau) {
+  return ics_volume_tau_point(vol, light_pos, p, half_width, n_patch, step, tau);
+}
+
+#endif
