@@ -1,0 +1,13 @@
+# The slab renderer (libicshadow_render, gpu/): scene files, plans, the CPU backend against
+# Eq. 4 and Beer-Lambert, reproducibility, memory. Built when the renderer is (needs jansson).
+set(ICS_RENDER_TEST_LIBS icshadow_render_static)
+function(ics_add_render_test name label)
+  ics_add_test(NAME ${name} SOURCES ${name}.c LABELS ${label} render
+    LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ${ARGN})
+  if(TARGET ${name})
+    target_include_directories(${name} PRIVATE ${CMAKE_SOURCE_DIR}/gpu/src)
+  endif()
+endfunction()
+ics_add_render_test(test_render_scene fast)
+ics_add_test(NAME test_render_disk SOURCES test_render_disk.c LABELS fast render
+  LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/scenes/disk.json)
