@@ -360,7 +360,7 @@ static int bench_one(const setup *S, int reps) {
   free(Lt);
   free(Lm);
   free(pre);
-  return cli_stdout_failed("icshadow bench minmax");
+  return cli_stdout_failed("bench minmax");
 }
 
 /* Low-rank error against N: on the grid, at full resolution, and on the in-scattering. */
@@ -423,7 +423,7 @@ static int svd_table(setup *S) {
   }
   free(AN);
   free(Lx);
-  return cli_stdout_failed("icshadow bench minmax");
+  return cli_stdout_failed("bench minmax");
 }
 
 /* Chen Fig. 4: the row with the most lit runs for the middle ray; all its samples, its tree
@@ -451,7 +451,7 @@ static int fig4(setup *S, const char *path) {
   unsigned char *cls = calloc(2 * P, 1);
   size_t *seg = malloc(2 * (d + 1) * sizeof(size_t)), nseg = 0;
   cli_output out;
-  if (!cls || !seg || cli_output_open(&out, path) != 0) {
+  if (!cls || !seg || cli_output_open(&out, "bench minmax", path) != 0) {
     free(cls);
     free(seg);
     ics_minmax_destroy(t);

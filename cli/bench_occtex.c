@@ -399,7 +399,7 @@ int bench_occtex(int argc, char **argv) {
       goto done;
     }
     cli_output out;
-    if (cli_output_open(&out, o.fig3) != 0) {
+    if (cli_output_open(&out, "bench occtex", o.fig3) != 0) {
       rc = 1;
       goto done;
     }
@@ -492,7 +492,7 @@ int bench_occtex(int argc, char **argv) {
                    ebias[a][b][p][c], brute / t);
           }
   }
-  if (cli_stdout_failed("icshadow bench occtex")) rc = 1;
+  if (cli_stdout_failed("bench occtex")) rc = 1;
 done:
   cli_progress_done(&g_prog);
   free(boxes);

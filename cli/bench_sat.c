@@ -72,7 +72,7 @@ static void help(FILE *f, int dims) {
 /* Flush stdout; on a write error (full disk, closed pipe, /dev/full) say so on stderr and
  * return 0, so the command exits 1 instead of pretending the CSV was written. */
 static int stdout_ok(int dims) {
-  return !cli_stdout_failed(dims == 2 ? "icshadow bench sat2d" : "icshadow bench sat3d");
+  return !cli_stdout_failed(dims == 2 ? "bench sat2d" : "bench sat3d");
 }
 
 static int usage_error(int dims, const char *msg, const char *arg) {
@@ -120,7 +120,7 @@ static int chirp_csv(const char *path) {
     tau[x] = s;
   }
   cli_output out;
-  if (cli_output_open(&out, path)) {
+  if (cli_output_open(&out, "bench sat2d", path)) {
     ics_sat2d_free(sat);
     free(img), free(tau), free(sig);
     return 1;

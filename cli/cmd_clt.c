@@ -299,7 +299,7 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
     print_rate(refine, "", kept, nkept, nsteps);
     print_rate(1, " (realised moments)", kept_r, nkept_r, nsteps);
   }
-  return cli_stdout_failed("icshadow clt");
+  return cli_stdout_failed("clt");
 }
 
 int cmd_clt(int argc, char **argv) {
@@ -510,5 +510,5 @@ int cmd_clt(int argc, char **argv) {
     kept[nkept++] = pts[i];
   }
   if (rate) print_rate(refine, "", kept, nkept, nsteps);
-  return cli_stdout_failed("icshadow clt");
+  return cli_stdout_failed("clt");
 }

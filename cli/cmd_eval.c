@@ -83,6 +83,6 @@ int cmd_eval(int argc, char **argv) {
     fprintf(stderr, "icshadow eval: cannot read stdin: %s\n", strerror(read_error));
     return 1;
   }
-  if (cli_stdout_failed("icshadow eval")) return 1;
+  if (cli_stdout_failed("eval")) return 1;
   return status;
 }

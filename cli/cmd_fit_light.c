@@ -201,7 +201,7 @@ int cmd_fit_light(int argc, char **argv) {
 
   /* -o first: when it cannot be opened, no plane CSV is written either */
   cli_output out, pout;
-  if (cli_output_open(&out, outp) != 0) return 1;
+  if (cli_output_open(&out, "fit-light", outp) != 0) return 1;
   if (lights_write(out.fp, lights, r->k_fit) != 0) {
     cli_output_abort(&out);
     fprintf(stderr, "icshadow fit-light: cannot write %s\n", outp);
@@ -216,7 +216,7 @@ int cmd_fit_light(int argc, char **argv) {
       cli_output_abort(&out);
       return 1;
     }
-    if (cli_output_open(&pout, planep) != 0) {
+    if (cli_output_open(&pout, "fit-light", planep) != 0) {
       ics_image_free(&env2);
       cli_output_abort(&out);
       return 1;
@@ -246,5 +246,5 @@ int cmd_fit_light(int argc, char **argv) {
     printf("%d,%d,%.17g,%.17g,%.17g,%.17g,%d,%d,%.17g\n", k, q->k_fit, q->l1, q->l2, q->edge,
            secs[k - 1], q->iterations, q->samples, q->cutoff_loss);
   }
-  return cli_stdout_failed("icshadow fit-light");
+  return cli_stdout_failed("fit-light");
 }

@@ -276,5 +276,5 @@ int cmd_isoline(int argc, char **argv) {
     return 2;
   }
   printf("%.17g\n", x);
-  return cli_stdout_failed("icshadow isoline");
+  return cli_stdout_failed("isoline");
 }

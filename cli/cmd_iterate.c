@@ -374,7 +374,7 @@ static int iterate_main(int argc, char **argv, int **steps_out) {
     }
   }
   free(buf);
-  return cli_stdout_failed("icshadow iterate");
+  return cli_stdout_failed("iterate");
 }
 
 int cmd_iterate(int argc, char **argv) {

@@ -114,5 +114,5 @@ int cmd_kernel(int argc, char **argv) {
     printf("%s[%.17g,%.17g]", j ? "," : "", nz(xy[2 * j]), nz(xy[2 * j + 1]));
   printf("]}\n");
   free(xy);
-  return cli_stdout_failed("icshadow kernel");
+  return cli_stdout_failed("kernel");
 }

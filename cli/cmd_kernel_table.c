@@ -210,7 +210,7 @@ static int table1d(double var, double mean, int iterations, unsigned long long s
   if (!status) fputs(text, stdout);
   free(text);
   if (status) return status;
-  return cli_stdout_failed("icshadow kernel-table");
+  return cli_stdout_failed("kernel-table");
 }
 
 /* the 2D members (Patel Sec. 3.4, the kernels of Fig. 11), class (mean (M, 0), covariance
@@ -345,7 +345,7 @@ static int table2d(double varx, double vary, double angle, double mean, int iter
   if (!status) fputs(text, stdout);
   free(text);
   if (status) return status;
-  return cli_stdout_failed("icshadow kernel-table");
+  return cli_stdout_failed("kernel-table");
 }
 
 int cmd_kernel_table(int argc, char **argv) {

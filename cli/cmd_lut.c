@@ -98,7 +98,7 @@ static int write_header(int n, const char *lang_name, ics_lut_lang lang, const c
     fprintf(stderr, "icshadow lut: warning: non-finite measured error (exact function failure?)\n");
   }
   cli_output out;
-  if (cli_output_open(&out, path) != 0) {
+  if (cli_output_open(&out, "lut", path) != 0) {
     tables_free(&T);
     return 1;
   }
@@ -222,7 +222,7 @@ static int report(const int *sizes, int nsizes, int progress) {
     printf("exact,,,,,,,,,,%.3g,%.3g,\n", ns_r, ns_v);
   }
   ics_lut_grid_free(grid);
-  return cli_stdout_failed("icshadow lut") ? 1 : status;
+  return cli_stdout_failed("lut") ? 1 : status;
 }
 
 int cmd_lut(int argc, char **argv) {

@@ -169,7 +169,7 @@ int cmd_make_env(int argc, char **argv) {
     return st == ICS_ERR_NOMEM ? 1 : 2;
   }
   cli_output out;
-  if (cli_output_open(&out, outp) != 0) {
+  if (cli_output_open(&out, "make-env", outp) != 0) {
     ics_image_free(&env);
     return 1;
   }
