@@ -1,7 +1,7 @@
 /* cliutil.c — helpers shared by the icshadow subcommands: one-line error reports naming the
  * subcommand, strict number parsing (also of option values), the table-driven option parser,
- * --help detection, a monotonic clock for timings, progress lines, and atomic output files
- * (temporary name + rename). */
+ * --help detection, a monotonic clock for timings, splitmix64 for benchmark data, progress
+ * lines, and atomic output files (temporary name + rename). */
 #define _XOPEN_SOURCE 700 /* realpath, mkstemp, fchmod */
 #include "commands.h"
 
@@ -110,6 +110,17 @@ double cli_now_s(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+uint64_t cli_splitmix64(uint64_t *state) {
+  uint64_t z = (*state += 0x9e3779b97f4a7c15ull);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+double cli_splitmix_unit(uint64_t *state) {
+  return (double)(cli_splitmix64(state) >> 11) * 0x1p-53;
 }
 
 void cli_progress_init(cli_progress *p, const char *who, int forced) {

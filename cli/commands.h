@@ -113,6 +113,11 @@ int cli_parse_options(const char *cmd, int argc, char **argv, int first, const c
 /* Seconds on the monotonic clock (CLOCK_MONOTONIC), for elapsed times. */
 double cli_now_s(void);
 
+/* splitmix64 (Steele, Lea, Flood 2014) on a caller's state: reproducible benchmark data.
+ * cli_splitmix_unit: uniform in [0, 1) from the top 53 bits of the next word. */
+uint64_t cli_splitmix64(uint64_t *state);
+double cli_splitmix_unit(uint64_t *state);
+
 /* Progress of a long job on stderr (DESIGN.md): shown when stderr is a terminal (one line that
  * rewrites itself) or when asked for (--progress: one line per update), silent otherwise. */
 typedef struct cli_progress {
