@@ -196,8 +196,6 @@ static int parse_compensate(const char *cmd, const char *opt, const char *s, voi
   return 0;
 }
 
-static double phi(double z) { return 0.5 * erfc(-z / sqrt(2.0)); }
-
 /* the command; *step_opt holds the allocated step list (freed by the caller) */
 static int iterate_main(int argc, char **argv, step_list *step_opt) {
   member_list kernel = {.n = 0};
@@ -325,7 +323,7 @@ static int iterate_main(int argc, char **argv, step_list *step_opt) {
     double sd = sqrt(applied_var + 1.0 / 12.0);
     for (size_t i = 0; i < n; i++) {
       double x = (double)i - width / 2 + 0.5;
-      printf("%d,%.17g,%.17g,%.17g\n", steps[s], x, buf[i], phi((x - applied_mean) / sd));
+      printf("%d,%.17g,%.17g,%.17g\n", steps[s], x, buf[i], ics_light_phi((x - applied_mean) / sd));
     }
   }
   free(buf);
