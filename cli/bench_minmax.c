@@ -32,6 +32,7 @@
 #define MM_MAX_BYTES ((double)MM_MAX_GIB * 1073741824.0)
 #define MM_MAX_WORK 68719476736.0 /* 2^36 */
 
+static const char CMD[] = "bench minmax";
 static cli_progress g_prog; /* set up once the options are parsed */
 static int g_progress;    /* --progress given */
 
@@ -199,7 +200,7 @@ static int setup_init(setup *S, size_t d, size_t rows, size_t rays, size_t nterm
   S->ray = malloc(rows * rays * sizeof(ics_minmax_ray));
   S->beta = malloc(rows * rays * sizeof(double));
   if (!S->rect || !smap || !S->terms || !S->prefix || !S->B || !S->ray || !S->beta) {
-    fprintf(stderr, "icshadow bench minmax: out of memory at d = %zu\n", d);
+    cli_failure(CMD, "out of memory at d = %zu", d);
     free(smap);
     return 1;
   }
@@ -214,14 +215,8 @@ static int setup_init(setup *S, size_t d, size_t rows, size_t rays, size_t nterm
     for (size_t k = 0; k < GRID; k++)
       S->grid[j * GRID + k] = integrand(grid_beta(S, j), grid_gamma(S, k), S->f.dgamma);
   if (st == ICS_OK) st = ics_svd(S->grid, GRID, GRID, S->U, S->s, S->V);
-  if (st != ICS_OK) {
-    fprintf(stderr, "icshadow bench minmax: scene set-up failed: %s\n", ics_status_str(st));
-    return 1;
-  }
-  if (nystrom_gamma(S, nterms, S->terms)) {
-    fprintf(stderr, "icshadow bench minmax: out of memory at d = %zu\n", d);
-    return 1;
-  }
+  if (st != ICS_OK) return cli_failure(CMD, "scene set-up failed: %s", ics_status_str(st));
+  if (nystrom_gamma(S, nterms, S->terms)) return cli_failure(CMD, "out of memory at d = %zu", d);
   st = ics_minmax_prefix(S->terms, nterms, d, d, S->prefix, d + 1);
   /* camera rays: `rays` angles per row, each ending at its first surface */
   for (size_t r = 0; r < rows && st == ICS_OK; r++)
@@ -238,10 +233,7 @@ static int setup_init(setup *S, size_t d, size_t rows, size_t rays, size_t nterm
       S->beta[q] = beta;
       nystrom_beta(S, beta, nterms, S->B + q * nterms);
     }
-  if (st != ICS_OK) {
-    fprintf(stderr, "icshadow bench minmax: scene set-up failed: %s\n", ics_status_str(st));
-    return 1;
-  }
+  if (st != ICS_OK) return cli_failure(CMD, "scene set-up failed: %s", ics_status_str(st));
   if (noise) { /* stress rows: random walks (steps uniform in +-1/2, then +-8 jumps 1 in 16),
                 * rays: lines through the walk's range over the whole row */
     uint64_t x = 0x2545F4914F6CDD1Dull;
@@ -279,8 +271,7 @@ static int bench_one(const setup *S, int reps) {
     free(Lt);
     free(Lm);
     free(pre);
-    fprintf(stderr, "icshadow bench minmax: out of memory\n");
-    return 1;
+    return cli_failure(CMD, "out of memory");
   }
   double tb = INFINITY, tp = INFINITY, tt = INFINITY, tm = INFINITY;
   ics_status st = ICS_OK;
@@ -332,7 +323,7 @@ static int bench_one(const setup *S, int reps) {
   free(cls);
   free(seg);
   if (st != ICS_OK) {
-    fprintf(stderr, "icshadow bench minmax: %s\n", ics_status_str(st));
+    cli_failure(CMD, "%s", ics_status_str(st));
     free(Lt);
     free(Lm);
     free(pre);
@@ -359,7 +350,7 @@ static int bench_one(const setup *S, int reps) {
   free(Lt);
   free(Lm);
   free(pre);
-  return cli_stdout_failed("icshadow bench minmax");
+  return cli_stdout_failed(CMD);
 }
 
 /* Low-rank error against N: on the grid, at full resolution, and on the in-scattering. */
@@ -376,8 +367,7 @@ static int svd_table(setup *S) {
   if (!AN || !Lx) {
     free(AN);
     free(Lx);
-    fprintf(stderr, "icshadow bench minmax: out of memory\n");
-    return 1;
+    return cli_failure(CMD, "out of memory");
   }
   /* reference in-scattering: the exact integrand at every lit sample */
   double maxL = 0;
@@ -422,7 +412,7 @@ static int svd_table(setup *S) {
   }
   free(AN);
   free(Lx);
-  return cli_stdout_failed("icshadow bench minmax");
+  return cli_stdout_failed(CMD);
 }
 
 /* Chen Fig. 4: the row with the most lit runs for the middle ray; all its samples, its tree
@@ -432,10 +422,7 @@ static int fig4(setup *S, const char *path) {
   while (P < d) P <<= 1;
   ics_minmax *t = NULL;
   ics_status st = ics_minmax_create(&t, S->rect, S->rows, d, d);
-  if (st != ICS_OK) {
-    fprintf(stderr, "icshadow bench minmax: %s\n", ics_status_str(st));
-    return 1;
-  }
+  if (st != ICS_OK) return cli_failure(CMD, "%s", ics_status_str(st));
   size_t best = 0, bestn = 0;
   for (size_t q = 0; q < S->rows * S->rays; q++) {
     size_t ns = 0;
@@ -450,11 +437,11 @@ static int fig4(setup *S, const char *path) {
   unsigned char *cls = calloc(2 * P, 1);
   size_t *seg = malloc(2 * (d + 1) * sizeof(size_t)), nseg = 0;
   cli_output out;
-  if (!cls || !seg || cli_output_open(&out, path) != 0) {
+  if (!cls || !seg || cli_output_open(&out, CMD, path) != 0) {
     free(cls);
     free(seg);
     ics_minmax_destroy(t);
-    if (!cls || !seg) fprintf(stderr, "icshadow bench minmax: out of memory\n");
+    if (!cls || !seg) cli_failure(CMD, "out of memory");
     return 1;
   }
   ics_minmax_segments(t, row, ry, seg, d + 1, &nseg, cls);
@@ -479,12 +466,39 @@ static int fig4(setup *S, const char *path) {
   return cli_output_commit(&out) != 0;
 }
 
-static int parse_count(const char *opt, const char *val, long lo, long hi, int *out) {
-  if (cli_parse_int(val, lo, hi, out) != 0) {
-    fprintf(stderr, "icshadow bench minmax: %s: expected an integer in %ld..%ld, got '%s'\n", opt, lo,
-            hi, val);
-    return 1;
+/* --samples: comma-separated depth-sample counts, at most 16 */
+typedef struct sample_list {
+  int v[16], n;
+} sample_list;
+
+static int parse_samples(const char *cmd, const char *opt, const char *val, void *dest) {
+  sample_list *list = dest;
+  char buf[256];
+  if (strlen(val) >= sizeof buf) return cli_error(cmd, "%s: list too long", opt);
+  strcpy(buf, val);
+  list->n = 0;
+  /* split at every comma: an empty item ("", "1,,2", "1,") is an error, as in sat's --modes */
+  for (char *tok = buf;;) {
+    char *comma = strchr(tok, ',');
+    if (comma) *comma = '\0';
+    if (!*tok)
+      return cli_error(cmd, "%s: expected integers in 1..16384, got an empty item in '%s'", opt,
+                       val);
+    if (list->n == 16) return cli_error(cmd, "%s: at most 16 values", opt);
+    if (cli_parse_int(tok, 1, 16384, &list->v[list->n]) != 0)
+      return cli_error(cmd, "%s: expected an integer in 1..16384, got '%s'", opt, tok);
+    list->n++;
+    if (!comma) break;
+    tok = comma + 1;
   }
+  return 0;
+}
+
+/* --scene: hf (0) or noise (1) */
+static int parse_scene(const char *cmd, const char *opt, const char *val, void *dest) {
+  if (strcmp(val, "hf") && strcmp(val, "noise"))
+    return cli_error(cmd, "%s: expected 'hf' or 'noise', got '%s'", opt, val);
+  *(int *)dest = !strcmp(val, "noise");
   return 0;
 }
 
@@ -493,139 +507,63 @@ int bench_minmax(int argc, char **argv) {
     help(stdout);
     return 0;
   }
-  int dlist[16], nd = 3, rows = 256, rays = 128, terms = 4, reps = 5, table = 0, noise = 0;
-  dlist[0] = 1024;
-  dlist[1] = 2048;
-  dlist[2] = 4096;
+  sample_list samples = {{1024, 2048, 4096}, 3};
+  int rows = 256, rays = 128, terms = 4, reps = 5, table = 0, noise = 0;
   const char *figpath = NULL;
   int given_samples = 0, given_terms = 0, given_reps = 0;
-  for (int i = 1; i < argc; i++) {
-    const char *opt = argv[i];
-    if (!strcmp(opt, "--svd-table")) {
-      table = 1;
-      continue;
-    }
-    if (!strcmp(opt, "--progress")) {
-      g_progress = 1;
-      continue;
-    }
-    int known = !strcmp(opt, "--samples") || !strcmp(opt, "--rows") || !strcmp(opt, "--rays") ||
-                !strcmp(opt, "--terms") || !strcmp(opt, "--reps") || !strcmp(opt, "--fig4-csv") ||
-                !strcmp(opt, "--scene");
-    if (!known) {
-      fprintf(stderr, "icshadow bench minmax: unknown option '%s' (see icshadow bench minmax --help)\n", opt);
-      return 2;
-    }
-    if (i + 1 >= argc) {
-      fprintf(stderr, "icshadow bench minmax: %s: missing value\n", opt);
-      return 2;
-    }
-    const char *val = argv[++i];
-    if (!strcmp(opt, "--samples")) {
-      given_samples = 1;
-      nd = 0;
-      char buf[256];
-      if (strlen(val) >= sizeof buf) {
-        fprintf(stderr, "icshadow bench minmax: --samples: list too long\n");
-        return 2;
-      }
-      strcpy(buf, val);
-      /* split at every comma: an empty item ("", "1,,2", "1,") is an error, as in sat's --modes */
-      for (char *tok = buf;;) {
-        char *comma = strchr(tok, ',');
-        if (comma) *comma = '\0';
-        if (!*tok) {
-          fprintf(stderr, "icshadow bench minmax: --samples: expected integers in 1..16384, got an empty item in '%s'\n",
-                  val);
-          return 2;
-        }
-        if (nd == 16) {
-          fprintf(stderr, "icshadow bench minmax: --samples: at most 16 values\n");
-          return 2;
-        }
-        if (parse_count("--samples", tok, 1, 16384, &dlist[nd])) return 2;
-        nd++;
-        if (!comma) break;
-        tok = comma + 1;
-      }
-    } else if (!strcmp(opt, "--rows")) {
-      if (parse_count(opt, val, 1, 8192, &rows)) return 2;
-    } else if (!strcmp(opt, "--rays")) {
-      if (parse_count(opt, val, 1, 4096, &rays)) return 2;
-    } else if (!strcmp(opt, "--terms")) {
-      given_terms = 1;
-      if (parse_count(opt, val, 1, MAX_TERMS, &terms)) return 2;
-    } else if (!strcmp(opt, "--reps")) {
-      given_reps = 1;
-      if (parse_count(opt, val, 1, 100, &reps)) return 2;
-    } else if (!strcmp(opt, "--scene")) {
-      if (!strcmp(val, "hf"))
-        noise = 0;
-      else if (!strcmp(val, "noise"))
-        noise = 1;
-      else {
-        fprintf(stderr, "icshadow bench minmax: --scene: expected 'hf' or 'noise', got '%s'\n", val);
-        return 2;
-      }
-    } else {
-      if (!*val) {
-        fprintf(stderr, "icshadow bench minmax: --fig4-csv: empty file name\n");
-        return 2;
-      }
-      figpath = val;
-    }
-  }
+  const cli_option opts[] = {
+      {"--samples", .kind = CLI_CALL, .dest = &samples, .parse = parse_samples,
+       .given = &given_samples},
+      {"--rows", .kind = CLI_INT, .dest = &rows, .lo = 1, .hi = 8192},
+      {"--rays", .kind = CLI_INT, .dest = &rays, .lo = 1, .hi = 4096},
+      {"--terms", .kind = CLI_INT, .dest = &terms, .lo = 1, .hi = MAX_TERMS, .given = &given_terms},
+      {"--reps", .kind = CLI_INT, .dest = &reps, .lo = 1, .hi = 100, .given = &given_reps},
+      {"--scene", .kind = CLI_CALL, .dest = &noise, .parse = parse_scene},
+      {"--svd-table", .kind = CLI_FLAG, .dest = &table},
+      {"--fig4-csv", .kind = CLI_FILE, .dest = &figpath},
+      {"--progress", .kind = CLI_FLAG, .dest = &g_progress},
+  };
+  int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
+  if (rc) return rc;
+  const int *dlist = samples.v, nd = samples.n;
   for (int k = 0; k < nd; k++)
-    if ((size_t)rows * (size_t)dlist[k] > ((size_t)1 << 25)) {
-      fprintf(stderr, "icshadow bench minmax: --rows %d x --samples %d exceeds 2^25 samples\n", rows,
-              dlist[k]);
-      return 2;
-    }
+    if ((size_t)rows * (size_t)dlist[k] > ((size_t)1 << 25))
+      return cli_error(CMD, "--rows %d x --samples %d exceeds 2^25 samples", rows, dlist[k]);
   /* options a mode does not use: an error when they contradict, a warning when ignored */
-  if (figpath && table) {
-    fprintf(stderr, "icshadow bench minmax: --svd-table and --fig4-csv: choose one\n");
-    return 2;
-  }
+  if (figpath && table) return cli_error(CMD, "--svd-table and --fig4-csv: choose one");
   if (figpath || table) {
     const char *mode_opt = figpath ? "--fig4-csv" : "--svd-table";
-    if (given_reps) fprintf(stderr, "icshadow bench minmax: warning: --reps is ignored with %s\n", mode_opt);
+    if (given_reps) cli_warning(CMD, "--reps is ignored with %s", mode_opt);
     if (given_terms && table)
-      fprintf(stderr, "icshadow bench minmax: warning: --terms is ignored with --svd-table (it prints N = 1..%d)\n",
-              MAX_TERMS);
+      cli_warning(CMD, "--terms is ignored with --svd-table (it prints N = 1..%d)", MAX_TERMS);
     if (given_samples && nd > 1)
-      fprintf(stderr, "icshadow bench minmax: warning: %s uses only the first --samples value (%d)\n", mode_opt,
-              dlist[0]);
+      cli_warning(CMD, "%s uses only the first --samples value (%d)", mode_opt, dlist[0]);
   }
   /* memory and work limits, per configuration that will run */
   int mode = figpath ? 2 : table ? 1 : 0, ncheck = mode ? 1 : nd;
   for (int k = 0; k < ncheck; k++) {
     double dd = dlist[k], nt = mode == 1 ? MAX_TERMS : terms;
     double by = est_bytes(dd, rows, rays, nt), wk = est_work(dd, rows, rays, nt, reps, mode);
-    if (by > MM_MAX_BYTES) {
-      fprintf(stderr,
-              "icshadow bench minmax: --samples %d with --rows %d and --rays %d%s needs an estimated "
-              "%.1f GiB of memory; the limit is %d GiB (see --help)\n",
-              dlist[k], rows, rays, mode == 1 ? " (--svd-table: 10 terms)" : "", by / 1073741824.0,
-              MM_MAX_GIB);
-      return 2;
-    }
+    if (by > MM_MAX_BYTES)
+      return cli_error(CMD, "--samples %d with --rows %d and --rays %d%s needs an estimated %.1f "
+                       "GiB of memory; the limit is %d GiB (see --help)", dlist[k], rows, rays,
+                       mode == 1 ? " (--svd-table: 10 terms)" : "", by / 1073741824.0, MM_MAX_GIB);
     if (wk > MM_MAX_WORK) {
       char extra[64];
       if (mode == 0)
         snprintf(extra, sizeof extra, ", --terms %d and --reps %d", terms, reps);
       else
         snprintf(extra, sizeof extra, "%s", mode == 1 ? " and --svd-table" : " and --fig4-csv");
-      fprintf(stderr,
-              "icshadow bench minmax: --samples %d with --rows %d, --rays %d%s: an estimated %.3g "
-              "operations; the work limit is 2^36 = %.3g (about 20-40 s here; see --help)\n",
-              dlist[k], rows, rays, extra, wk, MM_MAX_WORK);
-      return 2;
+      return cli_error(CMD, "--samples %d with --rows %d, --rays %d%s: an estimated %.3g "
+                       "operations; the work limit is 2^36 = %.3g (about 20-40 s here; see --help)",
+                       dlist[k], rows, rays, extra, wk, MM_MAX_WORK);
     }
   }
   cli_progress_init(&g_prog, "icshadow bench minmax", g_progress);
   setup S;
   if (figpath || table) {
-    int rc = setup_init(&S, (size_t)dlist[0], (size_t)rows, (size_t)rays, figpath ? (size_t)terms : MAX_TERMS, noise);
+    rc = setup_init(&S, (size_t)dlist[0], (size_t)rows, (size_t)rays,
+                    figpath ? (size_t)terms : MAX_TERMS, noise);
     if (rc == 0) rc = figpath ? fig4(&S, figpath) : svd_table(&S);
     setup_free(&S);
     cli_progress_done(&g_prog);
@@ -634,7 +572,7 @@ int bench_minmax(int argc, char **argv) {
   printf("samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,tree_bytes,march_bytes,speedup,"
          "speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err\n");
   for (int k = 0; k < nd; k++) {
-    int rc = setup_init(&S, (size_t)dlist[k], (size_t)rows, (size_t)rays, (size_t)terms, noise);
+    rc = setup_init(&S, (size_t)dlist[k], (size_t)rows, (size_t)rays, (size_t)terms, noise);
     if (rc == 0) rc = bench_one(&S, reps);
     setup_free(&S);
     if (rc) {

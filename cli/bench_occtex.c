@@ -23,6 +23,7 @@
 #define OT_MAX_BYTES ((double)OT_MAX_GIB * 1073741824.0)
 #define OT_MAX_WORK 68719476736.0 /* 2^36 */
 
+static const char CMD[] = "bench occtex";
 static cli_progress g_prog; /* set up once the options are parsed */
 static int g_progress;    /* --progress given */
 
@@ -128,44 +129,6 @@ static void help(FILE *f) {
           OT_MAX_GIB);
 }
 
-/* comma-separated integers in lo..hi; pow2: powers of two only */
-static int parse_list(const char *opt, const char *s, long lo, long hi, int pow2, int *out, int *count) {
-  char buf[256];
-  if (strlen(s) >= sizeof buf || !*s) {
-    fprintf(stderr, "icshadow bench occtex: %s: expected a comma-separated list, got '%s'\n", opt, s);
-    return -1;
-  }
-  strcpy(buf, s);
-  *count = 0;
-  /* split at every comma: an empty item (",,", "1,,2", "1,") is an error, as in sat's --modes */
-  for (char *tok = buf, *comma; tok; tok = comma ? comma + 1 : NULL) {
-    comma = strchr(tok, ',');
-    if (comma) *comma = '\0';
-    if (!*tok) {
-      fprintf(stderr, "icshadow bench occtex: %s: empty list item in '%s'\n", opt, s);
-      return -1;
-    }
-    int v;
-    if (*count >= MAX_LIST) {
-      fprintf(stderr, "icshadow bench occtex: %s: at most %d values\n", opt, MAX_LIST);
-      return -1;
-    }
-    if (cli_parse_int(tok, lo, hi, &v) != 0 || (pow2 && (v & (v - 1)))) {
-      fprintf(stderr, "icshadow bench occtex: %s: expected %sintegers in %ld..%ld, got '%s'\n", opt,
-              pow2 ? "power-of-two " : "", lo, hi, tok);
-      return -1;
-    }
-    out[(*count)++] = v;
-  }
-  return 0;
-}
-
-static int get_int(const char *opt, const char *val, long lo, long hi, int *out) {
-  if (cli_parse_int(val, lo, hi, out) == 0) return 0;
-  fprintf(stderr, "icshadow bench occtex: %s: expected an integer in %ld..%ld, got '%s'\n", opt, lo, hi, val);
-  return -1;
-}
-
 static const char *const scene_names[] = {"foliage", "plates", "blocks"};
 
 typedef struct {
@@ -178,8 +141,42 @@ typedef struct {
   ics_occ_prefilter fig3_pf;
 } options;
 
-/* comma-separated scene names, each at most once */
-static int parse_scenes(const char *val, options *o) {
+/* comma-separated integers in lo..hi; pow2: powers of two only */
+static int int_list(const char *cmd, const char *opt, const char *s, long lo, long hi, int pow2,
+                    int *out, int *count) {
+  char buf[256];
+  if (strlen(s) >= sizeof buf || !*s)
+    return cli_error(cmd, "%s: expected a comma-separated list, got '%s'", opt, s);
+  strcpy(buf, s);
+  *count = 0;
+  /* split at every comma: an empty item (",,", "1,,2", "1,") is an error, as in sat's --modes */
+  for (char *tok = buf, *comma; tok; tok = comma ? comma + 1 : NULL) {
+    comma = strchr(tok, ',');
+    if (comma) *comma = '\0';
+    if (!*tok) return cli_error(cmd, "%s: empty list item in '%s'", opt, s);
+    int v;
+    if (*count >= MAX_LIST) return cli_error(cmd, "%s: at most %d values", opt, MAX_LIST);
+    if (cli_parse_int(tok, lo, hi, &v) != 0 || (pow2 && (v & (v - 1))))
+      return cli_error(cmd, "%s: expected %sintegers in %ld..%ld, got '%s'", opt,
+                       pow2 ? "power-of-two " : "", lo, hi, tok);
+    out[(*count)++] = v;
+  }
+  return 0;
+}
+
+static int parse_sizes(const char *cmd, const char *opt, const char *s, void *dest) {
+  options *o = dest;
+  return int_list(cmd, opt, s, 1, ICS_OCC_MAX_SIZE, 1, o->sizes, &o->nsizes);
+}
+
+static int parse_slices(const char *cmd, const char *opt, const char *s, void *dest) {
+  options *o = dest;
+  return int_list(cmd, opt, s, 1, ICS_OCC_MAX_SLICES, 0, o->slices, &o->nslices);
+}
+
+/* --scene: comma-separated scene names, each at most once */
+static int parse_scenes(const char *cmd, const char *opt, const char *val, void *dest) {
+  options *o = dest;
   const char *p = val;
   o->nscenes = 0;
   while (1) {
@@ -189,102 +186,76 @@ static int parse_scenes(const char *val, options *o) {
       if (len == strlen(scene_names[k]) && !strncmp(p, scene_names[k], len)) which = k;
     for (int k = 0; k < o->nscenes; k++)
       if ((int)o->scenes[k] == which) which = -2;
-    if (which < 0) {
-      fprintf(stderr, "icshadow bench occtex: --scene: expected a list of distinct names from foliage, plates, blocks; got '%s'\n", val);
-      return -1;
-    }
+    if (which < 0)
+      return cli_error(cmd, "%s: expected a list of distinct names from foliage, plates, blocks; "
+                       "got '%s'", opt, val);
     o->scenes[o->nscenes++] = (ics_occ_scene_kind)which;
     if (!p[len]) return 0;
     p += len + 1;
   }
 }
 
+/* --light: the side of the square light, in (0, 100] */
+static int parse_light_side(const char *cmd, const char *opt, const char *val, void *dest) {
+  double *w = dest;
+  if (cli_parse_double(val, w) != 0) return cli_error(cmd, "%s: not a number: '%s'", opt, val);
+  if (isnan(*w) || !(*w > 0) || !(*w <= 100))
+    return cli_error(cmd, "%s: expected a size in (0, 100], got '%s'", opt, val);
+  return 0;
+}
+
+static int parse_prefilter(const char *cmd, const char *opt, const char *val, void *dest) {
+  ics_occ_prefilter *pf = dest;
+  if (!strcmp(val, "mipmap"))
+    *pf = ICS_OCC_MIPMAP;
+  else if (!strcmp(val, "nbuffers"))
+    *pf = ICS_OCC_NBUFFERS;
+  else if (!strcmp(val, "sat"))
+    *pf = ICS_OCC_SAT;
+  else
+    return cli_error(cmd, "%s: unknown prefilter '%s' (mipmap, nbuffers, sat)", opt, val);
+  return 0;
+}
+
+/* 0, or the exit status after the message */
 static int parse(int argc, char **argv, options *o) {
-  int given[12] = {0};
   *o = (options){{128, 256}, 2, {4, 8, 16}, 3, {ICS_OCC_SCENE_PLATES, ICS_OCC_SCENE_FOLIAGE}, 2, 0, 1, 48, 32, 2, 3, 0.6, NULL, ICS_OCC_SAT};
-  for (int i = 1; i < argc; i++) {
-    const char *opt = argv[i];
-    if (!strcmp(opt, "--progress")) {
-      g_progress = 1;
-      continue;
-    }
-    static const char *const known[] = {"--sizes", "--slices", "--scene", "--boxes", "--seed", "--light",
-                                        "--receivers", "--light-samples", "--supersample", "--reps",
-                                        "--fig3-csv", "--fig3-prefilter"};
-    int which = -1;
-    for (int k = 0; k < (int)(sizeof known / sizeof known[0]); k++)
-      if (!strcmp(opt, known[k])) which = k;
-    if (which < 0) {
-      fprintf(stderr, "icshadow bench occtex: unknown option '%s' (see icshadow bench occtex --help)\n", opt);
-      return -1;
-    }
-    if (i + 1 >= argc) {
-      fprintf(stderr, "icshadow bench occtex: %s: missing value\n", opt);
-      return -1;
-    }
-    const char *val = argv[++i];
-    int bad = 0;
-    given[which] = 1;
-    switch (which) {
-    case 0: bad = parse_list(opt, val, 1, ICS_OCC_MAX_SIZE, 1, o->sizes, &o->nsizes); break;
-    case 1: bad = parse_list(opt, val, 1, ICS_OCC_MAX_SLICES, 0, o->slices, &o->nslices); break;
-    case 2: bad = parse_scenes(val, o); break;
-    case 3: bad = get_int(opt, val, 1, 100000, &o->boxes); break;
-    case 4: bad = get_int(opt, val, 0, 2147483647L, &o->seed); break;
-    case 5:
-      if (cli_parse_double(val, &o->light) != 0) {
-        fprintf(stderr, "icshadow bench occtex: --light: not a number: '%s'\n", val);
-        return -1;
-      }
-      if (isnan(o->light) || !(o->light > 0) || !(o->light <= 100)) {
-        fprintf(stderr, "icshadow bench occtex: --light: expected a size in (0, 100], got '%s'\n", val);
-        return -1;
-      }
-      break;
-    case 6: bad = get_int(opt, val, 1, 1024, &o->receivers); break;
-    case 7: bad = get_int(opt, val, 1, 1024, &o->m); break;
-    case 8: bad = get_int(opt, val, 1, ICS_OCC_MAX_SUPERSAMPLE, &o->ss); break;
-    case 9: bad = get_int(opt, val, 1, 100, &o->reps); break;
-    case 10:
-      if (!*val) {
-        fprintf(stderr, "icshadow bench occtex: --fig3-csv: empty file name\n");
-        return -1;
-      }
-      o->fig3 = val;
-      break;
-    case 11:
-      if (!strcmp(val, "mipmap")) o->fig3_pf = ICS_OCC_MIPMAP;
-      else if (!strcmp(val, "nbuffers")) o->fig3_pf = ICS_OCC_NBUFFERS;
-      else if (!strcmp(val, "sat")) o->fig3_pf = ICS_OCC_SAT;
-      else {
-        fprintf(stderr, "icshadow bench occtex: --fig3-prefilter: unknown prefilter '%s' (mipmap, nbuffers, sat)\n", val);
-        bad = 1;
-      }
-      break;
-    }
-    if (bad) return -1;
-  }
+  int given_reps = 0, given_prefilter = 0;
+  const cli_option opts[] = {
+      {"--sizes", .kind = CLI_CALL, .dest = o, .parse = parse_sizes},
+      {"--slices", .kind = CLI_CALL, .dest = o, .parse = parse_slices},
+      {"--scene", .kind = CLI_CALL, .dest = o, .parse = parse_scenes},
+      {"--boxes", .kind = CLI_INT, .dest = &o->boxes, .lo = 1, .hi = 100000},
+      {"--seed", .kind = CLI_INT, .dest = &o->seed, .lo = 0, .hi = 2147483647L},
+      {"--light", .kind = CLI_CALL, .dest = &o->light, .parse = parse_light_side},
+      {"--receivers", .kind = CLI_INT, .dest = &o->receivers, .lo = 1, .hi = 1024},
+      {"--light-samples", .kind = CLI_INT, .dest = &o->m, .lo = 1, .hi = 1024},
+      {"--supersample", .kind = CLI_INT, .dest = &o->ss, .lo = 1, .hi = ICS_OCC_MAX_SUPERSAMPLE},
+      {"--reps", .kind = CLI_INT, .dest = &o->reps, .lo = 1, .hi = 100, .given = &given_reps},
+      {"--fig3-csv", .kind = CLI_FILE, .dest = &o->fig3},
+      {"--fig3-prefilter", .kind = CLI_CALL, .dest = &o->fig3_pf, .parse = parse_prefilter,
+       .given = &given_prefilter},
+      {"--progress", .kind = CLI_FLAG, .dest = &g_progress},
+  };
+  int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
+  if (rc) return rc;
   /* options the chosen mode does not use: warn */
   if (o->fig3) {
-    if (given[9]) fprintf(stderr, "icshadow bench occtex: warning: --reps is ignored with --fig3-csv\n");
+    if (given_reps) cli_warning(CMD, "--reps is ignored with --fig3-csv");
     if (o->nsizes > 1 || o->nslices > 1 || o->nscenes > 1)
-      fprintf(stderr, "icshadow bench occtex: warning: --fig3-csv uses only the first --scene, --sizes and "
-                      "--slices values (%s, %d, %d)\n",
-              scene_names[o->scenes[0]], o->sizes[0], o->slices[0]);
-  } else if (given[11]) {
-    fprintf(stderr, "icshadow bench occtex: warning: --fig3-prefilter is ignored without --fig3-csv\n");
+      cli_warning(CMD, "--fig3-csv uses only the first --scene, --sizes and --slices values (%s, "
+                  "%d, %d)", scene_names[o->scenes[0]], o->sizes[0], o->slices[0]);
+  } else if (given_prefilter) {
+    cli_warning(CMD, "--fig3-prefilter is ignored without --fig3-csv");
   }
   for (int i = 0; i < o->nsizes; i++)
-    if ((long)o->sizes[i] * o->ss > 8192) {
-      fprintf(stderr, "icshadow bench occtex: --sizes x --supersample must stay <= 8192\n");
-      return -1;
-    }
+    if ((long)o->sizes[i] * o->ss > 8192)
+      return cli_error(CMD, "--sizes x --supersample must stay <= 8192");
   return 0;
 }
 
 static int fail(const char *what, ics_status st) {
-  fprintf(stderr, "icshadow bench occtex: %s: %s\n", what, ics_status_str(st));
-  return 1;
+  return cli_failure(CMD, "%s: %s", what, ics_status_str(st));
 }
 
 /* slice + build one prefilter; returns the object, times in ms */
@@ -304,50 +275,37 @@ static int scene_boxes(const options *o, ics_occ_scene_kind k) {
   return o->boxes ? o->boxes : def[k];
 }
 
-/* memory and work limits of every configuration that will run (fig3: the first of each) */
+/* memory and work limits of every configuration that will run (fig3: the first of each): 0, or
+ * the exit status after the message */
 static int check_limits(const options *o) {
   const int na = o->fig3 ? 1 : o->nsizes, nb = o->fig3 ? 1 : o->nslices, nsc = o->fig3 ? 1 : o->nscenes;
   for (int a = 0; a < na; a++)
     for (int b = 0; b < nb; b++) {
       const int n = o->sizes[a], K = o->slices[b];
-      if ((double)K * n * n > (double)ICS_OCC_MAX_TEXELS) {
-        fprintf(stderr,
-                "icshadow bench occtex: --sizes %d with --slices %d: %d x %d^2 texels exceeds the limit "
-                "2^%.0f (see --help)\n",
-                n, K, K, n, log2((double)ICS_OCC_MAX_TEXELS));
-        return -1;
-      }
+      if ((double)K * n * n > (double)ICS_OCC_MAX_TEXELS)
+        return cli_error(CMD, "--sizes %d with --slices %d: %d x %d^2 texels exceeds the limit "
+                         "2^%.0f (see --help)", n, K, K, n, log2((double)ICS_OCC_MAX_TEXELS));
       double by = est_bytes(n, K, o->ss, o->receivers);
-      if (by > OT_MAX_BYTES) {
-        fprintf(stderr,
-                "icshadow bench occtex: --sizes %d with --slices %d: an estimated %.1f GiB of memory "
-                "(textures and N-Buffers); the limit is %d GiB (see --help)\n",
-                n, K, by / 1073741824.0, OT_MAX_GIB);
-        return -1;
-      }
+      if (by > OT_MAX_BYTES)
+        return cli_error(CMD, "--sizes %d with --slices %d: an estimated %.1f GiB of memory "
+                         "(textures and N-Buffers); the limit is %d GiB (see --help)", n, K,
+                         by / 1073741824.0, OT_MAX_GIB);
       double wk = est_work(n, K, o->ss, o->receivers);
       if (!o->fig3) wk *= o->reps;
-      if (wk > OT_MAX_WORK) {
-        fprintf(stderr,
-                "icshadow bench occtex: --sizes %d with --slices %d, --supersample %d, --receivers %d "
-                "and --reps %d: an estimated %.3g operations; the work limit is 2^36 = %.3g (1-2 "
-                "minutes here; see --help)\n",
-                n, K, o->ss, o->receivers, o->fig3 ? 1 : o->reps, wk, OT_MAX_WORK);
-        return -1;
-      }
+      if (wk > OT_MAX_WORK)
+        return cli_error(CMD, "--sizes %d with --slices %d, --supersample %d, --receivers %d and "
+                         "--reps %d: an estimated %.3g operations; the work limit is 2^36 = %.3g "
+                         "(1-2 minutes here; see --help)", n, K, o->ss, o->receivers,
+                         o->fig3 ? 1 : o->reps, wk, OT_MAX_WORK);
     }
   for (int sc = 0; sc < nsc; sc++) {
     int boxes = scene_boxes(o, o->scenes[sc]);
     double wk = est_brute(o->receivers, o->m, boxes) * (o->fig3 ? 1 : o->reps);
-    if (wk > OT_MAX_WORK) {
-      fprintf(stderr,
-              "icshadow bench occtex: brute force: --receivers %d with --light-samples %d, %d boxes "
-              "(%s) and --reps %d: an estimated %.3g operations; the work limit is 2^36 = %.3g "
-              "(1-2 minutes here; see --help)\n",
-              o->receivers, o->m, boxes, scene_names[o->scenes[sc]], o->fig3 ? 1 : o->reps, wk,
-              OT_MAX_WORK);
-      return -1;
-    }
+    if (wk > OT_MAX_WORK)
+      return cli_error(CMD, "brute force: --receivers %d with --light-samples %d, %d boxes (%s) "
+                       "and --reps %d: an estimated %.3g operations; the work limit is 2^36 = "
+                       "%.3g (1-2 minutes here; see --help)", o->receivers, o->m, boxes,
+                       scene_names[o->scenes[sc]], o->fig3 ? 1 : o->reps, wk, OT_MAX_WORK);
   }
   return 0;
 }
@@ -358,8 +316,9 @@ int bench_occtex(int argc, char **argv) {
     return 0;
   }
   options o;
-  if (parse(argc, argv, &o) != 0) return 2;
-  if (check_limits(&o) != 0) return 2;
+  int rc = parse(argc, argv, &o);
+  if (!rc) rc = check_limits(&o);
+  if (rc) return rc;
   cli_progress_init(&g_prog, "icshadow bench occtex", g_progress);
 
   const size_t R = (size_t)o.receivers, nr = R * R;
@@ -370,7 +329,7 @@ int bench_occtex(int argc, char **argv) {
   ics_occ_box *boxes = malloc((size_t)maxb * sizeof *boxes);
   double *P = malloc(3 * nr * sizeof *P), *ref = malloc(nr * sizeof *ref), *occ = malloc(3 * nr * sizeof *occ);
   float *tex = malloc((size_t)maxn * maxn * maxk * sizeof *tex);
-  int rc = 0, header = 0;
+  int header = 0;
   ics_status st;
   if (!boxes || !P || !ref || !occ || !tex) {
     rc = fail("allocation", ICS_ERR_NOMEM);
@@ -399,7 +358,7 @@ int bench_occtex(int argc, char **argv) {
       goto done;
     }
     cli_output out;
-    if (cli_output_open(&out, o.fig3) != 0) {
+    if (cli_output_open(&out, CMD, o.fig3) != 0) {
       rc = 1;
       goto done;
     }
@@ -492,7 +451,7 @@ int bench_occtex(int argc, char **argv) {
                    ebias[a][b][p][c], brute / t);
           }
   }
-  if (cli_stdout_failed("icshadow bench occtex")) rc = 1;
+  if (cli_stdout_failed(CMD)) rc = 1;
 done:
   cli_progress_done(&g_prog);
   free(boxes);

@@ -4,31 +4,17 @@
  * box-sum error on data where float fails (1000 + uniform noise in [-1, 1)).
  * `sat2d --chirp-csv FILE` writes the data of Ament et al. 2014 Fig. 4 (paper_figs/ament_fig4.py).
  * Method and results: docs/sat.md. */
-#define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "commands.h"
 #include "icshadow.h"
 
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static uint64_t rng_next(uint64_t *s) { /* splitmix64 */
-  uint64_t z = (*s += 0x9e3779b97f4a7c15ull);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-static double rng_unit(uint64_t *s) { return (double)(rng_next(s) >> 11) * 0x1p-53; }
+/* the subcommand, for messages */
+static const char *sat_cmd(int dims) { return dims == 2 ? "bench sat2d" : "bench sat3d"; }
 
 static void help(FILE *f, int dims) {
   if (dims == 2)
@@ -71,18 +57,7 @@ static void help(FILE *f, int dims) {
 
 /* Flush stdout; on a write error (full disk, closed pipe, /dev/full) say so on stderr and
  * return 0, so the command exits 1 instead of pretending the CSV was written. */
-static int stdout_ok(int dims) {
-  return !cli_stdout_failed(dims == 2 ? "icshadow bench sat2d" : "icshadow bench sat3d");
-}
-
-static int usage_error(int dims, const char *msg, const char *arg) {
-  if (arg)
-    fprintf(stderr, "icshadow bench sat%dd: %s '%s'\n", dims, msg, arg);
-  else
-    fprintf(stderr, "icshadow bench sat%dd: %s\n", dims, msg);
-  fprintf(stderr, "(icshadow bench sat%dd --help for usage)\n", dims);
-  return 2;
-}
+static int stdout_ok(int dims) { return !cli_stdout_failed(sat_cmd(dims)); }
 
 /* ---- Ament Fig. 4: chirp occluder ------------------------------------------------------ */
 /* A 2D cut (x across, y up toward a directional light straight above) through the paper's
@@ -99,8 +74,7 @@ static int chirp_csv(const char *path) {
   double *tau = malloc((size_t)W * sizeof *tau), *sig = malloc((size_t)W * sizeof *sig);
   if (!img || !tau || !sig) {
     free(img), free(tau), free(sig);
-    fprintf(stderr, "icshadow bench sat2d: out of memory\n");
-    return 1;
+    return cli_failure(sat_cmd(2), "out of memory");
   }
   for (int x = 0; x < W; x++) {
     double xc = x + 0.5, ph = f0 * xc + (f1 - f0) * xc * xc / (2.0 * W);
@@ -111,8 +85,7 @@ static int chirp_csv(const char *path) {
   ics_status st = ics_sat2d_build(&sat, img, W, H, W, ICS_SAT_DOUBLE);
   if (st != ICS_OK) {
     free(img), free(tau), free(sig);
-    fprintf(stderr, "icshadow bench sat2d: %s\n", ics_status_str(st));
-    return 1;
+    return cli_failure(sat_cmd(2), "%s", ics_status_str(st));
   }
   for (int x = 0; x < W; x++) {
     double s = 0;
@@ -120,7 +93,7 @@ static int chirp_csv(const char *path) {
     tau[x] = s;
   }
   cli_output out;
-  if (cli_output_open(&out, path)) {
+  if (cli_output_open(&out, sat_cmd(2), path)) {
     ics_sat2d_free(sat);
     free(img), free(tau), free(sig);
     return 1;
@@ -183,7 +156,7 @@ static int bench_lights(void) {
   double pts[200][3];
   uint64_t seed = 99;
   for (int i = 0; i < NP; i++)
-    for (int a = 0; a < 3; a++) pts[i][a] = 4 + rng_unit(&seed) * (N - 8);
+    for (int a = 0; a < 3; a++) pts[i][a] = 4 + cli_splitmix_unit(&seed) * (N - 8);
   printf("method,table,mode,U,build_s,ns_per_query,bf_ns_per_query,speedup,max_abs_err,"
          "mean_abs_err,mean_tau\n");
   if (!stdout_ok(3)) { /* fail before the brute force runs */
@@ -198,33 +171,32 @@ static int bench_lights(void) {
   for (int hi = 0; hi < 2; hi++)
     for (int mi = 0; mi < 2; mi++) {
       ics_csat *c = NULL;
-      double t0 = now_s();
+      double t0 = cli_now_s();
       ics_status st = ics_csat_build(&c, &vol, l, hs[hi], ms[mi]);
-      double tb = now_s() - t0;
+      double tb = cli_now_s() - t0;
       if (st != ICS_OK) {
-        fprintf(stderr, "icshadow bench sat3d: CSAT: %s\n", ics_status_str(st));
         free(data);
-        return 1;
+        return cli_failure(sat_cmd(3), "CSAT: %s", ics_status_str(st));
       }
       double ru[3], rv[3], rw[3];
       ics_csat_frame(c, ru, rv, rw, NULL);
       if (!have_ref) { /* brute force once per U (the reference does not depend on the table) */
         for (int ui = 0; ui < 4; ui++) {
           int np = Us[ui] > 0 ? (int)ceil(2 * Us[ui] / 0.5) : 1;
-          t0 = now_s();
+          t0 = cli_now_s();
           for (int i = 0; i < NP; i++)
             ics_volume_tau_directional(&vol, ru, rv, rw, pts[i], Us[ui], np, 0.25,
                                        &tau_ref[ui][i]);
-          bf_ns[ui] = (now_s() - t0) / NP * 1e9;
+          bf_ns[ui] = (cli_now_s() - t0) / NP * 1e9;
         }
         have_ref = 1;
       }
       for (int ui = 0; ui < 4; ui++) {
         double tq = INFINITY, tau[200];
         for (int rep = 0; rep < 5; rep++) {
-          t0 = now_s();
+          t0 = cli_now_s();
           for (int i = 0; i < NP; i++) ics_csat_tau(c, ICS_CSAT_PLUS_W, pts[i], Us[ui], &tau[i]);
-          double t = now_s() - t0;
+          double t = cli_now_s() - t0;
           if (t < tq) tq = t;
         }
         double emax = 0, esum = 0, tsum = 0;
@@ -254,30 +226,29 @@ static int bench_lights(void) {
     if (d2 > 36) memcpy(spts[nvalid++], pts[i], sizeof spts[0]);
   }
   for (int ui = 0; ui < 3; ui++) {
-    double t0 = now_s();
+    double t0 = cli_now_s();
     for (int i = 0; i < nvalid; i++) {
       int np = (int)ceil(2 * Uss[ui] / 0.5);
       ics_volume_tau_point(&vol, lp, spts[i], Uss[ui], np, 0.25, &sref[ui][i]);
     }
-    sbf_ns[ui] = (now_s() - t0) / nvalid * 1e9;
+    sbf_ns[ui] = (cli_now_s() - t0) / nvalid * 1e9;
   }
   for (int gi = 0; gi < 2; gi++)
     for (int mi = 0; mi < 2; mi++) {
       ics_ssat *s = NULL;
-      double t0 = now_s();
+      double t0 = cli_now_s();
       ics_status st = ics_ssat_build(&s, &vol, lp, grids[gi][0], grids[gi][1], grids[gi][2], ms[mi]);
-      double tb = now_s() - t0;
+      double tb = cli_now_s() - t0;
       if (st != ICS_OK) {
-        fprintf(stderr, "icshadow bench sat3d: SSAT: %s\n", ics_status_str(st));
         free(data);
-        return 1;
+        return cli_failure(sat_cmd(3), "SSAT: %s", ics_status_str(st));
       }
       for (int ui = 0; ui < 3; ui++) {
         double tq = INFINITY, tau[200];
         for (int rep = 0; rep < 5; rep++) {
-          t0 = now_s();
+          t0 = cli_now_s();
           for (int i = 0; i < nvalid; i++) ics_ssat_tau(s, spts[i], Uss[ui], &tau[i]);
-          double t = now_s() - t0;
+          double t = cli_now_s() - t0;
           if (t < tq) tq = t;
         }
         double emax = 0, esum = 0, tsum = 0;
@@ -307,18 +278,10 @@ typedef struct {
   int reps, boxes;
 } config;
 
-static int parse_size(int dims, const char *opt, const char *val, size_t *out) {
-  int v;
-  if (cli_parse_int(val, 1, 1L << 30, &v)) {
-    char msg[96];
-    snprintf(msg, sizeof msg, "%s must be an integer in 1..1073741824, got", opt);
-    return usage_error(dims, msg, val);
-  }
-  *out = (size_t)v;
-  return 0;
-}
-
-static int parse_modes(config *c, const char *list) {
+/* --modes: distinct precision mode names, comma-separated */
+static int parse_modes(const char *cmd, const char *opt, const char *list, void *dest) {
+  (void)opt;
+  config *c = dest;
   c->nmodes = 0;
   const char *p = list;
   while (1) {
@@ -326,13 +289,13 @@ static int parse_modes(config *c, const char *list) {
     size_t len = e ? (size_t)(e - p) : strlen(p);
     char name[32];
     ics_sat_precision m;
-    if (len == 0 || len >= sizeof name) return usage_error(c->dims, "bad --modes list", list);
+    if (len == 0 || len >= sizeof name) return cli_error(cmd, "bad --modes list '%s'", list);
     memcpy(name, p, len);
     name[len] = 0;
     if (ics_sat_precision_parse(name, &m) != ICS_OK)
-      return usage_error(c->dims, "unknown precision mode", name);
+      return cli_error(cmd, "unknown precision mode '%s'", name);
     for (int i = 0; i < c->nmodes; i++)
-      if (c->modes[i] == (int)m) return usage_error(c->dims, "mode given twice", name);
+      if (c->modes[i] == (int)m) return cli_error(cmd, "mode given twice '%s'", name);
     c->modes[c->nmodes++] = (int)m;
     if (!e) break;
     p = e + 1;
@@ -408,11 +371,11 @@ static int run_bench(const config *c) {
   double *pre = malloc(cells * sizeof(double)); /* P of the bound, per prefix box */
   if (!data || !src || !dst || !pre) {
     free(data), free(src), free(dst), free(pre);
-    fprintf(stderr, "icshadow bench sat%dd: out of memory\n", c->dims);
-    return 1;
+    return cli_failure(sat_cmd(c->dims), "out of memory");
   }
   uint64_t seed = 12345;
-  for (size_t i = 0; i < cells; i++) data[i] = (float)(1000.0 + (2.0 * rng_unit(&seed) - 1.0));
+  for (size_t i = 0; i < cells; i++)
+    data[i] = (float)(1000.0 + (2.0 * cli_splitmix_unit(&seed) - 1.0));
   memset(src, 1, copy_max);
   memset(dst, 0, copy_max);
   printf("kind,mode,width,height,depth,reps,time_s,first_build_s,bytes,memcpy_s,floor_ratio,"
@@ -425,12 +388,11 @@ static int run_bench(const config *c) {
   for (int mi = 0; mi < c->nmodes; mi++) {
     ics_sat_precision m = (ics_sat_precision)c->modes[mi];
     void *sat = NULL;
-    double t0 = now_s();
+    double t0 = cli_now_s();
     ics_status st = build_any(c, data, m, &sat);
-    double first = now_s() - t0;
+    double first = cli_now_s() - t0;
     if (st != ICS_OK) {
-      fprintf(stderr, "icshadow bench sat%dd: %s: %s\n", c->dims, ics_sat_precision_name(m),
-              ics_status_str(st));
+      cli_failure(sat_cmd(c->dims), "%s: %s", ics_sat_precision_name(m), ics_status_str(st));
       rc = 1;
       continue;
     }
@@ -438,18 +400,18 @@ static int run_bench(const config *c) {
     size_t copy = bytes / 2;
     double best = INFINITY, best_copy = INFINITY;
     for (int r = 0; r < c->reps; r++) {
-      t0 = now_s();
+      t0 = cli_now_s();
       memcpy(dst, src, copy);
-      double tc = now_s() - t0;
+      double tc = cli_now_s() - t0;
       if (tc < best_copy) best_copy = tc;
-      t0 = now_s();
+      t0 = cli_now_s();
       st = rebuild_any(c, data, sat);
-      double tb = now_s() - t0;
+      double tb = cli_now_s() - t0;
       if (st != ICS_OK) break;
       if (tb < best) best = tb;
     }
     if (st != ICS_OK) {
-      fprintf(stderr, "icshadow bench sat%dd: rebuild: %s\n", c->dims, ics_status_str(st));
+      cli_failure(sat_cmd(c->dims), "rebuild: %s", ics_status_str(st));
       free_any(c, sat);
       rc = 1;
       continue;
@@ -467,9 +429,9 @@ static int run_bench(const config *c) {
           hi[a] = n;
           continue;
         }
-        long e = 1 + (long)(rng_unit(&bs) * 64);
+        long e = 1 + (long)(cli_splitmix_unit(&bs) * 64);
         if (e > n) e = n;
-        lo[a] = (long)(rng_unit(&bs) * (double)(n - e + 1));
+        lo[a] = (long)(cli_splitmix_unit(&bs) * (double)(n - e + 1));
         if (lo[a] > n - e) lo[a] = n - e;
         hi[a] = lo[a] + e;
       }
@@ -514,52 +476,35 @@ static int bench_sat(int argc, char **argv, int dims) {
   c.boxes = 256;
   for (int i = 0; i < ICS_SAT_PRECISION_COUNT; i++) c.modes[i] = i;
   c.nmodes = ICS_SAT_PRECISION_COUNT;
-  const char *chirp = NULL;
-  int have_size = 0, have_dim = 0, lights = 0;
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    int is_opt = !strcmp(a, "--size") || !strcmp(a, "--width") || !strcmp(a, "--height") ||
-                 !strcmp(a, "--depth") || !strcmp(a, "--modes") || !strcmp(a, "--reps") ||
-                 !strcmp(a, "--boxes") || !strcmp(a, "--chirp-csv");
-    if (!strcmp(a, "--lights")) {
-      if (dims == 2) return usage_error(dims, "--lights is for sat3d, got", a);
-      lights = 1;
-      continue;
-    }
-    if (!is_opt) return usage_error(dims, "unknown argument", a);
-    if (i + 1 >= argc) return usage_error(dims, "missing value after", a);
-    const char *v = argv[++i];
-    int r = 0;
-    if (!strcmp(a, "--size")) {
-      size_t s;
-      if ((r = parse_size(dims, a, v, &s))) return r;
-      c.n[0] = c.n[1] = s;
-      c.n[2] = dims == 3 ? s : 1;
-      have_size = 1;
-    } else if (!strcmp(a, "--width")) {
-      if ((r = parse_size(dims, a, v, &c.n[0]))) return r;
-      have_dim = 1;
-    } else if (!strcmp(a, "--height")) {
-      if ((r = parse_size(dims, a, v, &c.n[1]))) return r;
-      have_dim = 1;
-    } else if (!strcmp(a, "--depth")) {
-      if (dims == 2) return usage_error(dims, "--depth is for sat3d, got", a);
-      if ((r = parse_size(dims, a, v, &c.n[2]))) return r;
-      have_dim = 1;
-    } else if (!strcmp(a, "--modes")) {
-      if ((r = parse_modes(&c, v))) return r;
-    } else if (!strcmp(a, "--reps")) {
-      if (cli_parse_int(v, 1, 100, &c.reps))
-        return usage_error(dims, "--reps must be an integer in 1..100, got", v);
-    } else if (!strcmp(a, "--boxes")) {
-      if (cli_parse_int(v, 0, 100000, &c.boxes))
-        return usage_error(dims, "--boxes must be an integer in 0..100000, got", v);
-    } else {
-      if (dims == 3) return usage_error(dims, "--chirp-csv is for sat2d, got", a);
-      chirp = v;
-    }
+  const char *cmd = sat_cmd(dims), *chirp = NULL;
+  int size = 0, width = 0, height = 0, depth = 0, lights = 0;
+  int given_size = 0, given_width = 0, given_height = 0, given_depth = 0, given_chirp = 0;
+  const cli_option opts[] = {
+      {"--size", .kind = CLI_INT, .dest = &size, .lo = 1, .hi = 1L << 30, .given = &given_size},
+      {"--width", .kind = CLI_INT, .dest = &width, .lo = 1, .hi = 1L << 30, .given = &given_width},
+      {"--height", .kind = CLI_INT, .dest = &height, .lo = 1, .hi = 1L << 30,
+       .given = &given_height},
+      {"--depth", .kind = CLI_INT, .dest = &depth, .lo = 1, .hi = 1L << 30, .given = &given_depth},
+      {"--modes", .kind = CLI_CALL, .dest = &c, .parse = parse_modes},
+      {"--reps", .kind = CLI_INT, .dest = &c.reps, .lo = 1, .hi = 100},
+      {"--boxes", .kind = CLI_INT, .dest = &c.boxes, .lo = 0, .hi = 100000},
+      {"--chirp-csv", .kind = CLI_STRING, .dest = &chirp, .given = &given_chirp},
+      {"--lights", .kind = CLI_FLAG, .dest = &lights},
+  };
+  int rc = cli_parse_options(cmd, argc, argv, 1, opts, CLI_NOPTS(opts));
+  if (rc) return rc;
+  if (dims == 2 && lights) return cli_error(cmd, "--lights is for sat3d");
+  if (dims == 2 && given_depth) return cli_error(cmd, "--depth is for sat3d");
+  if (dims == 3 && given_chirp) return cli_error(cmd, "--chirp-csv is for sat2d");
+  if (given_size && (given_width || given_height || given_depth))
+    return cli_error(cmd, "give either --size or --width/--height");
+  if (given_size) {
+    c.n[0] = c.n[1] = (size_t)size;
+    c.n[2] = dims == 3 ? (size_t)size : 1;
   }
-  if (have_size && have_dim) return usage_error(dims, "give either --size or --width/--height", NULL);
+  if (given_width) c.n[0] = (size_t)width;
+  if (given_height) c.n[1] = (size_t)height;
+  if (given_depth) c.n[2] = (size_t)depth;
   if (chirp) return chirp_csv(chirp);
   if (lights) return bench_lights();
   /* input + largest table + the two memcpy buffers */
@@ -570,13 +515,10 @@ static int bench_sat(int argc, char **argv, int dims) {
     if (b > max_out) max_out = b;
   }
   double total = cells * 4 + cells * (double)max_out + cells * (4.0 + (double)max_out) + cells * 8;
-  if (cells > 2147483648.0 || total > 8.0 * 1073741824.0) {
-    fprintf(stderr,
-            "icshadow bench sat%dd: %zu x %zu x %zu cells would allocate %.1f GiB (input, table, "
-            "memcpy buffers and the bound's prefix sums); the limit is 8 GiB and 2^31 cells\n",
-            dims, c.n[0], c.n[1], c.n[2], total / 1073741824.0);
-    return 2;
-  }
+  if (cells > 2147483648.0 || total > 8.0 * 1073741824.0)
+    return cli_error(cmd, "%zu x %zu x %zu cells would allocate %.1f GiB (input, table, memcpy "
+                     "buffers and the bound's prefix sums); the limit is 8 GiB and 2^31 cells",
+                     c.n[0], c.n[1], c.n[2], total / 1073741824.0);
   return run_bench(&c);
 }
 

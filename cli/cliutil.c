@@ -1,6 +1,7 @@
-/* cliutil.c — helpers shared by the icshadow subcommands: strict number parsing (also of option
- * values, with the subcommand's error messages), --help detection, a monotonic clock for
- * timings, and atomic output files (temporary name + rename). */
+/* cliutil.c — helpers shared by the icshadow subcommands: one-line error reports naming the
+ * subcommand, strict number parsing (also of option values), the table-driven option parser,
+ * --help detection, a monotonic clock for timings, splitmix64 for benchmark data, progress
+ * lines, and atomic output files (temporary name + rename). */
 #define _XOPEN_SOURCE 700 /* realpath, mkstemp, fchmod */
 #include "commands.h"
 
@@ -16,6 +17,16 @@
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
+
+int cli_report(int status, const char *cmd, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  fprintf(stderr, "icshadow%s%s: ", cmd ? " " : "", cmd ? cmd : "");
+  vfprintf(stderr, fmt, ap);
+  fputc('\n', stderr);
+  va_end(ap);
+  return status;
+}
 
 int cli_parse_double(const char *s, double *out) {
   if (!s) return -1;
@@ -45,22 +56,18 @@ int cli_parse_int(const char *s, long lo, long hi, int *out) {
 
 int cli_option_double(const char *cmd, const char *opt, const char *s, int variance, double *out) {
   double v;
-  if (cli_parse_double(s, &v) != 0) {
-    fprintf(stderr, "icshadow %s: %s: not a number: '%s'\n", cmd, opt, s);
-    return -1;
-  }
-  if (isnan(v)) {
-    fprintf(stderr, "icshadow %s: %s: NaN is not allowed\n", cmd, opt);
-    return -1;
-  }
-  if (variance && v < 0) {
-    fprintf(stderr, "icshadow %s: %s: negative variance %s (must be >= 0)\n", cmd, opt, s);
-    return -1;
-  }
-  if (isinf(v)) {
-    fprintf(stderr, "icshadow %s: %s: must be finite, got '%s'\n", cmd, opt, s);
-    return -1;
-  }
+  int bad = 1;
+  if (cli_parse_double(s, &v) != 0)
+    cli_error(cmd, "%s: not a number: '%s'", opt, s);
+  else if (isnan(v))
+    cli_error(cmd, "%s: NaN is not allowed", opt);
+  else if (variance && v < 0)
+    cli_error(cmd, "%s: negative variance %s (must be >= 0)", opt, s);
+  else if (isinf(v))
+    cli_error(cmd, "%s: must be finite, got '%s'", opt, s);
+  else
+    bad = 0;
+  if (bad) return -1;
   *out = v;
   return 0;
 }
@@ -73,26 +80,25 @@ int cli_parse_numbers(const char *cmd, const char *opt, const char *spec, const 
     const char *q = p;
     while (q < end && *q != ',') q++;
     if (i < n - 1 && q >= end) {
-      fprintf(stderr, "icshadow %s: %s: expected %d comma-separated numbers at position %d of "
-                      "'%s'\n", cmd, opt, n, (int)(p - spec) + 1, spec);
+      cli_error(cmd, "%s: expected %d comma-separated numbers at position %d of '%s'", opt, n,
+                (int)(p - spec) + 1, spec);
       return -1;
     }
     if (i == n - 1 && q < end) {
-      fprintf(stderr, "icshadow %s: %s: too many numbers at position %d of '%s'\n", cmd, opt,
-              (int)(q - spec) + 1, spec);
+      cli_error(cmd, "%s: too many numbers at position %d of '%s'", opt, (int)(q - spec) + 1,
+                spec);
       return -1;
     }
     char buf[128];
     size_t len = (size_t)(q - p);
     if (len == 0 || len >= sizeof buf || (memcpy(buf, p, len), buf[len] = 0, 0) ||
         cli_parse_double(buf, &v[i]) != 0) {
-      fprintf(stderr, "icshadow %s: %s: not a number at position %d of '%s'\n", cmd, opt,
-              (int)(p - spec) + 1, spec);
+      cli_error(cmd, "%s: not a number at position %d of '%s'", opt, (int)(p - spec) + 1, spec);
       return -1;
     }
     if (!isfinite(v[i])) {
-      fprintf(stderr, "icshadow %s: %s: %s at position %d of '%s' (must be finite)\n", cmd, opt,
-              isnan(v[i]) ? "NaN" : "infinite number", (int)(p - spec) + 1, spec);
+      cli_error(cmd, "%s: %s at position %d of '%s' (must be finite)", opt,
+                isnan(v[i]) ? "NaN" : "infinite number", (int)(p - spec) + 1, spec);
       return -1;
     }
     p = q + 1;
@@ -104,6 +110,17 @@ double cli_now_s(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+uint64_t cli_splitmix64(uint64_t *state) {
+  uint64_t z = (*state += 0x9e3779b97f4a7c15ull);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+double cli_splitmix_unit(uint64_t *state) {
+  return (double)(cli_splitmix64(state) >> 11) * 0x1p-53;
 }
 
 void cli_progress_init(cli_progress *p, const char *who, int forced) {
@@ -126,11 +143,10 @@ void cli_progress_done(const cli_progress *p) {
   if (p->on && p->tty) fputs("\r\033[K", stderr);
 }
 
-int cli_stdout_failed(const char *who) {
+int cli_stdout_failed(const char *cmd) {
   errno = 0;
   if (fflush(stdout) == 0 && !ferror(stdout)) return 0;
-  fprintf(stderr, "%s: cannot write stdout: %s\n", who, strerror(errno ? errno : EIO));
-  return 1;
+  return cli_failure(cmd, "cannot write stdout: %s", strerror(errno ? errno : EIO));
 }
 
 int cli_wants_help(int argc, char **argv) {
@@ -139,8 +155,9 @@ int cli_wants_help(int argc, char **argv) {
   return 0;
 }
 
-int cli_output_open(cli_output *out, const char *path) {
+int cli_output_open(cli_output *out, const char *cmd, const char *path) {
   out->fp = NULL;
+  out->cmd = cmd;
   out->tmp_path = NULL;
   out->target = NULL;
   out->path = path;
@@ -159,13 +176,13 @@ int cli_output_open(cli_output *out, const char *path) {
   if (!out->target) return -1;
   if (dangling || (stat(out->target, &st) == 0 && !S_ISREG(st.st_mode))) {
     if (S_ISDIR(st.st_mode)) {
-      fprintf(stderr, "icshadow: cannot write %s: it is a directory\n", path);
+      cli_failure(cmd, "cannot write %s: it is a directory", path);
       cli_output_abort(out);
       return -1;
     }
     out->fp = fopen(out->target, "w"); /* device, FIFO or dangling link: in place */
     if (!out->fp) {
-      fprintf(stderr, "icshadow: cannot open %s: %s\n", path, strerror(errno));
+      cli_failure(cmd, "cannot open %s: %s", path, strerror(errno));
       cli_output_abort(out);
       return -1;
     }
@@ -189,7 +206,7 @@ int cli_output_open(cli_output *out, const char *path) {
     fd = mkstemp(out->tmp_path);
   }
   if (fd < 0) {
-    fprintf(stderr, "icshadow: cannot create %s: %s\n", path, strerror(errno));
+    cli_failure(cmd, "cannot create %s: %s", path, strerror(errno));
     free(out->tmp_path);
     out->tmp_path = NULL;
     cli_output_abort(out);
@@ -199,7 +216,7 @@ int cli_output_open(cli_output *out, const char *path) {
   mode_t mask = umask(0);
   umask(mask);
   if (fchmod(fd, 0666 & ~mask) != 0)
-    fprintf(stderr, "icshadow: warning: cannot set the mode of %s: %s\n", path, strerror(errno));
+    cli_warning(cmd, "cannot set the mode of %s: %s", path, strerror(errno));
   out->fp = fdopen(fd, "w");
   if (!out->fp) {
     close(fd);
@@ -232,7 +249,7 @@ int cli_output_commit(cli_output *out) {
   }
   if (!bad && out->tmp_path && rename(out->tmp_path, out->target) != 0) bad = 1;
   if (bad) {
-    fprintf(stderr, "icshadow: cannot write %s: %s\n", out->path, strerror(errno));
+    cli_failure(out->cmd, "cannot write %s: %s", out->path, strerror(errno));
     if (out->tmp_path) remove(out->tmp_path);
   }
   free(out->tmp_path);
@@ -265,5 +282,69 @@ int cli_parse_comp(const char *s, int allow_integer, ics_comp_mode *mode) {
     *mode = ICS_COMP_INTEGER;
   else
     return -1;
+  return 0;
+}
+
+/* the value of option o, given as `opt`: 0, or the exit status after the message */
+static int option_value(const char *cmd, const cli_option *o, const char *opt, const char *v) {
+  switch (o->kind) {
+  case CLI_FLAG:
+    *(int *)o->dest = 1;
+    return 0;
+  case CLI_FILE:
+    if (!*v) return cli_error(cmd, "%s: empty file name", opt);
+    /* fall through */
+  case CLI_STRING:
+    *(const char **)o->dest = v;
+    return 0;
+  case CLI_FINITE:
+  case CLI_VARIANCE:
+    return cli_option_double(cmd, opt, v, o->kind == CLI_VARIANCE, o->dest) ? 2 : 0;
+  case CLI_INT:
+    return cli_parse_int(v, o->lo, o->hi, o->dest)
+               ? cli_error(cmd, "%s: expected an integer in %ld..%ld, got '%s'", opt, o->lo, o->hi,
+                           v)
+               : 0;
+  case CLI_SEED:
+    return cli_parse_seed(v, o->dest)
+               ? cli_error(cmd, "%s: expected " CLI_SEED_RANGE ", got '%s'", opt, v)
+               : 0;
+  case CLI_CALL:
+    return o->parse(cmd, opt, v, o->dest);
+  }
+  return cli_error(cmd, "%s: unknown option kind %d", opt, (int)o->kind);
+}
+
+static const cli_option *find_option(const cli_option *opts, int nopts, const char *arg) {
+  for (int k = 0; k < nopts; k++) {
+    const cli_option *o = &opts[k];
+    if (o->name && (!strcmp(arg, o->name) || (o->alias && !strcmp(arg, o->alias)))) return o;
+  }
+  return NULL;
+}
+
+int cli_parse_options(const char *cmd, int argc, char **argv, int first, const cli_option *opts,
+                      int nopts) {
+  const cli_option *positional = NULL;
+  for (int k = 0; k < nopts; k++)
+    if (!opts[k].name) positional = &opts[k];
+  for (int i = first; i < argc; i++) {
+    const char *arg = argv[i], *opt = arg, *value = arg;
+    const cli_option *o = find_option(opts, nopts, arg);
+    if (!o) {
+      if (arg[0] == '-' && arg[1])
+        return cli_error(cmd, "unknown option '%s' (see icshadow %s --help)", arg, cmd);
+      if (!positional)
+        return cli_error(cmd, "unexpected argument '%s' (see icshadow %s --help)", arg, cmd);
+      o = positional;
+      opt = NULL;
+    } else if (o->kind != CLI_FLAG) {
+      if (i + 1 >= argc) return cli_error(cmd, "%s: missing value", arg);
+      value = argv[++i];
+    }
+    if (o->given) ++*o->given;
+    int rc = option_value(cmd, o, opt, value);
+    if (rc) return rc;
+  }
   return 0;
 }

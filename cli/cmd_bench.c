@@ -29,7 +29,7 @@ int cmd_bench(int argc, char **argv) {
   }
   for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++)
     if (!strcmp(argv[1], kinds[i].name)) return kinds[i].run(argc - 1, argv + 1);
-  fprintf(stderr, "icshadow bench: unknown kind '%s'\n", argv[1]);
+  cli_error("bench", "unknown kind '%s'", argv[1]);
   help(stderr);
   return 2;
 }

@@ -13,6 +13,8 @@
 
 #define MAX_STEPS_LIST 64
 
+static const char CMD[] = "clt";
+
 static void help(FILE *f) {
   fprintf(f,
           "usage: icshadow clt --kernel K --var V --steps N1,N2,... [--mean M] [--samples N]\n"
@@ -81,8 +83,8 @@ static void help(FILE *f) {
 static void print_rate(int refine, const char *what, const ics_clt_point *kept, int nkept,
                        int nsteps) {
   if (!refine)
-    fprintf(stderr, "icshadow clt: warning: --no-refine: the grid is not checked; the rate may "
-                    "be a discretisation artefact\n");
+    cli_warning(CMD, "--no-refine: the grid is not checked; the rate may be a discretisation "
+                "artefact");
   if (nkept < 2)
     fprintf(stderr, "rate exponent%s: nan (fewer than 2 resolved points)\n", what);
   else
@@ -99,24 +101,24 @@ static int parse_steps(const char *s, int *steps, int *n, int maxv) {
     char buf[32];
     int v;
     if (len == 0 || len >= sizeof buf) {
-      fprintf(stderr, "icshadow clt: --steps: empty or too long entry at position %d of '%s'\n",
-              (int)(p - s) + 1, s);
+      cli_error(CMD, "--steps: empty or too long entry at position %d of '%s'", (int)(p - s) + 1,
+                s);
       return -1;
     }
     memcpy(buf, p, len);
     buf[len] = 0;
     if (cli_parse_int(buf, 1, maxv, &v) != 0) {
-      fprintf(stderr, "icshadow clt: --steps: expected an integer in 1..%d at position %d "
-                      "of '%s'\n", maxv, (int)(p - s) + 1, s);
+      cli_error(CMD, "--steps: expected an integer in 1..%d at position %d of '%s'", maxv,
+                (int)(p - s) + 1, s);
       return -1;
     }
     if (*n && v <= steps[*n - 1]) {
-      fprintf(stderr, "icshadow clt: --steps: not strictly increasing at position %d of '%s'\n",
-              (int)(p - s) + 1, s);
+      cli_error(CMD, "--steps: not strictly increasing at position %d of '%s'", (int)(p - s) + 1,
+                s);
       return -1;
     }
     if (*n == MAX_STEPS_LIST) {
-      fprintf(stderr, "icshadow clt: --steps: more than %d entries\n", MAX_STEPS_LIST);
+      cli_error(CMD, "--steps: more than %d entries", MAX_STEPS_LIST);
       return -1;
     }
     steps[(*n)++] = v;
@@ -133,22 +135,13 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
                  int refine, int rate) {
   double cv[3], mv[2] = {0, 0}, edge = 0, offset = 0;
   int steps[MAX_STEPS_LIST], nsteps = 0, samples = 0;
-  if (cli_parse_numbers("clt", "--cov", cov_s, cov_s, NULL, 3, cv) != 0) return 2;
-  if (cv[0] < 0 || cv[1] < 0 || !(cv[0] + cv[1] > 0)) {
-    fprintf(stderr, "icshadow clt: --cov: variances VX, VY must be >= 0 and not both 0, got "
-                    "'%s'\n", cov_s);
-    return 2;
-  }
-  if (mean_s && cli_parse_numbers("clt", "--mean", mean_s, mean_s, NULL, 2, mv) != 0) return 2;
-  if (edge_s && cli_option_double("clt", "--edge-angle", edge_s, 0, &edge) != 0) return 2;
-  if (edge_s && corner) {
-    fprintf(stderr, "icshadow clt: give either --edge-angle or --corner, not both\n");
-    return 2;
-  }
-  if (!kname || !steps_s) {
-    fprintf(stderr, "icshadow clt: %s is required\n", !kname ? "--kernel" : "--steps");
-    return 2;
-  }
+  if (cli_parse_numbers(CMD, "--cov", cov_s, cov_s, NULL, 3, cv) != 0) return 2;
+  if (cv[0] < 0 || cv[1] < 0 || !(cv[0] + cv[1] > 0))
+    return cli_error(CMD, "--cov: variances VX, VY must be >= 0 and not both 0, got '%s'", cov_s);
+  if (mean_s && cli_parse_numbers(CMD, "--mean", mean_s, mean_s, NULL, 2, mv) != 0) return 2;
+  if (edge_s && cli_option_double(CMD, "--edge-angle", edge_s, 0, &edge) != 0) return 2;
+  if (edge_s && corner) return cli_error(CMD, "give either --edge-angle or --corner, not both");
+  if (!kname || !steps_s) return cli_error(CMD, "%s is required", !kname ? "--kernel" : "--steps");
   if (parse_steps(steps_s, steps, &nsteps, ICS_CLT2D_MAX_STEPS) != 0) return 2;
   ics_kernel_member member;
   if (!strcmp(kname, "ellipse"))
@@ -157,68 +150,46 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
     member = ICS_KERNEL_POISSON;
   else if (!strcmp(kname, "gauss"))
     member = ICS_KERNEL_GAUSS;
-  else {
-    fprintf(stderr, "icshadow clt: --kernel: unknown 2D kernel '%s' (ellipse, poisson, gauss)\n",
-            kname);
-    return 2;
-  }
+  else
+    return cli_error(CMD, "--kernel: unknown 2D kernel '%s' (ellipse, poisson, gauss)", kname);
   if (samples_s) {
     int lo = member == ICS_KERNEL_POISSON ? 3 : member == ICS_KERNEL_GAUSS ? 2 : 1;
     int hi = member == ICS_KERNEL_POISSON ? 64 : member == ICS_KERNEL_GAUSS ? 256 : 4096;
-    if (cli_parse_int(samples_s, lo, hi, &samples) != 0) {
-      fprintf(stderr, "icshadow clt: --samples: expected an integer in %d..%d for %s, got '%s'\n",
-              lo, hi, kname, samples_s);
-      return 2;
-    }
+    if (cli_parse_int(samples_s, lo, hi, &samples) != 0)
+      return cli_error(CMD, "--samples: expected an integer in %d..%d for %s, got '%s'", lo, hi,
+                       kname, samples_s);
   }
   int offsets = 0; /* 0 random, 1 fixed, 2 golden */
   if (offsets_s) {
-    if (member != ICS_KERNEL_ELLIPSE) {
-      fprintf(stderr, "icshadow clt: --offsets applies to the ellipse kernel only\n");
-      return 2;
-    }
+    if (member != ICS_KERNEL_ELLIPSE)
+      return cli_error(CMD, "--offsets applies to the ellipse kernel only");
     if (!strcmp(offsets_s, "random"))
       offsets = 0;
     else if (!strcmp(offsets_s, "fixed"))
       offsets = 1;
     else if (!strcmp(offsets_s, "golden"))
       offsets = 2;
-    else {
-      fprintf(stderr, "icshadow clt: --offsets: unknown schedule '%s' (random, fixed, golden)\n",
-              offsets_s);
-      return 2;
-    }
+    else
+      return cli_error(CMD, "--offsets: unknown schedule '%s' (random, fixed, golden)", offsets_s);
   }
   if (offset_s) {
-    if (offsets == 0) {
-      fprintf(stderr, "icshadow clt: --offset needs --offsets fixed or golden\n");
-      return 2;
-    }
-    if (cli_option_double("clt", "--offset", offset_s, 0, &offset) != 0) return 2;
-    if (offset < 0 || offset >= 1) {
-      fprintf(stderr, "icshadow clt: --offset: must be in [0, 1), got '%s'\n", offset_s);
-      return 2;
-    }
+    if (offsets == 0) return cli_error(CMD, "--offset needs --offsets fixed or golden");
+    if (cli_option_double(CMD, "--offset", offset_s, 0, &offset) != 0) return 2;
+    if (offset < 0 || offset >= 1)
+      return cli_error(CMD, "--offset: must be in [0, 1), got '%s'", offset_s);
   }
-  if (seed_given && (member == ICS_KERNEL_GAUSS || offsets)) {
-    fprintf(stderr, "icshadow clt: --seed: the %s is deterministic (the seed applies to poisson "
-                    "and to ellipse with --offsets random)\n",
-            member == ICS_KERNEL_GAUSS ? "gauss kernel"
-            : offsets == 1             ? "ellipse with --offsets fixed"
-                                       : "ellipse with --offsets golden");
-    return 2;
-  }
+  if (seed_given && (member == ICS_KERNEL_GAUSS || offsets))
+    return cli_error(CMD, "--seed: the %s is deterministic (the seed applies to poisson and to "
+                     "ellipse with --offsets random)",
+                     member == ICS_KERNEL_GAUSS ? "gauss kernel"
+                     : offsets == 1             ? "ellipse with --offsets fixed"
+                                                : "ellipse with --offsets golden");
   ics_comp_mode cm;
-  if (cli_parse_comp(comp, 0, &cm) != 0) {
-    fprintf(stderr, "icshadow clt: --comp: unknown mode '%s' (nonneg, signed, none)\n", comp);
-    return 2;
-  }
+  if (cli_parse_comp(comp, 0, &cm) != 0)
+    return cli_error(CMD, "--comp: unknown mode '%s' (nonneg, signed, none)", comp);
   ics_class2d cls;
   ics_status st = ics_class2d_from_axes(mv[0], mv[1], cv[0], cv[1], cv[2], &cls);
-  if (st != ICS_OK) {
-    fprintf(stderr, "icshadow clt: --cov '%s': %s\n", cov_s, ics_status_str(st));
-    return 2;
-  }
+  if (st != ICS_OK) return cli_error(CMD, "--cov '%s': %s", cov_s, ics_status_str(st));
   ics_kernel2d k;
   ics_clt2d_ellipse el = {{mv[0], mv[1]}, cv[0], cv[1], cv[2], samples ? samples : 2, offset,
                           offsets == 2 ? ICS_CLT2D_GOLDEN : 0};
@@ -243,23 +214,15 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
   su.refine = refine;
   double pixels = 0, work = 0;
   if (st == ICS_OK) st = ics_clt2d_cost(gen, ctx, &su, steps, nsteps, &pixels, &work);
-  if (st == ICS_ERR_SIZE) {
-    fprintf(stderr, "icshadow clt: the image for %d steps of this class would exceed %.0f pixels "
-                    "(give smaller --steps, --cov or --mean)\n", steps[nsteps - 1],
-            ICS_CLT2D_MAX_PIXELS);
-    return 2;
-  }
-  if (st != ICS_OK) {
-    fprintf(stderr, "icshadow clt: kernel %s: %s\n", kname, ics_status_str(st));
-    return 2;
-  }
-  if (work > ICS_WORK_BUDGET) {
-    fprintf(stderr, "icshadow clt: estimated work %.3g tap-updates (%.0f pixels, %d steps%s) "
-                    "exceeds the budget of %.0e (give smaller --steps, --cov or --samples%s)\n",
-            work, pixels, steps[nsteps - 1], refine ? ", x5 for the 2x finer run" : "",
-            ICS_WORK_BUDGET, refine ? ", or --no-refine" : "");
-    return 2;
-  }
+  if (st == ICS_ERR_SIZE)
+    return cli_error(CMD, "the image for %d steps of this class would exceed %.0f pixels (give "
+                     "smaller --steps, --cov or --mean)", steps[nsteps - 1], ICS_CLT2D_MAX_PIXELS);
+  if (st != ICS_OK) return cli_error(CMD, "kernel %s: %s", kname, ics_status_str(st));
+  if (work > ICS_WORK_BUDGET)
+    return cli_error(CMD, "estimated work %.3g tap-updates (%.0f pixels, %d steps%s) exceeds the "
+                     "budget of %.0e (give smaller --steps, --cov or --samples%s)", work, pixels,
+                     steps[nsteps - 1], refine ? ", x5 for the 2x finer run" : "", ICS_WORK_BUDGET,
+                     refine ? ", or --no-refine" : "");
   if (cm == ICS_COMP_NONNEG) { /* can non-negative integer taps reach the step's covariance? */
     static ics_tap2d tg[ICS_KERNEL_MAX_TAPS], td[4 * ICS_KERNEL_MAX_TAPS + 9];
     int nt = 0, nd = 0;
@@ -267,16 +230,13 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
     if (gen(ctx, 0, 1.0, tg, ICS_KERNEL_MAX_TAPS, &nt) == ICS_OK &&
         ics_taps2d_compensate(tg, nt, cm, td, 4 * ICS_KERNEL_MAX_TAPS + 9, &nd, res) == ICS_OK &&
         fabs(res[0]) + fabs(res[1]) + fabs(res[2]) > 1e-9 * (cls.cxx + cls.cyy))
-      fprintf(stderr, "icshadow clt: warning: the integer taps of step 0 miss the taps' own "
-                      "covariance by (%.3g, %.3g, %.3g) px^2 (rank-deficient or too narrow taps): "
-                      "compare sup_error_realized\n", res[0], res[1], res[2]);
+      cli_warning(CMD, "the integer taps of step 0 miss the taps' own covariance by (%.3g, %.3g, "
+                  "%.3g) px^2 (rank-deficient or too narrow taps): compare sup_error_realized",
+                  res[0], res[1], res[2]);
   }
   ics_clt_point pts[MAX_STEPS_LIST];
   st = ics_clt2d_measure(gen, ctx, &su, steps, nsteps, pts);
-  if (st != ICS_OK) {
-    fprintf(stderr, "icshadow clt: %s\n", ics_status_str(st));
-    return st == ICS_ERR_NOMEM ? 1 : 2;
-  }
+  if (st != ICS_OK) return cli_status_error(CMD, st, "%s", ics_status_str(st));
   printf("steps,sup_error,sup_error_realized,disc_error,taps_x_steps,seconds\n");
   for (int i = 0; i < nsteps; i++)
     printf("%d,%.17g,%.17g,%.17g,%.17g,%.17g\n", pts[i].steps, pts[i].sup_err,
@@ -285,9 +245,9 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
   int nkept = 0, nkept_r = 0;
   for (int i = 0; i < nsteps; i++) {
     if (refine && !(pts[i].disc_err < 0.1 * pts[i].sup_err))
-      fprintf(stderr, "icshadow clt: warning: n = %d: disc_error %.3g >= sup_error / 10 (%.3g): "
-                      "the grid does not resolve this error%s\n", pts[i].steps, pts[i].disc_err,
-              0.1 * pts[i].sup_err, rate ? "; left out of the rate" : "");
+      cli_warning(CMD, "n = %d: disc_error %.3g >= sup_error / 10 (%.3g): the grid does not "
+                  "resolve this error%s", pts[i].steps, pts[i].disc_err, 0.1 * pts[i].sup_err,
+                  rate ? "; left out of the rate" : "");
     else
       kept[nkept++] = pts[i];
     if (!refine || pts[i].disc_err < 0.1 * pts[i].sup_err_realized) {
@@ -299,7 +259,7 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
     print_rate(refine, "", kept, nkept, nsteps);
     print_rate(1, " (realised moments)", kept_r, nkept_r, nsteps);
   }
-  return cli_stdout_failed("icshadow clt");
+  return cli_stdout_failed(CMD);
 }
 
 int cmd_clt(int argc, char **argv) {
@@ -311,109 +271,57 @@ int cmd_clt(int argc, char **argv) {
   double var = NAN, mean = 0;
   uint64_t seed = 0;
   int seed_given = 0;
-  int samples = 0, refine = 1, rate = 0, nsteps = 0, corner = 0;
+  int samples = 0, no_refine = 0, rate = 0, nsteps = 0, corner = 0;
   int steps[MAX_STEPS_LIST];
+  /* kept as text: their meaning depends on 1D (--var) or 2D (--cov), decided below */
   const char *steps_s = NULL, *mean_s = NULL, *cov_s = NULL, *edge_s = NULL, *offsets_s = NULL,
              *offset_s = NULL, *var_s = NULL, *samples_s = NULL;
-  for (int i = 1; i < argc; i++) {
-    const char *opt = argv[i];
-    if (!strcmp(opt, "--no-refine")) {
-      refine = 0;
-      continue;
-    }
-    if (!strcmp(opt, "--rate")) {
-      rate = 1;
-      continue;
-    }
-    if (!strcmp(opt, "--corner")) {
-      corner = 1;
-      continue;
-    }
-    static const char *known[] = {"--kernel", "--var",        "--steps",   "--mean",
-                                  "--samples", "--seed",      "--comp",    "--cov",
-                                  "--edge-angle", "--offsets", "--offset"};
-    int ok = 0;
-    for (size_t j = 0; j < sizeof known / sizeof *known; j++) ok |= !strcmp(opt, known[j]);
-    if (!ok) {
-      fprintf(stderr, "icshadow clt: unknown option '%s' (see icshadow clt --help)\n", opt);
-      return 2;
-    }
-    if (i + 1 >= argc) {
-      fprintf(stderr, "icshadow clt: %s: missing value\n", opt);
-      return 2;
-    }
-    const char *val = argv[++i];
-    int bad = 0;
-    if (!strcmp(opt, "--kernel"))
-      kname = val;
-    else if (!strcmp(opt, "--comp"))
-      comp = val;
-    else if (!strcmp(opt, "--var"))
-      var_s = val;
-    else if (!strcmp(opt, "--mean"))
-      mean_s = val;
-    else if (!strcmp(opt, "--cov"))
-      cov_s = val;
-    else if (!strcmp(opt, "--edge-angle"))
-      edge_s = val;
-    else if (!strcmp(opt, "--offsets"))
-      offsets_s = val;
-    else if (!strcmp(opt, "--offset"))
-      offset_s = val;
-    else if (!strcmp(opt, "--seed")) {
-      seed_given = 1;
-      if (cli_parse_seed(val, &seed) != 0) {
-        fprintf(stderr, "icshadow clt: --seed: expected " CLI_SEED_RANGE ", got '%s'\n", val);
-        bad = 1;
-      }
-    } else if (!strcmp(opt, "--steps"))
-      steps_s = val;
-    else
-      samples_s = val;
-    if (bad) return 2;
-  }
+  const cli_option opts[] = {
+      {"--kernel", .kind = CLI_STRING, .dest = &kname},
+      {"--var", .kind = CLI_STRING, .dest = &var_s},
+      {"--steps", .kind = CLI_STRING, .dest = &steps_s},
+      {"--mean", .kind = CLI_STRING, .dest = &mean_s},
+      {"--samples", .kind = CLI_STRING, .dest = &samples_s},
+      {"--seed", .kind = CLI_SEED, .dest = &seed, .given = &seed_given},
+      {"--comp", .kind = CLI_STRING, .dest = &comp},
+      {"--cov", .kind = CLI_STRING, .dest = &cov_s},
+      {"--edge-angle", .kind = CLI_STRING, .dest = &edge_s},
+      {"--offsets", .kind = CLI_STRING, .dest = &offsets_s},
+      {"--offset", .kind = CLI_STRING, .dest = &offset_s},
+      {"--no-refine", .kind = CLI_FLAG, .dest = &no_refine},
+      {"--rate", .kind = CLI_FLAG, .dest = &rate},
+      {"--corner", .kind = CLI_FLAG, .dest = &corner},
+  };
+  int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
+  if (rc) return rc;
+  int refine = !no_refine;
   if (cov_s) { /* 2D: --var and the 1D-only kernels do not apply */
-    if (var_s) {
-      fprintf(stderr, "icshadow clt: give either --var (1D kernel) or --cov (2D kernel), not both\n");
-      return 2;
-    }
+    if (var_s)
+      return cli_error(CMD, "give either --var (1D kernel) or --cov (2D kernel), not both");
     return clt2d(kname, cov_s, mean_s, steps_s, samples_s, edge_s, corner, offsets_s, offset_s,
                  seed, seed_given, comp, refine, rate);
   }
   {
     const char *only2d = edge_s ? "--edge-angle" : corner ? "--corner" : offsets_s ? "--offsets"
                          : offset_s ? "--offset" : NULL;
-    if (only2d) {
-      fprintf(stderr, "icshadow clt: %s applies to 2D kernels only (give --cov VX,VY,ANGLE)\n",
-              only2d);
-      return 2;
-    }
+    if (only2d)
+      return cli_error(CMD, "%s applies to 2D kernels only (give --cov VX,VY,ANGLE)", only2d);
   }
   if (var_s) {
-    if (cli_option_double("clt", "--var", var_s, 0, &var) != 0) return 2;
-    if (!(var > 0)) {
-      fprintf(stderr, "icshadow clt: --var: %s variance %s (must be > 0)\n",
-              var < 0 ? "negative" : "zero", var_s);
-      return 2;
-    }
+    if (cli_option_double(CMD, "--var", var_s, 0, &var) != 0) return 2;
+    if (!(var > 0))
+      return cli_error(CMD, "--var: %s variance %s (must be > 0)", var < 0 ? "negative" : "zero",
+                       var_s);
   }
-  if (mean_s && cli_option_double("clt", "--mean", mean_s, 0, &mean) != 0) return 2;
+  if (mean_s && cli_option_double(CMD, "--mean", mean_s, 0, &mean) != 0) return 2;
   if (steps_s && parse_steps(steps_s, steps, &nsteps, 1000000) != 0) return 2;
-  if (samples_s && cli_parse_int(samples_s, 0, 4096, &samples) != 0) {
-    fprintf(stderr, "icshadow clt: --samples: expected an integer in 0..4096, got '%s'\n",
-            samples_s);
-    return 2;
-  }
-  if (!kname || isnan(var) || !steps_s) {
-    fprintf(stderr, "icshadow clt: %s is required\n",
-            !kname ? "--kernel" : isnan(var) ? "--var" : "--steps");
-    return 2;
-  }
+  if (samples_s && cli_parse_int(samples_s, 0, 4096, &samples) != 0)
+    return cli_error(CMD, "--samples: expected an integer in 0..4096, got '%s'", samples_s);
+  if (!kname || isnan(var) || !steps_s)
+    return cli_error(CMD, "%s is required", !kname ? "--kernel" : isnan(var) ? "--var" : "--steps");
   ics_comp_mode cm;
-  if (cli_parse_comp(comp, 0, &cm) != 0) {
-    fprintf(stderr, "icshadow clt: --comp: unknown mode '%s' (nonneg, signed, none)\n", comp);
-    return 2;
-  }
+  if (cli_parse_comp(comp, 0, &cm) != 0)
+    return cli_error(CMD, "--comp: unknown mode '%s' (nonneg, signed, none)", comp);
   ics_kernel1d k;
   ics_tap1d skew[ICS_CLT_SKEW_TAPS];
   ics_clt_fixed fixed = {skew, ICS_CLT_SKEW_TAPS};
@@ -430,36 +338,27 @@ int cmd_clt(int argc, char **argv) {
       const char *n = ics_kernel_member_name((ics_kernel_member)m);
       if (n && !strcmp(n, kname) && (ics_kernel_member_dims((ics_kernel_member)m) & 1)) member = m;
     }
-    if (member < 0) {
-      fprintf(stderr, "icshadow clt: --kernel: unknown 1D kernel '%s' (dirac, tophat, "
-                      "stochastic-dirac, gauss, skew)\n", kname);
-      return 2;
-    }
+    if (member < 0)
+      return cli_error(CMD, "--kernel: unknown 1D kernel '%s' (dirac, tophat, stochastic-dirac, "
+                       "gauss, skew)", kname);
     st = ics_kernel1d_init(&k, (ics_kernel_member)member, mean, var);
     k.nsamples = samples;
     k.seed = (uint64_t)seed;
     gen = ics_clt_member_gen;
     ctx = &k;
   }
-  if (st != ICS_OK) {
-    fprintf(stderr, "icshadow clt: kernel %s: %s\n", kname, ics_status_str(st));
-    return 2;
-  }
+  if (st != ICS_OK) return cli_error(CMD, "kernel %s: %s", kname, ics_status_str(st));
   double nodes = 0, work = 0;
   st = ics_clt_cost(gen, ctx, mean, var, steps, nsteps, cm, refine, &nodes, &work);
-  if (st == ICS_ERR_SIZE) {
-    fprintf(stderr, "icshadow clt: the grid for %d steps of mean %.17g, variance %.17g would exceed "
-                    "2^24 nodes%s (give smaller --steps, --mean or --var)\n", steps[nsteps - 1],
-            mean, var, refine ? " with its 2x finer copy" : "");
-    return 2;
-  }
-  if (st == ICS_OK && work > ICS_WORK_BUDGET) {
-    fprintf(stderr, "icshadow clt: estimated work %.3g tap-updates (%.0f nodes, %d steps%s) exceeds "
-                    "the budget of %.0e (give smaller --steps, --var or --samples%s)\n", work,
-            nodes, steps[nsteps - 1], refine ? ", x5 for the 2x finer run" : "", ICS_WORK_BUDGET,
-            refine ? ", or --no-refine" : "");
-    return 2;
-  }
+  if (st == ICS_ERR_SIZE)
+    return cli_error(CMD, "the grid for %d steps of mean %.17g, variance %.17g would exceed 2^24 "
+                     "nodes%s (give smaller --steps, --mean or --var)", steps[nsteps - 1], mean,
+                     var, refine ? " with its 2x finer copy" : "");
+  if (st == ICS_OK && work > ICS_WORK_BUDGET)
+    return cli_error(CMD, "estimated work %.3g tap-updates (%.0f nodes, %d steps%s) exceeds the "
+                     "budget of %.0e (give smaller --steps, --var or --samples%s)", work, nodes,
+                     steps[nsteps - 1], refine ? ", x5 for the 2x finer run" : "", ICS_WORK_BUDGET,
+                     refine ? ", or --no-refine" : "");
   if (st == ICS_OK && cm == ICS_COMP_NONNEG) { /* can non-negative integer taps reach the class? */
     ics_tap1d t0[ICS_CLT_SKEW_TAPS + 1];
     ics_tap1d *tg = gen == ics_clt_fixed_gen ? t0 : malloc(sizeof *tg * ICS_KERNEL_MAX_TAPS);
@@ -471,11 +370,10 @@ int cmd_clt(int argc, char **argv) {
         ics_taps1d_compensate(tg, nt, cm, td, 2 * ICS_KERNEL_MAX_TAPS + 3, &nd, &resid) == ICS_OK &&
         resid > 1e-12 * fmax(var, 1e-300)) {
       double f = mean - floor(mean);
-      fprintf(stderr, "icshadow clt: warning: the class (mean %.17g, variance %.17g) cannot be "
-                      "reached by non-negative integer taps (least variance f(1 - f) = %.17g): each "
-                      "step adds a compensation residual of %.6g px^2, so the error against the "
-                      "class Gaussian will not go to 0 (use --comp signed or a larger --var)\n",
-              mean, var, f * (1 - f), resid);
+      cli_warning(CMD, "the class (mean %.17g, variance %.17g) cannot be reached by non-negative "
+                  "integer taps (least variance f(1 - f) = %.17g): each step adds a compensation "
+                  "residual of %.6g px^2, so the error against the class Gaussian will not go to 0 "
+                  "(use --comp signed or a larger --var)", mean, var, f * (1 - f), resid);
     }
     if (tg != t0) free(tg);
     free(td);
@@ -484,13 +382,12 @@ int cmd_clt(int argc, char **argv) {
   if (st == ICS_OK) st = ics_clt_measure(gen, ctx, mean, var, steps, nsteps, cm, refine, pts);
   if (st == ICS_ERR_RANGE && gen == ics_clt_member_gen && k.member == ICS_KERNEL_TOPHAT) {
     double f = mean - floor(mean);
-    fprintf(stderr, "icshadow clt: --var %.17g is below %.17g = f(1 - f), the least variance of an "
-                    "exact top-hat with mean %.17g (f = frac(mean) = %.17g): give a larger --var\n",
-            var, f * (1 - f), mean, f);
-    return 2;
+    return cli_error(CMD, "--var %.17g is below %.17g = f(1 - f), the least variance of an exact "
+                     "top-hat with mean %.17g (f = frac(mean) = %.17g): give a larger --var", var,
+                     f * (1 - f), mean, f);
   }
   if (st != ICS_OK) {
-    fprintf(stderr, "icshadow clt: %s\n", ics_status_str(st));
+    cli_error(CMD, "%s", ics_status_str(st));
     return (st == ICS_ERR_NOMEM) ? 1 : 2;
   }
   printf("steps,sup_error,disc_error,taps_x_steps,seconds\n");
@@ -502,13 +399,13 @@ int cmd_clt(int argc, char **argv) {
   int nkept = 0;
   for (int i = 0; i < nsteps; i++) {
     if (refine && !(pts[i].disc_err < 0.1 * pts[i].sup_err)) {
-      fprintf(stderr, "icshadow clt: warning: n = %d: disc_error %.3g >= sup_error / 10 (%.3g): "
-                      "the grid does not resolve this error%s\n", pts[i].steps, pts[i].disc_err,
-              0.1 * pts[i].sup_err, rate ? "; left out of the rate" : "");
+      cli_warning(CMD, "n = %d: disc_error %.3g >= sup_error / 10 (%.3g): the grid does not "
+                  "resolve this error%s", pts[i].steps, pts[i].disc_err, 0.1 * pts[i].sup_err,
+                  rate ? "; left out of the rate" : "");
       continue;
     }
     kept[nkept++] = pts[i];
   }
   if (rate) print_rate(refine, "", kept, nkept, nsteps);
-  return cli_stdout_failed("icshadow clt");
+  return cli_stdout_failed(CMD);
 }

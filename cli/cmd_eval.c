@@ -37,20 +37,27 @@ static void help(FILE *f) {
   for (int i = 0; i < NFUNCS; i++) fprintf(f, "  %-11s %s\n", funcs[i].name, funcs[i].what);
 }
 
+static const char CMD[] = "eval";
+
 int cmd_eval(int argc, char **argv) {
   if (cli_wants_help(argc, argv)) {
     help(stdout);
     return 0;
   }
-  if (argc != 2) {
+  const char *name = NULL;
+  int nnames = 0;
+  const cli_option opts[] = {{NULL, .kind = CLI_STRING, .dest = &name, .given = &nnames}};
+  int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
+  if (rc) return rc;
+  if (nnames != 1) {
     help(stderr);
     return 2;
   }
   int which = -1;
   for (int i = 0; i < NFUNCS; i++)
-    if (!strcmp(argv[1], funcs[i].name)) which = i;
+    if (!strcmp(name, funcs[i].name)) which = i;
   if (which < 0) {
-    fprintf(stderr, "icshadow eval: unknown function '%s'\n", argv[1]);
+    cli_error(CMD, "unknown function '%s'", name);
     help(stderr);
     return 2;
   }
@@ -64,25 +71,20 @@ int cmd_eval(int argc, char **argv) {
     if (len > 0 && line[len - 1] == '\n') line[--len] = '\0';
     double x;
     if (strlen(line) != (size_t)len) {
-      fprintf(stderr, "icshadow eval: line %ld: contains a NUL byte\n", lineno);
+      status = cli_error(CMD, "line %ld: contains a NUL byte", lineno);
       printf("nan\n");
-      status = 2;
       continue;
     }
     if (cli_parse_double(line, &x) != 0) {
-      fprintf(stderr, "icshadow eval: line %ld: not a number: '%.60s'\n", lineno, line);
+      status = cli_error(CMD, "line %ld: not a number: '%.60s'", lineno, line);
       printf("nan\n");
-      status = 2;
       continue;
     }
     printf("%.17g\n", funcs[which].f(x));
   }
   int read_error = ferror(stdin) ? errno : 0;
   free(line);
-  if (read_error) {
-    fprintf(stderr, "icshadow eval: cannot read stdin: %s\n", strerror(read_error));
-    return 1;
-  }
-  if (cli_stdout_failed("icshadow eval")) return 1;
+  if (read_error) return cli_failure(CMD, "cannot read stdin: %s", strerror(read_error));
+  if (cli_stdout_failed(CMD)) return 1;
   return status;
 }

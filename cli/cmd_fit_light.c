@@ -5,13 +5,8 @@
  * (k = K, or k = 1..K with --sweep): k, lights fitted, L1, L2, edge-shadow error, seconds,
  * EM iterations, samples, cut-off loss. stderr: the energy report, and progress when stderr is
  * a terminal or --progress is given. */
-#define _POSIX_C_SOURCE 200809L
-#include <errno.h>
-#include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "commands.h"
 #include "icshadow.h"
@@ -47,192 +42,102 @@ static void help(FILE *f) {
           ICS_LIGHTFIT_MAX_K);
 }
 
-typedef struct prog {
-  int tty, k;
-} prog;
+static const char CMD[] = "fit-light";
+
+/* EM progress: every iteration on a terminal, every 25th (and the first) otherwise */
+typedef struct em_progress {
+  cli_progress p;
+  int k;
+} em_progress;
 
 static void on_progress(void *ctx, int iter, int max_iter, double ll) {
-  prog *p = ctx;
-  if (p->tty)
-    fprintf(stderr, "\rfit-light: K=%d EM iteration %d/%d, log-likelihood %.9g   ", p->k, iter,
-            max_iter, ll);
-  else if (iter % 25 == 0 || iter == 1)
-    fprintf(stderr, "fit-light: K=%d EM iteration %d/%d, log-likelihood %.9g\n", p->k, iter,
-            max_iter, ll);
+  em_progress *ep = ctx;
+  if (ep->p.tty || iter % 25 == 0 || iter == 1)
+    cli_progress_say(&ep->p, "K=%d EM iteration %d/%d, log-likelihood %.9g", ep->k, iter,
+                     max_iter, ll);
 }
 
-int cmd_fit_light(int argc, char **argv) {
-  if (cli_wants_help(argc, argv)) {
-    help(stdout);
-    return 0;
-  }
-  const char *inp = NULL, *outp = NULL, *planep = NULL;
-  int K = 0, sweep = 0, force_progress = 0, max_samples = 32768, max_iter = 300;
-  double max_angle = 80;
-  unsigned long long seed = 1;
-  for (int a = 1; a < argc; a++) {
-    const char *o = argv[a];
-    int needs = !strcmp(o, "--lights") || !strcmp(o, "--max-angle") || !strcmp(o, "--seed") ||
-                !strcmp(o, "--max-samples") || !strcmp(o, "--max-iter") || !strcmp(o, "-o") ||
-                !strcmp(o, "--plane-csv");
-    if (needs && a + 1 >= argc) {
-      fprintf(stderr, "icshadow fit-light: %s: missing value\n", o);
-      return 2;
+/* the input map, the one positional argument */
+static int take_map(const char *cmd, const char *opt, const char *arg, void *dest) {
+  (void)opt;
+  const char **inp = dest;
+  if (*inp) return cli_error(cmd, "more than one input map ('%s', '%s')", *inp, arg);
+  *inp = arg;
+  return 0;
+}
+
+/* --max-angle: degrees in (0, 90) */
+static int parse_max_angle(const char *cmd, const char *opt, const char *s, void *dest) {
+  double *deg = dest;
+  if (cli_parse_double(s, deg) || !(*deg > 0 && *deg < 90))
+    return cli_error(cmd, "%s: expected degrees in (0, 90), got '%s'", opt, s);
+  return 0;
+}
+
+/* the map on the light plane as CSV: i,j,x,y,r,g,b,kept for every pixel behind the viewer */
+static void write_plane_csv(FILE *f, const ics_image *env, double max_angle) {
+  fprintf(f, "i,j,x,y,r,g,b,kept\n");
+  for (int j = 0; j < env->height; j++)
+    for (int i = 0; i < env->width; i++) {
+      double x, y, rgb[3];
+      if (ics_envmap_plane_density(env, i, j, &x, &y, rgb)) continue;
+      fprintf(f, "%d,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n", i, j, x, y, rgb[0], rgb[1], rgb[2],
+              ics_envmap_pixel_kept(env->width, env->height, i, j, max_angle));
     }
-    if (!strcmp(o, "--lights")) {
-      if (cli_parse_int(argv[++a], 1, ICS_LIGHTFIT_MAX_K, &K)) {
-        fprintf(stderr, "icshadow fit-light: --lights: expected an integer in 1..%d, got '%s'\n",
-                ICS_LIGHTFIT_MAX_K, argv[a]);
-        return 2;
-      }
-    } else if (!strcmp(o, "--max-angle")) {
-      if (cli_parse_double(argv[++a], &max_angle) || !(max_angle > 0 && max_angle < 90)) {
-        fprintf(stderr, "icshadow fit-light: --max-angle: expected degrees in (0, 90), got '%s'\n",
-                argv[a]);
-        return 2;
-      }
-    } else if (!strcmp(o, "--seed")) {
-      const char *v = argv[++a];
-      char *end;
-      errno = 0;
-      seed = strtoull(v, &end, 10);
-      if (!*v || *end || v[0] == '-' || v[0] == '+' || v[0] == ' ' || errno == ERANGE) {
-        fprintf(stderr, "icshadow fit-light: --seed: expected an integer in 0..%llu, got '%s'\n",
-                (unsigned long long)-1, v);
-        return 2;
-      }
-    } else if (!strcmp(o, "--max-samples")) {
-      if (cli_parse_int(argv[++a], 0, 1 << 30, &max_samples)) {
-        fprintf(stderr, "icshadow fit-light: --max-samples: expected an integer >= 0\n");
-        return 2;
-      }
-    } else if (!strcmp(o, "--max-iter")) {
-      if (cli_parse_int(argv[++a], 1, 100000, &max_iter)) {
-        fprintf(stderr, "icshadow fit-light: --max-iter: expected an integer in 1..100000\n");
-        return 2;
-      }
-    } else if (!strcmp(o, "--sweep")) {
-      sweep = 1;
-    } else if (!strcmp(o, "--progress")) {
-      force_progress = 1;
-    } else if (!strcmp(o, "-o")) {
-      outp = argv[++a];
-    } else if (!strcmp(o, "--plane-csv")) {
-      planep = argv[++a];
-    } else if (o[0] == '-' && o[1]) {
-      fprintf(stderr, "icshadow fit-light: unknown option '%s' (see --help)\n", o);
-      return 2;
-    } else if (!inp) {
-      inp = o;
-    } else {
-      fprintf(stderr, "icshadow fit-light: more than one input map ('%s', '%s')\n", inp, o);
-      return 2;
-    }
-  }
-  if (!inp) {
-    fprintf(stderr, "icshadow fit-light: missing input map ENV.exr\n");
-    return 2;
-  }
-  if (!K) {
-    fprintf(stderr, "icshadow fit-light: --lights K is required\n");
-    return 2;
-  }
-  if (!outp) {
-    fprintf(stderr, "icshadow fit-light: -o LIGHTS.json is required\n");
-    return 2;
-  }
-  ics_image env;
-  char msg[CLI_MSG_MAX];
-  ics_status st = ics_exr_read(inp, &env, msg, sizeof msg);
-  if (st != ICS_OK) {
-    fprintf(stderr, "icshadow fit-light: %s\n", msg);
-    return st == ICS_ERR_NOMEM ? 1 : 2;
-  }
-  prog pg = {isatty(2), 0};
-  ics_lightfit_params p;
-  ics_lightfit_defaults(&p);
-  p.max_angle_deg = max_angle;
-  p.seed = seed;
-  p.max_samples = max_samples;
-  p.max_iter = max_iter;
-  if (pg.tty || force_progress) {
-    p.progress = on_progress;
-    p.progress_ctx = &pg;
-  }
+}
+
+/* the fits and the outputs once the map is read; env is the caller's */
+static int fit_and_write(const ics_image *env, const char *inp, const char *outp,
+                         const char *planep, int K, int sweep, ics_lightfit_params *p) {
   ics_light lights[ICS_LIGHTFIT_MAX_K];
   ics_lightfit_report rep[ICS_LIGHTFIT_MAX_K];
   double secs[ICS_LIGHTFIT_MAX_K];
+  em_progress *ep = p->progress_ctx;
   int k0 = sweep ? 1 : K;
   for (int k = k0; k <= K; k++) {
-    p.k = pg.k = k;
+    p->k = ep->k = k;
     double t0 = cli_now_s();
-    st = ics_lightfit(&env, &p, lights, &rep[k - 1]);
+    ics_status st = ics_lightfit(env, p, lights, &rep[k - 1]);
     secs[k - 1] = cli_now_s() - t0;
-    if (p.progress && pg.tty) fputc('\n', stderr);
-    if (st != ICS_OK) {
-      /* the options are checked above and ics_exr_read refuses bad pixels, so INVALID_ARG
-       * can only mean a map without light inside the cut-off */
-      if (st == ICS_ERR_INVALID_ARG)
-        fprintf(stderr, "icshadow fit-light: %s: no light behind the viewer within %g degrees of "
-                "the view axis\n", inp, max_angle);
-      else if (st == ICS_ERR_SIZE)
-        fprintf(stderr, "icshadow fit-light: %s: a %d x %d map is too small to fit (at least "
-                "4 x 2 pixels)\n", inp, env.width, env.height);
-      else
-        fprintf(stderr, "icshadow fit-light: %s: fit failed: %s\n", inp, ics_status_str(st));
-      ics_image_free(&env);
-      return st == ICS_ERR_NOMEM ? 1 : 2;
-    }
+    if (p->progress) cli_progress_done(&ep->p);
+    /* the options are checked above and ics_exr_read refuses bad pixels, so INVALID_ARG can
+     * only mean a map without light inside the cut-off */
+    if (st == ICS_ERR_INVALID_ARG)
+      return cli_error(CMD, "%s: no light behind the viewer within %g degrees of the view axis",
+                       inp, p->max_angle_deg);
+    if (st == ICS_ERR_SIZE)
+      return cli_error(CMD, "%s: a %d x %d map is too small to fit (at least 4 x 2 pixels)", inp,
+                       env->width, env->height);
+    if (st != ICS_OK)
+      return cli_status_error(CMD, st, "%s: fit failed: %s", inp, ics_status_str(st));
     if (!rep[k - 1].converged)
-      fprintf(stderr, "fit-light: warning: K=%d: EM stopped at --max-iter %d before converging "
-              "(log-likelihood change still above 1e-9)\n", k, max_iter);
+      cli_warning(CMD, "K=%d: EM stopped at --max-iter %d before converging (log-likelihood "
+                  "change still above 1e-9)", k, p->max_iter);
   }
-  ics_image_free(&env);
   const ics_lightfit_report *r = &rep[K - 1];
   double behind = r->energy_kept + r->energy_cutoff;
   fprintf(stderr,
           "fit-light: %s: energy %.6g; in front of the viewer (ignored) %.3g%%; behind: %.6g, of "
           "which %.3g%% beyond %g degrees (lost at the cut-off)\n",
           inp, r->energy_total, r->energy_total > 0 ? 100 * r->energy_front / r->energy_total : 0.0,
-          behind, 100 * r->cutoff_loss, max_angle);
+          behind, 100 * r->cutoff_loss, p->max_angle_deg);
   if (r->k_fit < K)
     fprintf(stderr, "fit-light: the map is explained by %d light%s; %d requested\n", r->k_fit,
             r->k_fit == 1 ? "" : "s", K);
 
   /* -o first: when it cannot be opened, no plane CSV is written either */
   cli_output out, pout;
-  if (cli_output_open(&out, outp) != 0) return 1;
+  if (cli_output_open(&out, CMD, outp) != 0) return 1;
   if (lights_write(out.fp, lights, r->k_fit) != 0) {
     cli_output_abort(&out);
-    fprintf(stderr, "icshadow fit-light: cannot write %s\n", outp);
-    return 1;
+    return cli_failure(CMD, "cannot write %s", outp);
   }
   if (planep) {
-    /* written from the map directly (not from the library's internals): the frame formulas of
-     * docs/architecture.md "Frames and file formats", density = radiance * (1 + r^2)^(-3/2) */
-    ics_image env2;
-    if (ics_exr_read(inp, &env2, msg, sizeof msg) != ICS_OK) {
-      fprintf(stderr, "icshadow fit-light: %s\n", msg);
+    if (cli_output_open(&pout, CMD, planep) != 0) {
       cli_output_abort(&out);
       return 1;
     }
-    if (cli_output_open(&pout, planep) != 0) {
-      ics_image_free(&env2);
-      cli_output_abort(&out);
-      return 1;
-    }
-    fprintf(pout.fp, "i,j,x,y,r,g,b,kept\n");
-    for (int j = 0; j < env2.height; j++)
-      for (int i = 0; i < env2.width; i++) {
-        double x, y;
-        if (ics_envmap_pixel(env2.width, env2.height, i, j, &x, &y, NULL)) continue;
-        double r2 = x * x + y * y, jac = pow(1 + r2, -1.5);
-        const float *px = env2.data + ((size_t)j * env2.width + i) * env2.channels;
-        fprintf(pout.fp, "%d,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n", i, j, x, y, px[0] * jac,
-                px[1] * jac, px[2] * jac,
-                ics_envmap_pixel_kept(env2.width, env2.height, i, j, max_angle));
-      }
-    ics_image_free(&env2);
+    write_plane_csv(pout.fp, env, p->max_angle_deg);
     if (cli_output_commit(&pout) != 0) {
       cli_output_abort(&out);
       return 1;
@@ -246,5 +151,50 @@ int cmd_fit_light(int argc, char **argv) {
     printf("%d,%d,%.17g,%.17g,%.17g,%.17g,%d,%d,%.17g\n", k, q->k_fit, q->l1, q->l2, q->edge,
            secs[k - 1], q->iterations, q->samples, q->cutoff_loss);
   }
-  return cli_stdout_failed("icshadow fit-light");
+  return cli_stdout_failed(CMD);
+}
+
+int cmd_fit_light(int argc, char **argv) {
+  if (cli_wants_help(argc, argv)) {
+    help(stdout);
+    return 0;
+  }
+  const char *inp = NULL, *outp = NULL, *planep = NULL;
+  int K = 0, sweep = 0, force_progress = 0, max_samples = 32768, max_iter = 300;
+  double max_angle = 80;
+  uint64_t seed = 1;
+  const cli_option opts[] = {
+      {NULL, .kind = CLI_CALL, .dest = &inp, .parse = take_map},
+      {"--lights", .kind = CLI_INT, .dest = &K, .lo = 1, .hi = ICS_LIGHTFIT_MAX_K},
+      {"--max-angle", .kind = CLI_CALL, .dest = &max_angle, .parse = parse_max_angle},
+      {"--seed", .kind = CLI_SEED, .dest = &seed},
+      {"--max-samples", .kind = CLI_INT, .dest = &max_samples, .lo = 0, .hi = 1 << 30},
+      {"--max-iter", .kind = CLI_INT, .dest = &max_iter, .lo = 1, .hi = 100000},
+      {"--sweep", .kind = CLI_FLAG, .dest = &sweep},
+      {"--progress", .kind = CLI_FLAG, .dest = &force_progress},
+      {"--plane-csv", .kind = CLI_STRING, .dest = &planep},
+      {"-o", .kind = CLI_STRING, .dest = &outp},
+  };
+  int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
+  if (rc) return rc;
+  if (!inp) return cli_error(CMD, "missing input map ENV.exr");
+  if (!K) return cli_error(CMD, "--lights K is required");
+  if (!outp) return cli_error(CMD, "-o LIGHTS.json is required");
+  ics_image env;
+  char msg[CLI_MSG_MAX];
+  ics_status st = ics_exr_read(inp, &env, msg, sizeof msg);
+  if (st != ICS_OK) return cli_status_error(CMD, st, "%s", msg);
+  em_progress ep = {.k = 0};
+  cli_progress_init(&ep.p, "fit-light", force_progress);
+  ics_lightfit_params p;
+  ics_lightfit_defaults(&p);
+  p.max_angle_deg = max_angle;
+  p.seed = seed;
+  p.max_samples = max_samples;
+  p.max_iter = max_iter;
+  p.progress_ctx = &ep;
+  if (ep.p.on) p.progress = on_progress;
+  rc = fit_and_write(&env, inp, outp, planep, K, sweep, &p);
+  ics_image_free(&env);
+  return rc;
 }

@@ -41,12 +41,14 @@ static void help(FILE *f) {
           ICS_LIGHT1D_MAX_MIX, ICS_WORK_BUDGET);
 }
 
+static const char CMD[] = "isoline";
+
 static int parse_light(const char *spec, ics_light1d *l) {
   const char *colon = strchr(spec, ':');
   const char *end = spec + strlen(spec);
   if (!colon) {
-    fprintf(stderr, "icshadow isoline: --light: expected KIND:NUMBERS (gauss:MU,VAR, box:LO,HI, "
-                    "mix:W,MU,VAR;...), got '%s'\n", spec);
+    cli_error(CMD, "--light: expected KIND:NUMBERS (gauss:MU,VAR, box:LO,HI, mix:W,MU,VAR;...), "
+                   "got '%s'", spec);
     return -1;
   }
   size_t kl = (size_t)(colon - spec);
@@ -54,19 +56,19 @@ static int parse_light(const char *spec, ics_light1d *l) {
   ics_status st;
   if (kl == 5 && !strncmp(spec, "gauss", 5)) {
     double v[2];
-    if (cli_parse_numbers("isoline", "--light", spec, a, end, 2, v)) return -1;
+    if (cli_parse_numbers(CMD, "--light", spec, a, end, 2, v)) return -1;
     if (v[1] < 0) {
-      fprintf(stderr, "icshadow isoline: --light: negative variance at position %d of '%s'\n",
-              (int)(strrchr(spec, ',') - spec) + 2, spec);
+      cli_error(CMD, "--light: negative variance at position %d of '%s'",
+                (int)(strrchr(spec, ',') - spec) + 2, spec);
       return -1;
     }
     st = ics_light1d_gauss(l, v[0], v[1]);
   } else if (kl == 3 && !strncmp(spec, "box", 3)) {
     double v[2];
-    if (cli_parse_numbers("isoline", "--light", spec, a, end, 2, v)) return -1;
+    if (cli_parse_numbers(CMD, "--light", spec, a, end, 2, v)) return -1;
     if (!(v[0] < v[1])) {
-      fprintf(stderr, "icshadow isoline: --light: box needs LO < HI (position %d of '%s')\n",
-              (int)(a - spec) + 1, spec);
+      cli_error(CMD, "--light: box needs LO < HI (position %d of '%s')", (int)(a - spec) + 1,
+                spec);
       return -1;
     }
     st = ics_light1d_box(l, v[0], v[1]);
@@ -78,22 +80,22 @@ static int parse_light(const char *spec, ics_light1d *l) {
       const char *q = strchr(p, ';');
       if (!q) q = end;
       if (n == ICS_LIGHT1D_MAX_MIX) {
-        fprintf(stderr, "icshadow isoline: --light: more than %d components at position %d of "
-                        "'%s'\n", ICS_LIGHT1D_MAX_MIX, (int)(p - spec) + 1, spec);
+        cli_error(CMD, "--light: more than %d components at position %d of '%s'",
+                  ICS_LIGHT1D_MAX_MIX, (int)(p - spec) + 1, spec);
         return -1;
       }
       double v[3];
-      if (cli_parse_numbers("isoline", "--light", spec, p, q, 3, v)) return -1;
+      if (cli_parse_numbers(CMD, "--light", spec, p, q, 3, v)) return -1;
       if (v[0] < 0) {
-        fprintf(stderr, "icshadow isoline: --light: negative weight at position %d of '%s'\n",
-                (int)(p - spec) + 1, spec);
+        cli_error(CMD, "--light: negative weight at position %d of '%s'", (int)(p - spec) + 1,
+                  spec);
         return -1;
       }
       if (!(v[2] > 0)) {
         const char *c2 = p;
         for (int c = 0; c < 2; c++) c2 = strchr(c2, ',') + 1;
-        fprintf(stderr, "icshadow isoline: --light: component variance must be > 0 at position "
-                        "%d of '%s'\n", (int)(c2 - spec) + 1, spec);
+        cli_error(CMD, "--light: component variance must be > 0 at position %d of '%s'",
+                  (int)(c2 - spec) + 1, spec);
         return -1;
       }
       w[n] = v[0], mu[n] = v[1], var[n] = v[2], n++;
@@ -102,23 +104,22 @@ static int parse_light(const char *spec, ics_light1d *l) {
     }
     st = ics_light1d_mix(l, n, w, mu, var);
     if (st == ICS_ERR_INVALID_ARG) {
-      fprintf(stderr, "icshadow isoline: --light: the weights of '%s' sum to zero\n", spec);
+      cli_error(CMD, "--light: the weights of '%s' sum to zero", spec);
       return -1;
     }
   } else {
-    fprintf(stderr, "icshadow isoline: --light: unknown light kind '%.*s' at position 1 of '%s' "
-                    "(gauss, box, mix)\n", (int)kl, spec, spec);
+    cli_error(CMD, "--light: unknown light kind '%.*s' at position 1 of '%s' (gauss, box, mix)",
+              (int)kl, spec, spec);
     return -1;
   }
   if (st == ICS_ERR_RANGE) {
-    fprintf(stderr, "icshadow isoline: --light '%s': %s overflows double precision (not "
-                    "finite)\n", spec,
-            !strncmp(spec, "box", 3) ? "the width HI - LO or its variance"
-                                     : "the weights' sum, the mixture's mean or its variance");
+    cli_error(CMD, "--light '%s': %s overflows double precision (not finite)", spec,
+              !strncmp(spec, "box", 3) ? "the width HI - LO or its variance"
+                                       : "the weights' sum, the mixture's mean or its variance");
     return -1;
   }
   if (st != ICS_OK) {
-    fprintf(stderr, "icshadow isoline: --light '%s': %s\n", spec, ics_status_str(st));
+    cli_error(CMD, "--light '%s': %s", spec, ics_status_str(st));
     return -1;
   }
   return 0;
@@ -139,94 +140,44 @@ int cmd_isoline(int argc, char **argv) {
     return 0;
   }
   const char *spec = NULL, *model = NULL, *kname = "dirac";
-  double level = NAN, dist = NAN, d1 = NAN, slab = NAN;
+  double level = NAN, dist = NAN, d1 = NAN, slab = NAN; /* NaN: not given (refused as a value) */
   uint64_t seed = 0;
   int samples = 0;
-  for (int i = 1; i < argc; i++) {
-    const char *opt = argv[i];
-    static const char *known[] = {"--light", "--level", "--distance", "--model", "--d1",
-                                  "--slab", "--kernel", "--samples", "--seed"};
-    int ok = 0;
-    for (size_t j = 0; j < sizeof known / sizeof *known; j++) ok |= !strcmp(opt, known[j]);
-    if (!ok) {
-      fprintf(stderr, "icshadow isoline: unknown option '%s' (see icshadow isoline --help)\n",
-              opt);
-      return 2;
-    }
-    if (i + 1 >= argc) {
-      fprintf(stderr, "icshadow isoline: %s: missing value\n", opt);
-      return 2;
-    }
-    const char *val = argv[++i];
-    int bad = 0;
-    if (!strcmp(opt, "--light"))
-      spec = val;
-    else if (!strcmp(opt, "--model"))
-      model = val;
-    else if (!strcmp(opt, "--kernel"))
-      kname = val;
-    else if (!strcmp(opt, "--level"))
-      bad = cli_option_double("isoline", opt, val, 0, &level);
-    else if (!strcmp(opt, "--distance"))
-      bad = cli_option_double("isoline", opt, val, 0, &dist);
-    else if (!strcmp(opt, "--d1"))
-      bad = cli_option_double("isoline", opt, val, 0, &d1);
-    else if (!strcmp(opt, "--slab"))
-      bad = cli_option_double("isoline", opt, val, 0, &slab);
-    else if (!strcmp(opt, "--seed")) {
-      if (cli_parse_seed(val, &seed) != 0) {
-        fprintf(stderr, "icshadow isoline: --seed: expected " CLI_SEED_RANGE ", got '%s'\n", val);
-        bad = 1;
-      }
-    } else if (cli_parse_int(val, 0, 4096, &samples) != 0) {
-      fprintf(stderr, "icshadow isoline: --samples: expected an integer in 0..4096, got '%s'\n",
-              val);
-      bad = 1;
-    }
-    if (bad) return 2;
-  }
-  if (!spec || !model || isnan(level) || isnan(dist)) {
-    fprintf(stderr, "icshadow isoline: %s is required\n",
-            !spec ? "--light" : !model ? "--model" : isnan(level) ? "--level" : "--distance");
-    return 2;
-  }
+  const cli_option opts[] = {
+      {"--light", .kind = CLI_STRING, .dest = &spec},
+      {"--level", .kind = CLI_FINITE, .dest = &level},
+      {"--distance", .kind = CLI_FINITE, .dest = &dist},
+      {"--model", .kind = CLI_STRING, .dest = &model},
+      {"--d1", .kind = CLI_FINITE, .dest = &d1},
+      {"--slab", .kind = CLI_FINITE, .dest = &slab},
+      {"--kernel", .kind = CLI_STRING, .dest = &kname},
+      {"--samples", .kind = CLI_INT, .dest = &samples, .lo = 0, .hi = 4096},
+      {"--seed", .kind = CLI_SEED, .dest = &seed},
+  };
+  int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
+  if (rc) return rc;
+  if (!spec || !model || isnan(level) || isnan(dist))
+    return cli_error(CMD, "%s is required",
+                     !spec          ? "--light"
+                     : !model       ? "--model"
+                     : isnan(level) ? "--level"
+                                    : "--distance");
   int m_correct = !strcmp(model, "correct"), m_clt = !strcmp(model, "clt"),
       m_iter = !strcmp(model, "iterative");
-  if (!m_correct && !m_clt && !m_iter) {
-    fprintf(stderr, "icshadow isoline: --model: unknown model '%s' (correct, clt, iterative)\n",
-            model);
-    return 2;
-  }
-  if (!(level > 0 && level < 1)) {
-    fprintf(stderr, "icshadow isoline: --level: must be in (0, 1), got %.17g\n", level);
-    return 2;
-  }
-  if (dist < 0) {
-    fprintf(stderr, "icshadow isoline: --distance: negative distance %.17g\n", dist);
-    return 2;
-  }
-  if ((m_clt || m_iter) && isnan(d1)) {
-    fprintf(stderr, "icshadow isoline: --d1 is required for model %s\n", model);
-    return 2;
-  }
-  if (!isnan(d1) && !(d1 > 0)) {
-    fprintf(stderr, "icshadow isoline: --d1: must be > 0, got %.17g\n", d1);
-    return 2;
-  }
-  if (m_iter && isnan(slab)) {
-    fprintf(stderr, "icshadow isoline: --slab is required for model iterative\n");
-    return 2;
-  }
-  if (!isnan(slab) && !(slab > 0)) {
-    fprintf(stderr, "icshadow isoline: --slab: must be > 0, got %.17g\n", slab);
-    return 2;
-  }
+  if (!m_correct && !m_clt && !m_iter)
+    return cli_error(CMD, "--model: unknown model '%s' (correct, clt, iterative)", model);
+  if (!(level > 0 && level < 1))
+    return cli_error(CMD, "--level: must be in (0, 1), got %.17g", level);
+  if (dist < 0) return cli_error(CMD, "--distance: negative distance %.17g", dist);
+  if ((m_clt || m_iter) && isnan(d1))
+    return cli_error(CMD, "--d1 is required for model %s", model);
+  if (!isnan(d1) && !(d1 > 0)) return cli_error(CMD, "--d1: must be > 0, got %.17g", d1);
+  if (m_iter && isnan(slab)) return cli_error(CMD, "--slab is required for model iterative");
+  if (!isnan(slab) && !(slab > 0)) return cli_error(CMD, "--slab: must be > 0, got %.17g", slab);
   int member = kernel1d_member(kname);
-  if (member < 0) {
-    fprintf(stderr, "icshadow isoline: --kernel: unknown 1D kernel '%s' (dirac, tophat, "
-                    "stochastic-dirac, gauss)\n", kname);
-    return 2;
-  }
+  if (member < 0)
+    return cli_error(CMD, "--kernel: unknown 1D kernel '%s' (dirac, tophat, stochastic-dirac, "
+                          "gauss)", kname);
   ics_light1d l;
   if (parse_light(spec, &l)) return 2;
   double x = NAN;
@@ -236,15 +187,11 @@ int cmd_isoline(int argc, char **argv) {
     x = ics_isoline_clt(&l, level, dist, d1);
   else {
     double nf = dist / slab;
-    if (fabs(nf - nearbyint(nf)) > 1e-9 * fmax(nf, 1.0) || nf > 1e6) {
-      fprintf(stderr, "icshadow isoline: --distance / --slab = %.17g must be an integer "
-                      "number of slabs (at most 1e6)\n", nf);
-      return 2;
-    }
-    if (ics_light1d_var(&l) == 0 && dist > 0) {
-      fprintf(stderr, "icshadow isoline: model iterative needs a light with variance > 0\n");
-      return 2;
-    }
+    if (fabs(nf - nearbyint(nf)) > 1e-9 * fmax(nf, 1.0) || nf > 1e6)
+      return cli_error(CMD, "--distance / --slab = %.17g must be an integer number of slabs (at "
+                            "most 1e6)", nf);
+    if (ics_light1d_var(&l) == 0 && dist > 0)
+      return cli_error(CMD, "model iterative needs a light with variance > 0");
     ics_iter1d_opts o = ics_iter1d_opts_default();
     o.member = (ics_kernel_member)member;
     o.nsamples = samples;
@@ -257,24 +204,18 @@ int cmd_isoline(int argc, char **argv) {
       o2.h = h / 2;
       st = ics_shadow1d_iterate_cost(&l, dist, d1, slab, &o2, NULL, NULL, &w2);
     }
-    if (st == ICS_OK && w1 + w2 > ICS_WORK_BUDGET) {
-      fprintf(stderr, "icshadow isoline: estimated work %.3g tap-updates (%.0f slabs on %.0f nodes, "
-                      "and again on a grid twice as fine) exceeds the budget of %.0e (give fewer "
-                      "slabs: a larger --slab or smaller --distance, or smaller --samples)\n",
-              w1 + w2, nearbyint(nf), nodes, ICS_WORK_BUDGET);
-      return 2;
-    }
+    if (st == ICS_OK && w1 + w2 > ICS_WORK_BUDGET)
+      return cli_error(CMD, "estimated work %.3g tap-updates (%.0f slabs on %.0f nodes, and again "
+                            "on a grid twice as fine) exceeds the budget of %.0e (give fewer "
+                            "slabs: a larger --slab or smaller --distance, or smaller --samples)",
+                       w1 + w2, nearbyint(nf), nodes, ICS_WORK_BUDGET);
     if (st == ICS_OK) st = ics_isoline_iterative(&l, level, dist, d1, slab, &o, &x, &disc);
-    if (st != ICS_OK) {
-      fprintf(stderr, "icshadow isoline: iterated shadow failed: %s\n", ics_status_str(st));
-      return st == ICS_ERR_NOMEM ? 1 : 2;
-    }
+    if (st != ICS_OK)
+      return cli_status_error(CMD, st, "iterated shadow failed: %s", ics_status_str(st));
   }
-  if (!isfinite(x)) {
-    fprintf(stderr, "icshadow isoline: the isoline position is not finite (%g): distance, d1 and "
-                    "the light's mean/variance overflow double precision together\n", x);
-    return 2;
-  }
+  if (!isfinite(x))
+    return cli_error(CMD, "the isoline position is not finite (%g): distance, d1 and the light's "
+                          "mean/variance overflow double precision together", x);
   printf("%.17g\n", x);
-  return cli_stdout_failed("icshadow isoline");
+  return cli_stdout_failed(CMD);
 }

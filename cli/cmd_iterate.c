@@ -64,12 +64,7 @@ static void help(FILE *f) {
           MAX_STEPS, MAX_WIDTH, ICS_WORK_BUDGET, OUT_BUDGET, OUT_LINE_BYTES);
 }
 
-#define ERR(...)                                \
-  do {                                          \
-    fprintf(stderr, "icshadow iterate: ");      \
-    fprintf(stderr, __VA_ARGS__);               \
-    fputc('\n', stderr);                        \
-  } while (0)
+static const char CMD[] = "iterate";
 
 static int parse_member(const char *name, ics_kernel_member *m) {
   for (int i = 0; i < ICS_KERNEL_MEMBER_COUNT_; i++) {
@@ -82,49 +77,54 @@ static int parse_member(const char *name, ics_kernel_member *m) {
   return -1;
 }
 
-/* comma list of 1D member names */
-static int parse_members(const char *s, ics_kernel_member *m, int *count) {
+/* --kernel: a comma list of 1D member names */
+typedef struct member_list {
+  ics_kernel_member m[MAX_MEMBERS];
+  int n;
+} member_list;
+
+static int parse_members(const char *cmd, const char *opt, const char *s, void *dest) {
+  member_list *list = dest;
   char buf[512];
-  if (strlen(s) >= sizeof buf) {
-    ERR("--kernel: list too long");
-    return -1;
-  }
+  if (strlen(s) >= sizeof buf) return cli_error(cmd, "%s: list too long", opt);
   strcpy(buf, s);
   int n = 0;
   char *p = buf;
   for (;;) {
     char *comma = strchr(p, ',');
     if (comma) *comma = '\0';
-    if (n == MAX_MEMBERS) {
-      ERR("--kernel: at most %d members", MAX_MEMBERS);
-      return -1;
-    }
-    if (parse_member(p, &m[n]) != 0) {
-      ERR("--kernel: unknown 1D kernel '%s' (dirac, tophat, stochastic-dirac, gauss)", p);
-      return -1;
-    }
+    if (n == MAX_MEMBERS) return cli_error(cmd, "%s: at most %d members", opt, MAX_MEMBERS);
+    if (parse_member(p, &list->m[n]) != 0)
+      return cli_error(cmd, "%s: unknown 1D kernel '%s' (dirac, tophat, stochastic-dirac, gauss)",
+                       opt, p);
     n++;
     if (!comma) break;
     p = comma + 1;
   }
-  *count = n;
+  list->n = n;
   return 0;
 }
 
-/* comma list of step counts and ranges A:B[:S] (A, A + S, ..., up to B), strictly increasing;
- * *steps is allocated */
-static int parse_steps(const char *s, int **steps, int *count) {
+/* --steps: a comma list of step counts and ranges A:B[:S] (A, A + S, ..., up to B), strictly
+ * increasing; v is allocated (a repeated --steps replaces the list) */
+typedef struct step_list {
+  int *v, n;
+} step_list;
+
+static int parse_steps(const char *cmd, const char *opt, const char *s, void *dest) {
+  step_list *list = dest;
+  free(list->v);
+  list->v = NULL;
   char *buf = strdup(s);
   int cap = 16, n = 0;
   int *v = malloc(sizeof *v * (size_t)cap);
   if (!buf || !v) {
     free(buf);
     free(v);
-    ERR("out of memory");
-    return -1;
+    return cli_error(cmd, "out of memory");
   }
   char *p = buf;
-  int ok = 1;
+  int rc = 0;
   for (;;) {
     char *comma = strchr(p, ',');
     if (comma) *comma = '\0';
@@ -138,146 +138,107 @@ static int parse_steps(const char *s, int **steps, int *count) {
     if (cli_parse_int(p, 0, MAX_STEPS, &a) != 0 ||
         (c1 && cli_parse_int(c1 + 1, 0, MAX_STEPS, &b) != 0) ||
         (c2 && cli_parse_int(c2 + 1, 1, MAX_STEPS, &stride) != 0)) {
-      ERR("--steps: expected integers in 0..%d or ranges A:B[:STRIDE], got '%s'", MAX_STEPS, s);
-      ok = 0;
+      rc = cli_error(cmd, "%s: expected integers in 0..%d or ranges A:B[:STRIDE], got '%s'", opt,
+                     MAX_STEPS, s);
       break;
     }
     if (!c1) b = a;
     if (b < a) {
-      ERR("--steps: empty range %d:%d", a, b);
-      ok = 0;
+      rc = cli_error(cmd, "%s: empty range %d:%d", opt, a, b);
       break;
     }
-    for (long k = a; k <= b; k += stride) {
+    for (long k = a; k <= b && !rc; k += stride) {
       if (n > 0 && k <= v[n - 1]) {
-        ERR("--steps: step counts must be strictly increasing (%ld after %d)", k, v[n - 1]);
-        ok = 0;
+        rc = cli_error(cmd, "%s: step counts must be strictly increasing (%ld after %d)", opt, k,
+                       v[n - 1]);
         break;
       }
       if (n == cap) {
         cap *= 2;
         int *nv = realloc(v, sizeof *v * (size_t)cap);
         if (!nv) {
-          ERR("out of memory");
-          ok = 0;
+          rc = cli_error(cmd, "out of memory");
           break;
         }
         v = nv;
       }
       v[n++] = (int)k;
     }
-    if (!ok || !comma) break;
+    if (rc || !comma) break;
     p = comma + 1;
   }
   free(buf);
-  if (!ok) {
+  if (rc) {
     free(v);
-    return -1;
+    return rc;
   }
-  *steps = v;
-  *count = n;
+  list->v = v;
+  list->n = n;
   return 0;
 }
 
-static double phi(double z) { return 0.5 * erfc(-z / sqrt(2.0)); }
+static int parse_param(const char *cmd, const char *opt, const char *s, void *dest) {
+  if (cli_option_double(cmd, opt, s, 0, dest) != 0) return 2;
+  if (*(double *)dest < 0) return cli_error(cmd, "%s: must be >= 0, got '%s'", opt, s);
+  return 0;
+}
 
-/* the command; *steps_out holds the allocated step list (freed by the caller) */
-static int iterate_main(int argc, char **argv, int **steps_out) {
-  ics_kernel_member members[MAX_MEMBERS];
-  int nmembers = 0, nsnap = 0, samples = 0, width = 0;
-  double var = 0, mean = 0, param = 0;
-  unsigned long long seed = 0;
-  int have_kernel = 0, have_var = 0, have_steps = 0;
+static int parse_width(const char *cmd, const char *opt, const char *s, void *dest) {
+  int *w = dest;
+  if (cli_parse_int(s, 2, MAX_WIDTH, w) != 0 || *w % 2)
+    return cli_error(cmd, "%s: expected an even integer in 2..%d, got '%s'", opt, MAX_WIDTH, s);
+  return 0;
+}
+
+static int parse_compensate(const char *cmd, const char *opt, const char *s, void *dest) {
+  if (cli_parse_comp(s, 1, dest) != 0)
+    return cli_error(cmd, "%s: expected none, nonneg or signed (or integer), got '%s'", opt, s);
+  return 0;
+}
+
+/* the command; *step_opt holds the allocated step list (freed by the caller) */
+static int iterate_main(int argc, char **argv, step_list *step_opt) {
+  member_list kernel = {.n = 0};
+  int samples = 0, width = 0;
+  double var = NAN, mean = 0, param = 0; /* var NaN: not given (refused as a value) */
+  uint64_t seed = 0;
   ics_comp_mode comp = ICS_COMP_NONE;
-  for (int i = 1; i < argc; i++) {
-    const char *opt = argv[i];
-    static const char *const known[] = {"--kernel", "--var",  "--steps", "--mean",      "--samples",
-                                        "--param",  "--seed", "--width", "--compensate"};
-    int k = -1;
-    for (int j = 0; j < (int)(sizeof known / sizeof known[0]); j++)
-      if (!strcmp(opt, known[j])) k = j;
-    if (k < 0) {
-      ERR("unknown option '%s' (see icshadow iterate --help)", opt);
-      return 2;
-    }
-    if (i + 1 >= argc) {
-      ERR("%s: missing value", opt);
-      return 2;
-    }
-    const char *val = argv[++i];
-    int bad = 0;
-    switch (k) {
-    case 0: bad = parse_members(val, members, &nmembers), have_kernel = 1; break;
-    case 1: bad = cli_option_double("iterate", opt, val, 1, &var), have_var = 1; break;
-    case 2:
-      free(*steps_out);
-      *steps_out = NULL;
-      bad = parse_steps(val, steps_out, &nsnap), have_steps = 1;
-      break;
-    case 3: bad = cli_option_double("iterate", opt, val, 0, &mean); break;
-    case 4:
-      if (cli_parse_int(val, 0, ICS_KERNEL_MAX_TAPS, &samples) != 0) {
-        ERR("--samples: expected an integer in 0..%d, got '%s'", ICS_KERNEL_MAX_TAPS, val);
-        bad = 1;
-      }
-      break;
-    case 5:
-      bad = cli_option_double("iterate", opt, val, 0, &param);
-      if (!bad && param < 0) {
-        ERR("--param: must be >= 0, got '%s'", val);
-        bad = 1;
-      }
-      break;
-    case 6: {
-      uint64_t sv;
-      if (cli_parse_seed(val, &sv) != 0) {
-        ERR("--seed: expected " CLI_SEED_RANGE ", got '%s'", val);
-        bad = 1;
-      } else
-        seed = sv;
-      break;
-    }
-    case 7:
-      if (cli_parse_int(val, 2, MAX_WIDTH, &width) != 0 || width % 2) {
-        ERR("--width: expected an even integer in 2..%d, got '%s'", MAX_WIDTH, val);
-        bad = 1;
-      }
-      break;
-    case 8:
-      if (cli_parse_comp(val, 1, &comp) != 0) {
-        ERR("--compensate: expected none, nonneg or signed (or integer), got '%s'", val);
-        bad = 1;
-      }
-      break;
-    }
-    if (bad) return 2;
-  }
-  if (!have_kernel || !have_var || !have_steps) {
-    ERR("%s is required", !have_kernel ? "--kernel" : !have_var ? "--var" : "--steps");
-    return 2;
-  }
-  const int *steps = *steps_out;
+  const cli_option opts[] = {
+      {"--kernel", .kind = CLI_CALL, .dest = &kernel, .parse = parse_members},
+      {"--var", .kind = CLI_VARIANCE, .dest = &var},
+      {"--steps", .kind = CLI_CALL, .dest = step_opt, .parse = parse_steps},
+      {"--mean", .kind = CLI_FINITE, .dest = &mean},
+      {"--samples", .kind = CLI_INT, .dest = &samples, .lo = 0, .hi = ICS_KERNEL_MAX_TAPS},
+      {"--param", .kind = CLI_CALL, .dest = &param, .parse = parse_param},
+      {"--seed", .kind = CLI_SEED, .dest = &seed},
+      {"--width", .kind = CLI_CALL, .dest = &width, .parse = parse_width},
+      {"--compensate", .kind = CLI_CALL, .dest = &comp, .parse = parse_compensate},
+  };
+  int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
+  if (rc) return rc;
+  if (!kernel.n || isnan(var) || !step_opt->v)
+    return cli_error(CMD, "%s is required",
+                     !kernel.n ? "--kernel" : isnan(var) ? "--var" : "--steps");
+  const ics_kernel_member *members = kernel.m;
+  const int nmembers = kernel.n, nsnap = step_opt->n, *steps = step_opt->v;
 
   ics_kernel1d ks[MAX_MEMBERS];
   for (int j = 0; j < nmembers; j++) {
     ics_status st = ics_kernel1d_init(&ks[j], members[j], mean, var);
     ks[j].nsamples = samples;
     ks[j].param = param;
-    ks[j].seed = (uint64_t)seed;
+    ks[j].seed = seed;
     if (st == ICS_OK && ics_kernel1d_max_taps(&ks[j]) <= 0) st = ICS_ERR_RANGE;
-    if (st != ICS_OK) {
-      ERR("kernel %s with mean %.17g, variance %.17g, samples %d, param %.17g: %s",
-          ics_kernel_member_name(members[j]), mean, var, samples, param, ics_status_str(st));
-      return 2;
-    }
+    if (st != ICS_OK)
+      return cli_error(CMD, "kernel %s with mean %.17g, variance %.17g, samples %d, param %.17g: "
+                       "%s", ics_kernel_member_name(members[j]), mean, var, samples, param,
+                       ics_status_str(st));
   }
   ics_schedule1d sched = {ks, nmembers};
   int cap = ics_schedule1d_max_taps(&sched);
   ics_tap1d *taps = cap > 0 ? malloc(sizeof *taps * (size_t)cap) : NULL;
-  if (!taps) {
-    ERR(cap > 0 ? "out of memory" : "invalid kernel schedule");
-    return cap > 0 ? 1 : 2;
-  }
+  if (!taps)
+    return cap > 0 ? cli_failure(CMD, "out of memory") : cli_error(CMD, "invalid kernel schedule");
   /* the first step's taps validate the member parameters (e.g. an impossible exact top-hat) */
   int nt = 0;
   ics_status st = ics_schedule1d_taps(&sched, 0, taps, cap, &nt);
@@ -285,22 +246,21 @@ static int iterate_main(int argc, char **argv, int **steps_out) {
   for (int j = 0; j < nmembers; j++) has_tophat |= members[j] == ICS_KERNEL_TOPHAT;
   double fm = mean - floor(mean);
   if (st == ICS_ERR_RANGE && has_tophat && param == 0 && var < fm * (1 - fm)) {
-    ERR("kernel taps: argument out of range: --var %.17g is below %.17g = f(1 - f), the least "
-        "variance of an exact top-hat with mean "
-        "%.17g (f = frac(mean) = %.17g): give a larger --var or --param 1 (raw box)", var,
-        fm * (1 - fm), mean, fm);
+    cli_error(CMD, "kernel taps: argument out of range: --var %.17g is below %.17g = f(1 - f), the "
+              "least variance of an exact top-hat with mean %.17g (f = frac(mean) = %.17g): give a "
+              "larger --var or --param 1 (raw box)", var, fm * (1 - fm), mean, fm);
     free(taps);
     return 2;
   }
   if (st == ICS_ERR_RANGE && param > 0) {
-    ERR("kernel taps: --param %.17g gives no finite taps for variance %.17g (argument out of "
-        "range; give a moderate --param, or the default 0)", param, var);
+    cli_error(CMD, "kernel taps: --param %.17g gives no finite taps for variance %.17g (argument "
+              "out of range; give a moderate --param, or the default 0)", param, var);
     free(taps);
     return 2;
   }
   if (st != ICS_OK) {
-    ERR("kernel taps: %s (variance %.17g too small for this member and mean?)",
-        ics_status_str(st), var);
+    cli_error(CMD, "kernel taps: %s (variance %.17g too small for this member and mean?)",
+              ics_status_str(st), var);
     free(taps);
     return 2;
   }
@@ -315,12 +275,12 @@ static int iterate_main(int argc, char **argv, int **steps_out) {
     double half = fabs((double)nmax * mean) + 10.0 * sd + reach + 8.0;
     if (half > MAX_WIDTH / 2 - 1) {
       if (!(reach <= 0.5 * half))
-        ERR("the kernel's taps reach %.3g px (--param %.17g, variance %.17g): the automatic grid "
-            "would exceed %d pixels (give a smaller --param, or the default 0)", reach, param, var,
-            MAX_WIDTH);
+        cli_error(CMD, "the kernel's taps reach %.3g px (--param %.17g, variance %.17g): the "
+                  "automatic grid would exceed %d pixels (give a smaller --param, or the default "
+                  "0)", reach, param, var, MAX_WIDTH);
       else
-        ERR("the automatic grid would exceed %d pixels (give a smaller --steps or --var)",
-            MAX_WIDTH);
+        cli_error(CMD, "the automatic grid would exceed %d pixels (give a smaller --steps or "
+                  "--var)", MAX_WIDTH);
       return 2;
     }
     width = 2 * (int)ceil(half);
@@ -329,40 +289,33 @@ static int iterate_main(int argc, char **argv, int **steps_out) {
   /* budgets: work (tap-updates, icshadow/shadow1d.h) and output size, before anything runs */
   double nd = fmin(2.0 * cap + 3, ceil(2 * reach) + 4); /* applied integer taps per step */
   double work = (double)nmax * ((double)width * nd + (double)ICS_WORK_COMP_PASSES * cap);
-  if (work > ICS_WORK_BUDGET) {
-    ERR("estimated work %.3g tap-updates (%d steps on %d pixels) exceeds the budget of %.0e "
-        "(give smaller --steps, --width, --var or --samples)", work, nmax, width, ICS_WORK_BUDGET);
-    return 2;
-  }
+  if (work > ICS_WORK_BUDGET)
+    return cli_error(CMD, "estimated work %.3g tap-updates (%d steps on %d pixels) exceeds the "
+                     "budget of %.0e (give smaller --steps, --width, --var or --samples)", work,
+                     nmax, width, ICS_WORK_BUDGET);
   double bytes = (double)nsnap * width * OUT_LINE_BYTES;
-  if (bytes > OUT_BUDGET) {
-    ERR("the output would be about %.3g bytes (%d profiles of %d lines) and exceed the budget of "
-        "%.0e bytes (print fewer step counts or give a smaller --width)", bytes, nsnap, width,
-        OUT_BUDGET);
-    return 2;
-  }
+  if (bytes > OUT_BUDGET)
+    return cli_error(CMD, "the output would be about %.3g bytes (%d profiles of %d lines) and "
+                     "exceed the budget of %.0e bytes (print fewer step counts or give a smaller "
+                     "--width)", bytes, nsnap, width, OUT_BUDGET);
 
   size_t n = (size_t)width;
   double *buf = malloc(sizeof *buf * n);
-  if (!buf) {
-    ERR("out of memory");
-    return 1;
-  }
+  if (!buf) return cli_failure(CMD, "out of memory");
   for (size_t i = 0; i < n; i++) buf[i] = ((double)i - width / 2 + 0.5) > 0 ? 1.0 : 0.0;
 
-  ics_conv_opts opts = ics_conv_opts_default();
-  opts.boundary = ICS_BOUNDARY_CLAMP;
-  opts.compensate = comp;
+  ics_conv_opts conv = ics_conv_opts_default();
+  conv.boundary = ICS_BOUNDARY_CLAMP;
+  conv.compensate = comp;
   double applied_var = 0, applied_mean = 0;
   int done = 0;
   printf("steps,x,value,gauss_cdf\n");
   for (int s = 0; s < nsnap; s++) {
     ics_conv_stats stats;
-    st = ics_conv1d_run(buf, n, &sched, (uint64_t)done, steps[s] - done, &opts, &stats);
+    st = ics_conv1d_run(buf, n, &sched, (uint64_t)done, steps[s] - done, &conv, &stats);
     if (st != ICS_OK) {
-      ERR("convolution failed: %s", ics_status_str(st));
       free(buf);
-      return 1;
+      return cli_failure(CMD, "convolution failed: %s", ics_status_str(st));
     }
     if (steps[s] > done) applied_var += stats.kernel_var[0] + stats.interp_var[0];
     for (int k = done; k < steps[s]; k++) applied_mean += mean;
@@ -370,11 +323,11 @@ static int iterate_main(int argc, char **argv, int **steps_out) {
     double sd = sqrt(applied_var + 1.0 / 12.0);
     for (size_t i = 0; i < n; i++) {
       double x = (double)i - width / 2 + 0.5;
-      printf("%d,%.17g,%.17g,%.17g\n", steps[s], x, buf[i], phi((x - applied_mean) / sd));
+      printf("%d,%.17g,%.17g,%.17g\n", steps[s], x, buf[i], ics_normal_cdf((x - applied_mean) / sd));
     }
   }
   free(buf);
-  return cli_stdout_failed("icshadow iterate");
+  return cli_stdout_failed(CMD);
 }
 
 int cmd_iterate(int argc, char **argv) {
@@ -382,8 +335,8 @@ int cmd_iterate(int argc, char **argv) {
     help(stdout);
     return 0;
   }
-  int *steps = NULL;
+  step_list steps = {NULL, 0};
   int rc = iterate_main(argc, argv, &steps);
-  free(steps);
+  free(steps.v);
   return rc;
 }

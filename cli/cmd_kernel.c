@@ -41,70 +41,41 @@ static void help(FILE *f) {
           ICS_ELLIPSE_MAX_SAMPLES);
 }
 
+static const char CMD[] = "kernel";
+
 int cmd_kernel(int argc, char **argv) {
   if (cli_wants_help(argc, argv)) {
     help(stdout);
     return 0;
   }
   if (argc < 2) {
-    fprintf(stderr, "icshadow kernel: missing kernel name (only 'ellipse' is available)\n");
+    cli_error(CMD, "missing kernel name (only 'ellipse' is available)");
     help(stderr);
     return 2;
   }
-  if (strcmp(argv[1], "ellipse") != 0) {
-    fprintf(stderr, "icshadow kernel: unknown kernel '%s' (only 'ellipse' is available)\n",
-            argv[1]);
-    return 2;
-  }
-  double varx = 0, vary = 0, angle = 0, offset = 0;
-  int samples = 2, have_x = 0, have_y = 0;
-  for (int i = 2; i < argc; i++) {
-    const char *opt = argv[i];
-    int known = !strcmp(opt, "--varx") || !strcmp(opt, "--vary") || !strcmp(opt, "--angle") ||
-                !strcmp(opt, "--samples") || !strcmp(opt, "--offset");
-    if (!known) {
-      fprintf(stderr, "icshadow kernel: unknown option '%s' (see icshadow kernel --help)\n", opt);
-      return 2;
-    }
-    if (i + 1 >= argc) {
-      fprintf(stderr, "icshadow kernel: %s: missing value\n", opt);
-      return 2;
-    }
-    const char *val = argv[++i];
-    int bad = 0;
-    if (!strcmp(opt, "--varx")) {
-      bad = cli_option_double("kernel", opt, val, 1, &varx);
-      have_x = 1;
-    } else if (!strcmp(opt, "--vary")) {
-      bad = cli_option_double("kernel", opt, val, 1, &vary);
-      have_y = 1;
-    } else if (!strcmp(opt, "--angle")) {
-      bad = cli_option_double("kernel", opt, val, 0, &angle);
-    } else if (!strcmp(opt, "--offset")) {
-      bad = cli_option_double("kernel", opt, val, 0, &offset);
-    } else if (cli_parse_int(val, 1, ICS_ELLIPSE_MAX_SAMPLES, &samples) != 0) {
-      fprintf(stderr, "icshadow kernel: --samples: expected an integer in 1..%d, got '%s'\n",
-              ICS_ELLIPSE_MAX_SAMPLES, val);
-      bad = 1;
-    }
-    if (bad) return 2;
-  }
-  if (!have_x || !have_y) {
-    fprintf(stderr, "icshadow kernel: %s is required\n", !have_x ? "--varx" : "--vary");
-    return 2;
-  }
+  if (strcmp(argv[1], "ellipse") != 0)
+    return cli_error(CMD, "unknown kernel '%s' (only 'ellipse' is available)", argv[1]);
+  double varx = NAN, vary = NAN, angle = 0, offset = 0; /* NaN: not given (refused as a value) */
+  int samples = 2;
+  const cli_option opts[] = {
+      {"--varx", .kind = CLI_VARIANCE, .dest = &varx},
+      {"--vary", .kind = CLI_VARIANCE, .dest = &vary},
+      {"--angle", .kind = CLI_FINITE, .dest = &angle},
+      {"--samples", .kind = CLI_INT, .dest = &samples, .lo = 1, .hi = ICS_ELLIPSE_MAX_SAMPLES},
+      {"--offset", .kind = CLI_FINITE, .dest = &offset},
+  };
+  int rc = cli_parse_options(CMD, argc, argv, 2, opts, CLI_NOPTS(opts));
+  if (rc) return rc;
+  if (isnan(varx) || isnan(vary))
+    return cli_error(CMD, "%s is required", isnan(varx) ? "--varx" : "--vary");
 
   double *xy = malloc(2 * (size_t)samples * sizeof *xy);
-  if (!xy) {
-    fprintf(stderr, "icshadow kernel: out of memory\n");
-    return 1;
-  }
+  if (!xy) return cli_failure(CMD, "out of memory");
   ics_ellipse_shape shape;
   ics_status st = ics_ellipse_kernel(varx, vary, angle, samples, offset, &shape, xy);
   if (st != ICS_OK) { /* not reachable after the checks above; reported all the same */
-    fprintf(stderr, "icshadow kernel: %s\n", ics_status_str(st));
     free(xy);
-    return 2;
+    return cli_error(CMD, "%s", ics_status_str(st));
   }
   printf("{\"kernel\":\"ellipse\",\"varx\":%.17g,\"vary\":%.17g,\"angle_deg\":%.17g,"
          "\"a\":%.17g,\"b\":%.17g,\"t\":%.17g,\"samples\":%d,\"offset\":%.17g,\"taps\":[",
@@ -114,5 +85,5 @@ int cmd_kernel(int argc, char **argv) {
     printf("%s[%.17g,%.17g]", j ? "," : "", nz(xy[2 * j]), nz(xy[2 * j + 1]));
   printf("]}\n");
   free(xy);
-  return cli_stdout_failed("icshadow kernel");
+  return cli_stdout_failed(CMD);
 }

@@ -58,12 +58,7 @@ static void help(FILE *f) {
           TIMING_LEN, 256, 256, MAX_ITER);
 }
 
-#define ERR(...)                                 \
-  do {                                           \
-    fprintf(stderr, "icshadow kernel-table: ");  \
-    fprintf(stderr, __VA_ARGS__);                \
-    fputc('\n', stderr);                         \
-  } while (0)
+static const char CMD[] = "kernel-table";
 
 typedef struct row {
   const char *label;
@@ -115,7 +110,7 @@ static int time_member(const ics_kernel1d *k, double *ns) {
 }
 
 /* the 1D table (Table I) */
-static int table1d(double var, double mean, int iterations, unsigned long long seed, int timing) {
+static int table1d(double var, double mean, int iterations, uint64_t seed, int timing) {
   static const row rows[] = {
       {"dirac", ICS_KERNEL_DIRAC, 0},
       {"tophat", ICS_KERNEL_TOPHAT, 0},
@@ -129,20 +124,16 @@ static int table1d(double var, double mean, int iterations, unsigned long long s
   for (int r = 0; r < NROWS; r++) {
     ics_status st = ics_kernel1d_init(&ks[r], rows[r].member, mean, var);
     ks[r].param = rows[r].param;
-    ks[r].seed = (uint64_t)seed;
+    ks[r].seed = seed;
     int mt = st == ICS_OK ? ics_kernel1d_max_taps(&ks[r]) : 0;
     double fm = mean - floor(mean);
-    if (rows[r].member == ICS_KERNEL_TOPHAT && rows[r].param == 0 && var < fm * (1 - fm)) {
-      ERR("--var %.17g is below %.17g = f(1 - f), the least variance of an exact top-hat with "
-          "mean %.17g (f = frac(mean) = %.17g): give a larger --var", var, fm * (1 - fm), mean,
-          fm);
-      return 2;
-    }
-    if (st != ICS_OK || mt <= 0) {
-      ERR("%s with mean %.17g, variance %.17g: %s", rows[r].label, mean, var,
-          ics_status_str(st != ICS_OK ? st : ICS_ERR_RANGE));
-      return 2;
-    }
+    if (rows[r].member == ICS_KERNEL_TOPHAT && rows[r].param == 0 && var < fm * (1 - fm))
+      return cli_error(CMD, "--var %.17g is below %.17g = f(1 - f), the least variance of an exact "
+                       "top-hat with mean %.17g (f = frac(mean) = %.17g): give a larger --var", var,
+                       fm * (1 - fm), mean, fm);
+    if (st != ICS_OK || mt <= 0)
+      return cli_error(CMD, "%s with mean %.17g, variance %.17g: %s", rows[r].label, mean, var,
+                       ics_status_str(st != ICS_OK ? st : ICS_ERR_RANGE));
     if (mt > cap) cap = mt;
   }
   ics_tap1d *taps = malloc(sizeof *taps * (size_t)cap);
@@ -151,7 +142,7 @@ static int table1d(double var, double mean, int iterations, unsigned long long s
   size_t text_len = 0;
   FILE *mem = open_memstream(&text, &text_len);
   if (!taps || !itaps || !mem) {
-    ERR("out of memory");
+    cli_failure(CMD, "out of memory");
     free(taps);
     free(itaps);
     if (mem) fclose(mem);
@@ -172,8 +163,8 @@ static int table1d(double var, double mean, int iterations, unsigned long long s
       ics_status st = ics_kernel1d_taps(k, (uint64_t)it, taps, cap, &nt);
       if (st == ICS_OK) st = ics_taps1d_discretize(taps, nt, itaps, 2 * cap + 3, &ni);
       if (st != ICS_OK) {
-        ERR("%s with mean %.17g, variance %.17g: %s", rows[r].label, mean, var,
-            ics_status_str(st));
+        cli_error(CMD, "%s with mean %.17g, variance %.17g: %s", rows[r].label, mean, var,
+                  ics_status_str(st));
         status = st == ICS_ERR_NOMEM ? 1 : 2;
         break;
       }
@@ -196,7 +187,7 @@ static int table1d(double var, double mean, int iterations, unsigned long long s
     if (status) break;
     double ns = NAN;
     if (timing && time_member(k, &ns) != 0) {
-      ERR("%s: timing run failed", rows[r].label);
+      cli_failure(CMD, "%s: timing run failed", rows[r].label);
       status = 1;
       break;
     }
@@ -210,7 +201,7 @@ static int table1d(double var, double mean, int iterations, unsigned long long s
   if (!status) fputs(text, stdout);
   free(text);
   if (status) return status;
-  return cli_stdout_failed("icshadow kernel-table");
+  return cli_stdout_failed(CMD);
 }
 
 /* the 2D members (Patel Sec. 3.4, the kernels of Fig. 11), class (mean (M, 0), covariance
@@ -250,7 +241,7 @@ static int time_member2d(const ics_kernel2d *k, double *ns) {
 }
 
 static int table2d(double varx, double vary, double angle, double mean, int iterations,
-                   unsigned long long seed, int timing) {
+                   uint64_t seed, int timing) {
   static const row2d rows[] = {
       {"ellipse-2", ICS_KERNEL_ELLIPSE, 2},  {"ellipse-3", ICS_KERNEL_ELLIPSE, 3},
       {"poisson-8", ICS_KERNEL_POISSON, 8},  {"poisson-16", ICS_KERNEL_POISSON, 16},
@@ -259,21 +250,19 @@ static int table2d(double varx, double vary, double angle, double mean, int iter
   enum { NROWS = sizeof rows / sizeof rows[0] };
   ics_class2d cls;
   ics_status st = ics_class2d_from_axes(mean, 0, varx, vary, angle, &cls);
-  if (st != ICS_OK) {
-    ERR("class (varx %.17g, vary %.17g, angle %.17g): %s", varx, vary, angle, ics_status_str(st));
-    return 2;
-  }
+  if (st != ICS_OK)
+    return cli_error(CMD, "class (varx %.17g, vary %.17g, angle %.17g): %s", varx, vary, angle,
+                     ics_status_str(st));
   ics_kernel2d ks[NROWS];
   int cap = 0;
   for (int r = 0; r < NROWS; r++) {
     st = ics_kernel2d_init(&ks[r], rows[r].member, &cls);
     ks[r].nsamples = rows[r].nsamples;
-    ks[r].seed = (uint64_t)seed;
+    ks[r].seed = seed;
     int mt = st == ICS_OK ? ics_kernel2d_max_taps(&ks[r]) : 0;
-    if (st != ICS_OK || mt <= 0) {
-      ERR("%s: %s", rows[r].label, ics_status_str(st != ICS_OK ? st : ICS_ERR_RANGE));
-      return 2;
-    }
+    if (st != ICS_OK || mt <= 0)
+      return cli_error(CMD, "%s: %s", rows[r].label,
+                       ics_status_str(st != ICS_OK ? st : ICS_ERR_RANGE));
     if (mt > cap) cap = mt;
   }
   ics_tap2d *taps = malloc(sizeof *taps * (size_t)cap);
@@ -282,7 +271,7 @@ static int table2d(double varx, double vary, double angle, double mean, int iter
   size_t text_len = 0;
   FILE *mem = open_memstream(&text, &text_len);
   if (!taps || !itaps || !mem) {
-    ERR("out of memory");
+    cli_failure(CMD, "out of memory");
     free(taps);
     free(itaps);
     if (mem) fclose(mem);
@@ -304,7 +293,7 @@ static int table2d(double varx, double vary, double angle, double mean, int iter
       st = ics_kernel2d_taps(k, (uint64_t)it, taps, cap, &nt);
       if (st == ICS_OK) st = ics_taps2d_discretize(taps, nt, itaps, 4 * cap + 9, &ni);
       if (st != ICS_OK) {
-        ERR("%s: %s", rows[r].label, ics_status_str(st));
+        cli_error(CMD, "%s: %s", rows[r].label, ics_status_str(st));
         status = st == ICS_ERR_NOMEM ? 1 : 2;
         break;
       }
@@ -328,7 +317,7 @@ static int table2d(double varx, double vary, double angle, double mean, int iter
     if (status) break;
     double ns = NAN;
     if (timing && time_member2d(k, &ns) != 0) {
-      ERR("%s: timing run failed", rows[r].label);
+      cli_failure(CMD, "%s: timing run failed", rows[r].label);
       status = 1;
       break;
     }
@@ -345,7 +334,23 @@ static int table2d(double varx, double vary, double angle, double mean, int iter
   if (!status) fputs(text, stdout);
   free(text);
   if (status) return status;
-  return cli_stdout_failed("icshadow kernel-table");
+  return cli_stdout_failed(CMD);
+}
+
+/* --var, --vary: a class variance, finite and > 0 */
+static int parse_class_var(const char *cmd, const char *opt, const char *s, void *dest) {
+  if (cli_option_double(cmd, opt, s, 0, dest) != 0) return 2;
+  if (*(double *)dest <= 0)
+    return cli_error(cmd, "%s: the class variance must be > 0, got '%s'", opt, s);
+  return 0;
+}
+
+/* --dims: "1" or "2" exactly */
+static int parse_dims(const char *cmd, const char *opt, const char *s, void *dest) {
+  if (strcmp(s, "1") && strcmp(s, "2"))
+    return cli_error(cmd, "%s: expected 1 or 2, got '%s'", opt, s);
+  *(int *)dest = s[0] - '0';
+  return 0;
 }
 
 int cmd_kernel_table(int argc, char **argv) {
@@ -353,63 +358,24 @@ int cmd_kernel_table(int argc, char **argv) {
     help(stdout);
     return 0;
   }
-  double var = 30.25, mean = 0, vary = NAN, angle = 0;
-  int iterations = 10000, timing = 1, dims = 1;
-  unsigned long long seed = 0;
-  for (int i = 1; i < argc; i++) {
-    const char *opt = argv[i];
-    if (!strcmp(opt, "--no-timing")) {
-      timing = 0;
-      continue;
-    }
-    int known = !strcmp(opt, "--var") || !strcmp(opt, "--mean") || !strcmp(opt, "--iterations") ||
-                !strcmp(opt, "--seed") || !strcmp(opt, "--dims") || !strcmp(opt, "--vary") ||
-                !strcmp(opt, "--angle");
-    if (!known) {
-      ERR("unknown option '%s' (see icshadow kernel-table --help)", opt);
-      return 2;
-    }
-    if (i + 1 >= argc) {
-      ERR("%s: missing value", opt);
-      return 2;
-    }
-    const char *val = argv[++i];
-    if (!strcmp(opt, "--var") || !strcmp(opt, "--vary")) {
-      double v;
-      if (cli_option_double("kernel-table", opt, val, 0, &v) != 0) return 2;
-      if (v <= 0) {
-        ERR("%s: the class variance must be > 0, got '%s'", opt, val);
-        return 2;
-      }
-      *(!strcmp(opt, "--var") ? &var : &vary) = v;
-    } else if (!strcmp(opt, "--mean")) {
-      if (cli_option_double("kernel-table", opt, val, 0, &mean) != 0) return 2;
-    } else if (!strcmp(opt, "--angle")) {
-      if (cli_option_double("kernel-table", opt, val, 0, &angle) != 0) return 2;
-    } else if (!strcmp(opt, "--dims")) {
-      if (strcmp(val, "1") && strcmp(val, "2")) {
-        ERR("--dims: expected 1 or 2, got '%s'", val);
-        return 2;
-      }
-      dims = val[0] - '0';
-    } else if (!strcmp(opt, "--iterations")) {
-      if (cli_parse_int(val, 1, MAX_ITER, &iterations) != 0) {
-        ERR("--iterations: expected an integer in 1..%d, got '%s'", MAX_ITER, val);
-        return 2;
-      }
-    } else {
-      uint64_t sv;
-      if (cli_parse_seed(val, &sv) != 0) {
-        ERR("--seed: expected " CLI_SEED_RANGE ", got '%s'", val);
-        return 2;
-      }
-      seed = sv;
-    }
-  }
-  if (dims == 1 && (!isnan(vary) || angle != 0)) {
-    ERR("--vary and --angle need --dims 2");
-    return 2;
-  }
+  double var = 30.25, mean = 0, vary = NAN, angle = 0; /* vary NaN: not given (then V) */
+  int iterations = 10000, no_timing = 0, dims = 1;
+  uint64_t seed = 0;
+  const cli_option opts[] = {
+      {"--var", .kind = CLI_CALL, .dest = &var, .parse = parse_class_var},
+      {"--mean", .kind = CLI_FINITE, .dest = &mean},
+      {"--iterations", .kind = CLI_INT, .dest = &iterations, .lo = 1, .hi = MAX_ITER},
+      {"--seed", .kind = CLI_SEED, .dest = &seed},
+      {"--dims", .kind = CLI_CALL, .dest = &dims, .parse = parse_dims},
+      {"--vary", .kind = CLI_CALL, .dest = &vary, .parse = parse_class_var},
+      {"--angle", .kind = CLI_FINITE, .dest = &angle},
+      {"--no-timing", .kind = CLI_FLAG, .dest = &no_timing},
+  };
+  int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
+  if (rc) return rc;
+  int timing = !no_timing;
+  if (dims == 1 && (!isnan(vary) || angle != 0))
+    return cli_error(CMD, "--vary and --angle need --dims 2");
   if (dims == 2) return table2d(var, isnan(vary) ? var : vary, angle, mean, iterations, seed, timing);
   return table1d(var, mean, iterations, seed, timing);
 }

@@ -35,6 +35,8 @@ static void help(FILE *f) {
           ICS_LUT_MIN_SIZE, ICS_LUT_MAX_SIZE, ICS_LUT_STAMP_PER_INTERVAL);
 }
 
+static const char CMD[] = "lut";
+
 static const struct {
   const char *name;
   ics_lut_lang lang;
@@ -44,15 +46,6 @@ static const struct {
     {"opencl", ICS_LUT_LANG_OPENCL},
     {"c-data", ICS_LUT_LANG_C_DATA},
 };
-
-static int usage_error(const char *msg, const char *arg) {
-  if (arg)
-    fprintf(stderr, "icshadow lut: %s '%s'\n", msg, arg);
-  else
-    fprintf(stderr, "icshadow lut: %s\n", msg);
-  fprintf(stderr, "(icshadow lut --help for usage)\n");
-  return 2;
-}
 
 typedef struct tables {
   int n;
@@ -89,23 +82,23 @@ static int write_header(int n, const char *lang_name, ics_lut_lang lang, const c
   if (st == ICS_OK) st = ics_lut_measure(grid, &T.view, 1, &ef);
   ics_lut_grid_free(grid);
   if (st != ICS_OK) {
-    fprintf(stderr, "icshadow lut: cannot build the tables: %s\n", ics_status_str(st));
+    cli_failure(CMD, "cannot build the tables: %s", ics_status_str(st));
     tables_free(&T);
     return 1;
   }
   if (!isfinite(ed.ratio) || !isfinite(ed.vx) || !isfinite(ed.radii)) {
     /* An exact function returned NaN/inf somewhere on the grid: say so, but still write. */
-    fprintf(stderr, "icshadow lut: warning: non-finite measured error (exact function failure?)\n");
+    cli_warning(CMD, "non-finite measured error (exact function failure?)");
   }
   cli_output out;
-  if (cli_output_open(&out, path) != 0) {
+  if (cli_output_open(&out, CMD, path) != 0) {
     tables_free(&T);
     return 1;
   }
   st = ics_lut_write(out.fp, lang, &T.view, command, &ed, &ef);
   tables_free(&T);
   if (st != ICS_OK) {
-    fprintf(stderr, "icshadow lut: writing failed: %s\n", ics_status_str(st));
+    cli_failure(CMD, "writing failed: %s", ics_status_str(st));
     cli_output_abort(&out);
     return 1;
   }
@@ -169,10 +162,7 @@ static int report(const int *sizes, int nsizes, int progress) {
   if (progress) fprintf(stderr, "icshadow lut: exact values on the grid for size %d...\n", nmax);
   ics_lut_grid *grid = NULL;
   ics_status st = ics_lut_grid_new(nmax, ICS_LUT_STAMP_PER_INTERVAL, &grid);
-  if (st != ICS_OK) {
-    fprintf(stderr, "icshadow lut: %s\n", ics_status_str(st));
-    return 1;
-  }
+  if (st != ICS_OK) return cli_failure(CMD, "%s", ics_status_str(st));
   /* Timing samples: rat log-uniform over [1e-6, 1e6]; t uniform over [0, 1]. */
   double xr[NSAMPLES], xt[NSAMPLES];
   unsigned long long state = 0x9E3779B97F4A7C15ull;
@@ -196,7 +186,7 @@ static int report(const int *sizes, int nsizes, int progress) {
     if (st == ICS_OK) st = ics_lut_measure(grid, &T.view, 0, &ed);
     if (st == ICS_OK) st = ics_lut_measure(grid, &T.view, 1, &ef);
     if (st != ICS_OK) {
-      fprintf(stderr, "icshadow lut: size %d: %s\n", n, ics_status_str(st));
+      cli_failure(CMD, "size %d: %s", n, ics_status_str(st));
       tables_free(&T);
       status = 1;
       break;
@@ -222,7 +212,7 @@ static int report(const int *sizes, int nsizes, int progress) {
     printf("exact,,,,,,,,,,%.3g,%.3g,\n", ns_r, ns_v);
   }
   ics_lut_grid_free(grid);
-  return cli_stdout_failed("icshadow lut") ? 1 : status;
+  return cli_stdout_failed(CMD) ? 1 : status;
 }
 
 int cmd_lut(int argc, char **argv) {
@@ -232,56 +222,34 @@ int cmd_lut(int argc, char **argv) {
   }
   int size = 0, do_report = 0, progress = isatty(2);
   const char *lang_arg = NULL, *path = NULL, *sizes_arg = NULL;
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    int has_value = i + 1 < argc;
-    if (!strcmp(a, "--size")) {
-      if (!has_value) return usage_error("missing value after", a);
-      if (cli_parse_int(argv[++i], ICS_LUT_MIN_SIZE, ICS_LUT_MAX_SIZE, &size) != 0) {
-        fprintf(stderr, "icshadow lut: --size must be an integer in %d..%d, got '%s'\n",
-                ICS_LUT_MIN_SIZE, ICS_LUT_MAX_SIZE, argv[i]);
-        return 2;
-      }
-    } else if (!strcmp(a, "--lang")) {
-      if (!has_value) return usage_error("missing value after", a);
-      lang_arg = argv[++i];
-    } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-      if (!has_value) return usage_error("missing value after", a);
-      path = argv[++i];
-      if (!*path) return usage_error("empty output file name", NULL);
-    } else if (!strcmp(a, "--sizes")) {
-      if (!has_value) return usage_error("missing value after", a);
-      sizes_arg = argv[++i];
-    } else if (!strcmp(a, "--report")) {
-      do_report = 1;
-    } else if (!strcmp(a, "--progress")) {
-      progress = 1;
-    } else {
-      return usage_error("unknown argument", a);
-    }
-  }
+  const cli_option opts[] = {
+      {"--size", .kind = CLI_INT, .dest = &size, .lo = ICS_LUT_MIN_SIZE, .hi = ICS_LUT_MAX_SIZE},
+      {"--lang", .kind = CLI_STRING, .dest = &lang_arg},
+      {"--output", .alias = "-o", .kind = CLI_FILE, .dest = &path},
+      {"--sizes", .kind = CLI_STRING, .dest = &sizes_arg},
+      {"--report", .kind = CLI_FLAG, .dest = &do_report},
+      {"--progress", .kind = CLI_FLAG, .dest = &progress},
+  };
+  int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
+  if (rc) return rc;
   if (do_report) {
     if (size || lang_arg || path)
-      return usage_error("--report takes no --size, --lang or -o (it writes CSV to stdout)", NULL);
+      return cli_error(CMD, "--report takes no --size, --lang or -o (it writes CSV to stdout)");
     int sizes[32], nsizes = 0;
     if (sizes_arg) {
-      if (parse_sizes(sizes_arg, sizes, 32, &nsizes) != 0) {
-        fprintf(stderr,
-                "icshadow lut: --sizes must be increasing integers in %d..%d, comma-separated "
-                "(at most 32), got '%s'\n",
-                ICS_LUT_MIN_SIZE, ICS_LUT_MAX_SIZE, sizes_arg);
-        return 2;
-      }
+      if (parse_sizes(sizes_arg, sizes, 32, &nsizes) != 0)
+        return cli_error(CMD, "--sizes: expected increasing integers in %d..%d, comma-separated "
+                         "(at most 32), got '%s'", ICS_LUT_MIN_SIZE, ICS_LUT_MAX_SIZE, sizes_arg);
     } else {
       for (int n = 8; n <= 4096; n *= 2) sizes[nsizes++] = n;
     }
     return report(sizes, nsizes, progress);
   }
-  if (sizes_arg) return usage_error("--sizes goes with --report", NULL);
-  if (!size) return usage_error("missing --size N", NULL);
-  if (!lang_arg) return usage_error("missing --lang c|glsl|opencl|c-data", NULL);
+  if (sizes_arg) return cli_error(CMD, "--sizes goes with --report");
+  if (!size) return cli_error(CMD, "missing --size N");
+  if (!lang_arg) return cli_error(CMD, "missing --lang c|glsl|opencl|c-data");
   for (size_t k = 0; k < sizeof langs / sizeof langs[0]; k++)
-    if (!strcmp(lang_arg, langs[k].name)) return write_header(size, langs[k].name, langs[k].lang, path);
-  fprintf(stderr, "icshadow lut: unknown language '%s' (c, glsl, opencl or c-data)\n", lang_arg);
-  return 2;
+    if (!strcmp(lang_arg, langs[k].name))
+      return write_header(size, langs[k].name, langs[k].lang, path);
+  return cli_error(CMD, "unknown language '%s' (c, glsl, opencl or c-data)", lang_arg);
 }

@@ -6,7 +6,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "commands.h"
 #include "icshadow.h"
@@ -39,20 +38,47 @@ static void help(FILE *f) {
           "Exit status: 0 ok, 1 cannot write, 2 bad input.\n", MAX_PIXELS);
 }
 
-typedef struct prog {
-  int tty;
+static const char CMD[] = "make-env";
+
+/* progress of the rows: cli_progress, at most every 0.5 s (and the last row) */
+typedef struct row_progress {
+  cli_progress p;
   double t_last;
-} prog;
+} row_progress;
 
 static void on_rows(void *ctx, int done, int rows) {
-  prog *p = ctx;
+  row_progress *rp = ctx;
   double t = cli_now_s();
-  if (done < rows && t - p->t_last < 0.5) return;
-  p->t_last = t;
-  if (p->tty)
-    fprintf(stderr, "\rmake-env: row %d/%d   %s", done, rows, done == rows ? "\n" : "");
-  else
-    fprintf(stderr, "make-env: row %d/%d\n", done, rows);
+  if (done < rows && t - rp->t_last < 0.5) return;
+  rp->t_last = t;
+  cli_progress_say(&rp->p, "row %d/%d", done, rows);
+}
+
+/* --sky R,G,B: finite and >= 0 */
+static int parse_sky(const char *cmd, const char *opt, const char *v, void *dest) {
+  double *sky = dest;
+  char buf[3][64];
+  if (sscanf(v, "%63[^,],%63[^,],%63s", buf[0], buf[1], buf[2]) != 3 ||
+      cli_parse_double(buf[0], &sky[0]) || cli_parse_double(buf[1], &sky[1]) ||
+      cli_parse_double(buf[2], &sky[2]) || !(sky[0] >= 0 && sky[1] >= 0 && sky[2] >= 0) ||
+      sky[0] + sky[1] + sky[2] > 1e30)
+    return cli_error(cmd, "%s: expected R,G,B finite and >= 0, got '%s'", opt, v);
+  return 0;
+}
+
+/* --size WxH: W, H in 4..16384 and W * H <= MAX_PIXELS */
+static int parse_size(const char *cmd, const char *opt, const char *v, void *dest) {
+  int *wh = dest;
+  char bw[32], bh[32];
+  if (sscanf(v, "%31[0-9]x%31[0-9]", bw, bh) != 2 || cli_parse_int(bw, 4, 16384, &wh[0]) ||
+      cli_parse_int(bh, 4, 16384, &wh[1]) || strlen(v) != strlen(bw) + strlen(bh) + 1)
+    return cli_error(cmd, "%s: expected WxH with W, H in 4..16384, got '%s'", opt, v);
+  long pixels = (long)wh[0] * wh[1];
+  if (pixels > MAX_PIXELS)
+    return cli_error(cmd, "%s %s: %ld pixels would need %.3g GiB (24 bytes a pixel); at most %ld "
+                     "pixels (2 GiB), e.g. 8192x4096", opt, v, pixels,
+                     (double)pixels * 24 / (1UL << 30), MAX_PIXELS);
+  return 0;
 }
 
 int cmd_make_env(int argc, char **argv) {
@@ -62,106 +88,53 @@ int cmd_make_env(int argc, char **argv) {
   }
   const char *lights_arg = NULL, *outp = NULL;
   double sky[3] = {0, 0, 0};
-  int have_sky = 0, w = 0, h = 0, ss = 4, half = 0, force_progress = 0;
-  for (int a = 1; a < argc; a++) {
-    const char *o = argv[a];
-    int needs = !strcmp(o, "--lights") || !strcmp(o, "--sky") || !strcmp(o, "--size") ||
-                !strcmp(o, "--supersample") || !strcmp(o, "-o");
-    if (needs && a + 1 >= argc) {
-      fprintf(stderr, "icshadow make-env: %s: missing value\n", o);
-      return 2;
-    }
-    if (!strcmp(o, "--lights")) {
-      lights_arg = argv[++a];
-    } else if (!strcmp(o, "--sky")) {
-      const char *v = argv[++a];
-      char buf[3][64];
-      if (sscanf(v, "%63[^,],%63[^,],%63s", buf[0], buf[1], buf[2]) != 3 ||
-          cli_parse_double(buf[0], &sky[0]) || cli_parse_double(buf[1], &sky[1]) ||
-          cli_parse_double(buf[2], &sky[2]) || !(sky[0] >= 0 && sky[1] >= 0 && sky[2] >= 0) ||
-          sky[0] + sky[1] + sky[2] > 1e30) {
-        fprintf(stderr, "icshadow make-env: --sky: expected R,G,B finite and >= 0, got '%s'\n", v);
-        return 2;
-      }
-      have_sky = 1;
-    } else if (!strcmp(o, "--size")) {
-      const char *v = argv[++a];
-      char bw[32], bh[32];
-      if (sscanf(v, "%31[0-9]x%31[0-9]", bw, bh) != 2 || cli_parse_int(bw, 4, 16384, &w) ||
-          cli_parse_int(bh, 4, 16384, &h) || strlen(v) != strlen(bw) + strlen(bh) + 1) {
-        fprintf(stderr, "icshadow make-env: --size: expected WxH with W, H in 4..16384, got '%s'\n",
-                v);
-        return 2;
-      }
-      if ((long)w * h > MAX_PIXELS) {
-        fprintf(stderr, "icshadow make-env: --size %s: %ld pixels would need %.3g GiB (24 bytes "
-                "a pixel); at most %ld pixels (2 GiB), e.g. 8192x4096\n", v, (long)w * h,
-                (double)w * h * 24 / (1UL << 30), MAX_PIXELS);
-        return 2;
-      }
-    } else if (!strcmp(o, "--supersample")) {
-      if (cli_parse_int(argv[++a], 1, 16, &ss)) {
-        fprintf(stderr, "icshadow make-env: --supersample: expected an integer in 1..16\n");
-        return 2;
-      }
-    } else if (!strcmp(o, "--half")) {
-      half = 1;
-    } else if (!strcmp(o, "--progress")) {
-      force_progress = 1;
-    } else if (!strcmp(o, "-o")) {
-      outp = argv[++a];
-    } else {
-      fprintf(stderr, "icshadow make-env: unknown option '%s' (see --help)\n", o);
-      return 2;
-    }
-  }
-  if (!w) {
-    fprintf(stderr, "icshadow make-env: --size is required\n");
-    return 2;
-  }
-  if (!outp || !strcmp(outp, "-")) {
-    fprintf(stderr, "icshadow make-env: -o FILE is required (an EXR file, not stdout)\n");
-    return 2;
-  }
-  if (!lights_arg && !have_sky) {
-    fprintf(stderr, "icshadow make-env: nothing to draw: give --lights and/or --sky\n");
-    return 2;
-  }
-  if (!ics_exr_available()) {
-    fprintf(stderr, "icshadow make-env: cannot write OpenEXR: OpenEXR was not found when "
-            "icshadow was built\n");
-    return 1;
-  }
+  int have_sky = 0, size[2] = {0, 0}, ss = 4, half = 0, force_progress = 0;
+  const cli_option opts[] = {
+      {"--lights", .kind = CLI_STRING, .dest = &lights_arg},
+      {"--sky", .kind = CLI_CALL, .dest = sky, .parse = parse_sky, .given = &have_sky},
+      {"--size", .kind = CLI_CALL, .dest = size, .parse = parse_size},
+      {"--supersample", .kind = CLI_INT, .dest = &ss, .lo = 1, .hi = 16},
+      {"--half", .kind = CLI_FLAG, .dest = &half},
+      {"--progress", .kind = CLI_FLAG, .dest = &force_progress},
+      {"-o", .kind = CLI_STRING, .dest = &outp},
+  };
+  int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
+  if (rc) return rc;
+  const int w = size[0], h = size[1];
+  if (!w) return cli_error(CMD, "--size is required");
+  if (!outp || !strcmp(outp, "-"))
+    return cli_error(CMD, "-o FILE is required (an EXR file, not stdout)");
+  if (!lights_arg && !have_sky)
+    return cli_error(CMD, "nothing to draw: give --lights and/or --sky");
+  if (!ics_exr_available())
+    return cli_failure(CMD, "cannot write OpenEXR: OpenEXR was not found when icshadow was built");
   ics_light *lights = NULL;
   int n = 0;
   char err[CLI_MSG_MAX];
-  if (lights_arg) {
-    int rc = lights_load(lights_arg, &lights, &n, err, sizeof err);
-    if (rc) {
-      fprintf(stderr, "icshadow make-env: --lights: %s\n", err);
-      return 2;
-    }
-  }
+  if (lights_arg && lights_load(lights_arg, &lights, &n, err, sizeof err) != 0)
+    return cli_error(CMD, "--lights: %s", err);
   ics_image env;
-  prog pg = {isatty(2), cli_now_s()};
-  int show = force_progress || (pg.tty && (long)w * h * ss * ss >= (4L << 20));
+  row_progress rp = {.t_last = cli_now_s()};
+  cli_progress_init(&rp.p, "make-env", force_progress);
+  int show = force_progress || (rp.p.tty && (long)w * h * ss * ss >= (4L << 20));
   ics_status st = ics_image_init(&env, w, h, 3);
   if (st == ICS_OK)
-    st = ics_envmap_render_progress(&env, sky, lights, n, ss, show ? on_rows : NULL, &pg);
+    st = ics_envmap_render_progress(&env, sky, lights, n, ss, show ? on_rows : NULL, &rp);
+  if (show) cli_progress_done(&rp.p);
   if (st == ICS_ERR_RANGE) {
     /* which light overflows float on its own (drawn alone into a map of the same size) */
     int bad = -1;
     for (int k = 0; k < n && bad < 0; k++)
       if (ics_envmap_render(&env, NULL, &lights[k], 1, ss) == ICS_ERR_RANGE) bad = k;
     if (bad >= 0)
-      fprintf(stderr, "icshadow make-env: light %d (weight %g, colour %g,%g,%g) is too bright to "
-              "draw: its radiance overflows float at %dx%d\n", bad + 1, lights[bad].weight,
-              lights[bad].color[0], lights[bad].color[1], lights[bad].color[2], w, h);
+      cli_error(CMD, "light %d (weight %g, colour %g,%g,%g) is too bright to draw: its radiance "
+                "overflows float at %dx%d", bad + 1, lights[bad].weight, lights[bad].color[0],
+                lights[bad].color[1], lights[bad].color[2], w, h);
     else
-      fprintf(stderr, "icshadow make-env: the lights and sky together are too bright to draw: "
-              "the radiance overflows float at %dx%d\n", w, h);
+      cli_error(CMD, "the lights and sky together are too bright to draw: the radiance overflows "
+                "float at %dx%d", w, h);
   } else if (st != ICS_OK) {
-    fprintf(stderr, "icshadow make-env: cannot draw the map: %s\n", ics_status_str(st));
+    cli_error(CMD, "cannot draw the map: %s", ics_status_str(st));
   }
   free(lights);
   if (st != ICS_OK) {
@@ -169,14 +142,14 @@ int cmd_make_env(int argc, char **argv) {
     return st == ICS_ERR_NOMEM ? 1 : 2;
   }
   cli_output out;
-  if (cli_output_open(&out, outp) != 0) {
+  if (cli_output_open(&out, CMD, outp) != 0) {
     ics_image_free(&env);
     return 1;
   }
   st = ics_exr_write(out.write_path, &env, half ? ICS_EXR_HALF : ICS_EXR_FLOAT, err, sizeof err);
   ics_image_free(&env);
   if (st != ICS_OK) {
-    fprintf(stderr, "icshadow make-env: cannot write %s: %s\n", outp, err);
+    cli_error(CMD, "cannot write %s: %s", outp, err);
     cli_output_abort(&out);
     return st == ICS_ERR_INVALID_ARG ? 2 : 1;
   }

@@ -26,6 +26,24 @@ int bench_sat3d(int argc, char **argv);
 int bench_minmax(int argc, char **argv);
 int bench_occtex(int argc, char **argv);
 
+/* Reports on stderr, one line each: "icshadow CMD: message" (cmd: the subcommand as typed after
+ * "icshadow", e.g. "make-env" or "bench sat2d"; NULL for the tool itself: "icshadow: message").
+ * cli_report returns `status`, so a command can end with `return cli_error(...)`:
+ *   cli_error         2, bad input / usage
+ *   cli_failure       1, a runtime failure
+ *   cli_status_error  1 when st is ICS_ERR_NOMEM, else 2 (a library call failed with st)
+ *   cli_warning       "icshadow CMD: warning: message" (the format must be a string literal) */
+#if defined(__GNUC__)
+#define CLI_PRINTF(f, a) __attribute__((format(printf, f, a)))
+#else
+#define CLI_PRINTF(f, a)
+#endif
+int cli_report(int status, const char *cmd, const char *fmt, ...) CLI_PRINTF(3, 4);
+#define cli_error(cmd, ...) cli_report(2, cmd, __VA_ARGS__)
+#define cli_failure(cmd, ...) cli_report(1, cmd, __VA_ARGS__)
+#define cli_status_error(cmd, st, ...) cli_report((st) == ICS_ERR_NOMEM ? 1 : 2, cmd, __VA_ARGS__)
+#define cli_warning(cmd, ...) ((void)cli_report(0, cmd, "warning: " __VA_ARGS__))
+
 /* Strict number parsing: the whole string must be a number (leading/trailing blanks allowed).
  * Return 0 on success, -1 otherwise. */
 int cli_parse_double(const char *s, double *out);
@@ -56,8 +74,49 @@ int cli_parse_numbers(const char *cmd, const char *opt, const char *spec, const 
  * reports it). */
 int cli_parse_comp(const char *s, int allow_integer, ics_comp_mode *mode);
 
+/* Table-driven options. Each command declares its options as a cli_option table and hands it
+ * with argv to cli_parse_options, which reads argv[first..argc-1] in order: an argument that
+ * is an option's name (or alias) takes the next argument as its value (CLI_FLAG takes none);
+ * an argument that is no option (it does not start with '-', or is "-") goes to the table's
+ * positional entry, the one with name NULL. Every problem is reported with the same wording:
+ *   icshadow CMD: unknown option '--bogus' (see icshadow CMD --help)
+ *   icshadow CMD: unexpected argument 'x' (see icshadow CMD --help)   (no positional entry)
+ *   icshadow CMD: --varx: missing value
+ *   icshadow CMD: --varx: not a number: 'abc'   (and the kinds' messages below)
+ * A value is parsed as soon as it is read, so the first bad argument is the one reported. */
+typedef enum cli_kind {
+  CLI_FLAG,     /* no value: *(int *)dest = 1 */
+  CLI_STRING,   /* *(const char **)dest = the value as given */
+  CLI_FILE,     /* the same, a file name: "OPT: empty file name" when it is empty */
+  CLI_FINITE,   /* *(double *)dest: finite (cli_option_double) */
+  CLI_VARIANCE, /* *(double *)dest: finite and >= 0 (cli_option_double) */
+  CLI_INT,      /* *(int *)dest in lo..hi: "OPT: expected an integer in LO..HI, got 'V'" */
+  CLI_SEED,     /* *(uint64_t *)dest (cli_parse_seed): "OPT: expected " CLI_SEED_RANGE ... */
+  CLI_CALL      /* parse(cmd, opt, value, dest): 0, or the exit status after its message */
+} cli_kind;
+
+typedef struct cli_option {
+  const char *name;  /* "--varx"; NULL: the positional entry (CLI_STRING or CLI_CALL, opt NULL) */
+  const char *alias; /* another spelling ("-o" beside "--output"), or NULL */
+  cli_kind kind;
+  void *dest;
+  long lo, hi; /* CLI_INT: the accepted range */
+  int (*parse)(const char *cmd, const char *opt, const char *value, void *dest); /* CLI_CALL */
+  int *given;  /* optional: counts the times the option (or a positional argument) is given */
+} cli_option;
+
+/* Returns 0, or the exit status (2) after the message on stderr. */
+int cli_parse_options(const char *cmd, int argc, char **argv, int first, const cli_option *opts,
+                      int nopts);
+#define CLI_NOPTS(table) ((int)(sizeof(table) / sizeof(table)[0]))
+
 /* Seconds on the monotonic clock (CLOCK_MONOTONIC), for elapsed times. */
 double cli_now_s(void);
+
+/* splitmix64 (Steele, Lea, Flood 2014) on a caller's state: reproducible benchmark data.
+ * cli_splitmix_unit: uniform in [0, 1) from the top 53 bits of the next word. */
+uint64_t cli_splitmix64(uint64_t *state);
+double cli_splitmix_unit(uint64_t *state);
 
 /* Progress on stderr (docs/architecture.md "Contracts"): shown on a terminal (one line that
  * rewrites itself) or when asked for (--progress: one line per update), silent otherwise. */
@@ -69,8 +128,9 @@ void cli_progress_init(cli_progress *p, const char *who, int forced);
 void cli_progress_say(const cli_progress *p, const char *fmt, ...);
 void cli_progress_done(const cli_progress *p);
 
-/* Flush stdout; on failure print "WHO: cannot write stdout: <reason>" and return 1, else 0. */
-int cli_stdout_failed(const char *who);
+/* Flush stdout; on failure print "icshadow CMD: cannot write stdout: <reason>" (cmd as for
+ * cli_error) and return 1, else 0. */
+int cli_stdout_failed(const char *cmd);
 
 /* True when argv holds -h or --help. */
 int cli_wants_help(int argc, char **argv);
@@ -83,12 +143,13 @@ int cli_wants_help(int argc, char **argv);
  * Writers that need a file name rather than a FILE * write to `write_path`. */
 typedef struct cli_output {
   FILE *fp;
+  const char *cmd;        /* the subcommand, for messages (cli_error) */
   char *tmp_path;         /* the temporary file; NULL for stdout and for in-place targets */
   char *target;           /* owned: where the result ends up (symbolic links resolved) */
   const char *path;       /* as given, for messages */
   const char *write_path; /* where the bytes go now: tmp_path, or the target itself */
 } cli_output;
-int cli_output_open(cli_output *out, const char *path);
+int cli_output_open(cli_output *out, const char *cmd, const char *path);
 int cli_output_commit(cli_output *out); /* 0 on success; reports errors on stderr */
 void cli_output_abort(cli_output *out);
 

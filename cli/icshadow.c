@@ -42,23 +42,21 @@ int main(int argc, char **argv) {
   }
   if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
     usage(stdout);
-    return cli_stdout_failed("icshadow");
+    return cli_stdout_failed(NULL);
   }
   if (!strcmp(argv[1], "--version")) {
     printf("icshadow %s\n", ICS_VERSION_STRING);
-    return cli_stdout_failed("icshadow");
+    return cli_stdout_failed(NULL);
   }
   for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
     if (!strcmp(argv[1], commands[i].name)) {
       int rc = commands[i].run(argc - 1, argv + 1);
       /* a command that succeeded without noticing stdout failed (--help on a full disk or a
        * closed stdout) must not exit 0 */
-      char who[64];
-      snprintf(who, sizeof who, "icshadow %s", commands[i].name);
-      if (rc == 0 && cli_stdout_failed(who)) rc = 1;
+      if (rc == 0 && cli_stdout_failed(commands[i].name)) rc = 1;
       return rc;
     }
-  fprintf(stderr, "icshadow: unknown command '%s'\n", argv[1]);
+  cli_error(NULL, "unknown command '%s'", argv[1]);
   usage(stderr);
   return 2;
 }

@@ -138,7 +138,7 @@ ics_cli_test(NAME cli_fit_light_max_iter RC 0 ARGS "fit-light|${D}/lf_m3.exr|--l
 set_tests_properties(cli_fit_light_max_iter PROPERTIES FIXTURES_REQUIRED lf_m3)
 # --seed beyond 2^64 - 1 is refused (strtoull saturated it silently)
 ics_cli_test(NAME cli_fit_light_seed_overflow RC 2 ARGS "fit-light|${D}/lf_m3.exr|--lights|1|--seed|18446744073709551616|-o|${D}/lf_bad_fit_light_seed_overflow.json"
-  ERR "--seed: expected an integer in 0\\.\\.18446744073709551615" NOFILE ${D}/lf_bad_fit_light_seed_overflow.json)
+  ERR "--seed: expected a non-negative integer in 0\\.\\.18446744073709551615" NOFILE ${D}/lf_bad_fit_light_seed_overflow.json)
 # a failing -o leaves no plane CSV behind (it was committed before -o was opened)
 ics_cli_test(NAME cli_fit_light_plane_no_out RC 1 ARGS "fit-light|${D}/lf_m3.exr|--lights|1|--plane-csv|${D}/lf_plane.csv|-o|${D}/lf_no_such_dir/l.json"
   ERR "cannot create" NOFILE ${D}/lf_plane.csv)

@@ -106,6 +106,53 @@ int main(void) {
     CHECK(ics_envmap_pixel(512, 256, 10, 128, &x, &y, &dw) == -1, "left edge is in front");
   }
 
+  /* 1b. the map on the plane: every pixel of a 3- and a 4-channel map against the cosine-cubed
+   *     law evaluated here from the pixel's direction d (|d| = 1): the plane point is
+   *     (dx, dy) / dz, so 1 + r^2 = 1 / dz^2 and dw/dA = (1 + r^2)^(-3/2) = dz^3; pixels with
+   *     dz <= 0 (in front of the viewer) give -1 and leave rgb untouched */
+  for (int channels = 3; channels <= 4; channels++) {
+    const int W = 96, H = 48;
+    CHECK(ics_image_init(&env, W, H, channels) == ICS_OK, "image");
+    for (int j = 0; j < H; j++)
+      for (int i = 0; i < W; i++)
+        for (int c = 0; c < channels; c++)
+          env.data[((size_t)j * W + i) * channels + c] = (float)(0.25 + i + 100 * j + 1e4 * c);
+    int behind = 0, wrong = 0;
+    double worst = 0;
+    for (int j = 0; j < H; j++)
+      for (int i = 0; i < W; i++) {
+        double th = ICS_PI * (j + 0.5) / H, ph = 2 * ICS_PI * (i + 0.5) / W - ICS_PI;
+        double dx = sin(th) * sin(ph), dy = cos(th), dz = sin(th) * cos(ph);
+        double x = NAN, y = NAN, rgb[3] = {-1, -1, -1};
+        int rc = ics_envmap_plane_density(&env, i, j, &x, &y, rgb);
+        if (!(dz > 0)) {
+          wrong += rc != -1 || rgb[0] != -1 || rgb[1] != -1 || rgb[2] != -1;
+          continue;
+        }
+        behind++;
+        wrong += rc != 0;
+        double e = fmax(fabs(x - dx / dz) / fmax(1, fabs(dx / dz)),
+                        fabs(y - dy / dz) / fmax(1, fabs(dy / dz)));
+        for (int c = 0; c < 3; c++) {
+          double want = env.data[((size_t)j * W + i) * channels + c] * dz * dz * dz;
+          e = fmax(e, fabs(rgb[c] / want - 1));
+        }
+        worst = fmax(worst, e);
+      }
+    CHECK(behind == W * H / 2 && wrong == 0, "%d channels: %d pixels behind (of %d), %d wrong",
+          channels, behind, W * H, wrong);
+    CHECK(worst <= 1e-12, "%d channels: plane point / density off by %.3g (relative)", channels,
+          worst);
+    double rgb[3];
+    CHECK(ics_envmap_plane_density(&env, W, 0, NULL, NULL, rgb) == -1 &&
+              ics_envmap_plane_density(&env, W / 2, -1, NULL, NULL, rgb) == -1 &&
+              ics_envmap_plane_density(NULL, W / 2, H / 2, NULL, NULL, rgb) == -1 &&
+              ics_envmap_plane_density(&env, W / 2, H / 2, NULL, NULL, NULL) == -1,
+          "bad arguments refused");
+    CHECK(ics_envmap_plane_density(&env, W / 2, H / 2, NULL, NULL, rgb) == 0, "x, y may be NULL");
+    ics_image_free(&env);
+  }
+
   /* 2. three anisotropic lights (cf. Patel Fig. 14: a low-variance green, a broad red, a thin
    *    blue one rotated 70 degrees clockwise) are recovered */
   const ics_light truth[3] = {

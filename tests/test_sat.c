@@ -23,15 +23,10 @@
 #include "icshadow.h"
 #include "testutil.h"
 
-static uint64_t rs = 0x1234567;
-static uint64_t rnd(void) { /* splitmix64 */
-  uint64_t z = (rs += 0x9e3779b97f4a7c15ull);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-static double unit(void) { return (double)(rnd() >> 11) * 0x1p-53; }
-static long irand(long n) { return (long)(rnd() % (uint64_t)n); }
+/* testutil.h's splitmix64, from this file's own seed (set at the start of main) */
+#define TEST_SAT_SEED 0x1234567
+static double unit(void) { return test_rng_unit(); }
+static long irand(long n) { return (long)(test_rng_u64() % (uint64_t)n); }
 
 static const ics_sat_precision modes[4] = {ICS_SAT_FLOAT, ICS_SAT_FLOAT_OFFSET,
                                            ICS_SAT_COMPENSATED, ICS_SAT_DOUBLE};
@@ -851,6 +846,7 @@ static void test_ssat_pole(void) {
 }
 
 int main(void) {
+  test_rng_state = TEST_SAT_SEED;
   test_exact_small();
   test_bounds(2);
   test_bounds(3);

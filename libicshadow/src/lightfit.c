@@ -69,6 +69,21 @@ int ics_envmap_pixel(int width, int height, int i, int j, double *x, double *y, 
   return 0;
 }
 
+int ics_envmap_plane_density(const ics_image *env, int i, int j, double *x, double *y,
+                             double rgb[3]) {
+  if (!env || !env->data || !rgb || (env->channels != 3 && env->channels != 4) || i < 0 ||
+      i >= env->width || j < 0 || j >= env->height)
+    return -1;
+  double px, py;
+  if (ics_envmap_pixel(env->width, env->height, i, j, &px, &py, NULL)) return -1;
+  double dw_da = pow(1 + px * px + py * py, -1.5);
+  const float *c = env->data + ((size_t)j * env->width + i) * env->channels;
+  for (int k = 0; k < 3; k++) rgb[k] = c[k] * dw_da;
+  if (x) *x = px;
+  if (y) *y = py;
+  return 0;
+}
+
 /* the smallest dz = sin(theta) cos(phi) over pixel (i, j): a product of two functions that are
  * positive and unimodal on the pixel when the pixel is behind the viewer, so its minimum is at
  * the corner farthest from the equator and from phi = 0 */

@@ -127,6 +127,14 @@ int ics_envmap_pixel(int width, int height, int i, int j, double *x, double *y, 
  * 0 otherwise (also for bad arguments). */
 int ics_envmap_pixel_kept(int width, int height, int i, int j, double max_angle_deg);
 
+/* The map projected onto the light plane at pixel (i, j) of env (3 or 4 channels; alpha
+ * ignored): the plane point (x, y) of the pixel centre (as ics_envmap_pixel) and, per colour
+ * channel, the light density l = L dw/dA = L (1 + x^2 + y^2)^(-3/2) of the pixel's radiance L
+ * in rgb. Returns 0 when the centre is behind the viewer (dz > 0), -1 otherwise or for bad
+ * arguments (then nothing is written). x or y may be NULL. */
+int ics_envmap_plane_density(const ics_image *env, int i, int j, double *x, double *y,
+                             double rgb[3]);
+
 #ifdef __cplusplus
 }
 #endif
