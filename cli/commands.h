@@ -19,6 +19,8 @@ int cmd_iterate(int argc, char **argv);
 int cmd_kernel_table(int argc, char **argv);
 int cmd_make_env(int argc, char **argv);
 int cmd_fit_light(int argc, char **argv);
+int cmd_render(int argc, char **argv);
+int cmd_plan(int argc, char **argv);
 
 /* `icshadow bench KIND`: one function per peer primitive (bench_<kind>.c), argv[0] = KIND. */
 int bench_sat2d(int argc, char **argv);

@@ -24,6 +24,8 @@ static const struct {
     {"bench", cmd_bench, "benchmark a peer primitive (sat2d, sat3d, minmax, occtex): CSV"},
     {"make-env", cmd_make_env, "draw Gaussian lights into a lat-long OpenEXR environment map"},
     {"fit-light", cmd_fit_light, "fit K Gaussian lights to an OpenEXR environment map (JSON + CSV)"},
+    {"render", cmd_render, "render a scene with the slab renderer (the default scene without SCENE)"},
+    {"plan", cmd_plan, "print a scene's render plan: passes, bytes, what is left out and why (JSON)"},
 };
 
 static void usage(FILE *f) {

@@ -10,8 +10,8 @@
 
 #include "commands.h"
 
-#ifdef ICS_HAVE_JANSSON
-#include <jansson.h>
+#ifdef ICS_HAVE_RENDER
+#include "icshadow/lightsfile.h"
 #endif
 
 static void seterr(char *err, size_t n, const char *fmt, ...) {
@@ -121,167 +121,15 @@ fail:
   return -1;
 }
 
-#ifdef ICS_HAVE_JANSSON
-/* a JSON array of exactly `len` numbers */
-static int numbers(json_t *a, size_t len, double *v) {
-  if (!json_is_array(a) || json_array_size(a) != len) return -1;
-  for (size_t i = 0; i < len; i++) {
-    json_t *x = json_array_get(a, i);
-    if (!json_is_number(x)) return -1;
-    v[i] = json_number_value(x);
-  }
-  return 0;
-}
-#endif
-
 int lights_read_file(const char *path, ics_light **out, int *n, char *err, size_t errlen) {
+#ifdef ICS_HAVE_RENDER
+  return ics_lightsfile_read(path, out, n, err, errlen) == ICS_OK ? 0 : -1;
+#else
   *out = NULL;
   *n = 0;
-#ifndef ICS_HAVE_JANSSON
   seterr(err, errlen, "%s: reading lights files needs jansson, which was not found when icshadow "
          "was built (install libjansson-dev and rebuild); SPEC strings still work", path);
   return -2;
-#else
-  json_error_t je;
-  json_t *root = json_load_file(path, JSON_REJECT_DUPLICATES, &je);
-  if (!root) {
-    seterr(err, errlen, "%s:%d:%d: %s", path, je.line, je.column, je.text);
-    return -1;
-  }
-  ics_light *l = NULL;
-  json_t *arr = json_is_object(root) ? json_object_get(root, "lights") : NULL;
-  if (!json_is_array(arr)) {
-    seterr(err, errlen, "%s: expected an object with a \"lights\" array", path);
-    goto fail;
-  }
-  {
-    const char *key;
-    json_t *val;
-    json_object_foreach(root, key, val) {
-      if (strcmp(key, "lights")) {
-        seterr(err, errlen, "%s: unknown key \"%s\" at the top level (expected only \"lights\")",
-               path, key);
-        goto fail;
-      }
-    }
-  }
-  size_t cnt = json_array_size(arr);
-  if (cnt == 0 || cnt > 4096) {
-    seterr(err, errlen, "%s: \"lights\" must hold 1..4096 lights, not %zu", path, cnt);
-    goto fail;
-  }
-  l = calloc(cnt, sizeof *l);
-  if (!l) {
-    seterr(err, errlen, "out of memory");
-    goto fail;
-  }
-  for (size_t k = 0; k < cnt; k++) {
-    json_t *o = json_array_get(arr, k), *x;
-    char where[CLI_MSG_MAX / 2]; /* the path and "lights[k]", never truncated short of PATH_MAX */
-    snprintf(where, sizeof where, "%s: lights[%zu]", path, k);
-    double v[4];
-    if (!json_is_object(o)) {
-      seterr(err, errlen, "%s: expected an object", where);
-      goto fail;
-    }
-    {
-      static const char *const known[] = {"mean", "tilt_deg", "cov", "var", "angle_deg", "color",
-                                          "weight"};
-      const char *key;
-      json_t *val;
-      json_object_foreach(o, key, val) {
-        size_t q = 0;
-        while (q < sizeof known / sizeof *known && strcmp(key, known[q])) q++;
-        if (q == sizeof known / sizeof *known) {
-          seterr(err, errlen, "%s: unknown key \"%s\" (expected mean or tilt_deg, cov or var "
-                 "[+ angle_deg], color, weight)", where, key);
-          goto fail;
-        }
-      }
-    }
-    if (json_object_get(o, "mean") && json_object_get(o, "tilt_deg")) {
-      seterr(err, errlen, "%s: both \"mean\" and \"tilt_deg\": give one", where);
-      goto fail;
-    }
-    if (json_object_get(o, "cov") &&
-        (json_object_get(o, "var") || json_object_get(o, "angle_deg"))) {
-      seterr(err, errlen, "%s: both \"cov\" and \"%s\": give cov, or var [+ angle_deg]", where,
-             json_object_get(o, "var") ? "var" : "angle_deg");
-      goto fail;
-    }
-    if (json_object_get(o, "angle_deg") && !json_object_get(o, "var")) {
-      seterr(err, errlen, "%s: \"angle_deg\" without \"var\"", where);
-      goto fail;
-    }
-    if ((x = json_object_get(o, "mean"))) {
-      if (numbers(x, 2, l[k].mean)) {
-        seterr(err, errlen, "%s.mean: expected [mx, my]", where);
-        goto fail;
-      }
-    } else if ((x = json_object_get(o, "tilt_deg"))) {
-      if (numbers(x, 2, v) || !(fabs(v[0]) < 90) || !(fabs(v[1]) < 90)) {
-        seterr(err, errlen, "%s.tilt_deg: expected [wx, wy] in degrees, |w| < 90", where);
-        goto fail;
-      }
-      l[k].mean[0] = ics_tan_deg(v[0]);
-      l[k].mean[1] = ics_tan_deg(v[1]);
-    } else {
-      seterr(err, errlen, "%s: needs \"mean\" or \"tilt_deg\"", where);
-      goto fail;
-    }
-    if ((x = json_object_get(o, "cov"))) {
-      double r0[2], r1[2];
-      if (!json_is_array(x) || json_array_size(x) != 2 || numbers(json_array_get(x, 0), 2, r0) ||
-          numbers(json_array_get(x, 1), 2, r1)) {
-        seterr(err, errlen, "%s.cov: expected [[cxx, cxy], [cxy, cyy]]", where);
-        goto fail;
-      }
-      if (r0[1] != r1[0]) {
-        seterr(err, errlen, "%s.cov: not symmetric (%.17g vs %.17g)", where, r0[1], r1[0]);
-        goto fail;
-      }
-      l[k].cov[0] = r0[0];
-      l[k].cov[1] = r0[1];
-      l[k].cov[2] = r1[1];
-    } else if ((x = json_object_get(o, "var"))) {
-      double a = 0;
-      json_t *ang = json_object_get(o, "angle_deg");
-      if (ang && !json_is_number(ang)) {
-        seterr(err, errlen, "%s.angle_deg: expected a number", where);
-        goto fail;
-      }
-      if (ang) a = json_number_value(ang);
-      if (numbers(x, 2, v) || ics_cov_from_eig(v[0], v[1], a, l[k].cov) != ICS_OK) {
-        seterr(err, errlen, "%s.var: expected [varx, vary], finite and >= 0", where);
-        goto fail;
-      }
-    } else {
-      seterr(err, errlen, "%s: needs \"cov\" or \"var\"", where);
-      goto fail;
-    }
-    l[k].color[0] = l[k].color[1] = l[k].color[2] = 1;
-    if ((x = json_object_get(o, "color")) && numbers(x, 3, l[k].color)) {
-      seterr(err, errlen, "%s.color: expected [r, g, b]", where);
-      goto fail;
-    }
-    l[k].weight = 1;
-    if ((x = json_object_get(o, "weight"))) {
-      if (!json_is_number(x)) {
-        seterr(err, errlen, "%s.weight: expected a number", where);
-        goto fail;
-      }
-      l[k].weight = json_number_value(x);
-    }
-    if (check_light(&l[k], err, errlen, where)) goto fail;
-  }
-  json_decref(root);
-  *out = l;
-  *n = (int)cnt;
-  return 0;
-fail:
-  free(l);
-  json_decref(root);
-  return -1;
 #endif
 }
 

@@ -1,7 +1,7 @@
 /* lightsfile.h — the lights file (JSON: docs/lights_format.md; frames in docs/architecture.md
  * "Frames and file formats") and the lights SPEC strings of the CLI. Writing needs no library;
- * reading a file uses jansson (line/column in error messages) when the CLI was built with it
- * (ICS_HAVE_JANSSON). */
+ * reading a file is libicshadow_render's ics_lightsfile_read (jansson: line/column in error
+ * messages), present when the CLI was built with the renderer (ICS_HAVE_RENDER). */
 #ifndef ICS_CLI_LIGHTSFILE_H
 #define ICS_CLI_LIGHTSFILE_H
 

@@ -11,3 +11,13 @@ endfunction()
 ics_add_render_test(test_render_scene fast)
 ics_add_test(NAME test_render_disk SOURCES test_render_disk.c LABELS fast render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/scenes/disk.json)
+ics_add_render_test(test_render_volume fast)
+ics_add_test(NAME test_render_repro SOURCES test_render_repro.c LABELS fast render
+  LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/scenes/disk.json)
+ics_add_render_test(test_render_plan medium)
+ics_add_render_test(test_render_propagate fast)
+ics_add_test(NAME test_render_geometry SOURCES test_render_geometry.c LABELS fast render
+  LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/tests/data)
+if(TARGET test_render_geometry)
+  target_include_directories(test_render_geometry PRIVATE ${CMAKE_SOURCE_DIR}/gpu/src)
+endif()

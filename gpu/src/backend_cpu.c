@@ -122,9 +122,10 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
   for (int l = 0; l < P->nlights; l++) {
     double pass[3] = {1, 1, 1};
     for (int i = 0; i < nv; i++) {
+      /* a volume's transport colour scales its extinction for the light, per channel, so the
+       * pieces of any slab spacing multiply to the same transmittance */
       const double *T = s->materials[s->objects[objs[i]].material].transport;
-      double aL = 1 - exp(-sig[i] * dz * P->light_path[l]);
-      for (int c = 0; c < P->nch; c++) pass[c] *= 1 - aL * (1 - T[c]);
+      for (int c = 0; c < P->nch; c++) pass[c] *= exp(-sig[i] * dz * P->light_path[l] * (1 - T[c]));
     }
     for (int c = 0; c < P->nch; c++) j->dst[l][(size_t)c * plane + p] *= (float)pass[c];
   }

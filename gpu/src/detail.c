@@ -14,7 +14,7 @@
 #include <string.h>
 
 #include "icshadow/rng.h"
-#include "icshadow/sat.h" /* ics_volume (moves to icshadow/volume.h) */
+#include "icshadow/volume.h"
 
 static double fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
 static double lerp(double t, double a, double b) { return a + t * (b - a); }

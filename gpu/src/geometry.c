@@ -109,7 +109,9 @@ static int torus_hits(const ics_object *o, const double q0[3], const double e0[3
   if (!(len > 0)) return 0;
   double d[3] = {e0[0] / len, e0[1] / len, e0[2] / len};
   /* bounding sphere chord */
-  double A = dot3(q0, d), qq = dot3(q0, q0), rad = R + r;
+  /* the bounding sphere, slightly inflated so that its chord ends strictly outside the torus
+   * (a ray through the ring's outer rim would otherwise start on a root) */
+  double A = dot3(q0, d), qq = dot3(q0, q0), rad = (R + r) * (1 + 1e-6);
   double disc = A * A - (qq - rad * rad);
   if (!(disc > 0)) return 0;
   double sq = sqrt(disc), sa = -A - sq, sb = -A + sq;

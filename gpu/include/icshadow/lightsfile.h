@@ -1,4 +1,4 @@
-/* icshadow/lightsfile.h — the lights file (JSON; docs/lights_format.md), written by
+/* icshadow/lightsfile.h — reading the lights file (JSON; docs/lights_format.md), written by
  * `icshadow fit-light` and read by scenes ("lights_file") and the CLI (libicshadow_render: it
  * uses jansson, which gives line and column in syntax errors).
  *
@@ -11,7 +11,6 @@
 #define ICSHADOW_LIGHTSFILE_H
 
 #include <stddef.h>
-#include <stdio.h>
 
 #include "icshadow/api.h"
 #include "icshadow/light.h"
@@ -25,14 +24,10 @@ extern "C" {
 
 /* Reads a lights file. On success *out is malloc'ed (free() it) with *n lights. On failure *out
  * is NULL and msg holds "PATH:LINE:COLUMN: reason" (JSON syntax) or "PATH: lights[i].field:
- * reason": ICS_ERR_IO (cannot open), ICS_ERR_PARSE (syntax, shape, unknown or conflicting keys),
- * ICS_ERR_RANGE (values), ICS_ERR_NOMEM. */
+ * reason": ICS_ERR_IO (cannot open), ICS_ERR_PARSE (syntax, shape, unknown or conflicting keys,
+ * values out of range), ICS_ERR_NOMEM. */
 ICS_API ics_status ics_lightsfile_read(const char *path, ics_light **out, int *n, char *msg,
                                        size_t msg_size);
-
-/* Writes the canonical form with %.17g numbers, one light per line. ICS_ERR_IO on a write
- * error. */
-ICS_API ics_status ics_lightsfile_write(FILE *f, const ics_light *l, int n);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,120 @@
+/* scene_args.c — the SCENE argument and the render-setting overrides of `render` and `plan`
+ * (see scene_args.h). */
+#include "scene_args.h"
+
+#ifdef ICS_HAVE_RENDER
+#include <stdio.h>
+#include <string.h>
+
+/* --resolution WxH, W and H in 1..ICS_SCENE_MAX_RES */
+static int parse_res(const char *cmd, const char *opt, const char *v, void *dest) {
+  int *wh = dest;
+  char bw[32], bh[32];
+  if (sscanf(v, "%31[0-9]x%31[0-9]", bw, bh) != 2 || strlen(v) != strlen(bw) + strlen(bh) + 1 ||
+      cli_parse_int(bw, 1, ICS_SCENE_MAX_RES, &wh[0]) ||
+      cli_parse_int(bh, 1, ICS_SCENE_MAX_RES, &wh[1]))
+    return cli_error(cmd, "%s: expected WxH with W, H in 1..%d, got '%s'", opt, ICS_SCENE_MAX_RES,
+                     v);
+  return 0;
+}
+
+void scene_args_options(scene_args *a, cli_option *o) {
+  const cli_option opts[SCENE_ARGS_NOPTS] = {
+      {NULL, .kind = CLI_STRING, .dest = &a->scene},
+      {"--resolution", .kind = CLI_CALL, .dest = a->res, .parse = parse_res},
+      {"--kernel", .kind = CLI_STRING, .dest = &a->kernel},
+      {"--samples", .kind = CLI_INT, .dest = &a->samples, .lo = 2, .hi = 64, .given = &a->have_samples},
+      {"--compensate", .kind = CLI_STRING, .dest = &a->compensate},
+      {"--radii", .kind = CLI_STRING, .dest = &a->radii},
+      {"--slab-spacing", .kind = CLI_FINITE, .dest = &a->slab_spacing, .given = &a->have_slab},
+      {"--d1", .kind = CLI_FINITE, .dest = &a->d1, .given = &a->have_d1},
+      {"--seed", .kind = CLI_SEED, .dest = &a->seed, .given = &a->have_seed},
+      {"--threads", .kind = CLI_INT, .dest = &a->threads, .lo = 0, .hi = 256},
+  };
+  memcpy(o, opts, sizeof opts);
+}
+
+void scene_args_help(FILE *f) {
+  fprintf(f,
+          "  SCENE               a scene file (JSON, docs/scene-format.md); none: the embedded\n"
+          "                      default scene\n"
+          "  --resolution WxH    override the camera's resolution\n"
+          "  --kernel K          ellipse, poisson, gauss or tophat (override render.kernel)\n"
+          "  --samples N         taps (ellipse, poisson) or grid side (gauss, tophat), 2..64\n"
+          "  --compensate MODE   expected, integer, nonneg, signed or none (docs/renderer.md)\n"
+          "  --radii exact|lut   ellipse radii from the elliptic integrals or the 256-entry LUT\n"
+          "  --slab-spacing E    slab spacing in world units (> 0)\n"
+          "  --d1 D              Patel's optimal distance (> 0)\n"
+          "  --seed S            counter-RNG seed (same seed: same image)\n"
+          "  --threads N         threads (0, the default: all cores)\n");
+}
+
+static int pick(const char *cmd, const char *opt, const char *v, const char *(*name)(int), int lo,
+                int hi, int *out) {
+  for (int i = lo; i < hi; i++)
+    if (name(i) && !strcmp(v, name(i))) {
+      *out = i;
+      return 0;
+    }
+  char list[256] = "";
+  size_t n = 0;
+  for (int i = lo; i < hi && n < sizeof list; i++)
+    n += (size_t)snprintf(list + n, sizeof list - n, "%s%s", i > lo ? ", " : "", name(i));
+  return cli_error(cmd, "%s: unknown value '%s' (expected %s)", opt, v, list);
+}
+
+static const char *kernel_name(int i) { return ics_render_kernel_name((ics_render_kernel)i); }
+static const char *comp_name(int i) { return ics_render_comp_name((ics_render_comp)i); }
+static const char *radii_name(int i) { return i == 0 ? "exact" : i == 1 ? "lut" : NULL; }
+
+int scene_args_load(const char *cmd, const scene_args *a, ics_scene **s, ics_render_settings *rs,
+                    ics_plan_opts *po) {
+  char msg[CLI_MSG_MAX];
+  ics_status st = a->scene ? ics_scene_create_file(s, a->scene, msg, sizeof msg)
+                           : ics_scene_create_default(s);
+  if (st != ICS_OK)
+    return st == ICS_ERR_NOMEM ? cli_failure(cmd, "%s", a->scene ? msg : "out of memory")
+                               : cli_error(cmd, "%s", a->scene ? msg : ics_status_str(st));
+  *rs = *ics_scene_settings(*s);
+  int v = 0, rc = 0;
+  if (a->kernel && !(rc = pick(cmd, "--kernel", a->kernel, kernel_name, 0, ICS_RK_COUNT_, &v))) {
+    rs->kernel = (ics_render_kernel)v;
+    if (!a->have_samples) {
+      static const int dflt[] = {2, 8, 19, 5};
+      rs->samples = dflt[v];
+    }
+  }
+  if (!rc && a->have_samples) {
+    static const int lo[] = {2, 3, 2, 2};
+    if (a->samples < lo[rs->kernel])
+      rc = cli_error(cmd, "--samples: %d is too few for %s (at least %d)", a->samples,
+                     ics_render_kernel_name(rs->kernel), lo[rs->kernel]);
+    rs->samples = a->samples;
+  }
+  if (!rc && a->compensate &&
+      !(rc = pick(cmd, "--compensate", a->compensate, comp_name, 1, ICS_RC_COUNT_, &v)))
+    rs->compensate = (ics_render_comp)v;
+  if (!rc && a->radii && !(rc = pick(cmd, "--radii", a->radii, radii_name, 0, 2, &v)))
+    rs->lut_radii = v;
+  if (!rc && a->have_slab) {
+    if (!(a->slab_spacing > 0)) rc = cli_error(cmd, "--slab-spacing: must be > 0, got %g", a->slab_spacing);
+    rs->slab_spacing = a->slab_spacing;
+  }
+  if (!rc && a->have_d1) {
+    if (!(a->d1 > 0)) rc = cli_error(cmd, "--d1: must be > 0, got %g", a->d1);
+    rs->d1 = a->d1;
+  }
+  if (a->have_seed) rs->seed = a->seed;
+  if (rc) {
+    ics_scene_destroy(*s);
+    *s = NULL;
+    return rc;
+  }
+  memset(po, 0, sizeof *po);
+  po->settings = rs;
+  po->width = a->res[0];
+  po->height = a->res[1];
+  po->threads = a->threads;
+  return 0;
+}
+#endif

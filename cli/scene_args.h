@@ -1,0 +1,38 @@
+/* scene_args.h — what `icshadow render` and `icshadow plan` share: the SCENE argument (a file,
+ * or the embedded default scene when none is given) and the options that override the scene's
+ * render settings and resolution, turned into a scene, settings and plan options. */
+#ifndef ICS_CLI_SCENE_ARGS_H
+#define ICS_CLI_SCENE_ARGS_H
+
+#include <stdint.h>
+
+#include "commands.h"
+
+#ifdef ICS_HAVE_RENDER
+#include "icshadow/render.h"
+
+typedef struct scene_args {
+  const char *scene; /* NULL: the default scene */
+  int res[2];        /* --resolution WxH (0: the scene's) */
+  const char *kernel, *compensate, *radii;
+  int samples;
+  double slab_spacing, d1;
+  uint64_t seed;
+  int have_seed, have_slab, have_d1, have_samples;
+  int threads;       /* --threads (0: all cores) */
+} scene_args;
+
+#define SCENE_ARGS_NOPTS 10
+/* Writes the shared option entries into opts[0 .. SCENE_ARGS_NOPTS - 1]. */
+void scene_args_options(scene_args *a, cli_option *opts);
+
+/* Reads the scene and applies the overrides into *rs and *po (po->settings points at rs).
+ * Returns 0, or the exit status after the message. On success *s must be destroyed. */
+int scene_args_load(const char *cmd, const scene_args *a, ics_scene **s, ics_render_settings *rs,
+                    ics_plan_opts *po);
+
+/* The shared lines of --help. */
+void scene_args_help(FILE *f);
+#endif
+
+#endif
