@@ -20,7 +20,8 @@ configure:
 # `make test` runs after scripts/deps.sh has installed every component, so a missing one is a
 # configuration error there, never a silently skipped test.
 ENFORCE = -DICS_ENFORCE_MPFR=ON -DICS_ENFORCE_OPENCL=ON -DICS_ENFORCE_OPENEXR=ON \
-          -DICS_ENFORCE_JANSSON=ON -DICS_ENFORCE_GLSLANG=ON
+          -DICS_ENFORCE_JANSSON=ON -DICS_ENFORCE_GLSLANG=ON -DICS_ENFORCE_PNG=ON \
+          -DICS_ENFORCE_ASSIMP=ON
 
 # Release build: fast + medium labels; then the same fast tests under ASan+UBSan.
 test: deps
@@ -34,12 +35,19 @@ test-asan:
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	cd $(ASAN_BUILD) && ctest --output-on-failure -L 'fast' -j $(JOBS)
 
-# The main job on embedded defaults (no input files): LUT report and header, the elliptical
-# kernel of a light, CLT convergence of the Dirac kernel, isolines correct vs iterative, and an
-# environment map of three Fig. 14-like lights fitted back to Gaussian lights.
+# The main job on embedded defaults (no input files): the default scene rendered with the slab
+# renderer (its plan, the image as EXR + PNG, the time per pass), then the numerics behind it:
+# LUT report and header, the elliptical kernel of a light, CLT convergence of the Dirac kernel,
+# isolines correct vs iterative, and an environment map of three Fig. 14-like lights fitted back
+# to Gaussian lights.
 DEMO_LIGHTS = -0.55,0.35,0.08,0.08,0,1,0.2,1,0.2:0.6,0.3,0.32,0.32,0,2,1,0.2,0.1:0.05,-0.6,0.3,0.002,-70,1,0.15,0.25,1
 demo: deps all
 	@mkdir -p out
+	@echo "== the default scene: its render plan (icshadow plan), then the render (icshadow render)"
+	$(BUILD)/bin/icshadow plan -o out/default_plan.json
+	@echo "wrote out/default_plan.json"
+	$(BUILD)/bin/icshadow render -o out/default.exr --png out/default.png
+	@echo "wrote out/default.exr and out/default.png"
 	@echo "== lookup-table error against size and evaluation time (icshadow lut --report)"
 	$(BUILD)/bin/icshadow lut --report
 	@echo "== example GLSL header (icshadow lut --size 64 --lang glsl)"

@@ -1,5 +1,5 @@
 /* cmd_bench.c — `icshadow bench KIND [options]`: dispatches to the benchmark of one peer
- * primitive (bench_<kind>.c). Each prints one CSV line per configuration. */
+ * primitive or of the slab renderer's propagation (bench_<kind>.c). Each prints one CSV line per configuration. */
 #include <stdio.h>
 #include <string.h>
 
@@ -14,6 +14,7 @@ static const struct {
     {"sat3d", bench_sat3d, "3D summed-area table: time, bytes, fraction of the memcpy floor"},
     {"minmax", bench_minmax, "1D min-max mipmap traversal vs brute-force ray marching"},
     {"occtex", bench_occtex, "occlusion textures: prefilters and combinations vs brute force"},
+    {"slab", bench_slab, "light-buffer propagation per kernel member and backend vs the memcpy floor"},
 };
 
 static void help(FILE *f) {

@@ -1,0 +1,252 @@
+/* bench_slab.c — `icshadow bench slab [options]`: the propagation of one light buffer through
+ * the slabs, for each kernel member, sizes, thread counts and backends, as CSV. Each run renders,
+ * through the public renderer API, a scene made for it: an edge occluder in the first slab and a
+ * receiver after `slabs` slabs, world units = pixels (so the per-slab kernel class is the given
+ * mean and covariance in pixels), no padding. The time per pixel per slab is the renderer's own
+ * convolution time (stats.ms_convolution) over (buffer pixels x slabs); the memcpy floor is the
+ * time to copy a buffer of the same size, measured between the repetitions of the same run
+ * (interleaved, so both see the same machine); error is the largest deviation of the receiver
+ * from the exact propagation of the edge, Phi((x - n m_x) / sqrt(n C_xx + 1/12)) (the class's
+ * CLT limit after n slabs; 1/12: the point-sampled edge). Median over --reps repetitions with
+ * min and max; a warning on stderr when the spread says the machine was busy. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "commands.h"
+
+static const char CMD[] = "bench slab";
+
+#ifdef ICS_HAVE_RENDER
+#include "icshadow/render.h"
+
+typedef struct {
+  const char *label;
+  const char *kernel;
+  int samples;
+  const char *comp;
+} member_t;
+
+static const member_t members[] = {
+    {"ellipse2", "ellipse", 2, "expected"}, {"ellipse3", "ellipse", 3, "expected"},
+    {"poisson8", "poisson", 8, "expected"}, {"poisson16", "poisson", 16, "expected"},
+    {"gauss19", "gauss", 19, "nonneg"},     {"tophat5", "tophat", 5, "nonneg"},
+    {"ellipse2-signed", "ellipse", 2, "signed"}, {"integer", "gauss", 3, "integer"},
+};
+#define NMEMBERS ((int)(sizeof members / sizeof *members))
+#endif
+
+static void help(FILE *f) {
+  fprintf(f,
+          "usage: icshadow bench slab [--sizes N,N,...] [--slabs K] [--threads T,T,...]\n"
+          "       [--kernels K,K,...] [--backend B] [--cov CXX,CXY,CYY] [--mean MX,MY] [--reps R]\n"
+          "Light-buffer propagation through K slabs per kernel member, side by side with the\n"
+          "memcpy floor measured between the repetitions, as CSV:\n"
+          "  backend,kernel,samples,mode,width,height,slabs,threads,ns_per_px_slab,ns_min,ns_max,\n"
+          "  floor_ns_per_px,floor_ratio,error,reps\n"
+          "(floor_ratio = floor / ns: 1 would be memory speed; error: max deviation of the\n"
+          "propagated edge from the class's exact limit).\n\n"
+          "options:\n"
+          "  --sizes N,...     square buffer sides (default 512,768; 16..4096)\n"
+          "  --slabs K         slabs (default 256; 1..4096)\n"
+          "  --threads T,...   thread counts (default 1,2)\n"
+          "  --kernels K,...   members (default all): ellipse2 ellipse3 poisson8 poisson16 gauss19\n"
+          "                    tophat5 ellipse2-signed integer\n"
+          "  --backend B       cpu (default) or another backend of `icshadow render --backends`\n"
+          "  --cov C,C,C       per-slab covariance in px^2 (default 2,0.5,1)\n"
+          "  --mean MX,MY      per-slab mean in px (default 0.3,-0.2)\n"
+          "  --reps R          repetitions, median reported (default 3; 1..50)\n"
+          "  --progress        progress on stderr even when it is not a terminal\n");
+}
+
+#ifdef ICS_HAVE_RENDER
+static int parse_list(const char *cmd, const char *opt, const char *v, int lo, int hi, int *out,
+                      int max) {
+  int n = 0;
+  const char *p = v;
+  while (*p) {
+    char buf[32];
+    size_t len = strcspn(p, ",");
+    if (len == 0 || len >= sizeof buf || n == max)
+      return cli_error(cmd, "%s: expected up to %d comma-separated integers, got '%s'", opt, max, v), -1;
+    memcpy(buf, p, len);
+    buf[len] = 0;
+    if (cli_parse_int(buf, lo, hi, &out[n]))
+      return cli_error(cmd, "%s: expected integers in %d..%d, got '%s'", opt, lo, hi, buf), -1;
+    n++;
+    p += len;
+    if (*p == ',') p++;
+  }
+  return n;
+}
+
+static double now_floor_ns(size_t npx, int slabs, float *a, float *b) {
+  double t0 = cli_now_s();
+  for (int k = 0; k < slabs; k++) {
+    memcpy(b, a, npx * sizeof *a);
+    float *t = a;
+    a = b, b = t;
+  }
+  return 1e9 * (cli_now_s() - t0) / ((double)npx * slabs);
+}
+
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+#endif
+
+int bench_slab(int argc, char **argv) {
+  if (cli_wants_help(argc, argv)) {
+    help(stdout);
+    return 0;
+  }
+#ifndef ICS_HAVE_RENDER
+  (void)argc, (void)argv;
+  return cli_failure(CMD, "the renderer was not built (it needs jansson)");
+#else
+  const char *sizes_s = "512,768", *threads_s = "1,2", *kernels_s = NULL, *backend = "cpu";
+  const char *cov_s = "2,0.5,1", *mean_s = "0.3,-0.2";
+  int slabs = 256, reps = 3, force = 0;
+  const cli_option opts[] = {
+      {"--sizes", .kind = CLI_STRING, .dest = &sizes_s},
+      {"--slabs", .kind = CLI_INT, .dest = &slabs, .lo = 1, .hi = 4096},
+      {"--threads", .kind = CLI_STRING, .dest = &threads_s},
+      {"--kernels", .kind = CLI_STRING, .dest = &kernels_s},
+      {"--backend", .kind = CLI_STRING, .dest = &backend},
+      {"--cov", .kind = CLI_STRING, .dest = &cov_s},
+      {"--mean", .kind = CLI_STRING, .dest = &mean_s},
+      {"--reps", .kind = CLI_INT, .dest = &reps, .lo = 1, .hi = 50},
+      {"--progress", .kind = CLI_FLAG, .dest = &force},
+  };
+  int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
+  if (rc) return rc;
+  int sizes[8], threads[8], ns, nt;
+  if ((ns = parse_list(CMD, "--sizes", sizes_s, 16, 4096, sizes, 8)) < 0) return 2;
+  if ((nt = parse_list(CMD, "--threads", threads_s, 1, 256, threads, 8)) < 0) return 2;
+  double cov[3], mean[2];
+  if (cli_parse_numbers(CMD, "--cov", cov_s, cov_s, NULL, 3, cov) ||
+      cli_parse_numbers(CMD, "--mean", mean_s, mean_s, NULL, 2, mean))
+    return 2;
+  if (cov[0] < 0 || cov[2] < 0 || cov[0] * cov[2] < cov[1] * cov[1])
+    return cli_error(CMD, "--cov: not positive semidefinite: %s", cov_s);
+  int use[NMEMBERS], nuse = 0;
+  if (kernels_s) {
+    const char *p = kernels_s;
+    while (*p) {
+      size_t len = strcspn(p, ",");
+      int k = -1;
+      for (int i = 0; i < NMEMBERS; i++)
+        if (strlen(members[i].label) == len && !strncmp(p, members[i].label, len)) k = i;
+      if (k < 0 || nuse == NMEMBERS)
+        return cli_error(CMD, "--kernels: unknown member '%.*s' (see --help)", (int)len, p);
+      use[nuse++] = k;
+      p += len;
+      if (*p == ',') p++;
+    }
+  } else {
+    for (int i = 0; i < NMEMBERS; i++) use[nuse++] = i;
+  }
+  char why[256];
+  if (!ics_backend_available(backend, why, sizeof why)) return cli_error(CMD, "--backend: %s", why);
+  cli_progress prog;
+  cli_progress_init(&prog, "bench slab", force);
+  printf("backend,kernel,samples,mode,width,height,slabs,threads,ns_per_px_slab,ns_min,ns_max,"
+         "floor_ns_per_px,floor_ratio,error,reps\n");
+  int busy = 0;
+  for (int si = 0; si < ns; si++) {
+    int n = sizes[si];
+    size_t npx = (size_t)n * n;
+    float *fa = malloc(npx * sizeof *fa), *fb = malloc(npx * sizeof *fb);
+    if (!fa || !fb) {
+      free(fa), free(fb);
+      return cli_failure(CMD, "out of memory for %dx%d buffers", n, n);
+    }
+    for (size_t i = 0; i < npx; i++) fa[i] = (float)(i % 7);
+    for (int ki = 0; ki < nuse; ki++)
+      for (int ti = 0; ti < nt; ti++) {
+        const member_t *m = &members[use[ki]];
+        /* world units = pixels: height n, slab spacing 1, d1 1; light mean -mean (Eq. 7), the
+         * row axis pointing down (y components change sign) */
+        char json[2048];
+        snprintf(json, sizeof json,
+                 "{\"camera\": {\"eye\": [0, 0, 1], \"target\": [0, 0, 0], \"height\": %d, \"resolution\": [%d, %d]},"
+                 " \"render\": {\"slab_spacing\": 1, \"d1\": 1, \"kernel\": \"%s\", \"samples\": %d,"
+                 " \"compensate\": \"%s\", \"max_pad\": 0, \"seed\": 1},"
+                 " \"lights\": [{\"mean\": [%.17g, %.17g], \"cov\": [[%.17g, %.17g], [%.17g, %.17g]]}],"
+                 " \"materials\": {\"black\": {\"color\": [0, 0, 0]}, \"white\": {}},"
+                 " \"objects\": [{\"shape\": \"rect\", \"center\": [%.17g, 0, 0], \"normal\": [0, 0, 1],"
+                 "  \"size\": [%d, %d], \"material\": \"black\"},"
+                 "  {\"shape\": \"rect\", \"center\": [0, 0, %d], \"normal\": [0, 0, 1], \"size\": [%d, %d], \"material\": \"white\"}]}",
+                 n, n, n, m->kernel, m->samples, m->comp, -mean[0], mean[1], cov[0], -cov[1],
+                 -cov[1], cov[2], -0.25 * n, n / 2, 2 * n, -slabs, 2 * n, 2 * n);
+        char msg[CLI_MSG_MAX];
+        ics_scene *s;
+        ics_plan *p = NULL;
+        ics_status st = ics_scene_create_json(&s, json, "bench", NULL, msg, sizeof msg);
+        ics_plan_opts po = {.threads = threads[ti]};
+        if (st == ICS_OK) st = ics_plan_create(&p, s, &po, msg, sizeof msg);
+        if (st != ICS_OK) {
+          free(fa), free(fb);
+          if (p) ics_plan_destroy(p);
+          return cli_status_error(CMD, st, "%s %dx%d: %s", m->label, n, n, msg);
+        }
+        ics_render_opts ro = {.backend = backend, .threads = threads[ti]};
+        ics_renderer *r;
+        st = ics_renderer_create(&r, &ro, msg, sizeof msg);
+        double t[50], fl[50], err = 0;
+        int K = ics_plan_slabs(p) - 1, bw, bh;
+        ics_plan_sizes(p, NULL, NULL, &bw, &bh);
+        for (int rep = 0; rep <= reps && st == ICS_OK; rep++) { /* rep 0: warm-up */
+          ics_image *img;
+          ics_render_stats stats;
+          st = ics_renderer_render(r, p, &img, &stats, msg, sizeof msg);
+          if (st != ICS_OK) break;
+          double floor_ns = now_floor_ns(npx, K, fa, fb);
+          if (rep > 0) t[rep - 1] = stats.ns_per_px_slab, fl[rep - 1] = floor_ns;
+          if (rep == reps) {
+            /* the receiver against Phi((x - K m_x) / sqrt(K C_xx + 1/12)), edge at x = 0 */
+            double sd = sqrt(K * cov[0] + 1.0 / 12);
+            for (int j = 0; j < n; j++)
+              for (int i = 0; i < n; i++) {
+                double x = i + 0.5 - n / 2.0;
+                double ref = ics_normal_cdf((x - K * mean[0]) / sd);
+                err = fmax(err, fabs(img->data[((size_t)j * n + i) * 4] - ref));
+              }
+          }
+          ics_image_destroy(img);
+          cli_progress_say(&prog, "%s %dx%d %d thread(s): rep %d/%d", m->label, n, n, threads[ti],
+                           rep, reps);
+        }
+        char mode[64] = "";
+        for (int i = 0; i < ics_plan_pass_count(p); i++) {
+          const ics_plan_pass *q = ics_plan_pass_at(p, i);
+          if (q->light == 0) sscanf(q->detail, "%*s %*s %63[a-z]", mode);
+        }
+        if (st == ICS_OK) ics_renderer_destroy(r);
+        ics_plan_destroy(p);
+        ics_scene_destroy(s);
+        if (st != ICS_OK) {
+          free(fa), free(fb);
+          return cli_status_error(CMD, st, "%s: %s", m->label, msg);
+        }
+        qsort(t, (size_t)reps, sizeof *t, cmp_double);
+        qsort(fl, (size_t)reps, sizeof *fl, cmp_double);
+        double med = t[reps / 2], fmed = fl[reps / 2];
+        if (reps > 1 && t[reps - 1] > 1.3 * t[0]) busy = 1;
+        printf("%s,%s,%d,%s,%d,%d,%d,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.3g,%d\n", backend, m->label,
+               m->samples, mode, bw, bh, K, threads[ti], med, t[0], t[reps - 1], fmed,
+               fmed / med, err, reps);
+        fflush(stdout);
+      }
+    free(fa), free(fb);
+  }
+  cli_progress_done(&prog);
+  if (busy)
+    cli_warning(CMD, "some repetitions differ by more than 30%% (ns_min vs ns_max): the machine "
+                "was busy; rerun, or compare ratios measured in one run");
+  return 0;
+#endif
+}

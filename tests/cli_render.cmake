@@ -1,0 +1,43 @@
+# CLI tests for `icshadow render` and `icshadow plan`: --help, the default scene, the contract
+# example, the plan's JSON, and bad input refused with the problem named, exit 2 and no output file.
+if(ICS_HAVE_RENDER)
+set(rd ${CMAKE_CURRENT_BINARY_DIR}/tmp/cli_render)
+file(MAKE_DIRECTORY ${rd})
+set(disk ${CMAKE_SOURCE_DIR}/scenes/disk.json)
+ics_cli_test(NAME cli_render_help RC 0 ARGS "render|--help" OUT "usage: icshadow render \\[SCENE\\].*--backend")
+ics_cli_test(NAME cli_plan_help RC 0 ARGS "plan|--help" OUT "usage: icshadow plan \\[SCENE\\].*omitted")
+ics_cli_test(NAME cli_render_backends RC 0 ARGS "render|--backends" OUT "^cpu ")
+# the default scene, small: a JSON summary naming the backend and the passes' times
+ics_cli_test(NAME cli_render_default RC 0 ARGS "render|--resolution|64x48|--png|${rd}/default.png"
+  OUT "^{\"scene\": \"default\", \"backend\": \"cpu\".*\"resolution\": \\[64, 48\\].*\"ms_convolution\": [0-9.e+-]+.*\"png\": ")
+ics_cli_test(NAME cli_render_disk RC 0 ARGS "render|${disk}|-o|${rd}/disk.exr|--threads|1"
+  OUT "\"scene\": \"[^\"]*disk.json\".*\"threads\": 1, \"resolution\": \\[128, 128\\].*\"slabs\": 101,")
+ics_cli_test(NAME cli_plan_disk RC 0 ARGS "plan|${disk}"
+  OUT "\"slabs\": 101,.*\"memory_bytes\": [0-9]+,.*\"passes\": \\[.*\"name\": \"layered_depth_image\", \"bytes\": [0-9]+.*\"light\": 0, \"taps\": [0-9]+.*\"omitted\": \\[.*\"name\": \"detail\", \"reason\": \"no material has volumetric detail\"")
+ics_cli_test(NAME cli_plan_print_scene RC 0 ARGS "plan|--print-scene" OUT "\"camera\": .*\"objects\"")
+# bad input: exit 2, the problem named, no output file left
+ics_cli_test(NAME cli_render_missing_scene RC 2 ARGS "render|/nonexistent/scene.json|-o|${rd}/m.exr"
+  ERR "icshadow render: /nonexistent/scene.json: cannot open scene file" NOFILE ${rd}/m.exr)
+ics_cli_test(NAME cli_render_nothing RC 2 ARGS "render|${disk}" ERR "nothing to write")
+ics_cli_test(NAME cli_render_unknown_option RC 2 ARGS "render|--bogus" ERR "icshadow render: unknown option '--bogus'")
+ics_cli_test(NAME cli_render_bad_kernel RC 2 ARGS "render|${disk}|--kernel|box|-o|${rd}/k.exr"
+  ERR "--kernel: unknown value 'box' \\(expected ellipse, poisson, gauss, tophat\\)" NOFILE ${rd}/k.exr)
+ics_cli_test(NAME cli_render_bad_resolution RC 2 ARGS "render|--resolution|0x10|-o|${rd}/r.exr"
+  ERR "--resolution: expected WxH with W, H in 1..16384" NOFILE ${rd}/r.exr)
+ics_cli_test(NAME cli_render_bad_backend RC 2 ARGS "render|--backend|vulkan|-o|${rd}/b.exr"
+  ERR "--backend: no backend named 'vulkan' \\(built: cpu" NOFILE ${rd}/b.exr)
+ics_cli_test(NAME cli_render_stdout RC 2 ARGS "render|-o|-" ERR "not to stdout")
+ics_cli_test(NAME cli_render_bad_slab RC 2 ARGS "render|--slab-spacing|-1|-o|${rd}/s.exr"
+  ERR "--slab-spacing: must be > 0" NOFILE ${rd}/s.exr)
+file(WRITE ${rd}/syntax.json "{\"camera\": {\"eye\": [0, 0, 2],,}}\n")
+ics_cli_test(NAME cli_render_syntax RC 2 ARGS "render|${rd}/syntax.json|-o|${rd}/x.exr"
+  ERR "syntax.json:1:30: " NOFILE ${rd}/x.exr)
+file(WRITE ${rd}/negvar.json "{\"camera\": {\"eye\": [0, 0, 2], \"target\": [0, 0, 0], \"height\": 1, \"resolution\": [8, 8]}, \"render\": {\"slab_spacing\": 0.1, \"d1\": 1}, \"lights\": [{\"mean\": [0, 0], \"var\": [-1, 0]}], \"materials\": {\"m\": {}}, \"objects\": [{\"shape\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0.5, \"material\": \"m\"}]}\n")
+ics_cli_test(NAME cli_render_negative_variance RC 2 ARGS "render|${rd}/negvar.json|-o|${rd}/v.exr"
+  ERR "negvar.json: lights\\[0\\].var: expected \\[varx, vary\\], finite and >= 0" NOFILE ${rd}/v.exr)
+file(WRITE ${rd}/huge.json "{\"camera\": {\"eye\": [0, 0, 2], \"target\": [0, 0, 0], \"height\": 1, \"resolution\": [16384, 16384]}, \"render\": {\"slab_spacing\": 0.1, \"d1\": 1, \"memory_limit_mib\": 100}, \"lights\": [{\"mean\": [0, 0], \"var\": [0.1, 0.1]}], \"materials\": {\"m\": {}}, \"objects\": [{\"shape\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0.5, \"material\": \"m\"}]}\n")
+ics_cli_test(NAME cli_render_over_budget RC 2 ARGS "render|${rd}/huge.json|-o|${rd}/h.exr"
+  ERR "the plan needs at least [0-9.]+ MiB .* over render.memory_limit_mib = 100" NOFILE ${rd}/h.exr)
+ics_cli_test(NAME cli_plan_over_budget RC 2 ARGS "plan|${rd}/huge.json" ERR "over render.memory_limit_mib")
+ics_cli_test(NAME cli_plan_print_scene_with_scene RC 2 ARGS "plan|${disk}|--print-scene" ERR "give no SCENE")
+endif()
