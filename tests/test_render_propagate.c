@@ -1,8 +1,10 @@
 /* test_render_propagate.c — the CPU slab step (gpu/src/propagate*.c) against the core engine
  * (ics_conv2d_step, double sums per pixel, clamp-to-edge): one tap set with fractional offsets
- * (discretised into a stencil), and per-pixel tables, where each pixel's tap set is chosen by
- * ics_slab_entry and the reference applies that set to that pixel alone. Both the AVX-512 and the
- * portable loops are compared (the AVX-512 ones only where the processor has them). Agreement to
+ * (discretised into a stencil), 4 tap sets (the default per-pixel rotations: blended vector
+ * loads) and 384 (a per-pixel table: gathers), where each pixel's set is the one its RNG word
+ * chooses and the reference applies that set to that pixel alone; in the apron layout (unclamped
+ * reads) and without an apron (the clamped path). The AVX-512 and the portable loops are both
+ * compared (the AVX-512 ones only where the processor has them). Agreement to
  * 4 float ulps of the values (the engine sums in double and rounds once). Also: the vectorised
  * Philox gives exactly ics_slab_entry's words, and the slab kernels' tables have the target
  * covariance averaged over their entries (the trapezoid rule on the ellipse, exact rotations for
@@ -24,40 +26,63 @@ static void fill(float *a) {
   for (int i = 0; i < W * H; i++) a[i] = (float)test_rng_unit();
 }
 
-/* reference for pixel (x, y): the engine's single-step on the tap set, read at that pixel */
-static double ref_pixel(const float *src, const ics_tap2d *t, int n, int x, int y, float *tmp) {
-  ics_conv2d_step(src, tmp, W, H, t, n, NULL);
-  return tmp[(size_t)y * W + x];
+/* a plain W x H image into the layout (apron refreshed) and back */
+static float *pack(const float *plain, int nch, const ics_buf_layout *L) {
+  float *b = calloc((size_t)nch * L->plane, sizeof *b);
+  for (int c = 0; c < nch; c++)
+    for (int y = 0; y < H; y++)
+      memcpy(b + (size_t)c * L->plane + ics_buf_index(L, 0, y), plain + ((size_t)c * H + y) * W,
+             sizeof(float) * W);
+  ics_prop_apron(L, b, nch, 0, H, 0);
+  ics_prop_apron(L, b, nch, 0, 0, 1);
+  return b;
 }
 
-static void test_stencil(int use_simd) {
-  float *src = malloc(sizeof(float) * W * H), *dst = malloc(sizeof(float) * W * H),
-        *ref = malloc(sizeof(float) * W * H);
-  fill(src);
+typedef enum { PORTABLE, AVX512 } path_t;
+
+static void run(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
+                int nch, path_t path) {
+  uint32_t scratch[W];
+  if (path == AVX512)
+    ics_prop_rows_avx512(pt, src, dst, L, nch, 0, H, scratch);
+  else
+    ics_prop_rows(pt, src, dst, L, nch, 0, H, scratch);
+}
+
+static const char *path_name(path_t p, const ics_buf_layout *L) {
+  return p == AVX512 ? "AVX-512" : L->apron ? "portable" : "clamped";
+}
+
+static void test_stencil(path_t path, int apron) {
+  float *plain = malloc(sizeof(float) * W * H), *ref = malloc(sizeof(float) * W * H);
+  fill(plain);
+  ics_buf_layout L;
+  ics_buf_layout_init(&L, W, H, apron);
+  float *src = pack(plain, 1, &L), *dst = calloc(L.plane, sizeof *dst);
   ics_tap2d taps[4] = {{0.3, -1.2, 0.4}, {-2.6, 0.7, 0.25}, {1, 2, 0.25}, {4.5, -3.25, 0.1}};
   ics_prop_taps pt = {0};
-  CHECK(ics_prop_prepare(&pt, taps, 1, 4, 4, 1, 0, 0, W) == 0 && pt.stencil, "prepare stencil");
-  uint32_t scratch[W];
-  if (use_simd)
-    ics_prop_rows_avx512(&pt, src, dst, W, H, 1, 0, H, scratch);
-  else
-    ics_prop_rows(&pt, src, dst, W, H, 1, 0, H, scratch);
-  ics_conv2d_step(src, ref, W, H, taps, 4, NULL);
+  CHECK(ics_prop_prepare(&pt, taps, 1, 4, 4, 1, 0, 0, &L) == 0 && pt.stencil, "prepare stencil");
+  run(&pt, src, dst, &L, 1, path);
+  ics_conv2d_step(plain, ref, W, H, taps, 4, NULL);
   double worst = 0;
-  for (int i = 0; i < W * H; i++) worst = fmax(worst, fabs(dst[i] - ref[i]) / 0x1p-24);
-  CHECK(worst <= 4, "%s stencil vs engine: %.2f ulps of 1", use_simd ? "AVX-512" : "portable", worst);
-  printf("stencil (%s) vs ics_conv2d_step: max %.2f float ulps of 1\n",
-         use_simd ? "AVX-512" : "portable", worst);
+  for (int y = 0; y < H; y++)
+    for (int x = 0; x < W; x++)
+      worst = fmax(worst, fabs(dst[ics_buf_index(&L, x, y)] - ref[y * W + x]) / 0x1p-24);
+  CHECK(worst <= 4, "%s stencil vs engine: %.2f ulps of 1", path_name(path, &L), worst);
+  printf("stencil (%s, apron %d) vs ics_conv2d_step: max %.2f float ulps of 1\n",
+         path_name(path, &L), apron, worst);
   ics_prop_release(&pt);
-  free(src), free(dst), free(ref);
+  free(plain), free(ref), free(src), free(dst);
 }
 
-static void test_table(int use_simd) {
-  float *src = malloc(sizeof(float) * 3 * W * H), *dst = malloc(sizeof(float) * 3 * W * H),
-        *tmp = malloc(sizeof(float) * W * H);
-  for (int c = 0; c < 3; c++) fill(src + (size_t)c * W * H);
-  /* a table of M entries of 2 taps (an ellipse-like antipodal pair around a mean) */
-  const int M = ICS_SLAB_TABLE_M;
+/* M tap sets of 2 taps (an antipodal pair around a mean); each pixel uses the set its RNG word
+ * picks, and the reference applies that set to that pixel alone */
+static void test_sets(int M, path_t path, int apron) {
+  float *plain = malloc(sizeof(float) * 3 * W * H), *tmp = malloc(sizeof(float) * W * H);
+  fill(plain), fill(plain + W * H), fill(plain + 2 * W * H);
+  ics_buf_layout L;
+  ics_buf_layout_init(&L, W, H, apron);
+  float *src = pack(plain, 3, &L), *dst = calloc(3 * L.plane, sizeof *dst);
   ics_tap2d *t = malloc(sizeof *t * 2 * M);
   for (int e = 0; e < M; e++) {
     double a = 2 * ICS_PI * e / M;
@@ -65,28 +90,24 @@ static void test_table(int use_simd) {
     t[2 * e + 1] = (ics_tap2d){-0.37 - 1.7 * cos(a), 0.21 - 0.9 * sin(a), 0.5};
   }
   ics_prop_taps pt = {0};
-  CHECK(ics_prop_prepare(&pt, t, M, 2, 2, 1, 0, 0, W) == 0 && !pt.stencil, "prepare table");
+  CHECK(ics_prop_prepare(&pt, t, M, 2, 2, 1, 0, 0, &L) == 0 && !pt.stencil, "prepare sets");
   pt.seed = 12345, pt.light = 1, pt.slab = 7;
-  uint32_t scratch[W];
-  if (use_simd)
-    ics_prop_rows_avx512(&pt, src, dst, W, H, 3, 0, H, scratch);
-  else
-    ics_prop_rows(&pt, src, dst, W, H, 3, 0, H, scratch);
+  run(&pt, src, dst, &L, 3, path);
   double worst = 0;
-  for (int y = 0; y < H; y += 4)
+  for (int y = 0; y < H; y += 3)
     for (int x = 0; x < W; x++) {
-      int e = (int)ics_slab_entry(12345, 1, 7, (uint32_t)(y * W + x));
+      int e = (int)ics_slab_choice(12345, 1, 7, (uint32_t)(y * W + x), (uint32_t)M);
       for (int c = 0; c < 3; c++) {
-        double r = ref_pixel(src + (size_t)c * W * H, t + 2 * e, 2, x, y, tmp);
-        worst = fmax(worst, fabs(dst[(size_t)c * W * H + y * W + x] - r) / 0x1p-24);
+        ics_conv2d_step(plain + (size_t)c * W * H, tmp, W, H, t + 2 * e, 2, NULL);
+        worst = fmax(worst, fabs(dst[(size_t)c * L.plane + ics_buf_index(&L, x, y)] - tmp[y * W + x]) /
+                                0x1p-24);
       }
     }
-  CHECK(worst <= 4, "%s table vs engine per pixel: %.2f ulps of 1", use_simd ? "AVX-512" : "portable",
-        worst);
-  printf("table (%s, 3 channels) vs ics_conv2d_step per pixel: max %.2f float ulps of 1\n",
-         use_simd ? "AVX-512" : "portable", worst);
+  CHECK(worst <= 4, "%s, %d sets, per pixel vs engine: %.2f ulps of 1", path_name(path, &L), M, worst);
+  printf("%d tap sets (%s, apron %d, 3 channels) vs ics_conv2d_step per pixel: max %.2f float ulps\n",
+         M, path_name(path, &L), apron, worst);
   ics_prop_release(&pt);
-  free(src), free(dst), free(tmp), free(t);
+  free(plain), free(tmp), free(src), free(dst), free(t);
 }
 
 static void test_entries(void) {
@@ -101,6 +122,14 @@ static void test_entries(void) {
       bad += ent[x] != ics_slab_entry(pt.seed, 3, 99, (uint32_t)(y * W + x)) || ent[x] >= ICS_SLAB_TABLE_M;
   }
   CHECK(bad == 0, "portable row entries differ from ics_slab_entry in %d pixels", bad);
+  pt.entries = 4;
+  bad = 0;
+  for (int y = 0; y < 9; y++) {
+    ics_prop_entries_row(&pt, W, y, ent);
+    for (int x = 0; x < W; x++)
+      bad += ent[x] != ics_slab_choice(pt.seed, 3, 99, (uint32_t)(y * W + x), 4) || ent[x] >= 4;
+  }
+  CHECK(bad == 0, "portable row choices (4) differ from ics_slab_choice in %d pixels", bad);
   /* the entries are uniform over the table: chi-square over 384 bins, 384 000 draws */
   static long cnt[ICS_SLAB_TABLE_M];
   const int N = 384000;
@@ -116,7 +145,7 @@ static void test_table_moments(ics_render_kernel member, int samples) {
   char json[1024];
   snprintf(json, sizeof json,
            "{\"camera\": {\"eye\": [0, 0, 2], \"target\": [0, 0, 0], \"height\": 1, \"resolution\": [100, 100]},"
-           " \"render\": {\"slab_spacing\": 0.01, \"d1\": 1, \"kernel\": \"%s\", \"samples\": %d, \"compensate\": \"none\"},"
+           " \"render\": {\"slab_spacing\": 0.01, \"d1\": 1, \"kernel\": \"%s\", \"samples\": %d, \"compensate\": \"none\", \"pixel_rotations\": 384},"
            " \"lights\": [{\"mean\": [0.1, 0.2], \"var\": [0.3, 0.05], \"angle_deg\": 35}],"
            " \"materials\": {\"m\": {}}, \"objects\": [{\"shape\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0.3, \"material\": \"m\"}]}",
            ics_render_kernel_name(member), samples);
@@ -145,11 +174,16 @@ static void test_table_moments(ics_render_kernel member, int samples) {
 }
 
 int main(void) {
-  test_stencil(0);
-  test_table(0);
+  /* apron 8 covers every read (unclamped loops); apron 0 takes the clamped path */
+  for (int apron = 8; apron >= 0; apron -= 8) {
+    test_stencil(PORTABLE, apron);
+    test_sets(4, PORTABLE, apron);
+    test_sets(ICS_SLAB_TABLE_M, PORTABLE, apron);
+  }
   if (ics_prop_avx512_available()) {
-    test_stencil(1);
-    test_table(1);
+    test_stencil(AVX512, 8);
+    test_sets(4, AVX512, 8);
+    test_sets(ICS_SLAB_TABLE_M, AVX512, 8);
   } else {
     printf("AVX-512 loops: skipped (this processor has no AVX-512)\n");
   }

@@ -6,6 +6,7 @@
  * per-pixel quantity depends only on (seed, slab, pixel), so the image does not depend on the
  * thread count. */
 #define _POSIX_C_SOURCE 200809L
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -67,6 +68,7 @@ typedef struct {
   uint64_t *mask;        /* NULL without volumes */
   int vol_obj[ICS_MAX_VOLUMES];
   uint32_t *scratch;     /* per thread: Wb words (table entries of a row) */
+  int *row_next;         /* per row: the first slab at which some pixel of it has work */
   double prop_s[256], shade_s[256], detail_s[256];
 } job_t;
 
@@ -118,7 +120,7 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
     }
     C[3] += (float)wgt;
   }
-  size_t plane = (size_t)P->Wb * P->Hb;
+  size_t plane = P->buf.plane, q = ics_buf_index(&P->buf, bi, bj);
   for (int l = 0; l < P->nlights; l++) {
     double pass[3] = {1, 1, 1};
     for (int i = 0; i < nv; i++) {
@@ -127,7 +129,7 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
       const double *T = s->materials[s->objects[objs[i]].material].transport;
       for (int c = 0; c < P->nch; c++) pass[c] *= exp(-sig[i] * dz * P->light_path[l] * (1 - T[c]));
     }
-    for (int c = 0; c < P->nch; c++) j->dst[l][(size_t)c * plane + p] *= (float)pass[c];
+    for (int c = 0; c < P->nch; c++) j->dst[l][(size_t)c * plane + q] *= (float)pass[c];
   }
 }
 
@@ -142,16 +144,17 @@ static void surface_colour(const job_t *j, int obj, const double L[3], float *C)
   C[3] += (float)wgt;
 }
 
-/* a surface's occlusion of the light leaving this slab (its slab + its bias) */
-static void surface_occlusion(job_t *j, size_t p, int obj) {
+/* a surface's occlusion of the light leaving this slab (its slab + its bias); q is the pixel's
+ * index in the light buffers' layout */
+static void surface_occlusion(job_t *j, size_t q, int obj) {
   const ics_plan *P = j->p;
   const ics_material *m = &P->scene->materials[P->scene->objects[obj].material];
   double a = m->opacity;
   if (!(a > 0)) return;
-  size_t plane = (size_t)P->Wb * P->Hb;
+  size_t plane = P->buf.plane;
   for (int l = 0; l < P->nlights; l++)
     for (int c = 0; c < P->nch; c++)
-      j->dst[l][(size_t)c * plane + p] *= (float)(1 - a * (1 - m->transport[c]));
+      j->dst[l][(size_t)c * plane + q] *= (float)(1 - a * (1 - m->transport[c]));
 }
 
 static void shade_rows(job_t *j, int y0, int y1, int t) {
@@ -159,25 +162,31 @@ static void shade_rows(job_t *j, int y0, int y1, int t) {
   const ics_scene *s = P->scene;
   const ics_ldi *ldi = &P->ldi;
   int k = j->k;
-  size_t plane = (size_t)P->Wb * P->Hb;
+  size_t plane = P->buf.plane;
   double zf = P->z0 + k * P->e, zb = zf + P->e;
-  for (int bj = y0; bj < y1; bj++)
+  for (int bj = y0; bj < y1; bj++) {
+    if (j->row_next[bj] > k) continue; /* nothing in this row before slab row_next */
+    int next = INT_MAX;
     for (int bi = 0; bi < P->Wb; bi++) {
       size_t p = (size_t)bj * P->Wb + bi;
       uint32_t cur = j->cursor[p], end = ldi->offset[p + 1], acur = j->acursor[p];
       uint64_t mask = j->mask ? j->mask[p] : 0;
       int has = cur < end && ics_frag_slab(&ldi->frag[cur]) == k;
       int occl = acur < end && ics_frag_slab(&ldi->frag[acur]) <= k;
-      if (!has && !mask && !occl) continue;
+      if (!has && !mask && !occl) {
+        if (acur < end && ics_frag_slab(&ldi->frag[acur]) < next) next = ics_frag_slab(&ldi->frag[acur]);
+        continue;
+      }
       int ii = bi - P->pad[0], jj = bj - P->pad[2];
       int inview = ii >= 0 && ii < P->W && jj >= 0 && jj < P->H;
       float dummy[4] = {0, 0, 0, 1};
       float *C = inview ? j->img->data + ((size_t)jj * P->W + ii) * 4 : dummy;
+      size_t q = ics_buf_index(&P->buf, bi, bj);
       double L[3] = {0, 0, 0};
       for (int l = 0; l < P->nlights; l++) {
         const ics_light *lt = &s->lights[l];
         for (int c = 0; c < 3; c++)
-          L[c] += lt->color[c] * lt->weight * j->dst[l][(size_t)(P->nch == 3 ? c : 0) * plane + p];
+          L[c] += lt->color[c] * lt->weight * j->dst[l][(size_t)(P->nch == 3 ? c : 0) * plane + q];
       }
       /* surface occlusions due at this slab (fragment slab + bias == k), after the light
        * arriving here was read: a surface never shadows its own slab */
@@ -185,11 +194,11 @@ static void shade_rows(job_t *j, int y0, int y1, int t) {
         const ics_fragment *fr = &ldi->frag[f];
         int obj = ics_frag_obj(fr);
         if (P->vol_bit[obj] < 0 && ics_frag_slab(fr) + ics_frag_bias(fr) == k)
-          surface_occlusion(j, p, obj);
+          surface_occlusion(j, q, obj);
       }
       while (acur < end && ics_frag_slab(&ldi->frag[acur]) + ICS_FRAG_MAX_BIAS <= k) acur++;
       j->acursor[p] = acur;
-      if (!has && !mask) continue;
+      if (!has && !mask) goto next_pixel;
       double za = zf;
       for (;;) {
         double zn = has ? ldi->frag[cur].z : zb;
@@ -208,7 +217,15 @@ static void shade_rows(job_t *j, int y0, int y1, int t) {
       }
       j->cursor[p] = cur;
       if (j->mask) j->mask[p] = mask;
+    next_pixel:
+      /* the next slab this pixel needs: a volume it is inside of, a pending occlusion (at or
+       * after its fragment's slab), its next fragment */
+      if (mask) next = k + 1;
+      if (acur < end && ics_frag_slab(&ldi->frag[acur]) < next) next = ics_frag_slab(&ldi->frag[acur]);
+      if (acur < end && ics_frag_slab(&ldi->frag[acur]) <= k) next = k + 1;
     }
+    j->row_next[bj] = next;
+  }
 }
 
 static void slab_job(void *ctx, int t, int n) {
@@ -218,10 +235,11 @@ static void slab_job(void *ctx, int t, int n) {
   ics_pool_band(P->Hb, t, n, &y0, &y1);
   double t0 = now_s();
   for (int l = 0; l < P->nlights; l++)
-    ics_prop_rows(&j->pt[l], j->src[l], j->dst[l], P->Wb, P->Hb, P->nch, y0, y1,
+    ics_prop_rows(&j->pt[l], j->src[l], j->dst[l], &P->buf, P->nch, y0, y1,
                   j->scratch + (size_t)t * P->Wb);
   double t1 = now_s();
   shade_rows(j, y0, y1, t);
+  for (int l = 0; l < P->nlights; l++) ics_prop_apron(&P->buf, j->dst[l], P->nch, y0, y1, 0);
   double t2 = now_s();
   j->prop_s[t] += t1 - t0;
   j->shade_s[t] += t2 - t1;
@@ -247,15 +265,17 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->cursor = malloc(sizeof *j->cursor * npx);
   j->acursor = malloc(sizeof *j->acursor * npx);
   j->scratch = malloc(sizeof *j->scratch * (size_t)P->Wb * (size_t)nt);
+  j->row_next = calloc((size_t)P->Hb, sizeof *j->row_next); /* 0: look at every row first */
   j->mask = P->nvol ? malloc(sizeof *j->mask * npx) : NULL;
-  if (!j->pt || !j->cursor || !j->acursor || !j->scratch || (P->nvol && !j->mask)) goto nomem;
+  if (!j->pt || !j->cursor || !j->acursor || !j->scratch || !j->row_next || (P->nvol && !j->mask))
+    goto nomem;
   for (int l = 0; l < nl; l++) {
-    j->src[l] = malloc(sizeof(float) * (size_t)P->nch * plane);
-    j->dst[l] = malloc(sizeof(float) * (size_t)P->nch * plane);
+    j->src[l] = malloc(sizeof(float) * (size_t)P->nch * P->buf.plane);
+    j->dst[l] = malloc(sizeof(float) * (size_t)P->nch * P->buf.plane);
     const ics_slab_kernel *sk = &P->kernels[l];
     scratch[l] = malloc(sizeof **scratch * (size_t)sk->entries * (size_t)sk->cap);
     if (!j->src[l] || !j->dst[l] || !scratch[l]) goto nomem;
-    for (size_t i = 0; i < (size_t)P->nch * plane; i++) j->src[l][i] = 1;
+    for (size_t i = 0; i < (size_t)P->nch * P->buf.plane; i++) j->src[l][i] = 1;
   }
   memcpy(j->cursor, P->ldi.offset, sizeof *j->cursor * npx);
   memcpy(j->acursor, P->ldi.offset, sizeof *j->acursor * npx);
@@ -282,13 +302,14 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
         goto done;
       }
       if (ics_prop_prepare(&j->pt[l], scratch[l], sk->out_entries, n / sk->out_entries, sk->cap, s,
-                           P->cx, P->cy, P->Wb))
+                           P->cx, P->cy, &P->buf))
         goto nomem;
       j->pt[l].seed = P->rs.seed;
       j->pt[l].light = (uint32_t)l;
       j->pt[l].slab = (uint32_t)k;
     }
     ics_pool_run(cs->pool, slab_job, j);
+    for (int l = 0; l < nl; l++) ics_prop_apron(&P->buf, j->dst[l], P->nch, 0, 0, 1);
     for (int l = 0; l < nl; l++) {
       float *tmp = j->src[l];
       j->src[l] = j->dst[l];
@@ -328,6 +349,7 @@ done:
     free(j->cursor);
     free(j->acursor);
     free(j->scratch);
+    free(j->row_next);
     free(j->mask);
   }
   free(bufs);

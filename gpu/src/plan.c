@@ -86,6 +86,8 @@ static void bounds_depth(const ics_scene *s, const ics_camera *c, double *zlo, d
   if (*zhi < *zlo) *zhi = *zlo;
 }
 
+#define ICS_PLAN_MAX_APRON 64
+
 static int grey(const double t[3]) { return t[0] == t[1] && t[1] == t[2]; }
 
 ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_opts *opts,
@@ -232,9 +234,19 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
     p->nch = coloured ? 3 : 1;
   }
 
+  /* the light buffers' apron: the farthest read of any light at the reference depth (beyond
+   * ICS_PLAN_MAX_APRON, the few slabs or lights that reach farther clamp their reads) */
+  {
+    int apron = 1;
+    for (int k = 0; k < p->nlights; k++)
+      if (p->kernels[k].reach_bound > apron) apron = p->kernels[k].reach_bound;
+    if (apron > ICS_PLAN_MAX_APRON) apron = ICS_PLAN_MAX_APRON;
+    ics_buf_layout_init(&p->buf, p->Wb, p->Hb, apron);
+  }
+
   /* memory before the geometry pass */
   size_t npx = (size_t)p->Wb * p->Hb, nimg = (size_t)p->W * p->H;
-  size_t buf_bytes = 2 * (size_t)p->nch * npx * sizeof(float);
+  size_t buf_bytes = 2 * (size_t)p->nch * p->buf.plane * sizeof(float);
   size_t state_bytes = npx * (2 * sizeof(uint32_t) + (p->nvol ? sizeof(uint64_t) : 0));
   size_t image_bytes = nimg * 4 * sizeof(float);
   size_t tap_bytes = 0;

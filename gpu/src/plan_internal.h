@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "detail.h"
+#include "propagate.h"
 #include "icshadow/plan.h"
 #include "slab_kernel.h"
 
@@ -56,6 +57,7 @@ struct ics_plan {
   int K;                  /* slabs */
   double q_ref;           /* pixel size at the reference depth (orthographic: the pixel size) */
   int nch;                /* channels per light buffer: 1 (grey transport) or 3 */
+  ics_buf_layout buf;     /* the light buffers' storage: Wb x Hb with an apron (propagate.h) */
   int nlights;
   ics_slab_kernel *kernels; /* nlights */
   int nvol;               /* volumetric objects */

@@ -1,13 +1,11 @@
 /* propagate.c — the CPU slab step (see propagate.h), portable C; propagate_avx512.c has the
- * vectorised interior loops and is used when the processor has AVX-512.
+ * vectorised loops and is used when the processor has AVX-512.
  *
- * Two forms. A single tap set (deterministic members, compensated or integer modes) at s = 1 is
- * discretised once per slab into integer taps with merged bilinear weights (the engine's
- * ics_taps2d_discretize, icshadow/conv.h) and applied as a stencil, row by row. A table of tap
- * sets (the per-pixel random members) keeps each tap's integer and fractional read offset and
- * reads bilinearly per pixel. Pixels closer to an edge than the taps' reach clamp each index to
- * the buffer (the engine's ICS_BOUNDARY_CLAMP); interior ones do not. Perspective steps (s != 1)
- * compute each read position in double and split it per read. */
+ * A single tap set at s = 1 is discretised once per slab into integer taps with merged bilinear
+ * weights (the engine's ics_taps2d_discretize) and applied as a stencil. Several tap sets keep
+ * each tap's integer and fractional read offset and read bilinearly. Reads within the apron need
+ * no clamping; a step whose taps reach beyond it, and every perspective step (s != 1), clamps
+ * each index to the buffer: the engine's ICS_BOUNDARY_CLAMP either way. */
 #include "propagate.h"
 
 #include <math.h>
@@ -17,6 +15,34 @@
 #include "icshadow/conv.h"
 #include "propagate_simd.h"
 #include "slab_kernel.h"
+
+void ics_buf_layout_init(ics_buf_layout *L, int w, int h, int apron) {
+  L->w = w;
+  L->h = h;
+  L->apron = apron;
+  L->stride = w + 2 * apron;
+  L->plane = (size_t)L->stride * (size_t)(h + 2 * apron);
+  L->origin = (size_t)apron * L->stride + (size_t)apron;
+}
+
+void ics_prop_apron(const ics_buf_layout *L, float *buf, int nch, int y0, int y1, int top_bottom) {
+  int A = L->apron;
+  if (!A) return;
+  for (int c = 0; c < nch; c++) {
+    float *P = buf + (size_t)c * L->plane;
+    for (int y = y0; y < y1; y++) {
+      float *row = P + ics_buf_index(L, 0, y);
+      for (int i = 1; i <= A; i++) row[-i] = row[0], row[L->w - 1 + i] = row[L->w - 1];
+    }
+    if (top_bottom) {
+      const float *first = P + ics_buf_index(L, 0, 0) - A, *last = P + ics_buf_index(L, 0, L->h - 1) - A;
+      for (int i = 1; i <= A; i++) {
+        memcpy(P + ics_buf_index(L, 0, -i) - A, first, sizeof *P * (size_t)L->stride);
+        memcpy(P + ics_buf_index(L, 0, L->h - 1 + i) - A, last, sizeof *P * (size_t)L->stride);
+      }
+    }
+  }
+}
 
 void ics_prop_release(ics_prop_taps *pt) {
   free(pt->ix);
@@ -32,7 +58,7 @@ void ics_prop_release(ics_prop_taps *pt) {
 }
 
 int ics_prop_prepare(ics_prop_taps *pt, const ics_tap2d *taps, int entries, int ntaps, int cap,
-                     double s, double cx, double cy, int w) {
+                     double s, double cx, double cy, const ics_buf_layout *L) {
   size_t n = (size_t)entries * (size_t)ntaps, c = (size_t)entries * (size_t)cap;
   if (!pt->ix) {
     pt->ix = malloc(sizeof *pt->ix * 4 * c);
@@ -64,10 +90,9 @@ int ics_prop_prepare(ics_prop_taps *pt, const ics_tap2d *taps, int entries, int 
     for (int j = 0; j < nd; j++) {
       pt->ix[j] = (int32_t)-pt->disc[j].x; /* the read is at p - x_j */
       pt->iy[j] = (int32_t)-pt->disc[j].y;
-      pt->off[j] = pt->iy[j] * w + pt->ix[j];
+      pt->off[j] = pt->iy[j] * L->stride + pt->ix[j];
       pt->w[j] = (float)pt->disc[j].w;
-      int r = abs(pt->ix[j]) + 1;
-      if (abs(pt->iy[j]) + 1 > r) r = abs(pt->iy[j]) + 1;
+      int r = abs(pt->ix[j]) > abs(pt->iy[j]) ? abs(pt->ix[j]) : abs(pt->iy[j]);
       if (r > reach) reach = r;
     }
     pt->reach = reach;
@@ -75,17 +100,20 @@ int ics_prop_prepare(ics_prop_taps *pt, const ics_tap2d *taps, int entries, int 
   }
   for (size_t j = 0; j < n; j++) {
     double ox = -taps[j].x * s, oy = -taps[j].y * s;
+    if (!(fabs(ox) < 1e9 && fabs(oy) < 1e9)) return -1;
     double fx = floor(ox), fy = floor(oy);
     pt->ox[j] = ox;
     pt->oy[j] = oy;
     pt->ix[j] = (int32_t)fx;
     pt->iy[j] = (int32_t)fy;
-    pt->off[j] = pt->iy[j] * w + pt->ix[j];
+    pt->off[j] = pt->iy[j] * L->stride + pt->ix[j];
     pt->fx[j] = (float)(ox - fx);
     pt->fy[j] = (float)(oy - fy);
     pt->w[j] = (float)taps[j].w;
-    int r = abs(pt->ix[j]) + 2;
-    if (abs(pt->iy[j]) + 2 > r) r = abs(pt->iy[j]) + 2;
+    /* the bilinear read touches ix .. ix + 1, iy .. iy + 1 */
+    int r = abs(pt->ix[j]) > abs(pt->ix[j] + 1) ? abs(pt->ix[j]) : abs(pt->ix[j] + 1);
+    int ry = abs(pt->iy[j]) > abs(pt->iy[j] + 1) ? abs(pt->iy[j]) : abs(pt->iy[j] + 1);
+    if (ry > r) r = ry;
     if (r > reach) reach = r;
   }
   pt->reach = reach;
@@ -94,19 +122,17 @@ int ics_prop_prepare(ics_prop_taps *pt, const ics_tap2d *taps, int entries, int 
 
 static inline int clampi(int v, int hi) { return v < 0 ? 0 : v > hi ? hi : v; }
 
-/* one output pixel, clamped reads (any form) */
-void ics_prop_pixel(const ics_prop_taps *pt, int e, const float *src, float *dst, int w, int h,
-                    int nch, int x, int y) {
-  size_t plane = (size_t)w * h;
-  const int n = pt->ntaps, base = e * n;
+void ics_prop_pixel(const ics_prop_taps *pt, int e, const float *src, float *dst,
+                    const ics_buf_layout *L, int nch, int x, int y) {
+  const int w = L->w, h = L->h, n = pt->ntaps, base = e * n;
   double bx = x, by = y;
   if (pt->s != 1) bx = pt->cx + pt->s * (x - pt->cx), by = pt->cy + pt->s * (y - pt->cy);
   for (int c = 0; c < nch; c++) {
-    const float *S = src + (size_t)c * plane;
+    const float *S = src + (size_t)c * L->plane;
     float acc = 0;
     for (int j = base; j < base + n; j++) {
       if (pt->stencil) {
-        acc += pt->w[j] * S[(size_t)clampi(y + pt->iy[j], h - 1) * w + clampi(x + pt->ix[j], w - 1)];
+        acc += pt->w[j] * S[ics_buf_index(L, clampi(x + pt->ix[j], w - 1), clampi(y + pt->iy[j], h - 1))];
         continue;
       }
       int x0, y0;
@@ -121,46 +147,41 @@ void ics_prop_pixel(const ics_prop_taps *pt, int e, const float *src, float *dst
       }
       int xa = clampi(x0, w - 1), xb = clampi(x0 + 1, w - 1);
       int ya = clampi(y0, h - 1), yb = clampi(y0 + 1, h - 1);
-      float a = S[(size_t)ya * w + xa], b = S[(size_t)ya * w + xb];
-      float cc = S[(size_t)yb * w + xa], d = S[(size_t)yb * w + xb];
+      float a = S[ics_buf_index(L, xa, ya)], b = S[ics_buf_index(L, xb, ya)];
+      float cc = S[ics_buf_index(L, xa, yb)], d = S[ics_buf_index(L, xb, yb)];
       float top = a + fx * (b - a), bot = cc + fx * (d - cc);
       acc += pt->w[j] * (top + fy * (bot - top));
     }
-    dst[(size_t)c * plane + (size_t)y * w + x] = acc;
+    dst[(size_t)c * L->plane + ics_buf_index(L, x, y)] = acc;
   }
 }
 
 void ics_prop_entries_row(const ics_prop_taps *pt, int w, int y, uint32_t *ent) {
-  uint32_t first = (uint32_t)((size_t)y * w), last = first + (uint32_t)w - 1;
-  uint32_t words[4];
-  for (uint32_t b = first / 4; b <= last / 4; b++) {
-    ics_slab_entry_block(pt->seed, pt->light, pt->slab, b, words);
-    for (int k = 0; k < 4; k++) {
-      uint32_t px = 4 * b + (uint32_t)k;
-      if (px >= first && px <= last)
-        ent[px - first] = (uint32_t)(((uint64_t)words[k] * ICS_SLAB_TABLE_M) >> 32);
-    }
+  uint32_t first = (uint32_t)((size_t)y * w);
+  uint32_t words[4], block = UINT32_MAX;
+  for (int x = 0; x < w; x++) {
+    uint32_t px = first + (uint32_t)x, b = ics_slab_word_block(px);
+    if (b != block) ics_slab_entry_block(pt->seed, pt->light, pt->slab, b, words), block = b;
+    ent[x] = (uint32_t)(((uint64_t)words[ics_slab_word_index(px)] * (uint32_t)pt->entries) >> 32);
   }
 }
 
-/* portable interior loops */
-static void rows_portable(const ics_prop_taps *pt, const float *src, float *dst, int w, int h,
-                          int nch, int y0, int y1, uint32_t *ent) {
-  size_t plane = (size_t)w * h;
-  int r = pt->reach;
+/* portable loops: unclamped reads within the apron */
+static void rows_portable(const ics_prop_taps *pt, const float *src, float *dst,
+                          const ics_buf_layout *L, int nch, int y0, int y1, uint32_t *ent) {
+  int w = L->w, clamped = pt->s != 1 || pt->reach > L->apron;
   for (int y = y0; y < y1; y++) {
-    int inside = y >= r && y < h - r && w > 2 * r;
     if (pt->entries > 1) ics_prop_entries_row(pt, w, y, ent);
     for (int x = 0; x < w; x++) {
       int e = pt->entries > 1 ? (int)ent[x] : 0;
-      if (!inside || x < r || x >= w - r || pt->s != 1) {
-        ics_prop_pixel(pt, e, src, dst, w, h, nch, x, y);
+      if (clamped) {
+        ics_prop_pixel(pt, e, src, dst, L, nch, x, y);
         continue;
       }
       const int n = pt->ntaps, base = e * n;
-      size_t p = (size_t)y * w + x;
+      size_t p = ics_buf_index(L, x, y);
       for (int c = 0; c < nch; c++) {
-        const float *S = src + (size_t)c * plane + p;
+        const float *S = src + (size_t)c * L->plane + p;
         float acc = 0;
         if (pt->stencil) {
           for (int j = 0; j < n; j++) acc += pt->w[j] * S[pt->off[j]];
@@ -169,21 +190,21 @@ static void rows_portable(const ics_prop_taps *pt, const float *src, float *dst,
             const float *r0 = S + pt->off[j];
             float fx = pt->fx[j], fy = pt->fy[j];
             float top = r0[0] + fx * (r0[1] - r0[0]);
-            float bot = r0[w] + fx * (r0[w + 1] - r0[w]);
+            float bot = r0[L->stride] + fx * (r0[L->stride + 1] - r0[L->stride]);
             acc += pt->w[j] * (top + fy * (bot - top));
           }
         }
-        dst[(size_t)c * plane + p] = acc;
+        dst[(size_t)c * L->plane + p] = acc;
       }
     }
   }
 }
 
-void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, int w, int h, int nch,
-                   int y0, int y1, uint32_t *scratch) {
-  if (pt->s == 1 && ics_prop_avx512_available()) {
-    ics_prop_rows_avx512(pt, src, dst, w, h, nch, y0, y1, scratch);
+void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
+                   int nch, int y0, int y1, uint32_t *scratch) {
+  if (pt->s == 1 && pt->reach <= L->apron && ics_prop_avx512_available()) {
+    ics_prop_rows_avx512(pt, src, dst, L, nch, y0, y1, scratch);
     return;
   }
-  rows_portable(pt, src, dst, w, h, nch, y0, y1, scratch);
+  rows_portable(pt, src, dst, L, nch, y0, y1, scratch);
 }

@@ -1,14 +1,38 @@
 /* propagate.h — one slab step of a light buffer on the CPU (docs/renderer.md "One step"):
- * dst(p) = sum_j w_j src(c + s (p - c) - x_j), bilinear, indices clamped to the buffer. Tap
- * offsets are split into integer and fractional parts once per tap (s = 1), so no read position
- * carries an absolute float coordinate. A table of tap sets is indexed per pixel by the counter
- * RNG (ics_slab_entry). Float buffers (nch planes of w h floats), float arithmetic. */
+ * dst(p) = sum_j w_j src(c + s (p - c) - x_j), bilinear, with the engine's clamp-to-edge
+ * boundary (icshadow/conv.h). Tap offsets are split into integer and fractional parts once per
+ * tap (s = 1), so no read position carries an absolute float coordinate.
+ *
+ * Buffers carry an apron: a w x h buffer is stored in rows of stride w + 2A with A replicated
+ * edge pixels on every side (ics_prop_apron refreshes it), so reads within the apron need no
+ * clamping; taps that reach farther take the clamped path. Light buffers are nch planes of that
+ * layout, float.
+ *
+ * Tap sets: one per slab (a stencil of integer taps with merged bilinear weights), or several
+ * ("entries") of which each pixel uses the one chosen by the counter RNG: entry
+ * floor(word * entries / 2^32), word = ics_slab_entry_block's word of the pixel. */
 #ifndef ICS_RENDER_PROPAGATE_H
 #define ICS_RENDER_PROPAGATE_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "icshadow/kernel.h"
+
+/* The storage of a w x h buffer with an apron of A pixels. */
+typedef struct ics_buf_layout {
+  int w, h, apron, stride;
+  size_t plane;  /* floats per channel plane: stride * (h + 2 A) */
+  size_t origin; /* index of pixel (0, 0): A stride + A */
+} ics_buf_layout;
+
+void ics_buf_layout_init(ics_buf_layout *L, int w, int h, int apron);
+static inline size_t ics_buf_index(const ics_buf_layout *L, int x, int y) {
+  return L->origin + (size_t)y * L->stride + (size_t)x;
+}
+/* Refreshes the apron of rows [y0, y1) (left and right) of every plane; with top_bottom, also
+ * the A rows above row 0 and below row h - 1 (after all rows are final). */
+void ics_prop_apron(const ics_buf_layout *L, float *buf, int nch, int y0, int y1, int top_bottom);
 
 /* One slab's taps, prepared for the inner loops. */
 typedef struct ics_prop_taps {
@@ -16,29 +40,29 @@ typedef struct ics_prop_taps {
   int stencil;        /* one tap set at s = 1, discretised to integer taps */
   double s, cx, cy;   /* magnification and principal point (s = 1: orthographic) */
   int32_t *ix, *iy;   /* integer part of each read offset -x_j */
-  int32_t *off;       /* iy * w + ix: the offset of the read within the buffer */
+  int32_t *off;       /* iy * stride + ix: the read's offset within the layout */
   float *fx, *fy, *w; /* fractional part of the read offset (tables), weight */
   double *ox, *oy;    /* the read offsets -s x_j themselves (perspective) */
   ics_tap2d *disc;    /* scratch for the discretisation */
-  int reach;          /* pixels closer than this to an edge clamp their reads */
-  uint64_t seed;      /* table selection: ics_slab_entry(seed, light, slab, pixel) */
+  int reach;          /* max |integer offset| (+1 for the bilinear neighbour) */
+  uint64_t seed;      /* entry selection: ics_slab_entry_block(seed, light, slab, ...) */
   uint32_t light, slab;
 } ics_prop_taps;
 
-/* Prepares taps for buffers of width w (allocating once for capacity cap per entry; call again
- * per slab). 0, or -1 when out of memory or a tap is out of range. */
+/* Prepares taps for the layout L (allocating once for capacity cap per entry; call again per
+ * slab). 0, or -1 when out of memory or a tap is out of range. */
 int ics_prop_prepare(ics_prop_taps *pt, const ics_tap2d *taps, int entries, int ntaps, int cap,
-                     double s, double cx, double cy, int w);
+                     double s, double cx, double cy, const ics_buf_layout *L);
 void ics_prop_release(ics_prop_taps *pt);
 
-/* Rows [y0, y1) of dst from src; scratch holds w words (the row's table entries). */
-void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, int w, int h, int nch,
-                   int y0, int y1, uint32_t *scratch);
+/* Rows [y0, y1) of dst from src; scratch holds L->w words (the row's entries). */
+void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
+                   int nch, int y0, int y1, uint32_t *scratch);
 
 /* Pieces shared with the vectorised loops: one pixel with clamped reads from tap set e, and the
- * table entries of row y (ics_slab_entry for pixels y w .. y w + w - 1). */
-void ics_prop_pixel(const ics_prop_taps *pt, int e, const float *src, float *dst, int w, int h,
-                    int nch, int x, int y);
+ * entries of row y (pixels y w .. y w + w - 1 of the w x h buffer). */
+void ics_prop_pixel(const ics_prop_taps *pt, int e, const float *src, float *dst,
+                    const ics_buf_layout *L, int nch, int x, int y);
 void ics_prop_entries_row(const ics_prop_taps *pt, int w, int y, uint32_t *ent);
 
 #endif

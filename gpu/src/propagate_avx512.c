@@ -1,13 +1,16 @@
-/* propagate_avx512.c — AVX-512 interior loops of the CPU slab step (see propagate_simd.h),
- * compiled with function-level target attributes and chosen at run time, so the library still
- * runs on any x86-64 processor (and builds elsewhere, where these are stubs).
+/* propagate_avx512.c — AVX-512 loops of the CPU slab step (see propagate_simd.h), compiled with
+ * function-level target attributes and chosen at run time, so the library still runs on any
+ * x86-64 processor (and builds elsewhere, where these are stubs). Preconditions: s = 1 and the
+ * taps' reach within the buffers' apron (no read is clamped).
  *
  * Stencils (one tap set): 16 pixels per vector, one unaligned load and one FMA per tap.
- * Tables (per-pixel random tap sets): the row's entries from a 16-lane Philox-4x32-10 (64 pixels
- * per call; the same words as ics_slab_entry), then per tap three gathers from the tap table
- * (offset, fractions, weight) and four gathers for the bilinear corners per channel. Edge pixels
- * use the clamped scalar pixel (propagate.c). Arithmetic: FMA, so the interior's last bits can
- * differ from the portable loops'; the result still depends on nothing but the pixel. */
+ * Few tap sets (entries <= ICS_PROP_CANDIDATES_MAX, e.g. the default 4 rotations per slab): every
+ * set evaluated with unaligned loads for the 16 pixels, each pixel keeping its own set's result
+ * (a masked blend): no gathers. Many tap sets (a per-pixel table of 384): per tap three gathers
+ * from the tap table and four for the bilinear corners per channel. The row's entries come from
+ * a 16-lane Philox-4x32-10 (64 pixels per call; the same words as ics_slab_entry_block).
+ * Arithmetic: FMA, the same formula in every path, so the last bits do not depend on the path;
+ * they can differ from the portable loops'. */
 #include "propagate_simd.h"
 
 #include <stdint.h>
@@ -51,42 +54,125 @@ TGT static void philox16(__m512i c[4], uint32_t key0, uint32_t key1) {
   }
 }
 
-/* the table entries of row y: entry = floor(word * M / 2^32) */
+/* the entries of row y: floor(word * entries / 2^32); one 16-lane Philox call covers the 64
+ * pixels 64 c .. 64 c + 63 in order (blocks 16 c .. 16 c + 15, word i for pixels + 16 i) */
 TGT static void entries_row(const ics_prop_taps *pt, int w, int y, uint32_t *ent) {
   uint32_t first = (uint32_t)((size_t)y * w), last = first + (uint32_t)w - 1;
-  uint32_t b0 = first / 4, b1 = last / 4;
-  const __m512i Mt = _mm512_set1_epi32(ICS_SLAB_TABLE_M);
+  const __m512i Mt = _mm512_set1_epi32(pt->entries);
   const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  uint32_t tmp[4][16];
-  for (uint32_t b = b0; b <= b1; b += 16) {
-    __m512i c[4] = {_mm512_add_epi32(_mm512_set1_epi32((int)b), iota),
+  uint32_t tmp[64];
+  for (uint32_t c64 = first / 64; c64 <= last / 64; c64++) {
+    __m512i c[4] = {_mm512_add_epi32(_mm512_set1_epi32((int)(16 * c64)), iota),
                     _mm512_set1_epi32((int)pt->slab), _mm512_set1_epi32((int)pt->light),
                     _mm512_set1_epi32(0x736c6162)};
     philox16(c, (uint32_t)pt->seed, (uint32_t)(pt->seed >> 32));
+    uint32_t p0 = 64 * c64;
+    uint32_t *dst = p0 >= first && p0 + 63 <= last ? ent + (p0 - first) : tmp;
     for (int k = 0; k < 4; k++) {
       __m512i lo, hi;
       mul32x32(c[k], Mt, &lo, &hi);
-      _mm512_storeu_si512((void *)tmp[k], hi);
+      _mm512_storeu_si512((void *)(dst + 16 * k), hi);
     }
-    for (int i = 0; i < 16 && b + (uint32_t)i <= b1; i++)
-      for (int k = 0; k < 4; k++) {
-        uint32_t px = 4 * (b + (uint32_t)i) + (uint32_t)k;
-        if (px >= first && px <= last) ent[px - first] = tmp[k][i];
-      }
+    if (dst == tmp)
+      for (uint32_t i = 0; i < 64; i++)
+        if (p0 + i >= first && p0 + i <= last) ent[p0 + i - first] = tmp[i];
   }
 }
 
-TGT static void table_row(const ics_prop_taps *pt, const float *src, float *dst, int w, int h,
-                          int nch, int y, const uint32_t *ent) {
-  size_t plane = (size_t)w * h;
-  int r = pt->reach, n = pt->ntaps;
+/* one pixel, unclamped, the vector loops' formula (FMA) */
+TGT static inline float pixel_fma(const ics_prop_taps *pt, int e, const float *S, int stride) {
+  float acc = 0;
+  for (int j = e * pt->ntaps; j < (e + 1) * pt->ntaps; j++) {
+    const float *r0 = S + pt->off[j];
+    if (pt->stencil) {
+      acc = __builtin_fmaf(pt->w[j], r0[0], acc);
+      continue;
+    }
+    float fx = pt->fx[j], fy = pt->fy[j];
+    float top = __builtin_fmaf(fx, r0[1] - r0[0], r0[0]);
+    float bot = __builtin_fmaf(fx, r0[stride + 1] - r0[stride], r0[stride]);
+    acc = __builtin_fmaf(pt->w[j], __builtin_fmaf(fy, bot - top, top), acc);
+  }
+  return acc;
+}
+
+TGT static inline __m512 bilinear16(const float *p, int stride, __m512 fx, __m512 fy) {
+  __m512 a = _mm512_loadu_ps(p), b = _mm512_loadu_ps(p + 1);
+  __m512 c = _mm512_loadu_ps(p + stride), d = _mm512_loadu_ps(p + stride + 1);
+  __m512 top = _mm512_fmadd_ps(fx, _mm512_sub_ps(b, a), a);
+  __m512 bot = _mm512_fmadd_ps(fx, _mm512_sub_ps(d, c), c);
+  return _mm512_fmadd_ps(fy, _mm512_sub_ps(bot, top), top);
+}
+
+TGT static void stencil_row(const ics_prop_taps *pt, const float *src, float *dst,
+                            const ics_buf_layout *L, int nch, int y) {
+  int w = L->w, n = pt->ntaps;
+  for (int c = 0; c < nch; c++) {
+    const float *S = src + (size_t)c * L->plane + ics_buf_index(L, 0, y);
+    float *D = dst + (size_t)c * L->plane + ics_buf_index(L, 0, y);
+    int x = 0;
+    for (; x + 16 <= w; x += 16) {
+      /* four independent sums (the FMA latency), added in a fixed order */
+      __m512 a0 = _mm512_setzero_ps(), a1 = a0, a2 = a0, a3 = a0;
+      int j = 0;
+      for (; j + 4 <= n; j += 4) {
+        a0 = _mm512_fmadd_ps(_mm512_set1_ps(pt->w[j]), _mm512_loadu_ps(S + x + pt->off[j]), a0);
+        a1 = _mm512_fmadd_ps(_mm512_set1_ps(pt->w[j + 1]), _mm512_loadu_ps(S + x + pt->off[j + 1]), a1);
+        a2 = _mm512_fmadd_ps(_mm512_set1_ps(pt->w[j + 2]), _mm512_loadu_ps(S + x + pt->off[j + 2]), a2);
+        a3 = _mm512_fmadd_ps(_mm512_set1_ps(pt->w[j + 3]), _mm512_loadu_ps(S + x + pt->off[j + 3]), a3);
+      }
+      for (; j < n; j++)
+        a0 = _mm512_fmadd_ps(_mm512_set1_ps(pt->w[j]), _mm512_loadu_ps(S + x + pt->off[j]), a0);
+      _mm512_storeu_ps(D + x, _mm512_add_ps(_mm512_add_ps(a0, a1), _mm512_add_ps(a2, a3)));
+    }
+    for (; x < w; x++) D[x] = pixel_fma(pt, 0, S + x, L->stride);
+  }
+}
+
+/* two 16-pixel blocks per step: independent chains hide the FMA latency; every candidate is
+ * evaluated for both (with 4 rotations per slab almost every block needs all of them) */
+TGT static void candidates_row(const ics_prop_taps *pt, const float *src, float *dst,
+                               const ics_buf_layout *L, int nch, int y, const uint32_t *ent) {
+  int w = L->w, n = pt->ntaps, K = pt->entries, stride = L->stride;
+  for (int c = 0; c < nch; c++) {
+    const float *S = src + (size_t)c * L->plane + ics_buf_index(L, 0, y);
+    float *D = dst + (size_t)c * L->plane + ics_buf_index(L, 0, y);
+    int x = 0;
+    for (; x + 32 <= w; x += 32) {
+      __m512i e0 = _mm512_loadu_si512((const void *)(ent + x));
+      __m512i e1 = _mm512_loadu_si512((const void *)(ent + x + 16));
+      __m512 out0 = _mm512_setzero_ps(), out1 = out0;
+      for (int k = 0; k < K; k++) {
+        __m512 acc0 = _mm512_setzero_ps(), acc1 = acc0;
+        for (int j = k * n; j < (k + 1) * n; j++) {
+          __m512 fx = _mm512_set1_ps(pt->fx[j]), fy = _mm512_set1_ps(pt->fy[j]),
+                 wt = _mm512_set1_ps(pt->w[j]);
+          const float *p = S + x + pt->off[j];
+          acc0 = _mm512_fmadd_ps(wt, bilinear16(p, stride, fx, fy), acc0);
+          acc1 = _mm512_fmadd_ps(wt, bilinear16(p + 16, stride, fx, fy), acc1);
+        }
+        __m512i vk = _mm512_set1_epi32(k);
+        out0 = _mm512_mask_blend_ps(_mm512_cmpeq_epi32_mask(e0, vk), out0, acc0);
+        out1 = _mm512_mask_blend_ps(_mm512_cmpeq_epi32_mask(e1, vk), out1, acc1);
+      }
+      _mm512_storeu_ps(D + x, out0);
+      _mm512_storeu_ps(D + x + 16, out1);
+    }
+    for (; x < w; x++) D[x] = pixel_fma(pt, (int)ent[x], S + x, stride);
+  }
+}
+
+TGT static void table_row(const ics_prop_taps *pt, const float *src, float *dst,
+                          const ics_buf_layout *L, int nch, int y, const uint32_t *ent) {
+  int w = L->w, n = pt->ntaps, stride = L->stride;
   const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  const __m512i vn = _mm512_set1_epi32(n), one = _mm512_set1_epi32(1), vw = _mm512_set1_epi32(w),
-                vw1 = _mm512_set1_epi32(w + 1);
-  int x = r;
-  for (; x + 16 <= w - r; x += 16) {
+  const __m512i vn = _mm512_set1_epi32(n), one = _mm512_set1_epi32(1),
+                vs = _mm512_set1_epi32(stride), vs1 = _mm512_set1_epi32(stride + 1);
+  const size_t row0 = ics_buf_index(L, 0, y);
+  int x = 0;
+  for (; x + 16 <= w; x += 16) {
     __m512i e = _mm512_loadu_si512((const void *)(ent + x));
-    __m512i px = _mm512_add_epi32(_mm512_set1_epi32((int)((size_t)y * w + x)), iota);
+    __m512i px = _mm512_add_epi32(_mm512_set1_epi32((int)(row0 + (size_t)x)), iota);
     __m512 acc[3] = {_mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_ps()};
     __m512i en = _mm512_mullo_epi32(e, vn);
     for (int j = 0; j < n; j++) {
@@ -96,10 +182,10 @@ TGT static void table_row(const ics_prop_taps *pt, const float *src, float *dst,
       __m512 fy = _mm512_i32gather_ps(idx, (const void *)pt->fy, 4);
       __m512 wt = _mm512_i32gather_ps(idx, (const void *)pt->w, 4);
       __m512i a0 = _mm512_add_epi32(px, off);
-      __m512i a1 = _mm512_add_epi32(a0, one), a2 = _mm512_add_epi32(a0, vw),
-              a3 = _mm512_add_epi32(a0, vw1);
+      __m512i a1 = _mm512_add_epi32(a0, one), a2 = _mm512_add_epi32(a0, vs),
+              a3 = _mm512_add_epi32(a0, vs1);
       for (int c = 0; c < nch; c++) {
-        const float *S = src + (size_t)c * plane;
+        const float *S = src + (size_t)c * L->plane;
         __m512 va = _mm512_i32gather_ps(a0, (const void *)S, 4);
         __m512 vb = _mm512_i32gather_ps(a1, (const void *)S, 4);
         __m512 vc = _mm512_i32gather_ps(a2, (const void *)S, 4);
@@ -110,53 +196,32 @@ TGT static void table_row(const ics_prop_taps *pt, const float *src, float *dst,
         acc[c] = _mm512_fmadd_ps(wt, v, acc[c]);
       }
     }
+    for (int c = 0; c < nch; c++) _mm512_storeu_ps(dst + (size_t)c * L->plane + row0 + x, acc[c]);
+  }
+  for (; x < w; x++)
     for (int c = 0; c < nch; c++)
-      _mm512_storeu_ps(dst + (size_t)c * plane + (size_t)y * w + x, acc[c]);
-  }
-  for (int xx = 0; xx < w; xx++)
-    if (xx < r || xx >= x) ics_prop_pixel(pt, (int)ent[xx], src, dst, w, h, nch, xx, y);
+      dst[(size_t)c * L->plane + row0 + x] =
+          pixel_fma(pt, (int)ent[x], src + (size_t)c * L->plane + row0 + x, stride);
 }
 
-TGT static void stencil_row(const ics_prop_taps *pt, const float *src, float *dst, int w, int h,
-                            int nch, int y) {
-  size_t plane = (size_t)w * h;
-  int r = pt->reach, n = pt->ntaps;
-  int x = r;
-  for (int c = 0; c < nch; c++) {
-    const float *S = src + (size_t)c * plane + (size_t)y * w;
-    float *D = dst + (size_t)c * plane + (size_t)y * w;
-    for (x = r; x + 16 <= w - r; x += 16) {
-      __m512 acc = _mm512_setzero_ps();
-      for (int j = 0; j < n; j++)
-        acc = _mm512_fmadd_ps(_mm512_set1_ps(pt->w[j]), _mm512_loadu_ps(S + x + pt->off[j]), acc);
-      _mm512_storeu_ps(D + x, acc);
-    }
-  }
-  for (int xx = 0; xx < w; xx++)
-    if (xx < r || xx >= x) ics_prop_pixel(pt, 0, src, dst, w, h, nch, xx, y);
-}
-
-TGT void ics_prop_rows_avx512(const ics_prop_taps *pt, const float *src, float *dst, int w, int h,
-                              int nch, int y0, int y1, uint32_t *scratch) {
-  int r = pt->reach;
+TGT void ics_prop_rows_avx512(const ics_prop_taps *pt, const float *src, float *dst,
+                              const ics_buf_layout *L, int nch, int y0, int y1,
+                              uint32_t *scratch) {
   for (int y = y0; y < y1; y++) {
-    int inside = y >= r && y < h - r && w > 2 * r + 16;
-    if (pt->entries > 1) entries_row(pt, w, y, scratch);
-    if (!inside) {
-      for (int x = 0; x < w; x++)
-        ics_prop_pixel(pt, pt->entries > 1 ? (int)scratch[x] : 0, src, dst, w, h, nch, x, y);
-    } else if (pt->stencil) {
-      stencil_row(pt, src, dst, w, h, nch, y);
-    } else {
-      table_row(pt, src, dst, w, h, nch, y, scratch);
-    }
+    if (pt->entries > 1) entries_row(pt, L->w, y, scratch);
+    if (pt->stencil)
+      stencil_row(pt, src, dst, L, nch, y);
+    else if (pt->entries <= ICS_PROP_CANDIDATES_MAX)
+      candidates_row(pt, src, dst, L, nch, y, scratch);
+    else
+      table_row(pt, src, dst, L, nch, y, scratch);
   }
 }
 
 #else
 int ics_prop_avx512_available(void) { return 0; }
-void ics_prop_rows_avx512(const ics_prop_taps *pt, const float *src, float *dst, int w, int h,
-                          int nch, int y0, int y1, uint32_t *scratch) {
-  (void)pt, (void)src, (void)dst, (void)w, (void)h, (void)nch, (void)y0, (void)y1, (void)scratch;
+void ics_prop_rows_avx512(const ics_prop_taps *pt, const float *src, float *dst,
+                          const ics_buf_layout *L, int nch, int y0, int y1, uint32_t *scratch) {
+  (void)pt, (void)src, (void)dst, (void)L, (void)nch, (void)y0, (void)y1, (void)scratch;
 }
 #endif

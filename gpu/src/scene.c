@@ -31,6 +31,7 @@ void ics_render_settings_defaults(ics_render_settings *s) {
   s->kernel = ICS_RK_ELLIPSE;
   s->compensate = ICS_RC_DEFAULT;
   s->max_pad = -1;
+  s->pixel_rotations = 4;
   s->memory_limit_mib = 4096;
 }
 
@@ -109,14 +110,14 @@ const char *ics_scene_name(const ics_scene *s) { return s->name; }
  * torus beside it, two coloured lights (Patel Fig. 7d in spirit). */
 static const char default_json[] =
     "{\n"
-    "  \"camera\": {\"projection\": \"orthographic\", \"eye\": [0, 0.9, 3], \"target\": [0, 0.15, 0],\n"
+    "  \"camera\": {\"projection\": \"orthographic\", \"eye\": [0, 1.0, 3], \"target\": [0, 0.25, 0],\n"
     "             \"up\": [0, 1, 0], \"height\": 2.4, \"resolution\": [320, 240]},\n"
-    "  \"render\": {\"slab_spacing\": 0.01, \"d1\": 1.0, \"kernel\": \"ellipse\", \"samples\": 2,\n"
+    "  \"render\": {\"slab_spacing\": 0.015, \"d1\": 1.0, \"kernel\": \"ellipse\", \"samples\": 2,\n"
     "             \"seed\": 1, \"background\": [0.02, 0.02, 0.03]},\n"
     "  \"lights\": [\n"
-    "    {\"mean\": [-0.45, 0.55], \"var\": [0.012, 0.004], \"angle_deg\": 30, \"color\": [1.0, 0.78, 0.5],\n"
+    "    {\"mean\": [-0.4, 0.5], \"var\": [0.012, 0.004], \"angle_deg\": 30, \"color\": [1.0, 0.78, 0.5],\n"
     "     \"weight\": 0.85},\n"
-    "    {\"mean\": [0.55, 0.25], \"var\": [0.05, 0.05], \"color\": [0.45, 0.6, 1.0], \"weight\": 0.45}\n"
+    "    {\"mean\": [0.35, 0.2], \"var\": [0.03, 0.03], \"color\": [0.45, 0.6, 1.0], \"weight\": 0.45}\n"
     "  ],\n"
     "  \"materials\": {\n"
     "    \"floor\": {\"color\": [0.85, 0.85, 0.8]},\n"
@@ -128,7 +129,7 @@ static const char default_json[] =
     "              \"transfer\": [[0, 0.9, 0.5, 0.2, 0], [0.4, 0.95, 0.75, 0.45, 0.6], [1, 1, 0.97, 0.9, 1.4]]}\n"
     "  },\n"
     "  \"objects\": [\n"
-    "    {\"shape\": \"rect\", \"center\": [0, -0.55, 0], \"normal\": [0, 1, 0], \"size\": [4, 4], \"material\": \"floor\"},\n"
+    "    {\"shape\": \"rect\", \"center\": [0, -0.55, 0.2], \"normal\": [0, 1, 0], \"size\": [4, 3.0], \"material\": \"floor\"},\n"
     "    {\"shape\": \"rect\", \"center\": [0, 0.8, -1.3], \"normal\": [0, 0, 1], \"size\": [4, 2.8], \"material\": \"wall\"},\n"
     "    {\"shape\": \"sphere\", \"center\": [-0.25, 0.15, 0], \"radius\": 0.62, \"material\": \"smoke\"},\n"
     "    {\"shape\": \"torus\", \"center\": [0.85, -0.3, 0.45], \"normal\": [0.3, 1, 0.2],\n"

@@ -144,10 +144,10 @@ static int read_camera(rctx *c, json_t *o) {
 static int read_render(rctx *c, json_t *o) {
   static const char *const known[] = {"slab_spacing", "d1", "kernel", "samples", "compensate",
                                       "radii", "seed", "background", "max_pad",
-                                      "memory_limit_mib"};
+                                      "memory_limit_mib", "pixel_rotations"};
   ics_render_settings *r = &c->s->settings;
   if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", W(c, "render"));
-  if (J(ics_jkeys(&c->j, W(c, "render"), o, known, 10))) return -1;
+  if (J(ics_jkeys(&c->j, W(c, "render"), o, known, 11))) return -1;
   json_t *x;
   if (!json_object_get(o, "slab_spacing"))
     return fail(c, ICS_ERR_PARSE, "%s: missing \"slab_spacing\"", W(c, "render"));
@@ -190,6 +190,14 @@ static int read_render(rctx *c, json_t *o) {
     long long mp;
     if (J(ics_jint(&c->j, W(c, "render.max_pad"), x, 0, ICS_SCENE_MAX_RES, &mp))) return -1;
     r->max_pad = (int)mp;
+  }
+  if ((x = json_object_get(o, "pixel_rotations"))) {
+    long long pr;
+    if (J(ics_jint(&c->j, W(c, "render.pixel_rotations"), x, 1, 384, &pr))) return -1;
+    if (pr != 1 && pr != 2 && pr != 4 && pr != 8 && pr != 384)
+      return fail(c, ICS_ERR_RANGE, "%s: %lld (expected 1, 2, 4, 8 or 384)",
+                  W(c, "render.pixel_rotations"), pr);
+    r->pixel_rotations = (int)pr;
   }
   if ((x = json_object_get(o, "memory_limit_mib")) &&
       positive(c, W(c, "render.memory_limit_mib"), x, &r->memory_limit_mib))

@@ -109,6 +109,23 @@ static ics_status member_taps(const ics_slab_kernel *sk, const double cls[3], ic
   return ICS_OK;
 }
 
+/* max over a 33 x 33 grid of frequencies in [-pi, pi]^2 of |sum_j w_j exp(i w . x_j)|: 1 for
+ * non-negative weights summing to 1, more when signed weights amplify a frequency */
+static double amplification(const ics_tap2d *t, int n) {
+  double worst = 0;
+  for (int a = -16; a <= 16; a++)
+    for (int b = -16; b <= 16; b++) {
+      double wx = ICS_PI * a / 16, wy = ICS_PI * b / 16, re = 0, im = 0;
+      for (int j = 0; j < n; j++) {
+        double ph = wx * t[j].x + wy * t[j].y;
+        re += t[j].w * cos(ph);
+        im += t[j].w * sin(ph);
+      }
+      worst = fmax(worst, sqrt(re * re + im * im));
+    }
+  return worst;
+}
+
 static double frac_var(double x) {
   double f = x - floor(x);
   return f * (1 - f);
@@ -179,6 +196,17 @@ static ics_status set_integer(ics_slab_kernel *sk, const char *why) {
 static ics_status init(ics_slab_kernel *sk, const ics_scene *s, int k, double q, char *msg,
                        size_t msg_size);
 
+/* pixels any read of this kernel can reach at the reference depth: the farthest tap plus the
+ * mean, the bilinear neighbour and the integer schedule's rounding */
+static int reach_bound(const ics_slab_kernel *sk) {
+  double r = 0;
+  const ics_tap2d *t = sk->fixed ? sk->fixed : sk->base;
+  int n = sk->fixed ? sk->nfixed : sk->base ? sk->entries * sk->base_taps : 0;
+  for (int j = 0; j < n; j++) r = fmax(r, fmax(fabs(t[j].x), fabs(t[j].y)));
+  double m = fmax(fabs(sk->mean_px[0]), fabs(sk->mean_px[1]));
+  return (int)ceil(r + (sk->fixed ? 0 : m)) + 3;
+}
+
 /* mode TAPS with the core's per-slab compensation (sk->comp NONNEG or SIGNED); a deterministic
  * member's compensated taps are the same every slab at the reference depth: computed once */
 static ics_status per_slab_compensation(ics_slab_kernel *sk, double q, char *msg, size_t msg_size,
@@ -204,7 +232,12 @@ static ics_status per_slab_compensation(ics_slab_kernel *sk, double q, char *msg
 ics_status ics_slab_kernel_init(ics_slab_kernel *sk, const ics_scene *s, int k, double q,
                                 char *msg, size_t msg_size) {
   ics_status st = init(sk, s, k, q, msg, msg_size);
-  sk->out_entries = sk->mode == ICS_SLAB_TABLE ? sk->entries : 1;
+  sk->out_entries = 1;
+  if (sk->mode == ICS_SLAB_TABLE) {
+    int K = ics_scene_settings(s)->pixel_rotations;
+    sk->out_entries = K > 0 && K <= sk->entries && sk->entries % K == 0 ? K : sk->entries;
+  }
+  sk->reach_bound = reach_bound(sk);
   return st;
 }
 
@@ -363,8 +396,21 @@ ics_status ics_slab_kernel_taps(const ics_slab_kernel *sk, uint64_t slab, double
     return ICS_OK;
   }
   double scale = sk->q_ref / q;
-  if (sk->mode == ICS_SLAB_TABLE ||
-      (sk->mode == ICS_SLAB_TAPS && (sk->comp == ICS_RC_EXPECTED || sk->comp == ICS_RC_NONE))) {
+  if (sk->mode == ICS_SLAB_TABLE) {
+    /* the slab's candidates: K table entries spaced M / K apart from a random first one (all M
+     * entries when K = M); each pixel takes one of them (ics_slab_entry's word) */
+    int M = sk->entries, K = sk->out_entries, nb = sk->base_taps;
+    int k0 = K == M ? 0 : (int)ics_slab_entry(sk->seed, (uint32_t)sk->light, (uint32_t)slab, UINT32_MAX - 1);
+    int step = ics_slab_candidate_step(sk);
+    for (int e = 0; e < K; e++) {
+      const ics_tap2d *b = sk->base + (size_t)((k0 + e * step) % M) * (size_t)nb;
+      for (int j = 0; j < nb; j++)
+        out[e * nb + j] = (ics_tap2d){b[j].x * scale + m[0], b[j].y * scale + m[1], b[j].w};
+    }
+    *nout = K * nb;
+    return ICS_OK;
+  }
+  if (sk->mode == ICS_SLAB_TAPS && (sk->comp == ICS_RC_EXPECTED || sk->comp == ICS_RC_NONE)) {
     int n = sk->entries * sk->base_taps;
     for (int j = 0; j < n; j++)
       out[j] = (ics_tap2d){sk->base[j].x * scale + m[0], sk->base[j].y * scale + m[1], sk->base[j].w};
@@ -389,8 +435,19 @@ ics_status ics_slab_kernel_taps(const ics_slab_kernel *sk, uint64_t slab, double
   ics_status st = ics_taps2d_compensate(raw, sk->base_taps,
                                         sk->comp == ICS_RC_NONNEG ? ICS_COMP_NONNEG : ICS_COMP_SIGNED,
                                         out, sk->cap, nout, NULL);
+  /* signed weights can amplify some frequency (|sum w e^{i w.x}| > 1), and then the slabs
+   * multiply it into an explosion: such a set is replaced by the non-negative compensation */
+  if (st == ICS_OK && sk->comp == ICS_RC_SIGNED && amplification(out, *nout) > 1 + 1e-9)
+    st = ics_taps2d_compensate(raw, sk->base_taps, ICS_COMP_NONNEG, out, sk->cap, nout, NULL);
   free(raw);
   return st;
+}
+
+int ics_slab_candidate_step(const ics_slab_kernel *sk) {
+  int M = sk->entries, K = sk->out_entries, N = sk->run_samples;
+  if (K == M) return 1;
+  int step = M / (K * (sk->run_member == ICS_RK_ELLIPSE ? N : 1));
+  return step > 0 ? step : 1;
 }
 
 void ics_slab_entry_block(uint64_t seed, uint32_t light, uint32_t slab, uint32_t block,
@@ -401,7 +458,11 @@ void ics_slab_entry_block(uint64_t seed, uint32_t light, uint32_t slab, uint32_t
 }
 
 uint32_t ics_slab_entry(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel) {
+  return ics_slab_choice(seed, light, slab, pixel, ICS_SLAB_TABLE_M);
+}
+
+uint32_t ics_slab_choice(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel, uint32_t k) {
   uint32_t w[4];
-  ics_slab_entry_block(seed, light, slab, pixel / 4, w);
-  return (uint32_t)(((uint64_t)w[pixel % 4] * ICS_SLAB_TABLE_M) >> 32);
+  ics_slab_entry_block(seed, light, slab, ics_slab_word_block(pixel), w);
+  return (uint32_t)(((uint64_t)w[ics_slab_word_index(pixel)] * k) >> 32);
 }

@@ -41,8 +41,11 @@ typedef struct ics_slab_kernel {
   int taps;              /* taps per pixel (after discretisation for integer modes) */
   int cap;               /* capacity per entry that ics_slab_kernel_taps needs */
   int entries;           /* tap sets held in base (the stochastic members: ICS_SLAB_TABLE_M) */
-  int out_entries;       /* tap sets ics_slab_kernel_taps returns per slab (ICS_SLAB_TABLE:
-                            entries; the other modes: 1) */
+  int out_entries;       /* tap sets ics_slab_kernel_taps returns per slab, of which each pixel
+                            takes one (ICS_SLAB_TABLE: K = render.pixel_rotations distinct
+                            entries from a random first, ics_slab_candidate_step apart; the other
+                            modes: 1) */
+  int reach_bound;       /* pixels a read can reach at the reference depth (buffer apron) */
   int integer;           /* offsets are integers (no bilinear read) */
   ics_tap2d *base;       /* TABLE / TAPS / INTEGER: entries * taps taps WITHOUT the mean (integer
                             modes: centred exact integer taps) */
@@ -64,12 +67,24 @@ void ics_slab_kernel_release(ics_slab_kernel *sk);
 ics_status ics_slab_kernel_taps(const ics_slab_kernel *sk, uint64_t slab, double q,
                                 double cum_mean[2], ics_tap2d *out, int *nout);
 
-/* The per-pixel table index of buffer pixel `pixel` at slab `slab` for light `light`:
- * Philox-4x32-10 under key (seed low, seed high), counter (pixel / 4, slab, light, 0x736c6162),
- * word pixel % 4, scaled to [0, M): floor(word * M / 2^32). One definition for every backend. */
-uint32_t ics_slab_entry(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel);
+/* Entries between a slab's candidates: M / (K N) for the ellipse (its N taps are M / N apart, so
+ * K candidates M / (K N) apart are K distinct tap sets), M / K for Poisson, 1 when K = M. */
+int ics_slab_candidate_step(const ics_slab_kernel *sk);
 
-/* 32-bit words 4 pixels at a time (pixels 4 b .. 4 b + 3): for the backends' inner loops. */
+/* The per-pixel table index of buffer pixel `pixel` (row-major index in the Wb x Hb buffer) at
+ * slab `slab` for light `light`: Philox-4x32-10 under key (seed low, seed high), counter
+ * (block, slab, light, 0x736c6162), word `index` of the block's four, scaled to [0, M):
+ * floor(word * M / 2^32), with block = (pixel / 64) 16 + pixel % 16 and index = (pixel / 16) % 4
+ * (so one 16-lane Philox call gives 64 consecutive pixels in order). One definition for every
+ * backend. */
+uint32_t ics_slab_entry(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel);
+static inline uint32_t ics_slab_word_block(uint32_t pixel) { return (pixel / 64) * 16 + pixel % 16; }
+static inline int ics_slab_word_index(uint32_t pixel) { return (int)((pixel / 16) % 4); }
+
+/* The same word scaled to [0, k): the choice among k candidates (ics_slab_entry is k = M). */
+uint32_t ics_slab_choice(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel, uint32_t k);
+
+/* The four 32-bit words of block b (the pixels 64 (b / 16) + b % 16 + 16 i, i = 0..3). */
 void ics_slab_entry_block(uint64_t seed, uint32_t light, uint32_t slab, uint32_t block,
                           uint32_t out[4]);
 
