@@ -21,3 +21,4 @@ ics_add_test(NAME test_render_geometry SOURCES test_render_geometry.c LABELS fas
 if(TARGET test_render_geometry)
   target_include_directories(test_render_geometry PRIVATE ${CMAKE_SOURCE_DIR}/gpu/src)
 endif()
+ics_add_render_test(test_render_perspective medium)

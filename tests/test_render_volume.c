@@ -7,7 +7,12 @@
  * spacings, three of which do not divide T, to a relative 2e-5 (float light buffers, float
  * fragment depths: ~1e-7 per operation over <= 50 slabs). A volume's transport colour
  * T = (1, 0.5, 0) scales its extinction for the light per channel, exp(-sigma (1 - T_c) l_L),
- * so it too is independent of the slab spacing (checked at two spacings). */
+ * so it too is independent of the slab spacing (checked at two spacings).
+ * Preintegration (Patel Fig. 19): a box of Perlin detail through a transfer function with a narrow
+ * peak, rendered at several slab spacings with and without preintegration against a reference at
+ * spacing 0.001 (1501 slabs, preintegrated). Measured RMSE ratio preintegrated / point 0.44 and
+ * 0.40 at spacings 0.02 and 0.04 here (0.51-0.69 from 0.005 to 0.08 at 64^2: about 2x fewer
+ * slabs at equal error); asserted < 0.75. */
 #include <math.h>
 
 #include "render_util.h"
@@ -60,5 +65,41 @@ int main(void) {
     ics_image_destroy(r.img);
     ics_scene_destroy(s);
   }
+  /* preintegration */
+  static const char *pre_fmt =
+      "{\"camera\": {\"eye\": [0, 0, 3], \"target\": [0, 0, 0], \"height\": 2, \"resolution\": [48, 48]},"
+      " \"render\": {\"slab_spacing\": %g, \"d1\": 1, \"preintegrate\": %s},"
+      " \"lights\": [{\"mean\": [0.2, 0.1], \"cov\": [[0, 0], [0, 0]]}],"
+      " \"materials\": {\"v\": {\"color\": [1, 0.6, 0.3], \"extinction\": 6, \"detail\": {\"function\": \"perlin\", \"frequency\": 3},"
+      "   \"transfer\": [[-1, 0, 0, 0, 0], [0.1, 0, 0, 0, 0], [0.15, 1, 0.2, 0.1, 4], [0.2, 0.2, 1, 0.1, 0], [1, 0, 0, 1, 0]]}, \"w\": {}},"
+      " \"objects\": [{\"shape\": \"box\", \"center\": [0, 0, 0], \"size\": [4, 4, 1], \"material\": \"v\"},"
+      "  {\"shape\": \"rect\", \"center\": [0, 0, -1], \"normal\": [0, 0, 1], \"size\": [4, 4], \"material\": \"w\"}]}";
+  snprintf(json, sizeof json, pre_fmt, 0.001, "true");
+  ics_scene *ps = scene_from_json(json);
+  render_result ref = render_scene(ps, NULL, 0);
+  ics_scene_destroy(ps);
+  const double pe[2] = {0.02, 0.04};
+  for (int k = 0; k < 2; k++) {
+    double rmse[2];
+    for (int pre = 0; pre < 2; pre++) {
+      snprintf(json, sizeof json, pre_fmt, pe[k], pre ? "true" : "false");
+      ps = scene_from_json(json);
+      render_result r = render_scene(ps, NULL, 0);
+      double se = 0;
+      for (int i = 0; i < 48 * 48; i++)
+        for (int c = 0; c < 3; c++) {
+          double d = r.img->data[4 * i + c] - ref.img->data[4 * i + c];
+          se += d * d;
+        }
+      rmse[pre] = sqrt(se / (48 * 48 * 3));
+      ics_image_destroy(r.img);
+      ics_scene_destroy(ps);
+    }
+    printf("preintegration at spacing %.2f: RMSE %.4g (point sample: %.4g), ratio %.2f\n", pe[k],
+           rmse[1], rmse[0], rmse[1] / rmse[0]);
+    CHECK(rmse[1] < 0.75 * rmse[0], "spacing %g: preintegrated RMSE %.4g vs point %.4g", pe[k],
+          rmse[1], rmse[0]);
+  }
+  ics_image_destroy(ref.img);
   return test_summary("test_render_volume");
 }

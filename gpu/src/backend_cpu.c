@@ -79,7 +79,7 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
   const ics_scene *s = P->scene;
   double sig[ICS_MAX_VOLUMES], col[ICS_MAX_VOLUMES][3];
   int objs[ICS_MAX_VOLUMES], nv = 0;
-  double o[3], d[3], pt[3];
+  double o[3], d[3], pt[3], pt2[3];
   int have_ray = 0;
   double t0 = 0;
   double sum = 0;
@@ -91,13 +91,22 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
       if (!have_ray) {
         t0 = now_s();
         ics_plan_ray(P, bi, bj, o, d);
-        double xi = ics_rng_uniform_at(P->rs.seed, JITTER_STREAM | (uint64_t)j->k, p);
-        double zs = za + xi * dz;
-        for (int i = 0; i < 3; i++) pt[i] = o[i] + zs * d[i];
+        if (P->rs.preintegrate) {
+          /* the piece's two ends (its detail varies linearly between them) */
+          for (int i = 0; i < 3; i++) pt[i] = o[i] + za * d[i], pt2[i] = o[i] + (za + dz) * d[i];
+        } else {
+          /* one jittered point (Patel: the volume is constant within the slab) */
+          double xi = ics_rng_uniform_at(P->rs.seed, JITTER_STREAM | (uint64_t)j->k, p);
+          double zs = za + xi * dz;
+          for (int i = 0; i < 3; i++) pt[i] = o[i] + zs * d[i];
+        }
         have_ray = 1;
       }
       double v = ics_detail_value(&P->detail[obj], pt);
-      ics_material_transfer(mat, v, c, &scale);
+      if (P->rs.preintegrate)
+        ics_material_preintegrate(mat, v, ics_detail_value(&P->detail[obj], pt2), c, &scale);
+      else
+        ics_material_transfer(mat, v, c, &scale);
     }
     sig[nv] = mat->extinction * scale;
     memcpy(col[nv], c, sizeof c);
@@ -301,10 +310,11 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
                           ics_status_str(status));
         goto done;
       }
-      if (ics_prop_prepare(&j->pt[l], scratch[l], sk->out_entries, n / sk->out_entries, sk->cap, s,
-                           P->cx, P->cy, &P->buf))
+      if (persp ? ics_prop_prepare_perspective(&j->pt[l], scratch[l], n, s, P->cx, P->cy, &P->buf)
+                : ics_prop_prepare(&j->pt[l], scratch[l], sk->out_entries, n / sk->out_entries,
+                                   sk->cap, s, P->cx, P->cy, &P->buf))
         goto nomem;
-      j->pt[l].seed = P->rs.seed;
+      j->pt[l].seed = P->rs.seed; /* table choices; perspective: the fraction's dither */
       j->pt[l].light = (uint32_t)l;
       j->pt[l].slab = (uint32_t)k;
     }

@@ -125,3 +125,44 @@ void ics_material_transfer(const ics_material *m, double v, double rgb[3], doubl
   for (int c = 0; c < 3; c++) rgb[c] = t[k][1 + c] + a * (t[k + 1][1 + c] - t[k][1 + c]);
   *scale = t[k][4] + a * (t[k + 1][4] - t[k][4]);
 }
+
+/* integrals over [a, b] (a < b) of s(v) and c_k(v) s(v) for a transfer function that is linear
+ * on [a, b]: s and c linear, so c s is quadratic and Simpson's rule is exact */
+static void linear_piece(const ics_material *m, double a, double b, double *S, double CS[3]) {
+  double ca[3], cm[3], cb[3], sa, sm, sb, h = b - a;
+  ics_material_transfer(m, a, ca, &sa);
+  ics_material_transfer(m, 0.5 * (a + b), cm, &sm);
+  ics_material_transfer(m, b, cb, &sb);
+  *S += h * (sa + 4 * sm + sb) / 6;
+  for (int c = 0; c < 3; c++) CS[c] += h * (ca[c] * sa + 4 * cm[c] * sm + cb[c] * sb) / 6;
+}
+
+void ics_material_preintegrate(const ics_material *m, double vf, double vb, double rgb[3],
+                               double *scale) {
+  double lo = fmin(vf, vb), hi = fmax(vf, vb);
+  if (!(hi - lo > 1e-12 * (1 + fabs(hi)))) {
+    ics_material_transfer(m, 0.5 * (vf + vb), rgb, scale);
+    return;
+  }
+  /* breakpoints: the transfer function's nodes inside (lo, hi), and 0 when it has none
+   * (s = max(v, 0) bends there) */
+  double bp[ICS_SCENE_MAX_TRANSFER + 2];
+  int nb = 0;
+  bp[nb++] = lo;
+  if (m->ntransfer == 0) {
+    if (lo < 0 && hi > 0) bp[nb++] = 0;
+  } else {
+    for (int i = 0; i < m->ntransfer; i++)
+      if (m->transfer[i][0] > lo && m->transfer[i][0] < hi) bp[nb++] = m->transfer[i][0];
+  }
+  bp[nb++] = hi;
+  double S = 0, CS[3] = {0, 0, 0};
+  for (int i = 0; i + 1 < nb; i++) linear_piece(m, bp[i], bp[i + 1], &S, CS);
+  *scale = S / (hi - lo);
+  if (S > 0) {
+    for (int c = 0; c < 3; c++) rgb[c] = CS[c] / S;
+  } else {
+    ics_material_transfer(m, 0.5 * (vf + vb), rgb, scale);
+    *scale = 0;
+  }
+}

@@ -27,4 +27,11 @@ double ics_perlin_noise(const uint8_t perm[512], double x, double y, double z);
  * piecewise-linear interpolation (clamped at its ends), or (color, max(v, 0)) without one. */
 void ics_material_transfer(const ics_material *m, double v, double rgb[3], double *scale);
 
+/* Preintegration (Engel, Kraus, Ertl 2001): with the detail value varying linearly from vf to vb
+ * along a piece, the mean extinction scale over the piece, (1 / (vb - vf)) int s(v) dv, and the
+ * extinction-weighted mean colour, int c(v) s(v) dv / int s(v) dv, from exact integrals of the
+ * piecewise-linear transfer function (vf = vb: ics_material_transfer). */
+void ics_material_preintegrate(const ics_material *m, double vf, double vb, double rgb[3],
+                               double *scale);
+
 #endif

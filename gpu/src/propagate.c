@@ -60,6 +60,7 @@ void ics_prop_release(ics_prop_taps *pt) {
 int ics_prop_prepare(ics_prop_taps *pt, const ics_tap2d *taps, int entries, int ntaps, int cap,
                      double s, double cx, double cy, const ics_buf_layout *L) {
   size_t n = (size_t)entries * (size_t)ntaps, c = (size_t)entries * (size_t)cap;
+  if (pt->ix && (pt->classes_cap || !pt->fx)) ics_prop_release(pt); /* held a perspective set */
   if (!pt->ix) {
     pt->ix = malloc(sizeof *pt->ix * 4 * c);
     pt->iy = malloc(sizeof *pt->iy * 4 * c);
@@ -74,6 +75,7 @@ int ics_prop_prepare(ics_prop_taps *pt, const ics_tap2d *taps, int entries, int 
         !pt->disc)
       return -1;
   }
+  pt->classes = 0;
   pt->entries = entries;
   pt->ntaps = ntaps;
   pt->s = s;
@@ -120,7 +122,89 @@ int ics_prop_prepare(ics_prop_taps *pt, const ics_tap2d *taps, int entries, int 
   return 0;
 }
 
+int ics_prop_prepare_perspective(ics_prop_taps *pt, const ics_tap2d *taps, int ntaps, double s,
+                                 double cx, double cy, const ics_buf_layout *L) {
+  const int Q = ICS_PROP_CLASSES, cap = 4 * ntaps + 9, ncls = Q * Q;
+  size_t c = (size_t)ncls * (size_t)cap;
+  if (!pt->ix || pt->classes_cap < c) {
+    ics_prop_release(pt);
+    pt->ix = malloc(sizeof *pt->ix * c);
+    pt->iy = malloc(sizeof *pt->iy * c);
+    pt->w = malloc(sizeof *pt->w * c);
+    pt->disc = malloc(sizeof *pt->disc * (c + (size_t)ntaps));
+    pt->off = malloc(sizeof *pt->off * (size_t)ncls); /* each class's tap count */
+    if (!pt->ix || !pt->iy || !pt->w || !pt->disc || !pt->off) return -1;
+    pt->classes_cap = c;
+  }
+  (void)L;
+  pt->entries = ncls;
+  pt->s = s, pt->cx = cx, pt->cy = cy;
+  pt->stencil = 0;
+  pt->classes = Q;
+  ics_tap2d *in = pt->disc + c, *out = pt->disc;
+  int maxn = 1;
+  /* the taps as engine taps (read at p - x): x = s x_j - d for the class's fraction d */
+  for (int cl = 0; cl < ncls; cl++) {
+    double dx = (double)(cl % Q) / Q, dy = (double)(cl / Q) / Q;
+    for (int j = 0; j < ntaps; j++) in[j] = (ics_tap2d){taps[j].x * s - dx, taps[j].y * s - dy, taps[j].w};
+    int nout;
+    if (ics_slab_compensate_exact(in, ntaps, out + (size_t)cl * cap, cap, &nout) != ICS_OK) return -1;
+    pt->off[cl] = nout;
+    if (nout > maxn) maxn = nout;
+  }
+  for (int cl = 0; cl < ncls; cl++) {
+    const ics_tap2d *o = out + (size_t)cl * cap;
+    size_t base = (size_t)cl * (size_t)maxn;
+    for (int m = 0; m < maxn; m++) {
+      int in_set = m < pt->off[cl];
+      pt->ix[base + m] = in_set ? (int32_t)-o[m].x : 0;
+      pt->iy[base + m] = in_set ? (int32_t)-o[m].y : 0;
+      pt->w[base + m] = in_set ? (float)o[m].w : 0.0f;
+    }
+  }
+  pt->ntaps = maxn;
+  return 0;
+}
+
 static inline int clampi(int v, int hi) { return v < 0 ? 0 : v > hi ? hi : v; }
+
+/* the taps of class (bx, by) of a perspective step applied at pixel (nx, ny), clamped reads */
+static inline float class_sum(const ics_prop_taps *pt, const float *S, const ics_buf_layout *L,
+                              int bx, int by, int nx, int ny) {
+  const int Q = pt->classes, n = pt->ntaps;
+  if (bx == Q) bx = 0, nx++; /* class Q is class 0 one pixel on */
+  if (by == Q) by = 0, ny++;
+  size_t base = (size_t)(by * Q + bx) * (size_t)n;
+  float acc = 0;
+  for (size_t m = base; m < base + (size_t)n; m++)
+    acc += pt->w[m] * S[ics_buf_index(L, clampi(nx + pt->ix[m], L->w - 1), clampi(ny + pt->iy[m], L->h - 1))];
+  return acc;
+}
+
+/* a perspective step's pixel (see ics_prop_prepare_perspective): the classes on either side of
+ * the fraction, blended linearly by where it lies between them */
+static void pixel_classes(const ics_prop_taps *pt, const float *src, float *dst,
+                          const ics_buf_layout *L, int nch, int x, int y) {
+  const int Q = pt->classes;
+  double D[2] = {(pt->s - 1) * (x - pt->cx), (pt->s - 1) * (y - pt->cy)};
+  int n[2], k[2];
+  float r[2];
+  for (int a = 0; a < 2; a++) {
+    double f = floor(D[a]), t = (D[a] - f) * Q, kk = floor(t);
+    n[a] = (int)f;
+    k[a] = (int)kk;
+    r[a] = (float)(t - kk);
+  }
+  int nx = x + n[0], ny = y + n[1];
+  for (int c = 0; c < nch; c++) {
+    const float *S = src + (size_t)c * L->plane;
+    float a00 = class_sum(pt, S, L, k[0], k[1], nx, ny), a10 = class_sum(pt, S, L, k[0] + 1, k[1], nx, ny);
+    float a01 = class_sum(pt, S, L, k[0], k[1] + 1, nx, ny),
+          a11 = class_sum(pt, S, L, k[0] + 1, k[1] + 1, nx, ny);
+    float top = a00 + r[0] * (a10 - a00), bot = a01 + r[0] * (a11 - a01);
+    dst[(size_t)c * L->plane + ics_buf_index(L, x, y)] = top + r[1] * (bot - top);
+  }
+}
 
 void ics_prop_pixel(const ics_prop_taps *pt, int e, const float *src, float *dst,
                     const ics_buf_layout *L, int nch, int x, int y) {
@@ -202,6 +286,11 @@ static void rows_portable(const ics_prop_taps *pt, const float *src, float *dst,
 
 void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
                    int nch, int y0, int y1, uint32_t *scratch) {
+  if (pt->classes) {
+    for (int y = y0; y < y1; y++)
+      for (int x = 0; x < L->w; x++) pixel_classes(pt, src, dst, L, nch, x, y);
+    return;
+  }
   if (pt->s == 1 && pt->reach <= L->apron && ics_prop_avx512_available()) {
     ics_prop_rows_avx512(pt, src, dst, L, nch, y0, y1, scratch);
     return;

@@ -45,6 +45,8 @@ typedef struct ics_prop_taps {
   double *ox, *oy;    /* the read offsets -s x_j themselves (perspective) */
   ics_tap2d *disc;    /* scratch for the discretisation */
   int reach;          /* max |integer offset| (+1 for the bilinear neighbour) */
+  int classes;        /* perspective: Q x Q classes of the magnification's fraction (0: none) */
+  size_t classes_cap; /* capacity of the perspective arrays */
   uint64_t seed;      /* entry selection: ics_slab_entry_block(seed, light, slab, ...) */
   uint32_t light, slab;
 } ics_prop_taps;
@@ -54,6 +56,19 @@ typedef struct ics_prop_taps {
 int ics_prop_prepare(ics_prop_taps *pt, const ics_tap2d *taps, int entries, int ntaps, int cap,
                      double s, double cx, double cy, const ics_buf_layout *L);
 void ics_prop_release(ics_prop_taps *pt);
+
+/* A perspective step (s != 1) with the magnification's fractional read offset folded into the
+ * taps: the read of pixel p is p + D_p - s x_j with D_p = (s - 1)(p - c); for each of Q^2 classes
+ * d = (i, j) / Q of the fraction (Q = ICS_PROP_CLASSES) the offsets -s x_j + d are compensated to
+ * integer taps with exactly their moments (ics_slab_compensate_exact), and pixel p takes the
+ * results of the four classes around frac(D_p) at p + floor(D_p), blended linearly: reads at
+ * integer offsets, so the interpolation adds only r (1 - r) / Q^2 <= 1 / (4 Q^2) px^2 per axis and
+ * slab (r: where the fraction lies between its classes) instead of up to 1/4, and no drift (a
+ * fixed quantisation to the nearest class would move the shadow by up to 1/(2Q) px every slab,
+ * in the same direction). 0, or -1 (out of memory or a compensation that failed). */
+#define ICS_PROP_CLASSES 16
+int ics_prop_prepare_perspective(ics_prop_taps *pt, const ics_tap2d *taps, int ntaps, double s,
+                                 double cx, double cy, const ics_buf_layout *L);
 
 /* Rows [y0, y1) of dst from src; scratch holds L->w words (the row's entries). */
 void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,

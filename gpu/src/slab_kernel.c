@@ -111,15 +111,30 @@ static ics_status member_taps(const ics_slab_kernel *sk, const double cls[3], ic
 
 /* max over a 33 x 33 grid of frequencies in [-pi, pi]^2 of |sum_j w_j exp(i w . x_j)|: 1 for
  * non-negative weights summing to 1, more when signed weights amplify a frequency */
-static double amplification(const ics_tap2d *t, int n) {
+double ics_taps_amplification(const ics_tap2d *t, int n) {
+  /* for integer taps (what compensation returns) the phase pi a x / 16 lives on 32 values */
+  static double ct[32], st[32];
+  static int ready;
+  if (!ready) {
+    for (int i = 0; i < 32; i++) ct[i] = cos(ICS_PI * i / 16), st[i] = sin(ICS_PI * i / 16);
+    ready = 1; /* the same values from any thread: a benign race */
+  }
+  int integer = 1;
+  for (int j = 0; j < n && integer; j++) integer = t[j].x == floor(t[j].x) && t[j].y == floor(t[j].y);
   double worst = 0;
   for (int a = -16; a <= 16; a++)
     for (int b = -16; b <= 16; b++) {
-      double wx = ICS_PI * a / 16, wy = ICS_PI * b / 16, re = 0, im = 0;
+      double re = 0, im = 0;
       for (int j = 0; j < n; j++) {
-        double ph = wx * t[j].x + wy * t[j].y;
-        re += t[j].w * cos(ph);
-        im += t[j].w * sin(ph);
+        if (integer) {
+          long ph = ((long)a * (long)t[j].x + (long)b * (long)t[j].y) & 31;
+          re += t[j].w * ct[ph];
+          im += t[j].w * st[ph];
+        } else {
+          double ph = ICS_PI * (a * t[j].x + b * t[j].y) / 16;
+          re += t[j].w * cos(ph);
+          im += t[j].w * sin(ph);
+        }
       }
       worst = fmax(worst, sqrt(re * re + im * im));
     }
@@ -233,7 +248,7 @@ ics_status ics_slab_kernel_init(ics_slab_kernel *sk, const ics_scene *s, int k, 
                                 char *msg, size_t msg_size) {
   ics_status st = init(sk, s, k, q, msg, msg_size);
   sk->out_entries = 1;
-  if (sk->mode == ICS_SLAB_TABLE) {
+  if (sk->mode == ICS_SLAB_TABLE && ics_scene_camera(s)->projection != ICS_PROJ_PERSPECTIVE) {
     int K = ics_scene_settings(s)->pixel_rotations;
     sk->out_entries = K > 0 && K <= sk->entries && sk->entries % K == 0 ? K : sk->entries;
   }
@@ -287,6 +302,17 @@ static ics_status init(ics_slab_kernel *sk, const ics_scene *s, int k, double q,
   if (!sk->base) return ICS_ERR_NOMEM;
   double cls[3] = {sk->cov_px[0], sk->cov_px[1], sk->cov_px[2]};
   ics_status st;
+  if (sk->comp == ICS_RC_EXPECTED && ics_scene_camera(s)->projection == ICS_PROJ_PERSPECTIVE) {
+    /* perspective: the backend compensates each slab's set per class of the magnification's
+     * fraction (propagate.h), which needs the full class */
+    st = member_taps(sk, cls, sk->base);
+    if (st != ICS_OK) return st;
+    memcpy(sk->class_px, cls, sizeof cls);
+    sk->mode = stoch ? ICS_SLAB_TABLE : ICS_SLAB_TAPS;
+    snprintf(sk->why, sizeof sk->why, "perspective: %s, compensated per class of the "
+             "magnification's fraction", stoch ? "one random tap set per slab" : "one tap set per slab");
+    return ICS_OK;
+  }
   if (sk->comp == ICS_RC_EXPECTED) {
     int ok = 0;
     for (int it = 0; it < 60; it++) {
@@ -437,9 +463,17 @@ ics_status ics_slab_kernel_taps(const ics_slab_kernel *sk, uint64_t slab, double
                                         out, sk->cap, nout, NULL);
   /* signed weights can amplify some frequency (|sum w e^{i w.x}| > 1), and then the slabs
    * multiply it into an explosion: such a set is replaced by the non-negative compensation */
-  if (st == ICS_OK && sk->comp == ICS_RC_SIGNED && amplification(out, *nout) > 1 + 1e-9)
+  if (st == ICS_OK && sk->comp == ICS_RC_SIGNED && ics_taps_amplification(out, *nout) > 1 + 1e-9)
     st = ics_taps2d_compensate(raw, sk->base_taps, ICS_COMP_NONNEG, out, sk->cap, nout, NULL);
   free(raw);
+  return st;
+}
+
+ics_status ics_slab_compensate_exact(const ics_tap2d *in, int n, ics_tap2d *out, int cap,
+                                     int *nout) {
+  ics_status st = ics_taps2d_compensate(in, n, ICS_COMP_SIGNED, out, cap, nout, NULL);
+  if (st == ICS_OK && ics_taps_amplification(out, *nout) > 1 + 1e-9)
+    st = ics_taps2d_compensate(in, n, ICS_COMP_NONNEG, out, cap, nout, NULL);
   return st;
 }
 

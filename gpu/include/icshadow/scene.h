@@ -64,6 +64,8 @@ typedef struct ics_render_settings {
   int samples;         /* 0 = the member's default */
   ics_render_comp compensate;
   int lut_radii;       /* 1: ellipse radii from the built-in LUT; 0: exact */
+  int preintegrate;    /* 1: detail sampled at both ends of each volume piece, the transfer
+                          function integrated between them (Engel 2001; Patel Fig. 19) */
   int pixel_rotations; /* ellipse / poisson: rotations a pixel chooses from per slab (1, 2, 4, 8
                           or 384; default 4) */
   uint64_t seed;
