@@ -9,7 +9,7 @@ function(ics_add_render_test name label)
   endif()
 endfunction()
 ics_add_render_test(test_render_scene fast)
-ics_add_test(NAME test_render_disk SOURCES test_render_disk.c LABELS fast render
+ics_add_test(NAME test_render_disk SOURCES test_render_disk.c LABELS medium render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/scenes/disk.json)
 ics_add_render_test(test_render_volume fast)
 ics_add_test(NAME test_render_repro SOURCES test_render_repro.c LABELS fast render
