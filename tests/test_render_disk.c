@@ -12,8 +12,13 @@
  * whole pixels (<= 1/2 px, x 0.07 per px of the steepest penumbra slope), tolerance RMSE 6e-3,
  * max 4e-2. Controls that must fail the tolerance: d1 = 0.8 (a 20 % wrong variance) and
  * compensation off (interpolation adds ~1/6 px^2 per slab). Pixels within 0.048 of the disk's
- * edge projection (the disk itself and its neighbours) are left out. */
+ * edge projection (the disk itself and its neighbours) are left out.
+ * Hard shadows (Patel's Fig. 20 limitation: zero variance over-blurred by interpolation): with
+ * the light's covariance set to 0 the plan runs integer shifts, and the shadow must be the exact
+ * point-light shadow, the disk moved by -d mu: every receiver pixel whose centre is more than one
+ * pixel from the exact edge is exactly 0 or 1. */
 #include <math.h>
+#include <string.h>
 
 #include "render_util.h"
 #include "testutil.h"
@@ -141,6 +146,45 @@ int main(int argc, char **argv) {
     else
       CHECK(within, "%s: RMSE %.3g (tolerance %.3g), max %.3g (tolerance %.3g)", cases[c].name,
             e.rmse, cases[c].tol_rmse, e.max, cases[c].tol_max);
+  }
+  /* hard shadow of a point light */
+  {
+    const char *txt_mean = "\"cov\": [[0.02, 0.005], [0.005, 0.01]]";
+    FILE *f = fopen(argv[1], "rb");
+    char buf[8192];
+    size_t nr = f ? fread(buf, 1, sizeof buf - 1, f) : 0;
+    if (f) fclose(f);
+    buf[nr] = 0;
+    char *c = strstr(buf, txt_mean);
+    CHECK(c != NULL, "the contract example's covariance not found");
+    if (c) {
+      const char *zero = "\"cov\": [[0, 0], [0, 0]]";
+      char json[8192];
+      snprintf(json, sizeof json, "%.*s%s%s", (int)(c - buf), buf, zero, c + strlen(txt_mean));
+      ics_scene *h = scene_from_json(json);
+      render_result r = render_scene(h, NULL, 0);
+      const ics_light *L = ics_scene_light(h, 0);
+      int W = r.img->width, H = r.img->height, wrong = 0, near = 0;
+      double q = 3.0 / W;
+      for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+          double x = ((i + 0.5) / W - 0.5) * 3, y = (0.5 - (j + 0.5) / H) * 3;
+          if (x * x + y * y < 0.3) continue;
+          /* the point light's shadow: the disk moved by -d mu */
+          double dx = x + L->mean[0], dy = y + L->mean[1], rr = sqrt(dx * dx + dy * dy);
+          double want = rr < 0.5 ? 0 : 1, v = r.img->data[((size_t)j * W + i) * 4];
+          if (fabs(rr - 0.5) <= q) {
+            near++;
+            continue;
+          }
+          if (v != want) wrong++;
+        }
+      printf("hard shadow (zero variance, integer shifts): %d pixels off the exact shadow beyond "
+             "one pixel of its edge (%d within it)\n", wrong, near);
+      CHECK(wrong == 0, "hard shadow: %d pixels differ from the point light's shadow", wrong);
+      ics_image_destroy(r.img);
+      ics_scene_destroy(h);
+    }
   }
   ics_scene_destroy(s);
   free(reference);
