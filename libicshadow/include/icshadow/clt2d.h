@@ -37,8 +37,8 @@ typedef ics_status (*ics_clt2d_gen)(void *ctx, uint64_t step, double scale, ics_
 
 /* A kernel member of kernel.h (ELLIPSE: random offset per step from (seed, step); POISSON: random
  * rotation per step; GAUSS: fixed N x N grid), its class scaled. ctx: const ics_kernel2d*. */
-ics_status ics_clt2d_member_gen(void *ctx, uint64_t step, double scale, ics_tap2d *taps, int cap,
-                                int *ntaps);
+ICS_API ics_status ics_clt2d_member_gen(void *ctx, uint64_t step, double scale, ics_tap2d *taps,
+                                        int cap, int *ntaps);
 
 /* The N-sample elliptical kernel (ics_ellipse_kernel) with a DETERMINISTIC offset schedule:
  * step i uses offset + i * rot (mod 1). rot = 0: the same taps every step (fixed offset);
@@ -50,8 +50,8 @@ typedef struct ics_clt2d_ellipse {
   int nsamples;                 /* 1..ICS_ELLIPSE_MAX_SAMPLES */
   double offset, rot;
 } ics_clt2d_ellipse;
-ics_status ics_clt2d_ellipse_gen(void *ctx /* const ics_clt2d_ellipse* */, uint64_t step,
-                                 double scale, ics_tap2d *taps, int cap, int *ntaps);
+ICS_API ics_status ics_clt2d_ellipse_gen(void *ctx /* const ics_clt2d_ellipse* */, uint64_t step,
+                                         double scale, ics_tap2d *taps, int cap, int *ntaps);
 
 typedef enum ics_clt2d_occluder {
   ICS_CLT2D_EDGE = 0,
@@ -69,7 +69,7 @@ typedef struct ics_clt2d_setup {
 } ics_clt2d_setup;
 
 /* Defaults: edge at 0 degrees, mean 0, cov 0 (must be set), NONNEG, refine 1. */
-ics_clt2d_setup ics_clt2d_setup_default(void);
+ICS_API ics_clt2d_setup ics_clt2d_setup_default(void);
 
 #define ICS_CLT2D_MAX_STEPS 100000
 /* Base grid cap. Memory of ics_clt2d_measure: 2 float buffers per grid, the base and (refine)
@@ -101,8 +101,8 @@ ics_clt2d_setup ics_clt2d_setup_default(void);
  * semidefinite or trace 0),
  * ICS_ERR_RANGE (steps), ICS_ERR_UNSUPPORTED (comp INTEGER), ICS_ERR_SIZE (base grid over
  * ICS_CLT2D_MAX_PIXELS), generator/engine errors passed through, ICS_ERR_NOMEM. */
-ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
-                             const int *steps, int nsteps, ics_clt_point *out);
+ICS_API ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
+                                     const int *steps, int nsteps, ics_clt_point *out);
 
 /* Base-grid pixel count and estimated work (tap-updates as ICS_WORK_BUDGET of shadow1d.h:
  * steps x pixels x applied taps + ICS_WORK_COMP_PASSES x generated taps, per grid, plus the
@@ -114,13 +114,13 @@ ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup
  * that lower bound is returned without the realised pass, so a refusal costs no step's taps. Same argument errors. Measured here
  * (clt2d.c): 0.21 ns per engine tap-update (Release; 0.21-0.41 under load), so the 1D budget
  * ICS_WORK_BUDGET of 1e11 is 21-41 s. */
-ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
-                          const int *steps, int nsteps, double *pixels, double *work);
+ICS_API ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
+                                  const int *steps, int nsteps, double *pixels, double *work);
 
 /* Area of the unit pixel square centred at the node on the opaque side of an edge whose unit
  * normal is (ux, uy), at signed distance t = u . x of the node from the edge: the cdf of
  * ux U1 + uy U2 at t, U uniform on (-1/2, 1/2) (a trapezoid). NaN for NaN. */
-double ics_clt2d_edge_coverage(double ux, double uy, double t);
+ICS_API double ics_clt2d_edge_coverage(double ux, double uy, double t);
 
 #ifdef __cplusplus
 }

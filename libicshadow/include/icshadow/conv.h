@@ -70,7 +70,7 @@ typedef struct ics_conv_opts {
 } ics_conv_opts;
 
 /* clamp-to-edge, constant 0, no compensation. */
-ics_conv_opts ics_conv_opts_default(void);
+ICS_API ics_conv_opts ics_conv_opts_default(void);
 
 /* Accumulated over the steps of a run (all in pixels^2, per axis for 2D: [0] x, [1] y). */
 typedef struct ics_conv_stats {
@@ -83,39 +83,42 @@ typedef struct ics_conv_stats {
 
 /* Variance added by linear interpolation: sum_j w_j f_j (1 - f_j) / sum_j w_j, f_j = frac(x_j).
  * NaN for n <= 0 or a NULL pointer. 2D: out[0] along x, out[1] along y. */
-double ics_interp_var1d(const ics_tap1d *t, int n);
-void ics_interp_var2d(const ics_tap2d *t, int n, double out[2]);
+ICS_API double ics_interp_var1d(const ics_tap1d *t, int n);
+ICS_API void ics_interp_var2d(const ics_tap2d *t, int n, double out[2]);
 
 /* The integer taps the engine actually applies (duplicates merged, sorted by x then y; zero
  * weights dropped). cap >= 2 n (1D) / 4 n (2D) always suffices. ICS_ERR_SIZE if cap too small,
  * ICS_ERR_NAN / ICS_ERR_INFINITE for a bad tap, ICS_ERR_INVALID_ARG for NULL / n <= 0,
  * ICS_ERR_RANGE for |offset| > 2^30. */
-ics_status ics_taps1d_discretize(const ics_tap1d *in, int n, ics_tap1d *out, int cap, int *nout);
-ics_status ics_taps2d_discretize(const ics_tap2d *in, int n, ics_tap2d *out, int cap, int *nout);
+ICS_API ics_status ics_taps1d_discretize(const ics_tap1d *in, int n, ics_tap1d *out, int cap,
+                                         int *nout);
+ICS_API ics_status ics_taps2d_discretize(const ics_tap2d *in, int n, ics_tap2d *out, int cap,
+                                         int *nout);
 
 /* Variance-compensated integer taps (see above). cap >= 2 n + 3 (1D) / 4 n + 9 (2D) suffices.
  * residual (may be NULL): achieved - target variance (1D) / {dxx, dxy, dyy} (2D); 0 when exact.
  * mode ICS_COMP_NONE just discretizes (residual = interpolation variance). */
-ics_status ics_taps1d_compensate(const ics_tap1d *in, int n, ics_comp_mode mode, ics_tap1d *out,
-                                 int cap, int *nout, double *residual);
-ics_status ics_taps2d_compensate(const ics_tap2d *in, int n, ics_comp_mode mode, ics_tap2d *out,
-                                 int cap, int *nout, double residual[3]);
+ICS_API ics_status ics_taps1d_compensate(const ics_tap1d *in, int n, ics_comp_mode mode,
+                                         ics_tap1d *out, int cap, int *nout, double *residual);
+ICS_API ics_status ics_taps2d_compensate(const ics_tap2d *in, int n, ics_comp_mode mode,
+                                         ics_tap2d *out, int cap, int *nout, double residual[3]);
 
 /* One step, in -> out (distinct buffers, length n / w x h). opts NULL = defaults (compensation
  * applies here too). Errors: ICS_ERR_INVALID_ARG (NULL, in == out, ntaps <= 0),
  * ICS_ERR_SIZE (n or w h zero or > ICS_CONV_MAX_LEN), tap errors as discretize, ICS_ERR_NOMEM. */
-ics_status ics_conv1d_step(const double *in, double *out, size_t n, const ics_tap1d *taps,
-                           int ntaps, const ics_conv_opts *opts);
-ics_status ics_conv2d_step(const float *in, float *out, size_t w, size_t h, const ics_tap2d *taps,
-                           int ntaps, const ics_conv_opts *opts);
+ICS_API ics_status ics_conv1d_step(const double *in, double *out, size_t n, const ics_tap1d *taps,
+                                   int ntaps, const ics_conv_opts *opts);
+ICS_API ics_status ics_conv2d_step(const float *in, float *out, size_t w, size_t h,
+                                   const ics_tap2d *taps, int ntaps, const ics_conv_opts *opts);
 
 /* nsteps steps in place on buf, step i = first_step + k using the schedule's taps for that step.
  * stats may be NULL (else it is reset, then filled). nsteps = 0 is a no-op. */
-ics_status ics_conv1d_run(double *buf, size_t n, const ics_schedule1d *s, uint64_t first_step,
-                          int nsteps, const ics_conv_opts *opts, ics_conv_stats *stats);
-ics_status ics_conv2d_run(float *buf, size_t w, size_t h, const ics_schedule2d *s,
-                          uint64_t first_step, int nsteps, const ics_conv_opts *opts,
-                          ics_conv_stats *stats);
+ICS_API ics_status ics_conv1d_run(double *buf, size_t n, const ics_schedule1d *s,
+                                  uint64_t first_step, int nsteps, const ics_conv_opts *opts,
+                                  ics_conv_stats *stats);
+ICS_API ics_status ics_conv2d_run(float *buf, size_t w, size_t h, const ics_schedule2d *s,
+                                  uint64_t first_step, int nsteps, const ics_conv_opts *opts,
+                                  ics_conv_stats *stats);
 
 #ifdef __cplusplus
 }

@@ -32,15 +32,15 @@ extern "C" {
 typedef struct ics_csat ics_csat;
 
 /* Frame from l alone (r_u chosen deterministically, perpendicular to l). */
-ics_status ics_csat_build(ics_csat **out, const ics_volume *vol, const double light_dir[3],
-                          double h, ics_sat_precision mode);
+ICS_API ics_status ics_csat_build(ics_csat **out, const ics_volume *vol, const double light_dir[3],
+                                  double h, ics_sat_precision mode);
 /* Explicit orthonormal frame (checked to 1e-9; r_w = r_u x r_v is the primary light). */
-ics_status ics_csat_build_frame(ics_csat **out, const ics_volume *vol, const double r_u[3],
-                                const double r_v[3], double h, ics_sat_precision mode);
-void ics_csat_free(ics_csat *csat);
+ICS_API ics_status ics_csat_build_frame(ics_csat **out, const ics_volume *vol, const double r_u[3],
+                                        const double r_v[3], double h, ics_sat_precision mode);
+ICS_API void ics_csat_free(ics_csat *csat);
 /* Frame vectors and grid size (cells along u, v, w). Any output pointer may be NULL. */
-void ics_csat_frame(const ics_csat *csat, double r_u[3], double r_v[3], double r_w[3],
-                    size_t n[3]);
+ICS_API void ics_csat_frame(const ics_csat *csat, double r_u[3], double r_v[3], double r_w[3],
+                            size_t n[3]);
 
 /* The six orthodirectional lights of one CSAT (Ament Eq. 14-15). */
 typedef enum ics_csat_light {
@@ -52,15 +52,16 @@ typedef enum ics_csat_light {
   ICS_CSAT_MINUS_V = 5
 } ics_csat_light;
 /* The world direction toward light `which` (unit vector). */
-ics_status ics_csat_light_dir(const ics_csat *csat, ics_csat_light which, double dir[3]);
+ICS_API ics_status ics_csat_light_dir(const ics_csat *csat, ics_csat_light which, double dir[3]);
 
 /* Box-filtered optical depth tau_bar at world point p for light `which`, half-width U >= 0
  * (world units). NaN p or U -> ICS_ERR_NAN, U < 0 -> ICS_ERR_INVALID_ARG. */
-ics_status ics_csat_tau(const ics_csat *csat, ics_csat_light which, const double p[3],
-                        double half_width, double *tau);
+ICS_API ics_status ics_csat_tau(const ics_csat *csat, ics_csat_light which, const double p[3],
+                                double half_width, double *tau);
 /* exp(-tau_bar): the filtered transmittance. */
-ics_status ics_csat_transmittance(const ics_csat *csat, ics_csat_light which, const double p[3],
-                                  double half_width, double *transmittance);
+ICS_API ics_status ics_csat_transmittance(const ics_csat *csat, ics_csat_light which,
+                                          const double p[3], double half_width,
+                                          double *transmittance);
 
 #ifdef __cplusplus
 }

@@ -17,16 +17,18 @@
 #ifndef ICSHADOW_ELLINT_H
 #define ICSHADOW_ELLINT_H
 
+#include "icshadow/api.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-double ics_ellipk(double m);
-double ics_ellipe(double m);
-double ics_ellipk_m1(double m1);
-double ics_ellipe_m1(double m1);
+ICS_API double ics_ellipk(double m);
+ICS_API double ics_ellipe(double m);
+ICS_API double ics_ellipk_m1(double m1);
+ICS_API double ics_ellipe_m1(double m1);
 /* Both at once from the complementary parameter m1 = 1 - m; either pointer may be NULL. */
-void ics_ellipke_m1(double m1, double *K, double *E);
+ICS_API void ics_ellipke_m1(double m1, double *K, double *E);
 
 #ifdef __cplusplus
 }

@@ -23,14 +23,14 @@ typedef struct ics_image {
 
 /* Allocates a zero-filled image. ICS_ERR_SIZE unless 1 <= width, height <= ICS_IMAGE_MAX_DIM;
  * ICS_ERR_INVALID_ARG unless channels is 3 or 4; ICS_ERR_NOMEM. On failure *img is empty. */
-ics_status ics_image_init(ics_image *img, int width, int height, int channels);
+ICS_API ics_status ics_image_init(ics_image *img, int width, int height, int channels);
 /* Frees the pixels and empties the struct (safe on an empty or zeroed struct). */
-void ics_image_free(ics_image *img);
+ICS_API void ics_image_free(ics_image *img);
 
 /* First pixel whose R, G or B is NaN, infinite or negative (alpha is not checked):
  * returns 0 and sets *i, *j (column, row) and *c (channel) for it; 1 when all are finite
  * and >= 0. NULL out-pointers are allowed. */
-int ics_image_find_bad(const ics_image *img, int *i, int *j, int *c);
+ICS_API int ics_image_find_bad(const ics_image *img, int *i, int *j, int *c);
 
 #ifdef __cplusplus
 }

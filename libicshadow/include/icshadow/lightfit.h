@@ -87,19 +87,19 @@ typedef struct ics_lightfit_report {
   int converged;        /* 1: EM stopped at |dLL| <= tol; 0: it ran out of max_iter */
 } ics_lightfit_report;
 
-void ics_lightfit_defaults(ics_lightfit_params *p);
+ICS_API void ics_lightfit_defaults(ics_lightfit_params *p);
 
 /* Fits p->k Gaussians to env (3 or 4 channels; alpha ignored). lights must hold p->k entries;
  * entries past report->k_fit are zeroed. ICS_ERR_INVALID_ARG for bad parameters, a NaN / inf /
  * negative pixel, or a map without light inside the cut-off; ICS_ERR_SIZE for maps smaller than
  * 4 x 2; ICS_ERR_NOMEM. */
-ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *p, ics_light *lights,
-                        ics_lightfit_report *report);
+ICS_API ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *p,
+                                ics_light *lights, ics_lightfit_report *report);
 
 /* The error fields (l1, l2, edge) and energies of any set of n lights against env, with the
  * cut-off max_angle_deg (k_fit = n, iterations = samples = 0). */
-ics_status ics_lightfit_errors(const ics_image *env, double max_angle_deg,
-                               const ics_light *lights, int n, ics_lightfit_report *report);
+ICS_API ics_status ics_lightfit_errors(const ics_image *env, double max_angle_deg,
+                                       const ics_light *lights, int n, ics_lightfit_report *report);
 
 /* Synthetic environment map: env (already initialised, 3 or 4 channels) is overwritten with
  * sky_rgb (NULL: black) plus n Gaussian lights drawn with radiance
@@ -108,32 +108,33 @@ ics_status ics_lightfit_errors(const ics_image *env, double max_angle_deg,
  * widened to it along that axis; lights narrower than that in both axes are drawn as a delta
  * into the one pixel holding their mean (energy weight color). Alpha is set to 1.
  * ICS_ERR_INVALID_ARG for bad lights (negative weight / colour / non-PSD covariance, NaN). */
-ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3], const ics_light *lights,
-                             int n, int supersample);
+ICS_API ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3],
+                                     const ics_light *lights, int n, int supersample);
 
 /* The same, calling progress(ctx, rows_done, rows) after each row of pixels (progress may be
  * NULL). */
-ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
-                                      const ics_light *lights, int n, int supersample,
-                                      void (*progress)(void *ctx, int rows_done, int rows),
-                                      void *ctx);
+ICS_API ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
+                                              const ics_light *lights, int n, int supersample,
+                                              void (*progress)(void *ctx, int rows_done, int rows),
+                                              void *ctx);
 
 /* Plane point and solid angle of pixel (i, j) of a W x H map: returns 0 (and *x, *y, *domega)
  * when the pixel centre is behind the viewer (dz > 0), -1 otherwise. */
-int ics_envmap_pixel(int width, int height, int i, int j, double *x, double *y, double *domega);
+ICS_API int ics_envmap_pixel(int width, int height, int i, int j, double *x, double *y,
+                             double *domega);
 
 /* 1 when the fit keeps pixel (i, j) of a W x H map with the cut-off max_angle_deg (in (0, 90)):
  * its centre is within the cut-off and dz at its worst corner >= half of dz at its centre;
  * 0 otherwise (also for bad arguments). */
-int ics_envmap_pixel_kept(int width, int height, int i, int j, double max_angle_deg);
+ICS_API int ics_envmap_pixel_kept(int width, int height, int i, int j, double max_angle_deg);
 
 /* The map projected onto the light plane at pixel (i, j) of env (3 or 4 channels; alpha
  * ignored): the plane point (x, y) of the pixel centre (as ics_envmap_pixel) and, per colour
  * channel, the light density l = L dw/dA = L (1 + x^2 + y^2)^(-3/2) of the pixel's radiance L
  * in rgb. Returns 0 when the centre is behind the viewer (dz > 0), -1 otherwise or for bad
  * arguments (then nothing is written). x or y may be NULL. */
-int ics_envmap_plane_density(const ics_image *env, int i, int j, double *x, double *y,
-                             double rgb[3]);
+ICS_API int ics_envmap_plane_density(const ics_image *env, int i, int j, double *x, double *y,
+                                     double rgb[3]);
 
 #ifdef __cplusplus
 }

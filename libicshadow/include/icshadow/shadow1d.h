@@ -35,13 +35,13 @@ extern "C" {
 
 /* correct shadow s_d(x) = 1 - L(-x/d) (computed as sf(-x/d), no cancellation); d = 0: H(x)
  * with H(0) = 1/2 */
-double ics_shadow1d_correct(const ics_light1d *l, double d, double x);
+ICS_API double ics_shadow1d_correct(const ics_light1d *l, double d, double x);
 /* CLT model Phi((x + d mu_l) / sqrt(d d1 var_l)); a zero variance gives the shifted edge */
-double ics_shadow1d_clt(const ics_light1d *l, double d, double d1, double x);
+ICS_API double ics_shadow1d_clt(const ics_light1d *l, double d, double d1, double x);
 
 /* isoline positions at level s in (0, 1) and distance d >= 0 */
-double ics_isoline_correct(const ics_light1d *l, double s, double d);
-double ics_isoline_clt(const ics_light1d *l, double s, double d, double d1);
+ICS_API double ics_isoline_correct(const ics_light1d *l, double s, double d);
+ICS_API double ics_isoline_clt(const ics_light1d *l, double s, double d, double d1);
 
 /* ---- the actually iterated shadow (conv engine, icshadow/conv.h) ----
  *
@@ -67,7 +67,7 @@ typedef struct ics_iter1d_opts {
                                ics_clt_skew_taps (a non-symmetric kernel) */
 } ics_iter1d_opts;
 
-ics_iter1d_opts ics_iter1d_opts_default(void);
+ICS_API ics_iter1d_opts ics_iter1d_opts_default(void);
 
 typedef struct ics_iter1d {
   double x0, h;    /* node i is at x0 + i h */
@@ -83,9 +83,9 @@ typedef struct ics_iter1d {
  * ICS_ERR_RANGE), kappa the member with the Eq. 7/15 class (scaled to pixels). d = 0 gives the
  * sampled edge. Errors: light/arguments as above, kernel/engine errors passed through,
  * ICS_ERR_SIZE when the grid would exceed ICS_CONV_MAX_LEN, ICS_ERR_NOMEM. */
-ics_status ics_shadow1d_iterate(const ics_light1d *l, double d, double d1, double e,
-                                const ics_iter1d_opts *opts, ics_iter1d *out);
-void ics_iter1d_free(ics_iter1d *it);
+ICS_API ics_status ics_shadow1d_iterate(const ics_light1d *l, double d, double d1, double e,
+                                        const ics_iter1d_opts *opts, ics_iter1d *out);
+ICS_API void ics_iter1d_free(ics_iter1d *it);
 /* Work model of the iterations (used by the CLI to refuse runs that would take hours):
  * tap-updates = steps x (grid nodes x applied integer taps + ICS_WORK_COMP_PASSES x generated
  * taps). A tap-update (one multiply-add on the grid) takes ~0.4 ns here (clt, tophat); the
@@ -98,18 +98,19 @@ void ics_iter1d_free(ics_iter1d *it);
 /* The grid spacing h, node count and estimated work of ics_shadow1d_iterate with the same
  * arguments, without allocating the grid; the same errors (ICS_ERR_SIZE for a grid over 2^24
  * nodes). */
-ics_status ics_shadow1d_iterate_cost(const ics_light1d *l, double d, double d1, double e,
-                                     const ics_iter1d_opts *opts, double *h, double *nodes,
-                                     double *work);
+ICS_API ics_status ics_shadow1d_iterate_cost(const ics_light1d *l, double d, double d1, double e,
+                                             const ics_iter1d_opts *opts, double *h, double *nodes,
+                                             double *work);
 /* linear interpolation of the nodes (0 / 1 left / right of the grid); NaN for NaN x */
-double ics_iter1d_eval(const ics_iter1d *it, double x);
+ICS_API double ics_iter1d_eval(const ics_iter1d *it, double x);
 /* the x where the interpolated shadow first reaches s in (0, 1); NaN if never */
-double ics_iter1d_isoline(const ics_iter1d *it, double s);
+ICS_API double ics_iter1d_isoline(const ics_iter1d *it, double s);
 
 /* The iterated isoline at level s, and an estimate of its discretisation error: the same
  * iteration on a grid twice as fine (h / 2, same member and seed) and |x(h) - x(h/2)|. */
-ics_status ics_isoline_iterative(const ics_light1d *l, double s, double d, double d1, double e,
-                                 const ics_iter1d_opts *opts, double *x, double *disc_err);
+ICS_API ics_status ics_isoline_iterative(const ics_light1d *l, double s, double d, double d1,
+                                         double e, const ics_iter1d_opts *opts, double *x,
+                                         double *disc_err);
 
 /* ---- CLT convergence of kappa^{*n} * H (pixel units, grid spacing 1) ----
  *
@@ -119,19 +120,19 @@ ics_status ics_isoline_iterative(const ics_light1d *l, double s, double d, doubl
  * too) and a fixed skewed tap list (ics_clt_skew_taps). */
 typedef ics_status (*ics_clt_gen)(void *ctx, uint64_t step, double scale, ics_tap1d *taps,
                                   int cap, int *ntaps);
-ics_status ics_clt_member_gen(void *ctx /* const ics_kernel1d* */, uint64_t step, double scale,
-                              ics_tap1d *taps, int cap, int *ntaps);
+ICS_API ics_status ics_clt_member_gen(void *ctx /* const ics_kernel1d* */, uint64_t step,
+                                      double scale, ics_tap1d *taps, int cap, int *ntaps);
 
 /* ICS_CLT_SKEW_TAPS taps of a discretised exponential (weights exp(-j/4), j = 0..15) moved and
  * scaled to the class (mean, var): a skewed (skewness 1.286), non-symmetric class member. */
 #define ICS_CLT_SKEW_TAPS 16
-ics_status ics_clt_skew_taps(double mean, double var, ics_tap1d taps[ICS_CLT_SKEW_TAPS]);
+ICS_API ics_status ics_clt_skew_taps(double mean, double var, ics_tap1d taps[ICS_CLT_SKEW_TAPS]);
 typedef struct ics_clt_fixed {
   const ics_tap1d *taps;
   int ntaps;
 } ics_clt_fixed;
-ics_status ics_clt_fixed_gen(void *ctx /* const ics_clt_fixed* */, uint64_t step, double scale,
-                             ics_tap1d *taps, int cap, int *ntaps);
+ICS_API ics_status ics_clt_fixed_gen(void *ctx /* const ics_clt_fixed* */, uint64_t step,
+                                     double scale, ics_tap1d *taps, int cap, int *ntaps);
 
 typedef struct ics_clt_point {
   int steps;
@@ -148,18 +149,20 @@ typedef struct ics_clt_point {
  * against the Gaussian cdf with the class moments n mean, n var (plus the grid's 1/12 px^2:
  * the nodes are exactly the cdf of K_n + U(-1/2, 1/2)). mean, var: the class per step
  * (pixels). If refine is 0, disc_err is NaN and no finer run is made. */
-ics_status ics_clt_measure(ics_clt_gen gen, void *ctx, double mean, double var, const int *steps,
-                           int nsteps, ics_comp_mode comp, int refine, ics_clt_point *out);
+ICS_API ics_status ics_clt_measure(ics_clt_gen gen, void *ctx, double mean, double var,
+                                   const int *steps, int nsteps, ics_comp_mode comp, int refine,
+                                   ics_clt_point *out);
 
 /* Node count of the base grid and estimated work (tap-updates, see ICS_WORK_BUDGET; the 2x
  * finer run counts too when refine is set: ~5x) of ics_clt_measure with the same arguments,
  * without running it. Errors as ics_clt_measure (ICS_ERR_SIZE: a grid over 2^24 nodes). */
-ics_status ics_clt_cost(ics_clt_gen gen, void *ctx, double mean, double var, const int *steps,
-                        int nsteps, ics_comp_mode comp, int refine, double *nodes, double *work);
+ICS_API ics_status ics_clt_cost(ics_clt_gen gen, void *ctx, double mean, double var,
+                                const int *steps, int nsteps, ics_comp_mode comp, int refine,
+                                double *nodes, double *work);
 
 /* Least-squares slope of log(err) against log(n) (the convergence rate exponent) over the
  * points with steps >= nmin; NaN with fewer than 2 points. */
-double ics_clt_rate(const ics_clt_point *p, int npoints, int nmin);
+ICS_API double ics_clt_rate(const ics_clt_point *p, int npoints, int nmin);
 
 #ifdef __cplusplus
 }
