@@ -83,8 +83,127 @@ static void test_volume(void) {
         "point, p at the light");
 }
 
+/* ---- objects: ics_X_build / ics_X_free -> ics_X_create / ics_X_destroy ---- */
+
+/* 1000 + a pattern in [-1, 1): every precision mode differs from the others here */
+static void fill_pattern(float *a, size_t n) {
+  for (size_t i = 0; i < n; i++) a[i] = 1000.0f + (float)((i * 37) % 101) / 50.0f - 1.0f;
+}
+
+static void test_sat(void) {
+  enum { W = 13, H = 7, D = 5 };
+  static float a[W * H * D];
+  fill_pattern(a, W * H * D);
+  for (int m = 0; m < ICS_SAT_PRECISION_COUNT; m++) {
+    ics_sat_precision mode = (ics_sat_precision)m;
+    ics_sat2d *o2 = NULL, *n2 = NULL;
+    ics_status so = ics_sat2d_build(&o2, a, W, H, W, mode);
+    ics_status sn = ics_sat2d_create(&n2, a, W, H, W, mode);
+    CHECK(so == ICS_OK && sn == ICS_OK, "sat2d mode %d: %d %d", m, so, sn);
+    for (size_t y = 0; y < H && so == ICS_OK && sn == ICS_OK; y++)
+      for (size_t x = 0; x < W; x++)
+        CHECK(same(ics_sat2d_at(o2, x, y), ics_sat2d_at(n2, x, y)), "sat2d mode %d (%zu, %zu)", m,
+              x, y);
+    ics_sat2d_free(o2);
+    ics_sat2d_destroy(n2);
+    ics_sat3d *o3 = NULL, *n3 = NULL;
+    so = ics_sat3d_build(&o3, a, W, H, D, mode);
+    sn = ics_sat3d_create(&n3, a, W, H, D, mode);
+    CHECK(so == ICS_OK && sn == ICS_OK, "sat3d mode %d: %d %d", m, so, sn);
+    for (size_t z = 0; z < D && so == ICS_OK && sn == ICS_OK; z++)
+      for (size_t y = 0; y < H; y++)
+        for (size_t x = 0; x < W; x++)
+          CHECK(same(ics_sat3d_at(o3, x, y, z), ics_sat3d_at(n3, x, y, z)),
+                "sat3d mode %d (%zu, %zu, %zu)", m, x, y, z);
+    ics_sat3d_free(o3);
+    ics_sat3d_destroy(n3);
+  }
+  /* a refused size: the same status, *out NULL both ways; the old free takes NULL */
+  ics_sat2d *o2 = (ics_sat2d *)a, *n2 = (ics_sat2d *)a;
+  CHECK(ics_sat2d_build(&o2, a, 0, H, W, ICS_SAT_FLOAT) ==
+                ics_sat2d_create(&n2, a, 0, H, W, ICS_SAT_FLOAT) &&
+            !o2 && !n2,
+        "sat2d width 0");
+  ics_sat3d *o3 = (ics_sat3d *)a, *n3 = (ics_sat3d *)a;
+  CHECK(ics_sat3d_build(&o3, a, W, H, 0, ICS_SAT_DOUBLE) ==
+                ics_sat3d_create(&n3, a, W, H, 0, ICS_SAT_DOUBLE) &&
+            !o3 && !n3,
+        "sat3d depth 0");
+  ics_sat2d_free(NULL);
+  ics_sat3d_free(NULL);
+}
+
+static void test_csat_ssat(void) {
+  enum { N = 8 };
+  static float data[N * N * N];
+  fill_pattern(data, N * N * N);
+  for (size_t i = 0; i < N * N * N; i++) data[i] = (data[i] - 999.0f) / 10.0f; /* [0, 0.2) */
+  ics_volume vol = {data, N, N, N};
+  const double dir[3] = {0.3, -0.4, 0.866}, ru[3] = {1, 0, 0}, rv[3] = {0, 0.6, 0.8};
+  const double pts[][3] = {{4, 4, 2}, {1.5, 6.25, 0.5}, {7.9, 0.1, 4}, {-1, 4, 4}};
+  const double Us[] = {0.0, 0.5, 2.0};
+  ics_csat *oc = NULL, *nc = NULL, *of = NULL, *nf = NULL;
+  CHECK(ics_csat_build(&oc, &vol, dir, 1.0, ICS_SAT_COMPENSATED) == ICS_OK &&
+            ics_csat_create(&nc, &vol, dir, 1.0, ICS_SAT_COMPENSATED) == ICS_OK,
+        "csat create");
+  CHECK(ics_csat_build_frame(&of, &vol, ru, rv, 0.5, ICS_SAT_DOUBLE) == ICS_OK &&
+            ics_csat_create_frame(&nf, &vol, ru, rv, 0.5, ICS_SAT_DOUBLE) == ICS_OK,
+        "csat create frame");
+  for (int l = 0; l < 6 && oc && nc && of && nf; l++)
+    for (size_t i = 0; i < sizeof pts / sizeof pts[0]; i++)
+      for (size_t u = 0; u < sizeof Us / sizeof Us[0]; u++) {
+        double to = -1, tn = -2, fo = -1, fn = -2;
+        ics_status so = ics_csat_tau(oc, (ics_csat_light)l, pts[i], Us[u], &to);
+        ics_status sn = ics_csat_tau(nc, (ics_csat_light)l, pts[i], Us[u], &tn);
+        CHECK(so == sn && same(to, tn), "csat light %d p %zu U %g: %.17g vs %.17g", l, i, Us[u],
+              to, tn);
+        so = ics_csat_tau(of, (ics_csat_light)l, pts[i], Us[u], &fo);
+        sn = ics_csat_tau(nf, (ics_csat_light)l, pts[i], Us[u], &fn);
+        CHECK(so == sn && same(fo, fn), "csat frame light %d p %zu U %g: %.17g vs %.17g", l, i,
+              Us[u], fo, fn);
+      }
+  ics_csat_free(oc);
+  ics_csat_destroy(nc);
+  ics_csat_free(of);
+  ics_csat_destroy(nf);
+  const double light[3] = {-6, 4, 4};
+  ics_ssat *os = NULL, *ns = NULL;
+  CHECK(ics_ssat_build(&os, &vol, light, 32, 16, 24, ICS_SAT_FLOAT_OFFSET) == ICS_OK &&
+            ics_ssat_create(&ns, &vol, light, 32, 16, 24, ICS_SAT_FLOAT_OFFSET) == ICS_OK,
+        "ssat create");
+  for (size_t i = 0; i < sizeof pts / sizeof pts[0] && os && ns; i++)
+    for (size_t u = 1; u < sizeof Us / sizeof Us[0]; u++) {
+      double to = -1, tn = -2;
+      ics_status so = ics_ssat_tau(os, pts[i], Us[u], &to);
+      ics_status sn = ics_ssat_tau(ns, pts[i], Us[u], &tn);
+      CHECK(so == sn && same(to, tn), "ssat p %zu U %g: %.17g vs %.17g", i, Us[u], to, tn);
+    }
+  ics_ssat_free(os);
+  ics_ssat_destroy(ns);
+  /* refused arguments: the same status, *out NULL */
+  const double zero[3] = {0, 0, 0};
+  ics_csat *bc = (ics_csat *)data, *bn = (ics_csat *)data;
+  CHECK(ics_csat_build(&bc, &vol, zero, 1.0, ICS_SAT_DOUBLE) ==
+                ics_csat_create(&bn, &vol, zero, 1.0, ICS_SAT_DOUBLE) &&
+            !bc && !bn,
+        "csat zero direction");
+  CHECK(ics_csat_build_frame(&bc, &vol, ru, ru, 1.0, ICS_SAT_DOUBLE) ==
+                ics_csat_create_frame(&bn, &vol, ru, ru, 1.0, ICS_SAT_DOUBLE) &&
+            !bc && !bn,
+        "csat frame not orthonormal");
+  ics_ssat *bs = (ics_ssat *)data, *bt = (ics_ssat *)data;
+  CHECK(ics_ssat_build(&bs, &vol, light, 0, 16, 24, ICS_SAT_DOUBLE) ==
+                ics_ssat_create(&bt, &vol, light, 0, 16, 24, ICS_SAT_DOUBLE) &&
+            !bs && !bt,
+        "ssat n_phi 0");
+  ics_csat_free(NULL);
+  ics_ssat_free(NULL);
+}
+
 int main(void) {
   test_normal();
   test_volume();
+  test_sat();
+  test_csat_ssat();
   return test_summary("test_deprecated");
 }

@@ -229,7 +229,7 @@ ics_status ics_occ_slice(const ics_occ_box *boxes, size_t nboxes, const ics_occ_
 /* ---- object ----------------------------------------------------------------------------- */
 static void free_sat(ics_occtex *ot) {
   if (!ot->sat) return;
-  for (int k = 0; k < ot->K; k++) ics_sat2d_free(ot->sat[k]);
+  for (int k = 0; k < ot->K; k++) ics_sat2d_destroy(ot->sat[k]);
   free(ot->sat);
   ot->sat = NULL;
 }
@@ -370,7 +370,8 @@ static ics_status build_sat(ics_occtex *ot) {
   if (!ot->sat) return ICS_ERR_NOMEM;
   const size_t n = (size_t)ot->n;
   for (int k = 0; k < ot->K; k++) {
-    ics_status st = ics_sat2d_build(&ot->sat[k], ot->tex + (size_t)k * n * n, n, n, n, ICS_SAT_DOUBLE);
+    ics_status st =
+        ics_sat2d_create(&ot->sat[k], ot->tex + (size_t)k * n * n, n, n, n, ICS_SAT_DOUBLE);
     if (st) {
       free_sat(ot);
       return st;

@@ -7,7 +7,12 @@
 #ifndef ICSHADOW_DEPRECATED_H
 #define ICSHADOW_DEPRECATED_H
 
+#include <stddef.h>
+
+#include "icshadow/csat.h"
 #include "icshadow/normal.h"
+#include "icshadow/sat.h"
+#include "icshadow/ssat.h"
 #include "icshadow/status.h"
 #include "icshadow/volume.h"
 
@@ -49,5 +54,51 @@ static inline ics_status ics_tau_bruteforce_point(const ics_volume *vol,
                                                   double *tau) {
   return ics_volume_tau_point(vol, light_pos, p, half_width, n_patch, step, tau);
 }
+
+/* ---- 0.2.0: objects are made by ics_X_create and freed by ics_X_destroy ---- */
+ICS_DEPRECATED("since 0.2.0: use ics_sat2d_create")
+static inline ics_status ics_sat2d_build(ics_sat2d **out, const float *data, size_t width,
+                                         size_t height, size_t stride, ics_sat_precision mode) {
+  return ics_sat2d_create(out, data, width, height, stride, mode);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_sat2d_destroy")
+static inline void ics_sat2d_free(ics_sat2d *sat) { ics_sat2d_destroy(sat); }
+
+ICS_DEPRECATED("since 0.2.0: use ics_sat3d_create")
+static inline ics_status ics_sat3d_build(ics_sat3d **out, const float *data, size_t width,
+                                         size_t height, size_t depth, ics_sat_precision mode) {
+  return ics_sat3d_create(out, data, width, height, depth, mode);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_sat3d_destroy")
+static inline void ics_sat3d_free(ics_sat3d *sat) { ics_sat3d_destroy(sat); }
+
+ICS_DEPRECATED("since 0.2.0: use ics_csat_create")
+static inline ics_status ics_csat_build(ics_csat **out, const ics_volume *vol,
+                                        const double light_dir[3], double h,
+                                        ics_sat_precision mode) {
+  return ics_csat_create(out, vol, light_dir, h, mode);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_csat_create_frame")
+static inline ics_status ics_csat_build_frame(ics_csat **out, const ics_volume *vol,
+                                              const double r_u[3], const double r_v[3], double h,
+                                              ics_sat_precision mode) {
+  return ics_csat_create_frame(out, vol, r_u, r_v, h, mode);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_csat_destroy")
+static inline void ics_csat_free(ics_csat *csat) { ics_csat_destroy(csat); }
+
+ICS_DEPRECATED("since 0.2.0: use ics_ssat_create")
+static inline ics_status ics_ssat_build(ics_ssat **out, const ics_volume *vol,
+                                        const double light_pos[3], size_t n_phi, size_t n_theta,
+                                        size_t n_r, ics_sat_precision mode) {
+  return ics_ssat_create(out, vol, light_pos, n_phi, n_theta, n_r, mode);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_ssat_destroy")
+static inline void ics_ssat_free(ics_ssat *ssat) { ics_ssat_destroy(ssat); }
 
 #endif

@@ -43,8 +43,9 @@
  * ICS_ERR_INFINITE, float sums that overflow -> ICS_ERR_RANGE (detected after the pass; on
  * such an error from _rebuild the table is invalid and its box sums return
  * ICS_ERR_INVALID_ARG until a successful rebuild). NULL pointers -> ICS_ERR_INVALID_ARG.
- * Allocation failure -> ICS_ERR_NOMEM. Objects are opaque; free with the matching _free
- * (NULL is fine). The library is single-threaded; a built table may be read from several
+ * Allocation failure -> ICS_ERR_NOMEM. Tables are opaque objects: ics_sat2d_create /
+ * ics_sat3d_create make one (*out NULL on failure), ics_sat2d_destroy / ics_sat3d_destroy free
+ * it (NULL is fine). The library is single-threaded; a built table may be read from several
  * threads at once. */
 #ifndef ICSHADOW_SAT_H
 #define ICSHADOW_SAT_H
@@ -85,12 +86,12 @@ typedef struct ics_sat2d ics_sat2d;
 /* Build the SAT of a width x height float image (row stride in elements, >= width, and the
  * input span (height - 1) * stride + width at most ICS_SAT_MAX_SPAN_BYTES / 4 floats; otherwise
  * ICS_ERR_INVALID_ARG). */
-ICS_API ics_status ics_sat2d_build(ics_sat2d **out, const float *data, size_t width, size_t height,
-                                   size_t stride, ics_sat_precision mode);
+ICS_API ics_status ics_sat2d_create(ics_sat2d **out, const float *data, size_t width, size_t height,
+                                    size_t stride, ics_sat_precision mode);
 /* Recompute an existing table from new data of the same size (no allocation: the steady
  * state of a renderer whose transfer function or time step changes). */
 ICS_API ics_status ics_sat2d_rebuild(ics_sat2d *sat, const float *data, size_t stride);
-ICS_API void ics_sat2d_free(ics_sat2d *sat);
+ICS_API void ics_sat2d_destroy(ics_sat2d *sat);
 ICS_API void ics_sat2d_size(const ics_sat2d *sat, size_t *width, size_t *height);
 ICS_API ics_sat_precision ics_sat2d_precision(const ics_sat2d *sat);
 /* The offset m subtracted before summing (0 unless ICS_SAT_FLOAT_OFFSET). */
@@ -117,10 +118,10 @@ ICS_API double ics_sat2d_at(const ics_sat2d *sat, size_t x, size_t y);
 typedef struct ics_sat3d ics_sat3d;
 
 /* Build the SAT of a width x height x depth float volume (tightly packed, x fastest). */
-ICS_API ics_status ics_sat3d_build(ics_sat3d **out, const float *data, size_t width, size_t height,
-                                   size_t depth, ics_sat_precision mode);
+ICS_API ics_status ics_sat3d_create(ics_sat3d **out, const float *data, size_t width, size_t height,
+                                    size_t depth, ics_sat_precision mode);
 ICS_API ics_status ics_sat3d_rebuild(ics_sat3d *sat, const float *data);
-ICS_API void ics_sat3d_free(ics_sat3d *sat);
+ICS_API void ics_sat3d_destroy(ics_sat3d *sat);
 ICS_API void ics_sat3d_size(const ics_sat3d *sat, size_t *width, size_t *height, size_t *depth);
 ICS_API ics_sat_precision ics_sat3d_precision(const ics_sat3d *sat);
 ICS_API double ics_sat3d_offset(const ics_sat3d *sat);

@@ -40,9 +40,9 @@ ICS_API ics_status ics_volume_tau_directional(const ics_volume *vol, const doubl
 
 /* Point light at light_pos (the reference of ics_ssat_tau): n_patch x n_patch rays over the
  * SSAT's angular box of the patch of half-width U > 0 at p, in the SSAT's frame (derived from
- * vol and light_pos as in ics_ssat_build; midpoint in phi and in cos(theta), i.e. uniform in
+ * vol and light_pos as in ics_ssat_create; midpoint in phi and in cos(theta), i.e. uniform in
  * solid angle), each marched from the light to radius R = |p - light_pos| with step `step`,
- * averaged. The same light limit as ics_ssat_build (ICS_ERR_RANGE); p at the light ->
+ * averaged. The same light limit as ics_ssat_create (ICS_ERR_RANGE); p at the light ->
  * ICS_ERR_RANGE; U <= 0, step <= 0 or n_patch < 1 -> ICS_ERR_INVALID_ARG. */
 ICS_API ics_status ics_volume_tau_point(const ics_volume *vol, const double light_pos[3],
                                         const double p[3], double half_width, int n_patch,
