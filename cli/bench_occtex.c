@@ -264,7 +264,7 @@ static ics_status build(const options *o, const ics_occ_box *boxes, int nb, int 
   const ics_occ_grid g = {-1, -1, 2.0 / n, n};
   double t0 = cli_now_s();
   ics_status st = ics_occ_slice(boxes, (size_t)nb, &g, K, 1, 2, o->ss, tex);
-  if (!st) st = ics_occtex_create(tex, &g, K, 1, 2, ot);
+  if (!st) st = ics_occtex_create(ot, tex, &g, K, 1, 2);
   if (!st) st = ics_occtex_prefilter(*ot, pf);
   *ms = 1e3 * (cli_now_s() - t0);
   return st;
@@ -352,7 +352,7 @@ int bench_occtex(int argc, char **argv) {
     if (!st) st = build(&o, boxes, nb, o.sizes[0], o.slices[0], o.fig3_pf, tex, &ot, &ms);
     for (int c = 0; c < 3 && !st; c++) st = ics_occtex_shadow(ot, &light, o.fig3_pf, (ics_occ_combine)c, P, nr, occ + c * nr);
     if (!st) st = ics_occ_exact(boxes, (size_t)nb, &light, o.m, P, nr, ref);
-    ics_occtex_free(ot);
+    ics_occtex_destroy(ot);
     if (st) {
       rc = fail("fig3", st);
       goto done;
@@ -405,7 +405,7 @@ int bench_occtex(int argc, char **argv) {
                      o.reps, o.sizes[a], o.slices[b], ics_occ_prefilter_name((ics_occ_prefilter)p));
             st = build(&o, boxes, nb, o.sizes[a], o.slices[b], (ics_occ_prefilter)p, tex, &ot, &ms);
             if (st) {
-              ics_occtex_free(ot);
+              ics_occtex_destroy(ot);
               rc = fail("build", st);
               goto done;
             }
@@ -415,7 +415,7 @@ int bench_occtex(int argc, char **argv) {
               st = ics_occtex_shadow(ot, &light, (ics_occ_prefilter)p, (ics_occ_combine)c, P, nr, occ);
               double q = 1e3 * (cli_now_s() - q0);
               if (st) {
-                ics_occtex_free(ot);
+                ics_occtex_destroy(ot);
                 rc = fail("shadow", st);
                 goto done;
               }
@@ -431,7 +431,7 @@ int bench_occtex(int argc, char **argv) {
               emax[a][b][p][c] = mx;
               ebias[a][b][p][c] = sb / nr;
             }
-            ics_occtex_free(ot);
+            ics_occtex_destroy(ot);
           }
     }
     if (!header++)

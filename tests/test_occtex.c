@@ -64,7 +64,7 @@ static void test_prefilters(void) {
   for (int i = 0; i < n * n; i++) tex[n * n + i] = urand(&s) < 0.3 ? 1.0f : 0.0f;
   ics_occ_grid g = {-1, -1, 2.0 / n, n};
   ics_occtex *ot = NULL;
-  CHECK(ics_occtex_create(tex, &g, K, 1, 2, &ot) == ICS_OK, "create");
+  CHECK(ics_occtex_create(&ot, tex, &g, K, 1, 2) == ICS_OK, "create");
   if (!ot) return;
   double r;
   CHECK(ics_occtex_box(ot, ICS_OCC_SAT, 0, 1, 1, 2, 2, &r) == ICS_ERR_UNSUPPORTED, "SAT not built yet");
@@ -131,7 +131,7 @@ static void test_prefilters(void) {
   CHECK(ics_occtex_box(ot, ICS_OCC_SAT, 1, 7.25, 3.5, 0, 0, &r) == ICS_OK && r == tex[n * n + 3 * n + 7],
         "SAT point lookup %.17g", r);
   printf("prefilters: worst error / bound: SAT %.3g, N-Buffers %.3g, mipmap %.3g\n", worst_sat, worst_nb, worst_mip);
-  ics_occtex_free(ot);
+  ics_occtex_destroy(ot);
   free(tex);
 }
 
@@ -209,7 +209,7 @@ static void test_combination(void) {
   float *tex = malloc(sizeof(float) * K * n * n);
   ics_occtex *ot = NULL;
   CHECK(ics_occ_slice(boxes, 60, &g, K, 1, 2, 2, tex) == ICS_OK, "slice");
-  CHECK(ics_occtex_create(tex, &g, K, 1, 2, &ot) == ICS_OK && ics_occtex_prefilter(ot, ICS_OCC_NBUFFERS) == ICS_OK, "build");
+  CHECK(ics_occtex_create(&ot, tex, &g, K, 1, 2) == ICS_OK && ics_occtex_prefilter(ot, ICS_OCC_NBUFFERS) == ICS_OK, "build");
   ics_occ_light L = {0.1, 0, 0.8, 0.8};
   double P[3 * 200], oc[3][200];
   for (int i = 0; i < 200; i++) {
@@ -226,7 +226,7 @@ static void test_combination(void) {
   }
   CHECK(bad == 0, "%d points violate max <= product <= sum", bad);
   CHECK(strict > 20, "only %d points tell the three combinations apart", strict);
-  ics_occtex_free(ot);
+  ics_occtex_destroy(ot);
   free(tex);
 }
 
@@ -240,7 +240,7 @@ static void test_planar(void) {
   float *tex = malloc(sizeof(float) * n * n);
   ics_occtex *ot = NULL;
   CHECK(ics_occ_slice(&plate, 1, &g, 1, 0.5, 1, 1, tex) == ICS_OK, "slice");
-  CHECK(ics_occtex_create(tex, &g, 1, 0.5, 1, &ot) == ICS_OK, "create");
+  CHECK(ics_occtex_create(&ot, tex, &g, 1, 0.5, 1) == ICS_OK, "create");
   for (int pf = 0; pf < ICS_OCC_PREFILTER_COUNT; pf++) ics_occtex_prefilter(ot, (ics_occ_prefilter)pf);
   const ics_occ_light L = {0.1, -0.05, 0.5, 0.5};
   unsigned s = 4242;
@@ -286,7 +286,7 @@ static void test_planar(void) {
   printf("planar occluder: worst |error|: SAT %.3g, N-Buffers %.3g, mipmap (aligned) %.3g, brute force m=128 %.3g\n",
          worst_sat, worst_nb, worst_mip, worst_bf);
 
-  ics_occtex_free(ot);
+  ics_occtex_destroy(ot);
   free(tex);
 }
 
@@ -303,7 +303,7 @@ static void test_monotone(void) {
   float *tex = malloc(sizeof(float) * n * n);
   ics_occtex *ot = NULL;
   ics_occ_slice(&plate, 1, &g, 1, 0.5, 1, 1, tex);
-  CHECK(ics_occtex_create(tex, &g, 1, 0.5, 1, &ot) == ICS_OK, "create");
+  CHECK(ics_occtex_create(&ot, tex, &g, 1, 0.5, 1) == ICS_OK, "create");
   for (int pf = 0; pf < ICS_OCC_PREFILTER_COUNT; pf++) ics_occtex_prefilter(ot, (ics_occ_prefilter)pf);
   const double Pin[3] = {0.4, 0.1, 2}, Pout[3] = {1.6, -0.1, 2};
   for (int pf = -1; pf < ICS_OCC_PREFILTER_COUNT; pf++) { /* -1: the exact formula itself */
@@ -336,7 +336,7 @@ static void test_monotone(void) {
     }
     CHECK(bad == 0 && prev_in < 0.9 && prev_out > 0.1, "%s: %d non-monotone steps (ends %g %g)", name, bad, prev_in, prev_out);
   }
-  ics_occtex_free(ot);
+  ics_occtex_destroy(ot);
   free(tex);
 }
 
@@ -349,7 +349,7 @@ static void test_fading(void) {
   float *tex = malloc(sizeof(float) * K * n * n);
   ics_occtex *ot = NULL;
   ics_occ_slice(boxes, 40, &g, K, 1, 2, 2, tex);
-  CHECK(ics_occtex_create(tex, &g, K, 1, 2, &ot) == ICS_OK && ics_occtex_prefilter(ot, ICS_OCC_SAT) == ICS_OK, "build");
+  CHECK(ics_occtex_create(&ot, tex, &g, K, 1, 2) == ICS_OK && ics_occtex_prefilter(ot, ICS_OCC_SAT) == ICS_OK, "build");
   ics_occ_light L = {0, 0, 0.5, 0.3};
   /* weights: slice k = (1 + k/4, 1 + (k+1)/4]; P at z = 1.6 is 40% into slice 2 */
   double P[3] = {0.1, 0.2, 1.6}, w[4], o[4];
@@ -369,7 +369,7 @@ static void test_fading(void) {
   }
   /* over 2e-7 in z the footprint moves by < 1e-6 texels: a jump would show as O(1e-2) or more */
   CHECK(worst < 1e-4, "occlusion jumps by %g across a slice plane", worst);
-  ics_occtex_free(ot);
+  ics_occtex_destroy(ot);
   free(tex);
 }
 
@@ -380,25 +380,26 @@ static void test_bad_input(void) {
   ics_occ_grid g = {0, 0, 1, 8};
   ics_occ_grid g0 = {0, 0, 1, 0}, g3 = {0, 0, 1, 3}, gbig = {0, 0, 1, 8192}, gnan = {NAN, 0, 1, 8},
                gneg = {0, 0, -1, 8}, ginf = {0, 0, INFINITY, 8};
-  CHECK(ics_occtex_create(tex, &g0, 1, 1, 2, &ot) == ICS_ERR_SIZE && !ot, "empty texture");
-  CHECK(ics_occtex_create(tex, &g3, 1, 1, 2, &ot) == ICS_ERR_SIZE, "n = 3");
-  CHECK(ics_occtex_create(tex, &gbig, 1, 1, 2, &ot) == ICS_ERR_SIZE, "n = 8192");
-  CHECK(ics_occtex_create(tex, &gnan, 1, 1, 2, &ot) == ICS_ERR_NAN, "NaN origin");
+  CHECK(ics_occtex_create(&ot, tex, &g0, 1, 1, 2) == ICS_ERR_SIZE && !ot, "empty texture");
+  CHECK(ics_occtex_create(&ot, tex, &g3, 1, 1, 2) == ICS_ERR_SIZE, "n = 3");
+  CHECK(ics_occtex_create(&ot, tex, &gbig, 1, 1, 2) == ICS_ERR_SIZE, "n = 8192");
+  CHECK(ics_occtex_create(&ot, tex, &gnan, 1, 1, 2) == ICS_ERR_NAN, "NaN origin");
   ics_occ_grid g4k = {0, 0, 1, 4096}; /* 17 x 4096^2 texels > ICS_OCC_MAX_TEXELS: refused unread */
-  CHECK(ics_occtex_create(tex, &g4k, 17, 1, 2, &ot) == ICS_ERR_SIZE, "17 slices of 4096^2");
-  CHECK(ics_occtex_create(tex, &gneg, 1, 1, 2, &ot) == ICS_ERR_INVALID_ARG, "negative texel");
-  CHECK(ics_occtex_create(tex, &ginf, 1, 1, 2, &ot) == ICS_ERR_INFINITE, "infinite texel");
-  CHECK(ics_occtex_create(tex, &g, 0, 1, 2, &ot) == ICS_ERR_INVALID_ARG, "zero slices");
-  CHECK(ics_occtex_create(tex, &g, ICS_OCC_MAX_SLICES + 1, 1, 2, &ot) == ICS_ERR_SIZE, "too many slices");
-  CHECK(ics_occtex_create(tex, &g, 1, 0, 2, &ot) == ICS_ERR_INVALID_ARG, "z_near = 0");
-  CHECK(ics_occtex_create(tex, &g, 1, 2, 2, &ot) == ICS_ERR_INVALID_ARG, "z_far = z_near");
-  CHECK(ics_occtex_create(tex, &g, 1, NAN, 2, &ot) == ICS_ERR_NAN, "NaN z_near");
-  CHECK(ics_occtex_create(NULL, &g, 1, 1, 2, &ot) == ICS_ERR_INVALID_ARG, "NULL texture");
-  CHECK(ics_occtex_create(tex, NULL, 1, 1, 2, &ot) == ICS_ERR_INVALID_ARG, "NULL grid");
+  CHECK(ics_occtex_create(&ot, tex, &g4k, 17, 1, 2) == ICS_ERR_SIZE, "17 slices of 4096^2");
+  CHECK(ics_occtex_create(&ot, tex, &gneg, 1, 1, 2) == ICS_ERR_INVALID_ARG, "negative texel");
+  CHECK(ics_occtex_create(&ot, tex, &ginf, 1, 1, 2) == ICS_ERR_INFINITE, "infinite texel");
+  CHECK(ics_occtex_create(&ot, tex, &g, 0, 1, 2) == ICS_ERR_INVALID_ARG, "zero slices");
+  CHECK(ics_occtex_create(&ot, tex, &g, ICS_OCC_MAX_SLICES + 1, 1, 2) == ICS_ERR_SIZE,
+        "too many slices");
+  CHECK(ics_occtex_create(&ot, tex, &g, 1, 0, 2) == ICS_ERR_INVALID_ARG, "z_near = 0");
+  CHECK(ics_occtex_create(&ot, tex, &g, 1, 2, 2) == ICS_ERR_INVALID_ARG, "z_far = z_near");
+  CHECK(ics_occtex_create(&ot, tex, &g, 1, NAN, 2) == ICS_ERR_NAN, "NaN z_near");
+  CHECK(ics_occtex_create(&ot, NULL, &g, 1, 1, 2) == ICS_ERR_INVALID_ARG, "NULL texture");
+  CHECK(ics_occtex_create(&ot, tex, NULL, 1, 1, 2) == ICS_ERR_INVALID_ARG, "NULL grid");
   tex[5] = NAN;
-  CHECK(ics_occtex_create(tex, &g, 1, 1, 2, &ot) == ICS_ERR_NAN && !ot, "NaN texel");
+  CHECK(ics_occtex_create(&ot, tex, &g, 1, 1, 2) == ICS_ERR_NAN && !ot, "NaN texel");
   tex[5] = 0;
-  CHECK(ics_occtex_create(tex, &g, 1, 1, 2, &ot) == ICS_OK, "good");
+  CHECK(ics_occtex_create(&ot, tex, &g, 1, 1, 2) == ICS_OK, "good");
   ics_occ_light L = {0, 0, 1, 1}, Lnan = {0, NAN, 1, 1}, Lneg = {0, 0, -1, 1};
   double P[3] = {1, 1, 3}, Pnan[3] = {1, NAN, 3}, Pz[3] = {1, 1, 0}, r;
   CHECK(ics_occtex_shadow(ot, &L, ICS_OCC_SAT, ICS_OCC_PRODUCT, P, 1, &r) == ICS_ERR_UNSUPPORTED, "not built");
@@ -414,8 +415,8 @@ static void test_bad_input(void) {
   CHECK(ics_occtex_box(ot, ICS_OCC_MIPMAP, 0, 1, 1, NAN, 1, &r) == ICS_ERR_NAN, "NaN box size");
   CHECK(ics_occtex_box(ot, ICS_OCC_MIPMAP, 1, 1, 1, 1, 1, &r) == ICS_ERR_INVALID_ARG, "slice out of range");
   CHECK(ics_occtex_box(ot, ICS_OCC_MIPMAP, 0, 1, 1, -1, 1, &r) == ICS_ERR_INVALID_ARG, "negative box");
-  ics_occtex_free(ot);
-  ics_occtex_free(NULL);
+  ics_occtex_destroy(ot);
+  ics_occtex_destroy(NULL);
 
   ics_occ_box b = {0, 0, 1, 1, 1, 2}, bnan = {0, 0, 1, NAN, 1, 2}, binv = {1, 0, 1, 0, 1, 2};
   CHECK(ics_occ_slice(&b, 1, &g, 1, 1, 2, 0, tex) == ICS_ERR_SIZE, "supersample 0");

@@ -234,7 +234,7 @@ static void free_sat(ics_occtex *ot) {
   ot->sat = NULL;
 }
 
-void ics_occtex_free(ics_occtex *ot) {
+void ics_occtex_destroy(ics_occtex *ot) {
   if (!ot) return;
   free(ot->tex);
   free(ot->mip);
@@ -243,8 +243,8 @@ void ics_occtex_free(ics_occtex *ot) {
   free(ot);
 }
 
-ics_status ics_occtex_create(const float *tex, const ics_occ_grid *grid, int slices, double z_near,
-                             double z_far, ics_occtex **out) {
+ics_status ics_occtex_create(ics_occtex **out, const float *tex, const ics_occ_grid *grid,
+                             int slices, double z_near, double z_far) {
   if (!out) return ICS_ERR_INVALID_ARG;
   *out = NULL;
   ics_status st;

@@ -11,6 +11,7 @@
 
 #include "icshadow/csat.h"
 #include "icshadow/normal.h"
+#include "icshadow/occtex.h"
 #include "icshadow/sat.h"
 #include "icshadow/ssat.h"
 #include "icshadow/status.h"
@@ -100,5 +101,10 @@ static inline ics_status ics_ssat_build(ics_ssat **out, const ics_volume *vol,
 
 ICS_DEPRECATED("since 0.2.0: use ics_ssat_destroy")
 static inline void ics_ssat_free(ics_ssat *ssat) { ics_ssat_destroy(ssat); }
+
+/* (ics_occtex_create keeps its name but takes the out-pointer first: no alias can keep the old
+ * argument order, and an old call does not compile) */
+ICS_DEPRECATED("since 0.2.0: use ics_occtex_destroy")
+static inline void ics_occtex_free(ics_occtex *ot) { ics_occtex_destroy(ot); }
 
 #endif

@@ -104,11 +104,12 @@ ICS_API ics_status ics_occ_slice(const ics_occ_box *boxes, size_t nboxes, const 
 /* The occlusion-texture object: K textures + their prefilters (opaque). */
 typedef struct ics_occtex ics_occtex;
 
-/* Copies K textures (layout as in ics_occ_slice; values must be finite, clamped to [0, 1] on
- * input) for slices between z_near and z_far. No prefilter is built yet. */
-ICS_API ics_status ics_occtex_create(const float *tex, const ics_occ_grid *grid, int slices,
-                                     double z_near, double z_far, ics_occtex **out);
-ICS_API void ics_occtex_free(ics_occtex *ot);
+/* Creates the object from K textures, copied (layout as in ics_occ_slice; values must be
+ * finite, clamped to [0, 1] on input), for slices between z_near and z_far; *out is NULL on
+ * failure. No prefilter is built yet. ics_occtex_destroy frees it (NULL is fine). */
+ICS_API ics_status ics_occtex_create(ics_occtex **out, const float *tex, const ics_occ_grid *grid,
+                                     int slices, double z_near, double z_far);
+ICS_API void ics_occtex_destroy(ics_occtex *ot);
 
 /* Build one prefilter for every slice (again: rebuilds). */
 ICS_API ics_status ics_occtex_prefilter(ics_occtex *ot, ics_occ_prefilter pf);
