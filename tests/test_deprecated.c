@@ -211,11 +211,38 @@ static void test_occtex(void) {
   ics_occtex_free(NULL);
 }
 
+static void test_lut_grid(void) {
+  const int sizes[][2] = {{4, 2}, {16, 16}, {256, ICS_LUT_STAMP_PER_INTERVAL}};
+  for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
+    ics_lut_grid *o = NULL, *n = NULL;
+    ics_status so = ics_lut_grid_new(sizes[i][0], sizes[i][1], &o);
+    ics_status sn = ics_lut_grid_create(&n, sizes[i][0], sizes[i][1]);
+    CHECK(so == ICS_OK && sn == ICS_OK, "lut grid %d/%d: %d %d", sizes[i][0], sizes[i][1], so, sn);
+    ics_lut_error eo, en;
+    CHECK(ics_lut_measure(o, ics_lut_builtin(), 0, &eo) == ICS_OK &&
+              ics_lut_measure(n, ics_lut_builtin(), 0, &en) == ICS_OK,
+          "lut measure");
+    CHECK(ics_lut_grid_points(o) == ics_lut_grid_points(n) && eo.points == en.points &&
+              same(eo.ratio, en.ratio) && same(eo.ratio_at, en.ratio_at) && same(eo.vx, en.vx) &&
+              same(eo.vx_at, en.vx_at) && same(eo.radii, en.radii) &&
+              same(eo.radii_at, en.radii_at),
+          "lut grid %d/%d: the same points and errors", sizes[i][0], sizes[i][1]);
+    ics_lut_grid_free(o);
+    ics_lut_grid_destroy(n);
+  }
+  ics_lut_grid *o = (ics_lut_grid *)sizes, *n = (ics_lut_grid *)sizes;
+  CHECK(ics_lut_grid_new(3, 16, &o) == ics_lut_grid_create(&n, 3, 16) && !o && !n,
+        "lut grid size 3");
+  CHECK(ics_lut_grid_new(16, 16, NULL) == ics_lut_grid_create(NULL, 16, 16), "lut grid NULL");
+  ics_lut_grid_free(NULL);
+}
+
 int main(void) {
   test_normal();
   test_volume();
   test_sat();
   test_csat_ssat();
   test_occtex();
+  test_lut_grid();
   return test_summary("test_deprecated");
 }

@@ -10,6 +10,7 @@
 #include <stddef.h>
 
 #include "icshadow/csat.h"
+#include "icshadow/lut.h"
 #include "icshadow/normal.h"
 #include "icshadow/occtex.h"
 #include "icshadow/sat.h"
@@ -106,5 +107,13 @@ static inline void ics_ssat_free(ics_ssat *ssat) { ics_ssat_destroy(ssat); }
  * argument order, and an old call does not compile) */
 ICS_DEPRECATED("since 0.2.0: use ics_occtex_destroy")
 static inline void ics_occtex_free(ics_occtex *ot) { ics_occtex_destroy(ot); }
+
+ICS_DEPRECATED("since 0.2.0: use ics_lut_grid_create (out-pointer first)")
+static inline ics_status ics_lut_grid_new(int n, int per_interval, ics_lut_grid **grid) {
+  return ics_lut_grid_create(grid, n, per_interval);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_lut_grid_destroy")
+static inline void ics_lut_grid_free(ics_lut_grid *grid) { ics_lut_grid_destroy(grid); }
 
 #endif

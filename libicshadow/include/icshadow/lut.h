@@ -42,7 +42,7 @@ extern "C" {
 
 #define ICS_LUT_MIN_SIZE 4
 #define ICS_LUT_MAX_SIZE 65536
-/* Grid density of the stamped errors: points per table interval (see ics_lut_grid_new). */
+/* Grid density of the stamped errors: points per table interval (see ics_lut_grid_create). */
 #define ICS_LUT_STAMP_PER_INTERVAL 16
 
 #define ICS_LUT_BUILTIN_SIZE 256
@@ -97,8 +97,8 @@ ICS_API double ics_lut_vx(double t); /* abToVarx */
 ICS_API double ics_lut_vx_ab(double a, double b);
 ICS_API void ics_lut_ellipse_radii(double varx, double vary, double *a, double *b);
 /* What lut_data.c was stamped with: maximum relative errors (ratio, vx, radii) and the number
- * of grid points they were measured on (double evaluation, ics_lut_grid_new(n,
- * ICS_LUT_STAMP_PER_INTERVAL)). */
+ * of grid points they were measured on (double evaluation, on the grid of
+ * ics_lut_grid_create(&grid, n, ICS_LUT_STAMP_PER_INTERVAL)). */
 ICS_API void ics_lut_builtin_stamp(double *ratio_err, double *vx_err, double *radii_err,
                                    long *points);
 
@@ -110,10 +110,13 @@ ICS_API void ics_lut_builtin_stamp(double *ratio_err, double *vx_err, double *ra
  * t = 10^-k and 1 - 10^-k (k = 1..15) and t = 0, 1. These points are float-representable, so
  * the same grid measures the float evaluators; a few more are for double evaluation only:
  * rat = DBL_MIN, DBL_MAX, 1e-300, 1e300, t = 1e-300, 1 - 2^-53, and 1 - 10^-k for k > 7.
- * Radii points are (varx, vary) = (1, rat) for finite rat <= DBL_MAX / 4 (float: FLT_MAX / 4). */
+ * Radii points are (varx, vary) = (1, rat) for finite rat <= DBL_MAX / 4 (float: FLT_MAX / 4).
+ * The grid is an opaque object: ics_lut_grid_create makes it (n in [ICS_LUT_MIN_SIZE,
+ * ICS_LUT_MAX_SIZE], per_interval in [2, 1024], else ICS_ERR_RANGE; *out NULL on failure),
+ * ics_lut_grid_destroy frees it (NULL is fine). */
 typedef struct ics_lut_grid ics_lut_grid;
-ICS_API ics_status ics_lut_grid_new(int n, int per_interval, ics_lut_grid **grid);
-ICS_API void ics_lut_grid_free(ics_lut_grid *grid);
+ICS_API ics_status ics_lut_grid_create(ics_lut_grid **out, int n, int per_interval);
+ICS_API void ics_lut_grid_destroy(ics_lut_grid *grid);
 ICS_API long ics_lut_grid_points(const ics_lut_grid *grid); /* ratio points + varx points */
 
 typedef struct ics_lut_error {
