@@ -101,13 +101,13 @@ ICS_API ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params 
 ICS_API ics_status ics_lightfit_errors(const ics_image *env, double max_angle_deg,
                                        const ics_light *lights, int n, ics_lightfit_report *report);
 
-/* Synthetic environment map: env (already initialised, 3 or 4 channels) is overwritten with
- * sky_rgb (NULL: black) plus n Gaussian lights drawn with radiance
- * weight color g(x) (1 + |x|^2)^(3/2), averaged over supersample^2 points per pixel
- * (1..16). Lights with a covariance eigenvalue below (pixel size on the plane / 4)^2 are
- * widened to it along that axis; lights narrower than that in both axes are drawn as a delta
- * into the one pixel holding their mean (energy weight color). Alpha is set to 1.
- * ICS_ERR_INVALID_ARG for bad lights (negative weight / colour / non-PSD covariance, NaN). */
+/* Synthetic environment map: env (an image made by ics_image_create, 3 or 4 channels) is
+ * overwritten with sky_rgb (NULL: black) plus n Gaussian lights drawn with radiance weight color
+ * g(x) (1 + |x|^2)^(3/2), averaged over supersample^2 points per pixel (1..16). Lights with a
+ * covariance eigenvalue below (pixel size on the plane / 4)^2 are widened to it along that axis;
+ * lights narrower than that in both axes are drawn as a delta into the one pixel holding their mean
+ * (energy weight color). Alpha is set to 1. ICS_ERR_INVALID_ARG for bad lights (negative weight /
+ * colour / non-PSD covariance, NaN). */
 ICS_API ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3],
                                      const ics_light *lights, int n, int supersample);
 
