@@ -198,8 +198,8 @@ static int iterated_matches_eq8(const ics_light1d *l, double d, double d1, doubl
 }
 
 static void test_eq8(void) {
-  ics_light1d l;
-  ics_light1d_gauss(&l, 0.25, 0.5);
+  ics_light1d *l = NULL;
+  CHECK(ics_light1d_create_gauss(&l, 0.25, 0.5) == ICS_OK, "gauss");
   double d1 = 2.0, e = 1.0 / 64, d = 3.0; /* n = 192 */
   int n = 192;
   /* tophat: |excess kurtosis| 1.2 -> cdf error 1.2/24/n max|He3 phi| (x1.5 margin) */
@@ -209,15 +209,16 @@ static void test_eq8(void) {
   ics_iter1d_opts o = ics_iter1d_opts_default();
   o.member = ICS_KERNEL_TOPHAT;
   double w;
-  CHECK(iterated_matches_eq8(&l, d, d1, e, &o, tol, &w), "Eq. 8: sup %.3g > tol %.3g", w, tol);
+  CHECK(iterated_matches_eq8(l, d, d1, e, &o, tol, &w), "Eq. 8: sup %.3g > tol %.3g", w, tol);
   printf("  Eq. 8 (Gaussian light, tophat, d = 3, d1 = 2, n = 192): sup %.3e <= %.3e\n", w, tol);
   o.var_factor = 1.0; /* broken: variance e var_l instead of d1 e var_l */
-  CHECK(!iterated_matches_eq8(&l, d, d1, e, &o, tol, &w), "broken variance NOT detected");
+  CHECK(!iterated_matches_eq8(l, d, d1, e, &o, tol, &w), "broken variance NOT detected");
   printf("  broken variance e var_l: sup %.3e -> detected\n", w);
   o.var_factor = 0;
   o.mean_sign = -1; /* broken: kernel mean +e mu_l */
-  CHECK(!iterated_matches_eq8(&l, d, d1, e, &o, tol, &w), "broken mean sign NOT detected");
+  CHECK(!iterated_matches_eq8(l, d, d1, e, &o, tol, &w), "broken mean sign NOT detected");
   printf("  broken mean sign: sup %.3e -> detected\n", w);
+  ics_light1d_destroy(l);
 }
 
 /* ASSERTION FUNCTION (2D, end to end): a 2D Gaussian light mapped by ics_kernel_map_2d (Eq. 15)

@@ -146,15 +146,28 @@ ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, double mea
 
 /* ---- 1D lights ---- */
 
-static void l1_zero(ics_light1d *l) {
-  memset(l, 0, sizeof *l);
-}
+typedef enum light1d_kind {
+  LIGHT1D_GAUSS, /* mean, variance (variance 0: a point light, a Dirac at the mean) */
+  LIGHT1D_BOX,   /* uniform on [lo, hi], lo < hi */
+  LIGHT1D_MIX,   /* Gaussian mixture, weights normalised to sum 1, each variance > 0 */
+  LIGHT1D_TAB    /* piecewise-linear density through (x_i, p_i), normalised */
+} light1d_kind;
 
-ics_status ics_light1d_gauss(ics_light1d *l, double mean, double var) {
+struct ics_light1d {
+  light1d_kind kind;
+  int n;       /* mixture components or table nodes */
+  double a, b; /* GAUSS: mean, variance; BOX: lo, hi */
+  double w[ICS_LIGHT1D_MAX_MIX], mu[ICS_LIGHT1D_MAX_MIX], var[ICS_LIGHT1D_MAX_MIX];
+  double *x, *p, *c;  /* TAB (owned): nodes, normalised density, cdf at the nodes */
+  double mean_, var_; /* cached moments */
+};
+
+/* The fill_* functions set up a zeroed light; on an error the caller destroys it. */
+
+static ics_status fill_gauss(ics_light1d *l, double mean, double var) {
   ics_status s;
   if ((s = ics_check_finite(mean)) != ICS_OK || (s = check_var(var)) != ICS_OK) return s;
-  l1_zero(l);
-  l->kind = ICS_LIGHT1D_GAUSS;
+  l->kind = LIGHT1D_GAUSS;
   l->n = 1;
   l->a = mean;
   l->b = var;
@@ -163,25 +176,21 @@ ics_status ics_light1d_gauss(ics_light1d *l, double mean, double var) {
   return ICS_OK;
 }
 
-ics_status ics_light1d_box(ics_light1d *l, double lo, double hi) {
+static ics_status fill_box(ics_light1d *l, double lo, double hi) {
   ics_status s;
   if ((s = ics_check_finite(lo)) != ICS_OK || (s = ics_check_finite(hi)) != ICS_OK) return s;
   if (!(lo < hi)) return ICS_ERR_RANGE;
-  l1_zero(l);
-  l->kind = ICS_LIGHT1D_BOX;
+  l->kind = LIGHT1D_BOX;
   l->a = lo;
   l->b = hi;
   l->mean_ = 0.5 * lo + 0.5 * hi;
   double w = hi - lo;
   l->var_ = w * w / 12.0;
-  if (!isfinite(w) || !isfinite(l->var_)) { /* hi - lo or its square overflows */
-    l1_zero(l);
-    return ICS_ERR_RANGE;
-  }
+  if (!isfinite(w) || !isfinite(l->var_)) return ICS_ERR_RANGE; /* hi - lo or its square */
   return ICS_OK;
 }
 
-ics_status ics_light1d_mix(ics_light1d *l, int n, const double *w, const double *mu,
+static ics_status fill_mix(ics_light1d *l, int n, const double *w, const double *mu,
                            const double *var) {
   if (n < 1 || n > ICS_LIGHT1D_MAX_MIX) return ICS_ERR_SIZE;
   ics_status s;
@@ -196,8 +205,7 @@ ics_status ics_light1d_mix(ics_light1d *l, int n, const double *w, const double 
   }
   if (!(sw > 0)) return ICS_ERR_INVALID_ARG;
   if (isinf(sw)) return ICS_ERR_RANGE; /* the weights' sum overflows */
-  l1_zero(l);
-  l->kind = ICS_LIGHT1D_MIX;
+  l->kind = LIGHT1D_MIX;
   l->n = n;
   double m = 0;
   for (int i = 0; i < n; i++) {
@@ -210,10 +218,7 @@ ics_status ics_light1d_mix(ics_light1d *l, int n, const double *w, const double 
   for (int i = 0; i < n; i++) v += l->w[i] * (var[i] + (mu[i] - m) * (mu[i] - m));
   l->mean_ = m;
   l->var_ = v;
-  if (!isfinite(m) || !isfinite(v)) { /* the mixture's mean or variance overflows */
-    l1_zero(l);
-    return ICS_ERR_RANGE;
-  }
+  if (!isfinite(m) || !isfinite(v)) return ICS_ERR_RANGE; /* the mixture's mean or variance */
   return ICS_OK;
 }
 
@@ -236,7 +241,7 @@ static double tab_moment(const ics_light1d *l, int k, double c) {
   return sum;
 }
 
-ics_status ics_light1d_tab(ics_light1d *l, int n, const double *x, const double *p) {
+static ics_status fill_tab(ics_light1d *l, int n, const double *x, const double *p) {
   if (n < 2) return ICS_ERR_SIZE;
   ics_status s;
   for (int i = 0; i < n; i++) {
@@ -247,16 +252,12 @@ ics_status ics_light1d_tab(ics_light1d *l, int n, const double *x, const double 
   double area = 0;
   for (int i = 0; i + 1 < n; i++) area += 0.5 * (p[i] + p[i + 1]) * (x[i + 1] - x[i]);
   if (!(area > 0) || isinf(area)) return ICS_ERR_INVALID_ARG;
-  l1_zero(l);
-  l->kind = ICS_LIGHT1D_TAB;
+  l->kind = LIGHT1D_TAB;
   l->n = n;
   l->x = malloc((size_t)n * sizeof *l->x);
   l->p = malloc((size_t)n * sizeof *l->p);
   l->c = malloc((size_t)n * sizeof *l->c);
-  if (!l->x || !l->p || !l->c) {
-    ics_light1d_free(l);
-    return ICS_ERR_NOMEM;
-  }
+  if (!l->x || !l->p || !l->c) return ICS_ERR_NOMEM;
   for (int i = 0; i < n; i++) {
     l->x[i] = x[i];
     l->p[i] = p[i] / area;
@@ -266,22 +267,58 @@ ics_status ics_light1d_tab(ics_light1d *l, int n, const double *x, const double 
     l->c[i + 1] = l->c[i] + 0.5 * (l->p[i] + l->p[i + 1]) * (x[i + 1] - x[i]);
   l->mean_ = tab_moment(l, 1, 0.0);
   l->var_ = tab_moment(l, 2, l->mean_);
-  if (!isfinite(l->mean_) || !isfinite(l->var_)) { /* moments overflow */
-    ics_light1d_free(l);
-    l1_zero(l);
-    return ICS_ERR_RANGE;
-  }
+  if (!isfinite(l->mean_) || !isfinite(l->var_)) return ICS_ERR_RANGE; /* moments overflow */
   return ICS_OK;
 }
 
-void ics_light1d_free(ics_light1d *l) {
+/* The start of every ics_light1d_create_*: *out NULL and a zeroed light in *l. */
+static ics_status light1d_start(ics_light1d **out, ics_light1d **l) {
+  if (!out) return ICS_ERR_INVALID_ARG;
+  *out = NULL;
+  *l = calloc(1, sizeof **l);
+  return *l ? ICS_OK : ICS_ERR_NOMEM;
+}
+
+/* The end: *out = l when the fill succeeded, else l is destroyed. */
+static ics_status light1d_finish(ics_light1d **out, ics_light1d *l, ics_status filled) {
+  if (filled == ICS_OK)
+    *out = l;
+  else
+    ics_light1d_destroy(l);
+  return filled;
+}
+
+ics_status ics_light1d_create_gauss(ics_light1d **out, double mean, double var) {
+  ics_light1d *l;
+  ics_status s = light1d_start(out, &l);
+  return s != ICS_OK ? s : light1d_finish(out, l, fill_gauss(l, mean, var));
+}
+
+ics_status ics_light1d_create_box(ics_light1d **out, double lo, double hi) {
+  ics_light1d *l;
+  ics_status s = light1d_start(out, &l);
+  return s != ICS_OK ? s : light1d_finish(out, l, fill_box(l, lo, hi));
+}
+
+ics_status ics_light1d_create_mix(ics_light1d **out, int n, const double *w, const double *mu,
+                                  const double *var) {
+  ics_light1d *l;
+  ics_status s = light1d_start(out, &l);
+  return s != ICS_OK ? s : light1d_finish(out, l, fill_mix(l, n, w, mu, var));
+}
+
+ics_status ics_light1d_create_tab(ics_light1d **out, int n, const double *x, const double *p) {
+  ics_light1d *l;
+  ics_status s = light1d_start(out, &l);
+  return s != ICS_OK ? s : light1d_finish(out, l, fill_tab(l, n, x, p));
+}
+
+void ics_light1d_destroy(ics_light1d *l) {
   if (!l) return;
-  if (l->kind == ICS_LIGHT1D_TAB) {
-    free(l->x);
-    free(l->p);
-    free(l->c);
-  }
-  l->x = l->p = l->c = NULL;
+  free(l->x); /* NULL unless a table light */
+  free(l->p);
+  free(l->c);
+  free(l);
 }
 
 /* index i with x[i] <= v < x[i+1], v inside the table */
@@ -300,19 +337,19 @@ static int tab_seg(const ics_light1d *l, double v) {
 double ics_light1d_pdf(const ics_light1d *l, double x) {
   if (isnan(x)) return NAN;
   switch (l->kind) {
-  case ICS_LIGHT1D_GAUSS:
+  case LIGHT1D_GAUSS:
     if (l->b == 0) return x == l->a ? INFINITY : 0.0;
     return ics_exp_noerrno(-0.5 * (x - l->a) * (x - l->a) / l->b) / sqrt(2 * ICS_PI * l->b);
-  case ICS_LIGHT1D_BOX:
+  case LIGHT1D_BOX:
     return (x >= l->a && x <= l->b) ? 1.0 / (l->b - l->a) : 0.0;
-  case ICS_LIGHT1D_MIX: {
+  case LIGHT1D_MIX: {
     double s = 0;
     for (int i = 0; i < l->n; i++)
       s += l->w[i] * ics_exp_noerrno(-0.5 * (x - l->mu[i]) * (x - l->mu[i]) / l->var[i]) /
            sqrt(2 * ICS_PI * l->var[i]);
     return s;
   }
-  case ICS_LIGHT1D_TAB: {
+  case LIGHT1D_TAB: {
     if (x < l->x[0] || x > l->x[l->n - 1]) return 0.0;
     if (x == l->x[l->n - 1]) return l->p[l->n - 1];
     int i = tab_seg(l, x);
@@ -335,19 +372,19 @@ static double tab_cdf(const ics_light1d *l, double x) {
 double ics_light1d_cdf(const ics_light1d *l, double x) {
   if (isnan(x)) return NAN;
   switch (l->kind) {
-  case ICS_LIGHT1D_GAUSS:
+  case LIGHT1D_GAUSS:
     if (l->b == 0) return x >= l->a ? 1.0 : 0.0;
     return ics_normal_cdf((x - l->a) / sqrt(l->b));
-  case ICS_LIGHT1D_BOX:
+  case LIGHT1D_BOX:
     if (x <= l->a) return 0.0;
     if (x >= l->b) return 1.0;
     return (x - l->a) / (l->b - l->a);
-  case ICS_LIGHT1D_MIX: {
+  case LIGHT1D_MIX: {
     double s = 0;
     for (int i = 0; i < l->n; i++) s += l->w[i] * ics_normal_cdf((x - l->mu[i]) / sqrt(l->var[i]));
     return s > 1.0 ? 1.0 : s;
   }
-  case ICS_LIGHT1D_TAB:
+  case LIGHT1D_TAB:
     return tab_cdf(l, x);
   }
   return NAN;
@@ -356,20 +393,20 @@ double ics_light1d_cdf(const ics_light1d *l, double x) {
 double ics_light1d_sf(const ics_light1d *l, double x) {
   if (isnan(x)) return NAN;
   switch (l->kind) {
-  case ICS_LIGHT1D_GAUSS:
+  case LIGHT1D_GAUSS:
     if (l->b == 0) return x >= l->a ? 0.0 : 1.0;
     return ics_normal_sf((x - l->a) / sqrt(l->b));
-  case ICS_LIGHT1D_BOX:
+  case LIGHT1D_BOX:
     if (x <= l->a) return 1.0;
     if (x >= l->b) return 0.0;
     return (l->b - x) / (l->b - l->a);
-  case ICS_LIGHT1D_MIX: {
+  case LIGHT1D_MIX: {
     double s = 0;
     for (int i = 0; i < l->n; i++)
       s += l->w[i] * ics_normal_sf((x - l->mu[i]) / sqrt(l->var[i]));
     return s > 1.0 ? 1.0 : s;
   }
-  case ICS_LIGHT1D_TAB:
+  case LIGHT1D_TAB:
     return 1.0 - tab_cdf(l, x);
   }
   return NAN;
@@ -438,16 +475,16 @@ static double tab_quantile(const ics_light1d *l, double t) {
 double ics_light1d_quantile(const ics_light1d *l, double p) {
   if (isnan(p) || p < 0 || p > 1) return NAN;
   switch (l->kind) {
-  case ICS_LIGHT1D_GAUSS:
+  case LIGHT1D_GAUSS:
     if (l->b == 0) return l->a;
     return l->a + sqrt(l->b) * ics_normal_quantile(p);
-  case ICS_LIGHT1D_BOX:
+  case LIGHT1D_BOX:
     return p <= 0.5 ? l->a + p * (l->b - l->a) : l->b - (1.0 - p) * (l->b - l->a);
-  case ICS_LIGHT1D_MIX:
+  case LIGHT1D_MIX:
     if (p == 0) return -INFINITY;
     if (p == 1) return INFINITY;
     return p <= 0.5 ? mix_solve(l, p, 0) : mix_solve(l, 1.0 - p, 1);
-  case ICS_LIGHT1D_TAB:
+  case LIGHT1D_TAB:
     return tab_quantile(l, p);
   }
   return NAN;
@@ -456,16 +493,16 @@ double ics_light1d_quantile(const ics_light1d *l, double p) {
 double ics_light1d_isf(const ics_light1d *l, double q) {
   if (isnan(q) || q < 0 || q > 1) return NAN;
   switch (l->kind) {
-  case ICS_LIGHT1D_GAUSS:
+  case LIGHT1D_GAUSS:
     if (l->b == 0) return l->a;
     return l->a - sqrt(l->b) * ics_normal_quantile(q);
-  case ICS_LIGHT1D_BOX:
+  case LIGHT1D_BOX:
     return q <= 0.5 ? l->b - q * (l->b - l->a) : l->a + (1.0 - q) * (l->b - l->a);
-  case ICS_LIGHT1D_MIX:
+  case LIGHT1D_MIX:
     if (q == 0) return INFINITY;
     if (q == 1) return -INFINITY;
     return q <= 0.5 ? mix_solve(l, q, 1) : mix_solve(l, 1.0 - q, 0);
-  case ICS_LIGHT1D_TAB:
+  case LIGHT1D_TAB:
     return tab_quantile(l, 1.0 - q);
   }
   return NAN;
@@ -478,16 +515,16 @@ double ics_light1d_skewness(const ics_light1d *l) {
   if (l->var_ == 0) return 0.0;
   double m3 = 0;
   switch (l->kind) {
-  case ICS_LIGHT1D_GAUSS:
-  case ICS_LIGHT1D_BOX:
+  case LIGHT1D_GAUSS:
+  case LIGHT1D_BOX:
     return 0.0;
-  case ICS_LIGHT1D_MIX:
+  case LIGHT1D_MIX:
     for (int i = 0; i < l->n; i++) {
       double dm = l->mu[i] - l->mean_;
       m3 += l->w[i] * (dm * dm * dm + 3 * dm * l->var[i]);
     }
     break;
-  case ICS_LIGHT1D_TAB:
+  case LIGHT1D_TAB:
     m3 = tab_moment(l, 3, l->mean_);
     break;
   }

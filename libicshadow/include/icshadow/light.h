@@ -80,38 +80,29 @@ ICS_API ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, do
 
 /* ---- 1D light functions (densities on the light-plane x axis, integral 1) ---- */
 
-typedef enum ics_light1d_kind {
-  ICS_LIGHT1D_GAUSS, /* mean, variance (variance 0: a point light, a Dirac at the mean) */
-  ICS_LIGHT1D_BOX,   /* uniform on [lo, hi], lo < hi */
-  ICS_LIGHT1D_MIX,   /* Gaussian mixture, weights normalised to sum 1, each variance > 0 */
-  ICS_LIGHT1D_TAB    /* piecewise-linear density through (x_i, p_i), normalised */
-} ics_light1d_kind;
+#define ICS_LIGHT1D_MAX_MIX 16 /* components of a mixture */
 
-#define ICS_LIGHT1D_MAX_MIX 16
+/* A 1D light: an opaque object, made by one of the ics_light1d_create_* below (*out NULL on
+ * failure) and freed by ics_light1d_destroy (NULL is fine). The constructors reject NaN/inf
+ * inputs (ICS_ERR_NAN / ICS_ERR_INFINITE) and inputs whose derived quantities overflow
+ * (ICS_ERR_RANGE: a box width hi - lo or its variance, a mixture's weight sum, mean or
+ * variance, a table's mean or variance not finite, e.g. box:-1e308,1e308); a NULL out is
+ * ICS_ERR_INVALID_ARG, and ICS_ERR_NOMEM. */
+typedef struct ics_light1d ics_light1d;
 
-typedef struct ics_light1d {
-  ics_light1d_kind kind;
-  int n;        /* mixture components or table nodes */
-  double a, b;  /* GAUSS: mean, variance; BOX: lo, hi */
-  double w[ICS_LIGHT1D_MAX_MIX], mu[ICS_LIGHT1D_MAX_MIX], var[ICS_LIGHT1D_MAX_MIX];
-  double *x, *p, *c; /* TAB (owned): nodes, normalised density, cdf at the nodes */
-  double mean_, var_; /* cached moments */
-} ics_light1d;
-
-/* The constructors reject NaN/inf inputs (ICS_ERR_NAN / ICS_ERR_INFINITE) and inputs whose
- * derived quantities overflow (ICS_ERR_RANGE: a box width hi - lo or its variance, a mixture's
- * weight sum, mean or variance, a table's mean or variance not finite, e.g. box:-1e308,1e308);
- * on an error *l holds no light. */
-ICS_API ics_status ics_light1d_gauss(ics_light1d *l, double mean, double var);
-ICS_API ics_status ics_light1d_box(ics_light1d *l, double lo, double hi);
-/* n in 1..ICS_LIGHT1D_MAX_MIX components; weights >= 0 with a positive sum (ICS_ERR_INVALID_ARG
- * when it is 0); var > 0. */
-ICS_API ics_status ics_light1d_mix(ics_light1d *l, int n, const double *w, const double *mu,
-                                   const double *var);
-/* n >= 2 strictly increasing nodes, densities >= 0 with positive integral (copied). */
-ICS_API ics_status ics_light1d_tab(ics_light1d *l, int n, const double *x, const double *p);
-/* Frees a table light's copies (no-op for the others); the struct may then be re-initialised. */
-ICS_API void ics_light1d_free(ics_light1d *l);
+/* Gaussian of that mean and variance (variance 0: a point light, a Dirac at the mean). */
+ICS_API ics_status ics_light1d_create_gauss(ics_light1d **out, double mean, double var);
+/* Uniform on [lo, hi], lo < hi (else ICS_ERR_RANGE). */
+ICS_API ics_status ics_light1d_create_box(ics_light1d **out, double lo, double hi);
+/* Gaussian mixture of n in 1..ICS_LIGHT1D_MAX_MIX components (else ICS_ERR_SIZE); weights >= 0
+ * with a positive sum (ICS_ERR_INVALID_ARG when it is 0), normalised to sum 1; var > 0. */
+ICS_API ics_status ics_light1d_create_mix(ics_light1d **out, int n, const double *w,
+                                          const double *mu, const double *var);
+/* Piecewise-linear density through (x_i, p_i), normalised: n >= 2 strictly increasing nodes
+ * (else ICS_ERR_SIZE / ICS_ERR_INVALID_ARG), densities >= 0 with positive integral (copied). */
+ICS_API ics_status ics_light1d_create_tab(ics_light1d **out, int n, const double *x,
+                                          const double *p);
+ICS_API void ics_light1d_destroy(ics_light1d *l);
 
 /* pdf, cdf L(x), survival 1 - L(x) (computed without cancellation), quantile L^-1(p) for p in
  * [0, 1] (NaN otherwise; the smallest x with L(x) >= p for flat parts), upper quantile
