@@ -38,7 +38,7 @@ static void help(FILE *f) {
           "plus the compensation's passes over the member's taps, for both grids) exceeds %.0e\n"
           "tap-updates (under a minute here) are refused with exit 2.\n"
           "Exit status: 0 ok, 1 runtime failure, 2 bad input (message on stderr).\n",
-          ICS_LIGHT1D_MAX_MIX, ICS_WORK_BUDGET);
+          ICS_LIGHT1D_MAX_MIX, ICS_CONV_WORK_BUDGET);
 }
 
 static const char CMD[] = "isoline";
@@ -144,23 +144,24 @@ static int iterated_isoline(const ics_light1d *l, double level, double dist, dou
                           "most 1e6)", nf);
   if (ics_light1d_var(l) == 0 && dist > 0)
     return cli_error(CMD, "model iterative needs a light with variance > 0");
-  ics_iter1d_opts o = ics_iter1d_opts_default();
+  ics_iter1d_opts o;
+  ics_iter1d_opts_init(&o);
   o.member = (ics_kernel_member)member;
   o.nsamples = samples;
   o.seed = seed;
   double disc, h = 0, nodes = 0, w1 = 0, w2 = 0;
-  ics_status st = dist > 0 ? ics_shadow1d_iterate_cost(l, dist, d1, slab, &o, &h, &nodes, &w1)
+  ics_status st = dist > 0 ? ics_iter1d_cost(l, dist, d1, slab, &o, &h, &nodes, &w1)
                            : ICS_OK;
   if (st == ICS_OK && dist > 0) { /* and the run on the grid twice as fine */
     ics_iter1d_opts o2 = o;
     o2.h = h / 2;
-    st = ics_shadow1d_iterate_cost(l, dist, d1, slab, &o2, NULL, NULL, &w2);
+    st = ics_iter1d_cost(l, dist, d1, slab, &o2, NULL, NULL, &w2);
   }
-  if (st == ICS_OK && w1 + w2 > ICS_WORK_BUDGET)
+  if (st == ICS_OK && w1 + w2 > ICS_CONV_WORK_BUDGET)
     return cli_error(CMD, "estimated work %.3g tap-updates (%.0f slabs on %.0f nodes, and again "
                           "on a grid twice as fine) exceeds the budget of %.0e (give fewer "
                           "slabs: a larger --slab or smaller --distance, or smaller --samples)",
-                     w1 + w2, nearbyint(nf), nodes, ICS_WORK_BUDGET);
+                     w1 + w2, nearbyint(nf), nodes, ICS_CONV_WORK_BUDGET);
   if (st == ICS_OK) st = ics_isoline_iterative(l, level, dist, d1, slab, &o, x, &disc);
   if (st != ICS_OK)
     return cli_status_error(CMD, st, "iterated shadow failed: %s", ics_status_str(st));

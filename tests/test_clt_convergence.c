@@ -48,7 +48,7 @@ static double edgeworth_sup(const ics_tap1d *t, int nt, int n) {
 }
 
 /* applied (compensated integer) taps of step 0 */
-static int applied_taps(ics_clt_gen gen, void *ctx, ics_tap1d *out, int cap) {
+static int applied_taps(ics_clt1d_gen gen, void *ctx, ics_tap1d *out, int cap) {
   ics_tap1d t[256];
   int nt = 0, nd = 0;
   if (gen(ctx, 0, 1.0, t, 256, &nt) != ICS_OK) return 0;
@@ -66,10 +66,10 @@ static void print_points(const char *name, double var, const ics_clt_point *p) {
 
 /* ASSERTION FUNCTION: measured errors follow the Edgeworth prediction within rel (n >= 64),
  * the fitted rate is within rtol of `rate`, and the grid resolves the error. 1 = pass. */
-static int follows_edgeworth(ics_clt_gen gen, void *ctx, double mean, double var, double rate,
+static int follows_edgeworth(ics_clt1d_gen gen, void *ctx, double mean, double var, double rate,
                              double rtol, double rel, const char *name, int verbose) {
   ics_clt_point p[NS];
-  if (ics_clt_measure(gen, ctx, mean, var, STEPS, NS, ICS_COMP_NONNEG, 1, p) != ICS_OK) return 0;
+  if (ics_clt1d_measure(gen, ctx, mean, var, STEPS, NS, ICS_COMP_NONNEG, 1, p) != ICS_OK) return 0;
   if (verbose) print_points(name, var, p);
   ics_tap1d t[1024];
   int nt = applied_taps(gen, ctx, t, 1024);
@@ -89,26 +89,27 @@ static void test_members(void) {
   double V = 36; /* sigma = 6 px per step */
   ics_kernel1d top;
   CHECK(ics_kernel1d_init(&top, ICS_KERNEL_TOPHAT, 0, V) == ICS_OK, "tophat");
-  CHECK(follows_edgeworth(ics_clt_member_gen, &top, 0, V, -1.0, 0.05, 0.04, "tophat", 1),
+  CHECK(follows_edgeworth(ics_clt1d_member_gen, &top, 0, V, -1.0, 0.05, 0.04, "tophat", 1),
         "tophat: not the Edgeworth n^-1 behaviour");
-  ics_tap1d sk[ICS_CLT_SKEW_TAPS];
-  CHECK(ics_clt_skew_taps(0, V, sk) == ICS_OK, "skew");
-  ics_clt_fixed fx = {sk, ICS_CLT_SKEW_TAPS};
-  CHECK(follows_edgeworth(ics_clt_fixed_gen, &fx, 0, V, -0.5, 0.05, 0.04, "skew", 1),
+  ics_tap1d sk[ICS_CLT1D_SKEW_TAPS];
+  CHECK(ics_clt1d_skew_taps(0, V, sk) == ICS_OK, "skew");
+  ics_clt1d_fixed fx = {sk, ICS_CLT1D_SKEW_TAPS};
+  CHECK(follows_edgeworth(ics_clt1d_fixed_gen, &fx, 0, V, -0.5, 0.05, 0.04, "skew", 1),
         "skewed member: not the Edgeworth n^-1/2 behaviour");
   /* a nonzero class mean (shift 0.3 px per step) changes nothing but the position */
   ics_kernel1d topm;
   CHECK(ics_kernel1d_init(&topm, ICS_KERNEL_TOPHAT, 0.3, V) == ICS_OK, "tophat mean");
-  CHECK(follows_edgeworth(ics_clt_member_gen, &topm, 0.3, V, -1.0, 0.05, 0.04, "tophat mean 0.3", 1),
+  CHECK(follows_edgeworth(ics_clt1d_member_gen, &topm, 0.3, V, -1.0, 0.05, 0.04,
+                          "tophat mean 0.3", 1),
         "tophat with mean 0.3 px");
   /* broken on purpose: the skewed kernel claimed to converge like a symmetric one (rate -1)
    * and the tophat measured against a Gaussian of the wrong variance (class says V, kernel
    * has 1.1 V): both must fail the same assertion */
-  CHECK(!follows_edgeworth(ics_clt_fixed_gen, &fx, 0, V, -1.0, 0.05, 0.04, "skew (as -1)", 0),
+  CHECK(!follows_edgeworth(ics_clt1d_fixed_gen, &fx, 0, V, -1.0, 0.05, 0.04, "skew (as -1)", 0),
         "wrong rate for the skewed kernel NOT detected");
   ics_kernel1d topw;
   ics_kernel1d_init(&topw, ICS_KERNEL_TOPHAT, 0, 1.1 * V);
-  CHECK(!follows_edgeworth(ics_clt_member_gen, &topw, 0, V, -1.0, 0.05, 0.04, "tophat 1.1V", 0),
+  CHECK(!follows_edgeworth(ics_clt1d_member_gen, &topw, 0, V, -1.0, 0.05, 0.04, "tophat 1.1V", 0),
         "variance mismatch NOT detected");
 }
 
@@ -118,7 +119,8 @@ static void test_lattice(void) {
   ics_kernel1d k;
   CHECK(ics_kernel1d_init(&k, ICS_KERNEL_DIRAC, 0, V) == ICS_OK, "dirac");
   ics_clt_point p[NS];
-  CHECK(ics_clt_measure(ics_clt_member_gen, &k, 0, V, STEPS, NS, ICS_COMP_NONNEG, 1, p) == ICS_OK,
+  CHECK(ics_clt1d_measure(ics_clt1d_member_gen, &k, 0, V, STEPS, NS, ICS_COMP_NONNEG, 1, p) ==
+            ICS_OK,
         "measure");
   print_points("dirac (lattice, span 12 px)", V, p);
   double c = phi(0) * (2 * s - 1) / (2 * s);
@@ -135,7 +137,7 @@ static void test_lattice(void) {
    * more than the error itself: the measurement is discretisation-dominated and is flagged. */
   ics_kernel1d k2;
   CHECK(ics_kernel1d_init(&k2, ICS_KERNEL_DIRAC, 0, 6.25) == ICS_OK, "dirac 2.5");
-  CHECK(ics_clt_measure(ics_clt_member_gen, &k2, 0, 6.25, STEPS, NS, ICS_COMP_NONNEG, 1, p) ==
+  CHECK(ics_clt1d_measure(ics_clt1d_member_gen, &k2, 0, 6.25, STEPS, NS, ICS_COMP_NONNEG, 1, p) ==
             ICS_OK, "measure");
   print_points("dirac sigma 2.5 px (interpolated taps)", 6.25, p);
   for (int i = 1; i < NS; i++)
@@ -145,7 +147,8 @@ static void test_lattice(void) {
    * error is grid smoothing (disc >> sup at n = 256) */
   ics_kernel1d g;
   CHECK(ics_kernel1d_init(&g, ICS_KERNEL_GAUSS, 0, V) == ICS_OK, "gauss");
-  CHECK(ics_clt_measure(ics_clt_member_gen, &g, 0, V, STEPS, NS, ICS_COMP_NONNEG, 1, p) == ICS_OK,
+  CHECK(ics_clt1d_measure(ics_clt1d_member_gen, &g, 0, V, STEPS, NS, ICS_COMP_NONNEG, 1, p) ==
+            ICS_OK,
         "measure");
   print_points("gauss (9-tap comb)", V, p);
   CHECK(p[2].disc_err > 10 * p[2].sup_err, "gauss n=256: disc %.3g vs sup %.3g", p[2].disc_err,
@@ -160,7 +163,8 @@ static void test_stochastic(void) {
   ics_kernel1d k;
   CHECK(ics_kernel1d_init(&k, ICS_KERNEL_STOCH_DIRAC, 0, V) == ICS_OK, "stoch");
   ics_clt_point p[NS];
-  CHECK(ics_clt_measure(ics_clt_member_gen, &k, 0, V, STEPS, NS, ICS_COMP_NONNEG, 1, p) == ICS_OK,
+  CHECK(ics_clt1d_measure(ics_clt1d_member_gen, &k, 0, V, STEPS, NS, ICS_COMP_NONNEG, 1, p) ==
+            ICS_OK,
         "measure");
   print_points("stochastic-dirac (seed 0)", V, p);
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
@@ -185,14 +189,14 @@ static void test_stochastic(void) {
  * Eq. 8 model Phi((x + d mu_l) / sqrt(d d1 var_l)) everywhere on the grid. 1 = pass. */
 static int iterated_matches_eq8(const ics_light1d *l, double d, double d1, double e,
                                 const ics_iter1d_opts *o, double tol, double *worst) {
-  ics_iter1d it;
-  if (ics_shadow1d_iterate(l, d, d1, e, o, &it) != ICS_OK) return 0;
+  ics_iter1d *it = NULL;
+  if (ics_iter1d_create(&it, l, d, d1, e, o) != ICS_OK) return 0;
   double w = 0;
-  for (size_t i = 0; i < it.n; i++) {
-    double x = it.x0 + (double)i * it.h;
-    w = fmax(w, fabs(it.r[i] - ics_shadow1d_clt(l, d, d1, x)));
+  for (size_t i = 0; i < it->n; i++) {
+    double x = it->x0 + (double)i * it->h;
+    w = fmax(w, fabs(it->r[i] - ics_shadow1d_clt(l, d, d1, x)));
   }
-  ics_iter1d_free(&it);
+  ics_iter1d_destroy(it);
   *worst = w;
   return w <= tol;
 }
@@ -206,7 +210,8 @@ static void test_eq8(void) {
   double mhe3 = 0;
   for (double z = 0; z < 5; z += 1e-4) mhe3 = fmax(mhe3, fabs((z * z * z - 3 * z) * phi(z)));
   double tol = 1.5 * 1.2 / 24 / n * mhe3;
-  ics_iter1d_opts o = ics_iter1d_opts_default();
+  ics_iter1d_opts o;
+  ics_iter1d_opts_init(&o);
   o.member = ICS_KERNEL_TOPHAT;
   double w;
   CHECK(iterated_matches_eq8(l, d, d1, e, &o, tol, &w), "Eq. 8: sup %.3g > tol %.3g", w, tol);

@@ -237,6 +237,127 @@ static void test_lut_grid(void) {
   ics_lut_grid_free(NULL);
 }
 
+/* ---- shadow1d.h split: ics_clt_* -> ics_clt1d_*, the iterated shadow's cost and options ---- */
+
+static int same_taps(const ics_tap1d *a, int na, const ics_tap1d *b, int nb) {
+  if (na != nb) return 0;
+  for (int j = 0; j < na; j++)
+    if (!same(a[j].x, b[j].x) || !same(a[j].w, b[j].w)) return 0;
+  return 1;
+}
+
+/* every field but the measured run time */
+static int same_points(const ics_clt_point *a, const ics_clt_point *b, int n) {
+  for (int k = 0; k < n; k++)
+    if (a[k].steps != b[k].steps || !same(a[k].sup_err, b[k].sup_err) ||
+        !same(a[k].sup_err_realized, b[k].sup_err_realized) ||
+        !same(a[k].disc_err, b[k].disc_err) || !same(a[k].cost, b[k].cost))
+      return 0;
+  return 1;
+}
+
+static void test_clt1d(void) {
+  CHECK(ICS_CLT_SKEW_TAPS == ICS_CLT1D_SKEW_TAPS, "ICS_CLT_SKEW_TAPS");
+  CHECK(ICS_WORK_COMP_PASSES == ICS_CONV_WORK_COMP_PASSES &&
+            ICS_WORK_BUDGET == ICS_CONV_WORK_BUDGET,
+        "ICS_WORK_*");
+  const double mv[][2] = {{0, 1}, {0.3, 2.5}, {-1.25, 1e-3}, {0, 0},
+                          {0, -1}, {NAN, 1},    {0, INFINITY}};
+  for (size_t i = 0; i < sizeof mv / sizeof mv[0]; i++) {
+    ics_tap1d a[ICS_CLT1D_SKEW_TAPS], b[ICS_CLT1D_SKEW_TAPS];
+    memset(a, 0, sizeof a);
+    memset(b, 0, sizeof b);
+    ics_status sa = ics_clt_skew_taps(mv[i][0], mv[i][1], a);
+    ics_status sb = ics_clt1d_skew_taps(mv[i][0], mv[i][1], b);
+    CHECK(sa == sb && same_taps(a, ICS_CLT1D_SKEW_TAPS, b, ICS_CLT1D_SKEW_TAPS),
+          "ics_clt_skew_taps(%g, %g)", mv[i][0], mv[i][1]);
+  }
+  ics_kernel1d k;
+  CHECK(ics_kernel1d_init(&k, ICS_KERNEL_STOCH_DIRAC, 0.2, 3.0) == ICS_OK, "kernel");
+  k.seed = 11;
+  for (uint64_t step = 0; step < 4; step++)
+    for (int r = 1; r <= 2; r++) {
+      ics_tap1d a[8], b[8];
+      int na = -1, nb = -2;
+      ics_status sa = ics_clt_member_gen(&k, step, r, a, 8, &na);
+      ics_status sb = ics_clt1d_member_gen(&k, step, r, b, 8, &nb);
+      CHECK(sa == sb && sa == ICS_OK && same_taps(a, na, b, nb), "ics_clt_member_gen step %d",
+            (int)step);
+      CHECK(ics_clt_member_gen(&k, step, r, a, 1, &na) ==
+                ics_clt1d_member_gen(&k, step, r, b, 1, &nb),
+            "ics_clt_member_gen, no room");
+    }
+  ics_tap1d skew[ICS_CLT1D_SKEW_TAPS];
+  ics_clt1d_skew_taps(0.1, 2.0, skew);
+  ics_clt_fixed fixed = {skew, ICS_CLT1D_SKEW_TAPS};
+  for (int r = 1; r <= 2; r++) {
+    ics_tap1d a[ICS_CLT1D_SKEW_TAPS], b[ICS_CLT1D_SKEW_TAPS];
+    int na = -1, nb = -2;
+    CHECK(ics_clt_fixed_gen(&fixed, 3, r, a, ICS_CLT1D_SKEW_TAPS, &na) == ICS_OK &&
+              ics_clt1d_fixed_gen(&fixed, 3, r, b, ICS_CLT1D_SKEW_TAPS, &nb) == ICS_OK &&
+              same_taps(a, na, b, nb),
+          "ics_clt_fixed_gen scale %d", r);
+    CHECK(ics_clt_fixed_gen(&fixed, 3, r, a, 4, &na) ==
+              ics_clt1d_fixed_gen(&fixed, 3, r, b, 4, &nb),
+          "ics_clt_fixed_gen, no room");
+  }
+  const int steps[] = {1, 4, 9};
+  const ics_clt_gen gens[] = {ics_clt1d_member_gen, ics_clt1d_fixed_gen};
+  void *ctxs[] = {&k, &fixed};
+  for (int g = 0; g < 2; g++)
+    for (int refine = 0; refine <= 1; refine++) {
+      ics_clt_point a[3], b[3];
+      ics_status sa = ics_clt_measure(gens[g], ctxs[g], 0.2, 3.0, steps, 3, ICS_COMP_NONNEG,
+                                      refine, a);
+      ics_status sb = ics_clt1d_measure(gens[g], ctxs[g], 0.2, 3.0, steps, 3, ICS_COMP_NONNEG,
+                                        refine, b);
+      CHECK(sa == sb && sa == ICS_OK && same_points(a, b, 3), "ics_clt_measure gen %d refine %d",
+            g, refine);
+      double na = -1, wa = -1, nb = -1, wb = -1;
+      sa = ics_clt_cost(gens[g], ctxs[g], 0.2, 3.0, steps, 3, ICS_COMP_SIGNED, refine, &na, &wa);
+      sb = ics_clt1d_cost(gens[g], ctxs[g], 0.2, 3.0, steps, 3, ICS_COMP_SIGNED, refine, &nb, &wb);
+      CHECK(sa == sb && same(na, nb) && same(wa, wb), "ics_clt_cost gen %d refine %d", g, refine);
+    }
+  const int bad_steps[] = {4, 2};
+  ics_clt_point p[2];
+  CHECK(ics_clt_measure(ics_clt1d_member_gen, &k, 0.2, 3.0, bad_steps, 2, ICS_COMP_NONE, 0, p) ==
+            ics_clt1d_measure(ics_clt1d_member_gen, &k, 0.2, 3.0, bad_steps, 2, ICS_COMP_NONE, 0,
+                              p),
+        "ics_clt_measure, steps not increasing");
+  double nodes, work;
+  CHECK(ics_clt_cost(NULL, &k, 0, 1, steps, 3, ICS_COMP_NONE, 0, &nodes, &work) ==
+            ics_clt1d_cost(NULL, &k, 0, 1, steps, 3, ICS_COMP_NONE, 0, &nodes, &work),
+        "ics_clt_cost, no generator");
+}
+
+static void test_iter1d(void) {
+  ics_iter1d_opts a = ics_iter1d_opts_default(), b;
+  ics_iter1d_opts_init(&b);
+  CHECK(a.member == b.member && a.nsamples == b.nsamples && same(a.param, b.param) &&
+            a.seed == b.seed && same(a.h, b.h) && same(a.ppsd, b.ppsd) &&
+            a.compensate == b.compensate && a.no_edge_comp == b.no_edge_comp &&
+            same(a.mean_sign, b.mean_sign) && same(a.var_factor, b.var_factor) && a.skew == b.skew,
+        "ics_iter1d_opts_default");
+  ics_light1d *l = NULL;
+  CHECK(ics_light1d_create_gauss(&l, 0.3, 0.8) == ICS_OK, "light");
+  const double dd1e[][3] = {{2, 1, 0.25}, {0, 1, 0.5}, {1, 2, 0.3}, {-1, 1, 0.5}, {1, 0, 0.5}};
+  for (int skew = 0; skew <= 1; skew++)
+    for (size_t i = 0; i < sizeof dd1e / sizeof dd1e[0]; i++) {
+      ics_iter1d_opts o = b;
+      o.skew = skew;
+      double ha = -1, na = -1, wa = -1, hb = -1, nb = -1, wb = -1; /* kept on errors */
+      ics_status sa = ics_shadow1d_iterate_cost(l, dd1e[i][0], dd1e[i][1], dd1e[i][2], &o, &ha,
+                                                &na, &wa);
+      ics_status sb = ics_iter1d_cost(l, dd1e[i][0], dd1e[i][1], dd1e[i][2], &o, &hb, &nb, &wb);
+      CHECK(sa == sb && same(ha, hb) && same(na, nb) && same(wa, wb),
+            "ics_shadow1d_iterate_cost skew %d case %zu", skew, i);
+    }
+  CHECK(ics_shadow1d_iterate_cost(NULL, 1, 1, 0.5, NULL, NULL, NULL, NULL) ==
+            ics_iter1d_cost(NULL, 1, 1, 0.5, NULL, NULL, NULL, NULL),
+        "ics_shadow1d_iterate_cost, no light");
+  ics_light1d_destroy(l);
+}
+
 int main(void) {
   test_normal();
   test_volume();
@@ -244,5 +365,7 @@ int main(void) {
   test_csat_ssat();
   test_occtex();
   test_lut_grid();
+  test_clt1d();
+  test_iter1d();
   return test_summary("test_deprecated");
 }

@@ -1,7 +1,7 @@
 /* test_half_shadow_isoline.c — the half-shadow isoline claim of Patel et al. 2013, Appendix
  * A.5 ("the iterative 1/2-isoline equals the correct one for any light"), tested where its
  * proof's assumptions hold and where they fail, with the shadow ACTUALLY ITERATED by the conv
- * engine (ics_shadow1d_iterate), plus the isoline formulas of A.3/A.4 and Eq. 8.
+ * engine (ics_iter1d_create), plus the isoline formulas of A.3/A.4 and Eq. 8.
  *
  * Where the expectations come from (none is read off the code under test):
  * - correct 1/2-isoline: x = -d median(l) (Eq. 17 with s = 1/2); medians of the lights are
@@ -126,7 +126,8 @@ static void test_holds(void) {
                               ICS_KERNEL_GAUSS};
   for (int li = 0; li < 3; li++)
     for (int k = 0; k < 4; k++) {
-      ics_iter1d_opts o = ics_iter1d_opts_default();
+      ics_iter1d_opts o;
+      ics_iter1d_opts_init(&o);
       o.member = mem[k];
       double worst;
       printf("  A.5 holds? light %s, kernel %s:\n", lname[li], ics_kernel_member_name(mem[k]));
@@ -173,7 +174,8 @@ static void test_fails_asymmetric_light(void) {
     printf("  light %s: skewness %.4f, median - mean = %.6f (%.4f sigma_l)\n", lname[li],
            ics_light1d_skewness(lights[li]), gap, gap / sqrt(ics_light1d_var(lights[li])));
     for (int k = 0; k < 3; k++) {
-      ics_iter1d_opts o = ics_iter1d_opts_default();
+      ics_iter1d_opts o;
+      ics_iter1d_opts_init(&o);
       o.member = mem[k];
       /* the iterated 1/2-isoline stays at -d mean: expected offset 0 from -d mean ... */
       printf("   kernel %s:\n", ics_kernel_member_name(mem[k]));
@@ -210,9 +212,9 @@ static double tap_skewness(const ics_tap1d *t, int n, double *sd) {
 /* A.5 with a non-symmetric kernel of the right class (mean -e mu_l, variance d1 e var_l) and a
  * symmetric light: the median of kappa^{*n} is off by -g sigma_k / 6 (Edgeworth) */
 static void test_fails_skewed_kernel(void) {
-  ics_tap1d t[ICS_CLT_SKEW_TAPS];
-  CHECK(ics_clt_skew_taps(0, 1, t) == ICS_OK, "skew taps");
-  double sdt, g = tap_skewness(t, ICS_CLT_SKEW_TAPS, &sdt);
+  ics_tap1d t[ICS_CLT1D_SKEW_TAPS];
+  CHECK(ics_clt1d_skew_taps(0, 1, t) == ICS_OK, "skew taps");
+  double sdt, g = tap_skewness(t, ICS_CLT1D_SKEW_TAPS, &sdt);
   CHECK(fabs(sdt - 1) < 1e-12, "skew taps have the class variance: sd %.17g", sdt);
   ics_light1d *l = NULL;
   CHECK(ics_light1d_create_gauss(&l, 0.3, 1.0) == ICS_OK, "gauss");
@@ -220,7 +222,8 @@ static void test_fails_skewed_kernel(void) {
   double off = -g * sk / 6;
   printf("  skewed kernel (skewness %.4f), Gaussian light: predicted offset -g sigma_k/6 = %.5f "
          "(sigma_k = %.4f)\n", g, off, sk);
-  ics_iter1d_opts o = ics_iter1d_opts_default();
+  ics_iter1d_opts o;
+  ics_iter1d_opts_init(&o);
   o.skew = 1;
   double worst;
   /* d >= 1 (n >= 64): the O(n^-1/2) remainder of the median expansion is below 3% of the
@@ -246,15 +249,15 @@ static int isolines_meet_at_d1(const ics_light1d *l, const ics_iter1d_opts *o, d
   int n = (int)nearbyint(d1 / E_SLAB);
   double cdf_tol = 1.5 * 1.2 / 24 / n * mhe3;
   double pos_tol = cdf_tol / (exp(-0.5 * 1.2816 * 1.2816) / sqrt(2 * ICS_PI)) + TOL_SYM;
-  ics_iter1d it;
-  if (ics_shadow1d_iterate(l, d1, d1, E_SLAB, o, &it) != ICS_OK) return 0;
+  ics_iter1d *it = NULL;
+  if (ics_iter1d_create(&it, l, d1, d1, E_SLAB, o) != ICS_OK) return 0;
   double sd = sqrt(d1 * d1 * ics_light1d_var(l)), w = 0;
   for (int k = 1; k <= 9; k++) {
     double s = k / 10.0;
-    double dev = fabs(ics_iter1d_isoline(&it, s) - ics_isoline_correct(l, s, d1)) / sd;
+    double dev = fabs(ics_iter1d_isoline(it, s) - ics_isoline_correct(l, s, d1)) / sd;
     if (!(dev <= w)) w = dev;
   }
-  ics_iter1d_free(&it);
+  ics_iter1d_destroy(it);
   if (worst) *worst = w;
   return w <= pos_tol;
 }
@@ -262,7 +265,8 @@ static int isolines_meet_at_d1(const ics_light1d *l, const ics_iter1d_opts *o, d
 static void test_meet_at_d1(void) {
   ics_light1d *l = NULL;
   CHECK(ics_light1d_create_gauss(&l, -0.4, 0.6) == ICS_OK, "gauss");
-  ics_iter1d_opts o = ics_iter1d_opts_default();
+  ics_iter1d_opts o;
+  ics_iter1d_opts_init(&o);
   o.member = ICS_KERNEL_TOPHAT;
   double worst;
   double d1s[2] = {1.0, 2.0};

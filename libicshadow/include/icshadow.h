@@ -29,7 +29,11 @@
 #include "icshadow/kernel.h"   /* kernel equivalence classes and their members' taps */
 #include "icshadow/light.h"    /* virtual light plane, Gaussian lights, Eq. 7/15, 1D lights */
 #include "icshadow/conv.h"     /* iterative convolution engine (1D/2D), variance compensation */
-#include "icshadow/shadow1d.h" /* shadows and isolines behind an edge, 1D CLT convergence */
+#include "icshadow/shadow1d.h" /* correct and CLT shadows behind an edge, 1D lights */
+#include "icshadow/iter1d.h"   /* the iterated shadow behind an edge (conv engine) */
+#include "icshadow/isoline.h"  /* isolines of the correct, CLT and iterated shadows */
+#include "icshadow/clt.h"      /* CLT measurements: the measured point, the rate fit */
+#include "icshadow/clt1d.h"    /* CLT convergence of the 1D kernel members */
 #include "icshadow/clt2d.h"    /* CLT convergence of the 2D kernel members */
 
 /* ---- images and lights ---- */

@@ -468,7 +468,7 @@ ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s
                           const int *steps, int nsteps, double *pixels, double *work) {
   /* First the class path's grid only (a lower bound of the real grid): a run refused on it is
    * refused before the realised path's pass over every step's taps (itself up to
-   * ICS_WORK_COMP_PASSES x generated taps a step). */
+   * ICS_CONV_WORK_COMP_PASSES x generated taps a step). */
   plan2 p;
   ics_status st = check2(gen, ctx, s, steps, nsteps, &p, 0);
   if (st != ICS_OK) return st;
@@ -486,22 +486,23 @@ ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s
   free(dt);
   if (st != ICS_OK) return st;
   /* the realised path's pass, then the engine per grid */
-  double lower = nmax * ICS_WORK_COMP_PASSES * (double)nt0;
-  lower += nmax * ((double)p.w * p.h * nd0 + ICS_WORK_COMP_PASSES * (double)nt0);
+  double lower = nmax * ICS_CONV_WORK_COMP_PASSES * (double)nt0;
+  lower += nmax * ((double)p.w * p.h * nd0 + ICS_CONV_WORK_COMP_PASSES * (double)nt0);
   if (s->refine)
-    lower += nmax * ((2.0 * p.w + 1) * (2.0 * p.h + 1) * ndf + ICS_WORK_COMP_PASSES * (double)ntf);
-  if (lower > ICS_WORK_BUDGET) {
+    lower += nmax * ((2.0 * p.w + 1) * (2.0 * p.h + 1) * ndf +
+                     ICS_CONV_WORK_COMP_PASSES * (double)ntf);
+  if (lower > ICS_CONV_WORK_BUDGET) {
     if (pixels) *pixels = (double)p.w * p.h;
     if (work) *work = lower;
     return ICS_OK;
   }
   st = check2(gen, ctx, s, steps, nsteps, &p, 1);
   if (st != ICS_OK) return st;
-  wk = nmax * ICS_WORK_COMP_PASSES * (double)nt0; /* the realised path's pass */
+  wk = nmax * ICS_CONV_WORK_COMP_PASSES * (double)nt0; /* the realised path's pass */
   for (int r = 0; r <= (s->refine ? 1 : 0); r++) {
     double px = r ? (2.0 * p.w + 1) * (2.0 * p.h + 1) : (double)p.w * p.h;
     int nt = r ? ntf : nt0, nd = r ? ndf : nd0;
-    wk += nmax * (px * nd + ICS_WORK_COMP_PASSES * (double)nt);
+    wk += nmax * (px * nd + ICS_CONV_WORK_COMP_PASSES * (double)nt);
     /* the limits at every window node */
     double cn = (double)steps[nsteps - 1], pix = 1.0 / 12;
     double rho = cn * s->cov[1] / sqrt((cn * s->cov[0] + pix) * (cn * s->cov[2] + pix));

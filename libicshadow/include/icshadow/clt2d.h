@@ -1,7 +1,7 @@
 /* icshadow/clt2d.h — CLT convergence of the 2D kernel members (Patel et al. 2013, Eq. 5-6,
  * Sec. 3.3-3.4): the actually iterated kappa^{*n} * O for a 2D occluder image O (the 2D engine of
  * icshadow/conv.h, bilinear taps, interpolation-variance compensation), measured against the
- * Gaussian limit with the same moments. The 2D counterpart of ics_clt_measure (shadow1d.h);
+ * Gaussian limit with the same moments. The 2D counterpart of ics_clt1d_measure (clt1d.h);
  * method, formulas and checks in the header comment of libicshadow/src/clt2d.c and in
  * docs/theory.md ("CLT convergence of 2D members").
  *
@@ -21,9 +21,9 @@
 
 #include <stdint.h>
 
+#include "icshadow/clt.h"
 #include "icshadow/conv.h"
 #include "icshadow/kernel.h"
-#include "icshadow/shadow1d.h"
 #include "icshadow/status.h"
 
 #ifdef __cplusplus
@@ -82,7 +82,7 @@ ICS_API ics_clt2d_setup ics_clt2d_setup_default(void);
  * generator must be deterministic in the step index), sizes the grid to hold both paths, then
  * iterates the occluder image with the generator's taps (compensation s->comp, clamp boundary,
  * float image as the engine) and at each steps[k] (strictly increasing, 1..ICS_CLT2D_MAX_STEPS)
- * fills out[k] (the 1D point type of shadow1d.h):
+ * fills out[k] (the point type of clt.h):
  *   sup_err          max over the nodes x of the window of |r_n(x) - G_n(x)|, G_n the class
  *                    limit above; the window is the union of |x - n mu|_inf <= 4.5 sd_n
  *                    (sd_n^2 = n lambda_max(Sigma) + 1/12) and |x - m_n|_inf <= 4.5 sdr_n, m_n,
@@ -104,16 +104,16 @@ ICS_API ics_clt2d_setup ics_clt2d_setup_default(void);
 ICS_API ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
                                      const int *steps, int nsteps, ics_clt_point *out);
 
-/* Base-grid pixel count and estimated work (tap-updates as ICS_WORK_BUDGET of shadow1d.h:
- * steps x pixels x applied taps + ICS_WORK_COMP_PASSES x generated taps, per grid, plus the
- * limits at the window's nodes: 60 per node for the edge's Phi, 4000 for the corner's
- * ics_normal_bvn_cdf (10000 when |rho| >= 0.9), x 2 on the base grid (class and realised), x 1 on
- * the finer grid (class), which counts when s->refine; plus the realised path's pass,
- * ICS_WORK_COMP_PASSES x generated taps a step) of ics_clt2d_measure, without running it. When
- * the estimate on the class path's grid alone (a lower bound) already exceeds ICS_WORK_BUDGET,
- * that lower bound is returned without the realised pass, so a refusal costs no step's taps. Same argument errors. Measured here
- * (clt2d.c): 0.21 ns per engine tap-update (Release; 0.21-0.41 under load), so the 1D budget
- * ICS_WORK_BUDGET of 1e11 is 21-41 s. */
+/* Base-grid pixel count and estimated work (tap-updates as ICS_CONV_WORK_BUDGET of conv.h: steps x
+ * pixels x applied taps + ICS_CONV_WORK_COMP_PASSES x generated taps, per grid, plus the limits at
+ * the window's nodes: 60 per node for the edge's Phi, 4000 for the corner's ics_normal_bvn_cdf
+ * (10000 when |rho| >= 0.9), x 2 on the base grid (class and realised), x 1 on the finer grid
+ * (class), which counts when s->refine; plus the realised path's pass, ICS_CONV_WORK_COMP_PASSES x
+ * generated taps a step) of ics_clt2d_measure, without running it. When the estimate on the class
+ * path's grid alone (a lower bound) already exceeds ICS_CONV_WORK_BUDGET, that lower bound is
+ * returned without the realised pass, so a refusal costs no step's taps. Same argument errors.
+ * Measured here (clt2d.c): 0.21 ns per engine tap-update (Release; 0.21-0.41 under load), so the 1D
+ * budget ICS_CONV_WORK_BUDGET of 1e11 is 21-41 s. */
 ICS_API ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
                                   const int *steps, int nsteps, double *pixels, double *work);
 

@@ -8,8 +8,12 @@
 #define ICSHADOW_DEPRECATED_H
 
 #include <stddef.h>
+#include <stdint.h>
 
+#include "icshadow/clt1d.h"
+#include "icshadow/conv.h"
 #include "icshadow/csat.h"
+#include "icshadow/iter1d.h"
 #include "icshadow/lut.h"
 #include "icshadow/normal.h"
 #include "icshadow/occtex.h"
@@ -115,5 +119,59 @@ static inline ics_status ics_lut_grid_new(int n, int per_interval, ics_lut_grid 
 
 ICS_DEPRECATED("since 0.2.0: use ics_lut_grid_destroy")
 static inline void ics_lut_grid_free(ics_lut_grid *grid) { ics_lut_grid_destroy(grid); }
+
+/* ---- 0.2.0: shadow1d.h split: the 1D CLT measurement to clt1d.h (ics_clt_* -> ics_clt1d_*),
+ * the iterated shadow to iter1d.h, the work model to conv.h (ICS_WORK_* -> ICS_CONV_WORK_*) ---- */
+typedef ics_clt1d_gen ics_clt_gen;     /* deprecated since 0.2.0: use ics_clt1d_gen */
+typedef ics_clt1d_fixed ics_clt_fixed; /* deprecated since 0.2.0: use ics_clt1d_fixed */
+#define ICS_CLT_SKEW_TAPS ICS_CLT1D_SKEW_TAPS           /* deprecated since 0.2.0 */
+#define ICS_WORK_COMP_PASSES ICS_CONV_WORK_COMP_PASSES  /* deprecated since 0.2.0 */
+#define ICS_WORK_BUDGET ICS_CONV_WORK_BUDGET            /* deprecated since 0.2.0 */
+
+ICS_DEPRECATED("since 0.2.0: use ics_clt1d_member_gen")
+static inline ics_status ics_clt_member_gen(void *ctx, uint64_t step, double scale,
+                                            ics_tap1d *taps, int cap, int *ntaps) {
+  return ics_clt1d_member_gen(ctx, step, scale, taps, cap, ntaps);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_clt1d_skew_taps")
+static inline ics_status ics_clt_skew_taps(double mean, double var,
+                                           ics_tap1d taps[ICS_CLT1D_SKEW_TAPS]) {
+  return ics_clt1d_skew_taps(mean, var, taps);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_clt1d_fixed_gen")
+static inline ics_status ics_clt_fixed_gen(void *ctx, uint64_t step, double scale,
+                                           ics_tap1d *taps, int cap, int *ntaps) {
+  return ics_clt1d_fixed_gen(ctx, step, scale, taps, cap, ntaps);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_clt1d_measure")
+static inline ics_status ics_clt_measure(ics_clt1d_gen gen, void *ctx, double mean, double var,
+                                         const int *steps, int nsteps, ics_comp_mode comp,
+                                         int refine, ics_clt_point *out) {
+  return ics_clt1d_measure(gen, ctx, mean, var, steps, nsteps, comp, refine, out);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_clt1d_cost")
+static inline ics_status ics_clt_cost(ics_clt1d_gen gen, void *ctx, double mean, double var,
+                                      const int *steps, int nsteps, ics_comp_mode comp,
+                                      int refine, double *nodes, double *work) {
+  return ics_clt1d_cost(gen, ctx, mean, var, steps, nsteps, comp, refine, nodes, work);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_iter1d_opts_init")
+static inline ics_iter1d_opts ics_iter1d_opts_default(void) {
+  ics_iter1d_opts o;
+  ics_iter1d_opts_init(&o);
+  return o;
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_iter1d_cost")
+static inline ics_status ics_shadow1d_iterate_cost(const ics_light1d *l, double d, double d1,
+                                                   double e, const ics_iter1d_opts *opts,
+                                                   double *h, double *nodes, double *work) {
+  return ics_iter1d_cost(l, d, d1, e, opts, h, nodes, work);
+}
 
 #endif
