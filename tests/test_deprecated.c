@@ -358,6 +358,95 @@ static void test_iter1d(void) {
   ics_light1d_destroy(l);
 }
 
+/* ---- minmax.h split: ics_epi_* -> ics_epipolar_*, ics_hf_* -> ics_heightfield_* ---- */
+
+static int same_frames(const ics_epipolar_frame *a, const ics_epipolar_frame *b) {
+  for (int i = 0; i < 3; i++)
+    if (!same(a->eye[i], b->eye[i]) || !same(a->L[i], b->L[i]) || !same(a->U[i], b->U[i]) ||
+        !same(a->V[i], b->V[i]))
+      return 0;
+  return same(a->eu, b->eu) && same(a->ev, b->ev) && same(a->depth_eye, b->depth_eye) &&
+         same(a->dgamma, b->dgamma) && a->rows == b->rows && a->d == b->d;
+}
+
+static void test_epipolar_heightfield(void) {
+  CHECK(ICS_HF_MAX_SHAPES == ICS_HEIGHTFIELD_MAX_SHAPES, "ICS_HF_MAX_SHAPES");
+  ics_hf_scene so;
+  ics_heightfield sn;
+  memset(&so, 0xa5, sizeof so);
+  memset(&sn, 0x5a, sizeof sn);
+  ics_hf_scene_default(&so);
+  ics_heightfield_init_default(&sn);
+  CHECK(!memcmp(&so, &sn, sizeof so), "ics_hf_scene_default");
+  ics_hf_scene_default(NULL);
+  const double eye[3] = {0.5, 1.5, 9.0}, L[3] = {0.3, 0.9, 0.2}, zero[3] = {0, 0, 0};
+  ics_epi_frame fo;
+  ics_epipolar_frame fn;
+  memset(&fo, 0, sizeof fo);
+  memset(&fn, 0, sizeof fn);
+  CHECK(ics_epi_frame_init(&fo, eye, L, 16, 32, 0.25) == ICS_OK &&
+            ics_epipolar_frame_init(&fn, eye, L, 16, 32, 0.25) == ICS_OK && same_frames(&fo, &fn),
+        "ics_epi_frame_init");
+  ics_epipolar_frame bad;
+  CHECK(ics_epi_frame_init(&bad, eye, zero, 16, 32, 0.25) ==
+                ics_epipolar_frame_init(&bad, eye, zero, 16, 32, 0.25) &&
+            ics_epi_frame_init(&bad, eye, L, 0, 32, 0.25) ==
+                ics_epipolar_frame_init(&bad, eye, L, 0, 32, 0.25),
+        "ics_epi_frame_init, bad arguments");
+  const double pts[][3] = {{1, 0, 2}, {-3, 0.5, 4}, {0.5, 1.5, 9.0}, {NAN, 0, 0}};
+  for (size_t i = 0; i < sizeof pts / sizeof pts[0]; i++) {
+    double ao = -1, go = -1, dpo = -1, an = -1, gn = -1, dpn = -1;
+    ics_status so1 = ics_epi_locate(&fn, pts[i], &ao, &go, &dpo);
+    ics_status sn1 = ics_epipolar_locate(&fn, pts[i], &an, &gn, &dpn);
+    CHECK(so1 == sn1 && same(ao, an) && same(go, gn) && same(dpo, dpn), "ics_epi_locate %zu", i);
+  }
+  const double dirs[][3] = {{0.1, -0.2, -1}, {1, 0.3, 0.2}, {0.3, 0.9, 0.2}, {0, INFINITY, 0}};
+  for (size_t i = 0; i < sizeof dirs / sizeof dirs[0]; i++) {
+    double ao = -1, an = -1;
+    size_t ro = 99, rn = 99;
+    ics_minmax_ray yo = {-1, -1, 0}, yn = {-1, -1, 0};
+    ics_status so1 = ics_epi_ray(&fn, dirs[i], &ao, &ro, &yo);
+    ics_status sn1 = ics_epipolar_ray(&fn, dirs[i], &an, &rn, &yn);
+    CHECK(so1 == sn1 && same(ao, an) && ro == rn && same(yo.beta0, yn.beta0) &&
+              same(yo.slope, yn.slope),
+          "ics_epi_ray %zu", i);
+  }
+  const double betas[] = {0.3, 1.2, 0.0, 4.0};
+  for (size_t row = 0; row < 17; row += 4)
+    for (size_t i = 0; i < sizeof betas / sizeof betas[0]; i++) {
+      double dno[3] = {-1, -1, -1}, dnn[3] = {-1, -1, -1};
+      ics_status so1 = ics_epi_ray_dir(&fn, row, betas[i], dno);
+      ics_status sn1 = ics_epipolar_ray_dir(&fn, row, betas[i], dnn);
+      CHECK(so1 == sn1 && same(dno[0], dnn[0]) && same(dno[1], dnn[1]) && same(dno[2], dnn[2]),
+            "ics_epi_ray_dir row %zu beta %g", row, betas[i]);
+    }
+  enum { W = 24 };
+  static float smo[W * W], smn[W * W], ro[16 * 32], rn[16 * 32];
+  CHECK(ics_hf_shadow_map(&sn, &fn, W, 6.0, smo) == ICS_OK &&
+            ics_heightfield_shadow_map(&sn, &fn, W, 6.0, smn) == ICS_OK &&
+            !memcmp(smo, smn, sizeof smo),
+        "ics_hf_shadow_map");
+  CHECK(ics_hf_shadow_map(&sn, &fn, W, -1.0, smo) ==
+            ics_heightfield_shadow_map(&sn, &fn, W, -1.0, smn),
+        "ics_hf_shadow_map, negative size");
+  CHECK(ics_epi_rectify(&fn, smn, W, W, fn.eu - 6.0, fn.ev - 6.0, 0.5, ro) == ICS_OK &&
+            ics_epipolar_rectify(&fn, smn, W, W, fn.eu - 6.0, fn.ev - 6.0, 0.5, rn) == ICS_OK &&
+            !memcmp(ro, rn, sizeof ro),
+        "ics_epi_rectify");
+  CHECK(ics_epi_rectify(&fn, smn, W, W, 0, 0, 0.0, ro) ==
+            ics_epipolar_rectify(&fn, smn, W, W, 0, 0, 0.0, rn),
+        "ics_epi_rectify, zero texel");
+  for (int k = 0; k < 3; k++) {
+    const double o[3] = {-5 + 4 * k, 8, 1 - k}, d[3] = {0.2 * k, -1, 0.1};
+    CHECK(same(ics_hf_scene_hit(&sn, o, d, 0), ics_heightfield_hit(&sn, o, d, 0)) &&
+              same(ics_hf_scene_hit(&sn, o, d, 3.0), ics_heightfield_hit(&sn, o, d, 3.0)),
+          "ics_hf_scene_hit %d", k);
+  }
+  const double o[3] = {0, 1, 0};
+  CHECK(same(ics_hf_scene_hit(NULL, o, o, 0), ics_heightfield_hit(NULL, o, o, 0)),
+        "ics_hf_scene_hit, no scene");
+}
+
 int main(void) {
   test_normal();
   test_volume();
@@ -367,5 +456,6 @@ int main(void) {
   test_lut_grid();
   test_clt1d();
   test_iter1d();
+  test_epipolar_heightfield();
   return test_summary("test_deprecated");
 }

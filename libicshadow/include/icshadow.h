@@ -42,12 +42,15 @@
 #include "icshadow/lightfit.h" /* environment map -> Gaussian lights on the light plane */
 
 /* ---- peer primitives ---- */
-#include "icshadow/sat.h"    /* summed-area tables 2D/3D in four precision modes (Ament 2014) */
-#include "icshadow/volume.h" /* volumes of extinction: sampling, ray-marched optical depth */
-#include "icshadow/csat.h"   /* light-aligned CSAT: box-filtered optical depth, six lights */
-#include "icshadow/ssat.h"   /* spherical SAT (SSAT) around a point light */
-#include "icshadow/minmax.h" /* 1D min-max mipmaps, epipolar rectification (Chen 2011) */
-#include "icshadow/occtex.h" /* occlusion textures (Eisemann & Decoret 2006) */
+#include "icshadow/sat.h"         /* summed-area tables 2D/3D in four precision modes (Ament 2014) */
+#include "icshadow/volume.h"      /* volumes of extinction: sampling, ray-marched optical depth */
+#include "icshadow/csat.h"        /* light-aligned CSAT: box-filtered optical depth, six lights */
+#include "icshadow/ssat.h"        /* spherical SAT (SSAT) around a point light */
+#include "icshadow/minmax.h"      /* 1D min-max mipmaps (Chen 2011) */
+#include "icshadow/svd.h"         /* one-sided Jacobi SVD: the low-rank integrand */
+#include "icshadow/epipolar.h"    /* epipolar rectification of a directional light */
+#include "icshadow/heightfield.h" /* a synthetic height-field scene and its shadow map */
+#include "icshadow/occtex.h"      /* occlusion textures (Eisemann & Decoret 2006) */
 
 /* ---- deprecated aliases (kept for one minor version; see CHANGELOG.md) ---- */
 #include "icshadow/deprecated.h"

@@ -13,6 +13,8 @@
 #include "icshadow/clt1d.h"
 #include "icshadow/conv.h"
 #include "icshadow/csat.h"
+#include "icshadow/epipolar.h"
+#include "icshadow/heightfield.h"
 #include "icshadow/iter1d.h"
 #include "icshadow/lut.h"
 #include "icshadow/normal.h"
@@ -172,6 +174,59 @@ static inline ics_status ics_shadow1d_iterate_cost(const ics_light1d *l, double 
                                                    double e, const ics_iter1d_opts *opts,
                                                    double *h, double *nodes, double *work) {
   return ics_iter1d_cost(l, d, d1, e, opts, h, nodes, work);
+}
+
+/* ---- 0.2.0: minmax.h split: epipolar rectification to epipolar.h (ics_epi_* ->
+ * ics_epipolar_*), the height-field scene to heightfield.h (ics_hf_* -> ics_heightfield_*) ---- */
+typedef ics_epipolar_frame ics_epi_frame; /* deprecated since 0.2.0: use ics_epipolar_frame */
+typedef ics_heightfield ics_hf_scene;     /* deprecated since 0.2.0: use ics_heightfield */
+#define ICS_HF_MAX_SHAPES ICS_HEIGHTFIELD_MAX_SHAPES /* deprecated since 0.2.0 */
+
+ICS_DEPRECATED("since 0.2.0: use ics_epipolar_frame_init")
+static inline ics_status ics_epi_frame_init(ics_epipolar_frame *f, const double eye[3],
+                                            const double to_light[3], size_t rows, size_t d,
+                                            double dgamma) {
+  return ics_epipolar_frame_init(f, eye, to_light, rows, d, dgamma);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_epipolar_locate")
+static inline ics_status ics_epi_locate(const ics_epipolar_frame *f, const double p[3],
+                                        double *alpha, double *gamma, double *depth) {
+  return ics_epipolar_locate(f, p, alpha, gamma, depth);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_epipolar_ray")
+static inline ics_status ics_epi_ray(const ics_epipolar_frame *f, const double dir[3],
+                                     double *alpha, size_t *row, ics_minmax_ray *ray) {
+  return ics_epipolar_ray(f, dir, alpha, row, ray);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_epipolar_ray_dir")
+static inline ics_status ics_epi_ray_dir(const ics_epipolar_frame *f, size_t row, double beta,
+                                         double dir[3]) {
+  return ics_epipolar_ray_dir(f, row, beta, dir);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_epipolar_rectify")
+static inline ics_status ics_epi_rectify(const ics_epipolar_frame *f, const float *smap, size_t w,
+                                         size_t h, double u0, double v0, double texel,
+                                         float *out) {
+  return ics_epipolar_rectify(f, smap, w, h, u0, v0, texel, out);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_heightfield_init_default")
+static inline void ics_hf_scene_default(ics_heightfield *s) { ics_heightfield_init_default(s); }
+
+ICS_DEPRECATED("since 0.2.0: use ics_heightfield_hit")
+static inline double ics_hf_scene_hit(const ics_heightfield *s, const double o[3],
+                                      const double dir[3], double tmin) {
+  return ics_heightfield_hit(s, o, dir, tmin);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_heightfield_shadow_map")
+static inline ics_status ics_hf_shadow_map(const ics_heightfield *s, const ics_epipolar_frame *f,
+                                           size_t w, double half, float *smap) {
+  return ics_heightfield_shadow_map(s, f, w, half, smap);
 }
 
 #endif
