@@ -211,6 +211,58 @@ static void test_occtex(void) {
   ics_occtex_free(NULL);
 }
 
+/* ics_occ_* -> ics_occtex_*, scenes -> box sets */
+static void test_occtex_names(void) {
+  CHECK((int)ICS_OCC_SCENE_FOLIAGE == (int)ICS_OCC_BOXES_FOLIAGE &&
+            (int)ICS_OCC_SCENE_PLATES == (int)ICS_OCC_BOXES_PLATES &&
+            (int)ICS_OCC_SCENE_BLOCKS == (int)ICS_OCC_BOXES_BLOCKS &&
+            sizeof(ics_occ_scene_kind) == sizeof(ics_occ_boxes_kind),
+        "ICS_OCC_SCENE_*");
+  for (int i = -1; i <= ICS_OCC_PREFILTER_COUNT; i++)
+    CHECK(ics_occ_prefilter_name((ics_occ_prefilter)i) ==
+              ics_occtex_prefilter_name((ics_occ_prefilter)i),
+          "ics_occ_prefilter_name(%d)", i);
+  for (int i = -1; i <= ICS_OCC_COMBINE_COUNT; i++)
+    CHECK(ics_occ_combine_name((ics_occ_combine)i) == ics_occtex_combine_name((ics_occ_combine)i),
+          "ics_occ_combine_name(%d)", i);
+  enum { NB = 40, N = 32, K = 3 };
+  static ics_occ_box bo[NB], bn[NB];
+  static float to[K * N * N], tn[K * N * N];
+  const ics_occ_grid g = {-1, -1, 2.0 / N, N};
+  const ics_occ_light L = {0.1, -0.05, 0.6, 0.4};
+  const double P[] = {0, 0, 2.5, 0.3, -0.4, 2.2, -0.9, 0.8, 1.5};
+  for (int kind = 0; kind < 3; kind++) {
+    memset(bo, 0, sizeof bo);
+    memset(bn, 0, sizeof bn);
+    CHECK(ics_occ_scene_make((ics_occ_boxes_kind)kind, NB, 7, bo) == ICS_OK &&
+              ics_occtex_boxes_make((ics_occ_boxes_kind)kind, NB, 7, bn) == ICS_OK &&
+              !memcmp(bo, bn, sizeof bo),
+          "ics_occ_scene_make kind %d", kind);
+    CHECK(ics_occ_slice(bn, NB, &g, K, 1, 2, 2, to) == ICS_OK &&
+              ics_occtex_slice_boxes(bn, NB, &g, K, 1, 2, 2, tn) == ICS_OK &&
+              !memcmp(to, tn, sizeof to),
+          "ics_occ_slice kind %d", kind);
+    double oo[3] = {-1, -1, -1}, on[3] = {-1, -1, -1};
+    CHECK(ics_occ_exact(bn, NB, &L, 9, P, 3, oo) == ICS_OK &&
+              ics_occtex_exact(bn, NB, &L, 9, P, 3, on) == ICS_OK && same(oo[0], on[0]) &&
+              same(oo[1], on[1]) && same(oo[2], on[2]),
+          "ics_occ_exact kind %d", kind);
+  }
+  CHECK(ics_occ_scene_make(ICS_OCC_BOXES_PLATES, 0, 7, bo) ==
+                ics_occtex_boxes_make(ICS_OCC_BOXES_PLATES, 0, 7, bn) &&
+            ics_occ_slice(bn, NB, &g, 0, 1, 2, 2, to) ==
+                ics_occtex_slice_boxes(bn, NB, &g, 0, 1, 2, 2, tn) &&
+            ics_occ_exact(bn, NB, &L, 0, P, 3, NULL) == ics_occtex_exact(bn, NB, &L, 0, P, 3, NULL),
+        "ics_occ_*, bad arguments");
+  const double fs[][3] = {{0.2, 0.5, 0.9}, {0, 1, 0.5}, {0.3, NAN, 0.1}, {1.5, 0, 0}};
+  for (int c = -1; c <= ICS_OCC_COMBINE_COUNT; c++)
+    for (size_t i = 0; i < sizeof fs / sizeof fs[0]; i++)
+      for (int k = -1; k <= 3; k++)
+        CHECK(same(ics_occ_combine_values((ics_occ_combine)c, fs[i], k),
+                   ics_occtex_combine_values((ics_occ_combine)c, fs[i], k)),
+              "ics_occ_combine_values(%d, %zu, %d)", c, i, k);
+}
+
 static void test_lut_grid(void) {
   const int sizes[][2] = {{4, 2}, {16, 16}, {256, ICS_LUT_STAMP_PER_INTERVAL}};
   for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
@@ -453,6 +505,7 @@ int main(void) {
   test_sat();
   test_csat_ssat();
   test_occtex();
+  test_occtex_names();
   test_lut_grid();
   test_clt1d();
   test_iter1d();

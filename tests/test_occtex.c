@@ -116,7 +116,7 @@ static void test_prefilters(void) {
       for (int pf = 0; pf < ICS_OCC_PREFILTER_COUNT; pf++) {
         ics_status st = ics_occtex_box(ot, (ics_occ_prefilter)pf, k, u, v, su, sv, &r);
         CHECK(st == ICS_OK && r >= -1e-12 && r <= 1 + 1e-6, "%s box size (%g,%g): %.17g outside [0,1]",
-              ics_occ_prefilter_name((ics_occ_prefilter)pf), su, sv, r);
+              ics_occtex_prefilter_name((ics_occ_prefilter)pf), su, sv, r);
       }
     }
   }
@@ -145,7 +145,7 @@ static void test_slicing(void) {
       {4.5, 4, 1.6, 5, 6.25, 2.6},  /* slices 1, 2, 3; half texels in x, quarter in y */
       {0, 0, 3.5, 8, 8, 4},         /* beyond z_far: ignored */
   };
-  CHECK(ics_occ_slice(b, 3, &g, K, 1, 3, 4, tex) == ICS_OK, "slice");
+  CHECK(ics_occtex_slice_boxes(b, 3, &g, K, 1, 3, 4, tex) == ICS_OK, "slice");
   CHECK(tex[1 * n + 1] == 1 && tex[1 * n + 2] == 1 && tex[1 * n + 3] == 0 && tex[2 * n + 1] == 0,
         "box 0 in slice 0: %g %g %g %g", tex[9], tex[10], tex[11], tex[17]);
   int bad = 0;
@@ -163,10 +163,11 @@ static void test_slicing(void) {
   CHECK(bad == 0, "slice 0 has extra coverage");
   /* a box on the first slice's top plane counts (slice 0 is closed at z_near) */
   ics_occ_box top = {0, 0, 1, 1, 1, 1};
-  CHECK(ics_occ_slice(&top, 1, &g, K, 1, 3, 1, tex) == ICS_OK && tex[0] == 1, "plate at z_near");
+  CHECK(ics_occtex_slice_boxes(&top, 1, &g, K, 1, 3, 1, tex) == ICS_OK && tex[0] == 1,
+        "plate at z_near");
   /* a plate on a slice's bottom plane belongs to that slice only */
   ics_occ_box mid = {0, 0, 2, 1, 1, 2};
-  CHECK(ics_occ_slice(&mid, 1, &g, K, 1, 3, 1, tex) == ICS_OK && tex[n * n] == 1 && tex[2 * n * n] == 0 && tex[0] == 0,
+  CHECK(ics_occtex_slice_boxes(&mid, 1, &g, K, 1, 3, 1, tex) == ICS_OK && tex[n * n] == 1 && tex[2 * n * n] == 0 && tex[0] == 0,
         "plate at z = 2: %g %g %g", tex[0], tex[n * n], tex[2 * n * n]);
 }
 
@@ -177,38 +178,38 @@ static void test_combination(void) {
     double f[8];
     int k = 1 + it % 8;
     for (int i = 0; i < k; i++) f[i] = it % 5 == 0 ? (urand(&s) < 0.5 ? 0 : 1) : urand(&s);
-    double p = ics_occ_combine_values(ICS_OCC_PRODUCT, f, k);
-    double sm = ics_occ_combine_values(ICS_OCC_SUM, f, k);
-    double mx = ics_occ_combine_values(ICS_OCC_MAX, f, k);
+    double p = ics_occtex_combine_values(ICS_OCC_PRODUCT, f, k);
+    double sm = ics_occtex_combine_values(ICS_OCC_SUM, f, k);
+    double mx = ics_occtex_combine_values(ICS_OCC_MAX, f, k);
     CHECK(p >= 0 && p <= 1 && mx <= p + 1e-15 && p <= sm + 1e-15, "k=%d: max %.17g product %.17g sum %.17g", k, mx, p, sm);
   }
   double f2[2] = {0.25, 0.5};
-  CHECK(fabs(ics_occ_combine_values(ICS_OCC_PRODUCT, f2, 2) - (0.25 + 0.5 - 0.125)) < 1e-15, "a + b - ab");
+  CHECK(fabs(ics_occtex_combine_values(ICS_OCC_PRODUCT, f2, 2) - (0.25 + 0.5 - 0.125)) < 1e-15, "a + b - ab");
   double f3[3] = {0.5, 0.75, 0.25};
-  CHECK(ics_occ_combine_values(ICS_OCC_SUM, f3, 3) == 1, "clamped sum");
-  CHECK(isnan(ics_occ_combine_values((ics_occ_combine)7, f3, 3)), "unknown combination");
+  CHECK(ics_occtex_combine_values(ICS_OCC_SUM, f3, 3) == 1, "clamped sum");
+  CHECK(isnan(ics_occtex_combine_values((ics_occ_combine)7, f3, 3)), "unknown combination");
   /* bad input: NaN for every combination alike (NULL, k < 0, NaN, values outside [0, 1]) */
   double fbig[2] = {1.5, -0.5}, fneg[2] = {0.25, -0.25}, fnan[3] = {0.5, NAN, 0.25};
   for (int c = 0; c < ICS_OCC_COMBINE_COUNT; c++) {
-    CHECK(isnan(ics_occ_combine_values((ics_occ_combine)c, NULL, 2)), "%d: NULL f", c);
-    CHECK(isnan(ics_occ_combine_values((ics_occ_combine)c, f2, -1)), "%d: k < 0", c);
-    CHECK(isnan(ics_occ_combine_values((ics_occ_combine)c, fbig, 2)), "%d: f outside [0, 1]", c);
-    CHECK(isnan(ics_occ_combine_values((ics_occ_combine)c, fneg, 2)), "%d: negative f", c);
-    CHECK(isnan(ics_occ_combine_values((ics_occ_combine)c, fnan, 3)), "%d: NaN f", c);
-    CHECK(ics_occ_combine_values((ics_occ_combine)c, NULL, 0) == 0, "%d: no slices", c);
+    CHECK(isnan(ics_occtex_combine_values((ics_occ_combine)c, NULL, 2)), "%d: NULL f", c);
+    CHECK(isnan(ics_occtex_combine_values((ics_occ_combine)c, f2, -1)), "%d: k < 0", c);
+    CHECK(isnan(ics_occtex_combine_values((ics_occ_combine)c, fbig, 2)), "%d: f outside [0, 1]", c);
+    CHECK(isnan(ics_occtex_combine_values((ics_occ_combine)c, fneg, 2)), "%d: negative f", c);
+    CHECK(isnan(ics_occtex_combine_values((ics_occ_combine)c, fnan, 3)), "%d: NaN f", c);
+    CHECK(ics_occtex_combine_values((ics_occ_combine)c, NULL, 0) == 0, "%d: no slices", c);
   }
   double fedge[2] = {0, 1};
-  CHECK(ics_occ_combine_values(ICS_OCC_PRODUCT, fedge, 2) == 1 && ics_occ_combine_values(ICS_OCC_MAX, fedge, 2) == 1,
+  CHECK(ics_occtex_combine_values(ICS_OCC_PRODUCT, fedge, 2) == 1 && ics_occtex_combine_values(ICS_OCC_MAX, fedge, 2) == 1,
         "0 and 1 are accepted");
 
   /* on a real scene, through ics_occtex_shadow */
   ics_occ_box boxes[60];
-  CHECK(ics_occ_scene_make(ICS_OCC_SCENE_FOLIAGE, 60, 7, boxes) == ICS_OK, "scene");
+  CHECK(ics_occtex_boxes_make(ICS_OCC_BOXES_FOLIAGE, 60, 7, boxes) == ICS_OK, "scene");
   const int n = 64, K = 6;
   ics_occ_grid g = {-1, -1, 2.0 / n, n};
   float *tex = malloc(sizeof(float) * K * n * n);
   ics_occtex *ot = NULL;
-  CHECK(ics_occ_slice(boxes, 60, &g, K, 1, 2, 2, tex) == ICS_OK, "slice");
+  CHECK(ics_occtex_slice_boxes(boxes, 60, &g, K, 1, 2, 2, tex) == ICS_OK, "slice");
   CHECK(ics_occtex_create(&ot, tex, &g, K, 1, 2) == ICS_OK && ics_occtex_prefilter(ot, ICS_OCC_NBUFFERS) == ICS_OK, "build");
   ics_occ_light L = {0.1, 0, 0.8, 0.8};
   double P[3 * 200], oc[3][200];
@@ -239,7 +240,7 @@ static void test_planar(void) {
   ics_occ_box plate = {px0, py0, 1, px1, py1, 1};
   float *tex = malloc(sizeof(float) * n * n);
   ics_occtex *ot = NULL;
-  CHECK(ics_occ_slice(&plate, 1, &g, 1, 0.5, 1, 1, tex) == ICS_OK, "slice");
+  CHECK(ics_occtex_slice_boxes(&plate, 1, &g, 1, 0.5, 1, 1, tex) == ICS_OK, "slice");
   CHECK(ics_occtex_create(&ot, tex, &g, 1, 0.5, 1) == ICS_OK, "create");
   for (int pf = 0; pf < ICS_OCC_PREFILTER_COUNT; pf++) ics_occtex_prefilter(ot, (ics_occ_prefilter)pf);
   const ics_occ_light L = {0.1, -0.05, 0.5, 0.5};
@@ -263,7 +264,7 @@ static void test_planar(void) {
       }
       if (it < 15) { /* the brute force agrees with the formula to its midpoint-rule bound */
         const int m = 128;
-        CHECK(ics_occ_exact(&plate, 1, &L, m, P, 1, &r) == ICS_OK && fabs(r - want) <= 2.0 / m + 1.0 / (m * m),
+        CHECK(ics_occtex_exact(&plate, 1, &L, m, P, 1, &r) == ICS_OK && fabs(r - want) <= 2.0 / m + 1.0 / (m * m),
               "brute force at (%g,%g,%g): %.17g vs %.17g", P[0], P[1], P[2], r, want);
         worst_bf = fmax(worst_bf, fabs(r - want));
       }
@@ -302,12 +303,12 @@ static void test_monotone(void) {
   ics_occ_box plate = {-1, -1, 1, 0.5, 1, 1};
   float *tex = malloc(sizeof(float) * n * n);
   ics_occtex *ot = NULL;
-  ics_occ_slice(&plate, 1, &g, 1, 0.5, 1, 1, tex);
+  ics_occtex_slice_boxes(&plate, 1, &g, 1, 0.5, 1, 1, tex);
   CHECK(ics_occtex_create(&ot, tex, &g, 1, 0.5, 1) == ICS_OK, "create");
   for (int pf = 0; pf < ICS_OCC_PREFILTER_COUNT; pf++) ics_occtex_prefilter(ot, (ics_occ_prefilter)pf);
   const double Pin[3] = {0.4, 0.1, 2}, Pout[3] = {1.6, -0.1, 2};
   for (int pf = -1; pf < ICS_OCC_PREFILTER_COUNT; pf++) { /* -1: the exact formula itself */
-    const char *name = pf < 0 ? "exact" : ics_occ_prefilter_name((ics_occ_prefilter)pf);
+    const char *name = pf < 0 ? "exact" : ics_occtex_prefilter_name((ics_occ_prefilter)pf);
     double prev_in = 2, prev_out = -1;
     int bad = 0;
     for (int i = 0; i <= 59; i++) {
@@ -345,10 +346,10 @@ static void test_fading(void) {
   const int n = 32, K = 4;
   ics_occ_grid g = {-1, -1, 2.0 / n, n};
   ics_occ_box boxes[40];
-  ics_occ_scene_make(ICS_OCC_SCENE_BLOCKS, 40, 3, boxes);
+  ics_occtex_boxes_make(ICS_OCC_BOXES_BLOCKS, 40, 3, boxes);
   float *tex = malloc(sizeof(float) * K * n * n);
   ics_occtex *ot = NULL;
-  ics_occ_slice(boxes, 40, &g, K, 1, 2, 2, tex);
+  ics_occtex_slice_boxes(boxes, 40, &g, K, 1, 2, 2, tex);
   CHECK(ics_occtex_create(&ot, tex, &g, K, 1, 2) == ICS_OK && ics_occtex_prefilter(ot, ICS_OCC_SAT) == ICS_OK, "build");
   ics_occ_light L = {0, 0, 0.5, 0.3};
   /* weights: slice k = (1 + k/4, 1 + (k+1)/4]; P at z = 1.6 is 40% into slice 2 */
@@ -419,16 +420,17 @@ static void test_bad_input(void) {
   ics_occtex_destroy(NULL);
 
   ics_occ_box b = {0, 0, 1, 1, 1, 2}, bnan = {0, 0, 1, NAN, 1, 2}, binv = {1, 0, 1, 0, 1, 2};
-  CHECK(ics_occ_slice(&b, 1, &g, 1, 1, 2, 0, tex) == ICS_ERR_SIZE, "supersample 0");
-  CHECK(ics_occ_slice(&b, 1, &g, 0, 1, 2, 1, tex) == ICS_ERR_INVALID_ARG, "zero slices");
-  CHECK(ics_occ_slice(&bnan, 1, &g, 1, 1, 2, 1, tex) == ICS_ERR_NAN, "NaN box");
-  CHECK(ics_occ_slice(&binv, 1, &g, 1, 1, 2, 1, tex) == ICS_ERR_INVALID_ARG, "inverted box");
-  CHECK(ics_occ_slice(&b, 1, &g3, 1, 1, 2, 1, tex) == ICS_ERR_SIZE, "n = 3");
-  CHECK(ics_occ_exact(&b, 1, &L, 0, P, 1, &r) == ICS_ERR_SIZE, "m = 0");
-  CHECK(ics_occ_exact(&b, 1, &L, 4, Pnan, 1, &r) == ICS_ERR_NAN, "NaN point");
-  CHECK(ics_occ_exact(&bnan, 1, &L, 4, P, 1, &r) == ICS_ERR_NAN, "NaN box");
-  CHECK(ics_occ_scene_make(ICS_OCC_SCENE_FOLIAGE, 0, 1, &b) == ICS_ERR_SIZE, "no boxes");
-  CHECK(ics_occ_prefilter_name((ics_occ_prefilter)3) == NULL && ics_occ_combine_name(ICS_OCC_MAX) != NULL, "names");
+  CHECK(ics_occtex_slice_boxes(&b, 1, &g, 1, 1, 2, 0, tex) == ICS_ERR_SIZE, "supersample 0");
+  CHECK(ics_occtex_slice_boxes(&b, 1, &g, 0, 1, 2, 1, tex) == ICS_ERR_INVALID_ARG, "zero slices");
+  CHECK(ics_occtex_slice_boxes(&bnan, 1, &g, 1, 1, 2, 1, tex) == ICS_ERR_NAN, "NaN box");
+  CHECK(ics_occtex_slice_boxes(&binv, 1, &g, 1, 1, 2, 1, tex) == ICS_ERR_INVALID_ARG,
+        "inverted box");
+  CHECK(ics_occtex_slice_boxes(&b, 1, &g3, 1, 1, 2, 1, tex) == ICS_ERR_SIZE, "n = 3");
+  CHECK(ics_occtex_exact(&b, 1, &L, 0, P, 1, &r) == ICS_ERR_SIZE, "m = 0");
+  CHECK(ics_occtex_exact(&b, 1, &L, 4, Pnan, 1, &r) == ICS_ERR_NAN, "NaN point");
+  CHECK(ics_occtex_exact(&bnan, 1, &L, 4, P, 1, &r) == ICS_ERR_NAN, "NaN box");
+  CHECK(ics_occtex_boxes_make(ICS_OCC_BOXES_FOLIAGE, 0, 1, &b) == ICS_ERR_SIZE, "no boxes");
+  CHECK(ics_occtex_prefilter_name((ics_occ_prefilter)3) == NULL && ics_occtex_combine_name(ICS_OCC_MAX) != NULL, "names");
 }
 
 int main(void) {

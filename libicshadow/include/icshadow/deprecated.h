@@ -229,4 +229,46 @@ static inline ics_status ics_hf_shadow_map(const ics_heightfield *s, const ics_e
   return ics_heightfield_shadow_map(s, f, w, half, smap);
 }
 
+/* ---- 0.2.0: occtex.h's functions carry its name (ics_occ_* -> ics_occtex_*), and its
+ * synthetic scenes are box sets ("scene" is left to the renderer) ---- */
+typedef ics_occ_boxes_kind ics_occ_scene_kind; /* deprecated since 0.2.0: use ics_occ_boxes_kind */
+#define ICS_OCC_SCENE_FOLIAGE ICS_OCC_BOXES_FOLIAGE /* deprecated since 0.2.0 */
+#define ICS_OCC_SCENE_PLATES ICS_OCC_BOXES_PLATES   /* deprecated since 0.2.0 */
+#define ICS_OCC_SCENE_BLOCKS ICS_OCC_BOXES_BLOCKS   /* deprecated since 0.2.0 */
+
+ICS_DEPRECATED("since 0.2.0: use ics_occtex_prefilter_name")
+static inline const char *ics_occ_prefilter_name(ics_occ_prefilter pf) {
+  return ics_occtex_prefilter_name(pf);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_occtex_combine_name")
+static inline const char *ics_occ_combine_name(ics_occ_combine c) {
+  return ics_occtex_combine_name(c);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_occtex_boxes_make")
+static inline ics_status ics_occ_scene_make(ics_occ_boxes_kind kind, int nboxes, uint64_t seed,
+                                            ics_occ_box *out) {
+  return ics_occtex_boxes_make(kind, nboxes, seed, out);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_occtex_slice_boxes")
+static inline ics_status ics_occ_slice(const ics_occ_box *boxes, size_t nboxes,
+                                       const ics_occ_grid *grid, int slices, double z_near,
+                                       double z_far, int ss, float *tex) {
+  return ics_occtex_slice_boxes(boxes, nboxes, grid, slices, z_near, z_far, ss, tex);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_occtex_combine_values")
+static inline double ics_occ_combine_values(ics_occ_combine c, const double *f, int k) {
+  return ics_occtex_combine_values(c, f, k);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_occtex_exact")
+static inline ics_status ics_occ_exact(const ics_occ_box *boxes, size_t nboxes,
+                                       const ics_occ_light *light, int m, const double *P,
+                                       size_t n, double *occ) {
+  return ics_occtex_exact(boxes, nboxes, light, m, P, n, occ);
+}
+
 #endif
