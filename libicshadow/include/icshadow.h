@@ -39,6 +39,7 @@
 /* ---- images and lights ---- */
 #include "icshadow/image.h"    /* float RGB(A) images, row 0 at the top */
 #include "icshadow/exr.h"      /* OpenEXR I/O (optional: ICS_ERR_UNSUPPORTED without it) */
+#include "icshadow/envmap.h"   /* latitude-longitude maps on the light plane, synthetic maps */
 #include "icshadow/lightfit.h" /* environment map -> Gaussian lights on the light plane */
 
 /* ---- peer primitives ---- */
