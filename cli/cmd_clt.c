@@ -205,7 +205,8 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
     gen = ics_clt2d_member_gen;
     ctx = &k;
   }
-  ics_clt2d_setup su = ics_clt2d_setup_default();
+  ics_clt2d_setup su;
+  ics_clt2d_setup_init(&su);
   su.occluder = corner ? ICS_CLT2D_CORNER : ICS_CLT2D_EDGE;
   su.edge_angle_deg = edge;
   su.mean[0] = cls.mean[0], su.mean[1] = cls.mean[1];

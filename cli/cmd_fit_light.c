@@ -187,7 +187,7 @@ int cmd_fit_light(int argc, char **argv) {
   em_progress ep = {.k = 0};
   cli_progress_init(&ep.p, "fit-light", force_progress);
   ics_lightfit_params p;
-  ics_lightfit_defaults(&p);
+  ics_lightfit_params_init(&p);
   p.max_angle_deg = max_angle;
   p.seed = seed;
   p.max_samples = max_samples;

@@ -304,7 +304,7 @@ static int iterate_main(int argc, char **argv, step_list *step_opt) {
   if (!buf) return cli_failure(CMD, "out of memory");
   for (size_t i = 0; i < n; i++) buf[i] = ((double)i - width / 2 + 0.5) > 0 ? 1.0 : 0.0;
 
-  ics_conv_opts conv = ics_conv_opts_default();
+  ics_conv_opts conv = {0};
   conv.boundary = ICS_BOUNDARY_CLAMP;
   conv.compensate = comp;
   double applied_var = 0, applied_mean = 0;

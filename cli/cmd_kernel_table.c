@@ -99,7 +99,7 @@ static int time_member(const ics_kernel1d *k, double *ns) {
   double *buf = malloc(sizeof *buf * TIMING_LEN);
   if (!buf) return -1;
   for (size_t i = 0; i < TIMING_LEN; i++) buf[i] = i >= TIMING_LEN / 2 ? 1.0 : 0.0;
-  run1d_ctx c = {buf, {k, 1}, ics_conv_opts_default()};
+  run1d_ctx c = {buf, {k, 1}, {0}};
   int steps = 8;
   double best;
   int rc = best_seconds(run1d, &c, steps, &best);
@@ -230,7 +230,7 @@ static int time_member2d(const ics_kernel2d *k, double *ns) {
   float *buf = malloc(sizeof *buf * n);
   if (!buf) return -1;
   for (size_t i = 0; i < n; i++) buf[i] = (i % TIMING_SIDE) >= TIMING_SIDE / 2 ? 1.0f : 0.0f;
-  run2d_ctx c = {buf, {k, 1}, ics_conv_opts_default()};
+  run2d_ctx c = {buf, {k, 1}, {0}};
   int steps = 4;
   double best;
   int rc = best_seconds(run2d, &c, steps, &best);

@@ -252,7 +252,7 @@ static int conv2d_matches_mapping(const ics_light *L, double d, double d1, doubl
   const size_t cx = 128, cy = 128;
   img[cy * W + cx] = 1.0f;
   ics_schedule2d sch = {&k, 1};
-  ics_conv_opts co = ics_conv_opts_default();
+  ics_conv_opts co = {0};
   co.boundary = ICS_BOUNDARY_CONSTANT;
   co.compensate = ICS_COMP_NONNEG;
   if (ics_conv2d_run(img, W, H, &sch, 0, n, &co, NULL) != ICS_OK) return 0;
@@ -493,7 +493,8 @@ static int edge2d_follows_edgeworth(ics_clt2d_gen gen, void *ctx, const ics_clt2
 }
 
 static ics_clt2d_setup setup2(ics_clt2d_occluder occ, double angle, const ics_class2d *c) {
-  ics_clt2d_setup s = ics_clt2d_setup_default();
+  ics_clt2d_setup s;
+  ics_clt2d_setup_init(&s);
   s.occluder = occ;
   s.edge_angle_deg = angle;
   s.mean[0] = c->mean[0], s.mean[1] = c->mean[1];
@@ -663,7 +664,8 @@ static void drift_ref(int n, double *err_class, double *err_real) {
 }
 
 static void test_2d_drift(void) {
-  ics_clt2d_setup s = ics_clt2d_setup_default();
+  ics_clt2d_setup s;
+  ics_clt2d_setup_init(&s);
   s.cov[0] = 0.5;
   static const int ST[] = {16, 64, 256};
   ics_clt_point p[3];

@@ -499,6 +499,42 @@ static void test_epipolar_heightfield(void) {
         "ics_hf_scene_hit, no scene");
 }
 
+/* ---- value structs: defaults and constructors ---- */
+
+static void test_value_structs(void) {
+  ics_conv_opts co = ics_conv_opts_default(), zero = {0};
+  CHECK(co.boundary == zero.boundary && same(co.constant, zero.constant) &&
+            co.compensate == zero.compensate && co.boundary == ICS_BOUNDARY_CLAMP &&
+            co.compensate == ICS_COMP_NONE,
+        "ics_conv_opts_default is the zero struct");
+  ics_clt2d_setup so = ics_clt2d_setup_default(), sn;
+  ics_clt2d_setup_init(&sn);
+  CHECK(so.occluder == sn.occluder && same(so.edge_angle_deg, sn.edge_angle_deg) &&
+            same(so.mean[0], sn.mean[0]) && same(so.mean[1], sn.mean[1]) &&
+            same(so.cov[0], sn.cov[0]) && same(so.cov[1], sn.cov[1]) &&
+            same(so.cov[2], sn.cov[2]) && so.comp == sn.comp && so.refine == sn.refine,
+        "ics_clt2d_setup_default");
+  ics_lightfit_params po, pn;
+  memset(&po, 0xa5, sizeof po);
+  memset(&pn, 0x5a, sizeof pn);
+  ics_lightfit_defaults(&po);
+  ics_lightfit_params_init(&pn);
+  CHECK(po.k == pn.k && same(po.max_angle_deg, pn.max_angle_deg) && po.seed == pn.seed &&
+            po.max_samples == pn.max_samples && po.max_iter == pn.max_iter &&
+            same(po.tol, pn.tol) && po.progress == pn.progress &&
+            po.progress_ctx == pn.progress_ctx,
+        "ics_lightfit_defaults");
+  const uint64_t seeds[][2] = {{0, 0}, {12345, 7}, {UINT64_MAX, 1}};
+  for (size_t i = 0; i < sizeof seeds / sizeof seeds[0]; i++) {
+    ics_rng a = ics_rng_make(seeds[i][0], seeds[i][1]), b;
+    ics_rng_init(&b, seeds[i][0], seeds[i][1]);
+    int eq = a.seed == b.seed && a.stream == b.stream && a.index == b.index;
+    for (int k = 0; k < 8 && eq; k++) eq = ics_rng_next_u64(&a) == ics_rng_next_u64(&b);
+    CHECK(eq, "ics_rng_make(%llu, %llu)", (unsigned long long)seeds[i][0],
+          (unsigned long long)seeds[i][1]);
+  }
+}
+
 int main(void) {
   test_normal();
   test_volume();
@@ -510,5 +546,6 @@ int main(void) {
   test_clt1d();
   test_iter1d();
   test_epipolar_heightfield();
+  test_value_structs();
   return test_summary("test_deprecated");
 }

@@ -163,7 +163,7 @@ int main(void) {
   CHECK(ics_envmap_render(env, NULL, truth, 3, 4) == ICS_OK, "render");
   double e = map_energy(env);
   CHECK(fabs(e / 4.5 - 1) <= 2e-3, "map energy %.9g, expected 4.5 (sum of weights)", e);
-  ics_lightfit_defaults(&p);
+  ics_lightfit_params_init(&p);
   p.k = 3;
   CHECK(ics_lightfit(env, &p, fit, &rep) == ICS_OK, "fit 3");
   /* covariance to 0.2%: pixels are area averages, so the fit removes the footprint S from the

@@ -72,7 +72,7 @@ static ics_status clt_run(ics_clt1d_gen gen, void *ctx, double mean, double var,
   ics_status st = ICS_OK;
   if (!buf || !tmp || !taps || !dt) st = ICS_ERR_NOMEM;
   double x0 = 0.5 - (double)il; /* node i at x0 + i (fine pixels) */
-  ics_conv_opts co = ics_conv_opts_default();
+  ics_conv_opts co = {0};
   co.boundary = ICS_BOUNDARY_CLAMP;
   co.compensate = ICS_COMP_NONE; /* we hand the engine already compensated integer taps */
   double cost = 0, rmean = 0, rvar = 0;

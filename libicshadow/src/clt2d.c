@@ -137,13 +137,12 @@ ics_status ics_clt2d_ellipse_gen(void *ctx, uint64_t step, double scale, ics_tap
 
 /* ---- measurement ---- */
 
-ics_clt2d_setup ics_clt2d_setup_default(void) {
-  ics_clt2d_setup s;
-  memset(&s, 0, sizeof s);
-  s.occluder = ICS_CLT2D_EDGE;
-  s.comp = ICS_COMP_NONNEG;
-  s.refine = 1;
-  return s;
+void ics_clt2d_setup_init(ics_clt2d_setup *out) {
+  if (!out) return;
+  memset(out, 0, sizeof *out);
+  out->occluder = ICS_CLT2D_EDGE;
+  out->comp = ICS_COMP_NONNEG;
+  out->refine = 1;
 }
 
 typedef struct plan2 {
@@ -376,7 +375,7 @@ static void grid_free(grid2 *g) {
 /* one step of the grid with step n's taps (generated for its scale, compensated) */
 static ics_status grid_step(grid2 *g, ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
                             int n, ics_tap2d *taps, int cap, ics_tap2d *dt, int dcap, int *nd) {
-  ics_conv_opts co = ics_conv_opts_default();
+  ics_conv_opts co = {0};
   co.boundary = ICS_BOUNDARY_CLAMP;
   co.compensate = ICS_COMP_NONE; /* the taps handed over are already integer */
   int nt = 0;

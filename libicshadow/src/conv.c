@@ -24,11 +24,6 @@
 
 #define MAX_OFFSET 0x1p30
 
-ics_conv_opts ics_conv_opts_default(void) {
-  ics_conv_opts o = {ICS_BOUNDARY_CLAMP, 0.0, ICS_COMP_NONE};
-  return o;
-}
-
 static ics_status check_taps1d(const ics_tap1d *t, int n) {
   if (!t || n <= 0) return ICS_ERR_INVALID_ARG;
   if (n > 4 * ICS_KERNEL_MAX_TAPS) return ICS_ERR_SIZE;
@@ -474,7 +469,7 @@ static void apply1d(const double *in, double *out, size_t n, const ics_tap1d *t,
 
 ics_status ics_conv1d_step(const double *in, double *out, size_t n, const ics_tap1d *taps,
                            int ntaps, const ics_conv_opts *opts) {
-  ics_conv_opts o = opts ? *opts : ics_conv_opts_default();
+  ics_conv_opts o = opts ? *opts : (ics_conv_opts){0}; /* zero: the defaults */
   if (!in || !out || !taps || ntaps <= 0 || in == out) return ICS_ERR_INVALID_ARG;
   if (n == 0 || n > ICS_CONV_MAX_LEN) return ICS_ERR_SIZE;
   ics_status st = check_opts(&o);
@@ -541,7 +536,7 @@ static int bad_size2d(size_t w, size_t h) {
 
 ics_status ics_conv2d_step(const float *in, float *out, size_t w, size_t h, const ics_tap2d *taps,
                            int ntaps, const ics_conv_opts *opts) {
-  ics_conv_opts o = opts ? *opts : ics_conv_opts_default();
+  ics_conv_opts o = opts ? *opts : (ics_conv_opts){0}; /* zero: the defaults */
   if (!in || !out || !taps || ntaps <= 0 || in == out) return ICS_ERR_INVALID_ARG;
   if (bad_size2d(w, h)) return ICS_ERR_SIZE;
   ics_status st = check_opts(&o);
@@ -564,7 +559,7 @@ ics_status ics_conv2d_step(const float *in, float *out, size_t w, size_t h, cons
 
 ics_status ics_conv1d_run(double *buf, size_t n, const ics_schedule1d *s, uint64_t first_step,
                           int nsteps, const ics_conv_opts *opts, ics_conv_stats *stats) {
-  ics_conv_opts o = opts ? *opts : ics_conv_opts_default();
+  ics_conv_opts o = opts ? *opts : (ics_conv_opts){0}; /* zero: the defaults */
   if (!buf || !s || nsteps < 0) return ICS_ERR_INVALID_ARG;
   if (n == 0 || n > ICS_CONV_MAX_LEN) return ICS_ERR_SIZE;
   ics_status st = check_opts(&o);
@@ -619,7 +614,7 @@ ics_status ics_conv1d_run(double *buf, size_t n, const ics_schedule1d *s, uint64
 ics_status ics_conv2d_run(float *buf, size_t w, size_t h, const ics_schedule2d *s,
                           uint64_t first_step, int nsteps, const ics_conv_opts *opts,
                           ics_conv_stats *stats) {
-  ics_conv_opts o = opts ? *opts : ics_conv_opts_default();
+  ics_conv_opts o = opts ? *opts : (ics_conv_opts){0}; /* zero: the defaults */
   if (!buf || !s || nsteps < 0) return ICS_ERR_INVALID_ARG;
   if (bad_size2d(w, h)) return ICS_ERR_SIZE;
   ics_status st = check_opts(&o);

@@ -136,7 +136,7 @@ static ics_status iterate(ics_iter1d *it, const iter_plan *p, const ics_iter1d_o
   if (steps == 0) return ICS_OK;
   if (!o->no_edge_comp) it->kvar_px -= 1.0 / (12.0 * steps);
   if (it->kvar_px < 0) it->kvar_px = 0;
-  ics_conv_opts co = ics_conv_opts_default();
+  ics_conv_opts co = {0};
   co.boundary = ICS_BOUNDARY_CLAMP;
   co.compensate = o->compensate;
   ics_status st;

@@ -466,7 +466,8 @@ int ics_kernel2d_max_taps(const ics_kernel2d *k) {
  * 1.2 / sqrt(N) and shrinks by 10% after 200 rejected candidates in a row. Then centred and
  * whitened: second moment c I with c = 1 (so p = S^(-1/2) (q - mean q)). */
 static void poisson_pattern(uint64_t seed, int N, double *px, double *py) {
-  ics_rng r = ics_rng_make(seed, POISSON_STREAM);
+  ics_rng r;
+  ics_rng_init(&r, seed, POISSON_STREAM);
   double dmin = 1.2 / sqrt((double)N);
   int have = 0, fails = 0;
   while (have < N) {

@@ -270,14 +270,15 @@ ics_status ics_lightfit_errors(const ics_image *env, double max_angle_deg,
 
 /* ---- the fit ---- */
 
-void ics_lightfit_defaults(ics_lightfit_params *p) {
-  memset(p, 0, sizeof *p);
-  p->k = 3;
-  p->max_angle_deg = 80;
-  p->seed = 1;
-  p->max_samples = 0;
-  p->max_iter = 300;
-  p->tol = 1e-9;
+void ics_lightfit_params_init(ics_lightfit_params *out) {
+  if (!out) return;
+  memset(out, 0, sizeof *out);
+  out->k = 3;
+  out->max_angle_deg = 80;
+  out->seed = 1;
+  out->max_samples = 0;
+  out->max_iter = 300;
+  out->tol = 1e-9;
 }
 
 /* greedy start: returns the number of Gaussians started; f[k] = the mass-weighted footprint

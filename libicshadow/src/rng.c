@@ -58,9 +58,11 @@ double ics_rng_uniform_at(uint64_t seed, uint64_t stream, uint64_t index) {
   return u64_to_uniform(ics_rng_u64_at(seed, stream, index));
 }
 
-ics_rng ics_rng_make(uint64_t seed, uint64_t stream) {
-  ics_rng r = {seed, stream, 0};
-  return r;
+void ics_rng_init(ics_rng *out, uint64_t seed, uint64_t stream) {
+  if (!out) return;
+  out->seed = seed;
+  out->stream = stream;
+  out->index = 0;
 }
 
 uint64_t ics_rng_next_u64(ics_rng *r) { return ics_rng_u64_at(r->seed, r->stream, r->index++); }

@@ -68,8 +68,10 @@ typedef struct ics_clt2d_setup {
   int refine;            /* 1: also run a grid twice as fine and report disc_err; 0: NaN */
 } ics_clt2d_setup;
 
-/* Defaults: edge at 0 degrees, mean 0, cov 0 (must be set), NONNEG, refine 1. */
-ICS_API ics_clt2d_setup ics_clt2d_setup_default(void);
+/* Fills *out with the defaults: edge at 0 degrees, mean 0, cov 0 (must be set), NONNEG, refine
+ * 1. A zeroed setup is not the defaults: comp's zero is ICS_COMP_NONE and refine's 0 skips the
+ * finer grid, both settings of their own. */
+ICS_API void ics_clt2d_setup_init(ics_clt2d_setup *out);
 
 #define ICS_CLT2D_MAX_STEPS 100000
 /* Base grid cap. Memory of ics_clt2d_measure: 2 float buffers per grid, the base and (refine)

@@ -74,14 +74,13 @@ typedef enum ics_comp_mode {
                           mode of ics_taps*_compensate (ICS_ERR_RANGE there). */
 } ics_comp_mode;
 
+/* Options of a step or run; zero-initialised ({0}) they are the defaults: clamp-to-edge,
+ * constant 0, no compensation. A NULL opts means the same. */
 typedef struct ics_conv_opts {
   ics_boundary boundary;
   double constant;      /* value outside the buffer for ICS_BOUNDARY_CONSTANT */
   ics_comp_mode compensate;
 } ics_conv_opts;
-
-/* clamp-to-edge, constant 0, no compensation. */
-ICS_API ics_conv_opts ics_conv_opts_default(void);
 
 /* Accumulated over the steps of a run (all in pixels^2, per axis for 2D: [0] x, [1] y). */
 typedef struct ics_conv_stats {

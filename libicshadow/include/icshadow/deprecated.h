@@ -11,14 +11,17 @@
 #include <stdint.h>
 
 #include "icshadow/clt1d.h"
+#include "icshadow/clt2d.h"
 #include "icshadow/conv.h"
 #include "icshadow/csat.h"
 #include "icshadow/epipolar.h"
 #include "icshadow/heightfield.h"
 #include "icshadow/iter1d.h"
+#include "icshadow/lightfit.h"
 #include "icshadow/lut.h"
 #include "icshadow/normal.h"
 #include "icshadow/occtex.h"
+#include "icshadow/rng.h"
 #include "icshadow/sat.h"
 #include "icshadow/ssat.h"
 #include "icshadow/status.h"
@@ -269,6 +272,31 @@ static inline ics_status ics_occ_exact(const ics_occ_box *boxes, size_t nboxes,
                                        const ics_occ_light *light, int m, const double *P,
                                        size_t n, double *occ) {
   return ics_occtex_exact(boxes, nboxes, light, m, P, n, occ);
+}
+
+/* ---- 0.2.0: value structs: options zero-initialised to their defaults where zero can mean
+ * the default, else filled by ics_X_init(&x); constructors ics_X_init(ics_X *out, ...) ---- */
+ICS_DEPRECATED("since 0.2.0: a zero-initialised ics_conv_opts ({0}) is the defaults")
+static inline ics_conv_opts ics_conv_opts_default(void) {
+  ics_conv_opts o = {0};
+  return o;
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_clt2d_setup_init")
+static inline ics_clt2d_setup ics_clt2d_setup_default(void) {
+  ics_clt2d_setup s;
+  ics_clt2d_setup_init(&s);
+  return s;
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_lightfit_params_init")
+static inline void ics_lightfit_defaults(ics_lightfit_params *p) { ics_lightfit_params_init(p); }
+
+ICS_DEPRECATED("since 0.2.0: use ics_rng_init")
+static inline ics_rng ics_rng_make(uint64_t seed, uint64_t stream) {
+  ics_rng r;
+  ics_rng_init(&r, seed, stream);
+  return r;
 }
 
 #endif

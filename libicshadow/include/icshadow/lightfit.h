@@ -79,7 +79,9 @@ typedef struct ics_lightfit_report {
   int converged;        /* 1: EM stopped at |dLL| <= tol; 0: it ran out of max_iter */
 } ics_lightfit_report;
 
-ICS_API void ics_lightfit_defaults(ics_lightfit_params *p);
+/* Fills *out with the defaults given above. A zeroed struct is not the defaults: seed 0,
+ * max_iter 0 and tol 0 are settings of their own. */
+ICS_API void ics_lightfit_params_init(ics_lightfit_params *out);
 
 /* Fits p->k Gaussians to env (3 or 4 channels; alpha ignored). lights must hold p->k entries;
  * entries past report->k_fit are zeroed. ICS_ERR_INVALID_ARG for bad parameters, a NaN / inf /

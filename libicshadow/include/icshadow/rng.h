@@ -38,7 +38,8 @@ typedef struct ics_rng {
   uint64_t index;
 } ics_rng;
 
-ICS_API ics_rng ics_rng_make(uint64_t seed, uint64_t stream); /* index 0 */
+/* Fills *out with the cursor at index 0 of stream `stream` under `seed`. */
+ICS_API void ics_rng_init(ics_rng *out, uint64_t seed, uint64_t stream);
 ICS_API uint64_t ics_rng_next_u64(ics_rng *r);
 ICS_API double ics_rng_uniform(ics_rng *r); /* [0, 1), 53 bits, consumes 1 word */
 ICS_API double ics_rng_normal(ics_rng *r); /* standard normal, consumes 2 words */
