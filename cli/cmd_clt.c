@@ -188,7 +188,7 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
   if (cli_parse_comp(comp, 0, &cm) != 0)
     return cli_error(CMD, "--comp: unknown mode '%s' (nonneg, signed, none)", comp);
   ics_class2d cls;
-  ics_status st = ics_class2d_from_axes(mv[0], mv[1], cv[0], cv[1], cv[2], &cls);
+  ics_status st = ics_class2d_init_axes(&cls, mv[0], mv[1], cv[0], cv[1], cv[2]);
   if (st != ICS_OK) return cli_error(CMD, "--cov '%s': %s", cov_s, ics_status_str(st));
   ics_kernel2d k;
   ics_clt2d_ellipse el = {{mv[0], mv[1]}, cv[0], cv[1], cv[2], samples ? samples : 2, offset,

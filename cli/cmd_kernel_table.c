@@ -176,7 +176,7 @@ static int table1d(double var, double mean, int iterations, uint64_t seed, int t
       }
       smean += m;
       svar += v;
-      sinterp += ics_interp_var1d(taps, nt);
+      sinterp += ics_taps1d_interp_var(taps, nt);
       vmin = fmin(vmin, v);
       vmax = fmax(vmax, v);
       wmin = fmin(wmin, hi - lo);
@@ -249,7 +249,7 @@ static int table2d(double varx, double vary, double angle, double mean, int iter
   };
   enum { NROWS = sizeof rows / sizeof rows[0] };
   ics_class2d cls;
-  ics_status st = ics_class2d_from_axes(mean, 0, varx, vary, angle, &cls);
+  ics_status st = ics_class2d_init_axes(&cls, mean, 0, varx, vary, angle);
   if (st != ICS_OK)
     return cli_error(CMD, "class (varx %.17g, vary %.17g, angle %.17g): %s", varx, vary, angle,
                      ics_status_str(st));
@@ -300,7 +300,7 @@ static int table2d(double varx, double vary, double angle, double mean, int iter
       double w, m[2], c[3], iv[2];
       double lox = INFINITY, hix = -INFINITY, loy = INFINITY, hiy = -INFINITY;
       ics_taps2d_moments(taps, nt, &w, m, c);
-      ics_interp_var2d(taps, nt, iv);
+      ics_taps2d_interp_var(taps, nt, iv);
       for (int j = 0; j < nt; j++) {
         lox = fmin(lox, taps[j].x), hix = fmax(hix, taps[j].x);
         loy = fmin(loy, taps[j].y), hiy = fmax(hiy, taps[j].y);

@@ -201,7 +201,7 @@ static void test_2d_impulse(void) {
   enum { W = 160, H = 160, STEPS = 100 };
   float *img = calloc(W * H, sizeof *img);
   ics_class2d c;
-  ics_class2d_from_axes(0, 0, 3, 1, 30, &c);
+  ics_class2d_init_axes(&c, 0, 0, 3, 1, 30);
   ics_conv_opts o = {0};
   o.boundary = ICS_BOUNDARY_CONSTANT;
   o.compensate = ICS_COMP_NONNEG;
@@ -370,7 +370,7 @@ static void test_compensation(void) {
   CHECK(nc == 2 && fabs(res - 0.21) < 1e-15, "zero variance, shift 0.3: residual %.17g", res);
   /* 2D compensation, rotated anisotropic Poisson class with sub-pixel mean: exact */
   ics_class2d c;
-  ics_class2d_from_axes(0.3, 0.5, 0.6, 0.3, 30, &c);
+  ics_class2d_init_axes(&c, 0.3, 0.5, 0.6, 0.3, 30);
   ics_kernel2d k;
   ics_kernel2d_init(&k, ICS_KERNEL_POISSON, &c);
   int n;
@@ -496,7 +496,7 @@ static void test_mixed_2d(void) {
   static float img[W * H];
   static ics_tap2d t2[CAP2];
   ics_class2d cls;
-  CHECK(ics_class2d_from_axes(1, -2, 6, 2, 30, &cls) == ICS_OK, "class");
+  CHECK(ics_class2d_init_axes(&cls, 1, -2, 6, 2, 30) == ICS_OK, "class");
   ics_kernel2d m[2];
   CHECK(ics_kernel2d_init(&m[0], ICS_KERNEL_ELLIPSE, &cls) == ICS_OK, "ellipse");
   CHECK(ics_kernel2d_init(&m[1], ICS_KERNEL_POISSON, &cls) == ICS_OK, "poisson");
@@ -630,7 +630,7 @@ static void test_errors(void) {
   ics_schedule1d s2 = {two_k, 2};
   CHECK(ics_conv1d_run(a, 4, &s2, 0, 3, NULL, NULL) == ICS_ERR_NAN, "second member invalid");
   ics_class2d c2;
-  ics_class2d_from_axes(0, 0, 1, 1, 0, &c2);
+  ics_class2d_init_axes(&c2, 0, 0, 1, 1, 0);
   ics_kernel2d k2;
   ics_kernel2d_init(&k2, ICS_KERNEL_POISSON, &c2);
   k2.nsamples = 1;
@@ -643,7 +643,7 @@ static void test_errors(void) {
             ICS_ERR_RANGE, "zero total weight");
   ics_tap1d two[2] = {{0.5, 0.5}, {3.5, 0.5}};
   CHECK(ics_taps1d_discretize(two, 2, ta, 3, &n) == ICS_ERR_SIZE, "discretize cap");
-  CHECK(isnan(ics_interp_var1d(NULL, 2)), "interp of nothing is NaN");
+  CHECK(isnan(ics_taps1d_interp_var(NULL, 2)), "interp of nothing is NaN");
 }
 
 int main(void) {

@@ -535,6 +535,39 @@ static void test_value_structs(void) {
   }
 }
 
+/* ---- kernel.h split ---- */
+
+static void test_class_taps(void) {
+  const double args[][5] = {{0, 0, 3, 1.5, 30},       {1, -2, 6, 2, 90},  {0.3, 0.5, 0, 0, 0},
+                            {0, 0, 1e300, 1e-300, -45}, {0, 0, -1, 1, 0},  {NAN, 0, 1, 1, 0},
+                            {0, 0, 1, INFINITY, 0}};
+  for (size_t i = 0; i < sizeof args / sizeof args[0]; i++) {
+    ics_class2d a, b;
+    memset(&a, 0, sizeof a);
+    memset(&b, 0, sizeof b);
+    const double *v = args[i];
+    ics_status sa = ics_class2d_from_axes(v[0], v[1], v[2], v[3], v[4], &a);
+    ics_status sb = ics_class2d_init_axes(&b, v[0], v[1], v[2], v[3], v[4]);
+    CHECK(sa == sb && same(a.mean[0], b.mean[0]) && same(a.mean[1], b.mean[1]) &&
+              same(a.cxx, b.cxx) && same(a.cxy, b.cxy) && same(a.cyy, b.cyy),
+          "ics_class2d_from_axes case %zu", i);
+  }
+  CHECK(ics_class2d_from_axes(0, 0, 1, 1, 0, NULL) == ics_class2d_init_axes(NULL, 0, 0, 1, 1, 0),
+        "ics_class2d_from_axes, NULL out");
+  const ics_tap1d t1[] = {{0.25, 0.5}, {-1.75, 0.25}, {3.0, 0.125}, {1e9 + 0.5, 0.125}};
+  const ics_tap2d t2[] = {{0.25, -0.5, 0.5}, {-1.75, 2.125, 0.25}, {3.0, 0.0, 0.25}};
+  for (int n = 0; n <= 4; n++)
+    CHECK(same(ics_interp_var1d(t1, n), ics_taps1d_interp_var(t1, n)), "ics_interp_var1d n %d",
+          n);
+  CHECK(same(ics_interp_var1d(NULL, 2), ics_taps1d_interp_var(NULL, 2)), "ics_interp_var1d NULL");
+  for (int n = 0; n <= 3; n++) {
+    double a[2] = {-1, -1}, b[2] = {-1, -1};
+    ics_interp_var2d(t2, n, a);
+    ics_taps2d_interp_var(t2, n, b);
+    CHECK(same(a[0], b[0]) && same(a[1], b[1]), "ics_interp_var2d n %d", n);
+  }
+}
+
 int main(void) {
   test_normal();
   test_volume();
@@ -547,5 +580,6 @@ int main(void) {
   test_iter1d();
   test_epipolar_heightfield();
   test_value_structs();
+  test_class_taps();
   return test_summary("test_deprecated");
 }

@@ -243,7 +243,7 @@ static void test_2d(void) {
                           {0, 0, 2, 0, 45}, {0.25, 0.5, 0, 0, 0}, {0, 0, 40, 10, 110}};
   for (size_t i = 0; i < sizeof cl / sizeof *cl; i++) {
     ics_class2d c;
-    ics_status st = ics_class2d_from_axes(cl[i][0], cl[i][1], cl[i][2], cl[i][3], cl[i][4], &c);
+    ics_status st = ics_class2d_init_axes(&c, cl[i][0], cl[i][1], cl[i][2], cl[i][3], cl[i][4]);
     CHECK(st == ICS_OK, "from_axes %s", ics_status_str(st));
     /* round trip */
     double vx, vy, ang;
@@ -358,9 +358,9 @@ static void test_errors(void) {
   CHECK(ics_class2d_check(&c) == ICS_ERR_NEGATIVE_VARIANCE, "non-PSD class");
   c.cxy = NAN;
   CHECK(ics_class2d_check(&c) == ICS_ERR_NAN, "NaN cov");
-  CHECK(ics_class2d_from_axes(0, 0, -1, 1, 0, &c) == ICS_ERR_NEGATIVE_VARIANCE, "neg axes");
-  CHECK(ics_class2d_from_axes(0, 0, 1, 1, INFINITY, &c) == ICS_ERR_INFINITE, "inf angle");
-  ics_class2d_from_axes(0, 0, 1, 1, 0, &c);
+  CHECK(ics_class2d_init_axes(&c, 0, 0, -1, 1, 0) == ICS_ERR_NEGATIVE_VARIANCE, "neg axes");
+  CHECK(ics_class2d_init_axes(&c, 0, 0, 1, 1, INFINITY) == ICS_ERR_INFINITE, "inf angle");
+  ics_class2d_init_axes(&c, 0, 0, 1, 1, 0);
   ics_kernel2d k2;
   CHECK(ics_kernel2d_init(&k2, ICS_KERNEL_DIRAC, &c) == ICS_ERR_INVALID_ARG, "1D-only in 2D");
   ics_kernel2d_init(&k2, ICS_KERNEL_POISSON, &c);
@@ -407,7 +407,7 @@ static void print_table1(void) {
            width, n, M > 1 ? "  (average of 1e5 iterations)" : "");
   }
   ics_class2d c;
-  ics_class2d_from_axes(0, 0, 3, 1, 30, &c);
+  ics_class2d_init_axes(&c, 0, 0, 3, 1, 30);
   printf("2D, class (3, 1, 30 deg): cxx %.9f cxy %.9f cyy %.9f\n", c.cxx, c.cxy, c.cyy);
   const ics_kernel_member m2[] = {ICS_KERNEL_GAUSS, ICS_KERNEL_ELLIPSE, ICS_KERNEL_ELLIPSE,
                                   ICS_KERNEL_POISSON, ICS_KERNEL_POISSON};

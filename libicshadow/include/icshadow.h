@@ -26,7 +26,10 @@
 
 /* ---- theory: kernels, lights, engine, shadows, CLT ---- */
 #include "icshadow/rng.h"      /* counter-based Philox RNG: reproducible stochastic kernels */
-#include "icshadow/kernel.h"   /* kernel equivalence classes and their members' taps */
+#include "icshadow/class.h"    /* kernel equivalence classes: mean and (co)variance */
+#include "icshadow/taps.h"     /* tap lists: moments, discretisation, variance compensation */
+#include "icshadow/kernel.h"   /* the members of a class and their taps */
+#include "icshadow/schedule.h" /* per-iteration member choice (Lyapunov mixing) */
 #include "icshadow/light.h"    /* virtual light plane, Gaussian lights, Eq. 7/15, 1D lights */
 #include "icshadow/conv.h"     /* iterative convolution engine (1D/2D), variance compensation */
 #include "icshadow/shadow1d.h" /* correct and CLT shadows behind an edge, 1D lights */

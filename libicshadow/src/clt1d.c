@@ -9,7 +9,7 @@
 #include <time.h>
 
 ics_status ics_clt1d_member_gen(void *ctx, uint64_t step, double scale, ics_tap1d *taps, int cap,
-                              int *ntaps) {
+                                int *ntaps) {
   ics_kernel1d k = *(const ics_kernel1d *)ctx;
   k.cls.mean *= scale;
   k.cls.var *= scale * scale;
@@ -34,7 +34,7 @@ ics_status ics_clt1d_skew_taps(double mean, double var, ics_tap1d taps[ICS_CLT1D
 }
 
 ics_status ics_clt1d_fixed_gen(void *ctx, uint64_t step, double scale, ics_tap1d *taps, int cap,
-                             int *ntaps) {
+                               int *ntaps) {
   (void)step;
   const ics_clt1d_fixed *f = ctx;
   if (cap < f->ntaps) return ICS_ERR_SIZE;
@@ -159,7 +159,7 @@ static ics_status clt_check(ics_clt1d_gen gen, double mean, double var, const in
 }
 
 ics_status ics_clt1d_cost(ics_clt1d_gen gen, void *ctx, double mean, double var, const int *steps,
-                        int nsteps, ics_comp_mode comp, int refine, double *nodes, double *work) {
+                          int nsteps, ics_comp_mode comp, int refine, double *nodes, double *work) {
   ics_status st = clt_check(gen, mean, var, steps, nsteps, refine);
   if (st != ICS_OK) return st;
   int nmax = steps[nsteps - 1], cap = ICS_KERNEL_MAX_TAPS;
@@ -185,8 +185,9 @@ ics_status ics_clt1d_cost(ics_clt1d_gen gen, void *ctx, double mean, double var,
   return ICS_OK;
 }
 
-ics_status ics_clt1d_measure(ics_clt1d_gen gen, void *ctx, double mean, double var, const int *steps,
-                           int nsteps, ics_comp_mode comp, int refine, ics_clt_point *out) {
+ics_status ics_clt1d_measure(ics_clt1d_gen gen, void *ctx, double mean, double var,
+                             const int *steps, int nsteps, ics_comp_mode comp, int refine,
+                             ics_clt_point *out) {
   if (!out) return ICS_ERR_INVALID_ARG;
   ics_status cst = clt_check(gen, mean, var, steps, nsteps, refine);
   if (cst != ICS_OK) return cst;

@@ -165,8 +165,8 @@ static ics_status iterate(ics_iter1d *it, const iter_plan *p, const ics_iter1d_o
   return ics_conv1d_run(it->r, n, &sch, 0, steps, &co, &it->stats);
 }
 
-ics_status ics_iter1d_create(ics_iter1d **out, const ics_light1d *l, double d, double d1,
-                             double e, const ics_iter1d_opts *opts) {
+ics_status ics_iter1d_create(ics_iter1d **out, const ics_light1d *l, double d, double d1, double e,
+                             const ics_iter1d_opts *opts) {
   if (!out) return ICS_ERR_INVALID_ARG;
   *out = NULL;
   if (!l) return ICS_ERR_INVALID_ARG;

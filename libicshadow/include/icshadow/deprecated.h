@@ -10,6 +10,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "icshadow/class.h"
 #include "icshadow/clt1d.h"
 #include "icshadow/clt2d.h"
 #include "icshadow/conv.h"
@@ -25,6 +26,7 @@
 #include "icshadow/sat.h"
 #include "icshadow/ssat.h"
 #include "icshadow/status.h"
+#include "icshadow/taps.h"
 #include "icshadow/volume.h"
 
 #if defined(__GNUC__) || defined(__clang__)
@@ -297,6 +299,25 @@ static inline ics_rng ics_rng_make(uint64_t seed, uint64_t stream) {
   ics_rng r;
   ics_rng_init(&r, seed, stream);
   return r;
+}
+
+/* ---- 0.2.0: kernel.h split: the classes to class.h, the tap lists to taps.h (with the
+ * interpolation variance of conv.h: ics_interp_var* -> ics_taps*_interp_var), the schedules to
+ * schedule.h ---- */
+ICS_DEPRECATED("since 0.2.0: use ics_class2d_init_axes (out-pointer first)")
+static inline ics_status ics_class2d_from_axes(double mx, double my, double varx, double vary,
+                                               double angle_deg, ics_class2d *out) {
+  return ics_class2d_init_axes(out, mx, my, varx, vary, angle_deg);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_taps1d_interp_var")
+static inline double ics_interp_var1d(const ics_tap1d *t, int n) {
+  return ics_taps1d_interp_var(t, n);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_taps2d_interp_var")
+static inline void ics_interp_var2d(const ics_tap2d *t, int n, double out[2]) {
+  ics_taps2d_interp_var(t, n, out);
 }
 
 #endif
