@@ -101,7 +101,7 @@ int lights_parse_spec(const char *spec, ics_light **out, int *n, char *err, size
     }
     l[k].mean[0] = v[0];
     l[k].mean[1] = v[1];
-    if (ics_cov_from_eig(v[2], v[3], m > 4 ? v[4] : 0, l[k].cov) != ICS_OK) {
+    if (ics_light_cov_from_eig(v[2], v[3], m > 4 ? v[4] : 0, l[k].cov) != ICS_OK) {
       seterr(err, errlen, "light %d: variances must be finite and >= 0, angle finite", k + 1);
       goto fail;
     }
@@ -223,8 +223,8 @@ int lights_read_file(const char *path, ics_light **out, int *n, char *err, size_
         seterr(err, errlen, "%s.tilt_deg: expected [wx, wy] in degrees, |w| < 90", where);
         goto fail;
       }
-      l[k].mean[0] = ics_tan_deg(v[0]);
-      l[k].mean[1] = ics_tan_deg(v[1]);
+      l[k].mean[0] = ics_light_tan_deg(v[0]);
+      l[k].mean[1] = ics_light_tan_deg(v[1]);
     } else {
       seterr(err, errlen, "%s: needs \"mean\" or \"tilt_deg\"", where);
       goto fail;
@@ -251,7 +251,7 @@ int lights_read_file(const char *path, ics_light **out, int *n, char *err, size_
         goto fail;
       }
       if (ang) a = json_number_value(ang);
-      if (numbers(x, 2, v) || ics_cov_from_eig(v[0], v[1], a, l[k].cov) != ICS_OK) {
+      if (numbers(x, 2, v) || ics_light_cov_from_eig(v[0], v[1], a, l[k].cov) != ICS_OK) {
         seterr(err, errlen, "%s.var: expected [varx, vary], finite and >= 0", where);
         goto fail;
       }

@@ -226,10 +226,10 @@ static void test_eq8(void) {
   ics_light1d_destroy(l);
 }
 
-/* ASSERTION FUNCTION (2D, end to end): a 2D Gaussian light mapped by ics_kernel_map_2d (Eq. 15)
- * to a kernel class, the 2D Gaussian member of that class propagated by the 2D engine from an
- * impulse for n = d / e steps (compensated taps: the applied integer taps have exactly the
- * class moments, so the image's moments are exactly n times them up to float rounding). The
+/* ASSERTION FUNCTION (2D, end to end): a 2D Gaussian light mapped by ics_light_kernel_map_2d
+ * (Eq. 15) to a kernel class, the 2D Gaussian member of that class propagated by the 2D engine
+ * from an impulse for n = d / e steps (compensated taps: the applied integer taps have exactly
+ * the class moments, so the image's moments are exactly n times them up to float rounding). The
  * image's mean and covariance (world units) must be -d mu_l and d d1 Sigma_l: max abs deviation
  * of the 5 numbers, relative to sqrt(trace(d d1 Sigma_l)) for the mean and trace for the
  * covariance, <= tol. kbreak: 0 none; 1 kernel covariance e Sigma_l (d1 dropped); 2 kernel mean
@@ -238,7 +238,7 @@ static int conv2d_matches_mapping(const ics_light *L, double d, double d1, doubl
                                   int kbreak, double tol, double *worst) {
   double mk[2], ck[3];
   *worst = INFINITY;
-  if (ics_kernel_map_2d(L, e, d1, mk, ck) != ICS_OK) return 0;
+  if (ics_light_kernel_map_2d(L, e, d1, mk, ck) != ICS_OK) return 0;
   if (kbreak == 1)
     for (int i = 0; i < 3; i++) ck[i] /= d1;
   if (kbreak == 2) mk[0] = -mk[0], mk[1] = -mk[1];
@@ -281,15 +281,15 @@ static int conv2d_matches_mapping(const ics_light *L, double d, double d1, doubl
 static void test_2d_mapping(void) {
   /* light: tilt (10, -6) degrees, eigen-variances 0.02, 0.008 rotated 30 degrees */
   ics_light L;
-  CHECK(ics_light_from_tilt(&L, 10, -6, 0.02, 0.008, 30, NULL, 1) == ICS_OK, "light");
+  CHECK(ics_light_init_tilt(&L, 10, -6, 0.02, 0.008, 30, NULL, 1) == ICS_OK, "light");
   double d1 = 2.0, e = 0.25, d = 2.0, h = 0.05; /* d = d1: 8 steps of ~(4, 1.6) px^2 */
   /* tolerance: float storage rounds each pixel to 2^-24 relative once per step, so the moments
    * drift by at most ~8 x 6e-8 = 4.8e-7 relative; tol 1e-6 */
   double tol = 1e-6, w;
   CHECK(conv2d_matches_mapping(&L, d, d1, e, h, 0, tol, &w),
         "2D: moments off the Eq. 15 prediction by %.3g > %.3g", w, tol);
-  printf("  2D Gaussian light -> ics_kernel_map_2d -> conv2d (gauss 5x5, 8 steps, d = d1 = 2): "
-         "mean -d mu_l, covariance d1^2 Sigma_l to %.2e (tol %.0e)\n", w, tol);
+  printf("  2D Gaussian light -> ics_light_kernel_map_2d -> conv2d (gauss 5x5, 8 steps, d = d1 = "
+         "2): mean -d mu_l, covariance d1^2 Sigma_l to %.2e (tol %.0e)\n", w, tol);
   CHECK(!conv2d_matches_mapping(&L, d, d1, e, h, 1, tol, &w), "2D broken variance NOT detected");
   printf("  2D broken covariance e Sigma_l: %.3e -> detected\n", w);
   CHECK(!conv2d_matches_mapping(&L, d, d1, e, h, 2, tol, &w), "2D broken mean sign NOT detected");

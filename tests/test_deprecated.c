@@ -568,6 +568,77 @@ static void test_class_taps(void) {
   }
 }
 
+/* ---- light.h, rng.h, ellint.h: prefixed by their header ---- */
+
+static void test_light_rng_ellint(void) {
+  const double ws[] = {0, 30, -45, 45.0000001, 89.999999, -89.9999999999, 90, 120, NAN, INFINITY};
+  for (size_t i = 0; i < sizeof ws / sizeof ws[0]; i++)
+    CHECK(same(ics_tan_deg(ws[i]), ics_light_tan_deg(ws[i])) &&
+              same(ics_tilt_condition(ws[i]), ics_light_tilt_condition(ws[i])),
+          "ics_tan_deg / ics_tilt_condition(%a)", ws[i]);
+  const double eig[][3] = {{3, 1, 30}, {3, 1, 90}, {1e-300, 0, -90}, {2, 2, 45},
+                           {-1, 1, 0}, {NAN, 1, 0}, {1, INFINITY, 0}};
+  for (size_t i = 0; i < sizeof eig / sizeof eig[0]; i++) {
+    double a[3] = {-1, -1, -1}, b[3] = {-1, -1, -1};
+    ics_status sa = ics_cov_from_eig(eig[i][0], eig[i][1], eig[i][2], a);
+    ics_status sb = ics_light_cov_from_eig(eig[i][0], eig[i][1], eig[i][2], b);
+    CHECK(sa == sb && same(a[0], b[0]) && same(a[1], b[1]) && same(a[2], b[2]),
+          "ics_cov_from_eig case %zu", i);
+    double va = -1, wa = -1, aa = -1, vb = -1, wb = -1, ab = -1;
+    sa = ics_cov_to_eig(b, &va, &wa, &aa);
+    sb = ics_light_cov_to_eig(b, &vb, &wb, &ab);
+    CHECK(sa == sb && same(va, vb) && same(wa, wb) && same(aa, ab), "ics_cov_to_eig case %zu", i);
+  }
+  const double bad_cov[3] = {1, 5, 1};
+  double x = 0;
+  CHECK(ics_cov_to_eig(bad_cov, &x, &x, &x) == ics_light_cov_to_eig(bad_cov, &x, &x, &x),
+        "ics_cov_to_eig, not PSD");
+  const double tilts[][2] = {{10, -6}, {0, 0}, {89.5, 1}, {90, 0}, {NAN, 0}};
+  const double rgb[3] = {1, 0.5, 0.25};
+  for (size_t i = 0; i < sizeof tilts / sizeof tilts[0]; i++)
+    for (int colored = 0; colored <= 1; colored++) {
+      ics_light a, b;
+      memset(&a, 0, sizeof a);
+      memset(&b, 0, sizeof b);
+      const double *c = colored ? rgb : NULL;
+      ics_status sa = ics_light_from_tilt(&a, tilts[i][0], tilts[i][1], 0.02, 0.008, 30, c, 2);
+      ics_status sb = ics_light_init_tilt(&b, tilts[i][0], tilts[i][1], 0.02, 0.008, 30, c, 2);
+      CHECK(sa == sb && !memcmp(&a, &b, sizeof a), "ics_light_from_tilt case %zu", i);
+      double ma[2] = {-1, -1}, ca[3] = {-1, -1, -1}, mb[2] = {-1, -1}, cb[3] = {-1, -1, -1};
+      sa = ics_kernel_map_2d(&b, 0.25, 2, ma, ca);
+      sb = ics_light_kernel_map_2d(&b, 0.25, 2, mb, cb);
+      CHECK(sa == sb && same(ma[0], mb[0]) && same(ma[1], mb[1]) && same(ca[0], cb[0]) &&
+                same(ca[1], cb[1]) && same(ca[2], cb[2]),
+            "ics_kernel_map_2d case %zu", i);
+    }
+  const double m1d[][4] = {{0.3, 2, 0.1, 4}, {0.3, -2, 0.1, 4}, {0, 1, 0, 1}, {NAN, 1, 1, 1}};
+  for (size_t i = 0; i < sizeof m1d / sizeof m1d[0]; i++) {
+    double ma = -1, va = -1, mb = -1, vb = -1;
+    ics_status sa = ics_kernel_map_1d(m1d[i][0], m1d[i][1], m1d[i][2], m1d[i][3], &ma, &va);
+    ics_status sb = ics_light_kernel_map_1d(m1d[i][0], m1d[i][1], m1d[i][2], m1d[i][3], &mb, &vb);
+    CHECK(sa == sb && same(ma, mb) && same(va, vb), "ics_kernel_map_1d case %zu", i);
+  }
+  const uint32_t ctr[4] = {0x243f6a88, 0x85a308d3, 0x13198a2e, 0x03707344};
+  const uint32_t key[2] = {0xa4093822, 0x299f31d0};
+  uint32_t oa[4], ob[4];
+  ics_philox4x32_10(ctr, key, oa);
+  ics_rng_philox4x32_10(ctr, key, ob);
+  CHECK(!memcmp(oa, ob, sizeof oa), "ics_philox4x32_10");
+  const double ms[] = {0.0, 0.5, 1.0, -1e300, 0x1p-1074, 1.0 - 0x1p-53, 1.5, -INFINITY, NAN};
+  for (size_t i = 0; i < sizeof ms / sizeof ms[0]; i++) {
+    double m = ms[i];
+    CHECK(same(ics_ellipk(m), ics_ellint_k(m)) && same(ics_ellipe(m), ics_ellint_e(m)) &&
+              same(ics_ellipk_m1(m), ics_ellint_k_m1(m)) &&
+              same(ics_ellipe_m1(m), ics_ellint_e_m1(m)),
+          "ics_ellipk/e(_m1)(%a)", m);
+    double ka = -1, ea = -1, kb = -1, eb = -1;
+    ics_ellipke_m1(m, &ka, &ea);
+    ics_ellint_ke_m1(m, &kb, &eb);
+    CHECK(same(ka, kb) && same(ea, eb), "ics_ellipke_m1(%a)", m);
+  }
+  ics_ellipke_m1(0.5, NULL, NULL);
+}
+
 int main(void) {
   test_normal();
   test_volume();
@@ -581,5 +652,6 @@ int main(void) {
   test_epipolar_heightfield();
   test_value_structs();
   test_class_taps();
+  test_light_rng_ellint();
   return test_summary("test_deprecated");
 }

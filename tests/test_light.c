@@ -215,48 +215,51 @@ static double cot_series(double x) {
 }
 
 static void test_tilt(void) {
-  CHECK(ics_tan_deg(0) == 0, "tan 0");
-  CHECK(rel(ics_tan_deg(45), 1.0) <= DBL_EPSILON, "tan 45 = %.17g", ics_tan_deg(45));
-  CHECK(rel(ics_tan_deg(-60), -sqrt(3.0)) <= 2 * DBL_EPSILON, "tan -60 = %.17g",
-        ics_tan_deg(-60));
-  CHECK(isnan(ics_tan_deg(90)) && isnan(ics_tan_deg(-90)) && isnan(ics_tan_deg(135)) &&
-            isnan(ics_tan_deg(NAN)) && isnan(ics_tan_deg(INFINITY)),
+  CHECK(ics_light_tan_deg(0) == 0, "tan 0");
+  CHECK(rel(ics_light_tan_deg(45), 1.0) <= DBL_EPSILON, "tan 45 = %.17g", ics_light_tan_deg(45));
+  CHECK(rel(ics_light_tan_deg(-60), -sqrt(3.0)) <= 2 * DBL_EPSILON, "tan -60 = %.17g",
+        ics_light_tan_deg(-60));
+  CHECK(isnan(ics_light_tan_deg(90)) && isnan(ics_light_tan_deg(-90)) &&
+            isnan(ics_light_tan_deg(135)) && isnan(ics_light_tan_deg(NAN)) &&
+            isnan(ics_light_tan_deg(INFINITY)),
         "tilt at or beyond 90 degrees must be NaN");
-  CHECK(!isnan(ics_tan_deg(nextafter(90.0, 0))), "largest angle below 90 is accepted");
-  CHECK(rel(ics_tilt_condition(45), ICS_PI / 2) < 4e-16, "cond(45) = %.17g", ics_tilt_condition(45));
-  CHECK(ics_tilt_condition(0) == 1 && isnan(ics_tilt_condition(90)), "cond ends");
+  CHECK(!isnan(ics_light_tan_deg(nextafter(90.0, 0))), "largest angle below 90 is accepted");
+  CHECK(rel(ics_light_tilt_condition(45), ICS_PI / 2) < 4e-16, "cond(45) = %.17g",
+        ics_light_tilt_condition(45));
+  CHECK(ics_light_tilt_condition(0) == 1 && isnan(ics_light_tilt_condition(90)), "cond ends");
 
   /* precision near 90: eps = 2^-k degrees, reference cot(eps pi/180) by series */
   double worst = 0, worst_naive = 0;
-  printf("  90-w [deg]      cond(tan)    rel.err ics_tan_deg  rel.err naive tan(w*pi/180)  "
+  printf("  90-w [deg]      cond(tan)    rel.err ics_light_tan_deg  rel.err naive tan(w*pi/180)  "
          "rel.change per 1-ulp angle step\n");
   for (int k = 6; k <= 46; k += 4) {
     double eps = ldexp(1.0, -k), w = 90.0 - eps; /* exact */
     double ref = cot_series(eps * (ICS_PI / 180.0));
-    double got = ics_tan_deg(w), naive = tan(w * (ICS_PI / 180.0));
+    double got = ics_light_tan_deg(w), naive = tan(w * (ICS_PI / 180.0));
     double e1 = rel(got, ref), e2 = rel(naive, ref);
-    double step = rel(ics_tan_deg(nextafter(w, 0)), got);
-    printf("  %-14.6g  %-12.4g %-20.3g %-28.3g %.3g\n", eps, ics_tilt_condition(w), e1, e2, step);
+    double step = rel(ics_light_tan_deg(nextafter(w, 0)), got);
+    printf("  %-14.6g  %-12.4g %-20.3g %-28.3g %.3g\n", eps, ics_light_tilt_condition(w), e1, e2,
+           step);
     if (e1 > worst) worst = e1;
     if (e2 > worst_naive) worst_naive = e2;
     /* 1-ulp angle step: predicted relative change = cond * ulp(w) / w */
-    double pred = ics_tilt_condition(w) * (w - nextafter(w, 0)) / w;
+    double pred = ics_light_tilt_condition(w) * (w - nextafter(w, 0)) / w;
     /* linearisation holds while the step is small against 90 - w (k <= 38) */
     if (k <= 38)
       CHECK(rel(step, pred) < 0.01, "1-ulp step at 90 - 2^-%d: %.3g vs predicted %.3g", k, step,
           pred);
   }
-  CHECK(worst <= 4 * DBL_EPSILON, "ics_tan_deg near 90: worst relative error %.3g", worst);
-  printf("  worst: ics_tan_deg %.3g, naive %.3g\n", worst, worst_naive);
+  CHECK(worst <= 4 * DBL_EPSILON, "ics_light_tan_deg near 90: worst relative error %.3g", worst);
+  printf("  worst: ics_light_tan_deg %.3g, naive %.3g\n", worst, worst_naive);
 
   ics_light L;
   double col[3] = {1, 0.5, 0.25};
-  CHECK(ics_light_from_tilt(&L, 90, 0, 1, 1, 0, col, 1) == ICS_ERR_RANGE, "x-tilt 90 rejected");
-  CHECK(ics_light_from_tilt(&L, 0, -91, 1, 1, 0, col, 1) == ICS_ERR_RANGE, "y-tilt -91 rejected");
-  CHECK(ics_light_from_tilt(&L, NAN, 0, 1, 1, 0, col, 1) == ICS_ERR_NAN, "NaN tilt");
-  CHECK(ics_light_from_tilt(&L, 0, 0, -1, 1, 0, col, 1) == ICS_ERR_NEGATIVE_VARIANCE, "neg var");
-  CHECK(ics_light_from_tilt(&L, 0, 0, 1, 1, 0, col, -1) == ICS_ERR_INVALID_ARG, "neg weight");
-  CHECK(ics_light_from_tilt(&L, 45, -30, 2, 0.5, 30, col, 0.7) == ICS_OK, "light");
+  CHECK(ics_light_init_tilt(&L, 90, 0, 1, 1, 0, col, 1) == ICS_ERR_RANGE, "x-tilt 90 rejected");
+  CHECK(ics_light_init_tilt(&L, 0, -91, 1, 1, 0, col, 1) == ICS_ERR_RANGE, "y-tilt -91 rejected");
+  CHECK(ics_light_init_tilt(&L, NAN, 0, 1, 1, 0, col, 1) == ICS_ERR_NAN, "NaN tilt");
+  CHECK(ics_light_init_tilt(&L, 0, 0, -1, 1, 0, col, 1) == ICS_ERR_NEGATIVE_VARIANCE, "neg var");
+  CHECK(ics_light_init_tilt(&L, 0, 0, 1, 1, 0, col, -1) == ICS_ERR_INVALID_ARG, "neg weight");
+  CHECK(ics_light_init_tilt(&L, 45, -30, 2, 0.5, 30, col, 0.7) == ICS_OK, "light");
   CHECK(rel(L.mean[0], 1.0) <= DBL_EPSILON && rel(L.mean[1], -1 / sqrt(3.0)) <= 2 * DBL_EPSILON,
         "mean (%.17g, %.17g)", L.mean[0], L.mean[1]);
   /* cov: cxx = 2 cos^2 30 + 0.5 sin^2 30 = 1.625, cxy = 1.5 cos30 sin30 = 1.5 sqrt3/4,
@@ -266,33 +269,35 @@ static void test_tilt(void) {
         "cov %.17g %.17g %.17g", L.cov[0], L.cov[1], L.cov[2]);
   CHECK(L.color[1] == 0.5 && L.weight == 0.7, "colour and weight");
   double vx, vy, a;
-  CHECK(ics_cov_to_eig(L.cov, &vx, &vy, &a) == ICS_OK, "to_eig");
+  CHECK(ics_light_cov_to_eig(L.cov, &vx, &vy, &a) == ICS_OK, "to_eig");
   /* eigenvalue errors are bounded relative to the largest eigenvalue */
   CHECK(rel(vx, 2) < 4e-16 && fabs(vy - 0.5) < 4 * DBL_EPSILON * vx && rel(a, 30) < 1e-14,
         "eig back: %.17g %.17g %.17g", vx, vy, a);
   double bad[3] = {1, 2, 1}; /* eigenvalues 3, -1 */
-  CHECK(ics_cov_to_eig(bad, &vx, &vy, &a) == ICS_ERR_INVALID_ARG, "indefinite rejected");
+  CHECK(ics_light_cov_to_eig(bad, &vx, &vy, &a) == ICS_ERR_INVALID_ARG, "indefinite rejected");
   double c90[3];
-  CHECK(ics_cov_from_eig(3, 1, 90, c90) == ICS_OK && c90[0] == 1 && c90[1] == 0 && c90[2] == 3,
+  CHECK(ics_light_cov_from_eig(3, 1, 90, c90) == ICS_OK && c90[0] == 1 && c90[1] == 0 &&
+            c90[2] == 3,
         "alpha = 90 swaps the axes exactly");
 }
 
 static void test_mapping(void) {
   double mk, vk;
-  CHECK(ics_kernel_map_1d(0.3, 2.0, 0.01, 4.0, &mk, &vk) == ICS_OK, "map");
+  CHECK(ics_light_kernel_map_1d(0.3, 2.0, 0.01, 4.0, &mk, &vk) == ICS_OK, "map");
   CHECK(rel(mk, -0.003) < 1e-15 && rel(vk, 0.08) < 1e-15, "mu_k %.17g var_k %.17g", mk, vk);
   /* n = d1/e steps reproduce the correct shadow's moments at d1: mean -d1 mu_l, var d1^2 var_l */
   double n = 4.0 / 0.01;
   CHECK(rel(n * mk, -4.0 * 0.3) < 1e-14 && rel(n * vk, 16.0 * 2.0) < 1e-14,
         "n steps: %.17g %.17g", n * mk, n * vk);
-  CHECK(ics_kernel_map_1d(0.3, 2.0, 0, 4, &mk, &vk) == ICS_ERR_RANGE, "e = 0");
-  CHECK(ics_kernel_map_1d(0.3, 2.0, 0.1, -4, &mk, &vk) == ICS_ERR_RANGE, "d1 < 0");
-  CHECK(ics_kernel_map_1d(0.3, -2.0, 0.1, 4, &mk, &vk) == ICS_ERR_NEGATIVE_VARIANCE, "var < 0");
-  CHECK(ics_kernel_map_1d(NAN, 2.0, 0.1, 4, &mk, &vk) == ICS_ERR_NAN, "NaN");
+  CHECK(ics_light_kernel_map_1d(0.3, 2.0, 0, 4, &mk, &vk) == ICS_ERR_RANGE, "e = 0");
+  CHECK(ics_light_kernel_map_1d(0.3, 2.0, 0.1, -4, &mk, &vk) == ICS_ERR_RANGE, "d1 < 0");
+  CHECK(ics_light_kernel_map_1d(0.3, -2.0, 0.1, 4, &mk, &vk) == ICS_ERR_NEGATIVE_VARIANCE,
+        "var < 0");
+  CHECK(ics_light_kernel_map_1d(NAN, 2.0, 0.1, 4, &mk, &vk) == ICS_ERR_NAN, "NaN");
   ics_light L;
-  CHECK(ics_light_from_tilt(&L, 30, 0, 1, 0.25, 45, NULL, 1) == ICS_OK, "light");
+  CHECK(ics_light_init_tilt(&L, 30, 0, 1, 0.25, 45, NULL, 1) == ICS_OK, "light");
   double m2[2], c2[3];
-  CHECK(ics_kernel_map_2d(&L, 0.05, 2.0, m2, c2) == ICS_OK, "map 2d");
+  CHECK(ics_light_kernel_map_2d(&L, 0.05, 2.0, m2, c2) == ICS_OK, "map 2d");
   CHECK(rel(m2[0], -0.05 / sqrt(3.0)) < 4e-16 && m2[1] == 0, "mean_k (%.17g, %.17g)", m2[0],
         m2[1]);
   /* cov of (1, 0.25) at 45 degrees: cxx = cyy = 0.625, cxy = 0.375; times d1 e = 0.1 */
@@ -301,9 +306,10 @@ static void test_mapping(void) {
   {
     ics_light B = L; /* {1, 5, 1}: eigenvalues 6 and -4, not a covariance */
     B.cov[0] = 1, B.cov[1] = 5, B.cov[2] = 1;
-    CHECK(ics_kernel_map_2d(&B, 0.05, 2.0, m2, c2) == ICS_ERR_NEGATIVE_VARIANCE, "non-PSD {1, 5, 1}");
+    CHECK(ics_light_kernel_map_2d(&B, 0.05, 2.0, m2, c2) == ICS_ERR_NEGATIVE_VARIANCE,
+          "non-PSD {1, 5, 1}");
     B.cov[1] = 1; /* {1, 1, 1}: singular, PSD */
-    CHECK(ics_kernel_map_2d(&B, 0.05, 2.0, m2, c2) == ICS_OK, "singular PSD {1, 1, 1}");
+    CHECK(ics_light_kernel_map_2d(&B, 0.05, 2.0, m2, c2) == ICS_OK, "singular PSD {1, 1, 1}");
   }
 }
 
@@ -322,7 +328,7 @@ static void test_errno(void) {
     double x = xs[j], y[13];
     errno = 0;
     y[0] = ics_normal_cdf(x), y[1] = ics_normal_sf(x), y[2] = ics_normal_quantile(x);
-    y[3] = ics_tan_deg(x), y[4] = ics_tilt_condition(x);
+    y[3] = ics_light_tan_deg(x), y[4] = ics_light_tilt_condition(x);
     y[5] = ics_light1d_pdf(g, x), y[6] = ics_light1d_cdf(g, x), y[7] = ics_light1d_sf(g, x);
     y[8] = ics_light1d_quantile(g, x), y[9] = ics_light1d_isf(g, x);
     y[10] = ics_light1d_pdf(mx, x), y[11] = ics_light1d_cdf(mx, x), y[12] = ics_light1d_sf(mx, x);

@@ -22,7 +22,7 @@ static void test_kat(void) {
        0x94fdcceb, 0x5001e420, 0x24126ea1}};
   for (int i = 0; i < 3; i++) {
     uint32_t out[4];
-    ics_philox4x32_10(v[i], v[i] + 4, out);
+    ics_rng_philox4x32_10(v[i], v[i] + 4, out);
     for (int j = 0; j < 4; j++)
       CHECK(out[j] == v[i][6 + j], "KAT %d word %d: %08x, expected %08x", i, j, (unsigned)out[j],
             (unsigned)v[i][6 + j]);
@@ -36,7 +36,7 @@ static void test_kat(void) {
     const uint32_t ctr[4] = {0x89abcdefu, 0x01234567u, 0x13198a2eu, 0x03707344u};
     const uint32_t key[2] = {0xa4093822u, 0x299f31d0u};
     uint32_t out[4];
-    ics_philox4x32_10(ctr, key, out);
+    ics_rng_philox4x32_10(ctr, key, out);
     uint64_t seed = 0x299f31d0a4093822u, stream = 0x0370734413198a2eu;
     uint64_t index = 0x0123456789abcdefu * 2 + 1;
     CHECK(ics_rng_u64_at(seed, stream, index) == (out[2] | ((uint64_t)out[3] << 32)),

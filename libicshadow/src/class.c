@@ -1,5 +1,5 @@
 /* class.c — kernel equivalence classes (see icshadow/class.h): their checks and a 2D class from
- * and to its axes, through the library's 2x2 covariance code (light.c's ics_cov_from_eig, the
+ * and to its axes, through the library's 2x2 covariance code (light.c's ics_light_cov_from_eig, the
  * symmetric eigen-decomposition of sym2.c). */
 #include "icshadow/class.h"
 
@@ -38,7 +38,7 @@ ics_status ics_class2d_init_axes(ics_class2d *out, double mx, double my, double 
   if (isinf(mx) || isinf(my) || isinf(varx) || isinf(vary) || isinf(angle_deg))
     return ICS_ERR_INFINITE;
   double cov[3];
-  ics_status st = ics_cov_from_eig(varx, vary, angle_deg, cov); /* inputs checked above */
+  ics_status st = ics_light_cov_from_eig(varx, vary, angle_deg, cov); /* inputs checked above */
   if (st != ICS_OK) return st;
   out->mean[0] = mx;
   out->mean[1] = my;
@@ -53,7 +53,7 @@ ics_status ics_class2d_to_axes(const ics_class2d *c, double *varx, double *vary,
   ics_status st = ics_class2d_check(c);
   if (st != ICS_OK) return st;
   double l1, l2, ang;
-  ics_sym2_eig(c->cxx, c->cxy, c->cyy, &l1, &l2, &ang); /* the algorithm of ics_cov_to_eig */
+  ics_sym2_eig(c->cxx, c->cxy, c->cyy, &l1, &l2, &ang); /* the algorithm of ics_light_cov_to_eig */
   if (l2 < 0) l2 = 0;
   if (varx) *varx = l1;
   if (vary) *vary = l2;

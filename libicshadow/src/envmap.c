@@ -137,7 +137,7 @@ ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
     }
     if (l2 < floor_var) l2 = floor_var;
     double cv[3];
-    if (ics_cov_from_eig(l1, l2, ang, cv) != ICS_OK) { /* eigenvalues overflowed */
+    if (ics_light_cov_from_eig(l1, l2, ang, cv) != ICS_OK) { /* eigenvalues overflowed */
       free(g);
       free(delta);
       return ICS_ERR_INVALID_ARG;

@@ -44,7 +44,7 @@ static ics_status plan_iter(const ics_light1d *l, double d, double d1, double e,
   int steps = (int)nr;
   double mu = ics_light1d_mean(l), var = ics_light1d_var(l);
   double kmean, kvar; /* world units: the Eq. 7/15 mapping of light.c */
-  ics_status mst = ics_kernel_map_1d(mu, var, e, d1, &kmean, &kvar);
+  ics_status mst = ics_light_kernel_map_1d(mu, var, e, d1, &kmean, &kvar);
   if (mst != ICS_OK) return mst;
   /* deliberate breaks (tests), applied on top of the mapping */
   if (o->mean_sign < 0) kmean = -kmean;

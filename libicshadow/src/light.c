@@ -2,7 +2,7 @@
  * functions (Patel et al. 2013, Sec. 3.2, 3.4, Appendix A.2).
  *
  * Method and accuracy:
- * - ics_tan_deg: |w| <= 45: tan(w * pi/180) (argument rounding costs <= 1 ulp relative);
+ * - ics_light_tan_deg: |w| <= 45: tan(w * pi/180) (argument rounding costs <= 1 ulp relative);
  *   45 < |w| < 90: 1 / tan((90 - |w|) * pi/180), where 90 - |w| is exact (Sterbenz), so the
  *   result keeps ~2 ulp up to the last representable angle below 90 (measured in
  *   tests/test_light.c against the series cot x = 1/x - x/3 - x^3/45 - 2x^5/945).
@@ -28,7 +28,7 @@
 
 /* ---- tilt ---- */
 
-double ics_tan_deg(double w) {
+double ics_light_tan_deg(double w) {
   if (!(fabs(w) < 90.0)) return NAN; /* NaN, inf, |w| >= 90 */
   double a = fabs(w);
   double t;
@@ -39,7 +39,7 @@ double ics_tan_deg(double w) {
   return w < 0 ? -t : t;
 }
 
-double ics_tilt_condition(double w) {
+double ics_light_tilt_condition(double w) {
   if (!(fabs(w) < 90.0)) return NAN;
   if (w == 0) return 1.0;
   double r = fabs(w) * (ICS_PI / 180.0);
@@ -56,7 +56,7 @@ static ics_status check_var(double v) {
   return v < 0 ? ICS_ERR_NEGATIVE_VARIANCE : ICS_OK;
 }
 
-ics_status ics_cov_from_eig(double varx, double vary, double alpha, double cov[3]) {
+ics_status ics_light_cov_from_eig(double varx, double vary, double alpha, double cov[3]) {
   ics_status s;
   if ((s = check_var(varx)) != ICS_OK || (s = check_var(vary)) != ICS_OK ||
       (s = ics_check_finite(alpha)) != ICS_OK)
@@ -69,7 +69,7 @@ ics_status ics_cov_from_eig(double varx, double vary, double alpha, double cov[3
   return ICS_OK;
 }
 
-ics_status ics_cov_to_eig(const double cov[3], double *varx, double *vary, double *alpha) {
+ics_status ics_light_cov_to_eig(const double cov[3], double *varx, double *vary, double *alpha) {
   ics_status s;
   for (int i = 0; i < 3; i++)
     if ((s = ics_check_finite(cov[i])) != ICS_OK) return s;
@@ -86,7 +86,7 @@ ics_status ics_cov_to_eig(const double cov[3], double *varx, double *vary, doubl
   return ICS_OK;
 }
 
-ics_status ics_light_from_tilt(ics_light *out, double wx, double wy, double varx, double vary,
+ics_status ics_light_init_tilt(ics_light *out, double wx, double wy, double varx, double vary,
                                double alpha, const double color[3], double weight) {
   ics_status s;
   if ((s = ics_check_finite(wx)) != ICS_OK || (s = ics_check_finite(wy)) != ICS_OK) return s;
@@ -94,7 +94,7 @@ ics_status ics_light_from_tilt(ics_light *out, double wx, double wy, double varx
   if ((s = ics_check_finite(weight)) != ICS_OK) return s;
   if (weight < 0) return ICS_ERR_INVALID_ARG;
   double cov[3];
-  if ((s = ics_cov_from_eig(varx, vary, alpha, cov)) != ICS_OK) return s;
+  if ((s = ics_light_cov_from_eig(varx, vary, alpha, cov)) != ICS_OK) return s;
   double col[3] = {1, 1, 1};
   if (color)
     for (int i = 0; i < 3; i++) {
@@ -102,8 +102,8 @@ ics_status ics_light_from_tilt(ics_light *out, double wx, double wy, double varx
       if (color[i] < 0) return ICS_ERR_INVALID_ARG;
       col[i] = color[i];
     }
-  out->mean[0] = ics_tan_deg(wx);
-  out->mean[1] = ics_tan_deg(wy);
+  out->mean[0] = ics_light_tan_deg(wx);
+  out->mean[1] = ics_light_tan_deg(wy);
   memcpy(out->cov, cov, sizeof cov);
   memcpy(out->color, col, sizeof col);
   out->weight = weight;
@@ -116,8 +116,8 @@ static ics_status check_e_d1(double e, double d1) {
   return (e > 0 && d1 > 0) ? ICS_OK : ICS_ERR_RANGE;
 }
 
-ics_status ics_kernel_map_1d(double mu_l, double var_l, double e, double d1, double *mu_k,
-                             double *var_k) {
+ics_status ics_light_kernel_map_1d(double mu_l, double var_l, double e, double d1, double *mu_k,
+                                   double *var_k) {
   ics_status s;
   if ((s = ics_check_finite(mu_l)) != ICS_OK || (s = check_var(var_l)) != ICS_OK) return s;
   if ((s = check_e_d1(e, d1)) != ICS_OK) return s;
@@ -126,8 +126,8 @@ ics_status ics_kernel_map_1d(double mu_l, double var_l, double e, double d1, dou
   return ICS_OK;
 }
 
-ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, double mean_k[2],
-                             double cov_k[3]) {
+ics_status ics_light_kernel_map_2d(const ics_light *l, double e, double d1, double mean_k[2],
+                                   double cov_k[3]) {
   ics_status s;
   if (!l) return ICS_ERR_INVALID_ARG;
   for (int i = 0; i < 2; i++)
@@ -135,8 +135,8 @@ ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, double mea
   for (int i = 0; i < 3; i++)
     if ((s = ics_check_finite(l->cov[i])) != ICS_OK) return s;
   if (l->cov[0] < 0 || l->cov[2] < 0) return ICS_ERR_NEGATIVE_VARIANCE;
-  double vx, vy, ang; /* positive semidefinite (ics_cov_to_eig's check, -8 eps trace) */
-  if (ics_cov_to_eig(l->cov, &vx, &vy, &ang) != ICS_OK) return ICS_ERR_NEGATIVE_VARIANCE;
+  double vx, vy, ang; /* positive semidefinite (ics_light_cov_to_eig's check, -8 eps trace) */
+  if (ics_light_cov_to_eig(l->cov, &vx, &vy, &ang) != ICS_OK) return ICS_ERR_NEGATIVE_VARIANCE;
   if ((s = check_e_d1(e, d1)) != ICS_OK) return s;
   mean_k[0] = -e * l->mean[0];
   mean_k[1] = -e * l->mean[1];

@@ -148,7 +148,7 @@ static void cov_deconv(const double c[3], const double f[3], double sig[3]) {
   double e1, e2, ang, B[3];
   ics_sym2_eig(A0, A1, A2, &e1, &e2, &ang);
   /* no clamp needed, or NaN / overflowed moments (no floor to apply): C - F */
-  if (e2 >= 1 || ics_cov_from_eig(e1 < 1 ? 1 : e1, 1, ang, B) != ICS_OK) {
+  if (e2 >= 1 || ics_light_cov_from_eig(e1 < 1 ? 1 : e1, 1, ang, B) != ICS_OK) {
     memcpy(sig, d, 3 * sizeof *sig);
     return;
   }

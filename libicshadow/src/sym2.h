@@ -1,5 +1,5 @@
 /* sym2.h — eigen-decomposition and square root of a symmetric 2x2 matrix [[a, b], [b, d]]
- * (private to libicshadow; defined in sym2.c). The one implementation behind ics_cov_to_eig
+ * (private to libicshadow; defined in sym2.c). The one implementation behind ics_light_cov_to_eig
  * (light.c), the kernel classes (kernel.c: ics_class2d_check, ics_class2d_to_axes, the taps'
  * matrix square root and the whitening of the Poisson pattern), the 2D compensation (conv.c)
  * and the light fit's covariance floor (lightfit.c).

@@ -7,7 +7,7 @@
 int main(void) {
   /* K(m = 1/2) = Gamma(1/4)^2 / (4 sqrt(pi)) = 1.854074677301371918433850347195... (DLMF 19.6.E?) */
   const double k_half = 1.8540746773013719;
-  double k = ics_ellipk(0.5);
+  double k = ics_ellint_k(0.5);
   ics_ellipse_shape shape;
   double xy[4];
   ics_status st = ics_ellipse_kernel(0.8, 0.2, 30.0, 2, 0.0, &shape, xy);

@@ -27,14 +27,14 @@ typedef struct ics_class2d {
 ICS_API ics_status ics_class1d_check(const ics_class1d *c);
 ICS_API ics_status ics_class2d_check(const ics_class2d *c);
 /* Class from eigenvalues varx, vary and the rotation alpha (degrees ccw from +x) of the x axis:
- * Sigma = R(alpha) diag(varx, vary) R(alpha)^T, computed by light.h's ics_cov_from_eig (exact
+ * Sigma = R(alpha) diag(varx, vary) R(alpha)^T, computed by light.h's ics_light_cov_from_eig (exact
  * at multiples of 90 degrees); the mean is checked here and the result by ics_class2d_check. */
 ICS_API ics_status ics_class2d_init_axes(ics_class2d *out, double mx, double my, double varx,
                                          double vary, double angle_deg);
 /* Inverse: varx = the larger eigenvalue, angle_deg = direction of its eigenvector in (-90, 90]
  * (0 when cxy = 0 and cxx = cyy); vary = the smaller eigenvalue (clamped to >= 0), formed as
  * det / varx so it keeps its relative accuracy for huge ratios. The same algorithm as light.h's
- * ics_cov_to_eig, on any class ics_class2d_check accepts (its tolerance, -1e-12 trace). */
+ * ics_light_cov_to_eig, on any class ics_class2d_check accepts (its tolerance, -1e-12 trace). */
 ICS_API ics_status ics_class2d_to_axes(const ics_class2d *c, double *varx, double *vary,
                                        double *angle_deg);
 

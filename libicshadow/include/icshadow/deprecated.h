@@ -15,9 +15,11 @@
 #include "icshadow/clt2d.h"
 #include "icshadow/conv.h"
 #include "icshadow/csat.h"
+#include "icshadow/ellint.h"
 #include "icshadow/epipolar.h"
 #include "icshadow/heightfield.h"
 #include "icshadow/iter1d.h"
+#include "icshadow/light.h"
 #include "icshadow/lightfit.h"
 #include "icshadow/lut.h"
 #include "icshadow/normal.h"
@@ -319,5 +321,64 @@ ICS_DEPRECATED("since 0.2.0: use ics_taps2d_interp_var")
 static inline void ics_interp_var2d(const ics_tap2d *t, int n, double out[2]) {
   ics_taps2d_interp_var(t, n, out);
 }
+
+/* ---- 0.2.0: the functions of light.h, rng.h and ellint.h carry their header's name ---- */
+ICS_DEPRECATED("since 0.2.0: use ics_light_tan_deg")
+static inline double ics_tan_deg(double w_deg) { return ics_light_tan_deg(w_deg); }
+
+ICS_DEPRECATED("since 0.2.0: use ics_light_tilt_condition")
+static inline double ics_tilt_condition(double w_deg) { return ics_light_tilt_condition(w_deg); }
+
+ICS_DEPRECATED("since 0.2.0: use ics_light_cov_from_eig")
+static inline ics_status ics_cov_from_eig(double varx, double vary, double alpha_deg,
+                                          double cov[3]) {
+  return ics_light_cov_from_eig(varx, vary, alpha_deg, cov);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_light_cov_to_eig")
+static inline ics_status ics_cov_to_eig(const double cov[3], double *varx, double *vary,
+                                        double *alpha_deg) {
+  return ics_light_cov_to_eig(cov, varx, vary, alpha_deg);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_light_init_tilt")
+static inline ics_status ics_light_from_tilt(ics_light *out, double wx_deg, double wy_deg,
+                                             double varx, double vary, double alpha_deg,
+                                             const double color[3], double weight) {
+  return ics_light_init_tilt(out, wx_deg, wy_deg, varx, vary, alpha_deg, color, weight);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_light_kernel_map_1d")
+static inline ics_status ics_kernel_map_1d(double mu_l, double var_l, double e, double d1,
+                                           double *mu_k, double *var_k) {
+  return ics_light_kernel_map_1d(mu_l, var_l, e, d1, mu_k, var_k);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_light_kernel_map_2d")
+static inline ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1,
+                                           double mean_k[2], double cov_k[3]) {
+  return ics_light_kernel_map_2d(l, e, d1, mean_k, cov_k);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_rng_philox4x32_10")
+static inline void ics_philox4x32_10(const uint32_t ctr[4], const uint32_t key[2],
+                                     uint32_t out[4]) {
+  ics_rng_philox4x32_10(ctr, key, out);
+}
+
+ICS_DEPRECATED("since 0.2.0: use ics_ellint_k")
+static inline double ics_ellipk(double m) { return ics_ellint_k(m); }
+
+ICS_DEPRECATED("since 0.2.0: use ics_ellint_e")
+static inline double ics_ellipe(double m) { return ics_ellint_e(m); }
+
+ICS_DEPRECATED("since 0.2.0: use ics_ellint_k_m1")
+static inline double ics_ellipk_m1(double m1) { return ics_ellint_k_m1(m1); }
+
+ICS_DEPRECATED("since 0.2.0: use ics_ellint_e_m1")
+static inline double ics_ellipe_m1(double m1) { return ics_ellint_e_m1(m1); }
+
+ICS_DEPRECATED("since 0.2.0: use ics_ellint_ke_m1")
+static inline void ics_ellipke_m1(double m1, double *K, double *E) { ics_ellint_ke_m1(m1, K, E); }
 
 #endif

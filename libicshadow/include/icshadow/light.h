@@ -6,11 +6,11 @@
  * (dx/dz, dy/dz) = (tan wx, tan wy); wx, wy are the x-tilt and y-tilt angles in DEGREES.
  * |w| >= 90 degrees has no point on the plane: rejected (NaN / ICS_ERR_RANGE).
  *
- * Precision near 90 degrees: ics_tan_deg reduces |w| > 45 to cot(90 - |w|) where 90 - |w| is
+ * Precision near 90 degrees: ics_light_tan_deg reduces |w| > 45 to cot(90 - |w|) where 90 - |w| is
  * exact (Sterbenz), so its error is ~1 ulp of the result at every representable angle (the
  * naive tan(w * pi / 180) loses up to 1/(90 - w) ulps-of-degree: ~1e-12 relative at
  * 90 - 2^-20). The problem itself is ill-conditioned: the condition number of w -> tan w is
- * ics_tilt_condition(w) = 2 w / sin(2 w) (w in radians), ~ pi/2 / (90 - w in rad), so an
+ * ics_light_tilt_condition(w) = 2 w / sin(2 w) (w in radians), ~ pi/2 / (90 - w in rad), so an
  * angle known to 1 ulp gives a relative error of ulp(w) * cond / |w|. See docs/theory.md.
  *
  * Covariance: [[cxx, cxy], [cxy, cyy]] = R(alpha) diag(varx, vary) R(alpha)^T, alpha in degrees
@@ -34,10 +34,10 @@ extern "C" {
 /* ---- tilt angles ---- */
 
 /* tan of an angle in degrees, accurate near +-90 (see above); NaN for |w| >= 90 or NaN/inf. */
-ICS_API double ics_tan_deg(double w_deg);
+ICS_API double ics_light_tan_deg(double w_deg);
 /* Condition number |w tan'(w) / tan(w)| = 2w/sin(2w) of the tilt map (1 at w = 0);
  * NaN for |w| >= 90. */
-ICS_API double ics_tilt_condition(double w_deg);
+ICS_API double ics_light_tilt_condition(double w_deg);
 
 /* ---- 2D Gaussian lights ---- */
 
@@ -56,27 +56,29 @@ typedef struct ics_light {
 /* R(alpha) diag(varx, vary) R(alpha)^T (cos, sin of alpha exact at multiples of 90 degrees and
  * ~1 ulp relative near them). ICS_ERR_NAN / ICS_ERR_INFINITE / ICS_ERR_NEGATIVE_VARIANCE on bad
  * input. */
-ICS_API ics_status ics_cov_from_eig(double varx, double vary, double alpha_deg, double cov[3]);
+ICS_API ics_status ics_light_cov_from_eig(double varx, double vary, double alpha_deg,
+                                          double cov[3]);
 /* Inverse: varx >= vary, alpha in (-90, 90]; ICS_ERR_INVALID_ARG if cov is not symmetric
  * positive semidefinite (up to rounding: eigenvalues >= -8 eps * trace are clamped to 0). */
-ICS_API ics_status ics_cov_to_eig(const double cov[3], double *varx, double *vary,
-                                  double *alpha_deg);
+ICS_API ics_status ics_light_cov_to_eig(const double cov[3], double *varx, double *vary,
+                                        double *alpha_deg);
 
-/* A Gaussian light from tilt angles, (varx, vary, alpha), colour (NULL: white) and weight.
- * ICS_ERR_RANGE when a tilt is at or beyond +-90 degrees; ICS_ERR_NAN, ICS_ERR_INFINITE,
+/* Fills *out with a Gaussian light from tilt angles, (varx, vary, alpha), colour (NULL: white) and
+ * weight. ICS_ERR_RANGE when a tilt is at or beyond +-90 degrees; ICS_ERR_NAN, ICS_ERR_INFINITE,
  * ICS_ERR_NEGATIVE_VARIANCE, ICS_ERR_INVALID_ARG (negative weight or colour) otherwise. */
-ICS_API ics_status ics_light_from_tilt(ics_light *out, double wx_deg, double wy_deg, double varx,
+ICS_API ics_status ics_light_init_tilt(ics_light *out, double wx_deg, double wy_deg, double varx,
                                        double vary, double alpha_deg, const double color[3],
                                        double weight);
 
 /* Eq. 7/15 in 1D: mu_k = -e mu_l, var_k = d1 e var_l. ICS_ERR_RANGE unless e > 0, d1 > 0;
  * ICS_ERR_NEGATIVE_VARIANCE for var_l < 0; NaN/inf rejected. */
-ICS_API ics_status ics_kernel_map_1d(double mu_l, double var_l, double e, double d1, double *mu_k,
-                                     double *var_k);
+ICS_API ics_status ics_light_kernel_map_1d(double mu_l, double var_l, double e, double d1,
+                                           double *mu_k, double *var_k);
 /* Eq. 7/15 in 2D: mean_k = -e mean_l, cov_k = d1 e cov_l (cov as cxx, cxy, cyy).
- * ICS_ERR_NEGATIVE_VARIANCE unless cov_l is positive semidefinite (ics_cov_to_eig's check). */
-ICS_API ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, double mean_k[2],
-                                     double cov_k[3]);
+ * ICS_ERR_NEGATIVE_VARIANCE unless cov_l is positive semidefinite (the check of
+ * ics_light_cov_to_eig). */
+ICS_API ics_status ics_light_kernel_map_2d(const ics_light *l, double e, double d1,
+                                           double mean_k[2], double cov_k[3]);
 
 /* ---- 1D light functions (densities on the light-plane x axis, integral 1) ---- */
 

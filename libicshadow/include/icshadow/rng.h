@@ -24,7 +24,7 @@ extern "C" {
 #endif
 
 /* The raw Philox-4x32-10 bijection (Random123 word order). */
-ICS_API void ics_philox4x32_10(const uint32_t ctr[4], const uint32_t key[2], uint32_t out[4]);
+ICS_API void ics_rng_philox4x32_10(const uint32_t ctr[4], const uint32_t key[2], uint32_t out[4]);
 
 /* Stateless draws: the index-th 64-bit word / uniform of stream `stream` under `seed`. */
 ICS_API uint64_t ics_rng_u64_at(uint64_t seed, uint64_t stream, uint64_t index);
