@@ -237,6 +237,54 @@ static void test_fails_skewed_kernel(void) {
   ics_light1d_destroy(l);
 }
 
+/* ics_iter1d_eval, the linear interpolation of the iterated shadow's nodes, against the nodes
+ * themselves: their values at the nodes, the chord between two neighbours at 1/4, 1/2 and 3/4 of
+ * the cell, the end values outside the grid (0 and 1 to rounding: the grid reaches 14 final
+ * standard deviations past the shadow), NaN for NaN or no shadow; and the interpolated shadow
+ * is s at the isoline of level s (ics_iter1d_isoline). The tolerance 1e-12 covers the rounding
+ * of x0 + i h back to the cell (~ n eps); a wrong node or weight is off by a node difference,
+ * ~1e-3 here. */
+static void test_iter1d_eval(void) {
+  ics_light1d *l = NULL;
+  CHECK(ics_light1d_create_gauss(&l, 0.3, 1.0) == ICS_OK, "gauss");
+  ics_iter1d_opts o;
+  ics_iter1d_opts_init(&o);
+  o.member = ICS_KERNEL_TOPHAT;
+  ics_iter1d *it = NULL;
+  CHECK(ics_iter1d_create(&it, l, 1.0, 1.0, E_SLAB, &o) == ICS_OK && it && it->n > 8, "iterate");
+  if (!it) {
+    ics_light1d_destroy(l);
+    return;
+  }
+  const double tol = 1e-12;
+  int bad_node = 0, bad_chord = 0;
+  for (size_t i = 0; i + 1 < it->n; i += 5) {
+    double x = it->x0 + (double)i * it->h;
+    if (!(fabs(ics_iter1d_eval(it, x) - it->r[i]) <= tol)) bad_node++;
+    for (int q = 1; q <= 3; q++) {
+      double f = q / 4.0, want = it->r[i] + f * (it->r[i + 1] - it->r[i]);
+      if (!(fabs(ics_iter1d_eval(it, x + f * it->h) - want) <= tol)) bad_chord++;
+    }
+  }
+  CHECK(bad_node == 0, "eval at the nodes: %d off", bad_node);
+  CHECK(bad_chord == 0, "eval inside a cell: %d off the chord", bad_chord);
+  double left = it->x0 - 3 * it->h, right = it->x0 + (double)(it->n + 2) * it->h;
+  CHECK(ics_iter1d_eval(it, left) == it->r[0] && ics_iter1d_eval(it, -INFINITY) == it->r[0] &&
+            fabs(it->r[0]) <= tol,
+        "left of the grid: %g", ics_iter1d_eval(it, left));
+  CHECK(ics_iter1d_eval(it, right) == it->r[it->n - 1] &&
+            ics_iter1d_eval(it, INFINITY) == it->r[it->n - 1] && fabs(it->r[it->n - 1] - 1) <= tol,
+        "right of the grid: %g", ics_iter1d_eval(it, right));
+  CHECK(isnan(ics_iter1d_eval(it, NAN)) && isnan(ics_iter1d_eval(NULL, 0)), "NaN x, no shadow");
+  for (int k = 1; k <= 9; k++) {
+    double s = k / 10.0, x = ics_iter1d_isoline(it, s);
+    CHECK(fabs(ics_iter1d_eval(it, x) - s) <= tol, "eval at the %g-isoline %.17g: %.17g", s, x,
+          ics_iter1d_eval(it, x));
+  }
+  ics_iter1d_destroy(it);
+  ics_light1d_destroy(l);
+}
+
 /* Eq. 8 at d = d1 for a Gaussian light: all isolines 0.1 .. 0.9 of the iterated shadow equal the
  * correct ones. ASSERTION FUNCTION returning 1 when they do. */
 static int isolines_meet_at_d1(const ics_light1d *l, const ics_iter1d_opts *o, double d1,
@@ -293,5 +341,6 @@ int main(void) {
   test_fails_asymmetric_light();
   test_fails_skewed_kernel();
   test_meet_at_d1();
+  test_iter1d_eval();
   return test_summary("test_half_shadow_isoline");
 }

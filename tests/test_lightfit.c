@@ -89,6 +89,93 @@ static void check_recovery(const char *what, const ics_light *truth, int n,
   }
 }
 
+/* ics_lightfit_errors against closed forms, independent of the fit:
+ * - a uniform sky of radiance 1 (Y = 1): the map's energy is the solid angle of the sphere,
+ *   4 pi, half of it in front of the viewer (an even number of columns, no centre at dz = 0),
+ *   the other half split into kept and cut pixels as ics_envmap_pixel_kept says (solid angles
+ *   from this file's formula); with no lights l1 = l2 = 1 (nothing fitted) and edge is NaN;
+ * - a map drawn from one round light (sigma 0.1 on the plane): the light moved by delta along x
+ *   has l1 = 2 tv, l2 = sqrt(2 (1 - exp(-delta^2 / (4 sigma^2)))) and, from the edge at 0
+ *   degrees, edge = tv, tv = erf(delta / (2 sqrt(2) sigma)) (the total-variation distance of two
+ *   Gaussians, and the sup distance of their marginal cdfs), each to within the error of the
+ *   unmoved light (triangle inequality) plus 0.01 for the pixel footprints; the unmoved light's
+ *   own errors are small;
+ * - the errors ics_lightfit reports for the lights it fitted are these. */
+static void test_errors(void) {
+  enum { W = 128, H = 64 };
+  ics_image *env = NULL;
+  CHECK(ics_image_create(&env, W, H, 3) == ICS_OK, "image");
+  if (!env) return;
+  const double one[3] = {1, 1, 1};
+  CHECK(ics_envmap_render(env, one, NULL, 0, 1) == ICS_OK, "sky");
+  ics_lightfit_report r;
+  CHECK(ics_lightfit_errors(env, 80, NULL, 0, &r) == ICS_OK, "errors of no lights");
+  double kept = 0, cut = 0;
+  for (int j = 0; j < H; j++) {
+    double dw = (cos(ICS_PI * j / H) - cos(ICS_PI * (j + 1) / H)) * 2 * ICS_PI / W;
+    for (int i = 0; i < W; i++) {
+      if (!(cos(2 * ICS_PI * (i + 0.5) / W - ICS_PI) > 0)) continue; /* in front */
+      if (ics_envmap_pixel_kept(W, H, i, j, 80))
+        kept += dw;
+      else
+        cut += dw;
+    }
+  }
+  CHECK(fabs(r.energy_total - 4 * ICS_PI) <= 1e-9 && fabs(r.energy_front - 2 * ICS_PI) <= 1e-9,
+        "sky energies: total %.17g (4 pi), front %.17g (2 pi)", r.energy_total, r.energy_front);
+  CHECK(fabs(r.energy_kept - kept) <= 1e-9 && fabs(r.energy_cutoff - cut) <= 1e-9 &&
+            fabs(r.cutoff_loss - cut / (cut + kept)) <= 1e-9 && kept > 0 && cut > 0,
+        "sky: kept %.17g vs %.17g, cut %.17g vs %.17g", r.energy_kept, kept, r.energy_cutoff, cut);
+  CHECK(r.l1 == 1 && r.l2 == 1 && isnan(r.edge) && r.k_fit == 0 && r.iterations == 0 &&
+            r.samples == 0,
+        "no lights: l1 %.17g, l2 %.17g, edge %g", r.l1, r.l2, r.edge);
+  ics_image_destroy(env);
+
+  const double sigma = 0.1, delta = 0.05;
+  ics_light L = mk(0, 0, sigma * sigma, sigma * sigma, 0, 1, 1, 1, 1);
+  CHECK(ics_image_create(&env, 256, 128, 3) == ICS_OK, "image");
+  if (!env) return;
+  CHECK(ics_envmap_render(env, NULL, &L, 1, 4) == ICS_OK, "render");
+  ics_light moved = L;
+  moved.mean[0] += delta;
+  ics_lightfit_report r0, r1;
+  CHECK(ics_lightfit_errors(env, 80, &L, 1, &r0) == ICS_OK &&
+            ics_lightfit_errors(env, 80, &moved, 1, &r1) == ICS_OK,
+        "errors");
+  CHECK(r0.l1 < 0.02 && r0.l2 < 0.02 && r0.edge < 0.01 && r0.k_fit == 1,
+        "the drawn light: l1 %.3g, l2 %.3g, edge %.3g", r0.l1, r0.l2, r0.edge);
+  double tv = erf(delta / (2 * sqrt(2.0) * sigma));
+  double l2 = sqrt(2 * (1 - exp(-delta * delta / (4 * sigma * sigma))));
+  CHECK(fabs(r1.l1 - 2 * tv) <= r0.l1 + 0.01, "moved light: l1 %.6g, expected %.6g", r1.l1,
+        2 * tv);
+  CHECK(fabs(r1.l2 - l2) <= r0.l2 + 0.01, "moved light: l2 %.6g, expected %.6g", r1.l2, l2);
+  CHECK(fabs(r1.edge - tv) <= r0.edge + 0.01, "moved light: edge %.6g, expected %.6g", r1.edge,
+        tv);
+  printf("lightfit errors: drawn light l1 %.3g l2 %.3g edge %.3g; moved by %g: l1 %.4f (%.4f) "
+         "l2 %.4f (%.4f) edge %.4f (%.4f)\n", r0.l1, r0.l2, r0.edge, delta, r1.l1, 2 * tv, r1.l2,
+         l2, r1.edge, tv);
+  ics_lightfit_params p;
+  ics_lightfit_params_init(&p);
+  p.k = 1;
+  ics_light fit;
+  ics_lightfit_report rf, re;
+  CHECK(ics_lightfit(env, &p, &fit, &rf) == ICS_OK &&
+            ics_lightfit_errors(env, p.max_angle_deg, &fit, rf.k_fit, &re) == ICS_OK,
+        "fit and its errors");
+  CHECK(re.l1 == rf.l1 && re.l2 == rf.l2 && re.edge == rf.edge &&
+            re.energy_kept == rf.energy_kept && re.pixels == rf.pixels,
+        "the fit's reported errors %.17g %.17g %.17g vs ics_lightfit_errors %.17g %.17g %.17g",
+        rf.l1, rf.l2, rf.edge, re.l1, re.l2, re.edge);
+  /* bad arguments */
+  CHECK(ics_lightfit_errors(env, 80, &L, 1, NULL) == ICS_ERR_INVALID_ARG &&
+            ics_lightfit_errors(env, 80, NULL, 1, &r) == ICS_ERR_INVALID_ARG &&
+            ics_lightfit_errors(env, 80, &L, -1, &r) == ICS_ERR_INVALID_ARG &&
+            ics_lightfit_errors(env, 90, &L, 1, &r) == ICS_ERR_INVALID_ARG &&
+            ics_lightfit_errors(NULL, 80, &L, 1, &r) == ICS_ERR_INVALID_ARG,
+        "errors: bad arguments");
+  ics_image_destroy(env);
+}
+
 int main(void) {
   ics_image *env = NULL;
   ics_lightfit_params p;
@@ -317,5 +404,6 @@ int main(void) {
     CHECK(ics_envmap_render(env, NULL, &badl, 1, 1) == ICS_ERR_INVALID_ARG, "non-PSD light");
     ics_image_destroy(env);
   }
+  test_errors();
   return test_summary("lightfit");
 }

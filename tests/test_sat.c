@@ -445,6 +445,11 @@ static void test_bad_input(void) {
   CHECK(ics_ssat_tau(s, lp, 1.0, &v) == ICS_ERR_RANGE, "p at the light");
   CHECK(ics_ssat_tau(s, far, 1.0, &v) == ICS_OK && isfinite(v), "p at 1e300 (valid: whole ray)");
   CHECK(ics_ssat_tau(s, p, 0.0, &v) == ICS_ERR_INVALID_ARG, "SSAT U = 0");
+  CHECK(ics_ssat_transmittance(s, lp, 1.0, &v) == ICS_ERR_RANGE, "transmittance, p at the light");
+  CHECK(ics_ssat_transmittance(s, p, 0.0, &v) == ICS_ERR_INVALID_ARG, "transmittance, U = 0");
+  CHECK(ics_ssat_transmittance(s, nanv, 1.0, &v) == ics_ssat_tau(s, nanv, 1.0, &v) &&
+            ics_ssat_transmittance(s, nanv, 1.0, &v) != ICS_OK,
+        "transmittance, NaN p: the status of ics_ssat_tau");
   ics_ssat_destroy(s);
 }
 
@@ -718,6 +723,16 @@ static void test_ssat(void) {
             p[0], p[1], p[2], U, ts, tb, e, bound);
       CHECK(e <= 0.05 * tb + 0.002, "light %d p (%g %g %g) U %g: ssat %.9g bf %.9g rel diff %g",
             li, p[0], p[1], p[2], U, ts, tb, e / tb);
+      /* the filtered transmittance: exp(-tau_bar) of this SSAT's tau to rounding, and against
+       * the brute force's exp(-tau) within the optical-depth tolerance just checked, carried
+       * through exp (|d exp(-t) / dt| <= exp(-min(ts, tb)), min(ts, tb) >= tb - tol) */
+      double T = -1, tol = 0.05 * tb + 0.002;
+      CHECK(ics_ssat_transmittance(s, p, U, &T) == ICS_OK && T > 0 && T <= 1 &&
+                fabs(T - exp(-ts)) <= 4 * DBL_EPSILON * T &&
+                fabs(T - exp(-tb)) <= tol * exp(-(tb - tol)),
+            "light %d p (%g %g %g) U %g: transmittance %.9g vs exp(-ssat %.9g) = %.9g, brute "
+            "force exp(-%.9g) = %.9g",
+            li, p[0], p[1], p[2], U, T, ts, exp(-ts), tb, exp(-tb));
     }
     printf("SSAT light %d: max |tau_ssat - tau_bf| = %.3g (%.3g of the bound), max rel %.3g\n", li,
            worst_abs, worst, worst_rel);
