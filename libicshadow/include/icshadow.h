@@ -13,7 +13,7 @@
 #define ICSHADOW_H
 
 #define ICS_VERSION_MAJOR 0
-#define ICS_VERSION_MINOR 1
+#define ICS_VERSION_MINOR 2
 #define ICS_VERSION_PATCH 0
 
 /* ---- numerics ---- */

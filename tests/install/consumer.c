@@ -16,6 +16,13 @@ int main(void) {
   /* pulls exr.o in: a static link must bring OpenEXR's library along (Requires.private /
    * find_dependency) when libicshadow was built with it */
   printf("OpenEXR I/O: %s\n", ics_exr_available() ? "yes" : "no");
-  if (fabs(k - k_half) > 4e-16 * k_half || st != ICS_OK) return 1;
+  /* an object made and freed through the exported lifecycle functions */
+  ics_image *img = NULL;
+  ics_status si = ics_image_create(&img, 4, 2, 3);
+  int zero = si == ICS_OK && img->width == 4 && img->data[4 * 2 * 3 - 1] == 0.0f;
+  ics_image_destroy(img);
+  printf("libicshadow %d.%d.%d, image: %s\n", ICS_VERSION_MAJOR, ICS_VERSION_MINOR,
+         ICS_VERSION_PATCH, ics_status_str(si));
+  if (fabs(k - k_half) > 4e-16 * k_half || st != ICS_OK || !zero) return 1;
   return 0;
 }
