@@ -5,10 +5,15 @@
  * each module's own header states its conventions and measured accuracy, and the layers are
  * described in docs/architecture.md. Every symbol is prefixed ics_ / ICS_.
  *
- * Conventions: math functions take plain doubles, return NaN outside their domain and never
- * touch errno; functions that build objects return an ics_status (ics_status_str() names it).
- * Elliptic integrals take the PARAMETER m = k^2 (as mpmath, scipy, Mathematica), and the
- * complementary parameter m1 = 1 - m through the *_m1 entry points. */
+ * Conventions (docs/architecture.md "Conventions of the API"): the functions of icshadow/X.h
+ * are named ics_X_* (ics_X1d_*, ics_X2d_*, ics_X3d_*); objects that own memory are made by
+ * ics_X_create(&out, ...) (*out NULL on failure) and freed by ics_X_destroy (NULL is fine);
+ * value structs are filled by ics_X_init(&out, ...), and options structs zero-initialised are
+ * their defaults where zero can mean the default; every public declaration carries ICS_API
+ * (icshadow/api.h). Math functions take plain doubles, return NaN outside their domain and
+ * never touch errno; functions that build objects return an ics_status (ics_status_str()
+ * names it). Elliptic integrals take the PARAMETER m = k^2 (as mpmath, scipy, Mathematica),
+ * and the complementary parameter m1 = 1 - m through the *_m1 entry points. */
 #ifndef ICSHADOW_H
 #define ICSHADOW_H
 
@@ -31,8 +36,8 @@
 #include "icshadow/kernel.h"   /* the members of a class and their taps */
 #include "icshadow/schedule.h" /* per-iteration member choice (Lyapunov mixing) */
 #include "icshadow/light.h"    /* virtual light plane, Gaussian lights, Eq. 7/15, 1D lights */
-#include "icshadow/conv.h"     /* iterative convolution engine (1D/2D), variance compensation */
-#include "icshadow/shadow1d.h" /* correct and CLT shadows behind an edge, 1D lights */
+#include "icshadow/conv.h"     /* iterative convolution engine (1D/2D): steps, runs, budget */
+#include "icshadow/shadow1d.h" /* correct and CLT shadows behind an edge, sign conventions */
 #include "icshadow/iter1d.h"   /* the iterated shadow behind an edge (conv engine) */
 #include "icshadow/isoline.h"  /* isolines of the correct, CLT and iterated shadows */
 #include "icshadow/clt.h"      /* CLT measurements: the measured point, the rate fit */

@@ -1,6 +1,6 @@
 /* class.c — kernel equivalence classes (see icshadow/class.h): their checks and a 2D class from
- * and to its axes, through the library's 2x2 covariance code (light.c's ics_light_cov_from_eig, the
- * symmetric eigen-decomposition of sym2.c). */
+ * and to its axes, through the library's 2x2 covariance code (light.c's ics_light_cov_from_eig,
+ * the symmetric eigen-decomposition of sym2.c). */
 #include "icshadow/class.h"
 
 #include <math.h>

@@ -6,7 +6,7 @@
  * in the requested mode (NONNEG: exact class moments when reachable). The result r_n is compared
  * with the Gaussian limit with the same moments, sup over a window of nodes.
  *
- * Why the limit has a pixel term (the 2D form of shadow1d.c's 1/12). Node p (pixel centre, grid
+ * Why the limit has a pixel term (the 2D form of clt1d.c's 1/12). Node p (pixel centre, grid
  * units) starts as the exact AREA COVERAGE of its pixel square by the opaque region A:
  *   r_0(p) = P(p + U in A),  U uniform on (-1/2, 1/2)^2.
  * With integer taps K (distribution of one step) the engine computes r_{k+1}(p) =
@@ -156,7 +156,7 @@ typedef struct plan2 {
 
 static double sd_at(const plan2 *p, int n) { return sqrt(n * p->lmax + 1.0 / 12.0); }
 
-/* largest eigenvalue (kernel.h's ics_class2d_to_axes); NaN for a covariance it rejects */
+/* largest eigenvalue (class.h's ics_class2d_to_axes); NaN for a covariance it rejects */
 static double lmax_of(double cxx, double cxy, double cyy) {
   ics_class2d c = {{0, 0}, cxx, cxy, cyy};
   double vx, vy, ang;

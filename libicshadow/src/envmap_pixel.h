@@ -1,5 +1,5 @@
 /* envmap_pixel.h — the pixel geometry of latitude-longitude maps that envmap.c and the light fit
- * (lightfit.c) share. */
+ * (lightfit.c) share (private to libicshadow; defined in envmap.c). */
 #ifndef ICS_ENVMAP_PIXEL_H
 #define ICS_ENVMAP_PIXEL_H
 

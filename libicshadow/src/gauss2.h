@@ -1,5 +1,6 @@
 /* gauss2.h — a bivariate Gaussian density in log form (mean, inverse covariance, log of the
- * normalisation), evaluated by the light fit (lightfit.c) and the synthetic maps (envmap.c). */
+ * normalisation), evaluated by the light fit (lightfit.c) and the synthetic maps (envmap.c)
+ * (private to libicshadow). */
 #ifndef ICS_GAUSS2_H
 #define ICS_GAUSS2_H
 

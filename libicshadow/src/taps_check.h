@@ -1,5 +1,6 @@
-/* taps_check.h — the validation of a 1D tap list that the engine (conv.c) needs before its
- * integer-shift schedule, shared with taps.c's discretisation and compensation. */
+/* taps_check.h — the validation of a 1D tap list (private to libicshadow; defined in taps.c):
+ * the engine (conv.c) needs it before its integer-shift schedule, taps.c's discretisation and
+ * compensation start with it. */
 #ifndef ICS_TAPS_CHECK_H
 #define ICS_TAPS_CHECK_H
 

@@ -26,9 +26,10 @@ typedef struct ics_class2d {
  * (var < 0; 2D: an eigenvalue < -1e-12 * trace, i.e. not positive semi-definite). */
 ICS_API ics_status ics_class1d_check(const ics_class1d *c);
 ICS_API ics_status ics_class2d_check(const ics_class2d *c);
-/* Class from eigenvalues varx, vary and the rotation alpha (degrees ccw from +x) of the x axis:
- * Sigma = R(alpha) diag(varx, vary) R(alpha)^T, computed by light.h's ics_light_cov_from_eig (exact
- * at multiples of 90 degrees); the mean is checked here and the result by ics_class2d_check. */
+/* Fills *out with the class of mean (mx, my) and eigenvalues varx, vary and the rotation alpha
+ * (degrees ccw from +x) of the x axis: Sigma = R(alpha) diag(varx, vary) R(alpha)^T, computed by
+ * light.h's ics_light_cov_from_eig (exact at multiples of 90 degrees); the mean is checked here and
+ * the result by ics_class2d_check. */
 ICS_API ics_status ics_class2d_init_axes(ics_class2d *out, double mx, double my, double varx,
                                          double vary, double angle_deg);
 /* Inverse: varx = the larger eigenvalue, angle_deg = direction of its eigenvector in (-90, 90]

@@ -46,7 +46,7 @@ ICS_API ics_status ics_clt2d_member_gen(void *ctx, uint64_t step, double scale, 
 #define ICS_CLT2D_GOLDEN 0.61803398874989484820
 typedef struct ics_clt2d_ellipse {
   double mean[2];
-  double varx, vary, angle_deg; /* the class covariance as axes (kernel.h, ics_class2d_to_axes) */
+  double varx, vary, angle_deg; /* the class covariance as axes (class.h, ics_class2d_to_axes) */
   int nsamples;                 /* 1..ICS_ELLIPSE_MAX_SAMPLES */
   double offset, rot;
 } ics_clt2d_ellipse;
