@@ -19,7 +19,8 @@ int ics_envmap_pixel(int width, int height, int i, int j, double *x, double *y, 
   if (!(dz > 0)) return -1;
   if (x) *x = tan(ph);
   if (y) *y = cos(th) / dz;
-  if (domega) *domega = (cos(ICS_PI * j / height) - cos(ICS_PI * (j + 1.0) / height)) * (2 * ICS_PI / width);
+  if (domega)
+    *domega = (cos(ICS_PI * j / height) - cos(ICS_PI * (j + 1.0) / height)) * (2 * ICS_PI / width);
   return 0;
 }
 
@@ -150,7 +151,8 @@ ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
       double acc[3] = {0, 0, 0};
       for (int b = 0; b < s; b++)
         for (int a = 0; a < s; a++) {
-          double th = ICS_PI * (j + (b + 0.5) / s) / h, ph = 2 * ICS_PI * (i + (a + 0.5) / s) / w - ICS_PI;
+          double th = ICS_PI * (j + (b + 0.5) / s) / h;
+          double ph = 2 * ICS_PI * (i + (a + 0.5) / s) / w - ICS_PI;
           double st = sin(th), dz = st * cos(ph);
           if (!(dz > 0)) continue;
           double x = st * sin(ph) / dz, y = cos(th) / dz, r2 = x * x + y * y;

@@ -37,5 +37,6 @@ fi
 if [ -n "$missing" ]; then
   echo "declared ICS_API but not exported:"; echo "$missing" | sed 's/^/  /'; fail=1
 fi
-echo "export check: $(echo "$declared" | grep -c .) declared, $(echo "$exported" | grep -c .) exported"
+ndeclared=$(echo "$declared" | grep -c . || true) nexported=$(echo "$exported" | grep -c . || true)
+echo "export check: $ndeclared declared, $nexported exported"
 exit $fail
