@@ -1,7 +1,7 @@
 /* stability_sweep.c — stability sweep of libicshadow's exact functions over their whole domains.
  *
  * For every function of `icshadow eval` (ellipk, ellipe, ellipk_m1, ellipe_m1, varx, vx, vy,
- * ratio, ratio_to_t), plus ics_ellipke_m1 (K and E in one call; its error is the larger of the
+ * ratio, ratio_to_t), plus ics_ellint_ke_m1 (K and E in one call; its error is the larger of the
  * two), and every region of its domain — the extremes (subnormal, near 1, huge, negative) and
  * both sides of every algorithm switch listed in docs/ellint.md ("Switch points") and
  * docs/ellipse.md — it draws deterministic random inputs, measures the maximum error in ulps
@@ -45,10 +45,10 @@
 
 typedef enum { F_K, F_E, F_K1, F_E1, F_KE1, F_VARX, F_VX, F_VY, F_RATIO, F_RATIO_TO_T } func_id;
 
-/* ics_ellipke_m1 as a function of one argument, for the timing loop (K + E) */
+/* ics_ellint_ke_m1 as a function of one argument, for the timing loop (K + E) */
 static double ellipke_m1_sum(double m1) {
   double k, e;
-  ics_ellipke_m1(m1, &k, &e);
+  ics_ellint_ke_m1(m1, &k, &e);
   return k + e;
 }
 
@@ -56,8 +56,8 @@ static const struct {
   const char *name;
   double (*f)(double);
 } funcs[] = {
-    [F_K] = {"ellipk", ics_ellipk},          [F_E] = {"ellipe", ics_ellipe},
-    [F_K1] = {"ellipk_m1", ics_ellipk_m1},   [F_E1] = {"ellipe_m1", ics_ellipe_m1},
+    [F_K] = {"ellipk", ics_ellint_k},          [F_E] = {"ellipe", ics_ellint_e},
+    [F_K1] = {"ellipk_m1", ics_ellint_k_m1},   [F_E1] = {"ellipe_m1", ics_ellint_e_m1},
     [F_KE1] = {"ellipke_m1", ellipke_m1_sum},
     [F_VARX] = {"varx", ics_ellipse_varx},   [F_VX] = {"vx", ics_ellipse_vx},
     [F_VY] = {"vy", ics_ellipse_vy},         [F_RATIO] = {"ratio", ics_ellipse_ratio},
@@ -446,7 +446,7 @@ int main(int argc, char **argv) {
       double e;
       if (r->f == F_KE1) { /* both results of one call; the larger error counts */
         double gk, ge;
-        ics_ellipke_m1(x, &gk, &ge);
+        ics_ellint_ke_m1(x, &gk, &ge);
         reference(F_K1, x, gk, ref);
         e = ref_ulp_error(gk, ref);
         reference(F_E1, x, ge, ref);

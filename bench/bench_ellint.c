@@ -189,7 +189,7 @@ static void row(const char *ds, const char *fn, const char *impl, double ns, dou
 static void run(const char *ds, int near1, int boost_ok) {
   double ours, t;
   /* K */
-  if (near1) TIME1(ics_ellipk_m1, m1_, ours); else TIME1(ics_ellipk, m_, ours);
+  if (near1) TIME1(ics_ellint_k_m1, m1_, ours); else TIME1(ics_ellint_k, m_, ours);
   row(ds, "K", "icshadow", ours, ours);
   TIME1(agm_k, m1_, t);
   row(ds, "K", "agm", t, ours);
@@ -202,7 +202,7 @@ static void run(const char *ds, int near1, int boost_ok) {
   }
 #endif
   /* E */
-  if (near1) TIME1(ics_ellipe_m1, m1_, ours); else TIME1(ics_ellipe, m_, ours);
+  if (near1) TIME1(ics_ellint_e_m1, m1_, ours); else TIME1(ics_ellint_e, m_, ours);
   row(ds, "E", "icshadow", ours, ours);
   TIME1(agm_e, m1_, t);
   row(ds, "E", "agm", t, ours);
@@ -215,7 +215,7 @@ static void run(const char *ds, int near1, int boost_ok) {
   }
 #endif
   /* K+E */
-  TIME2(ics_ellipke_m1, m1_, ours);
+  TIME2(ics_ellint_ke_m1, m1_, ours);
   row(ds, "K+E", "icshadow", ours, ours);
   TIME2(agm_both, m1_, t);
   row(ds, "K+E", "agm", t, ours);

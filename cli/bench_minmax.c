@@ -101,8 +101,8 @@ static double est_work(double d, double rows, double rays, double terms, double 
 /* ---- the scene set-up shared by all modes ---- */
 typedef struct setup {
   size_t d, rows, rays, nterms;
-  ics_epi_frame f;
-  ics_hf_scene sc;
+  ics_epipolar_frame f;
+  ics_heightfield sc;
   float *rect;           /* rows x d */
   double beta_lo, beta_hi;
   double grid[GRID * GRID], U[GRID * GRID], s[GRID], V[GRID * GRID];
@@ -179,18 +179,18 @@ static int setup_init(setup *S, size_t d, size_t rows, size_t rays, size_t nterm
   S->rows = rows;
   S->rays = rays;
   S->nterms = nterms;
-  ics_hf_scene_default(&S->sc);
+  ics_heightfield_init_default(&S->sc);
   const double eye[3] = {0.3, 3.0, 9.0}, L[3] = {0.8, 0.45, -0.5};
-  ics_status st = ics_epi_frame_init(&S->f, eye, L, rows, d, 1.0);
+  ics_status st = ics_epipolar_frame_init(&S->f, eye, L, rows, d, 1.0);
   /* radius: the farthest light-plane projection of the scene's bounding box from the epipole */
   double R = 0;
   for (int c = 0; c < 8 && st == ICS_OK; c++) {
     double p[3] = {c & 1 ? 6.0 : -6.0, c & 2 ? 2.5 : 0.0, c & 4 ? 6.0 : -6.0}, a, g, dep;
-    ics_epi_locate(&S->f, p, &a, &g, &dep);
+    ics_epipolar_locate(&S->f, p, &a, &g, &dep);
     if (g > R) R = g;
   }
   R *= 1.05;
-  if (st == ICS_OK) st = ics_epi_frame_init(&S->f, eye, L, rows, d, R / (double)d);
+  if (st == ICS_OK) st = ics_epipolar_frame_init(&S->f, eye, L, rows, d, R / (double)d);
   S->rect = malloc(rows * d * sizeof(float));
   size_t W = d < 4096 ? d : 4096; /* shadow map W x W */
   float *smap = malloc(W * W * sizeof(float));
@@ -204,9 +204,10 @@ static int setup_init(setup *S, size_t d, size_t rows, size_t rays, size_t nterm
     free(smap);
     return 1;
   }
-  if (st == ICS_OK) st = ics_hf_shadow_map(&S->sc, &S->f, W, R, smap);
+  if (st == ICS_OK) st = ics_heightfield_shadow_map(&S->sc, &S->f, W, R, smap);
   if (st == ICS_OK)
-    st = ics_epi_rectify(&S->f, smap, W, W, S->f.eu - R, S->f.ev - R, 2 * R / (double)W, S->rect);
+    st = ics_epipolar_rectify(&S->f, smap, W, W, S->f.eu - R, S->f.ev - R, 2 * R / (double)W,
+                              S->rect);
   free(smap);
   /* low-rank integrand on a GRID x GRID (beta, gamma) grid */
   S->beta_lo = 0.12 * ICS_PI;
@@ -225,9 +226,9 @@ static int setup_init(setup *S, size_t d, size_t rows, size_t rays, size_t nterm
       double beta = S->beta_lo + (S->beta_hi - S->beta_lo) * ((double)k + 0.5) / (double)rays;
       double dir[3], alpha;
       size_t row;
-      ics_epi_ray_dir(&S->f, r, beta, dir);
-      st = ics_epi_ray(&S->f, dir, &alpha, &row, &S->ray[q]);
-      double hit = ics_hf_scene_hit(&S->sc, S->f.eye, dir, 0.0);
+      ics_epipolar_ray_dir(&S->f, r, beta, dir);
+      st = ics_epipolar_ray(&S->f, dir, &alpha, &row, &S->ray[q]);
+      double hit = ics_heightfield_hit(&S->sc, S->f.eye, dir, 0.0);
       double gend = isinf(hit) ? (double)d : ceil(hit * sin(beta) / S->f.dgamma);
       S->ray[q].gamma_end = gend >= (double)d ? d : (size_t)gend;
       S->beta[q] = beta;

@@ -133,7 +133,7 @@ static const char *const scene_names[] = {"foliage", "plates", "blocks"};
 
 typedef struct {
   int sizes[MAX_LIST], nsizes, slices[MAX_LIST], nslices;
-  ics_occ_scene_kind scenes[3];
+  ics_occ_boxes_kind scenes[3];
   int nscenes;
   int boxes, seed, receivers, m, ss, reps;
   double light;
@@ -189,7 +189,7 @@ static int parse_scenes(const char *cmd, const char *opt, const char *val, void 
     if (which < 0)
       return cli_error(cmd, "%s: expected a list of distinct names from foliage, plates, blocks; "
                        "got '%s'", opt, val);
-    o->scenes[o->nscenes++] = (ics_occ_scene_kind)which;
+    o->scenes[o->nscenes++] = (ics_occ_boxes_kind)which;
     if (!p[len]) return 0;
     p += len + 1;
   }
@@ -219,7 +219,7 @@ static int parse_prefilter(const char *cmd, const char *opt, const char *val, vo
 
 /* 0, or the exit status after the message */
 static int parse(int argc, char **argv, options *o) {
-  *o = (options){{128, 256}, 2, {4, 8, 16}, 3, {ICS_OCC_SCENE_PLATES, ICS_OCC_SCENE_FOLIAGE}, 2, 0, 1, 48, 32, 2, 3, 0.6, NULL, ICS_OCC_SAT};
+  *o = (options){{128, 256}, 2, {4, 8, 16}, 3, {ICS_OCC_BOXES_PLATES, ICS_OCC_BOXES_FOLIAGE}, 2, 0, 1, 48, 32, 2, 3, 0.6, NULL, ICS_OCC_SAT};
   int given_reps = 0, given_prefilter = 0;
   const cli_option opts[] = {
       {"--sizes", .kind = CLI_CALL, .dest = o, .parse = parse_sizes},
@@ -263,14 +263,14 @@ static ics_status build(const options *o, const ics_occ_box *boxes, int nb, int 
                         float *tex, ics_occtex **ot, double *ms) {
   const ics_occ_grid g = {-1, -1, 2.0 / n, n};
   double t0 = cli_now_s();
-  ics_status st = ics_occ_slice(boxes, (size_t)nb, &g, K, 1, 2, o->ss, tex);
-  if (!st) st = ics_occtex_create(tex, &g, K, 1, 2, ot);
+  ics_status st = ics_occtex_slice_boxes(boxes, (size_t)nb, &g, K, 1, 2, o->ss, tex);
+  if (!st) st = ics_occtex_create(ot, tex, &g, K, 1, 2);
   if (!st) st = ics_occtex_prefilter(*ot, pf);
   *ms = 1e3 * (cli_now_s() - t0);
   return st;
 }
 
-static int scene_boxes(const options *o, ics_occ_scene_kind k) {
+static int scene_boxes(const options *o, ics_occ_boxes_kind k) {
   static const int def[3] = {150, 12, 20}; /* foliage, plates, blocks */
   return o->boxes ? o->boxes : def[k];
 }
@@ -348,11 +348,11 @@ int bench_occtex(int argc, char **argv) {
     double ms;
     const int nb = scene_boxes(&o, o.scenes[0]);
     cli_progress_say(&g_prog, "fig3: slicing, prefilter, shadows and brute force");
-    st = ics_occ_scene_make(o.scenes[0], nb, (uint64_t)o.seed, boxes);
+    st = ics_occtex_boxes_make(o.scenes[0], nb, (uint64_t)o.seed, boxes);
     if (!st) st = build(&o, boxes, nb, o.sizes[0], o.slices[0], o.fig3_pf, tex, &ot, &ms);
     for (int c = 0; c < 3 && !st; c++) st = ics_occtex_shadow(ot, &light, o.fig3_pf, (ics_occ_combine)c, P, nr, occ + c * nr);
-    if (!st) st = ics_occ_exact(boxes, (size_t)nb, &light, o.m, P, nr, ref);
-    ics_occtex_free(ot);
+    if (!st) st = ics_occtex_exact(boxes, (size_t)nb, &light, o.m, P, nr, ref);
+    ics_occtex_destroy(ot);
     if (st) {
       rc = fail("fig3", st);
       goto done;
@@ -375,7 +375,7 @@ int bench_occtex(int argc, char **argv) {
   static double emean[MAX_LIST][MAX_LIST][NPF][NC], emax[MAX_LIST][MAX_LIST][NPF][NC], ebias[MAX_LIST][MAX_LIST][NPF][NC];
   for (int sc = 0; sc < o.nscenes; sc++) {
     const int nb = scene_boxes(&o, o.scenes[sc]);
-    if ((st = ics_occ_scene_make(o.scenes[sc], nb, (uint64_t)o.seed, boxes))) {
+    if ((st = ics_occtex_boxes_make(o.scenes[sc], nb, (uint64_t)o.seed, boxes))) {
       rc = fail("scene", st);
       goto done;
     }
@@ -390,7 +390,7 @@ int bench_occtex(int argc, char **argv) {
     for (int rep = 0; rep < o.reps; rep++) {
       cli_progress_say(&g_prog, "%s: repetition %d/%d: brute force", scene_names[o.scenes[sc]], rep + 1, o.reps);
       double t0 = cli_now_s();
-      if ((st = ics_occ_exact(boxes, (size_t)nb, &light, o.m, P, nr, ref))) {
+      if ((st = ics_occtex_exact(boxes, (size_t)nb, &light, o.m, P, nr, ref))) {
         rc = fail("brute force", st);
         goto done;
       }
@@ -401,11 +401,12 @@ int bench_occtex(int argc, char **argv) {
           for (int p = 0; p < NPF; p++) {
             ics_occtex *ot = NULL;
             double ms;
-            cli_progress_say(&g_prog, "%s: repetition %d/%d: size %d, %d slices, %s", scene_names[o.scenes[sc]], rep + 1,
-                     o.reps, o.sizes[a], o.slices[b], ics_occ_prefilter_name((ics_occ_prefilter)p));
+            cli_progress_say(&g_prog, "%s: repetition %d/%d: size %d, %d slices, %s",
+                             scene_names[o.scenes[sc]], rep + 1, o.reps, o.sizes[a], o.slices[b],
+                             ics_occtex_prefilter_name((ics_occ_prefilter)p));
             st = build(&o, boxes, nb, o.sizes[a], o.slices[b], (ics_occ_prefilter)p, tex, &ot, &ms);
             if (st) {
-              ics_occtex_free(ot);
+              ics_occtex_destroy(ot);
               rc = fail("build", st);
               goto done;
             }
@@ -415,7 +416,7 @@ int bench_occtex(int argc, char **argv) {
               st = ics_occtex_shadow(ot, &light, (ics_occ_prefilter)p, (ics_occ_combine)c, P, nr, occ);
               double q = 1e3 * (cli_now_s() - q0);
               if (st) {
-                ics_occtex_free(ot);
+                ics_occtex_destroy(ot);
                 rc = fail("shadow", st);
                 goto done;
               }
@@ -431,7 +432,7 @@ int bench_occtex(int argc, char **argv) {
               emax[a][b][p][c] = mx;
               ebias[a][b][p][c] = sb / nr;
             }
-            ics_occtex_free(ot);
+            ics_occtex_destroy(ot);
           }
     }
     if (!header++)
@@ -445,10 +446,10 @@ int bench_occtex(int argc, char **argv) {
             double bb = bytes_build((ics_occ_prefilter)p, o.sizes[a], o.slices[b], o.ss);
             double bq = bytes_query((ics_occ_prefilter)p, o.slices[b], (double)R);
             printf("%s,%s,%s,%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                   scene_names[o.scenes[sc]], ics_occ_prefilter_name((ics_occ_prefilter)p),
-                   ics_occ_combine_name((ics_occ_combine)c), o.sizes[a], o.slices[b], tb[a][b][p],
-                   tq[a][b][p][c], t, bb, bq, brute, emean[a][b][p][c], emax[a][b][p][c],
-                   ebias[a][b][p][c], brute / t);
+                   scene_names[o.scenes[sc]], ics_occtex_prefilter_name((ics_occ_prefilter)p),
+                   ics_occtex_combine_name((ics_occ_combine)c), o.sizes[a], o.slices[b],
+                   tb[a][b][p], tq[a][b][p][c], t, bb, bq, brute, emean[a][b][p][c],
+                   emax[a][b][p][c], ebias[a][b][p][c], brute / t);
           }
   }
   if (cli_stdout_failed(CMD)) rc = 1;

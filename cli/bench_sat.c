@@ -82,7 +82,7 @@ static int chirp_csv(const char *path) {
     for (int y = y0; y < y1; y++) img[(size_t)y * W + x] = (float)sig[x];
   }
   ics_sat2d *sat = NULL;
-  ics_status st = ics_sat2d_build(&sat, img, W, H, W, ICS_SAT_DOUBLE);
+  ics_status st = ics_sat2d_create(&sat, img, W, H, W, ICS_SAT_DOUBLE);
   if (st != ICS_OK) {
     free(img), free(tau), free(sig);
     return cli_failure(sat_cmd(2), "%s", ics_status_str(st));
@@ -94,7 +94,7 @@ static int chirp_csv(const char *path) {
   }
   cli_output out;
   if (cli_output_open(&out, sat_cmd(2), path)) {
-    ics_sat2d_free(sat);
+    ics_sat2d_destroy(sat);
     free(img), free(tau), free(sig);
     return 1;
   }
@@ -114,7 +114,7 @@ static int chirp_csv(const char *path) {
     fprintf(out.fp, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", (x + 0.5) / 4.0, sig[x],
             tau[x], exp(-tau[x]), box, exp(-box), g, exp(-g));
   }
-  ics_sat2d_free(sat);
+  ics_sat2d_destroy(sat);
   free(img), free(tau), free(sig);
   if (out.fp == stdout && !stdout_ok(2)) { /* cli_output_commit would fail without a message */
     cli_output_abort(&out);
@@ -172,7 +172,7 @@ static int bench_lights(void) {
     for (int mi = 0; mi < 2; mi++) {
       ics_csat *c = NULL;
       double t0 = cli_now_s();
-      ics_status st = ics_csat_build(&c, &vol, l, hs[hi], ms[mi]);
+      ics_status st = ics_csat_create(&c, &vol, l, hs[hi], ms[mi]);
       double tb = cli_now_s() - t0;
       if (st != ICS_OK) {
         free(data);
@@ -212,7 +212,7 @@ static int bench_lights(void) {
                ics_sat_precision_name(ms[mi]), Us[ui], tb, ns, bf_ns[ui], bf_ns[ui] / ns, emax,
                esum / NP, tsum / NP);
       }
-      ics_csat_free(c);
+      ics_csat_destroy(c);
     }
   /* SSAT: a point light outside the volume */
   const double lp[3] = {-16, 30, 36}, Uss[3] = {2, 4, 8};
@@ -237,7 +237,8 @@ static int bench_lights(void) {
     for (int mi = 0; mi < 2; mi++) {
       ics_ssat *s = NULL;
       double t0 = cli_now_s();
-      ics_status st = ics_ssat_build(&s, &vol, lp, grids[gi][0], grids[gi][1], grids[gi][2], ms[mi]);
+      ics_status st =
+          ics_ssat_create(&s, &vol, lp, grids[gi][0], grids[gi][1], grids[gi][2], ms[mi]);
       double tb = cli_now_s() - t0;
       if (st != ICS_OK) {
         free(data);
@@ -264,7 +265,7 @@ static int bench_lights(void) {
                ics_sat_precision_name(ms[mi]), Uss[ui], tb, ns, sbf_ns[ui], sbf_ns[ui] / ns, emax,
                esum / nvalid, tsum / nvalid);
       }
-      ics_ssat_free(s);
+      ics_ssat_destroy(s);
     }
   free(data);
   return stdout_ok(3) ? 0 : 1;
@@ -336,8 +337,8 @@ static void brute(const float *data, const size_t n[3], const long lo[3], const 
 
 static ics_status build_any(const config *c, const float *data, ics_sat_precision m, void **sat) {
   if (c->dims == 2)
-    return ics_sat2d_build((ics_sat2d **)sat, data, c->n[0], c->n[1], c->n[0], m);
-  return ics_sat3d_build((ics_sat3d **)sat, data, c->n[0], c->n[1], c->n[2], m);
+    return ics_sat2d_create((ics_sat2d **)sat, data, c->n[0], c->n[1], c->n[0], m);
+  return ics_sat3d_create((ics_sat3d **)sat, data, c->n[0], c->n[1], c->n[2], m);
 }
 static ics_status rebuild_any(const config *c, const float *data, void *sat) {
   if (c->dims == 2) return ics_sat2d_rebuild(sat, data, c->n[0]);
@@ -345,9 +346,9 @@ static ics_status rebuild_any(const config *c, const float *data, void *sat) {
 }
 static void free_any(const config *c, void *sat) {
   if (c->dims == 2)
-    ics_sat2d_free(sat);
+    ics_sat2d_destroy(sat);
   else
-    ics_sat3d_free(sat);
+    ics_sat3d_destroy(sat);
 }
 static double offset_any(const config *c, void *sat) {
   return c->dims == 2 ? ics_sat2d_offset(sat) : ics_sat3d_offset(sat);

@@ -75,7 +75,7 @@ static void help(FILE *f) {
           "limits at the window's nodes) exceeds %.0e tap-updates (under a minute here) are refused\n"
           "with exit 2.\n"
           "Exit status: 0 ok, 1 runtime failure, 2 bad input (message on stderr).\n",
-          MAX_STEPS_LIST, ICS_CLT2D_MAX_STEPS, ICS_CLT2D_MAX_PIXELS, ICS_WORK_BUDGET);
+          MAX_STEPS_LIST, ICS_CLT2D_MAX_STEPS, ICS_CLT2D_MAX_PIXELS, ICS_CONV_WORK_BUDGET);
 }
 
 /* --rate on stderr: the fitted exponent over the kept (grid-resolved) points, with a warning
@@ -188,7 +188,7 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
   if (cli_parse_comp(comp, 0, &cm) != 0)
     return cli_error(CMD, "--comp: unknown mode '%s' (nonneg, signed, none)", comp);
   ics_class2d cls;
-  ics_status st = ics_class2d_from_axes(mv[0], mv[1], cv[0], cv[1], cv[2], &cls);
+  ics_status st = ics_class2d_init_axes(&cls, mv[0], mv[1], cv[0], cv[1], cv[2]);
   if (st != ICS_OK) return cli_error(CMD, "--cov '%s': %s", cov_s, ics_status_str(st));
   ics_kernel2d k;
   ics_clt2d_ellipse el = {{mv[0], mv[1]}, cv[0], cv[1], cv[2], samples ? samples : 2, offset,
@@ -205,7 +205,8 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
     gen = ics_clt2d_member_gen;
     ctx = &k;
   }
-  ics_clt2d_setup su = ics_clt2d_setup_default();
+  ics_clt2d_setup su;
+  ics_clt2d_setup_init(&su);
   su.occluder = corner ? ICS_CLT2D_CORNER : ICS_CLT2D_EDGE;
   su.edge_angle_deg = edge;
   su.mean[0] = cls.mean[0], su.mean[1] = cls.mean[1];
@@ -218,11 +219,11 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
     return cli_error(CMD, "the image for %d steps of this class would exceed %.0f pixels (give "
                      "smaller --steps, --cov or --mean)", steps[nsteps - 1], ICS_CLT2D_MAX_PIXELS);
   if (st != ICS_OK) return cli_error(CMD, "kernel %s: %s", kname, ics_status_str(st));
-  if (work > ICS_WORK_BUDGET)
+  if (work > ICS_CONV_WORK_BUDGET)
     return cli_error(CMD, "estimated work %.3g tap-updates (%.0f pixels, %d steps%s) exceeds the "
                      "budget of %.0e (give smaller --steps, --cov or --samples%s)", work, pixels,
-                     steps[nsteps - 1], refine ? ", x5 for the 2x finer run" : "", ICS_WORK_BUDGET,
-                     refine ? ", or --no-refine" : "");
+                     steps[nsteps - 1], refine ? ", x5 for the 2x finer run" : "",
+                     ICS_CONV_WORK_BUDGET, refine ? ", or --no-refine" : "");
   if (cm == ICS_COMP_NONNEG) { /* can non-negative integer taps reach the step's covariance? */
     static ics_tap2d tg[ICS_KERNEL_MAX_TAPS], td[4 * ICS_KERNEL_MAX_TAPS + 9];
     int nt = 0, nd = 0;
@@ -323,14 +324,14 @@ int cmd_clt(int argc, char **argv) {
   if (cli_parse_comp(comp, 0, &cm) != 0)
     return cli_error(CMD, "--comp: unknown mode '%s' (nonneg, signed, none)", comp);
   ics_kernel1d k;
-  ics_tap1d skew[ICS_CLT_SKEW_TAPS];
-  ics_clt_fixed fixed = {skew, ICS_CLT_SKEW_TAPS};
-  ics_clt_gen gen;
+  ics_tap1d skew[ICS_CLT1D_SKEW_TAPS];
+  ics_clt1d_fixed fixed = {skew, ICS_CLT1D_SKEW_TAPS};
+  ics_clt1d_gen gen;
   void *ctx;
   ics_status st;
   if (!strcmp(kname, "skew")) {
-    st = ics_clt_skew_taps(mean, var, skew);
-    gen = ics_clt_fixed_gen;
+    st = ics_clt1d_skew_taps(mean, var, skew);
+    gen = ics_clt1d_fixed_gen;
     ctx = &fixed;
   } else {
     int member = -1;
@@ -344,28 +345,28 @@ int cmd_clt(int argc, char **argv) {
     st = ics_kernel1d_init(&k, (ics_kernel_member)member, mean, var);
     k.nsamples = samples;
     k.seed = (uint64_t)seed;
-    gen = ics_clt_member_gen;
+    gen = ics_clt1d_member_gen;
     ctx = &k;
   }
   if (st != ICS_OK) return cli_error(CMD, "kernel %s: %s", kname, ics_status_str(st));
   double nodes = 0, work = 0;
-  st = ics_clt_cost(gen, ctx, mean, var, steps, nsteps, cm, refine, &nodes, &work);
+  st = ics_clt1d_cost(gen, ctx, mean, var, steps, nsteps, cm, refine, &nodes, &work);
   if (st == ICS_ERR_SIZE)
     return cli_error(CMD, "the grid for %d steps of mean %.17g, variance %.17g would exceed 2^24 "
                      "nodes%s (give smaller --steps, --mean or --var)", steps[nsteps - 1], mean,
                      var, refine ? " with its 2x finer copy" : "");
-  if (st == ICS_OK && work > ICS_WORK_BUDGET)
+  if (st == ICS_OK && work > ICS_CONV_WORK_BUDGET)
     return cli_error(CMD, "estimated work %.3g tap-updates (%.0f nodes, %d steps%s) exceeds the "
                      "budget of %.0e (give smaller --steps, --var or --samples%s)", work, nodes,
-                     steps[nsteps - 1], refine ? ", x5 for the 2x finer run" : "", ICS_WORK_BUDGET,
-                     refine ? ", or --no-refine" : "");
+                     steps[nsteps - 1], refine ? ", x5 for the 2x finer run" : "",
+                     ICS_CONV_WORK_BUDGET, refine ? ", or --no-refine" : "");
   if (st == ICS_OK && cm == ICS_COMP_NONNEG) { /* can non-negative integer taps reach the class? */
-    ics_tap1d t0[ICS_CLT_SKEW_TAPS + 1];
-    ics_tap1d *tg = gen == ics_clt_fixed_gen ? t0 : malloc(sizeof *tg * ICS_KERNEL_MAX_TAPS);
+    ics_tap1d t0[ICS_CLT1D_SKEW_TAPS + 1];
+    ics_tap1d *tg = gen == ics_clt1d_fixed_gen ? t0 : malloc(sizeof *tg * ICS_KERNEL_MAX_TAPS);
     ics_tap1d *td = malloc(sizeof *td * (2 * (size_t)ICS_KERNEL_MAX_TAPS + 3));
     int nt = 0, nd = 0;
     double resid = 0;
-    if (tg && td && gen(ctx, 0, 1.0, tg, gen == ics_clt_fixed_gen ? ICS_CLT_SKEW_TAPS + 1
+    if (tg && td && gen(ctx, 0, 1.0, tg, gen == ics_clt1d_fixed_gen ? ICS_CLT1D_SKEW_TAPS + 1
                                                                  : ICS_KERNEL_MAX_TAPS, &nt) == ICS_OK &&
         ics_taps1d_compensate(tg, nt, cm, td, 2 * ICS_KERNEL_MAX_TAPS + 3, &nd, &resid) == ICS_OK &&
         resid > 1e-12 * fmax(var, 1e-300)) {
@@ -379,8 +380,8 @@ int cmd_clt(int argc, char **argv) {
     free(td);
   }
   ics_clt_point pts[MAX_STEPS_LIST];
-  if (st == ICS_OK) st = ics_clt_measure(gen, ctx, mean, var, steps, nsteps, cm, refine, pts);
-  if (st == ICS_ERR_RANGE && gen == ics_clt_member_gen && k.member == ICS_KERNEL_TOPHAT) {
+  if (st == ICS_OK) st = ics_clt1d_measure(gen, ctx, mean, var, steps, nsteps, cm, refine, pts);
+  if (st == ICS_ERR_RANGE && gen == ics_clt1d_member_gen && k.member == ICS_KERNEL_TOPHAT) {
     double f = mean - floor(mean);
     return cli_error(CMD, "--var %.17g is below %.17g = f(1 - f), the least variance of an exact "
                      "top-hat with mean %.17g (f = frac(mean) = %.17g): give a larger --var", var,

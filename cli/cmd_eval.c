@@ -16,10 +16,10 @@ static const struct {
   double (*f)(double);
   const char *what;
 } funcs[] = {
-    {"ellipk", ics_ellipk, "K(m), parameter m = k^2 <= 1"},
-    {"ellipe", ics_ellipe, "E(m), parameter m = k^2 <= 1"},
-    {"ellipk_m1", ics_ellipk_m1, "K(1 - m1), complementary parameter m1 >= 0"},
-    {"ellipe_m1", ics_ellipe_m1, "E(1 - m1), complementary parameter m1 >= 0"},
+    {"ellipk", ics_ellint_k, "K(m), parameter m = k^2 <= 1"},
+    {"ellipe", ics_ellint_e, "E(m), parameter m = k^2 <= 1"},
+    {"ellipk_m1", ics_ellint_k_m1, "K(1 - m1), complementary parameter m1 >= 0"},
+    {"ellipe_m1", ics_ellint_e_m1, "E(1 - m1), complementary parameter m1 >= 0"},
     {"varx", ics_ellipse_varx, "x-variance of the ellipse with radii (1, b), b >= 0"},
     {"vx", ics_ellipse_vx, "abToVarx: V_x(t) of the unit ellipse (1 - t, t), t in [0, 1]"},
     {"vy", ics_ellipse_vy, "V_y(t) = V_x(1 - t), t in [0, 1]"},

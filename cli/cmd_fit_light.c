@@ -180,21 +180,21 @@ int cmd_fit_light(int argc, char **argv) {
   if (!inp) return cli_error(CMD, "missing input map ENV.exr");
   if (!K) return cli_error(CMD, "--lights K is required");
   if (!outp) return cli_error(CMD, "-o LIGHTS.json is required");
-  ics_image env;
+  ics_image *env = NULL;
   char msg[CLI_MSG_MAX];
   ics_status st = ics_exr_read(inp, &env, msg, sizeof msg);
   if (st != ICS_OK) return cli_status_error(CMD, st, "%s", msg);
   em_progress ep = {.k = 0};
   cli_progress_init(&ep.p, "fit-light", force_progress);
   ics_lightfit_params p;
-  ics_lightfit_defaults(&p);
+  ics_lightfit_params_init(&p);
   p.max_angle_deg = max_angle;
   p.seed = seed;
   p.max_samples = max_samples;
   p.max_iter = max_iter;
   p.progress_ctx = &ep;
   if (ep.p.on) p.progress = on_progress;
-  rc = fit_and_write(&env, inp, outp, planep, K, sweep, &p);
-  ics_image_free(&env);
+  rc = fit_and_write(env, inp, outp, planep, K, sweep, &p);
+  ics_image_destroy(env);
   return rc;
 }

@@ -38,12 +38,13 @@ static void help(FILE *f) {
           "plus the compensation's passes over the member's taps, for both grids) exceeds %.0e\n"
           "tap-updates (under a minute here) are refused with exit 2.\n"
           "Exit status: 0 ok, 1 runtime failure, 2 bad input (message on stderr).\n",
-          ICS_LIGHT1D_MAX_MIX, ICS_WORK_BUDGET);
+          ICS_LIGHT1D_MAX_MIX, ICS_CONV_WORK_BUDGET);
 }
 
 static const char CMD[] = "isoline";
 
-static int parse_light(const char *spec, ics_light1d *l) {
+/* The light of a SPEC into *l (the caller destroys it); -1 after an error message. */
+static int parse_light(const char *spec, ics_light1d **l) {
   const char *colon = strchr(spec, ':');
   const char *end = spec + strlen(spec);
   if (!colon) {
@@ -62,7 +63,7 @@ static int parse_light(const char *spec, ics_light1d *l) {
                 (int)(strrchr(spec, ',') - spec) + 2, spec);
       return -1;
     }
-    st = ics_light1d_gauss(l, v[0], v[1]);
+    st = ics_light1d_create_gauss(l, v[0], v[1]);
   } else if (kl == 3 && !strncmp(spec, "box", 3)) {
     double v[2];
     if (cli_parse_numbers(CMD, "--light", spec, a, end, 2, v)) return -1;
@@ -71,7 +72,7 @@ static int parse_light(const char *spec, ics_light1d *l) {
                 spec);
       return -1;
     }
-    st = ics_light1d_box(l, v[0], v[1]);
+    st = ics_light1d_create_box(l, v[0], v[1]);
   } else if (kl == 3 && !strncmp(spec, "mix", 3)) {
     double w[ICS_LIGHT1D_MAX_MIX], mu[ICS_LIGHT1D_MAX_MIX], var[ICS_LIGHT1D_MAX_MIX];
     int n = 0;
@@ -102,7 +103,7 @@ static int parse_light(const char *spec, ics_light1d *l) {
       if (q == end) break;
       p = q + 1;
     }
-    st = ics_light1d_mix(l, n, w, mu, var);
+    st = ics_light1d_create_mix(l, n, w, mu, var);
     if (st == ICS_ERR_INVALID_ARG) {
       cli_error(CMD, "--light: the weights of '%s' sum to zero", spec);
       return -1;
@@ -132,6 +133,39 @@ static int kernel1d_member(const char *name) {
     if (n && !strcmp(n, name) && (ics_kernel_member_dims((ics_kernel_member)m) & 1)) return m;
   }
   return -1;
+}
+
+/* Model iterative: the iterated isoline into *x; 0, or the exit status after an error message. */
+static int iterated_isoline(const ics_light1d *l, double level, double dist, double d1,
+                            double slab, int member, int samples, uint64_t seed, double *x) {
+  double nf = dist / slab;
+  if (fabs(nf - nearbyint(nf)) > 1e-9 * fmax(nf, 1.0) || nf > 1e6)
+    return cli_error(CMD, "--distance / --slab = %.17g must be an integer number of slabs (at "
+                          "most 1e6)", nf);
+  if (ics_light1d_var(l) == 0 && dist > 0)
+    return cli_error(CMD, "model iterative needs a light with variance > 0");
+  ics_iter1d_opts o;
+  ics_iter1d_opts_init(&o);
+  o.member = (ics_kernel_member)member;
+  o.nsamples = samples;
+  o.seed = seed;
+  double disc, h = 0, nodes = 0, w1 = 0, w2 = 0;
+  ics_status st = dist > 0 ? ics_iter1d_cost(l, dist, d1, slab, &o, &h, &nodes, &w1)
+                           : ICS_OK;
+  if (st == ICS_OK && dist > 0) { /* and the run on the grid twice as fine */
+    ics_iter1d_opts o2 = o;
+    o2.h = h / 2;
+    st = ics_iter1d_cost(l, dist, d1, slab, &o2, NULL, NULL, &w2);
+  }
+  if (st == ICS_OK && w1 + w2 > ICS_CONV_WORK_BUDGET)
+    return cli_error(CMD, "estimated work %.3g tap-updates (%.0f slabs on %.0f nodes, and again "
+                          "on a grid twice as fine) exceeds the budget of %.0e (give fewer "
+                          "slabs: a larger --slab or smaller --distance, or smaller --samples)",
+                     w1 + w2, nearbyint(nf), nodes, ICS_CONV_WORK_BUDGET);
+  if (st == ICS_OK) st = ics_isoline_iterative(l, level, dist, d1, slab, &o, x, &disc);
+  if (st != ICS_OK)
+    return cli_status_error(CMD, st, "iterated shadow failed: %s", ics_status_str(st));
+  return 0;
 }
 
 int cmd_isoline(int argc, char **argv) {
@@ -178,41 +212,17 @@ int cmd_isoline(int argc, char **argv) {
   if (member < 0)
     return cli_error(CMD, "--kernel: unknown 1D kernel '%s' (dirac, tophat, stochastic-dirac, "
                           "gauss)", kname);
-  ics_light1d l;
+  ics_light1d *l = NULL;
   if (parse_light(spec, &l)) return 2;
   double x = NAN;
   if (m_correct)
-    x = ics_isoline_correct(&l, level, dist);
+    x = ics_isoline_correct(l, level, dist);
   else if (m_clt)
-    x = ics_isoline_clt(&l, level, dist, d1);
-  else {
-    double nf = dist / slab;
-    if (fabs(nf - nearbyint(nf)) > 1e-9 * fmax(nf, 1.0) || nf > 1e6)
-      return cli_error(CMD, "--distance / --slab = %.17g must be an integer number of slabs (at "
-                            "most 1e6)", nf);
-    if (ics_light1d_var(&l) == 0 && dist > 0)
-      return cli_error(CMD, "model iterative needs a light with variance > 0");
-    ics_iter1d_opts o = ics_iter1d_opts_default();
-    o.member = (ics_kernel_member)member;
-    o.nsamples = samples;
-    o.seed = (uint64_t)seed;
-    double disc, h = 0, nodes = 0, w1 = 0, w2 = 0;
-    ics_status st = dist > 0 ? ics_shadow1d_iterate_cost(&l, dist, d1, slab, &o, &h, &nodes, &w1)
-                             : ICS_OK;
-    if (st == ICS_OK && dist > 0) { /* and the run on the grid twice as fine */
-      ics_iter1d_opts o2 = o;
-      o2.h = h / 2;
-      st = ics_shadow1d_iterate_cost(&l, dist, d1, slab, &o2, NULL, NULL, &w2);
-    }
-    if (st == ICS_OK && w1 + w2 > ICS_WORK_BUDGET)
-      return cli_error(CMD, "estimated work %.3g tap-updates (%.0f slabs on %.0f nodes, and again "
-                            "on a grid twice as fine) exceeds the budget of %.0e (give fewer "
-                            "slabs: a larger --slab or smaller --distance, or smaller --samples)",
-                       w1 + w2, nearbyint(nf), nodes, ICS_WORK_BUDGET);
-    if (st == ICS_OK) st = ics_isoline_iterative(&l, level, dist, d1, slab, &o, &x, &disc);
-    if (st != ICS_OK)
-      return cli_status_error(CMD, st, "iterated shadow failed: %s", ics_status_str(st));
-  }
+    x = ics_isoline_clt(l, level, dist, d1);
+  else
+    rc = iterated_isoline(l, level, dist, d1, slab, member, samples, seed, &x);
+  ics_light1d_destroy(l);
+  if (rc) return rc;
   if (!isfinite(x))
     return cli_error(CMD, "the isoline position is not finite (%g): distance, d1 and the light's "
                           "mean/variance overflow double precision together", x);

@@ -61,7 +61,7 @@ static void help(FILE *f) {
           "(under a minute here), or whose output would exceed %.0e bytes (~%.0f bytes a line), are\n"
           "refused with exit 2.\n"
           "Exit status: 0 ok, 1 runtime failure, 2 bad input (message on stderr).\n",
-          MAX_STEPS, MAX_WIDTH, ICS_WORK_BUDGET, OUT_BUDGET, OUT_LINE_BYTES);
+          MAX_STEPS, MAX_WIDTH, ICS_CONV_WORK_BUDGET, OUT_BUDGET, OUT_LINE_BYTES);
 }
 
 static const char CMD[] = "iterate";
@@ -288,11 +288,11 @@ static int iterate_main(int argc, char **argv, step_list *step_opt) {
 
   /* budgets: work (tap-updates, icshadow/shadow1d.h) and output size, before anything runs */
   double nd = fmin(2.0 * cap + 3, ceil(2 * reach) + 4); /* applied integer taps per step */
-  double work = (double)nmax * ((double)width * nd + (double)ICS_WORK_COMP_PASSES * cap);
-  if (work > ICS_WORK_BUDGET)
+  double work = (double)nmax * ((double)width * nd + (double)ICS_CONV_WORK_COMP_PASSES * cap);
+  if (work > ICS_CONV_WORK_BUDGET)
     return cli_error(CMD, "estimated work %.3g tap-updates (%d steps on %d pixels) exceeds the "
                      "budget of %.0e (give smaller --steps, --width, --var or --samples)", work,
-                     nmax, width, ICS_WORK_BUDGET);
+                     nmax, width, ICS_CONV_WORK_BUDGET);
   double bytes = (double)nsnap * width * OUT_LINE_BYTES;
   if (bytes > OUT_BUDGET)
     return cli_error(CMD, "the output would be about %.3g bytes (%d profiles of %d lines) and "
@@ -304,7 +304,7 @@ static int iterate_main(int argc, char **argv, step_list *step_opt) {
   if (!buf) return cli_failure(CMD, "out of memory");
   for (size_t i = 0; i < n; i++) buf[i] = ((double)i - width / 2 + 0.5) > 0 ? 1.0 : 0.0;
 
-  ics_conv_opts conv = ics_conv_opts_default();
+  ics_conv_opts conv = {0};
   conv.boundary = ICS_BOUNDARY_CLAMP;
   conv.compensate = comp;
   double applied_var = 0, applied_mean = 0;

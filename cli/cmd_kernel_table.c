@@ -99,7 +99,7 @@ static int time_member(const ics_kernel1d *k, double *ns) {
   double *buf = malloc(sizeof *buf * TIMING_LEN);
   if (!buf) return -1;
   for (size_t i = 0; i < TIMING_LEN; i++) buf[i] = i >= TIMING_LEN / 2 ? 1.0 : 0.0;
-  run1d_ctx c = {buf, {k, 1}, ics_conv_opts_default()};
+  run1d_ctx c = {buf, {k, 1}, {0}};
   int steps = 8;
   double best;
   int rc = best_seconds(run1d, &c, steps, &best);
@@ -176,7 +176,7 @@ static int table1d(double var, double mean, int iterations, uint64_t seed, int t
       }
       smean += m;
       svar += v;
-      sinterp += ics_interp_var1d(taps, nt);
+      sinterp += ics_taps1d_interp_var(taps, nt);
       vmin = fmin(vmin, v);
       vmax = fmax(vmax, v);
       wmin = fmin(wmin, hi - lo);
@@ -230,7 +230,7 @@ static int time_member2d(const ics_kernel2d *k, double *ns) {
   float *buf = malloc(sizeof *buf * n);
   if (!buf) return -1;
   for (size_t i = 0; i < n; i++) buf[i] = (i % TIMING_SIDE) >= TIMING_SIDE / 2 ? 1.0f : 0.0f;
-  run2d_ctx c = {buf, {k, 1}, ics_conv_opts_default()};
+  run2d_ctx c = {buf, {k, 1}, {0}};
   int steps = 4;
   double best;
   int rc = best_seconds(run2d, &c, steps, &best);
@@ -249,7 +249,7 @@ static int table2d(double varx, double vary, double angle, double mean, int iter
   };
   enum { NROWS = sizeof rows / sizeof rows[0] };
   ics_class2d cls;
-  ics_status st = ics_class2d_from_axes(mean, 0, varx, vary, angle, &cls);
+  ics_status st = ics_class2d_init_axes(&cls, mean, 0, varx, vary, angle);
   if (st != ICS_OK)
     return cli_error(CMD, "class (varx %.17g, vary %.17g, angle %.17g): %s", varx, vary, angle,
                      ics_status_str(st));
@@ -300,7 +300,7 @@ static int table2d(double varx, double vary, double angle, double mean, int iter
       double w, m[2], c[3], iv[2];
       double lox = INFINITY, hix = -INFINITY, loy = INFINITY, hiy = -INFINITY;
       ics_taps2d_moments(taps, nt, &w, m, c);
-      ics_interp_var2d(taps, nt, iv);
+      ics_taps2d_interp_var(taps, nt, iv);
       for (int j = 0; j < nt; j++) {
         lox = fmin(lox, taps[j].x), hix = fmax(hix, taps[j].x);
         loy = fmin(loy, taps[j].y), hiy = fmax(hiy, taps[j].y);

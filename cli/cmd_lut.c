@@ -77,10 +77,10 @@ static int write_header(int n, const char *lang_name, ics_lut_lang lang, const c
   ics_lut_grid *grid = NULL;
   ics_lut_error ed, ef;
   ics_status st = tables_build(&T, n);
-  if (st == ICS_OK) st = ics_lut_grid_new(n, ICS_LUT_STAMP_PER_INTERVAL, &grid);
+  if (st == ICS_OK) st = ics_lut_grid_create(&grid, n, ICS_LUT_STAMP_PER_INTERVAL);
   if (st == ICS_OK) st = ics_lut_measure(grid, &T.view, 0, &ed);
   if (st == ICS_OK) st = ics_lut_measure(grid, &T.view, 1, &ef);
-  ics_lut_grid_free(grid);
+  ics_lut_grid_destroy(grid);
   if (st != ICS_OK) {
     cli_failure(CMD, "cannot build the tables: %s", ics_status_str(st));
     tables_free(&T);
@@ -161,7 +161,7 @@ static int report(const int *sizes, int nsizes, int progress) {
   int nmax = sizes[nsizes - 1];
   if (progress) fprintf(stderr, "icshadow lut: exact values on the grid for size %d...\n", nmax);
   ics_lut_grid *grid = NULL;
-  ics_status st = ics_lut_grid_new(nmax, ICS_LUT_STAMP_PER_INTERVAL, &grid);
+  ics_status st = ics_lut_grid_create(&grid, nmax, ICS_LUT_STAMP_PER_INTERVAL);
   if (st != ICS_OK) return cli_failure(CMD, "%s", ics_status_str(st));
   /* Timing samples: rat log-uniform over [1e-6, 1e6]; t uniform over [0, 1]. */
   double xr[NSAMPLES], xt[NSAMPLES];
@@ -211,7 +211,7 @@ static int report(const int *sizes, int nsizes, int progress) {
     double ns_v = time_fn(exact_vx, NULL, xt);
     printf("exact,,,,,,,,,,%.3g,%.3g,\n", ns_r, ns_v);
   }
-  ics_lut_grid_free(grid);
+  ics_lut_grid_destroy(grid);
   return cli_stdout_failed(CMD) ? 1 : status;
 }
 

@@ -113,19 +113,19 @@ int cmd_make_env(int argc, char **argv) {
   char err[CLI_MSG_MAX];
   if (lights_arg && lights_load(lights_arg, &lights, &n, err, sizeof err) != 0)
     return cli_error(CMD, "--lights: %s", err);
-  ics_image env;
+  ics_image *env = NULL;
   row_progress rp = {.t_last = cli_now_s()};
   cli_progress_init(&rp.p, "make-env", force_progress);
   int show = force_progress || (rp.p.tty && (long)w * h * ss * ss >= (4L << 20));
-  ics_status st = ics_image_init(&env, w, h, 3);
+  ics_status st = ics_image_create(&env, w, h, 3);
   if (st == ICS_OK)
-    st = ics_envmap_render_progress(&env, sky, lights, n, ss, show ? on_rows : NULL, &rp);
+    st = ics_envmap_render_progress(env, sky, lights, n, ss, show ? on_rows : NULL, &rp);
   if (show) cli_progress_done(&rp.p);
   if (st == ICS_ERR_RANGE) {
     /* which light overflows float on its own (drawn alone into a map of the same size) */
     int bad = -1;
     for (int k = 0; k < n && bad < 0; k++)
-      if (ics_envmap_render(&env, NULL, &lights[k], 1, ss) == ICS_ERR_RANGE) bad = k;
+      if (ics_envmap_render(env, NULL, &lights[k], 1, ss) == ICS_ERR_RANGE) bad = k;
     if (bad >= 0)
       cli_error(CMD, "light %d (weight %g, colour %g,%g,%g) is too bright to draw: its radiance "
                 "overflows float at %dx%d", bad + 1, lights[bad].weight, lights[bad].color[0],
@@ -138,16 +138,16 @@ int cmd_make_env(int argc, char **argv) {
   }
   free(lights);
   if (st != ICS_OK) {
-    ics_image_free(&env);
+    ics_image_destroy(env);
     return st == ICS_ERR_NOMEM ? 1 : 2;
   }
   cli_output out;
   if (cli_output_open(&out, CMD, outp) != 0) {
-    ics_image_free(&env);
+    ics_image_destroy(env);
     return 1;
   }
-  st = ics_exr_write(out.write_path, &env, half ? ICS_EXR_HALF : ICS_EXR_FLOAT, err, sizeof err);
-  ics_image_free(&env);
+  st = ics_exr_write(out.write_path, env, half ? ICS_EXR_HALF : ICS_EXR_FLOAT, err, sizeof err);
+  ics_image_destroy(env);
   if (st != ICS_OK) {
     cli_error(CMD, "cannot write %s: %s", outp, err);
     cli_output_abort(&out);

@@ -101,7 +101,7 @@ int lights_parse_spec(const char *spec, ics_light **out, int *n, char *err, size
     }
     l[k].mean[0] = v[0];
     l[k].mean[1] = v[1];
-    if (ics_cov_from_eig(v[2], v[3], m > 4 ? v[4] : 0, l[k].cov) != ICS_OK) {
+    if (ics_light_cov_from_eig(v[2], v[3], m > 4 ? v[4] : 0, l[k].cov) != ICS_OK) {
       seterr(err, errlen, "light %d: variances must be finite and >= 0, angle finite", k + 1);
       goto fail;
     }

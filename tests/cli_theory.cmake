@@ -66,7 +66,8 @@ ics_cli_test(NAME cli_clt_unresolved_warning RC 0 ARGS "clt|--kernel|gauss|--var
 # a resolved run gives the rate over all its points and no warning
 ics_cli_test(NAME cli_clt_rate_resolved RC 0 ARGS "clt|--kernel|tophat|--var|36|--steps|16,32,64|--rate"
   ERR "^rate exponent: -(0\\.99|1\\.0)[0-9]* \\(3 of 3 points\\)\n$")
-# work budget (1e11 tap-updates, ICS_WORK_BUDGET): refused before running, exit 2, nothing on stdout.
+# work budget (1e11 tap-updates, ICS_CONV_WORK_BUDGET): refused before running, exit 2, nothing
+# on stdout.
 # tophat sigma 6, 1e6 steps: ~1.7e5 nodes x ~23 taps x 1e6 steps = ~4e12 (hours)
 ics_cli_test(NAME cli_clt_work_budget RC 2 ARGS "clt|--kernel|tophat|--var|36|--steps|1000000|--no-refine"
   OUT "^$" ERR "estimated work [0-9.e+]+ tap-updates .*exceeds the budget of 1e\\+11")

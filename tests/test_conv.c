@@ -69,7 +69,7 @@ static void test_binomial(void) {
   ics_kernel1d k;
   ics_kernel1d_init(&k, ICS_KERNEL_DIRAC, 0, 1);
   ics_schedule1d s = {&k, 1};
-  ics_conv_opts o = ics_conv_opts_default();
+  ics_conv_opts o = {0};
   o.boundary = ICS_BOUNDARY_CONSTANT;
   CHECK(ics_conv1d_run(b, N, &s, 0, STEPS, &o, NULL) == ICS_OK, "run");
   double maxerr = 0;
@@ -125,7 +125,7 @@ static void test_moments_add(void) {
     memset(b, 0, sizeof b);
     b[C0] = 1;
     ics_schedule1d s = {&k, 1};
-    ics_conv_opts o = ics_conv_opts_default();
+    ics_conv_opts o = {0};
     o.boundary = ICS_BOUNDARY_CONSTANT;
     ics_conv1d_run(b, N, &s, 0, STEPS, &o, NULL);
     double M, mean, var;
@@ -150,7 +150,7 @@ static void test_linear_shift_boundary(void) {
     z[i] = 2.5 * x[i] - 0.75 * y[i];
   }
   ics_tap1d t[3] = {{-1.3, 0.2}, {0.45, 0.5}, {2.8, 0.3}};
-  ics_conv_opts o = ics_conv_opts_default();
+  ics_conv_opts o = {0};
   ics_conv1d_step(x, ox, N, t, 3, &o);
   ics_conv1d_step(y, oy, N, t, 3, &o);
   ics_conv1d_step(z, oz, N, t, 3, &o);
@@ -201,8 +201,8 @@ static void test_2d_impulse(void) {
   enum { W = 160, H = 160, STEPS = 100 };
   float *img = calloc(W * H, sizeof *img);
   ics_class2d c;
-  ics_class2d_from_axes(0, 0, 3, 1, 30, &c);
-  ics_conv_opts o = ics_conv_opts_default();
+  ics_class2d_init_axes(&c, 0, 0, 3, 1, 30);
+  ics_conv_opts o = {0};
   o.boundary = ICS_BOUNDARY_CONSTANT;
   o.compensate = ICS_COMP_NONNEG;
   const ics_kernel_member mem[2] = {ICS_KERNEL_POISSON, ICS_KERNEL_ELLIPSE};
@@ -337,7 +337,7 @@ static void test_compensation(void) {
       for (int mode = 0; mode < 3; mode++) {
         memset(b, 0, sizeof b);
         b[C0] = 1;
-        ics_conv_opts o = ics_conv_opts_default();
+        ics_conv_opts o = {0};
         o.boundary = ICS_BOUNDARY_CONSTANT;
         o.compensate = (ics_comp_mode)mode;
         ics_conv1d_run(b, N, &s, 0, STEPS, &o, NULL);
@@ -370,7 +370,7 @@ static void test_compensation(void) {
   CHECK(nc == 2 && fabs(res - 0.21) < 1e-15, "zero variance, shift 0.3: residual %.17g", res);
   /* 2D compensation, rotated anisotropic Poisson class with sub-pixel mean: exact */
   ics_class2d c;
-  ics_class2d_from_axes(0.3, 0.5, 0.6, 0.3, 30, &c);
+  ics_class2d_init_axes(&c, 0.3, 0.5, 0.6, 0.3, 30);
   ics_kernel2d k;
   ics_kernel2d_init(&k, ICS_KERNEL_POISSON, &c);
   int n;
@@ -411,7 +411,7 @@ static double ncdf(double z) { return 0.5 * erfc(-z / sqrt(2.0)); }
 static void test_integer_shift(void) {
   enum { N = 512 };
   static double buf[N];
-  ics_conv_opts o = ics_conv_opts_default();
+  ics_conv_opts o = {0};
   o.boundary = ICS_BOUNDARY_CONSTANT;
   o.compensate = ICS_COMP_INTEGER;
   /* zero variance, mean 0.3 px (Dirac class): an impulse stays ONE pixel (variance exactly 0)
@@ -464,7 +464,7 @@ static void test_integer_shift(void) {
   CHECK(fabs(st.residual[0]) <= 1e-12, "residual %g", st.residual[0]);
   /* check_opts: a non-finite constant is rejected */
   {
-    ics_conv_opts c = ics_conv_opts_default();
+    ics_conv_opts c = {0};
     c.boundary = ICS_BOUNDARY_CONSTANT;
     c.constant = INFINITY;
     double a[4] = {0, 0, 1, 1}, b[4];
@@ -496,7 +496,7 @@ static void test_mixed_2d(void) {
   static float img[W * H];
   static ics_tap2d t2[CAP2];
   ics_class2d cls;
-  CHECK(ics_class2d_from_axes(1, -2, 6, 2, 30, &cls) == ICS_OK, "class");
+  CHECK(ics_class2d_init_axes(&cls, 1, -2, 6, 2, 30) == ICS_OK, "class");
   ics_kernel2d m[2];
   CHECK(ics_kernel2d_init(&m[0], ICS_KERNEL_ELLIPSE, &cls) == ICS_OK, "ellipse");
   CHECK(ics_kernel2d_init(&m[1], ICS_KERNEL_POISSON, &cls) == ICS_OK, "poisson");
@@ -514,7 +514,7 @@ static void test_mixed_2d(void) {
   }
   for (int i = 0; i < W * H; i++) img[i] = 0;
   img[176 * W + 96] = 1;
-  ics_conv_opts o = ics_conv_opts_default();
+  ics_conv_opts o = {0};
   o.boundary = ICS_BOUNDARY_CONSTANT;
   o.compensate = ICS_COMP_NONNEG;
   ics_conv_stats st;
@@ -567,7 +567,7 @@ static void test_mixed(void) {
     }
     memset(b, 0, sizeof b);
     b[X0] = 1;
-    ics_conv_opts o = ics_conv_opts_default();
+    ics_conv_opts o = {0};
     o.boundary = ICS_BOUNDARY_CONSTANT;
     o.compensate = ICS_COMP_NONNEG;
     ics_conv1d_run(b, N, &s, 0, STEPS, &o, NULL);
@@ -607,10 +607,10 @@ static void test_errors(void) {
   CHECK(ics_conv1d_step(a, b, 4, &bad, 1, NULL) == ICS_ERR_INFINITE, "inf tap");
   bad.x = 1e12;
   CHECK(ics_conv1d_step(a, b, 4, &bad, 1, NULL) == ICS_ERR_RANGE, "huge offset");
-  ics_conv_opts o = ics_conv_opts_default();
+  ics_conv_opts o = {0};
   o.constant = NAN;
   CHECK(ics_conv1d_step(a, b, 4, &t, 1, &o) == ICS_ERR_NAN, "NaN constant");
-  o = ics_conv_opts_default();
+  o = (ics_conv_opts){0};
   o.boundary = (ics_boundary)7;
   CHECK(ics_conv1d_step(a, b, 4, &t, 1, &o) == ICS_ERR_RANGE, "bad boundary");
   float f[4] = {0}, g[4];
@@ -630,7 +630,7 @@ static void test_errors(void) {
   ics_schedule1d s2 = {two_k, 2};
   CHECK(ics_conv1d_run(a, 4, &s2, 0, 3, NULL, NULL) == ICS_ERR_NAN, "second member invalid");
   ics_class2d c2;
-  ics_class2d_from_axes(0, 0, 1, 1, 0, &c2);
+  ics_class2d_init_axes(&c2, 0, 0, 1, 1, 0);
   ics_kernel2d k2;
   ics_kernel2d_init(&k2, ICS_KERNEL_POISSON, &c2);
   k2.nsamples = 1;
@@ -643,7 +643,7 @@ static void test_errors(void) {
             ICS_ERR_RANGE, "zero total weight");
   ics_tap1d two[2] = {{0.5, 0.5}, {3.5, 0.5}};
   CHECK(ics_taps1d_discretize(two, 2, ta, 3, &n) == ICS_ERR_SIZE, "discretize cap");
-  CHECK(isnan(ics_interp_var1d(NULL, 2)), "interp of nothing is NaN");
+  CHECK(isnan(ics_taps1d_interp_var(NULL, 2)), "interp of nothing is NaN");
 }
 
 int main(void) {

@@ -93,13 +93,13 @@ static void test_m1(double m1) {
   mpfr_set_d(rm1, m1, MPFR_RNDN);
   ref_ellipke_m1(rK, rE, rm1);
   int reg = region_of(m1);
-  double k = ics_ellipk_m1(m1), e = ics_ellipe_m1(m1), k2 = -1, e2 = -1;
-  ics_ellipke_m1(m1, &k2, &e2);
+  double k = ics_ellint_k_m1(m1), e = ics_ellint_e_m1(m1), k2 = -1, e2 = -1;
+  ics_ellint_ke_m1(m1, &k2, &e2);
   count[E_M1][reg]++;
   record(E_M1, F_K, reg, ref_ulp_error(k, rK), m1, k);
   record(E_M1, F_E, reg, ref_ulp_error(e, rE), m1, e);
   CHECK(memcmp(&k, &k2, sizeof k) == 0 && memcmp(&e, &e2, sizeof e) == 0,
-        "ics_ellipke_m1(%a) = (%a, %a) differs from ics_ellipk_m1/ics_ellipe_m1 (%a, %a)", m1,
+        "ics_ellint_ke_m1(%a) = (%a, %a) differs from ics_ellint_k_m1/ics_ellint_e_m1 (%a, %a)", m1,
         k2, e2, k, e);
 }
 
@@ -110,15 +110,16 @@ static void test_m(double m) {
   ref_ellipke_m1(rK, rE, rm1);
   double m1r = mpfr_get_d(rm1, MPFR_RNDN);
   int reg = region_of(m1r);
-  double k = ics_ellipk(m), e = ics_ellipe(m);
+  double k = ics_ellint_k(m), e = ics_ellint_e(m);
   count[E_M][reg]++;
   record(E_M, F_K, reg, ref_ulp_error(k, rK), m, k);
   record(E_M, F_E, reg, ref_ulp_error(e, rE), m, e);
   /* where 1 - m is exact, the m and m1 entry points must agree bit for bit */
   if (mpfr_cmp_d(rm1, m1r) == 0) {
-    double k1 = ics_ellipk_m1(m1r), e1 = ics_ellipe_m1(m1r);
+    double k1 = ics_ellint_k_m1(m1r), e1 = ics_ellint_e_m1(m1r);
     CHECK(memcmp(&k, &k1, sizeof k) == 0 && memcmp(&e, &e1, sizeof e) == 0,
-          "ics_ellipk/e(%a) = (%a, %a) but ics_ellipk/e_m1(%a) = (%a, %a)", m, k, e, m1r, k1, e1);
+          "ics_ellint_k/e(%a) = (%a, %a) but ics_ellint_k/e_m1(%a) = (%a, %a)", m, k, e, m1r, k1,
+          e1);
   }
 }
 
@@ -289,56 +290,57 @@ static void test_special(void) {
   mpfr_div_2ui(pi2, pi2, 1, MPFR_RNDN);
   double pi2d = mpfr_get_d(pi2, MPFR_RNDN); /* pi/2 correctly rounded */
   mpfr_clear(pi2);
-  CHECK(ics_ellipk(0.0) == pi2d, "K(0) = %a, want %a", ics_ellipk(0.0), pi2d);
-  CHECK(ics_ellipe(0.0) == pi2d, "E(0) = %a, want %a", ics_ellipe(0.0), pi2d);
-  CHECK(ics_ellipk(-0.0) == pi2d, "K(-0) = %a", ics_ellipk(-0.0));
-  CHECK(ics_ellipe(-0.0) == pi2d, "E(-0) = %a", ics_ellipe(-0.0));
-  CHECK(ics_ellipk_m1(1.0) == pi2d, "K_m1(1) = %a", ics_ellipk_m1(1.0));
-  CHECK(ics_ellipe_m1(1.0) == pi2d, "E_m1(1) = %a", ics_ellipe_m1(1.0));
+  CHECK(ics_ellint_k(0.0) == pi2d, "K(0) = %a, want %a", ics_ellint_k(0.0), pi2d);
+  CHECK(ics_ellint_e(0.0) == pi2d, "E(0) = %a, want %a", ics_ellint_e(0.0), pi2d);
+  CHECK(ics_ellint_k(-0.0) == pi2d, "K(-0) = %a", ics_ellint_k(-0.0));
+  CHECK(ics_ellint_e(-0.0) == pi2d, "E(-0) = %a", ics_ellint_e(-0.0));
+  CHECK(ics_ellint_k_m1(1.0) == pi2d, "K_m1(1) = %a", ics_ellint_k_m1(1.0));
+  CHECK(ics_ellint_e_m1(1.0) == pi2d, "E_m1(1) = %a", ics_ellint_e_m1(1.0));
 
-  CHECK(isinf(ics_ellipk(1.0)) && ics_ellipk(1.0) > 0, "K(1) = %g", ics_ellipk(1.0));
-  CHECK(ics_ellipe(1.0) == 1.0, "E(1) = %g", ics_ellipe(1.0));
-  CHECK(isinf(ics_ellipk_m1(0.0)) && ics_ellipk_m1(0.0) > 0, "K_m1(0) = %g", ics_ellipk_m1(0.0));
-  CHECK(ics_ellipe_m1(0.0) == 1.0, "E_m1(0) = %g", ics_ellipe_m1(0.0));
-  CHECK(isinf(ics_ellipk_m1(-0.0)) && ics_ellipe_m1(-0.0) == 1.0, "m1 = -0");
+  CHECK(isinf(ics_ellint_k(1.0)) && ics_ellint_k(1.0) > 0, "K(1) = %g", ics_ellint_k(1.0));
+  CHECK(ics_ellint_e(1.0) == 1.0, "E(1) = %g", ics_ellint_e(1.0));
+  CHECK(isinf(ics_ellint_k_m1(0.0)) && ics_ellint_k_m1(0.0) > 0, "K_m1(0) = %g",
+        ics_ellint_k_m1(0.0));
+  CHECK(ics_ellint_e_m1(0.0) == 1.0, "E_m1(0) = %g", ics_ellint_e_m1(0.0));
+  CHECK(isinf(ics_ellint_k_m1(-0.0)) && ics_ellint_e_m1(-0.0) == 1.0, "m1 = -0");
 
   const double bad_m[] = {nextafter(1.0, 2.0), 1.5, 2.0, 1e300, INFINITY, NAN, -NAN};
   for (size_t i = 0; i < sizeof bad_m / sizeof bad_m[0]; i++) {
     double m = bad_m[i];
-    CHECK(isnan(ics_ellipk(m)), "K(%g) = %g, want NaN", m, ics_ellipk(m));
-    CHECK(isnan(ics_ellipe(m)), "E(%g) = %g, want NaN", m, ics_ellipe(m));
+    CHECK(isnan(ics_ellint_k(m)), "K(%g) = %g, want NaN", m, ics_ellint_k(m));
+    CHECK(isnan(ics_ellint_e(m)), "E(%g) = %g, want NaN", m, ics_ellint_e(m));
     double m1 = (m != m) ? m : 1.0 - m; /* < 0 */
     if (m1 == 0) m1 = -0x1p-1074;
-    CHECK(isnan(ics_ellipk_m1(m1)), "K_m1(%g) = %g, want NaN", m1, ics_ellipk_m1(m1));
-    CHECK(isnan(ics_ellipe_m1(m1)), "E_m1(%g) = %g, want NaN", m1, ics_ellipe_m1(m1));
+    CHECK(isnan(ics_ellint_k_m1(m1)), "K_m1(%g) = %g, want NaN", m1, ics_ellint_k_m1(m1));
+    CHECK(isnan(ics_ellint_e_m1(m1)), "E_m1(%g) = %g, want NaN", m1, ics_ellint_e_m1(m1));
     double k = 0, e = 0;
-    ics_ellipke_m1(m1, &k, &e);
-    CHECK(isnan(k) && isnan(e), "ics_ellipke_m1(%g) = (%g, %g), want NaN", m1, k, e);
+    ics_ellint_ke_m1(m1, &k, &e);
+    CHECK(isnan(k) && isnan(e), "ics_ellint_ke_m1(%g) = (%g, %g), want NaN", m1, k, e);
   }
-  CHECK(isnan(ics_ellipk_m1(-0x1p-1074)) && isnan(ics_ellipe_m1(-INFINITY)), "m1 < 0");
+  CHECK(isnan(ics_ellint_k_m1(-0x1p-1074)) && isnan(ics_ellint_e_m1(-INFINITY)), "m1 < 0");
 
-  CHECK(ics_ellipk(-INFINITY) == 0.0, "K(-inf) = %g", ics_ellipk(-INFINITY));
-  CHECK(isinf(ics_ellipe(-INFINITY)) && ics_ellipe(-INFINITY) > 0, "E(-inf) = %g",
-        ics_ellipe(-INFINITY));
-  CHECK(ics_ellipk_m1(INFINITY) == 0.0, "K_m1(inf) = %g", ics_ellipk_m1(INFINITY));
-  CHECK(isinf(ics_ellipe_m1(INFINITY)), "E_m1(inf) = %g", ics_ellipe_m1(INFINITY));
+  CHECK(ics_ellint_k(-INFINITY) == 0.0, "K(-inf) = %g", ics_ellint_k(-INFINITY));
+  CHECK(isinf(ics_ellint_e(-INFINITY)) && ics_ellint_e(-INFINITY) > 0, "E(-inf) = %g",
+        ics_ellint_e(-INFINITY));
+  CHECK(ics_ellint_k_m1(INFINITY) == 0.0, "K_m1(inf) = %g", ics_ellint_k_m1(INFINITY));
+  CHECK(isinf(ics_ellint_e_m1(INFINITY)), "E_m1(inf) = %g", ics_ellint_e_m1(INFINITY));
 
   /* NULL outputs */
   double k = 0, e = 0;
-  ics_ellipke_m1(0.25, &k, NULL);
-  CHECK(k == ics_ellipk_m1(0.25), "ke_m1(K only)");
-  ics_ellipke_m1(0.25, NULL, &e);
-  CHECK(e == ics_ellipe_m1(0.25), "ke_m1(E only)");
-  ics_ellipke_m1(0.25, NULL, NULL);
-  ics_ellipke_m1(INFINITY, &k, &e);
+  ics_ellint_ke_m1(0.25, &k, NULL);
+  CHECK(k == ics_ellint_k_m1(0.25), "ke_m1(K only)");
+  ics_ellint_ke_m1(0.25, NULL, &e);
+  CHECK(e == ics_ellint_e_m1(0.25), "ke_m1(E only)");
+  ics_ellint_ke_m1(0.25, NULL, NULL);
+  ics_ellint_ke_m1(INFINITY, &k, &e);
   CHECK(k == 0.0 && isinf(e), "ke_m1(inf) = (%g, %g)", k, e);
-  ics_ellipke_m1(0.0, &k, &e);
+  ics_ellint_ke_m1(0.0, &k, &e);
   CHECK(isinf(k) && e == 1.0, "ke_m1(0) = (%g, %g)", k, e);
 
   /* monotonicity near the ends: K increases and E decreases with m */
   double prevk = 0, preve = INFINITY;
   for (double x = 0x1p-1074; x < 2; x *= 1.7) { /* m1 decreasing order reversed: x grows */
-    double kk = ics_ellipk_m1(x), ee = ics_ellipe_m1(x);
+    double kk = ics_ellint_k_m1(x), ee = ics_ellint_e_m1(x);
     if (x > 0x1p-1074) {
       CHECK(kk <= prevk, "K_m1 not decreasing at m1 = %a", x);
       CHECK(ee >= preve, "E_m1 not increasing at m1 = %a", x);
@@ -359,8 +361,8 @@ static void test_legendre(long n) {
     double y = 1.0 - x; /* exact for dyadic x with <= 53 bits below 1 */
     if (1.0 - y != x) continue;
     double K, E, Kp, Ep;
-    ics_ellipke_m1(x, &K, &E);   /* m = y */
-    ics_ellipke_m1(y, &Kp, &Ep); /* m = x */
+    ics_ellint_ke_m1(x, &K, &E);   /* m = y */
+    ics_ellint_ke_m1(y, &Kp, &Ep); /* m = x */
     long double r = (long double)E * Kp + (long double)Ep * K - (long double)K * Kp;
     double scale = fabs(E * Kp) + fabs(Ep * K) + fabs(K * Kp);
     double res = fabs((double)(r - 1.5707963267948966192313216916397514L));
@@ -382,8 +384,8 @@ static void test_errno(void) {
   const double v[] = {-INFINITY, -1e308, -1, -0.0, 0, 0.5, 1, 1.5, INFINITY, NAN, 0x1p-1074};
   for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) {
     double k, e;
-    s += ics_ellipk(v[i]) + ics_ellipe(v[i]) + ics_ellipk_m1(v[i]) + ics_ellipe_m1(v[i]);
-    ics_ellipke_m1(v[i], &k, &e);
+    s += ics_ellint_k(v[i]) + ics_ellint_e(v[i]) + ics_ellint_k_m1(v[i]) + ics_ellint_e_m1(v[i]);
+    ics_ellint_ke_m1(v[i], &k, &e);
     s += k + e;
   }
   (void)s;

@@ -256,10 +256,10 @@ static void test_errno(void) {
   static const struct {
     const char *name;
     fn f;
-  } fs[] = {{"ics_ellipk", ics_ellipk},
-            {"ics_ellipe", ics_ellipe},
-            {"ics_ellipk_m1", ics_ellipk_m1},
-            {"ics_ellipe_m1", ics_ellipe_m1},
+  } fs[] = {{"ics_ellint_k", ics_ellint_k},
+            {"ics_ellint_e", ics_ellint_e},
+            {"ics_ellint_k_m1", ics_ellint_k_m1},
+            {"ics_ellint_e_m1", ics_ellint_e_m1},
             {"ics_ellipse_varx", ics_ellipse_varx},
             {"ics_ellipse_vx", ics_ellipse_vx},
             {"ics_ellipse_vy", ics_ellipse_vy},

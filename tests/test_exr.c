@@ -102,14 +102,14 @@ static int file_exists(const char *p) {
   return f != NULL;
 }
 
-/* read must fail with `want` status, an empty image and a message containing `needle` */
+/* read must fail with `want` status, *out NULL and a message containing `needle` */
 static void expect_fail(const char *path, ics_status want, const char *needle) {
-  ics_image im;
+  ics_image unset, *im = &unset;
   char msg[512] = "";
   ics_status st = ics_exr_read(path, &im, msg, sizeof msg);
   CHECK(st == want, "%s: status %s, expected %s (%s)", path, ics_status_str(st),
         ics_status_str(want), msg);
-  CHECK(im.data == NULL && im.width == 0, "%s: image not empty after failure", path);
+  CHECK(im == NULL, "%s: *out not NULL after failure", path);
   CHECK(strstr(msg, needle) != NULL, "%s: message '%s' lacks '%s'", path, msg, needle);
   printf("expected failure: %s\n", msg);
 }
@@ -146,15 +146,15 @@ static int write_bad(const char *d) {
   }
   snprintf(dir, sizeof dir, "%s", d);
   char msg[256];
-  ics_image a;
+  ics_image *a = NULL;
   if (write_raw(tmpf("nan.exr"), 8, 4, 3, rgb, EXR_PIXEL_FLOAT, v_nan) ||
       write_raw(tmpf("rg.exr"), 8, 4, 2, rg, EXR_PIXEL_FLOAT, v_plain) ||
       write_raw(tmpf("tiny.exr"), 2, 1, 3, rgb, EXR_PIXEL_FLOAT, v_plain) ||
-      ics_image_init(&a, 64, 32, 3) != ICS_OK)
+      ics_image_create(&a, 64, 32, 3) != ICS_OK)
     return 1;
-  for (int p = 0; p < 64 * 32 * 3; p++) a.data[p] = (float)(p % 97) * 0.5f;
-  ics_status st = ics_exr_write(tmpf("full.exr"), &a, ICS_EXR_FLOAT, msg, sizeof msg);
-  ics_image_free(&a);
+  for (int p = 0; p < 64 * 32 * 3; p++) a->data[p] = (float)(p % 97) * 0.5f;
+  ics_status st = ics_exr_write(tmpf("full.exr"), a, ICS_EXR_FLOAT, msg, sizeof msg);
+  ics_image_destroy(a);
   if (st != ICS_OK) return 1;
   copy_prefix(tmpf("full.exr"), tmpf("trunc.exr"), file_size(tmpf("full.exr")) / 2, 1L << 40);
   return 0;
@@ -165,56 +165,56 @@ int main(int argc, char **argv) {
   snprintf(dir, sizeof dir, "%s", "test_exr_tmp");
   if (system("mkdir -p test_exr_tmp") != 0) return 1;
   CHECK(ics_exr_available() == 1, "built with OpenEXR");
-  ics_image a, b;
+  ics_image *a = NULL, *b = NULL;
   char msg[512];
 
   /* float round trip, RGB, odd size (several ZIP chunks of 16 lines), wide value range */
-  CHECK(ics_image_init(&a, 37, 41, 3) == ICS_OK, "init");
+  CHECK(ics_image_create(&a, 37, 41, 3) == ICS_OK, "init");
   for (int p = 0; p < 37 * 41 * 3; p++)
-    a.data[p] = (float)(p % 5 == 0 ? 0.0 : ldexp(1.0 + p * 0.001, (p % 41) - 20));
-  ics_status st = ics_exr_write(tmpf("f.exr"), &a, ICS_EXR_FLOAT, msg, sizeof msg);
+    a->data[p] = (float)(p % 5 == 0 ? 0.0 : ldexp(1.0 + p * 0.001, (p % 41) - 20));
+  ics_status st = ics_exr_write(tmpf("f.exr"), a, ICS_EXR_FLOAT, msg, sizeof msg);
   CHECK(st == ICS_OK, "write float: %s", msg);
   st = ics_exr_read(tmpf("f.exr"), &b, msg, sizeof msg);
   CHECK(st == ICS_OK, "read float: %s", msg);
-  CHECK(b.width == 37 && b.height == 41 && b.channels == 3, "float size %dx%dx%d", b.width,
-        b.height, b.channels);
-  CHECK(b.data && !memcmp(a.data, b.data, sizeof(float) * 37 * 41 * 3), "float round trip exact");
-  ics_image_free(&b);
-  ics_image_free(&a);
+  CHECK(b && b->width == 37 && b->height == 41 && b->channels == 3, "float size %dx%dx%d",
+        b ? b->width : 0, b ? b->height : 0, b ? b->channels : 0);
+  CHECK(b && !memcmp(a->data, b->data, sizeof(float) * 37 * 41 * 3), "float round trip exact");
+  ics_image_destroy(b);
+  ics_image_destroy(a);
 
   /* half round trip, RGBA: R, G, B, A differ at every pixel (k/8 + 16 c + 1 < 64, all exact
    * in half), so a reversed (ABGR) decode or any swap fails */
-  CHECK(ics_image_init(&a, 19, 35, 4) == ICS_OK, "init");
+  CHECK(ics_image_create(&a, 19, 35, 4) == ICS_OK, "init");
   for (int p = 0; p < 19 * 35; p++)
-    for (int c = 0; c < 4; c++) a.data[p * 4 + c] = (float)((p % 64) / 8.0 + 16 * c + 1);
-  st = ics_exr_write(tmpf("h.exr"), &a, ICS_EXR_HALF, msg, sizeof msg);
+    for (int c = 0; c < 4; c++) a->data[p * 4 + c] = (float)((p % 64) / 8.0 + 16 * c + 1);
+  st = ics_exr_write(tmpf("h.exr"), a, ICS_EXR_HALF, msg, sizeof msg);
   CHECK(st == ICS_OK, "write half: %s", msg);
   st = ics_exr_read(tmpf("h.exr"), &b, msg, sizeof msg);
   CHECK(st == ICS_OK, "read half: %s", msg);
-  CHECK(b.channels == 4 && b.width == 19 && b.height == 35, "half size");
+  CHECK(b && b->channels == 4 && b->width == 19 && b->height == 35, "half size");
   int bad = -1;
-  for (int p = 0; b.data && p < 19 * 35 * 4 && bad < 0; p++)
-    if (a.data[p] != b.data[p]) bad = p;
-  CHECK(b.data && bad < 0, "half round trip: value %d is %g, wrote %g", bad,
-        bad >= 0 ? b.data[bad] : 0.0, bad >= 0 ? a.data[bad] : 0.0);
-  ics_image_free(&b);
+  for (int p = 0; b && p < 19 * 35 * 4 && bad < 0; p++)
+    if (a->data[p] != b->data[p]) bad = p;
+  CHECK(b && bad < 0, "half round trip: value %d is %g, wrote %g", bad,
+        bad >= 0 ? b->data[bad] : 0.0, bad >= 0 ? a->data[bad] : 0.0);
+  ics_image_destroy(b);
   /* half: a value above 65504 is refused, and no file is left */
-  a.data[5] = 70000;
+  a->data[5] = 70000;
   remove(tmpf("big.exr"));
-  st = ics_exr_write(tmpf("big.exr"), &a, ICS_EXR_HALF, msg, sizeof msg);
+  st = ics_exr_write(tmpf("big.exr"), a, ICS_EXR_HALF, msg, sizeof msg);
   CHECK(st == ICS_ERR_INVALID_ARG && strstr(msg, "overflows half"), "half overflow: %s", msg);
   CHECK(!file_exists(tmpf("big.exr")), "no file after a refused write");
-  a.data[5] = NAN;
-  st = ics_exr_write(tmpf("big.exr"), &a, ICS_EXR_FLOAT, msg, sizeof msg);
+  a->data[5] = NAN;
+  st = ics_exr_write(tmpf("big.exr"), a, ICS_EXR_FLOAT, msg, sizeof msg);
   CHECK(st == ICS_ERR_INVALID_ARG && !file_exists(tmpf("big.exr")), "NaN write refused: %s", msg);
-  ics_image_free(&a);
+  ics_image_destroy(a);
 
   /* files written here with the raw API read back too (uncompressed, RGB half) */
   static const char *const rgb[] = {"R", "G", "B"};
   CHECK(write_raw(tmpf("raw.exr"), 5, 4, 3, rgb, EXR_PIXEL_HALF, v_plain) == 0, "raw");
   st = ics_exr_read(tmpf("raw.exr"), &b, msg, sizeof msg);
-  CHECK(st == ICS_OK && b.data[3 * 6 + 1] == v_plain(1, 6), "raw half read: %s", msg);
-  ics_image_free(&b);
+  CHECK(st == ICS_OK && b->data[3 * 6 + 1] == v_plain(1, 6), "raw half read: %s", msg);
+  ics_image_destroy(b);
 
   /* a data window smaller than the display window: the image is the display window (the
    * latitude-longitude frame), the data placed at its offset, zeros elsewhere; a data window
@@ -228,8 +228,8 @@ int main(int argc, char **argv) {
   CHECK(write_raw(tmpf("over.exr"), 12, 6, 3, rgb, EXR_PIXEL_FLOAT, v_plain) == 0, "raw overscan");
   raw_windows = 0;
   st = ics_exr_read(tmpf("win.exr"), &b, msg, sizeof msg);
-  CHECK(st == ICS_OK && b.width == 128 && b.height == 64, "windowed read: %s, %dx%d", msg,
-        b.width, b.height);
+  CHECK(st == ICS_OK && b->width == 128 && b->height == 64, "windowed read: %s, %dx%d", msg,
+        b ? b->width : 0, b ? b->height : 0);
   if (st == ICS_OK) {
     int wrong = 0;
     for (int yy = 0; yy < 64; yy++)
@@ -237,21 +237,21 @@ int main(int argc, char **argv) {
         for (int c = 0; c < 3; c++) {
           int in = xx >= 32 && xx < 96 && yy >= 16 && yy < 48;
           float want = in ? v_plain(c, (yy - 16) * 64 + (xx - 32)) : 0.0f;
-          wrong += b.data[((size_t)yy * 128 + xx) * 3 + c] != want;
+          wrong += b->data[((size_t)yy * 128 + xx) * 3 + c] != want;
         }
     CHECK(wrong == 0, "windowed read: %d values misplaced", wrong);
-    ics_image_free(&b);
+    ics_image_destroy(b);
   }
   st = ics_exr_read(tmpf("over.exr"), &b, msg, sizeof msg);
-  CHECK(st == ICS_OK && b.width == 8 && b.height == 4, "overscan read: %s", msg);
+  CHECK(st == ICS_OK && b->width == 8 && b->height == 4, "overscan read: %s", msg);
   if (st == ICS_OK) {
     int wrong = 0;
     for (int yy = 0; yy < 4; yy++)
       for (int xx = 0; xx < 8; xx++)
         for (int c = 0; c < 3; c++)
-          wrong += b.data[((size_t)yy * 8 + xx) * 3 + c] != v_plain(c, (yy + 1) * 12 + (xx + 2));
+          wrong += b->data[((size_t)yy * 8 + xx) * 3 + c] != v_plain(c, (yy + 1) * 12 + (xx + 2));
     CHECK(wrong == 0, "overscan read: %d values misplaced", wrong);
-    ics_image_free(&b);
+    ics_image_destroy(b);
   }
 
   /* errors */
@@ -261,26 +261,26 @@ int main(int argc, char **argv) {
   fclose(f);
   expect_fail(tmpf("text.exr"), ICS_ERR_PARSE, "not a readable OpenEXR file");
   /* truncated: a float map cut in half; and corrupt: 64 bytes of chunk data flipped */
-  CHECK(ics_image_init(&a, 64, 64, 3) == ICS_OK, "init");
-  for (int p = 0; p < 64 * 64 * 3; p++) a.data[p] = (float)(p % 97) * 0.5f;
-  CHECK(ics_exr_write(tmpf("big.exr"), &a, ICS_EXR_FLOAT, msg, sizeof msg) == ICS_OK, "%s", msg);
-  ics_image_free(&a);
+  CHECK(ics_image_create(&a, 64, 64, 3) == ICS_OK, "init");
+  for (int p = 0; p < 64 * 64 * 3; p++) a->data[p] = (float)(p % 97) * 0.5f;
+  CHECK(ics_exr_write(tmpf("big.exr"), a, ICS_EXR_FLOAT, msg, sizeof msg) == ICS_OK, "%s", msg);
+  ics_image_destroy(a);
   long n = file_size(tmpf("big.exr"));
   copy_prefix(tmpf("big.exr"), tmpf("trunc.exr"), n / 2, n);
   expect_fail(tmpf("trunc.exr"), ICS_ERR_PARSE, "corrupt or truncated");
   copy_prefix(tmpf("big.exr"), tmpf("flip.exr"), n, n - 600);
   {
-    ics_image im;
+    ics_image unset, *im = &unset;
     st = ics_exr_read(tmpf("flip.exr"), &im, msg, sizeof msg);
-    CHECK(st != ICS_OK && im.data == NULL && strstr(msg, "flip.exr"), "flipped bytes: %s (%s)",
+    CHECK(st != ICS_OK && im == NULL && strstr(msg, "flip.exr"), "flipped bytes: %s (%s)",
           ics_status_str(st), msg);
     printf("expected failure: %s\n", msg);
   }
   copy_prefix(tmpf("big.exr"), tmpf("hdr.exr"), 40, n); /* header cut */
   {
-    ics_image im;
+    ics_image unset, *im = &unset;
     st = ics_exr_read(tmpf("hdr.exr"), &im, msg, sizeof msg);
-    CHECK(st != ICS_OK && im.data == NULL && strstr(msg, "not a readable OpenEXR"),
+    CHECK(st != ICS_OK && im == NULL && strstr(msg, "not a readable OpenEXR"),
           "cut header: %s (%s)", ics_status_str(st), msg);
   }
   /* wrong channel sets */

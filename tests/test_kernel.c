@@ -243,7 +243,7 @@ static void test_2d(void) {
                           {0, 0, 2, 0, 45}, {0.25, 0.5, 0, 0, 0}, {0, 0, 40, 10, 110}};
   for (size_t i = 0; i < sizeof cl / sizeof *cl; i++) {
     ics_class2d c;
-    ics_status st = ics_class2d_from_axes(cl[i][0], cl[i][1], cl[i][2], cl[i][3], cl[i][4], &c);
+    ics_status st = ics_class2d_init_axes(&c, cl[i][0], cl[i][1], cl[i][2], cl[i][3], cl[i][4]);
     CHECK(st == ICS_OK, "from_axes %s", ics_status_str(st));
     /* round trip */
     double vx, vy, ang;
@@ -308,6 +308,59 @@ static void test_2d(void) {
   }
 }
 
+/* ics_kernel2d_expected against the taps the members actually produce: the moments measured
+ * (independently of the library's moment helpers) on GAUSS and POISSON, exact members, at every
+ * iteration, and their average over M iterations of ELLIPSE (odd N: exact only in expectation,
+ * mean included), within 5 standard deviations */
+static void test_expected2d(void) {
+  ics_class2d c;
+  CHECK(ics_class2d_init_axes(&c, 0.3, -0.7, 3, 1, 30) == ICS_OK, "class");
+  const ics_kernel_member mem[] = {ICS_KERNEL_GAUSS, ICS_KERNEL_POISSON, ICS_KERNEL_ELLIPSE};
+  for (size_t q = 0; q < sizeof mem / sizeof mem[0]; q++) {
+    ics_kernel2d k;
+    CHECK(ics_kernel2d_init(&k, mem[q], &c) == ICS_OK, "init %s", ics_kernel_member_name(mem[q]));
+    k.seed = 5;
+    if (mem[q] == ICS_KERNEL_ELLIPSE) k.nsamples = 3;
+    double em[2] = {NAN, NAN}, ec[3] = {NAN, NAN, NAN};
+    CHECK(ics_kernel2d_expected(&k, em, ec) == ICS_OK, "expected %s",
+          ics_kernel_member_name(mem[q]));
+    const int M = ics_kernel_member_stochastic(mem[q]) ? 20000 : 3;
+    /* per iteration: mean and second moments about the expected mean (their expectation is the
+     * expected covariance whether or not the mean is exact) */
+    double s[5] = {0}, s2[5] = {0};
+    for (int it = 0; it < M; it++) {
+      int n = 0;
+      CHECK(ics_kernel2d_taps(&k, (uint64_t)it, t2, CAP, &n) == ICS_OK, "taps");
+      double w = 0, mx = 0, my = 0, v[5] = {0};
+      for (int j = 0; j < n; j++) w += t2[j].w, mx += t2[j].w * t2[j].x, my += t2[j].w * t2[j].y;
+      mx /= w, my /= w;
+      v[0] = mx, v[1] = my;
+      for (int j = 0; j < n; j++) {
+        double dx = t2[j].x - em[0], dy = t2[j].y - em[1];
+        v[2] += t2[j].w * dx * dx, v[3] += t2[j].w * dx * dy, v[4] += t2[j].w * dy * dy;
+      }
+      for (int a = 2; a < 5; a++) v[a] /= w;
+      for (int a = 0; a < 5; a++) s[a] += v[a], s2[a] += v[a] * v[a];
+    }
+    const double want[5] = {em[0], em[1], ec[0], ec[1], ec[2]};
+    for (int a = 0; a < 5; a++) {
+      double mean = s[a] / M, sd = sqrt(fmax(s2[a] / M - mean * mean, 0) / M);
+      CHECK(fabs(mean - want[a]) <= 5 * sd + 1e-12 * (1 + c.cxx + c.cyy),
+            "%s: measured moment %d %.10g, expected() %.10g (5 sd %.3g)",
+            ics_kernel_member_name(mem[q]), a, mean, want[a], 5 * sd);
+    }
+  }
+  ics_kernel2d k;
+  CHECK(ics_kernel2d_init(&k, ICS_KERNEL_GAUSS, &c) == ICS_OK, "init");
+  CHECK(ics_kernel2d_expected(&k, NULL, NULL) == ICS_OK, "expected: NULL outputs allowed");
+  CHECK(ics_kernel2d_expected(NULL, NULL, NULL) == ICS_ERR_INVALID_ARG, "expected: NULL kernel");
+  k.member = ICS_KERNEL_TOPHAT; /* no 2D form */
+  CHECK(ics_kernel2d_expected(&k, NULL, NULL) == ICS_ERR_INVALID_ARG, "expected: 1D-only member");
+  k.member = ICS_KERNEL_GAUSS;
+  k.cls.cxx = NAN;
+  CHECK(ics_kernel2d_expected(&k, NULL, NULL) == ICS_ERR_NAN, "expected: NaN class");
+}
+
 /* ---------------------------------------------------------------- schedules, errors */
 static void test_schedule(void) {
   ics_kernel1d m[3];
@@ -358,9 +411,9 @@ static void test_errors(void) {
   CHECK(ics_class2d_check(&c) == ICS_ERR_NEGATIVE_VARIANCE, "non-PSD class");
   c.cxy = NAN;
   CHECK(ics_class2d_check(&c) == ICS_ERR_NAN, "NaN cov");
-  CHECK(ics_class2d_from_axes(0, 0, -1, 1, 0, &c) == ICS_ERR_NEGATIVE_VARIANCE, "neg axes");
-  CHECK(ics_class2d_from_axes(0, 0, 1, 1, INFINITY, &c) == ICS_ERR_INFINITE, "inf angle");
-  ics_class2d_from_axes(0, 0, 1, 1, 0, &c);
+  CHECK(ics_class2d_init_axes(&c, 0, 0, -1, 1, 0) == ICS_ERR_NEGATIVE_VARIANCE, "neg axes");
+  CHECK(ics_class2d_init_axes(&c, 0, 0, 1, 1, INFINITY) == ICS_ERR_INFINITE, "inf angle");
+  ics_class2d_init_axes(&c, 0, 0, 1, 1, 0);
   ics_kernel2d k2;
   CHECK(ics_kernel2d_init(&k2, ICS_KERNEL_DIRAC, &c) == ICS_ERR_INVALID_ARG, "1D-only in 2D");
   ics_kernel2d_init(&k2, ICS_KERNEL_POISSON, &c);
@@ -407,7 +460,7 @@ static void print_table1(void) {
            width, n, M > 1 ? "  (average of 1e5 iterations)" : "");
   }
   ics_class2d c;
-  ics_class2d_from_axes(0, 0, 3, 1, 30, &c);
+  ics_class2d_init_axes(&c, 0, 0, 3, 1, 30);
   printf("2D, class (3, 1, 30 deg): cxx %.9f cxy %.9f cyy %.9f\n", c.cxx, c.cxy, c.cyy);
   const ics_kernel_member m2[] = {ICS_KERNEL_GAUSS, ICS_KERNEL_ELLIPSE, ICS_KERNEL_ELLIPSE,
                                   ICS_KERNEL_POISSON, ICS_KERNEL_POISSON};
@@ -438,6 +491,7 @@ int main(void) {
   test_tophat();
   test_stoch_dirac();
   test_2d();
+  test_expected2d();
   test_schedule();
   test_errors();
   return test_summary("test_kernel");

@@ -89,8 +89,95 @@ static void check_recovery(const char *what, const ics_light *truth, int n,
   }
 }
 
+/* ics_lightfit_errors against closed forms, independent of the fit:
+ * - a uniform sky of radiance 1 (Y = 1): the map's energy is the solid angle of the sphere,
+ *   4 pi, half of it in front of the viewer (an even number of columns, no centre at dz = 0),
+ *   the other half split into kept and cut pixels as ics_envmap_pixel_kept says (solid angles
+ *   from this file's formula); with no lights l1 = l2 = 1 (nothing fitted) and edge is NaN;
+ * - a map drawn from one round light (sigma 0.1 on the plane): the light moved by delta along x
+ *   has l1 = 2 tv, l2 = sqrt(2 (1 - exp(-delta^2 / (4 sigma^2)))) and, from the edge at 0
+ *   degrees, edge = tv, tv = erf(delta / (2 sqrt(2) sigma)) (the total-variation distance of two
+ *   Gaussians, and the sup distance of their marginal cdfs), each to within the error of the
+ *   unmoved light (triangle inequality) plus 0.01 for the pixel footprints; the unmoved light's
+ *   own errors are small;
+ * - the errors ics_lightfit reports for the lights it fitted are these. */
+static void test_errors(void) {
+  enum { W = 128, H = 64 };
+  ics_image *env = NULL;
+  CHECK(ics_image_create(&env, W, H, 3) == ICS_OK, "image");
+  if (!env) return;
+  const double one[3] = {1, 1, 1};
+  CHECK(ics_envmap_render(env, one, NULL, 0, 1) == ICS_OK, "sky");
+  ics_lightfit_report r;
+  CHECK(ics_lightfit_errors(env, 80, NULL, 0, &r) == ICS_OK, "errors of no lights");
+  double kept = 0, cut = 0;
+  for (int j = 0; j < H; j++) {
+    double dw = (cos(ICS_PI * j / H) - cos(ICS_PI * (j + 1) / H)) * 2 * ICS_PI / W;
+    for (int i = 0; i < W; i++) {
+      if (!(cos(2 * ICS_PI * (i + 0.5) / W - ICS_PI) > 0)) continue; /* in front */
+      if (ics_envmap_pixel_kept(W, H, i, j, 80))
+        kept += dw;
+      else
+        cut += dw;
+    }
+  }
+  CHECK(fabs(r.energy_total - 4 * ICS_PI) <= 1e-9 && fabs(r.energy_front - 2 * ICS_PI) <= 1e-9,
+        "sky energies: total %.17g (4 pi), front %.17g (2 pi)", r.energy_total, r.energy_front);
+  CHECK(fabs(r.energy_kept - kept) <= 1e-9 && fabs(r.energy_cutoff - cut) <= 1e-9 &&
+            fabs(r.cutoff_loss - cut / (cut + kept)) <= 1e-9 && kept > 0 && cut > 0,
+        "sky: kept %.17g vs %.17g, cut %.17g vs %.17g", r.energy_kept, kept, r.energy_cutoff, cut);
+  CHECK(r.l1 == 1 && r.l2 == 1 && isnan(r.edge) && r.k_fit == 0 && r.iterations == 0 &&
+            r.samples == 0,
+        "no lights: l1 %.17g, l2 %.17g, edge %g", r.l1, r.l2, r.edge);
+  ics_image_destroy(env);
+
+  const double sigma = 0.1, delta = 0.05;
+  ics_light L = mk(0, 0, sigma * sigma, sigma * sigma, 0, 1, 1, 1, 1);
+  CHECK(ics_image_create(&env, 256, 128, 3) == ICS_OK, "image");
+  if (!env) return;
+  CHECK(ics_envmap_render(env, NULL, &L, 1, 4) == ICS_OK, "render");
+  ics_light moved = L;
+  moved.mean[0] += delta;
+  ics_lightfit_report r0, r1;
+  CHECK(ics_lightfit_errors(env, 80, &L, 1, &r0) == ICS_OK &&
+            ics_lightfit_errors(env, 80, &moved, 1, &r1) == ICS_OK,
+        "errors");
+  CHECK(r0.l1 < 0.02 && r0.l2 < 0.02 && r0.edge < 0.01 && r0.k_fit == 1,
+        "the drawn light: l1 %.3g, l2 %.3g, edge %.3g", r0.l1, r0.l2, r0.edge);
+  double tv = erf(delta / (2 * sqrt(2.0) * sigma));
+  double l2 = sqrt(2 * (1 - exp(-delta * delta / (4 * sigma * sigma))));
+  CHECK(fabs(r1.l1 - 2 * tv) <= r0.l1 + 0.01, "moved light: l1 %.6g, expected %.6g", r1.l1,
+        2 * tv);
+  CHECK(fabs(r1.l2 - l2) <= r0.l2 + 0.01, "moved light: l2 %.6g, expected %.6g", r1.l2, l2);
+  CHECK(fabs(r1.edge - tv) <= r0.edge + 0.01, "moved light: edge %.6g, expected %.6g", r1.edge,
+        tv);
+  printf("lightfit errors: drawn light l1 %.3g l2 %.3g edge %.3g; moved by %g: l1 %.4f (%.4f) "
+         "l2 %.4f (%.4f) edge %.4f (%.4f)\n", r0.l1, r0.l2, r0.edge, delta, r1.l1, 2 * tv, r1.l2,
+         l2, r1.edge, tv);
+  ics_lightfit_params p;
+  ics_lightfit_params_init(&p);
+  p.k = 1;
+  ics_light fit;
+  ics_lightfit_report rf, re;
+  CHECK(ics_lightfit(env, &p, &fit, &rf) == ICS_OK &&
+            ics_lightfit_errors(env, p.max_angle_deg, &fit, rf.k_fit, &re) == ICS_OK,
+        "fit and its errors");
+  CHECK(re.l1 == rf.l1 && re.l2 == rf.l2 && re.edge == rf.edge &&
+            re.energy_kept == rf.energy_kept && re.pixels == rf.pixels,
+        "the fit's reported errors %.17g %.17g %.17g vs ics_lightfit_errors %.17g %.17g %.17g",
+        rf.l1, rf.l2, rf.edge, re.l1, re.l2, re.edge);
+  /* bad arguments */
+  CHECK(ics_lightfit_errors(env, 80, &L, 1, NULL) == ICS_ERR_INVALID_ARG &&
+            ics_lightfit_errors(env, 80, NULL, 1, &r) == ICS_ERR_INVALID_ARG &&
+            ics_lightfit_errors(env, 80, &L, -1, &r) == ICS_ERR_INVALID_ARG &&
+            ics_lightfit_errors(env, 90, &L, 1, &r) == ICS_ERR_INVALID_ARG &&
+            ics_lightfit_errors(NULL, 80, &L, 1, &r) == ICS_ERR_INVALID_ARG,
+        "errors: bad arguments");
+  ics_image_destroy(env);
+}
+
 int main(void) {
-  ics_image env;
+  ics_image *env = NULL;
   ics_lightfit_params p;
   ics_lightfit_report rep;
   ics_light fit[ICS_LIGHTFIT_MAX_K];
@@ -112,11 +199,11 @@ int main(void) {
    *     dz <= 0 (in front of the viewer) give -1 and leave rgb untouched */
   for (int channels = 3; channels <= 4; channels++) {
     const int W = 96, H = 48;
-    CHECK(ics_image_init(&env, W, H, channels) == ICS_OK, "image");
+    CHECK(ics_image_create(&env, W, H, channels) == ICS_OK, "image");
     for (int j = 0; j < H; j++)
       for (int i = 0; i < W; i++)
         for (int c = 0; c < channels; c++)
-          env.data[((size_t)j * W + i) * channels + c] = (float)(0.25 + i + 100 * j + 1e4 * c);
+          env->data[((size_t)j * W + i) * channels + c] = (float)(0.25 + i + 100 * j + 1e4 * c);
     int behind = 0, wrong = 0;
     double worst = 0;
     for (int j = 0; j < H; j++)
@@ -124,7 +211,7 @@ int main(void) {
         double th = ICS_PI * (j + 0.5) / H, ph = 2 * ICS_PI * (i + 0.5) / W - ICS_PI;
         double dx = sin(th) * sin(ph), dy = cos(th), dz = sin(th) * cos(ph);
         double x = NAN, y = NAN, rgb[3] = {-1, -1, -1};
-        int rc = ics_envmap_plane_density(&env, i, j, &x, &y, rgb);
+        int rc = ics_envmap_plane_density(env, i, j, &x, &y, rgb);
         if (!(dz > 0)) {
           wrong += rc != -1 || rgb[0] != -1 || rgb[1] != -1 || rgb[2] != -1;
           continue;
@@ -134,7 +221,7 @@ int main(void) {
         double e = fmax(fabs(x - dx / dz) / fmax(1, fabs(dx / dz)),
                         fabs(y - dy / dz) / fmax(1, fabs(dy / dz)));
         for (int c = 0; c < 3; c++) {
-          double want = env.data[((size_t)j * W + i) * channels + c] * dz * dz * dz;
+          double want = env->data[((size_t)j * W + i) * channels + c] * dz * dz * dz;
           e = fmax(e, fabs(rgb[c] / want - 1));
         }
         worst = fmax(worst, e);
@@ -144,13 +231,13 @@ int main(void) {
     CHECK(worst <= 1e-12, "%d channels: plane point / density off by %.3g (relative)", channels,
           worst);
     double rgb[3];
-    CHECK(ics_envmap_plane_density(&env, W, 0, NULL, NULL, rgb) == -1 &&
-              ics_envmap_plane_density(&env, W / 2, -1, NULL, NULL, rgb) == -1 &&
+    CHECK(ics_envmap_plane_density(env, W, 0, NULL, NULL, rgb) == -1 &&
+              ics_envmap_plane_density(env, W / 2, -1, NULL, NULL, rgb) == -1 &&
               ics_envmap_plane_density(NULL, W / 2, H / 2, NULL, NULL, rgb) == -1 &&
-              ics_envmap_plane_density(&env, W / 2, H / 2, NULL, NULL, NULL) == -1,
+              ics_envmap_plane_density(env, W / 2, H / 2, NULL, NULL, NULL) == -1,
           "bad arguments refused");
-    CHECK(ics_envmap_plane_density(&env, W / 2, H / 2, NULL, NULL, rgb) == 0, "x, y may be NULL");
-    ics_image_free(&env);
+    CHECK(ics_envmap_plane_density(env, W / 2, H / 2, NULL, NULL, rgb) == 0, "x, y may be NULL");
+    ics_image_destroy(env);
   }
 
   /* 2. three anisotropic lights (cf. Patel Fig. 14: a low-variance green, a broad red, a thin
@@ -159,13 +246,13 @@ int main(void) {
       mk(0.35, 0.25, 0.004, 0.004, 0, 1.0, 0.2, 1.0, 0.2),
       mk(-0.45, -0.05, 0.02, 0.012, 20, 2.0, 1.0, 0.25, 0.15),
       mk(0.15, -0.55, 0.012, 0.0012, -70, 1.5, 0.2, 0.3, 1.0)};
-  CHECK(ics_image_init(&env, 384, 192, 3) == ICS_OK, "image");
-  CHECK(ics_envmap_render(&env, NULL, truth, 3, 4) == ICS_OK, "render");
-  double e = map_energy(&env);
+  CHECK(ics_image_create(&env, 384, 192, 3) == ICS_OK, "image");
+  CHECK(ics_envmap_render(env, NULL, truth, 3, 4) == ICS_OK, "render");
+  double e = map_energy(env);
   CHECK(fabs(e / 4.5 - 1) <= 2e-3, "map energy %.9g, expected 4.5 (sum of weights)", e);
-  ics_lightfit_defaults(&p);
+  ics_lightfit_params_init(&p);
   p.k = 3;
-  CHECK(ics_lightfit(env.data ? &env : NULL, &p, fit, &rep) == ICS_OK, "fit 3");
+  CHECK(ics_lightfit(env, &p, fit, &rep) == ICS_OK, "fit 3");
   /* covariance to 0.2%: pixels are area averages, so the fit removes the footprint S from the
    * centre moments (Sheppard) instead of adding it (which gave Sigma + 2S: 0.4-1.4% here) */
   check_recovery("mix3", truth, 3, fit, rep.k_fit, 0.05, 0.002, 0.01, 0.02);
@@ -177,7 +264,7 @@ int main(void) {
   /* fewer lights than the map has: worse, but sane */
   ics_lightfit_report rep1;
   p.k = 1;
-  CHECK(ics_lightfit(&env, &p, fit, &rep1) == ICS_OK, "fit 1");
+  CHECK(ics_lightfit(env, &p, fit, &rep1) == ICS_OK, "fit 1");
   CHECK(rep1.k_fit == 1 && rep1.l1 > rep.l1 && rep1.edge > rep.edge,
         "K=1 must fit worse: l1 %g vs %g, edge %g vs %g", rep1.l1, rep.l1, rep1.edge, rep.edge);
   CHECK(fabs(fit[0].weight / rep1.energy_kept - 1) < 1e-9, "K=1 weight = kept energy");
@@ -189,37 +276,37 @@ int main(void) {
     p.k = 3;
     p.max_samples = 3000;
     p.seed = 7;
-    CHECK(ics_lightfit(&env, &p, a, &ra) == ICS_OK, "seed 7");
-    CHECK(ics_lightfit(&env, &p, b, &rb) == ICS_OK, "seed 7 again");
+    CHECK(ics_lightfit(env, &p, a, &ra) == ICS_OK, "seed 7");
+    CHECK(ics_lightfit(env, &p, b, &rb) == ICS_OK, "seed 7 again");
     CHECK(!memcmp(a, b, sizeof a) && ra.samples <= 3000, "same seed, same lights");
     p.seed = 8;
-    CHECK(ics_lightfit(&env, &p, c, &rc) == ICS_OK, "seed 8");
+    CHECK(ics_lightfit(env, &p, c, &rc) == ICS_OK, "seed 8");
     CHECK(memcmp(a, c, sizeof a) != 0, "another seed resamples differently");
     check_recovery("seed8", truth, 3, c, rc.k_fit, 0.1, 0.06, 0.02, 0.03);
     p.max_samples = 0;
   }
-  ics_image_free(&env);
+  ics_image_destroy(env);
 
   /* 3b. a coarse map (128 x 64: the pixel footprint is 1-3% of the lights' variances): the
    *     covariances still come out to 1% (with S added to the centre moments they were 3-13%
    *     too wide) */
   {
-    CHECK(ics_image_init(&env, 128, 64, 3) == ICS_OK, "image");
-    CHECK(ics_envmap_render(&env, NULL, truth, 3, 4) == ICS_OK, "render coarse");
+    CHECK(ics_image_create(&env, 128, 64, 3) == ICS_OK, "image");
+    CHECK(ics_envmap_render(env, NULL, truth, 3, 4) == ICS_OK, "render coarse");
     p.k = 3;
     p.max_samples = 0;
-    CHECK(ics_lightfit(&env, &p, fit, &rep) == ICS_OK, "fit coarse");
+    CHECK(ics_lightfit(env, &p, fit, &rep) == ICS_OK, "fit coarse");
     check_recovery("coarse", truth, 3, fit, rep.k_fit, 0.05, 0.01, 0.01, 0.03);
-    ics_image_free(&env);
+    ics_image_destroy(env);
   }
 
   /* 4. a sun: a delta (zero covariance) gives one light with a sub-pixel variance */
   {
     ics_light sun = mk(0.2, -0.1, 0, 0, 0, 5.0, 1, 0.9, 0.7);
-    CHECK(ics_image_init(&env, 256, 128, 4) == ICS_OK, "image");
-    CHECK(ics_envmap_render(&env, NULL, &sun, 1, 2) == ICS_OK, "render sun");
+    CHECK(ics_image_create(&env, 256, 128, 4) == ICS_OK, "image");
+    CHECK(ics_envmap_render(env, NULL, &sun, 1, 2) == ICS_OK, "render sun");
     p.k = 3;
-    CHECK(ics_lightfit(&env, &p, fit, &rep) == ICS_OK, "fit sun");
+    CHECK(ics_lightfit(env, &p, fit, &rep) == ICS_OK, "fit sun");
     CHECK(rep.k_fit == 1, "a sun gives one light, not %d", rep.k_fit);
     double pix = 2 * ICS_PI / 256 * (1 + 0.2 * 0.2); /* pixel width on the plane near the sun */
     double d = hypot(fit[0].mean[0] - 0.2, fit[0].mean[1] + 0.1);
@@ -237,16 +324,16 @@ int main(void) {
     CHECK(fabs(fit[0].weight / 5 - 1) <= 1e-5, "sun weight %.9g", fit[0].weight);
     for (int c = 0; c < 3; c++)
       CHECK(fabs(fit[0].color[c] / sun.color[c] - 1) <= 1e-5, "sun colour %d", c);
-    ics_image_free(&env);
+    ics_image_destroy(env);
   }
 
   /* 5. uniform sky: handled, with the cut-off loss reported (cos 80 deg of the hemisphere) */
   {
     const double one[3] = {1, 1, 1};
-    CHECK(ics_image_init(&env, 256, 128, 3) == ICS_OK, "image");
-    CHECK(ics_envmap_render(&env, one, NULL, 0, 1) == ICS_OK, "render sky");
+    CHECK(ics_image_create(&env, 256, 128, 3) == ICS_OK, "image");
+    CHECK(ics_envmap_render(env, one, NULL, 0, 1) == ICS_OK, "render sky");
     p.k = 2;
-    ics_status st = ics_lightfit(&env, &p, fit, &rep);
+    ics_status st = ics_lightfit(env, &p, fit, &rep);
     CHECK(st == ICS_OK, "sky fit: %s", ics_status_str(st));
     /* to 0.3%: the kept set follows the pixel centres (an unbiased boundary), so the loss
      * differs from the disc's cos 80 deg only by the jagged rim of pixels (measured 0.11% at
@@ -285,7 +372,7 @@ int main(void) {
      * footprint) are cut, so the fit stays sane (it reported L1 = 111.8 when they were kept);
      * measured L1 0.48, loss 0.016 at 256 x 128 */
     p.max_angle_deg = 89.999;
-    st = ics_lightfit(&env, &p, fit, &rep);
+    st = ics_lightfit(env, &p, fit, &rep);
     CHECK(st == ICS_OK && rep.l1 < 0.75 && rep.edge < 0.1 && rep.cutoff_loss < 0.03,
           "sky at 89.999 degrees: %s, l1 %g, edge %g, loss %g", ics_status_str(st), rep.l1,
           rep.edge, rep.cutoff_loss);
@@ -299,23 +386,24 @@ int main(void) {
 
     /* bad input */
     p.k = 0;
-    CHECK(ics_lightfit(&env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "k = 0");
+    CHECK(ics_lightfit(env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "k = 0");
     p.k = 1;
     p.max_angle_deg = 90;
-    CHECK(ics_lightfit(&env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "max angle 90");
+    CHECK(ics_lightfit(env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "max angle 90");
     p.max_angle_deg = 80;
-    env.data[7] = NAN;
-    CHECK(ics_lightfit(&env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "NaN pixel");
-    env.data[7] = -1;
-    CHECK(ics_lightfit(&env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "negative pixel");
-    memset(env.data, 0, (size_t)env.width * env.height * 3 * sizeof(float));
-    CHECK(ics_lightfit(&env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "black map");
-    ics_image_free(&env);
+    env->data[7] = NAN;
+    CHECK(ics_lightfit(env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "NaN pixel");
+    env->data[7] = -1;
+    CHECK(ics_lightfit(env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "negative pixel");
+    memset(env->data, 0, (size_t)env->width * env->height * 3 * sizeof(float));
+    CHECK(ics_lightfit(env, &p, fit, &rep) == ICS_ERR_INVALID_ARG, "black map");
+    ics_image_destroy(env);
     ics_light badl = mk(0, 0, 0.1, 0.1, 0, 1, 1, 1, 1);
     badl.cov[1] = 1; /* not positive semidefinite */
-    CHECK(ics_image_init(&env, 64, 32, 3) == ICS_OK, "image");
-    CHECK(ics_envmap_render(&env, NULL, &badl, 1, 1) == ICS_ERR_INVALID_ARG, "non-PSD light");
-    ics_image_free(&env);
+    CHECK(ics_image_create(&env, 64, 32, 3) == ICS_OK, "image");
+    CHECK(ics_envmap_render(env, NULL, &badl, 1, 1) == ICS_ERR_INVALID_ARG, "non-PSD light");
+    ics_image_destroy(env);
   }
+  test_errors();
   return test_summary("lightfit");
 }

@@ -96,7 +96,7 @@ static void test_builtin_is_fresh(void) {
   long pts;
   ics_lut_builtin_stamp(&er, &ev, &ek, &pts);
   ics_lut_grid *G = NULL;
-  CHECK(ics_lut_grid_new(B->n, ICS_LUT_STAMP_PER_INTERVAL, &G) == ICS_OK, "grid");
+  CHECK(ics_lut_grid_create(&G, B->n, ICS_LUT_STAMP_PER_INTERVAL) == ICS_OK, "grid");
   ics_lut_error e;
   CHECK(ics_lut_measure(G, B, 0, &e) == ICS_OK, "measure");
   CHECK(e.ratio == er && e.vx == ev && e.radii == ek && e.points == pts,
@@ -108,7 +108,7 @@ static void test_builtin_is_fresh(void) {
   CHECK(er <= ICS_LUT_BUILTIN_RATIO_BOUND, "stamped ratio %.3g > bound", er);
   CHECK(ev <= ICS_LUT_BUILTIN_VX_BOUND, "stamped vx %.3g > bound", ev);
   CHECK(ek <= ICS_LUT_BUILTIN_RADII_BOUND, "stamped radii %.3g > bound", ek);
-  ics_lut_grid_free(G);
+  ics_lut_grid_destroy(G);
 }
 
 /* Documented bounds on an independent sample, double and float evaluation. */
@@ -229,7 +229,7 @@ static void test_special(void) {
 /* Linear interpolation: error ~ 1/n^2 (up to the log terms at the ends). */
 static void test_order(void) {
   ics_lut_grid *G = NULL;
-  CHECK(ics_lut_grid_new(256, ICS_LUT_STAMP_PER_INTERVAL, &G) == ICS_OK, "grid");
+  CHECK(ics_lut_grid_create(&G, 256, ICS_LUT_STAMP_PER_INTERVAL) == ICS_OK, "grid");
   double s64[64], g64[64], s256[256], g256[256];
   CHECK(ics_lut_build(64, s64, g64) == ICS_OK && ics_lut_build(256, s256, g256) == ICS_OK, "build");
   ics_lut_tables L64 = {64, s64, g64}, L256 = {256, s256, g256};
@@ -241,7 +241,7 @@ static void test_order(void) {
   printf("observed order (n = 64 -> 256): ratio %.3f, vx %.3f\n", pr, pv);
   CHECK(pr >= 1.7 && pr <= 2.3, "ratio table order %.3f", pr);
   CHECK(pv >= 1.7 && pv <= 2.3, "vx table order %.3f", pv);
-  ics_lut_grid_free(G);
+  ics_lut_grid_destroy(G);
 }
 
 /* ics_lut_ellipse_radii against the exact elliptical kernel's radii (ics_ellipse_kernel). */
@@ -269,7 +269,7 @@ static void test_api(void) {
   CHECK(ics_lut_build(ICS_LUT_MAX_SIZE + 1, s, g) == ICS_ERR_RANGE, "size too large");
   CHECK(ics_lut_build(8, NULL, g) == ICS_ERR_INVALID_ARG, "NULL table");
   ics_lut_grid *G = (ics_lut_grid *)1;
-  CHECK(ics_lut_grid_new(3, 16, &G) == ICS_ERR_RANGE && G == NULL, "grid size too small");
+  CHECK(ics_lut_grid_create(&G, 3, 16) == ICS_ERR_RANGE && G == NULL, "grid size too small");
   CHECK(ics_lut_build(8, s, g) == ICS_OK, "build 8");
   ics_lut_tables L = {8, s, g};
   ics_lut_error e = {0};

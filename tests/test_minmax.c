@@ -385,10 +385,10 @@ static void test_svd(void) {
 
 /* ---- rectification ---- */
 static void test_rectification(void) {
-  ics_epi_frame f;
+  ics_epipolar_frame f;
   double eye[3] = {0.3, 3.0, 9.0}, L[3] = {0.8, 0.45, -0.5};
   size_t rows = 360, d = 512;
-  CHECK(ics_epi_frame_init(&f, eye, L, rows, d, 0.05) == ICS_OK, "frame");
+  CHECK(ics_epipolar_frame_init(&f, eye, L, rows, d, 0.05) == ICS_OK, "frame");
   /* basis orthonormal */
   double dUV = f.U[0] * f.V[0] + f.U[1] * f.V[1] + f.U[2] * f.V[2];
   double dUL = f.U[0] * f.L[0] + f.U[1] * f.L[1] + f.U[2] * f.L[2];
@@ -403,13 +403,13 @@ static void test_rectification(void) {
       double alpha;
       size_t row;
       ics_minmax_ray ray;
-      if (ics_epi_ray(&f, dir, &alpha, &row, &ray) != ICS_OK) continue;
+      if (ics_epipolar_ray(&f, dir, &alpha, &row, &ray) != ICS_OK) continue;
       rays++;
       for (int k = 1; k <= 50; k++) {
         double sdist = 0.37 * k;
         double p[3] = {eye[0] + sdist * dir[0], eye[1] + sdist * dir[1], eye[2] + sdist * dir[2]};
         double a, g, dep;
-        ics_epi_locate(&f, p, &a, &g, &dep);
+        ics_epipolar_locate(&f, p, &a, &g, &dep);
         double da = fabs(a - alpha);
         if (da > ICS_PI) da = fabs(da - 2 * ICS_PI);
         size_t prow = (size_t)floor(a / (2 * ICS_PI) * (double)rows);
@@ -430,12 +430,12 @@ static void test_rectification(void) {
   double half = 20.0, texel = 2 * half / (double)w, u0 = f.eu - half, v0 = f.ev - half;
   float *smap = malloc(w * w * sizeof(float)), *rect = malloc(rows * d * sizeof(float));
   for (size_t i = 0; i < w * w; i++) smap[i] = (float)i;
-  CHECK(ics_epi_rectify(&f, smap, w, w, u0, v0, texel, rect) == ICS_OK, "rectify");
+  CHECK(ics_epipolar_rectify(&f, smap, w, w, u0, v0, texel, rect) == ICS_OK, "rectify");
   int bad_tex = 0, outside = 0;
   for (size_t r = 0; r < rows; r += 7)
     for (size_t g = 0; g < d; g += 3) {
       double dir[3];
-      ics_epi_ray_dir(&f, r, ICS_PI / 2, dir); /* perpendicular to L: radial */
+      ics_epipolar_ray_dir(&f, r, ICS_PI / 2, dir); /* perpendicular to L: radial */
       double p[3] = {eye[0] + g * 0.05 * dir[0], eye[1] + g * 0.05 * dir[1], eye[2] + g * 0.05 * dir[2]};
       double pu = p[0] * f.U[0] + p[1] * f.U[1] + p[2] * f.U[2];
       double pv = p[0] * f.V[0] + p[1] * f.V[1] + p[2] * f.V[2];
@@ -456,13 +456,13 @@ static void test_rectification(void) {
 
   /* the scene end to end: the rectified shadow map agrees with shooting a shadow ray from the
    * camera ray's samples for all but aliasing near edges */
-  ics_hf_scene sc;
-  ics_hf_scene_default(&sc);
+  ics_heightfield sc;
+  ics_heightfield_init_default(&sc);
   size_t W = 512;
   double H = 0.05 * (double)d;
   float *sm = malloc(W * W * sizeof(float));
-  CHECK(ics_hf_shadow_map(&sc, &f, W, H, sm) == ICS_OK, "shadow map");
-  CHECK(ics_epi_rectify(&f, sm, W, W, f.eu - H, f.ev - H, 2 * H / (double)W, rect) == ICS_OK,
+  CHECK(ics_heightfield_shadow_map(&sc, &f, W, H, sm) == ICS_OK, "shadow map");
+  CHECK(ics_epipolar_rectify(&f, sm, W, W, f.eu - H, f.ev - H, 2 * H / (double)W, rect) == ICS_OK,
         "rectify scene");
   /* every disagreement must be aliasing: the true shadow changes within 1.5 texels (in the
    * light plane) or 1.5 texels of depth of the sample */
@@ -473,17 +473,17 @@ static void test_rectification(void) {
       double dir[3], alpha;
       size_t row;
       ics_minmax_ray ray;
-      ics_epi_ray_dir(&f, r, beta, dir);
-      ics_epi_ray(&f, dir, &alpha, &row, &ray);
+      ics_epipolar_ray_dir(&f, r, beta, dir);
+      ics_epipolar_ray(&f, dir, &alpha, &row, &ray);
       CHECK(row == r, "ray of row %zu maps to row %zu", r, row);
-      double hit = ics_hf_scene_hit(&sc, eye, dir, 0.0);
+      double hit = ics_heightfield_hit(&sc, eye, dir, 0.0);
       for (size_t g = 1; g < d; g += 2) {
         double sd = (double)g * 0.05 / sin(beta);
         double p[3] = {eye[0] + sd * dir[0], eye[1] + sd * dir[1], eye[2] + sd * dir[2]};
         if (sd >= hit) break; /* past the first surface */
         if (fabs(p[0]) > 6 || fabs(p[2]) > 6 || p[1] > 2.5) continue; /* only inside the scene */
         int lit_rect = (double)rect[r * d + g] > ray.beta0 + ray.slope * (double)g;
-        int lit_true = isinf(ics_hf_scene_hit(&sc, p, f.L, 1e-9));
+        int lit_true = isinf(ics_heightfield_hit(&sc, p, f.L, 1e-9));
         total++;
         lit += lit_true;
         if (lit_rect == lit_true) {
@@ -495,7 +495,7 @@ static void test_rectification(void) {
           for (int ax = 0; ax < 3 && !explained; ax++) {
             const double *e = ax == 0 ? f.U : ax == 1 ? f.V : f.L;
             double q[3] = {p[0] + 0.5 * k * tx * e[0], p[1] + 0.5 * k * tx * e[1], p[2] + 0.5 * k * tx * e[2]};
-            if (isinf(ics_hf_scene_hit(&sc, q, f.L, 1e-9)) != lit_true) explained = 1;
+            if (isinf(ics_heightfield_hit(&sc, q, f.L, 1e-9)) != lit_true) explained = 1;
           }
         unexplained += !explained;
       }
@@ -561,15 +561,17 @@ static void test_bad_input(void) {
   CHECK(ics_minmax_create(&t, v, 2, 4, SIZE_MAX / 2) == ICS_ERR_SIZE && t == NULL, "stride overflow");
   CHECK(ics_minmax_create(&t, v, 3, 4, SIZE_MAX / 8) == ICS_ERR_SIZE, "rows x stride overflow");
   /* NULL pointers */
-  ics_hf_scene_default(NULL);
+  ics_heightfield_init_default(NULL);
   {
-    ics_hf_scene sc0;
-    ics_hf_scene_default(&sc0);
+    ics_heightfield sc0;
+    ics_heightfield_init_default(&sc0);
     const double o0[3] = {0, 1, 0}, d0[3] = {0, -1, 0};
-    CHECK(isnan(ics_hf_scene_hit(NULL, o0, d0, 0)) && isnan(ics_hf_scene_hit(&sc0, NULL, d0, 0)) &&
-              isnan(ics_hf_scene_hit(&sc0, o0, NULL, 0)),
+    CHECK(isnan(ics_heightfield_hit(NULL, o0, d0, 0)) &&
+              isnan(ics_heightfield_hit(&sc0, NULL, d0, 0)) &&
+              isnan(ics_heightfield_hit(&sc0, o0, NULL, 0)),
           "scene hit with NULL");
-    CHECK(ics_hf_shadow_map(NULL, NULL, 2, 1.0, NULL) == ICS_ERR_INVALID_ARG, "shadow map NULL");
+    CHECK(ics_heightfield_shadow_map(NULL, NULL, 2, 1.0, NULL) == ICS_ERR_INVALID_ARG,
+          "shadow map NULL");
   }
   CHECK(ics_svd(NULL, 3, 2, U, s, V) == ICS_ERR_INVALID_ARG && ics_svd(A, 3, 2, NULL, s, V) == ICS_ERR_INVALID_ARG &&
             ics_svd(A, 3, 2, U, NULL, V) == ICS_ERR_INVALID_ARG && ics_svd(A, 3, 2, U, s, NULL) == ICS_ERR_INVALID_ARG,
@@ -585,32 +587,34 @@ static void test_bad_input(void) {
   CHECK(ics_minmax_rows(NULL) == 0 && ics_minmax_samples(NULL) == 0 && ics_minmax_leaves(NULL) == 0,
         "accessors NULL");
   ics_minmax_destroy(NULL);
-  CHECK(ics_epi_frame_init(NULL, NULL, NULL, 4, 4, 1.0) == ICS_ERR_INVALID_ARG, "frame NULL");
-  ics_epi_frame f;
+  CHECK(ics_epipolar_frame_init(NULL, NULL, NULL, 4, 4, 1.0) == ICS_ERR_INVALID_ARG, "frame NULL");
+  ics_epipolar_frame f;
   double eye[3] = {0, 1, 0}, L[3] = {0, 0, 0}, Lnan[3] = {0, NAN, 1};
-  CHECK(ics_epi_frame_init(&f, eye, L, 4, 4, 1.0) == ICS_ERR_INVALID_ARG, "zero light direction");
-  CHECK(ics_epi_frame_init(&f, eye, Lnan, 4, 4, 1.0) == ICS_ERR_NAN, "NaN light direction");
+  CHECK(ics_epipolar_frame_init(&f, eye, L, 4, 4, 1.0) == ICS_ERR_INVALID_ARG,
+        "zero light direction");
+  CHECK(ics_epipolar_frame_init(&f, eye, Lnan, 4, 4, 1.0) == ICS_ERR_NAN, "NaN light direction");
   L[1] = 1;
-  CHECK(ics_epi_frame_init(&f, eye, L, 0, 4, 1.0) == ICS_ERR_SIZE, "no rows");
-  CHECK(ics_epi_frame_init(&f, eye, L, 4, 4, -1.0) == ICS_ERR_RANGE, "negative dgamma");
-  CHECK(ics_epi_frame_init(&f, eye, L, 4, 4, 1.0) == ICS_OK, "frame");
+  CHECK(ics_epipolar_frame_init(&f, eye, L, 0, 4, 1.0) == ICS_ERR_SIZE, "no rows");
+  CHECK(ics_epipolar_frame_init(&f, eye, L, 4, 4, -1.0) == ICS_ERR_RANGE, "negative dgamma");
+  CHECK(ics_epipolar_frame_init(&f, eye, L, 4, 4, 1.0) == ICS_OK, "frame");
   double alpha;
   size_t row;
-  CHECK(ics_epi_ray(&f, L, &alpha, &row, &ray) == ICS_ERR_RANGE, "ray parallel to the light");
+  CHECK(ics_epipolar_ray(&f, L, &alpha, &row, &ray) == ICS_ERR_RANGE, "ray parallel to the light");
   double dnan[3] = {1, NAN, 0}, dir[3];
-  CHECK(ics_epi_ray(&f, dnan, &alpha, &row, &ray) == ICS_ERR_NAN, "NaN ray direction");
-  CHECK(ics_epi_ray_dir(&f, 4, 1.0, dir) == ICS_ERR_RANGE, "ray_dir row out of range");
-  CHECK(ics_epi_ray_dir(&f, 0, 0.0, dir) == ICS_ERR_RANGE, "ray_dir beta = 0 (parallel)");
-  CHECK(ics_epi_ray_dir(&f, 0, NAN, dir) == ICS_ERR_NAN, "ray_dir NaN beta");
+  CHECK(ics_epipolar_ray(&f, dnan, &alpha, &row, &ray) == ICS_ERR_NAN, "NaN ray direction");
+  CHECK(ics_epipolar_ray_dir(&f, 4, 1.0, dir) == ICS_ERR_RANGE, "ray_dir row out of range");
+  CHECK(ics_epipolar_ray_dir(&f, 0, 0.0, dir) == ICS_ERR_RANGE, "ray_dir beta = 0 (parallel)");
+  CHECK(ics_epipolar_ray_dir(&f, 0, NAN, dir) == ICS_ERR_NAN, "ray_dir NaN beta");
   float sm[4] = {1, 2, 3, 4}, rect[16];
-  CHECK(ics_epi_rectify(&f, sm, 0, 2, 0, 0, 1, rect) == ICS_ERR_SIZE, "rectify empty map");
-  CHECK(ics_epi_rectify(&f, sm, 2, 2, 0, NAN, 1, rect) == ICS_ERR_NAN, "rectify NaN origin");
-  CHECK(ics_epi_rectify(&f, sm, 2, 2, 0, 0, 0, rect) == ICS_ERR_RANGE, "rectify zero texel");
-  ics_hf_scene sc;
-  ics_hf_scene_default(&sc);
-  CHECK(ics_hf_shadow_map(&sc, &f, 0, 1.0, sm) == ICS_ERR_SIZE, "shadow map 0 texels");
-  CHECK(ics_hf_shadow_map(&sc, &f, 2, NAN, sm) == ICS_ERR_NAN, "shadow map NaN size");
-  CHECK(ics_hf_shadow_map(&sc, &f, 2, -1.0, sm) == ICS_ERR_RANGE, "shadow map negative size");
+  CHECK(ics_epipolar_rectify(&f, sm, 0, 2, 0, 0, 1, rect) == ICS_ERR_SIZE, "rectify empty map");
+  CHECK(ics_epipolar_rectify(&f, sm, 2, 2, 0, NAN, 1, rect) == ICS_ERR_NAN, "rectify NaN origin");
+  CHECK(ics_epipolar_rectify(&f, sm, 2, 2, 0, 0, 0, rect) == ICS_ERR_RANGE, "rectify zero texel");
+  ics_heightfield sc;
+  ics_heightfield_init_default(&sc);
+  CHECK(ics_heightfield_shadow_map(&sc, &f, 0, 1.0, sm) == ICS_ERR_SIZE, "shadow map 0 texels");
+  CHECK(ics_heightfield_shadow_map(&sc, &f, 2, NAN, sm) == ICS_ERR_NAN, "shadow map NaN size");
+  CHECK(ics_heightfield_shadow_map(&sc, &f, 2, -1.0, sm) == ICS_ERR_RANGE,
+        "shadow map negative size");
 }
 
 /* SVD of A 2^k for huge and tiny k: the input is scaled by a power of two internally, so the

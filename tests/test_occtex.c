@@ -64,7 +64,7 @@ static void test_prefilters(void) {
   for (int i = 0; i < n * n; i++) tex[n * n + i] = urand(&s) < 0.3 ? 1.0f : 0.0f;
   ics_occ_grid g = {-1, -1, 2.0 / n, n};
   ics_occtex *ot = NULL;
-  CHECK(ics_occtex_create(tex, &g, K, 1, 2, &ot) == ICS_OK, "create");
+  CHECK(ics_occtex_create(&ot, tex, &g, K, 1, 2) == ICS_OK, "create");
   if (!ot) return;
   double r;
   CHECK(ics_occtex_box(ot, ICS_OCC_SAT, 0, 1, 1, 2, 2, &r) == ICS_ERR_UNSUPPORTED, "SAT not built yet");
@@ -116,7 +116,7 @@ static void test_prefilters(void) {
       for (int pf = 0; pf < ICS_OCC_PREFILTER_COUNT; pf++) {
         ics_status st = ics_occtex_box(ot, (ics_occ_prefilter)pf, k, u, v, su, sv, &r);
         CHECK(st == ICS_OK && r >= -1e-12 && r <= 1 + 1e-6, "%s box size (%g,%g): %.17g outside [0,1]",
-              ics_occ_prefilter_name((ics_occ_prefilter)pf), su, sv, r);
+              ics_occtex_prefilter_name((ics_occ_prefilter)pf), su, sv, r);
       }
     }
   }
@@ -131,7 +131,7 @@ static void test_prefilters(void) {
   CHECK(ics_occtex_box(ot, ICS_OCC_SAT, 1, 7.25, 3.5, 0, 0, &r) == ICS_OK && r == tex[n * n + 3 * n + 7],
         "SAT point lookup %.17g", r);
   printf("prefilters: worst error / bound: SAT %.3g, N-Buffers %.3g, mipmap %.3g\n", worst_sat, worst_nb, worst_mip);
-  ics_occtex_free(ot);
+  ics_occtex_destroy(ot);
   free(tex);
 }
 
@@ -145,7 +145,7 @@ static void test_slicing(void) {
       {4.5, 4, 1.6, 5, 6.25, 2.6},  /* slices 1, 2, 3; half texels in x, quarter in y */
       {0, 0, 3.5, 8, 8, 4},         /* beyond z_far: ignored */
   };
-  CHECK(ics_occ_slice(b, 3, &g, K, 1, 3, 4, tex) == ICS_OK, "slice");
+  CHECK(ics_occtex_slice_boxes(b, 3, &g, K, 1, 3, 4, tex) == ICS_OK, "slice");
   CHECK(tex[1 * n + 1] == 1 && tex[1 * n + 2] == 1 && tex[1 * n + 3] == 0 && tex[2 * n + 1] == 0,
         "box 0 in slice 0: %g %g %g %g", tex[9], tex[10], tex[11], tex[17]);
   int bad = 0;
@@ -163,10 +163,11 @@ static void test_slicing(void) {
   CHECK(bad == 0, "slice 0 has extra coverage");
   /* a box on the first slice's top plane counts (slice 0 is closed at z_near) */
   ics_occ_box top = {0, 0, 1, 1, 1, 1};
-  CHECK(ics_occ_slice(&top, 1, &g, K, 1, 3, 1, tex) == ICS_OK && tex[0] == 1, "plate at z_near");
+  CHECK(ics_occtex_slice_boxes(&top, 1, &g, K, 1, 3, 1, tex) == ICS_OK && tex[0] == 1,
+        "plate at z_near");
   /* a plate on a slice's bottom plane belongs to that slice only */
   ics_occ_box mid = {0, 0, 2, 1, 1, 2};
-  CHECK(ics_occ_slice(&mid, 1, &g, K, 1, 3, 1, tex) == ICS_OK && tex[n * n] == 1 && tex[2 * n * n] == 0 && tex[0] == 0,
+  CHECK(ics_occtex_slice_boxes(&mid, 1, &g, K, 1, 3, 1, tex) == ICS_OK && tex[n * n] == 1 && tex[2 * n * n] == 0 && tex[0] == 0,
         "plate at z = 2: %g %g %g", tex[0], tex[n * n], tex[2 * n * n]);
 }
 
@@ -177,39 +178,39 @@ static void test_combination(void) {
     double f[8];
     int k = 1 + it % 8;
     for (int i = 0; i < k; i++) f[i] = it % 5 == 0 ? (urand(&s) < 0.5 ? 0 : 1) : urand(&s);
-    double p = ics_occ_combine_values(ICS_OCC_PRODUCT, f, k);
-    double sm = ics_occ_combine_values(ICS_OCC_SUM, f, k);
-    double mx = ics_occ_combine_values(ICS_OCC_MAX, f, k);
+    double p = ics_occtex_combine_values(ICS_OCC_PRODUCT, f, k);
+    double sm = ics_occtex_combine_values(ICS_OCC_SUM, f, k);
+    double mx = ics_occtex_combine_values(ICS_OCC_MAX, f, k);
     CHECK(p >= 0 && p <= 1 && mx <= p + 1e-15 && p <= sm + 1e-15, "k=%d: max %.17g product %.17g sum %.17g", k, mx, p, sm);
   }
   double f2[2] = {0.25, 0.5};
-  CHECK(fabs(ics_occ_combine_values(ICS_OCC_PRODUCT, f2, 2) - (0.25 + 0.5 - 0.125)) < 1e-15, "a + b - ab");
+  CHECK(fabs(ics_occtex_combine_values(ICS_OCC_PRODUCT, f2, 2) - (0.25 + 0.5 - 0.125)) < 1e-15, "a + b - ab");
   double f3[3] = {0.5, 0.75, 0.25};
-  CHECK(ics_occ_combine_values(ICS_OCC_SUM, f3, 3) == 1, "clamped sum");
-  CHECK(isnan(ics_occ_combine_values((ics_occ_combine)7, f3, 3)), "unknown combination");
+  CHECK(ics_occtex_combine_values(ICS_OCC_SUM, f3, 3) == 1, "clamped sum");
+  CHECK(isnan(ics_occtex_combine_values((ics_occ_combine)7, f3, 3)), "unknown combination");
   /* bad input: NaN for every combination alike (NULL, k < 0, NaN, values outside [0, 1]) */
   double fbig[2] = {1.5, -0.5}, fneg[2] = {0.25, -0.25}, fnan[3] = {0.5, NAN, 0.25};
   for (int c = 0; c < ICS_OCC_COMBINE_COUNT; c++) {
-    CHECK(isnan(ics_occ_combine_values((ics_occ_combine)c, NULL, 2)), "%d: NULL f", c);
-    CHECK(isnan(ics_occ_combine_values((ics_occ_combine)c, f2, -1)), "%d: k < 0", c);
-    CHECK(isnan(ics_occ_combine_values((ics_occ_combine)c, fbig, 2)), "%d: f outside [0, 1]", c);
-    CHECK(isnan(ics_occ_combine_values((ics_occ_combine)c, fneg, 2)), "%d: negative f", c);
-    CHECK(isnan(ics_occ_combine_values((ics_occ_combine)c, fnan, 3)), "%d: NaN f", c);
-    CHECK(ics_occ_combine_values((ics_occ_combine)c, NULL, 0) == 0, "%d: no slices", c);
+    CHECK(isnan(ics_occtex_combine_values((ics_occ_combine)c, NULL, 2)), "%d: NULL f", c);
+    CHECK(isnan(ics_occtex_combine_values((ics_occ_combine)c, f2, -1)), "%d: k < 0", c);
+    CHECK(isnan(ics_occtex_combine_values((ics_occ_combine)c, fbig, 2)), "%d: f outside [0, 1]", c);
+    CHECK(isnan(ics_occtex_combine_values((ics_occ_combine)c, fneg, 2)), "%d: negative f", c);
+    CHECK(isnan(ics_occtex_combine_values((ics_occ_combine)c, fnan, 3)), "%d: NaN f", c);
+    CHECK(ics_occtex_combine_values((ics_occ_combine)c, NULL, 0) == 0, "%d: no slices", c);
   }
   double fedge[2] = {0, 1};
-  CHECK(ics_occ_combine_values(ICS_OCC_PRODUCT, fedge, 2) == 1 && ics_occ_combine_values(ICS_OCC_MAX, fedge, 2) == 1,
+  CHECK(ics_occtex_combine_values(ICS_OCC_PRODUCT, fedge, 2) == 1 && ics_occtex_combine_values(ICS_OCC_MAX, fedge, 2) == 1,
         "0 and 1 are accepted");
 
   /* on a real scene, through ics_occtex_shadow */
   ics_occ_box boxes[60];
-  CHECK(ics_occ_scene_make(ICS_OCC_SCENE_FOLIAGE, 60, 7, boxes) == ICS_OK, "scene");
+  CHECK(ics_occtex_boxes_make(ICS_OCC_BOXES_FOLIAGE, 60, 7, boxes) == ICS_OK, "scene");
   const int n = 64, K = 6;
   ics_occ_grid g = {-1, -1, 2.0 / n, n};
   float *tex = malloc(sizeof(float) * K * n * n);
   ics_occtex *ot = NULL;
-  CHECK(ics_occ_slice(boxes, 60, &g, K, 1, 2, 2, tex) == ICS_OK, "slice");
-  CHECK(ics_occtex_create(tex, &g, K, 1, 2, &ot) == ICS_OK && ics_occtex_prefilter(ot, ICS_OCC_NBUFFERS) == ICS_OK, "build");
+  CHECK(ics_occtex_slice_boxes(boxes, 60, &g, K, 1, 2, 2, tex) == ICS_OK, "slice");
+  CHECK(ics_occtex_create(&ot, tex, &g, K, 1, 2) == ICS_OK && ics_occtex_prefilter(ot, ICS_OCC_NBUFFERS) == ICS_OK, "build");
   ics_occ_light L = {0.1, 0, 0.8, 0.8};
   double P[3 * 200], oc[3][200];
   for (int i = 0; i < 200; i++) {
@@ -226,7 +227,7 @@ static void test_combination(void) {
   }
   CHECK(bad == 0, "%d points violate max <= product <= sum", bad);
   CHECK(strict > 20, "only %d points tell the three combinations apart", strict);
-  ics_occtex_free(ot);
+  ics_occtex_destroy(ot);
   free(tex);
 }
 
@@ -239,8 +240,8 @@ static void test_planar(void) {
   ics_occ_box plate = {px0, py0, 1, px1, py1, 1};
   float *tex = malloc(sizeof(float) * n * n);
   ics_occtex *ot = NULL;
-  CHECK(ics_occ_slice(&plate, 1, &g, 1, 0.5, 1, 1, tex) == ICS_OK, "slice");
-  CHECK(ics_occtex_create(tex, &g, 1, 0.5, 1, &ot) == ICS_OK, "create");
+  CHECK(ics_occtex_slice_boxes(&plate, 1, &g, 1, 0.5, 1, 1, tex) == ICS_OK, "slice");
+  CHECK(ics_occtex_create(&ot, tex, &g, 1, 0.5, 1) == ICS_OK, "create");
   for (int pf = 0; pf < ICS_OCC_PREFILTER_COUNT; pf++) ics_occtex_prefilter(ot, (ics_occ_prefilter)pf);
   const ics_occ_light L = {0.1, -0.05, 0.5, 0.5};
   unsigned s = 4242;
@@ -263,7 +264,7 @@ static void test_planar(void) {
       }
       if (it < 15) { /* the brute force agrees with the formula to its midpoint-rule bound */
         const int m = 128;
-        CHECK(ics_occ_exact(&plate, 1, &L, m, P, 1, &r) == ICS_OK && fabs(r - want) <= 2.0 / m + 1.0 / (m * m),
+        CHECK(ics_occtex_exact(&plate, 1, &L, m, P, 1, &r) == ICS_OK && fabs(r - want) <= 2.0 / m + 1.0 / (m * m),
               "brute force at (%g,%g,%g): %.17g vs %.17g", P[0], P[1], P[2], r, want);
         worst_bf = fmax(worst_bf, fabs(r - want));
       }
@@ -286,7 +287,7 @@ static void test_planar(void) {
   printf("planar occluder: worst |error|: SAT %.3g, N-Buffers %.3g, mipmap (aligned) %.3g, brute force m=128 %.3g\n",
          worst_sat, worst_nb, worst_mip, worst_bf);
 
-  ics_occtex_free(ot);
+  ics_occtex_destroy(ot);
   free(tex);
 }
 
@@ -302,12 +303,12 @@ static void test_monotone(void) {
   ics_occ_box plate = {-1, -1, 1, 0.5, 1, 1};
   float *tex = malloc(sizeof(float) * n * n);
   ics_occtex *ot = NULL;
-  ics_occ_slice(&plate, 1, &g, 1, 0.5, 1, 1, tex);
-  CHECK(ics_occtex_create(tex, &g, 1, 0.5, 1, &ot) == ICS_OK, "create");
+  ics_occtex_slice_boxes(&plate, 1, &g, 1, 0.5, 1, 1, tex);
+  CHECK(ics_occtex_create(&ot, tex, &g, 1, 0.5, 1) == ICS_OK, "create");
   for (int pf = 0; pf < ICS_OCC_PREFILTER_COUNT; pf++) ics_occtex_prefilter(ot, (ics_occ_prefilter)pf);
   const double Pin[3] = {0.4, 0.1, 2}, Pout[3] = {1.6, -0.1, 2};
   for (int pf = -1; pf < ICS_OCC_PREFILTER_COUNT; pf++) { /* -1: the exact formula itself */
-    const char *name = pf < 0 ? "exact" : ics_occ_prefilter_name((ics_occ_prefilter)pf);
+    const char *name = pf < 0 ? "exact" : ics_occtex_prefilter_name((ics_occ_prefilter)pf);
     double prev_in = 2, prev_out = -1;
     int bad = 0;
     for (int i = 0; i <= 59; i++) {
@@ -336,7 +337,7 @@ static void test_monotone(void) {
     }
     CHECK(bad == 0 && prev_in < 0.9 && prev_out > 0.1, "%s: %d non-monotone steps (ends %g %g)", name, bad, prev_in, prev_out);
   }
-  ics_occtex_free(ot);
+  ics_occtex_destroy(ot);
   free(tex);
 }
 
@@ -345,11 +346,11 @@ static void test_fading(void) {
   const int n = 32, K = 4;
   ics_occ_grid g = {-1, -1, 2.0 / n, n};
   ics_occ_box boxes[40];
-  ics_occ_scene_make(ICS_OCC_SCENE_BLOCKS, 40, 3, boxes);
+  ics_occtex_boxes_make(ICS_OCC_BOXES_BLOCKS, 40, 3, boxes);
   float *tex = malloc(sizeof(float) * K * n * n);
   ics_occtex *ot = NULL;
-  ics_occ_slice(boxes, 40, &g, K, 1, 2, 2, tex);
-  CHECK(ics_occtex_create(tex, &g, K, 1, 2, &ot) == ICS_OK && ics_occtex_prefilter(ot, ICS_OCC_SAT) == ICS_OK, "build");
+  ics_occtex_slice_boxes(boxes, 40, &g, K, 1, 2, 2, tex);
+  CHECK(ics_occtex_create(&ot, tex, &g, K, 1, 2) == ICS_OK && ics_occtex_prefilter(ot, ICS_OCC_SAT) == ICS_OK, "build");
   ics_occ_light L = {0, 0, 0.5, 0.3};
   /* weights: slice k = (1 + k/4, 1 + (k+1)/4]; P at z = 1.6 is 40% into slice 2 */
   double P[3] = {0.1, 0.2, 1.6}, w[4], o[4];
@@ -369,7 +370,7 @@ static void test_fading(void) {
   }
   /* over 2e-7 in z the footprint moves by < 1e-6 texels: a jump would show as O(1e-2) or more */
   CHECK(worst < 1e-4, "occlusion jumps by %g across a slice plane", worst);
-  ics_occtex_free(ot);
+  ics_occtex_destroy(ot);
   free(tex);
 }
 
@@ -380,25 +381,26 @@ static void test_bad_input(void) {
   ics_occ_grid g = {0, 0, 1, 8};
   ics_occ_grid g0 = {0, 0, 1, 0}, g3 = {0, 0, 1, 3}, gbig = {0, 0, 1, 8192}, gnan = {NAN, 0, 1, 8},
                gneg = {0, 0, -1, 8}, ginf = {0, 0, INFINITY, 8};
-  CHECK(ics_occtex_create(tex, &g0, 1, 1, 2, &ot) == ICS_ERR_SIZE && !ot, "empty texture");
-  CHECK(ics_occtex_create(tex, &g3, 1, 1, 2, &ot) == ICS_ERR_SIZE, "n = 3");
-  CHECK(ics_occtex_create(tex, &gbig, 1, 1, 2, &ot) == ICS_ERR_SIZE, "n = 8192");
-  CHECK(ics_occtex_create(tex, &gnan, 1, 1, 2, &ot) == ICS_ERR_NAN, "NaN origin");
+  CHECK(ics_occtex_create(&ot, tex, &g0, 1, 1, 2) == ICS_ERR_SIZE && !ot, "empty texture");
+  CHECK(ics_occtex_create(&ot, tex, &g3, 1, 1, 2) == ICS_ERR_SIZE, "n = 3");
+  CHECK(ics_occtex_create(&ot, tex, &gbig, 1, 1, 2) == ICS_ERR_SIZE, "n = 8192");
+  CHECK(ics_occtex_create(&ot, tex, &gnan, 1, 1, 2) == ICS_ERR_NAN, "NaN origin");
   ics_occ_grid g4k = {0, 0, 1, 4096}; /* 17 x 4096^2 texels > ICS_OCC_MAX_TEXELS: refused unread */
-  CHECK(ics_occtex_create(tex, &g4k, 17, 1, 2, &ot) == ICS_ERR_SIZE, "17 slices of 4096^2");
-  CHECK(ics_occtex_create(tex, &gneg, 1, 1, 2, &ot) == ICS_ERR_INVALID_ARG, "negative texel");
-  CHECK(ics_occtex_create(tex, &ginf, 1, 1, 2, &ot) == ICS_ERR_INFINITE, "infinite texel");
-  CHECK(ics_occtex_create(tex, &g, 0, 1, 2, &ot) == ICS_ERR_INVALID_ARG, "zero slices");
-  CHECK(ics_occtex_create(tex, &g, ICS_OCC_MAX_SLICES + 1, 1, 2, &ot) == ICS_ERR_SIZE, "too many slices");
-  CHECK(ics_occtex_create(tex, &g, 1, 0, 2, &ot) == ICS_ERR_INVALID_ARG, "z_near = 0");
-  CHECK(ics_occtex_create(tex, &g, 1, 2, 2, &ot) == ICS_ERR_INVALID_ARG, "z_far = z_near");
-  CHECK(ics_occtex_create(tex, &g, 1, NAN, 2, &ot) == ICS_ERR_NAN, "NaN z_near");
-  CHECK(ics_occtex_create(NULL, &g, 1, 1, 2, &ot) == ICS_ERR_INVALID_ARG, "NULL texture");
-  CHECK(ics_occtex_create(tex, NULL, 1, 1, 2, &ot) == ICS_ERR_INVALID_ARG, "NULL grid");
+  CHECK(ics_occtex_create(&ot, tex, &g4k, 17, 1, 2) == ICS_ERR_SIZE, "17 slices of 4096^2");
+  CHECK(ics_occtex_create(&ot, tex, &gneg, 1, 1, 2) == ICS_ERR_INVALID_ARG, "negative texel");
+  CHECK(ics_occtex_create(&ot, tex, &ginf, 1, 1, 2) == ICS_ERR_INFINITE, "infinite texel");
+  CHECK(ics_occtex_create(&ot, tex, &g, 0, 1, 2) == ICS_ERR_INVALID_ARG, "zero slices");
+  CHECK(ics_occtex_create(&ot, tex, &g, ICS_OCC_MAX_SLICES + 1, 1, 2) == ICS_ERR_SIZE,
+        "too many slices");
+  CHECK(ics_occtex_create(&ot, tex, &g, 1, 0, 2) == ICS_ERR_INVALID_ARG, "z_near = 0");
+  CHECK(ics_occtex_create(&ot, tex, &g, 1, 2, 2) == ICS_ERR_INVALID_ARG, "z_far = z_near");
+  CHECK(ics_occtex_create(&ot, tex, &g, 1, NAN, 2) == ICS_ERR_NAN, "NaN z_near");
+  CHECK(ics_occtex_create(&ot, NULL, &g, 1, 1, 2) == ICS_ERR_INVALID_ARG, "NULL texture");
+  CHECK(ics_occtex_create(&ot, tex, NULL, 1, 1, 2) == ICS_ERR_INVALID_ARG, "NULL grid");
   tex[5] = NAN;
-  CHECK(ics_occtex_create(tex, &g, 1, 1, 2, &ot) == ICS_ERR_NAN && !ot, "NaN texel");
+  CHECK(ics_occtex_create(&ot, tex, &g, 1, 1, 2) == ICS_ERR_NAN && !ot, "NaN texel");
   tex[5] = 0;
-  CHECK(ics_occtex_create(tex, &g, 1, 1, 2, &ot) == ICS_OK, "good");
+  CHECK(ics_occtex_create(&ot, tex, &g, 1, 1, 2) == ICS_OK, "good");
   ics_occ_light L = {0, 0, 1, 1}, Lnan = {0, NAN, 1, 1}, Lneg = {0, 0, -1, 1};
   double P[3] = {1, 1, 3}, Pnan[3] = {1, NAN, 3}, Pz[3] = {1, 1, 0}, r;
   CHECK(ics_occtex_shadow(ot, &L, ICS_OCC_SAT, ICS_OCC_PRODUCT, P, 1, &r) == ICS_ERR_UNSUPPORTED, "not built");
@@ -414,20 +416,21 @@ static void test_bad_input(void) {
   CHECK(ics_occtex_box(ot, ICS_OCC_MIPMAP, 0, 1, 1, NAN, 1, &r) == ICS_ERR_NAN, "NaN box size");
   CHECK(ics_occtex_box(ot, ICS_OCC_MIPMAP, 1, 1, 1, 1, 1, &r) == ICS_ERR_INVALID_ARG, "slice out of range");
   CHECK(ics_occtex_box(ot, ICS_OCC_MIPMAP, 0, 1, 1, -1, 1, &r) == ICS_ERR_INVALID_ARG, "negative box");
-  ics_occtex_free(ot);
-  ics_occtex_free(NULL);
+  ics_occtex_destroy(ot);
+  ics_occtex_destroy(NULL);
 
   ics_occ_box b = {0, 0, 1, 1, 1, 2}, bnan = {0, 0, 1, NAN, 1, 2}, binv = {1, 0, 1, 0, 1, 2};
-  CHECK(ics_occ_slice(&b, 1, &g, 1, 1, 2, 0, tex) == ICS_ERR_SIZE, "supersample 0");
-  CHECK(ics_occ_slice(&b, 1, &g, 0, 1, 2, 1, tex) == ICS_ERR_INVALID_ARG, "zero slices");
-  CHECK(ics_occ_slice(&bnan, 1, &g, 1, 1, 2, 1, tex) == ICS_ERR_NAN, "NaN box");
-  CHECK(ics_occ_slice(&binv, 1, &g, 1, 1, 2, 1, tex) == ICS_ERR_INVALID_ARG, "inverted box");
-  CHECK(ics_occ_slice(&b, 1, &g3, 1, 1, 2, 1, tex) == ICS_ERR_SIZE, "n = 3");
-  CHECK(ics_occ_exact(&b, 1, &L, 0, P, 1, &r) == ICS_ERR_SIZE, "m = 0");
-  CHECK(ics_occ_exact(&b, 1, &L, 4, Pnan, 1, &r) == ICS_ERR_NAN, "NaN point");
-  CHECK(ics_occ_exact(&bnan, 1, &L, 4, P, 1, &r) == ICS_ERR_NAN, "NaN box");
-  CHECK(ics_occ_scene_make(ICS_OCC_SCENE_FOLIAGE, 0, 1, &b) == ICS_ERR_SIZE, "no boxes");
-  CHECK(ics_occ_prefilter_name((ics_occ_prefilter)3) == NULL && ics_occ_combine_name(ICS_OCC_MAX) != NULL, "names");
+  CHECK(ics_occtex_slice_boxes(&b, 1, &g, 1, 1, 2, 0, tex) == ICS_ERR_SIZE, "supersample 0");
+  CHECK(ics_occtex_slice_boxes(&b, 1, &g, 0, 1, 2, 1, tex) == ICS_ERR_INVALID_ARG, "zero slices");
+  CHECK(ics_occtex_slice_boxes(&bnan, 1, &g, 1, 1, 2, 1, tex) == ICS_ERR_NAN, "NaN box");
+  CHECK(ics_occtex_slice_boxes(&binv, 1, &g, 1, 1, 2, 1, tex) == ICS_ERR_INVALID_ARG,
+        "inverted box");
+  CHECK(ics_occtex_slice_boxes(&b, 1, &g3, 1, 1, 2, 1, tex) == ICS_ERR_SIZE, "n = 3");
+  CHECK(ics_occtex_exact(&b, 1, &L, 0, P, 1, &r) == ICS_ERR_SIZE, "m = 0");
+  CHECK(ics_occtex_exact(&b, 1, &L, 4, Pnan, 1, &r) == ICS_ERR_NAN, "NaN point");
+  CHECK(ics_occtex_exact(&bnan, 1, &L, 4, P, 1, &r) == ICS_ERR_NAN, "NaN box");
+  CHECK(ics_occtex_boxes_make(ICS_OCC_BOXES_FOLIAGE, 0, 1, &b) == ICS_ERR_SIZE, "no boxes");
+  CHECK(ics_occtex_prefilter_name((ics_occ_prefilter)3) == NULL && ics_occtex_combine_name(ICS_OCC_MAX) != NULL, "names");
 }
 
 int main(void) {

@@ -97,7 +97,7 @@ static void test_all_fields(void) {
             l->color[2] == 0.25,
         "tilt_deg light mean (%g %g)", l->mean[0], l->mean[1]);
   double vx, vy, ang;
-  ics_cov_to_eig(l->cov, &vx, &vy, &ang);
+  ics_light_cov_to_eig(l->cov, &vx, &vy, &ang);
   CHECK(fabs(vx - 0.04) < 1e-15 && fabs(vy - 0.01) < 1e-15 && fabs(ang - 30) < 1e-9, "var + angle");
   CHECK(ics_scene_light(s, 1)->cov[0] == 0 && ics_scene_light(s, 1)->color[0] == 1, "point light");
   const ics_material *g = ics_scene_material(s, 0), *k = ics_scene_material(s, 1);

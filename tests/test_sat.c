@@ -41,8 +41,8 @@ static void test_exact_small(void) {
     if (m == ICS_SAT_FLOAT_OFFSET) continue; /* non-integer offset: covered by the bound test */
     ics_sat2d *s2 = NULL;
     ics_sat3d *s3 = NULL;
-    CHECK(ics_sat2d_build(&s2, a, W, H, W, m) == ICS_OK, "2D build %d", mi);
-    CHECK(ics_sat3d_build(&s3, a, W, H, D, m) == ICS_OK, "3D build %d", mi);
+    CHECK(ics_sat2d_create(&s2, a, W, H, W, m) == ICS_OK, "2D build %d", mi);
+    CHECK(ics_sat3d_create(&s3, a, W, H, D, m) == ICS_OK, "3D build %d", mi);
     if (!s2 || !s3) continue;
     int bad2 = 0, bad3 = 0, badat = 0;
     for (long y0 = 0; y0 <= H; y0++)
@@ -97,19 +97,19 @@ static void test_exact_small(void) {
     for (long y = 4; y < 20; y++)
       for (long x = 3; x < 30; x++) ref += a[y * W + x];
     CHECK(c1 == ref, "after rebuild %g vs %g", c1, ref);
-    ics_sat2d_free(s2);
-    ics_sat3d_free(s3);
+    ics_sat2d_destroy(s2);
+    ics_sat3d_destroy(s3);
   }
   /* a strided 2D image: only the first W of each 50-element row counts */
   float *img = malloc(sizeof(float) * 50 * H);
   for (long i = 0; i < 50 * H; i++) img[i] = (i % 50) < W ? a[(i / 50) * W + i % 50] : 1e30f;
   ics_sat2d *s2 = NULL;
   double got, ref = 0;
-  CHECK(ics_sat2d_build(&s2, img, W, H, 50, ICS_SAT_DOUBLE) == ICS_OK, "strided build");
+  CHECK(ics_sat2d_create(&s2, img, W, H, 50, ICS_SAT_DOUBLE) == ICS_OK, "strided build");
   for (long i = 0; i < W * H; i++) ref += a[i];
   CHECK(s2 && ics_sat2d_box_sum(s2, 0, 0, W, H, &got) == ICS_OK && got == ref, "strided %g vs %g",
         got, ref);
-  ics_sat2d_free(s2);
+  ics_sat2d_destroy(s2);
   free(img);
   free(a);
 }
@@ -132,8 +132,8 @@ static void test_bounds(int dims) {
     ics_sat_precision m = modes[mi];
     ics_sat2d *s2 = NULL;
     ics_sat3d *s3 = NULL;
-    ics_status st = dims == 2 ? ics_sat2d_build(&s2, a, W, H, W, m)
-                              : ics_sat3d_build(&s3, a, W, H, D, m);
+    ics_status st = dims == 2 ? ics_sat2d_create(&s2, a, W, H, W, m)
+                              : ics_sat3d_create(&s3, a, W, H, D, m);
     CHECK(st == ICS_OK, "build %s: %s", ics_sat_precision_name(m), ics_status_str(st));
     if (st != ICS_OK) continue;
     double off = dims == 2 ? ics_sat2d_offset(s2) : ics_sat3d_offset(s3);
@@ -198,8 +198,8 @@ static void test_bounds(int dims) {
     CHECK(over == 0, "%s %dD: %d boxes beyond the documented bound", ics_sat_precision_name(m),
           dims, over);
     free(P);
-    ics_sat2d_free(s2);
-    ics_sat3d_free(s3);
+    ics_sat2d_destroy(s2);
+    ics_sat3d_destroy(s3);
   }
   /* float fails here; the offset, compensated and double modes do not */
   CHECK(far_rel[0] > 1e-4, "%dD float: far small boxes rel err %g (expected to fail)", dims,
@@ -228,8 +228,8 @@ static void test_bounds_random(int dims) {
     ics_sat_precision m = modes[mi];
     ics_sat2d *s2 = NULL;
     ics_sat3d *s3 = NULL;
-    ics_status st = dims == 2 ? ics_sat2d_build(&s2, a, W, H, W, m)
-                              : ics_sat3d_build(&s3, a, W, H, D, m);
+    ics_status st = dims == 2 ? ics_sat2d_create(&s2, a, W, H, W, m)
+                              : ics_sat3d_create(&s3, a, W, H, D, m);
     CHECK(st == ICS_OK, "build");
     if (st != ICS_OK) continue;
     double off = dims == 2 ? ics_sat2d_offset(s2) : ics_sat3d_offset(s3);
@@ -266,8 +266,8 @@ static void test_bounds_random(int dims) {
           ics_sat_precision_name(m), dims, over);
     CHECK(inexact > 0, "%s %dD: no rounding at all: the data do not exercise the bound",
           ics_sat_precision_name(m), dims);
-    ics_sat2d_free(s2);
-    ics_sat3d_free(s3);
+    ics_sat2d_destroy(s2);
+    ics_sat3d_destroy(s3);
   }
   free(a);
 }
@@ -284,8 +284,8 @@ static void test_integral(void) {
   for (long i = 0; i < W * H * D; i++) a[i] = (float)(unit() * 4 - 1);
   ics_sat2d *s2 = NULL;
   ics_sat3d *s3 = NULL;
-  CHECK(ics_sat2d_build(&s2, a, W, H, W, ICS_SAT_DOUBLE) == ICS_OK, "2D");
-  CHECK(ics_sat3d_build(&s3, a, W, H, D, ICS_SAT_DOUBLE) == ICS_OK, "3D");
+  CHECK(ics_sat2d_create(&s2, a, W, H, W, ICS_SAT_DOUBLE) == ICS_OK, "2D");
+  CHECK(ics_sat3d_create(&s3, a, W, H, D, ICS_SAT_DOUBLE) == ICS_OK, "3D");
   double worst2 = 0, worst3 = 0;
   for (int k = 0; k < 300; k++) {
     double lo[3], hi[3], n[3] = {(double)W, (double)H, (double)D};
@@ -311,8 +311,8 @@ static void test_integral(void) {
   }
   CHECK(worst2 < 1e-13 && worst3 < 1e-13, "integral errors %g %g (relative to sum |a|)", worst2,
         worst3);
-  ics_sat2d_free(s2);
-  ics_sat3d_free(s3);
+  ics_sat2d_destroy(s2);
+  ics_sat3d_destroy(s3);
   free(a);
 }
 
@@ -322,51 +322,51 @@ static void test_bad_input(void) {
   for (int i = 0; i < 64; i++) a[i] = (float)i;
   ics_sat2d *s2 = (ics_sat2d *)&s2;
   ics_sat3d *s3 = NULL;
-  CHECK(ics_sat2d_build(&s2, a, 0, 8, 8, ICS_SAT_FLOAT) == ICS_ERR_SIZE && s2 == NULL, "width 0");
-  CHECK(ics_sat2d_build(&s2, a, 8, 0, 8, ICS_SAT_FLOAT) == ICS_ERR_SIZE, "height 0");
-  CHECK(ics_sat3d_build(&s3, a, 4, 4, 0, ICS_SAT_FLOAT) == ICS_ERR_SIZE, "depth 0");
-  CHECK(ics_sat2d_build(&s2, a, (size_t)1 << 20, (size_t)1 << 20, (size_t)1 << 20, ICS_SAT_FLOAT) ==
-            ICS_ERR_SIZE,
+  CHECK(ics_sat2d_create(&s2, a, 0, 8, 8, ICS_SAT_FLOAT) == ICS_ERR_SIZE && s2 == NULL, "width 0");
+  CHECK(ics_sat2d_create(&s2, a, 8, 0, 8, ICS_SAT_FLOAT) == ICS_ERR_SIZE, "height 0");
+  CHECK(ics_sat3d_create(&s3, a, 4, 4, 0, ICS_SAT_FLOAT) == ICS_ERR_SIZE, "depth 0");
+  CHECK(ics_sat2d_create(&s2, a, (size_t)1 << 20, (size_t)1 << 20, (size_t)1 << 20,
+                         ICS_SAT_FLOAT) == ICS_ERR_SIZE,
         "2^40 cells");
-  CHECK(ics_sat3d_build(&s3, a, 2048, 2048, 2048, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "2048^3");
-  CHECK(ics_sat3d_build(&s3, a, SIZE_MAX, 2, 2, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "SIZE_MAX");
-  CHECK(ics_sat2d_build(&s2, NULL, 8, 8, 8, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG, "NULL data");
-  CHECK(ics_sat2d_build(&s2, a, 8, 8, 7, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG, "stride < width");
+  CHECK(ics_sat3d_create(&s3, a, 2048, 2048, 2048, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "2048^3");
+  CHECK(ics_sat3d_create(&s3, a, SIZE_MAX, 2, 2, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "SIZE_MAX");
+  CHECK(ics_sat2d_create(&s2, NULL, 8, 8, 8, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG, "NULL data");
+  CHECK(ics_sat2d_create(&s2, a, 8, 8, 7, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG, "stride < width");
   /* strides whose input span (h - 1) * stride + w overflows or exceeds ICS_SAT_MAX_SPAN_BYTES
    * (the build would read far outside the buffer); a single row may have any stride >= w */
-  CHECK(ics_sat2d_build(&s2, a, 3, 4, SIZE_MAX, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG && !s2,
+  CHECK(ics_sat2d_create(&s2, a, 3, 4, SIZE_MAX, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG && !s2,
         "stride SIZE_MAX");
-  CHECK(ics_sat2d_build(&s2, a, 3, 4, SIZE_MAX / 3 + 1, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG,
+  CHECK(ics_sat2d_create(&s2, a, 3, 4, SIZE_MAX / 3 + 1, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG,
         "span overflows");
-  CHECK(ics_sat2d_build(&s2, a, 3, 2, ICS_SAT_MAX_SPAN_BYTES / 4, ICS_SAT_FLOAT) ==
+  CHECK(ics_sat2d_create(&s2, a, 3, 2, ICS_SAT_MAX_SPAN_BYTES / 4, ICS_SAT_FLOAT) ==
             ICS_ERR_INVALID_ARG,
         "span above the limit");
-  CHECK(ics_sat2d_build(&s2, a, 3, 1, SIZE_MAX, ICS_SAT_FLOAT) == ICS_OK, "one row, any stride");
-  ics_sat2d_free(s2);
+  CHECK(ics_sat2d_create(&s2, a, 3, 1, SIZE_MAX, ICS_SAT_FLOAT) == ICS_OK, "one row, any stride");
+  ics_sat2d_destroy(s2);
   s2 = NULL;
-  CHECK(ics_sat2d_build(&s2, a, 3, 4, 3, ICS_SAT_FLOAT) == ICS_OK, "3 x 4");
+  CHECK(ics_sat2d_create(&s2, a, 3, 4, 3, ICS_SAT_FLOAT) == ICS_OK, "3 x 4");
   CHECK(ics_sat2d_rebuild(s2, a, SIZE_MAX) == ICS_ERR_INVALID_ARG, "rebuild stride SIZE_MAX");
-  ics_sat2d_free(s2);
+  ics_sat2d_destroy(s2);
   s2 = NULL;
-  CHECK(ics_sat2d_build(&s2, a, 8, 8, 8, (ics_sat_precision)7) == ICS_ERR_INVALID_ARG, "mode 7");
-  CHECK(ics_sat2d_build(NULL, a, 8, 8, 8, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG, "NULL out");
+  CHECK(ics_sat2d_create(&s2, a, 8, 8, 8, (ics_sat_precision)7) == ICS_ERR_INVALID_ARG, "mode 7");
+  CHECK(ics_sat2d_create(NULL, a, 8, 8, 8, ICS_SAT_FLOAT) == ICS_ERR_INVALID_ARG, "NULL out");
   float b[64];
   memcpy(b, a, sizeof b);
   b[45] = NAN;
   for (int mi = 0; mi < 4; mi++) {
-    CHECK(ics_sat2d_build(&s2, b, 8, 8, 8, modes[mi]) == ICS_ERR_NAN, "NaN mode %d", mi);
-    CHECK(ics_sat3d_build(&s3, b, 4, 4, 4, modes[mi]) == ICS_ERR_NAN, "NaN 3D mode %d", mi);
+    CHECK(ics_sat2d_create(&s2, b, 8, 8, 8, modes[mi]) == ICS_ERR_NAN, "NaN mode %d", mi);
+    CHECK(ics_sat3d_create(&s3, b, 4, 4, 4, modes[mi]) == ICS_ERR_NAN, "NaN 3D mode %d", mi);
   }
   b[45] = -INFINITY;
-  CHECK(ics_sat2d_build(&s2, b, 8, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_INFINITE, "Inf");
+  CHECK(ics_sat2d_create(&s2, b, 8, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_INFINITE, "Inf");
   b[45] = NAN, b[3] = INFINITY; /* NaN wins over Inf */
-  CHECK(ics_sat3d_build(&s3, b, 4, 4, 4, ICS_SAT_FLOAT) == ICS_ERR_NAN, "NaN + Inf");
+  CHECK(ics_sat3d_create(&s3, b, 4, 4, 4, ICS_SAT_FLOAT) == ICS_ERR_NAN, "NaN + Inf");
   for (int i = 0; i < 64; i++) b[i] = FLT_MAX;
-  CHECK(ics_sat2d_build(&s2, b, 8, 8, 8, ICS_SAT_FLOAT) == ICS_ERR_RANGE, "float overflow");
-  CHECK(ics_sat2d_build(&s2, b, 8, 8, 8, ICS_SAT_DOUBLE) == ICS_OK, "no overflow in double");
-  ics_sat2d_free(s2);
+  CHECK(ics_sat2d_create(&s2, b, 8, 8, 8, ICS_SAT_FLOAT) == ICS_ERR_RANGE, "float overflow");
+  CHECK(ics_sat2d_create(&s2, b, 8, 8, 8, ICS_SAT_DOUBLE) == ICS_OK, "no overflow in double");
+  ics_sat2d_destroy(s2);
   s2 = NULL;
-  CHECK(ics_sat2d_build(&s2, a, 8, 8, 8, ICS_SAT_FLOAT) == ICS_OK, "good build");
+  CHECK(ics_sat2d_create(&s2, a, 8, 8, 8, ICS_SAT_FLOAT) == ICS_OK, "good build");
   double v;
   CHECK(ics_sat2d_box_sum(s2, 3, 2, 1, 4, &v) == ICS_ERR_INVALID_ARG, "inverted x");
   CHECK(ics_sat2d_box_sum(s2, 1, 4, 3, 2, &v) == ICS_ERR_INVALID_ARG, "inverted y");
@@ -385,9 +385,9 @@ static void test_bad_input(void) {
   CHECK(ics_sat2d_rebuild(s2, a, 8) == ICS_OK && ics_sat2d_box_sum(s2, 0, 0, 2, 2, &v) == ICS_OK &&
             v == 0 + 1 + 8 + 9,
         "valid again: %g", v);
-  ics_sat2d_free(s2);
-  ics_sat2d_free(NULL);
-  ics_sat3d_free(NULL);
+  ics_sat2d_destroy(s2);
+  ics_sat2d_destroy(NULL);
+  ics_sat3d_destroy(NULL);
   ics_sat_precision m;
   CHECK(ics_sat_precision_parse("double", &m) == ICS_OK && m == ICS_SAT_DOUBLE, "parse");
   CHECK(ics_sat_precision_parse("half", &m) == ICS_ERR_PARSE, "parse unknown");
@@ -401,20 +401,20 @@ static void test_bad_input(void) {
   ics_csat *c = NULL;
   ics_ssat *s = NULL;
   double l[3] = {0, 0, 1}, zero[3] = {0, 0, 0}, nanv[3] = {NAN, 0, 1};
-  CHECK(ics_csat_build(&c, &vol, zero, 1.0, ICS_SAT_DOUBLE) == ICS_ERR_INVALID_ARG, "l = 0");
-  CHECK(ics_csat_build(&c, &vol, nanv, 1.0, ICS_SAT_DOUBLE) == ICS_ERR_NAN, "l NaN");
-  CHECK(ics_csat_build(&c, &vol, l, 0.0, ICS_SAT_DOUBLE) == ICS_ERR_INVALID_ARG, "h = 0");
-  CHECK(ics_csat_build(&c, &vol, l, 1e-4, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "h tiny: huge grid");
+  CHECK(ics_csat_create(&c, &vol, zero, 1.0, ICS_SAT_DOUBLE) == ICS_ERR_INVALID_ARG, "l = 0");
+  CHECK(ics_csat_create(&c, &vol, nanv, 1.0, ICS_SAT_DOUBLE) == ICS_ERR_NAN, "l NaN");
+  CHECK(ics_csat_create(&c, &vol, l, 0.0, ICS_SAT_DOUBLE) == ICS_ERR_INVALID_ARG, "h = 0");
+  CHECK(ics_csat_create(&c, &vol, l, 1e-4, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "h tiny: huge grid");
   ics_volume empty = {a, 0, 4, 4};
-  CHECK(ics_csat_build(&c, &empty, l, 1.0, ICS_SAT_DOUBLE) == ICS_ERR_INVALID_ARG, "empty volume");
+  CHECK(ics_csat_create(&c, &empty, l, 1.0, ICS_SAT_DOUBLE) == ICS_ERR_INVALID_ARG, "empty volume");
   double ru[3] = {1, 0, 0}, rv[3] = {0.5, 1, 0};
-  CHECK(ics_csat_build_frame(&c, &vol, ru, rv, 1.0, ICS_SAT_DOUBLE) == ICS_ERR_INVALID_ARG,
+  CHECK(ics_csat_create_frame(&c, &vol, ru, rv, 1.0, ICS_SAT_DOUBLE) == ICS_ERR_INVALID_ARG,
         "not orthonormal");
   /* h beyond the volume's extent (4 along each axis here): refused; h = 1e6 used to give
    * tau = sigma(centre) * h, 1e5 times more than any ray through the volume can collect */
-  CHECK(ics_csat_build(&c, &vol, l, 1e6, ICS_SAT_DOUBLE) == ICS_ERR_RANGE && !c, "h = 1e6");
-  CHECK(ics_csat_build(&c, &vol, l, 4.5, ICS_SAT_DOUBLE) == ICS_ERR_RANGE, "h > extent");
-  CHECK(ics_csat_build(&c, &vol, l, 4.0, ICS_SAT_DOUBLE) == ICS_OK, "h = extent");
+  CHECK(ics_csat_create(&c, &vol, l, 1e6, ICS_SAT_DOUBLE) == ICS_ERR_RANGE && !c, "h = 1e6");
+  CHECK(ics_csat_create(&c, &vol, l, 4.5, ICS_SAT_DOUBLE) == ICS_ERR_RANGE, "h > extent");
+  CHECK(ics_csat_create(&c, &vol, l, 4.0, ICS_SAT_DOUBLE) == ICS_OK, "h = extent");
   {
     double pc[3] = {2, 2, 2}, t = -1, amax = 0;
     for (int i = 0; i < 64; i++) amax = a[i] > amax ? a[i] : amax;
@@ -422,30 +422,35 @@ static void test_bad_input(void) {
               t <= amax * 4 * sqrt(3.0),
           "h = extent: tau %g above sigma_max * diagonal", t);
   }
-  ics_csat_free(c);
+  ics_csat_destroy(c);
   c = NULL;
-  CHECK(ics_csat_build(&c, &vol, l, 1.0, ICS_SAT_DOUBLE) == ICS_OK, "csat");
+  CHECK(ics_csat_create(&c, &vol, l, 1.0, ICS_SAT_DOUBLE) == ICS_OK, "csat");
   double p[3] = {1, 1, 1};
   CHECK(ics_csat_tau(c, ICS_CSAT_PLUS_W, p, -1.0, &v) == ICS_ERR_INVALID_ARG, "U < 0");
   CHECK(ics_csat_tau(c, ICS_CSAT_PLUS_W, nanv, 1.0, &v) == ICS_ERR_NAN, "p NaN");
   CHECK(ics_csat_tau(c, (ics_csat_light)6, p, 1.0, &v) == ICS_ERR_INVALID_ARG, "light 6");
-  ics_csat_free(c);
+  ics_csat_destroy(c);
   double lp[3] = {-3, 2, 2};
-  CHECK(ics_ssat_build(&s, &vol, lp, 0, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "n_phi 0");
-  CHECK(ics_ssat_build(&s, &vol, lp, 1 << 20, 1 << 20, 8, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "huge");
+  CHECK(ics_ssat_create(&s, &vol, lp, 0, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "n_phi 0");
+  CHECK(ics_ssat_create(&s, &vol, lp, 1 << 20, 1 << 20, 8, ICS_SAT_DOUBLE) == ICS_ERR_SIZE, "huge");
   /* a light too far away: finite input, ICS_ERR_RANGE (it was ICS_ERR_NAN at 1e300) */
   double far[3] = {1e300, 0, 0}, farther[3] = {4 * 1.8e10 * 7, 2, 2}, inf3[3] = {INFINITY, 0, 0};
-  CHECK(ics_ssat_build(&s, &vol, far, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_RANGE && !s, "1e300");
-  CHECK(ics_ssat_build(&s, &vol, farther, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_RANGE,
+  CHECK(ics_ssat_create(&s, &vol, far, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_RANGE && !s, "1e300");
+  CHECK(ics_ssat_create(&s, &vol, farther, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_RANGE,
         "beyond ICS_SSAT_MAX_DISTANCE diagonals");
-  CHECK(ics_ssat_build(&s, &vol, inf3, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_RANGE, "inf");
-  CHECK(ics_ssat_build(&s, &vol, nanv, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_NAN, "NaN light");
+  CHECK(ics_ssat_create(&s, &vol, inf3, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_RANGE, "inf");
+  CHECK(ics_ssat_create(&s, &vol, nanv, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_ERR_NAN, "NaN light");
   CHECK(ics_volume_tau_point(&vol, far, p, 1.0, 2, 0.5, &v) == ICS_ERR_RANGE, "bf 1e300");
-  CHECK(ics_ssat_build(&s, &vol, lp, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_OK, "ssat");
+  CHECK(ics_ssat_create(&s, &vol, lp, 16, 8, 8, ICS_SAT_DOUBLE) == ICS_OK, "ssat");
   CHECK(ics_ssat_tau(s, lp, 1.0, &v) == ICS_ERR_RANGE, "p at the light");
   CHECK(ics_ssat_tau(s, far, 1.0, &v) == ICS_OK && isfinite(v), "p at 1e300 (valid: whole ray)");
   CHECK(ics_ssat_tau(s, p, 0.0, &v) == ICS_ERR_INVALID_ARG, "SSAT U = 0");
-  ics_ssat_free(s);
+  CHECK(ics_ssat_transmittance(s, lp, 1.0, &v) == ICS_ERR_RANGE, "transmittance, p at the light");
+  CHECK(ics_ssat_transmittance(s, p, 0.0, &v) == ICS_ERR_INVALID_ARG, "transmittance, U = 0");
+  CHECK(ics_ssat_transmittance(s, nanv, 1.0, &v) == ics_ssat_tau(s, nanv, 1.0, &v) &&
+            ics_ssat_transmittance(s, nanv, 1.0, &v) != ICS_OK,
+        "transmittance, NaN p: the status of ics_ssat_tau");
+  ics_ssat_destroy(s);
 }
 
 /* ---- volumes for CSAT / SSAT -------------------------------------------------------------- */
@@ -493,7 +498,7 @@ static void test_csat_aligned(void) {
   ics_volume vol = {a, NX, NY, NZ};
   double ru[3] = {1, 0, 0}, rv[3] = {0, 1, 0};
   ics_csat *c = NULL;
-  CHECK(ics_csat_build_frame(&c, &vol, ru, rv, 1.0, ICS_SAT_DOUBLE) == ICS_OK, "aligned CSAT");
+  CHECK(ics_csat_create_frame(&c, &vol, ru, rv, 1.0, ICS_SAT_DOUBLE) == ICS_OK, "aligned CSAT");
   if (!c) return;
   size_t n[3];
   ics_csat_frame(c, NULL, NULL, NULL, n);
@@ -523,7 +528,7 @@ static void test_csat_aligned(void) {
     if (e > worst) worst = e;
   }
   CHECK(worst < 1e-12, "aligned CSAT vs voxel sums: %g", worst);
-  ics_csat_free(c);
+  ics_csat_destroy(c);
   free(a);
 }
 
@@ -540,7 +545,7 @@ static void test_csat_rotated(void) {
   for (int hi = 0; hi < 2; hi++) {
     double h = hi ? 0.5 : 1.0;
     ics_csat *c = NULL;
-    CHECK(ics_csat_build(&c, &vol, l, h, ICS_SAT_DOUBLE) == ICS_OK, "rotated CSAT h = %g", h);
+    CHECK(ics_csat_create(&c, &vol, l, h, ICS_SAT_DOUBLE) == ICS_OK, "rotated CSAT h = %g", h);
     if (!c) continue;
     double ru[3], rv[3], rw[3];
     size_t n[3];
@@ -570,7 +575,7 @@ static void test_csat_rotated(void) {
     printf("CSAT h = %.2g: max |tau_csat - tau_bf| = %.3g (%.3g of the bound)\n", h, worst_abs,
            worst);
     maxerr[hi] = worst_abs;
-    ics_csat_free(c);
+    ics_csat_destroy(c);
   }
   /* the resampling error is second order in h for this smooth field: halving h divides the
    * largest difference by about 4 (at least 2.5 asserted; the brute force's own error is
@@ -585,7 +590,7 @@ static void test_csat_rotated(void) {
     float *b = blob_volume(N, 1, one);
     ics_volume vb = {b, N, N, N};
     (void)lz;
-    CHECK(ics_csat_build_frame(&c, &vb, ru, rv, 1.0, ICS_SAT_DOUBLE) == ICS_OK, "mono CSAT");
+    CHECK(ics_csat_create_frame(&c, &vb, ru, rv, 1.0, ICS_SAT_DOUBLE) == ICS_OK, "mono CSAT");
     double p[3] = {16, 16, 4}, prev = -1, T;
     int nonmono = 0;
     for (double U = 0.5; U <= 14; U += 0.5) {
@@ -600,7 +605,7 @@ static void test_csat_rotated(void) {
               ics_csat_transmittance(c, ICS_CSAT_PLUS_W, q, 10, &T1) == ICS_OK && T0 == 1.0 &&
               T1 < 0.999,
           "lit point: T %g -> %g", T0, T1);
-    ics_csat_free(c);
+    ics_csat_destroy(c);
     free(b);
   }
   free(a);
@@ -613,7 +618,7 @@ static void test_csat_six(void) {
   ics_volume vol = {a, N, N, N};
   double l[3] = {-0.3, 0.5, 0.8};
   ics_csat *c = NULL;
-  CHECK(ics_csat_build(&c, &vol, l, 1.0, ICS_SAT_DOUBLE) == ICS_OK, "shared CSAT");
+  CHECK(ics_csat_create(&c, &vol, l, 1.0, ICS_SAT_DOUBLE) == ICS_OK, "shared CSAT");
   if (!c) return;
   double r[3][3];
   ics_csat_frame(c, r[0], r[1], r[2], NULL);
@@ -621,7 +626,7 @@ static void test_csat_six(void) {
   const int fa[6] = {0, 1, 1, 2, 2, 0}, fb[6] = {1, 0, 2, 1, 0, 2};
   for (int i = 0; i < 6; i++) {
     ics_csat *ci = NULL;
-    CHECK(ics_csat_build_frame(&ci, &vol, r[fa[i]], r[fb[i]], 1.0, ICS_SAT_DOUBLE) == ICS_OK,
+    CHECK(ics_csat_create_frame(&ci, &vol, r[fa[i]], r[fb[i]], 1.0, ICS_SAT_DOUBLE) == ICS_OK,
           "separate CSAT %d", i);
     if (!ci) continue;
     double d1[3], d2[3];
@@ -641,9 +646,9 @@ static void test_csat_six(void) {
     }
     /* equal up to the float rounding of the resampled cells (same cell centres) */
     CHECK(worst < 1e-6, "light %d: shared vs separate CSAT rel diff %g", i, worst);
-    ics_csat_free(ci);
+    ics_csat_destroy(ci);
   }
-  ics_csat_free(c);
+  ics_csat_destroy(c);
   free(a);
 }
 
@@ -674,7 +679,7 @@ static void test_ssat(void) {
   for (int li = 0; li < 2; li++) {
     const size_t nphi = 256, nth = 128, nr = 64;
     ics_ssat *s = NULL;
-    CHECK(ics_ssat_build(&s, &vol, lights[li], nphi, nth, nr, ICS_SAT_DOUBLE) == ICS_OK, "ssat");
+    CHECK(ics_ssat_create(&s, &vol, lights[li], nphi, nth, nr, ICS_SAT_DOUBLE) == ICS_OK, "ssat");
     if (!s) continue;
     double rmax = 0;
     for (int cidx = 0; cidx < 8; cidx++) {
@@ -718,10 +723,20 @@ static void test_ssat(void) {
             p[0], p[1], p[2], U, ts, tb, e, bound);
       CHECK(e <= 0.05 * tb + 0.002, "light %d p (%g %g %g) U %g: ssat %.9g bf %.9g rel diff %g",
             li, p[0], p[1], p[2], U, ts, tb, e / tb);
+      /* the filtered transmittance: exp(-tau_bar) of this SSAT's tau to rounding, and against
+       * the brute force's exp(-tau) within the optical-depth tolerance just checked, carried
+       * through exp (|d exp(-t) / dt| <= exp(-min(ts, tb)), min(ts, tb) >= tb - tol) */
+      double T = -1, tol = 0.05 * tb + 0.002;
+      CHECK(ics_ssat_transmittance(s, p, U, &T) == ICS_OK && T > 0 && T <= 1 &&
+                fabs(T - exp(-ts)) <= 4 * DBL_EPSILON * T &&
+                fabs(T - exp(-tb)) <= tol * exp(-(tb - tol)),
+            "light %d p (%g %g %g) U %g: transmittance %.9g vs exp(-ssat %.9g) = %.9g, brute "
+            "force exp(-%.9g) = %.9g",
+            li, p[0], p[1], p[2], U, T, ts, exp(-ts), tb, exp(-tb));
     }
     printf("SSAT light %d: max |tau_ssat - tau_bf| = %.3g (%.3g of the bound), max rel %.3g\n", li,
            worst_abs, worst, worst_rel);
-    ics_ssat_free(s);
+    ics_ssat_destroy(s);
   }
   free(a);
 }
@@ -749,8 +764,9 @@ static void test_ssat_pole(void) {
     const size_t grids[2][3] = {{64, 32, 32}, {128, 64, 64}};
     for (int gi = 0; gi < 2; gi++) {
       ics_ssat *s = NULL;
-      CHECK(ics_ssat_build(&s, &vol, L, grids[gi][0], grids[gi][1], grids[gi][2], ICS_SAT_DOUBLE) ==
-                ICS_OK, "pole ssat");
+      CHECK(ics_ssat_create(&s, &vol, L, grids[gi][0], grids[gi][1], grids[gi][2],
+                            ICS_SAT_DOUBLE) == ICS_OK,
+            "pole ssat");
       if (!s) continue;
       double e[3][3];
       ics_ssat_frame(s, e[0], e[1], e[2], NULL);
@@ -776,7 +792,7 @@ static void test_ssat_pole(void) {
           }
       printf("SSAT constant field, light inside, poles to equator (%zux%zux%zu): max rel err %.3g\n",
              grids[gi][0], grids[gi][1], grids[gi][2], worst);
-      ics_ssat_free(s);
+      ics_ssat_destroy(s);
     }
   }
   {
@@ -790,8 +806,9 @@ static void test_ssat_pole(void) {
         CHECK(ics_volume_tau_point(&vol, L, pts[pi], Us[ui], 32, step, &tb[pi][ui]) == ICS_OK, "bf");
     for (int gi = 0; gi < 3; gi++) {
       ics_ssat *s = NULL;
-      CHECK(ics_ssat_build(&s, &vol, L, grids[gi][0], grids[gi][1], grids[gi][2], ICS_SAT_DOUBLE) ==
-                ICS_OK, "ssat below");
+      CHECK(ics_ssat_create(&s, &vol, L, grids[gi][0], grids[gi][1], grids[gi][2],
+                            ICS_SAT_DOUBLE) == ICS_OK,
+            "ssat below");
       if (!s) continue;
       double rmax = sqrt(8.0 * 8 + 8 * 8 + 26 * 26), dr = rmax / (double)grids[gi][2], worst = 0;
       for (int pi = 0; pi < 3; pi++)
@@ -805,7 +822,7 @@ static void test_ssat_pole(void) {
         }
       printf("SSAT constant field, light below (%zux%zux%zu): max rel err %.3g\n", grids[gi][0],
              grids[gi][1], grids[gi][2], worst);
-      ics_ssat_free(s);
+      ics_ssat_destroy(s);
     }
   }
   free(a);
@@ -819,7 +836,7 @@ static void test_ssat_pole(void) {
     double err[3] = {0, 0, 0}, e[3][3];
     for (int gi = 0; gi < 3; gi++) {
       ics_ssat *s = NULL;
-      CHECK(ics_ssat_build(&s, &vb, L, grids[gi][0], grids[gi][1], grids[gi][2], ICS_SAT_DOUBLE) ==
+      CHECK(ics_ssat_create(&s, &vb, L, grids[gi][0], grids[gi][1], grids[gi][2], ICS_SAT_DOUBLE) ==
                 ICS_OK, "ssat conv");
       if (!s) continue;
       ics_ssat_frame(s, e[0], e[1], e[2], NULL);
@@ -835,7 +852,7 @@ static void test_ssat_pole(void) {
         if (gi == 2)
           CHECK(fabs(t - tb) <= 0.05 * tb + 0.002, "pole point %d: ssat %.6g bf %.6g", di, t, tb);
       }
-      ics_ssat_free(s);
+      ics_ssat_destroy(s);
     }
     printf("SSAT smooth field near the poles: max |diff| %.3g, %.3g, %.3g (grid x1, x2, x4)\n",
            err[0], err[1], err[2]);

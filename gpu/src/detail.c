@@ -46,7 +46,8 @@ void ics_detail_prepare(ics_detail_eval *e, const ics_detail *d, const double lo
   memcpy(e->hi, hi, sizeof e->hi);
   uint8_t perm[256];
   for (int i = 0; i < 256; i++) perm[i] = (uint8_t)i;
-  ics_rng r = ics_rng_make(d->seed, 0x6e6f697365ULL /* "noise" */);
+  ics_rng r;
+  ics_rng_init(&r, d->seed, 0x6e6f697365ULL /* "noise" */);
   for (int i = 255; i > 0; i--) {
     int j = (int)(ics_rng_uniform(&r) * (i + 1));
     uint8_t t = perm[i];

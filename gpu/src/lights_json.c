@@ -66,8 +66,8 @@ int ics_light_from_json(const ics_jctx *c, const char *where, json_t *o, ics_lig
   } else if ((x = json_object_get(o, "tilt_deg"))) {
     if (numbers(x, 2, v) || !(fabs(v[0]) < 90) || !(fabs(v[1]) < 90))
       return ics_jerr(c, "%s.tilt_deg: expected [wx, wy] in degrees, |w| < 90", where);
-    l->mean[0] = ics_tan_deg(v[0]);
-    l->mean[1] = ics_tan_deg(v[1]);
+    l->mean[0] = ics_light_tan_deg(v[0]);
+    l->mean[1] = ics_light_tan_deg(v[1]);
   } else {
     return ics_jerr(c, "%s: needs \"mean\" or \"tilt_deg\"", where);
   }
@@ -86,7 +86,7 @@ int ics_light_from_json(const ics_jctx *c, const char *where, json_t *o, ics_lig
     json_t *ang = json_object_get(o, "angle_deg");
     if (ang && !json_is_number(ang)) return ics_jerr(c, "%s.angle_deg: expected a number", where);
     if (ang) a = json_number_value(ang);
-    if (numbers(x, 2, v) || ics_cov_from_eig(v[0], v[1], a, l->cov) != ICS_OK)
+    if (numbers(x, 2, v) || ics_light_cov_from_eig(v[0], v[1], a, l->cov) != ICS_OK)
       return ics_jerr(c, "%s.var: expected [varx, vary], finite and >= 0", where);
   } else {
     return ics_jerr(c, "%s: needs \"cov\" or \"var\"", where);

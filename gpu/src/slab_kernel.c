@@ -32,7 +32,7 @@
 /* Sigma^(1/2) of a PSD 2x2 matrix (cxx, cxy, cyy) as a row-major 2x2 */
 static int sqrtm(const double c[3], double S[4]) {
   double vx, vy, ang;
-  if (ics_cov_to_eig(c, &vx, &vy, &ang) != ICS_OK) return -1;
+  if (ics_light_cov_to_eig(c, &vx, &vy, &ang) != ICS_OK) return -1;
   double a = ang * (ICS_PI / 180), co = cos(a), si = sin(a);
   double s1 = sqrt(vx), s2 = sqrt(vy);
   S[0] = co * co * s1 + si * si * s2;
@@ -48,7 +48,7 @@ static ics_status member_taps(const ics_slab_kernel *sk, const double cls[3], ic
   ics_render_kernel member = sk->run_member;
   if (member == ICS_RK_ELLIPSE) {
     double vx, vy, ang;
-    if (ics_cov_to_eig(cls, &vx, &vy, &ang) != ICS_OK) return ICS_ERR_NEGATIVE_VARIANCE;
+    if (ics_light_cov_to_eig(cls, &vx, &vy, &ang) != ICS_OK) return ICS_ERR_NEGATIVE_VARIANCE;
     double *xy = malloc(sizeof *xy * 2 * (size_t)M);
     if (!xy) return ICS_ERR_NOMEM;
     ics_ellipse_shape sh;
@@ -488,7 +488,7 @@ void ics_slab_entry_block(uint64_t seed, uint32_t light, uint32_t slab, uint32_t
                           uint32_t out[4]) {
   const uint32_t key[2] = {(uint32_t)seed, (uint32_t)(seed >> 32)};
   const uint32_t ctr[4] = {block, slab, light, 0x736c6162u /* "slab" */};
-  ics_philox4x32_10(ctr, key, out);
+  ics_rng_philox4x32_10(ctr, key, out);
 }
 
 uint32_t ics_slab_entry(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel) {

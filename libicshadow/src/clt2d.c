@@ -6,7 +6,7 @@
  * in the requested mode (NONNEG: exact class moments when reachable). The result r_n is compared
  * with the Gaussian limit with the same moments, sup over a window of nodes.
  *
- * Why the limit has a pixel term (the 2D form of shadow1d.c's 1/12). Node p (pixel centre, grid
+ * Why the limit has a pixel term (the 2D form of clt1d.c's 1/12). Node p (pixel centre, grid
  * units) starts as the exact AREA COVERAGE of its pixel square by the opaque region A:
  *   r_0(p) = P(p + U in A),  U uniform on (-1/2, 1/2)^2.
  * With integer taps K (distribution of one step) the engine computes r_{k+1}(p) =
@@ -137,13 +137,12 @@ ics_status ics_clt2d_ellipse_gen(void *ctx, uint64_t step, double scale, ics_tap
 
 /* ---- measurement ---- */
 
-ics_clt2d_setup ics_clt2d_setup_default(void) {
-  ics_clt2d_setup s;
-  memset(&s, 0, sizeof s);
-  s.occluder = ICS_CLT2D_EDGE;
-  s.comp = ICS_COMP_NONNEG;
-  s.refine = 1;
-  return s;
+void ics_clt2d_setup_init(ics_clt2d_setup *out) {
+  if (!out) return;
+  memset(out, 0, sizeof *out);
+  out->occluder = ICS_CLT2D_EDGE;
+  out->comp = ICS_COMP_NONNEG;
+  out->refine = 1;
 }
 
 typedef struct plan2 {
@@ -157,7 +156,7 @@ typedef struct plan2 {
 
 static double sd_at(const plan2 *p, int n) { return sqrt(n * p->lmax + 1.0 / 12.0); }
 
-/* largest eigenvalue (kernel.h's ics_class2d_to_axes); NaN for a covariance it rejects */
+/* largest eigenvalue (class.h's ics_class2d_to_axes); NaN for a covariance it rejects */
 static double lmax_of(double cxx, double cxy, double cyy) {
   ics_class2d c = {{0, 0}, cxx, cxy, cyy};
   double vx, vy, ang;
@@ -376,7 +375,7 @@ static void grid_free(grid2 *g) {
 /* one step of the grid with step n's taps (generated for its scale, compensated) */
 static ics_status grid_step(grid2 *g, ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
                             int n, ics_tap2d *taps, int cap, ics_tap2d *dt, int dcap, int *nd) {
-  ics_conv_opts co = ics_conv_opts_default();
+  ics_conv_opts co = {0};
   co.boundary = ICS_BOUNDARY_CLAMP;
   co.compensate = ICS_COMP_NONE; /* the taps handed over are already integer */
   int nt = 0;
@@ -468,7 +467,7 @@ ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s
                           const int *steps, int nsteps, double *pixels, double *work) {
   /* First the class path's grid only (a lower bound of the real grid): a run refused on it is
    * refused before the realised path's pass over every step's taps (itself up to
-   * ICS_WORK_COMP_PASSES x generated taps a step). */
+   * ICS_CONV_WORK_COMP_PASSES x generated taps a step). */
   plan2 p;
   ics_status st = check2(gen, ctx, s, steps, nsteps, &p, 0);
   if (st != ICS_OK) return st;
@@ -486,22 +485,23 @@ ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s
   free(dt);
   if (st != ICS_OK) return st;
   /* the realised path's pass, then the engine per grid */
-  double lower = nmax * ICS_WORK_COMP_PASSES * (double)nt0;
-  lower += nmax * ((double)p.w * p.h * nd0 + ICS_WORK_COMP_PASSES * (double)nt0);
+  double lower = nmax * ICS_CONV_WORK_COMP_PASSES * (double)nt0;
+  lower += nmax * ((double)p.w * p.h * nd0 + ICS_CONV_WORK_COMP_PASSES * (double)nt0);
   if (s->refine)
-    lower += nmax * ((2.0 * p.w + 1) * (2.0 * p.h + 1) * ndf + ICS_WORK_COMP_PASSES * (double)ntf);
-  if (lower > ICS_WORK_BUDGET) {
+    lower += nmax * ((2.0 * p.w + 1) * (2.0 * p.h + 1) * ndf +
+                     ICS_CONV_WORK_COMP_PASSES * (double)ntf);
+  if (lower > ICS_CONV_WORK_BUDGET) {
     if (pixels) *pixels = (double)p.w * p.h;
     if (work) *work = lower;
     return ICS_OK;
   }
   st = check2(gen, ctx, s, steps, nsteps, &p, 1);
   if (st != ICS_OK) return st;
-  wk = nmax * ICS_WORK_COMP_PASSES * (double)nt0; /* the realised path's pass */
+  wk = nmax * ICS_CONV_WORK_COMP_PASSES * (double)nt0; /* the realised path's pass */
   for (int r = 0; r <= (s->refine ? 1 : 0); r++) {
     double px = r ? (2.0 * p.w + 1) * (2.0 * p.h + 1) : (double)p.w * p.h;
     int nt = r ? ntf : nt0, nd = r ? ndf : nd0;
-    wk += nmax * (px * nd + ICS_WORK_COMP_PASSES * (double)nt);
+    wk += nmax * (px * nd + ICS_CONV_WORK_COMP_PASSES * (double)nt);
     /* the limits at every window node */
     double cn = (double)steps[nsteps - 1], pix = 1.0 / 12;
     double rho = cn * s->cov[1] / sqrt((cn * s->cov[0] + pix) * (cn * s->cov[2] + pix));

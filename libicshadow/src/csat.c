@@ -20,8 +20,8 @@ struct ics_csat {
   double h;
 };
 
-ics_status ics_csat_build_frame(ics_csat **out, const ics_volume *vol, const double r_u[3],
-                                const double r_v[3], double h, ics_sat_precision mode) {
+ics_status ics_csat_create_frame(ics_csat **out, const ics_volume *vol, const double r_u[3],
+                                 const double r_v[3], double h, ics_sat_precision mode) {
   if (!out) return ICS_ERR_INVALID_ARG;
   *out = NULL;
   if (!ics_volume_ok(vol) || !r_u || !r_v) return ICS_ERR_INVALID_ARG;
@@ -78,7 +78,7 @@ ics_status ics_csat_build_frame(ics_csat **out, const ics_volume *vol, const dou
           p[a] = c->centre[a] + q[0] * c->r[0][a] + q[1] * c->r[1][a] + q[2] * c->r[2][a];
         grid[(k * c->n[1] + j) * c->n[0] + i] = (float)(ics_volume_sample(vol, p) * h3);
       }
-  ics_status st = ics_sat3d_build(&c->sat, grid, c->n[0], c->n[1], c->n[2], mode);
+  ics_status st = ics_sat3d_create(&c->sat, grid, c->n[0], c->n[1], c->n[2], mode);
   free(grid);
   if (st != ICS_OK) {
     free(c);
@@ -88,8 +88,8 @@ ics_status ics_csat_build_frame(ics_csat **out, const ics_volume *vol, const dou
   return ICS_OK;
 }
 
-ics_status ics_csat_build(ics_csat **out, const ics_volume *vol, const double l[3], double h,
-                          ics_sat_precision mode) {
+ics_status ics_csat_create(ics_csat **out, const ics_volume *vol, const double l[3], double h,
+                           ics_sat_precision mode) {
   if (!out) return ICS_ERR_INVALID_ARG;
   *out = NULL;
   if (!l) return ICS_ERR_INVALID_ARG;
@@ -108,12 +108,12 @@ ics_status ics_csat_build(ics_csat **out, const ics_volume *vol, const double l[
   double ul = sqrt(ics_dot3(u, u));
   for (int a = 0; a < 3; a++) u[a] /= ul;
   ics_cross3(w, u, v); /* u x v = u x (w x u) = w */
-  return ics_csat_build_frame(out, vol, u, v, h, mode);
+  return ics_csat_create_frame(out, vol, u, v, h, mode);
 }
 
-void ics_csat_free(ics_csat *csat) {
+void ics_csat_destroy(ics_csat *csat) {
   if (!csat) return;
-  ics_sat3d_free(csat->sat);
+  ics_sat3d_destroy(csat->sat);
   free(csat);
 }
 

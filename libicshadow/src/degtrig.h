@@ -1,6 +1,6 @@
 /* degtrig.h — sine and cosine of an angle in degrees (private to libicshadow). The one
- * implementation behind ics_cov_from_eig (light.c, hence ics_class2d_from_axes and the CLI's
- * lights files) and the ellipse kernel's rotation (ellipse.c, where it is defined).
+ * implementation behind ics_light_cov_from_eig (light.c, hence ics_class2d_init_axes and the
+ * CLI's lights files) and the ellipse kernel's rotation (ellipse.c, where it is defined).
  *
  * Method: r = fmod(deg, 360) (exact), q = nearest multiple of 90 to r, rem = r - 90 q (exact,
  * |rem| <= 45); sin and cos of rem * pi/180 are swapped and negated by the quadrant. Exact at

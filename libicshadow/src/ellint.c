@@ -325,31 +325,31 @@ ICS_INLINE void ke_m1(double m1, int wk, int we, double *K, double *E) {
   }
 }
 
-double ics_ellipk(double m) {
+double ics_ellint_k(double m) {
   double k = 0;
   ke_m(m, 1, 0, &k, NULL);
   return k;
 }
 
-double ics_ellipe(double m) {
+double ics_ellint_e(double m) {
   double e = 0;
   ke_m(m, 0, 1, NULL, &e);
   return e;
 }
 
-double ics_ellipk_m1(double m1) {
+double ics_ellint_k_m1(double m1) {
   double k = 0;
   ke_m1(m1, 1, 0, &k, NULL);
   return k;
 }
 
-double ics_ellipe_m1(double m1) {
+double ics_ellint_e_m1(double m1) {
   double e = 0;
   ke_m1(m1, 0, 1, NULL, &e);
   return e;
 }
 
-void ics_ellipke_m1(double m1, double *K, double *E) {
+void ics_ellint_ke_m1(double m1, double *K, double *E) {
   double k = 0, e = 0;
   ke_m1(m1, K != NULL, E != NULL, &k, &e);
   if (K) *K = k;

@@ -30,8 +30,8 @@ static void set_msg(char *msg, size_t n, const char *fmt, ...) {
 
 int ics_exr_available(void) { return 0; }
 
-ics_status ics_exr_read(const char *path, ics_image *img, char *msg, size_t msg_size) {
-  if (img) img->width = img->height = img->channels = 0, img->data = NULL;
+ics_status ics_exr_read(const char *path, ics_image **out, char *msg, size_t msg_size) {
+  if (out) *out = NULL;
   set_msg(msg, msg_size, "%s: cannot read OpenEXR: OpenEXR was not found when libicshadow was "
           "built (install libopenexr-dev and rebuild)", path ? path : "(null)");
   return ICS_ERR_UNSUPPORTED;
@@ -80,10 +80,9 @@ static int chan_index(const char *name) {
   return -1;
 }
 
-ics_status ics_exr_read(const char *path, ics_image *img, char *msg, size_t msg_size) {
-  if (!img) return ICS_ERR_INVALID_ARG;
-  img->width = img->height = img->channels = 0;
-  img->data = NULL;
+ics_status ics_exr_read(const char *path, ics_image **out, char *msg, size_t msg_size) {
+  if (!out) return ICS_ERR_INVALID_ARG;
+  *out = NULL;
   if (!path) return ICS_ERR_INVALID_ARG;
   FILE *probe = fopen(path, "rb");
   if (!probe) {
@@ -106,6 +105,7 @@ ics_status ics_exr_read(const char *path, ics_image *img, char *msg, size_t msg_
 
   ics_status st = ICS_OK;
   float *planes[4] = {NULL, NULL, NULL, NULL};
+  ics_image *img = NULL;
   int parts = 0;
   exr_storage_t storage;
   const exr_attr_chlist_t *chl = NULL;
@@ -178,8 +178,8 @@ ics_status ics_exr_read(const char *path, ics_image *img, char *msg, size_t msg_
     st = ICS_ERR_SIZE;
     goto done;
   }
-  st = ics_image_init(img, (int)(W > 0 && W <= ICS_IMAGE_MAX_DIM ? W : 0),
-                      (int)(H > 0 && H <= ICS_IMAGE_MAX_DIM ? H : 0), nch);
+  st = ics_image_create(&img, (int)(W > 0 && W <= ICS_IMAGE_MAX_DIM ? W : 0),
+                        (int)(H > 0 && H <= ICS_IMAGE_MAX_DIM ? H : 0), nch);
   if (st != ICS_OK) {
     set_msg(msg, msg_size, "%s: cannot hold a %ld x %ld image (display window): %s", path, W, H,
             ics_status_str(st));
@@ -255,7 +255,10 @@ ics_status ics_exr_read(const char *path, ics_image *img, char *msg, size_t msg_
 done:
   for (int k = 0; k < 4; k++) free(planes[k]);
   exr_finish(&ctx);
-  if (st != ICS_OK) ics_image_free(img);
+  if (st == ICS_OK)
+    *out = img;
+  else
+    ics_image_destroy(img);
   return st;
 }
 

@@ -4,40 +4,23 @@
 #include <math.h>
 #include <stdlib.h>
 
-ics_status ics_image_init(ics_image *img, int width, int height, int channels) {
-  if (!img) return ICS_ERR_INVALID_ARG;
-  img->width = img->height = img->channels = 0;
-  img->data = NULL;
-  if (channels != 3 && channels != 4) return ICS_ERR_INVALID_ARG;
-  if (width < 1 || height < 1 || width > ICS_IMAGE_MAX_DIM || height > ICS_IMAGE_MAX_DIM)
-    return ICS_ERR_SIZE;
-  size_t n = (size_t)width * (size_t)height * (size_t)channels;
-  float *p = calloc(n, sizeof *p);
-  if (!p) return ICS_ERR_NOMEM;
-  img->width = width;
-  img->height = height;
-  img->channels = channels;
-  img->data = p;
-  return ICS_OK;
-}
-
-void ics_image_free(ics_image *img) {
-  if (!img) return;
-  free(img->data);
-  img->data = NULL;
-  img->width = img->height = img->channels = 0;
-}
-
 ics_status ics_image_create(ics_image **out, int width, int height, int channels) {
   if (!out) return ICS_ERR_INVALID_ARG;
   *out = NULL;
+  if (channels != 3 && channels != 4) return ICS_ERR_INVALID_ARG;
+  if (width < 1 || height < 1 || width > ICS_IMAGE_MAX_DIM || height > ICS_IMAGE_MAX_DIM)
+    return ICS_ERR_SIZE;
   ics_image *img = malloc(sizeof *img);
   if (!img) return ICS_ERR_NOMEM;
-  ics_status st = ics_image_init(img, width, height, channels);
-  if (st != ICS_OK) {
+  size_t n = (size_t)width * (size_t)height * (size_t)channels;
+  img->data = calloc(n, sizeof *img->data);
+  if (!img->data) {
     free(img);
-    return st;
+    return ICS_ERR_NOMEM;
   }
+  img->width = width;
+  img->height = height;
+  img->channels = channels;
   *out = img;
   return ICS_OK;
 }

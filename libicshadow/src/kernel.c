@@ -1,4 +1,4 @@
-/* kernel.c — kernel equivalence classes: members, their taps and moments (Patel et al. 2013,
+/* kernel.c — the members of the kernel equivalence classes and their taps (Patel et al. 2013,
  * Sec. 3.3-3.4, Table I). The members and their exact tap constructions are specified in
  * icshadow/kernel.h; docs/kernels.md has the derivations and the measured moments table.
  *
@@ -6,15 +6,13 @@
  * class to rounding (symmetric taps for the mean; positions rescaled by the measured raw
  * variance for GAUSS; W found by bisection on the measured discrete variance for TOPHAT).
  * Stochastic members: STOCH_DIRAC and ELLIPSE are exact in expectation (closed forms in
- * kernel.h); POISSON is whitened so it is exact for every rotation.
- * Sums: moments use Neumaier-compensated sums and a two-pass (mean, then central) variance. */
+ * kernel.h); POISSON is whitened so it is exact for every rotation. */
 #include <math.h>
 #include <stdlib.h>
 
 #include "icshadow/ellipse.h"
 #include "icshadow/kernel.h"
 #include "icshadow/constants.h"
-#include "icshadow/light.h"
 #include "icshadow/rng.h"
 #include "sym2.h"
 
@@ -51,126 +49,6 @@ int ics_kernel_member_dims(ics_kernel_member m) {
   case ICS_KERNEL_POISSON: return 2;
   default: return 0;
   }
-}
-
-/* ---------------------------------------------------------------- compensated sums */
-typedef struct ksum {
-  double s, c;
-} ksum;
-
-static void kadd(ksum *k, double x) {
-  double t = k->s + x;
-  if (fabs(k->s) >= fabs(x))
-    k->c += (k->s - t) + x;
-  else
-    k->c += (x - t) + k->s;
-  k->s = t;
-}
-
-static double kval(const ksum *k) { return k->s + k->c; }
-
-void ics_taps1d_moments(const ics_tap1d *t, int n, double *wsum, double *mean, double *var) {
-  double W = NAN, M = NAN, V = NAN;
-  if (t && n > 0) {
-    ksum sw = {0, 0}, sx = {0, 0};
-    for (int j = 0; j < n; j++) {
-      kadd(&sw, t[j].w);
-      kadd(&sx, t[j].w * t[j].x);
-    }
-    W = kval(&sw);
-    M = kval(&sx) / W;
-    ksum sv = {0, 0};
-    for (int j = 0; j < n; j++) {
-      double d = t[j].x - M;
-      kadd(&sv, t[j].w * d * d);
-    }
-    V = kval(&sv) / W;
-  }
-  if (wsum) *wsum = W;
-  if (mean) *mean = M;
-  if (var) *var = V;
-}
-
-void ics_taps2d_moments(const ics_tap2d *t, int n, double *wsum, double mean[2], double cov[3]) {
-  double W = NAN, mx = NAN, my = NAN, cxx = NAN, cxy = NAN, cyy = NAN;
-  if (t && n > 0) {
-    ksum sw = {0, 0}, sx = {0, 0}, sy = {0, 0};
-    for (int j = 0; j < n; j++) {
-      kadd(&sw, t[j].w);
-      kadd(&sx, t[j].w * t[j].x);
-      kadd(&sy, t[j].w * t[j].y);
-    }
-    W = kval(&sw);
-    mx = kval(&sx) / W;
-    my = kval(&sy) / W;
-    ksum a = {0, 0}, b = {0, 0}, c = {0, 0};
-    for (int j = 0; j < n; j++) {
-      double dx = t[j].x - mx, dy = t[j].y - my;
-      kadd(&a, t[j].w * dx * dx);
-      kadd(&b, t[j].w * dx * dy);
-      kadd(&c, t[j].w * dy * dy);
-    }
-    cxx = kval(&a) / W;
-    cxy = kval(&b) / W;
-    cyy = kval(&c) / W;
-  }
-  if (wsum) *wsum = W;
-  if (mean) mean[0] = mx, mean[1] = my;
-  if (cov) cov[0] = cxx, cov[1] = cxy, cov[2] = cyy;
-}
-
-/* ---------------------------------------------------------------- classes */
-ics_status ics_class1d_check(const ics_class1d *c) {
-  if (!c) return ICS_ERR_INVALID_ARG;
-  if (isnan(c->mean) || isnan(c->var)) return ICS_ERR_NAN;
-  if (c->var < 0) return ICS_ERR_NEGATIVE_VARIANCE;
-  if (isinf(c->mean) || isinf(c->var)) return ICS_ERR_INFINITE;
-  return ICS_OK;
-}
-
-ics_status ics_class2d_check(const ics_class2d *c) {
-  if (!c) return ICS_ERR_INVALID_ARG;
-  if (isnan(c->mean[0]) || isnan(c->mean[1]) || isnan(c->cxx) || isnan(c->cxy) || isnan(c->cyy))
-    return ICS_ERR_NAN;
-  if (c->cxx < 0 || c->cyy < 0) return ICS_ERR_NEGATIVE_VARIANCE;
-  if (isinf(c->mean[0]) || isinf(c->mean[1]) || isinf(c->cxx) || isinf(c->cxy) || isinf(c->cyy))
-    return ICS_ERR_INFINITE;
-  if (c->cxx > 0x1p500 || c->cyy > 0x1p500 || fabs(c->cxy) > 0x1p500) return ICS_ERR_RANGE;
-  double l1, l2;
-  ics_sym2_eig(c->cxx, c->cxy, c->cyy, &l1, &l2, NULL);
-  if (l2 < -1e-12 * (c->cxx + c->cyy)) return ICS_ERR_NEGATIVE_VARIANCE;
-  return ICS_OK;
-}
-
-ics_status ics_class2d_from_axes(double mx, double my, double varx, double vary, double angle_deg,
-                                 ics_class2d *out) {
-  if (!out) return ICS_ERR_INVALID_ARG;
-  if (isnan(mx) || isnan(my) || isnan(varx) || isnan(vary) || isnan(angle_deg)) return ICS_ERR_NAN;
-  if (varx < 0 || vary < 0) return ICS_ERR_NEGATIVE_VARIANCE;
-  if (isinf(mx) || isinf(my) || isinf(varx) || isinf(vary) || isinf(angle_deg))
-    return ICS_ERR_INFINITE;
-  double cov[3];
-  ics_status st = ics_cov_from_eig(varx, vary, angle_deg, cov); /* inputs checked above */
-  if (st != ICS_OK) return st;
-  out->mean[0] = mx;
-  out->mean[1] = my;
-  out->cxx = cov[0];
-  out->cxy = cov[1];
-  out->cyy = cov[2];
-  return ics_class2d_check(out);
-}
-
-ics_status ics_class2d_to_axes(const ics_class2d *c, double *varx, double *vary,
-                               double *angle_deg) {
-  ics_status st = ics_class2d_check(c);
-  if (st != ICS_OK) return st;
-  double l1, l2, ang;
-  ics_sym2_eig(c->cxx, c->cxy, c->cyy, &l1, &l2, &ang); /* the algorithm of ics_cov_to_eig */
-  if (l2 < 0) l2 = 0;
-  if (varx) *varx = l1;
-  if (vary) *vary = l2;
-  if (angle_deg) *angle_deg = ang;
-  return ICS_OK;
 }
 
 /* ---------------------------------------------------------------- 1D members */
@@ -466,7 +344,8 @@ int ics_kernel2d_max_taps(const ics_kernel2d *k) {
  * 1.2 / sqrt(N) and shrinks by 10% after 200 rejected candidates in a row. Then centred and
  * whitened: second moment c I with c = 1 (so p = S^(-1/2) (q - mean q)). */
 static void poisson_pattern(uint64_t seed, int N, double *px, double *py) {
-  ics_rng r = ics_rng_make(seed, POISSON_STREAM);
+  ics_rng r;
+  ics_rng_init(&r, seed, POISSON_STREAM);
   double dmin = 1.2 / sqrt((double)N);
   int have = 0, fails = 0;
   while (have < N) {
@@ -587,39 +466,4 @@ ics_status ics_kernel2d_expected(const ics_kernel2d *k, double mean[2], double c
   if (mean) mean[0] = k->cls.mean[0], mean[1] = k->cls.mean[1];
   if (cov) cov[0] = k->cls.cxx, cov[1] = k->cls.cxy, cov[2] = k->cls.cyy;
   return ICS_OK;
-}
-
-/* ---------------------------------------------------------------- schedules */
-ics_status ics_schedule1d_taps(const ics_schedule1d *s, uint64_t step, ics_tap1d *taps, int cap,
-                               int *ntaps) {
-  if (!s || !s->members || s->nmembers <= 0) return ICS_ERR_INVALID_ARG;
-  return ics_kernel1d_taps(&s->members[step % (uint64_t)s->nmembers], step, taps, cap, ntaps);
-}
-
-ics_status ics_schedule2d_taps(const ics_schedule2d *s, uint64_t step, ics_tap2d *taps, int cap,
-                               int *ntaps) {
-  if (!s || !s->members || s->nmembers <= 0) return ICS_ERR_INVALID_ARG;
-  return ics_kernel2d_taps(&s->members[step % (uint64_t)s->nmembers], step, taps, cap, ntaps);
-}
-
-int ics_schedule1d_max_taps(const ics_schedule1d *s) {
-  if (!s || !s->members || s->nmembers <= 0) return 0;
-  int m = 0;
-  for (int i = 0; i < s->nmembers; i++) {
-    int t = ics_kernel1d_max_taps(&s->members[i]);
-    if (t == 0) return 0;
-    if (t > m) m = t;
-  }
-  return m;
-}
-
-int ics_schedule2d_max_taps(const ics_schedule2d *s) {
-  if (!s || !s->members || s->nmembers <= 0) return 0;
-  int m = 0;
-  for (int i = 0; i < s->nmembers; i++) {
-    int t = ics_kernel2d_max_taps(&s->members[i]);
-    if (t == 0) return 0;
-    if (t > m) m = t;
-  }
-  return m;
 }

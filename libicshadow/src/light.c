@@ -2,7 +2,7 @@
  * functions (Patel et al. 2013, Sec. 3.2, 3.4, Appendix A.2).
  *
  * Method and accuracy:
- * - ics_tan_deg: |w| <= 45: tan(w * pi/180) (argument rounding costs <= 1 ulp relative);
+ * - ics_light_tan_deg: |w| <= 45: tan(w * pi/180) (argument rounding costs <= 1 ulp relative);
  *   45 < |w| < 90: 1 / tan((90 - |w|) * pi/180), where 90 - |w| is exact (Sterbenz), so the
  *   result keeps ~2 ulp up to the last representable angle below 90 (measured in
  *   tests/test_light.c against the series cot x = 1/x - x/3 - x^3/45 - 2x^5/945).
@@ -28,7 +28,7 @@
 
 /* ---- tilt ---- */
 
-double ics_tan_deg(double w) {
+double ics_light_tan_deg(double w) {
   if (!(fabs(w) < 90.0)) return NAN; /* NaN, inf, |w| >= 90 */
   double a = fabs(w);
   double t;
@@ -39,7 +39,7 @@ double ics_tan_deg(double w) {
   return w < 0 ? -t : t;
 }
 
-double ics_tilt_condition(double w) {
+double ics_light_tilt_condition(double w) {
   if (!(fabs(w) < 90.0)) return NAN;
   if (w == 0) return 1.0;
   double r = fabs(w) * (ICS_PI / 180.0);
@@ -56,7 +56,7 @@ static ics_status check_var(double v) {
   return v < 0 ? ICS_ERR_NEGATIVE_VARIANCE : ICS_OK;
 }
 
-ics_status ics_cov_from_eig(double varx, double vary, double alpha, double cov[3]) {
+ics_status ics_light_cov_from_eig(double varx, double vary, double alpha, double cov[3]) {
   ics_status s;
   if ((s = check_var(varx)) != ICS_OK || (s = check_var(vary)) != ICS_OK ||
       (s = ics_check_finite(alpha)) != ICS_OK)
@@ -69,7 +69,7 @@ ics_status ics_cov_from_eig(double varx, double vary, double alpha, double cov[3
   return ICS_OK;
 }
 
-ics_status ics_cov_to_eig(const double cov[3], double *varx, double *vary, double *alpha) {
+ics_status ics_light_cov_to_eig(const double cov[3], double *varx, double *vary, double *alpha) {
   ics_status s;
   for (int i = 0; i < 3; i++)
     if ((s = ics_check_finite(cov[i])) != ICS_OK) return s;
@@ -86,7 +86,7 @@ ics_status ics_cov_to_eig(const double cov[3], double *varx, double *vary, doubl
   return ICS_OK;
 }
 
-ics_status ics_light_from_tilt(ics_light *out, double wx, double wy, double varx, double vary,
+ics_status ics_light_init_tilt(ics_light *out, double wx, double wy, double varx, double vary,
                                double alpha, const double color[3], double weight) {
   ics_status s;
   if ((s = ics_check_finite(wx)) != ICS_OK || (s = ics_check_finite(wy)) != ICS_OK) return s;
@@ -94,7 +94,7 @@ ics_status ics_light_from_tilt(ics_light *out, double wx, double wy, double varx
   if ((s = ics_check_finite(weight)) != ICS_OK) return s;
   if (weight < 0) return ICS_ERR_INVALID_ARG;
   double cov[3];
-  if ((s = ics_cov_from_eig(varx, vary, alpha, cov)) != ICS_OK) return s;
+  if ((s = ics_light_cov_from_eig(varx, vary, alpha, cov)) != ICS_OK) return s;
   double col[3] = {1, 1, 1};
   if (color)
     for (int i = 0; i < 3; i++) {
@@ -102,8 +102,8 @@ ics_status ics_light_from_tilt(ics_light *out, double wx, double wy, double varx
       if (color[i] < 0) return ICS_ERR_INVALID_ARG;
       col[i] = color[i];
     }
-  out->mean[0] = ics_tan_deg(wx);
-  out->mean[1] = ics_tan_deg(wy);
+  out->mean[0] = ics_light_tan_deg(wx);
+  out->mean[1] = ics_light_tan_deg(wy);
   memcpy(out->cov, cov, sizeof cov);
   memcpy(out->color, col, sizeof col);
   out->weight = weight;
@@ -116,8 +116,8 @@ static ics_status check_e_d1(double e, double d1) {
   return (e > 0 && d1 > 0) ? ICS_OK : ICS_ERR_RANGE;
 }
 
-ics_status ics_kernel_map_1d(double mu_l, double var_l, double e, double d1, double *mu_k,
-                             double *var_k) {
+ics_status ics_light_kernel_map_1d(double mu_l, double var_l, double e, double d1, double *mu_k,
+                                   double *var_k) {
   ics_status s;
   if ((s = ics_check_finite(mu_l)) != ICS_OK || (s = check_var(var_l)) != ICS_OK) return s;
   if ((s = check_e_d1(e, d1)) != ICS_OK) return s;
@@ -126,8 +126,8 @@ ics_status ics_kernel_map_1d(double mu_l, double var_l, double e, double d1, dou
   return ICS_OK;
 }
 
-ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, double mean_k[2],
-                             double cov_k[3]) {
+ics_status ics_light_kernel_map_2d(const ics_light *l, double e, double d1, double mean_k[2],
+                                   double cov_k[3]) {
   ics_status s;
   if (!l) return ICS_ERR_INVALID_ARG;
   for (int i = 0; i < 2; i++)
@@ -135,8 +135,8 @@ ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, double mea
   for (int i = 0; i < 3; i++)
     if ((s = ics_check_finite(l->cov[i])) != ICS_OK) return s;
   if (l->cov[0] < 0 || l->cov[2] < 0) return ICS_ERR_NEGATIVE_VARIANCE;
-  double vx, vy, ang; /* positive semidefinite (ics_cov_to_eig's check, -8 eps trace) */
-  if (ics_cov_to_eig(l->cov, &vx, &vy, &ang) != ICS_OK) return ICS_ERR_NEGATIVE_VARIANCE;
+  double vx, vy, ang; /* positive semidefinite (ics_light_cov_to_eig's check, -8 eps trace) */
+  if (ics_light_cov_to_eig(l->cov, &vx, &vy, &ang) != ICS_OK) return ICS_ERR_NEGATIVE_VARIANCE;
   if ((s = check_e_d1(e, d1)) != ICS_OK) return s;
   mean_k[0] = -e * l->mean[0];
   mean_k[1] = -e * l->mean[1];
@@ -146,15 +146,28 @@ ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, double mea
 
 /* ---- 1D lights ---- */
 
-static void l1_zero(ics_light1d *l) {
-  memset(l, 0, sizeof *l);
-}
+typedef enum light1d_kind {
+  LIGHT1D_GAUSS, /* mean, variance (variance 0: a point light, a Dirac at the mean) */
+  LIGHT1D_BOX,   /* uniform on [lo, hi], lo < hi */
+  LIGHT1D_MIX,   /* Gaussian mixture, weights normalised to sum 1, each variance > 0 */
+  LIGHT1D_TAB    /* piecewise-linear density through (x_i, p_i), normalised */
+} light1d_kind;
 
-ics_status ics_light1d_gauss(ics_light1d *l, double mean, double var) {
+struct ics_light1d {
+  light1d_kind kind;
+  int n;       /* mixture components or table nodes */
+  double a, b; /* GAUSS: mean, variance; BOX: lo, hi */
+  double w[ICS_LIGHT1D_MAX_MIX], mu[ICS_LIGHT1D_MAX_MIX], var[ICS_LIGHT1D_MAX_MIX];
+  double *x, *p, *c;  /* TAB (owned): nodes, normalised density, cdf at the nodes */
+  double mean_, var_; /* cached moments */
+};
+
+/* The fill_* functions set up a zeroed light; on an error the caller destroys it. */
+
+static ics_status fill_gauss(ics_light1d *l, double mean, double var) {
   ics_status s;
   if ((s = ics_check_finite(mean)) != ICS_OK || (s = check_var(var)) != ICS_OK) return s;
-  l1_zero(l);
-  l->kind = ICS_LIGHT1D_GAUSS;
+  l->kind = LIGHT1D_GAUSS;
   l->n = 1;
   l->a = mean;
   l->b = var;
@@ -163,25 +176,21 @@ ics_status ics_light1d_gauss(ics_light1d *l, double mean, double var) {
   return ICS_OK;
 }
 
-ics_status ics_light1d_box(ics_light1d *l, double lo, double hi) {
+static ics_status fill_box(ics_light1d *l, double lo, double hi) {
   ics_status s;
   if ((s = ics_check_finite(lo)) != ICS_OK || (s = ics_check_finite(hi)) != ICS_OK) return s;
   if (!(lo < hi)) return ICS_ERR_RANGE;
-  l1_zero(l);
-  l->kind = ICS_LIGHT1D_BOX;
+  l->kind = LIGHT1D_BOX;
   l->a = lo;
   l->b = hi;
   l->mean_ = 0.5 * lo + 0.5 * hi;
   double w = hi - lo;
   l->var_ = w * w / 12.0;
-  if (!isfinite(w) || !isfinite(l->var_)) { /* hi - lo or its square overflows */
-    l1_zero(l);
-    return ICS_ERR_RANGE;
-  }
+  if (!isfinite(w) || !isfinite(l->var_)) return ICS_ERR_RANGE; /* hi - lo or its square */
   return ICS_OK;
 }
 
-ics_status ics_light1d_mix(ics_light1d *l, int n, const double *w, const double *mu,
+static ics_status fill_mix(ics_light1d *l, int n, const double *w, const double *mu,
                            const double *var) {
   if (n < 1 || n > ICS_LIGHT1D_MAX_MIX) return ICS_ERR_SIZE;
   ics_status s;
@@ -196,8 +205,7 @@ ics_status ics_light1d_mix(ics_light1d *l, int n, const double *w, const double 
   }
   if (!(sw > 0)) return ICS_ERR_INVALID_ARG;
   if (isinf(sw)) return ICS_ERR_RANGE; /* the weights' sum overflows */
-  l1_zero(l);
-  l->kind = ICS_LIGHT1D_MIX;
+  l->kind = LIGHT1D_MIX;
   l->n = n;
   double m = 0;
   for (int i = 0; i < n; i++) {
@@ -210,10 +218,7 @@ ics_status ics_light1d_mix(ics_light1d *l, int n, const double *w, const double 
   for (int i = 0; i < n; i++) v += l->w[i] * (var[i] + (mu[i] - m) * (mu[i] - m));
   l->mean_ = m;
   l->var_ = v;
-  if (!isfinite(m) || !isfinite(v)) { /* the mixture's mean or variance overflows */
-    l1_zero(l);
-    return ICS_ERR_RANGE;
-  }
+  if (!isfinite(m) || !isfinite(v)) return ICS_ERR_RANGE; /* the mixture's mean or variance */
   return ICS_OK;
 }
 
@@ -236,7 +241,7 @@ static double tab_moment(const ics_light1d *l, int k, double c) {
   return sum;
 }
 
-ics_status ics_light1d_tab(ics_light1d *l, int n, const double *x, const double *p) {
+static ics_status fill_tab(ics_light1d *l, int n, const double *x, const double *p) {
   if (n < 2) return ICS_ERR_SIZE;
   ics_status s;
   for (int i = 0; i < n; i++) {
@@ -247,16 +252,12 @@ ics_status ics_light1d_tab(ics_light1d *l, int n, const double *x, const double 
   double area = 0;
   for (int i = 0; i + 1 < n; i++) area += 0.5 * (p[i] + p[i + 1]) * (x[i + 1] - x[i]);
   if (!(area > 0) || isinf(area)) return ICS_ERR_INVALID_ARG;
-  l1_zero(l);
-  l->kind = ICS_LIGHT1D_TAB;
+  l->kind = LIGHT1D_TAB;
   l->n = n;
   l->x = malloc((size_t)n * sizeof *l->x);
   l->p = malloc((size_t)n * sizeof *l->p);
   l->c = malloc((size_t)n * sizeof *l->c);
-  if (!l->x || !l->p || !l->c) {
-    ics_light1d_free(l);
-    return ICS_ERR_NOMEM;
-  }
+  if (!l->x || !l->p || !l->c) return ICS_ERR_NOMEM;
   for (int i = 0; i < n; i++) {
     l->x[i] = x[i];
     l->p[i] = p[i] / area;
@@ -266,22 +267,58 @@ ics_status ics_light1d_tab(ics_light1d *l, int n, const double *x, const double 
     l->c[i + 1] = l->c[i] + 0.5 * (l->p[i] + l->p[i + 1]) * (x[i + 1] - x[i]);
   l->mean_ = tab_moment(l, 1, 0.0);
   l->var_ = tab_moment(l, 2, l->mean_);
-  if (!isfinite(l->mean_) || !isfinite(l->var_)) { /* moments overflow */
-    ics_light1d_free(l);
-    l1_zero(l);
-    return ICS_ERR_RANGE;
-  }
+  if (!isfinite(l->mean_) || !isfinite(l->var_)) return ICS_ERR_RANGE; /* moments overflow */
   return ICS_OK;
 }
 
-void ics_light1d_free(ics_light1d *l) {
+/* The start of every ics_light1d_create_*: *out NULL and a zeroed light in *l. */
+static ics_status light1d_start(ics_light1d **out, ics_light1d **l) {
+  if (!out) return ICS_ERR_INVALID_ARG;
+  *out = NULL;
+  *l = calloc(1, sizeof **l);
+  return *l ? ICS_OK : ICS_ERR_NOMEM;
+}
+
+/* The end: *out = l when the fill succeeded, else l is destroyed. */
+static ics_status light1d_finish(ics_light1d **out, ics_light1d *l, ics_status filled) {
+  if (filled == ICS_OK)
+    *out = l;
+  else
+    ics_light1d_destroy(l);
+  return filled;
+}
+
+ics_status ics_light1d_create_gauss(ics_light1d **out, double mean, double var) {
+  ics_light1d *l;
+  ics_status s = light1d_start(out, &l);
+  return s != ICS_OK ? s : light1d_finish(out, l, fill_gauss(l, mean, var));
+}
+
+ics_status ics_light1d_create_box(ics_light1d **out, double lo, double hi) {
+  ics_light1d *l;
+  ics_status s = light1d_start(out, &l);
+  return s != ICS_OK ? s : light1d_finish(out, l, fill_box(l, lo, hi));
+}
+
+ics_status ics_light1d_create_mix(ics_light1d **out, int n, const double *w, const double *mu,
+                                  const double *var) {
+  ics_light1d *l;
+  ics_status s = light1d_start(out, &l);
+  return s != ICS_OK ? s : light1d_finish(out, l, fill_mix(l, n, w, mu, var));
+}
+
+ics_status ics_light1d_create_tab(ics_light1d **out, int n, const double *x, const double *p) {
+  ics_light1d *l;
+  ics_status s = light1d_start(out, &l);
+  return s != ICS_OK ? s : light1d_finish(out, l, fill_tab(l, n, x, p));
+}
+
+void ics_light1d_destroy(ics_light1d *l) {
   if (!l) return;
-  if (l->kind == ICS_LIGHT1D_TAB) {
-    free(l->x);
-    free(l->p);
-    free(l->c);
-  }
-  l->x = l->p = l->c = NULL;
+  free(l->x); /* NULL unless a table light */
+  free(l->p);
+  free(l->c);
+  free(l);
 }
 
 /* index i with x[i] <= v < x[i+1], v inside the table */
@@ -300,19 +337,19 @@ static int tab_seg(const ics_light1d *l, double v) {
 double ics_light1d_pdf(const ics_light1d *l, double x) {
   if (isnan(x)) return NAN;
   switch (l->kind) {
-  case ICS_LIGHT1D_GAUSS:
+  case LIGHT1D_GAUSS:
     if (l->b == 0) return x == l->a ? INFINITY : 0.0;
     return ics_exp_noerrno(-0.5 * (x - l->a) * (x - l->a) / l->b) / sqrt(2 * ICS_PI * l->b);
-  case ICS_LIGHT1D_BOX:
+  case LIGHT1D_BOX:
     return (x >= l->a && x <= l->b) ? 1.0 / (l->b - l->a) : 0.0;
-  case ICS_LIGHT1D_MIX: {
+  case LIGHT1D_MIX: {
     double s = 0;
     for (int i = 0; i < l->n; i++)
       s += l->w[i] * ics_exp_noerrno(-0.5 * (x - l->mu[i]) * (x - l->mu[i]) / l->var[i]) /
            sqrt(2 * ICS_PI * l->var[i]);
     return s;
   }
-  case ICS_LIGHT1D_TAB: {
+  case LIGHT1D_TAB: {
     if (x < l->x[0] || x > l->x[l->n - 1]) return 0.0;
     if (x == l->x[l->n - 1]) return l->p[l->n - 1];
     int i = tab_seg(l, x);
@@ -335,19 +372,19 @@ static double tab_cdf(const ics_light1d *l, double x) {
 double ics_light1d_cdf(const ics_light1d *l, double x) {
   if (isnan(x)) return NAN;
   switch (l->kind) {
-  case ICS_LIGHT1D_GAUSS:
+  case LIGHT1D_GAUSS:
     if (l->b == 0) return x >= l->a ? 1.0 : 0.0;
     return ics_normal_cdf((x - l->a) / sqrt(l->b));
-  case ICS_LIGHT1D_BOX:
+  case LIGHT1D_BOX:
     if (x <= l->a) return 0.0;
     if (x >= l->b) return 1.0;
     return (x - l->a) / (l->b - l->a);
-  case ICS_LIGHT1D_MIX: {
+  case LIGHT1D_MIX: {
     double s = 0;
     for (int i = 0; i < l->n; i++) s += l->w[i] * ics_normal_cdf((x - l->mu[i]) / sqrt(l->var[i]));
     return s > 1.0 ? 1.0 : s;
   }
-  case ICS_LIGHT1D_TAB:
+  case LIGHT1D_TAB:
     return tab_cdf(l, x);
   }
   return NAN;
@@ -356,20 +393,20 @@ double ics_light1d_cdf(const ics_light1d *l, double x) {
 double ics_light1d_sf(const ics_light1d *l, double x) {
   if (isnan(x)) return NAN;
   switch (l->kind) {
-  case ICS_LIGHT1D_GAUSS:
+  case LIGHT1D_GAUSS:
     if (l->b == 0) return x >= l->a ? 0.0 : 1.0;
     return ics_normal_sf((x - l->a) / sqrt(l->b));
-  case ICS_LIGHT1D_BOX:
+  case LIGHT1D_BOX:
     if (x <= l->a) return 1.0;
     if (x >= l->b) return 0.0;
     return (l->b - x) / (l->b - l->a);
-  case ICS_LIGHT1D_MIX: {
+  case LIGHT1D_MIX: {
     double s = 0;
     for (int i = 0; i < l->n; i++)
       s += l->w[i] * ics_normal_sf((x - l->mu[i]) / sqrt(l->var[i]));
     return s > 1.0 ? 1.0 : s;
   }
-  case ICS_LIGHT1D_TAB:
+  case LIGHT1D_TAB:
     return 1.0 - tab_cdf(l, x);
   }
   return NAN;
@@ -438,16 +475,16 @@ static double tab_quantile(const ics_light1d *l, double t) {
 double ics_light1d_quantile(const ics_light1d *l, double p) {
   if (isnan(p) || p < 0 || p > 1) return NAN;
   switch (l->kind) {
-  case ICS_LIGHT1D_GAUSS:
+  case LIGHT1D_GAUSS:
     if (l->b == 0) return l->a;
     return l->a + sqrt(l->b) * ics_normal_quantile(p);
-  case ICS_LIGHT1D_BOX:
+  case LIGHT1D_BOX:
     return p <= 0.5 ? l->a + p * (l->b - l->a) : l->b - (1.0 - p) * (l->b - l->a);
-  case ICS_LIGHT1D_MIX:
+  case LIGHT1D_MIX:
     if (p == 0) return -INFINITY;
     if (p == 1) return INFINITY;
     return p <= 0.5 ? mix_solve(l, p, 0) : mix_solve(l, 1.0 - p, 1);
-  case ICS_LIGHT1D_TAB:
+  case LIGHT1D_TAB:
     return tab_quantile(l, p);
   }
   return NAN;
@@ -456,16 +493,16 @@ double ics_light1d_quantile(const ics_light1d *l, double p) {
 double ics_light1d_isf(const ics_light1d *l, double q) {
   if (isnan(q) || q < 0 || q > 1) return NAN;
   switch (l->kind) {
-  case ICS_LIGHT1D_GAUSS:
+  case LIGHT1D_GAUSS:
     if (l->b == 0) return l->a;
     return l->a - sqrt(l->b) * ics_normal_quantile(q);
-  case ICS_LIGHT1D_BOX:
+  case LIGHT1D_BOX:
     return q <= 0.5 ? l->b - q * (l->b - l->a) : l->a + (1.0 - q) * (l->b - l->a);
-  case ICS_LIGHT1D_MIX:
+  case LIGHT1D_MIX:
     if (q == 0) return INFINITY;
     if (q == 1) return -INFINITY;
     return q <= 0.5 ? mix_solve(l, q, 1) : mix_solve(l, 1.0 - q, 0);
-  case ICS_LIGHT1D_TAB:
+  case LIGHT1D_TAB:
     return tab_quantile(l, 1.0 - q);
   }
   return NAN;
@@ -478,16 +515,16 @@ double ics_light1d_skewness(const ics_light1d *l) {
   if (l->var_ == 0) return 0.0;
   double m3 = 0;
   switch (l->kind) {
-  case ICS_LIGHT1D_GAUSS:
-  case ICS_LIGHT1D_BOX:
+  case LIGHT1D_GAUSS:
+  case LIGHT1D_BOX:
     return 0.0;
-  case ICS_LIGHT1D_MIX:
+  case LIGHT1D_MIX:
     for (int i = 0; i < l->n; i++) {
       double dm = l->mu[i] - l->mean_;
       m3 += l->w[i] * (dm * dm * dm + 3 * dm * l->var[i]);
     }
     break;
-  case ICS_LIGHT1D_TAB:
+  case LIGHT1D_TAB:
     m3 = tab_moment(l, 3, l->mean_);
     break;
   }

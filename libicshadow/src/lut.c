@@ -273,9 +273,9 @@ static int add_vx(ics_lut_grid *G, long cap, double t, int float_ok) {
   return 0;
 }
 
-ics_status ics_lut_grid_new(int n, int per_interval, ics_lut_grid **grid) {
-  if (!grid) return ICS_ERR_INVALID_ARG;
-  *grid = NULL;
+ics_status ics_lut_grid_create(ics_lut_grid **out, int n, int per_interval) {
+  if (!out) return ICS_ERR_INVALID_ARG;
+  *out = NULL;
   if (n < ICS_LUT_MIN_SIZE || n > ICS_LUT_MAX_SIZE || per_interval < 2 || per_interval > 1024)
     return ICS_ERR_RANGE;
   const double phase = 0.3819660112501051; /* (3 - sqrt 5)/2: no point falls on a node */
@@ -287,7 +287,7 @@ ics_status ics_lut_grid_new(int n, int per_interval, ics_lut_grid **grid) {
   G->r = malloc((size_t)capr * sizeof *G->r);
   G->v = malloc((size_t)capv * sizeof *G->v);
   if (!G->r || !G->v) {
-    ics_lut_grid_free(G);
+    ics_lut_grid_destroy(G);
     return ICS_ERR_NOMEM;
   }
   int bad = 0;
@@ -315,14 +315,14 @@ ics_status ics_lut_grid_new(int n, int per_interval, ics_lut_grid **grid) {
   bad |= add_vx(G, capv, 1e-300, 0);
   bad |= add_vx(G, capv, 1.0 - DBL_EPSILON / 2, 0);
   if (bad) {
-    ics_lut_grid_free(G);
+    ics_lut_grid_destroy(G);
     return ICS_ERR_RANGE; /* capacity arithmetic above is wrong: cannot happen */
   }
-  *grid = G;
+  *out = G;
   return ICS_OK;
 }
 
-void ics_lut_grid_free(ics_lut_grid *grid) {
+void ics_lut_grid_destroy(ics_lut_grid *grid) {
   if (!grid) return;
   free(grid->r);
   free(grid->v);

@@ -58,10 +58,10 @@ struct ics_occtex {
 static const char *const prefilter_names[] = {"mipmap", "nbuffers", "sat"};
 static const char *const combine_names[] = {"product", "sum", "max"};
 
-const char *ics_occ_prefilter_name(ics_occ_prefilter pf) {
+const char *ics_occtex_prefilter_name(ics_occ_prefilter pf) {
   return (unsigned)pf < ICS_OCC_PREFILTER_COUNT ? prefilter_names[pf] : NULL;
 }
-const char *ics_occ_combine_name(ics_occ_combine c) {
+const char *ics_occtex_combine_name(ics_occ_combine c) {
   return (unsigned)c < ICS_OCC_COMBINE_COUNT ? combine_names[c] : NULL;
 }
 
@@ -137,22 +137,23 @@ static double uni(uint64_t *s, double a, double b) { /* uniform in [a, b) */
   return a + (b - a) * (double)(splitmix64(s) >> 11) * 0x1p-53;
 }
 
-ics_status ics_occ_scene_make(ics_occ_scene_kind kind, int nboxes, uint64_t seed, ics_occ_box *out) {
+ics_status ics_occtex_boxes_make(ics_occ_boxes_kind kind, int nboxes, uint64_t seed,
+                                 ics_occ_box *out) {
   if (nboxes < 1) return ICS_ERR_SIZE;
   if (!out) return ICS_ERR_INVALID_ARG;
-  if (kind != ICS_OCC_SCENE_FOLIAGE && kind != ICS_OCC_SCENE_PLATES && kind != ICS_OCC_SCENE_BLOCKS)
+  if (kind != ICS_OCC_BOXES_FOLIAGE && kind != ICS_OCC_BOXES_PLATES && kind != ICS_OCC_BOXES_BLOCKS)
     return ICS_ERR_INVALID_ARG;
   uint64_t s = seed;
   for (int i = 0; i < nboxes; i++) {
     double sx, sy, sz, cx, cy, cz;
-    if (kind == ICS_OCC_SCENE_FOLIAGE) {
+    if (kind == ICS_OCC_BOXES_FOLIAGE) {
       sx = sy = sz = uni(&s, 0.06, 0.16);
       /* a canopy: denser toward its centre (x, y) and its middle depth */
       double r = 0.85 * sqrt(uni(&s, 0, 1)), a = uni(&s, 0, 2 * ICS_PI);
       cx = r * cos(a);
       cy = r * sin(a);
       cz = 1.5 + 0.42 * (uni(&s, 0, 1) + uni(&s, 0, 1) - 1);
-    } else if (kind == ICS_OCC_SCENE_PLATES) {
+    } else if (kind == ICS_OCC_BOXES_PLATES) {
       sx = uni(&s, 0.2, 0.8);
       sy = uni(&s, 0.2, 0.8);
       sz = 0.01;
@@ -185,8 +186,8 @@ static long first_centre_at_or_after(double x, double x0, double h, long N) {
   return (long)a;
 }
 
-ics_status ics_occ_slice(const ics_occ_box *boxes, size_t nboxes, const ics_occ_grid *grid,
-                         int slices, double z_near, double z_far, int ss, float *tex) {
+ics_status ics_occtex_slice_boxes(const ics_occ_box *boxes, size_t nboxes, const ics_occ_grid *grid,
+                                  int slices, double z_near, double z_far, int ss, float *tex) {
   ics_status st;
   if ((st = check_grid(grid)) || (st = check_slices(slices, z_near, z_far))) return st;
   if ((st = check_boxes(boxes, nboxes))) return st;
@@ -229,12 +230,12 @@ ics_status ics_occ_slice(const ics_occ_box *boxes, size_t nboxes, const ics_occ_
 /* ---- object ----------------------------------------------------------------------------- */
 static void free_sat(ics_occtex *ot) {
   if (!ot->sat) return;
-  for (int k = 0; k < ot->K; k++) ics_sat2d_free(ot->sat[k]);
+  for (int k = 0; k < ot->K; k++) ics_sat2d_destroy(ot->sat[k]);
   free(ot->sat);
   ot->sat = NULL;
 }
 
-void ics_occtex_free(ics_occtex *ot) {
+void ics_occtex_destroy(ics_occtex *ot) {
   if (!ot) return;
   free(ot->tex);
   free(ot->mip);
@@ -243,8 +244,8 @@ void ics_occtex_free(ics_occtex *ot) {
   free(ot);
 }
 
-ics_status ics_occtex_create(const float *tex, const ics_occ_grid *grid, int slices, double z_near,
-                             double z_far, ics_occtex **out) {
+ics_status ics_occtex_create(ics_occtex **out, const float *tex, const ics_occ_grid *grid,
+                             int slices, double z_near, double z_far) {
   if (!out) return ICS_ERR_INVALID_ARG;
   *out = NULL;
   ics_status st;
@@ -370,7 +371,8 @@ static ics_status build_sat(ics_occtex *ot) {
   if (!ot->sat) return ICS_ERR_NOMEM;
   const size_t n = (size_t)ot->n;
   for (int k = 0; k < ot->K; k++) {
-    ics_status st = ics_sat2d_build(&ot->sat[k], ot->tex + (size_t)k * n * n, n, n, n, ICS_SAT_DOUBLE);
+    ics_status st =
+        ics_sat2d_create(&ot->sat[k], ot->tex + (size_t)k * n * n, n, n, n, ICS_SAT_DOUBLE);
     if (st) {
       free_sat(ot);
       return st;
@@ -537,7 +539,7 @@ ics_status ics_occtex_box(const ics_occtex *ot, ics_occ_prefilter pf, int k, dou
 }
 
 /* ---- shadows ---------------------------------------------------------------------------- */
-double ics_occ_combine_values(ics_occ_combine c, const double *f, int k) {
+double ics_occtex_combine_values(ics_occ_combine c, const double *f, int k) {
   if ((unsigned)c >= ICS_OCC_COMBINE_COUNT || k < 0 || (k > 0 && !f)) return NAN;
   for (int i = 0; i < k; i++)
     if (!(f[i] >= 0 && f[i] <= 1)) return NAN; /* NaN or outside [0, 1] */
@@ -603,7 +605,7 @@ ics_status ics_occtex_shadow(const ics_occtex *ot, const ics_occ_light *light, i
       double f = w[k] * o[k];
       w[k] = f < 0 ? 0 : f > 1 ? 1 : f;
     }
-    occ[i] = ics_occ_combine_values(c, w, ot->K);
+    occ[i] = ics_occtex_combine_values(c, w, ot->K);
   }
   return ICS_OK;
 }
@@ -616,8 +618,8 @@ static int seg_hits(const double *P, const double *d, const ics_occ_box *B) {
   return ics_ray_box_clip(P, d, bmin, bmax, &lo, &hi);
 }
 
-ics_status ics_occ_exact(const ics_occ_box *boxes, size_t nboxes, const ics_occ_light *light, int m,
-                         const double *P, size_t n, double *occ) {
+ics_status ics_occtex_exact(const ics_occ_box *boxes, size_t nboxes, const ics_occ_light *light,
+                            int m, const double *P, size_t n, double *occ) {
   ics_status st;
   if ((st = check_light(light)) || (st = check_boxes(boxes, nboxes)) || (st = check_points(P, n, occ)))
     return st;

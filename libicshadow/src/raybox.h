@@ -1,6 +1,6 @@
 /* raybox.h — ray / axis-aligned box clipping by slabs (private to libicshadow). The one
- * implementation behind the brute-force references of minmax.c (height-field scene hits) and
- * occtex.c (exact visibility of a rectangular light).
+ * implementation behind the height-field scene's ray hits (heightfield.c) and the brute-force
+ * reference of occtex.c (exact visibility of a rectangular light).
  *
  * Clips the parameter interval [*t0, *t1] of the ray o + t d to the closed box [lo, hi] (per
  * axis: (lo - o)/d and (hi - o)/d, ordered; an axis with d = 0 keeps the interval when o lies

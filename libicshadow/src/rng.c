@@ -18,7 +18,7 @@
 #define PHILOX_W0 UINT32_C(0x9E3779B9)
 #define PHILOX_W1 UINT32_C(0xBB67AE85)
 
-void ics_philox4x32_10(const uint32_t ctr[4], const uint32_t key[2], uint32_t out[4]) {
+void ics_rng_philox4x32_10(const uint32_t ctr[4], const uint32_t key[2], uint32_t out[4]) {
   uint32_t c0 = ctr[0], c1 = ctr[1], c2 = ctr[2], c3 = ctr[3];
   uint32_t k0 = key[0], k1 = key[1];
   for (int r = 0; r < 10; r++) {
@@ -47,7 +47,7 @@ uint64_t ics_rng_u64_at(uint64_t seed, uint64_t stream, uint64_t index) {
                      (uint32_t)(stream >> 32)};
   uint32_t key[2] = {(uint32_t)seed, (uint32_t)(seed >> 32)};
   uint32_t out[4];
-  ics_philox4x32_10(ctr, key, out);
+  ics_rng_philox4x32_10(ctr, key, out);
   if (index & 1) return (uint64_t)out[2] | ((uint64_t)out[3] << 32);
   return (uint64_t)out[0] | ((uint64_t)out[1] << 32);
 }
@@ -58,9 +58,11 @@ double ics_rng_uniform_at(uint64_t seed, uint64_t stream, uint64_t index) {
   return u64_to_uniform(ics_rng_u64_at(seed, stream, index));
 }
 
-ics_rng ics_rng_make(uint64_t seed, uint64_t stream) {
-  ics_rng r = {seed, stream, 0};
-  return r;
+void ics_rng_init(ics_rng *out, uint64_t seed, uint64_t stream) {
+  if (!out) return;
+  out->seed = seed;
+  out->stream = stream;
+  out->index = 0;
 }
 
 uint64_t ics_rng_next_u64(ics_rng *r) { return ics_rng_u64_at(r->seed, r->stream, r->index++); }

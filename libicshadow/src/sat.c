@@ -247,8 +247,8 @@ static ics_status integral3(const struct ics_sat3d *s, const double lo[3], const
 }
 
 /* ---- 2D API --------------------------------------------------------------------------- */
-ics_status ics_sat2d_build(ics_sat2d **out, const float *data, size_t width, size_t height,
-                           size_t stride, ics_sat_precision mode) {
+ics_status ics_sat2d_create(ics_sat2d **out, const float *data, size_t width, size_t height,
+                            size_t stride, ics_sat_precision mode) {
   if (!out) return ICS_ERR_INVALID_ARG;
   *out = NULL;
   ics_sat2d *s = malloc(sizeof *s);
@@ -268,7 +268,7 @@ ics_status ics_sat2d_rebuild(ics_sat2d *sat, const float *data, size_t stride) {
   return sat3d_fill(&sat->s, data, stride, 0);
 }
 
-void ics_sat2d_free(ics_sat2d *sat) {
+void ics_sat2d_destroy(ics_sat2d *sat) {
   if (!sat) return;
   sat3d_release(&sat->s);
   free(sat);
@@ -315,8 +315,8 @@ double ics_sat2d_at(const ics_sat2d *sat, size_t x, size_t y) {
 }
 
 /* ---- 3D API --------------------------------------------------------------------------- */
-ics_status ics_sat3d_build(ics_sat3d **out, const float *data, size_t width, size_t height,
-                           size_t depth, ics_sat_precision mode) {
+ics_status ics_sat3d_create(ics_sat3d **out, const float *data, size_t width, size_t height,
+                            size_t depth, ics_sat_precision mode) {
   if (!out) return ICS_ERR_INVALID_ARG;
   *out = NULL;
   ics_sat3d *s = malloc(sizeof *s);
@@ -336,7 +336,7 @@ ics_status ics_sat3d_rebuild(ics_sat3d *sat, const float *data) {
   return sat3d_fill(sat, data, sat->w, sat->w * sat->h);
 }
 
-void ics_sat3d_free(ics_sat3d *sat) {
+void ics_sat3d_destroy(ics_sat3d *sat) {
   if (!sat) return;
   sat3d_release(sat);
   free(sat);

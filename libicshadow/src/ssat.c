@@ -25,8 +25,8 @@ struct ics_ssat {
   double r_max;
 };
 
-ics_status ics_ssat_build(ics_ssat **out, const ics_volume *vol, const double light_pos[3],
-                          size_t n_phi, size_t n_theta, size_t n_r, ics_sat_precision mode) {
+ics_status ics_ssat_create(ics_ssat **out, const ics_volume *vol, const double light_pos[3],
+                           size_t n_phi, size_t n_theta, size_t n_r, ics_sat_precision mode) {
   if (!out) return ICS_ERR_INVALID_ARG;
   *out = NULL;
   if (!ics_volume_ok(vol) || !light_pos) return ICS_ERR_INVALID_ARG;
@@ -66,7 +66,7 @@ ics_status ics_ssat_build(ics_ssat **out, const ics_volume *vol, const double li
       }
     }
   }
-  st = ics_sat3d_build(&s->sat, grid, n_phi, n_theta, n_r, mode);
+  st = ics_sat3d_create(&s->sat, grid, n_phi, n_theta, n_r, mode);
   free(grid);
   if (st != ICS_OK) {
     free(s);
@@ -76,9 +76,9 @@ ics_status ics_ssat_build(ics_ssat **out, const ics_volume *vol, const double li
   return ICS_OK;
 }
 
-void ics_ssat_free(ics_ssat *ssat) {
+void ics_ssat_destroy(ics_ssat *ssat) {
   if (!ssat) return;
-  ics_sat3d_free(ssat->sat);
+  ics_sat3d_destroy(ssat->sat);
   free(ssat);
 }
 

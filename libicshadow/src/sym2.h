@@ -1,8 +1,9 @@
 /* sym2.h — eigen-decomposition and square root of a symmetric 2x2 matrix [[a, b], [b, d]]
- * (private to libicshadow; defined in sym2.c). The one implementation behind ics_cov_to_eig
- * (light.c), the kernel classes (kernel.c: ics_class2d_check, ics_class2d_to_axes, the taps'
- * matrix square root and the whitening of the Poisson pattern), the 2D compensation (conv.c)
- * and the light fit's covariance floor (lightfit.c).
+ * (private to libicshadow; defined in sym2.c). The one implementation behind
+ * ics_light_cov_to_eig (light.c), the kernel classes (class.c: ics_class2d_check,
+ * ics_class2d_to_axes), the members' taps (kernel.c: the matrix square root and the whitening
+ * of the Poisson pattern), the 2D compensation (taps.c), the light fit's covariance floor
+ * (lightfit.c) and the synthetic maps' light check (envmap.c).
  *
  * Method: m = (a + d)/2, h = (a - d)/2, r = hypot(h, b); l1 = m + r (no cancellation for a PSD
  * matrix), l2 = det / l1 = (a d - b^2) / l1 when l1 > 0 (else m - r), so the small eigenvalue

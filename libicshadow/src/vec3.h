@@ -1,6 +1,6 @@
 /* vec3.h — dot and cross products and the finiteness test of 3-vectors of doubles (private to
- * libicshadow): the one copy for the CSAT, the SSAT, the volume references and the epipolar
- * frame of minmax.c. */
+ * libicshadow): the one copy for the CSAT, the SSAT, the volume references, the epipolar frame
+ * (epipolar.c) and the height-field scene (heightfield.c). */
 #ifndef ICS_VEC3_H
 #define ICS_VEC3_H
 

@@ -84,7 +84,7 @@ ics_status ics_volume_tau_point(const ics_volume *vol, const double light_pos[3]
     return ICS_ERR_NAN;
   if (!(half_width > 0.0) || !(step > 0.0) || n_patch < 1) return ICS_ERR_INVALID_ARG;
   double ph0, ph1, th0, th1, R, e[3][3], rm;
-  ics_status st0 = ics_ssat_max_radius(vol, light_pos, &rm); /* ics_ssat_build's light limit */
+  ics_status st0 = ics_ssat_max_radius(vol, light_pos, &rm); /* ics_ssat_create's light limit */
   if (st0 != ICS_OK) return st0;
   ics_ssat_make_frame(vol, light_pos, e);
   ics_status st = ics_ssat_patch_box(light_pos, e, p, half_width, &ph0, &ph1, &th0, &th1, &R);

@@ -1,7 +1,8 @@
 /* icshadow/csat.h — the light-aligned 3D summed-area table of Ament et al. 2014 (CSAT) for
  * directional lights: box-filtered optical depth and transmittance of an extinction volume
  * (volume.h) in constant time, in any precision mode of sat.h. Its brute-force reference is
- * ics_volume_tau_directional (volume.h). Objects are opaque; free with ics_csat_free (NULL is
+ * ics_volume_tau_directional (volume.h). Objects are opaque: ics_csat_create (or
+ * ics_csat_create_frame) makes one (*out NULL on failure), ics_csat_destroy frees it (NULL is
  * fine). */
 #ifndef ICSHADOW_CSAT_H
 #define ICSHADOW_CSAT_H
@@ -32,15 +33,15 @@ extern "C" {
 typedef struct ics_csat ics_csat;
 
 /* Frame from l alone (r_u chosen deterministically, perpendicular to l). */
-ics_status ics_csat_build(ics_csat **out, const ics_volume *vol, const double light_dir[3],
-                          double h, ics_sat_precision mode);
+ICS_API ics_status ics_csat_create(ics_csat **out, const ics_volume *vol, const double light_dir[3],
+                                   double h, ics_sat_precision mode);
 /* Explicit orthonormal frame (checked to 1e-9; r_w = r_u x r_v is the primary light). */
-ics_status ics_csat_build_frame(ics_csat **out, const ics_volume *vol, const double r_u[3],
-                                const double r_v[3], double h, ics_sat_precision mode);
-void ics_csat_free(ics_csat *csat);
+ICS_API ics_status ics_csat_create_frame(ics_csat **out, const ics_volume *vol, const double r_u[3],
+                                         const double r_v[3], double h, ics_sat_precision mode);
+ICS_API void ics_csat_destroy(ics_csat *csat);
 /* Frame vectors and grid size (cells along u, v, w). Any output pointer may be NULL. */
-void ics_csat_frame(const ics_csat *csat, double r_u[3], double r_v[3], double r_w[3],
-                    size_t n[3]);
+ICS_API void ics_csat_frame(const ics_csat *csat, double r_u[3], double r_v[3], double r_w[3],
+                            size_t n[3]);
 
 /* The six orthodirectional lights of one CSAT (Ament Eq. 14-15). */
 typedef enum ics_csat_light {
@@ -52,15 +53,16 @@ typedef enum ics_csat_light {
   ICS_CSAT_MINUS_V = 5
 } ics_csat_light;
 /* The world direction toward light `which` (unit vector). */
-ics_status ics_csat_light_dir(const ics_csat *csat, ics_csat_light which, double dir[3]);
+ICS_API ics_status ics_csat_light_dir(const ics_csat *csat, ics_csat_light which, double dir[3]);
 
 /* Box-filtered optical depth tau_bar at world point p for light `which`, half-width U >= 0
  * (world units). NaN p or U -> ICS_ERR_NAN, U < 0 -> ICS_ERR_INVALID_ARG. */
-ics_status ics_csat_tau(const ics_csat *csat, ics_csat_light which, const double p[3],
-                        double half_width, double *tau);
+ICS_API ics_status ics_csat_tau(const ics_csat *csat, ics_csat_light which, const double p[3],
+                                double half_width, double *tau);
 /* exp(-tau_bar): the filtered transmittance. */
-ics_status ics_csat_transmittance(const ics_csat *csat, ics_csat_light which, const double p[3],
-                                  double half_width, double *transmittance);
+ICS_API ics_status ics_csat_transmittance(const ics_csat *csat, ics_csat_light which,
+                                          const double p[3], double half_width,
+                                          double *transmittance);
 
 #ifdef __cplusplus
 }

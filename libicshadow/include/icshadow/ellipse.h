@@ -28,11 +28,11 @@
 extern "C" {
 #endif
 
-double ics_ellipse_varx(double b);
-double ics_ellipse_vx(double t);
-double ics_ellipse_vy(double t);
-double ics_ellipse_ratio(double t);
-double ics_ellipse_ratio_to_t(double rat);
+ICS_API double ics_ellipse_varx(double b);
+ICS_API double ics_ellipse_vx(double t);
+ICS_API double ics_ellipse_vy(double t);
+ICS_API double ics_ellipse_ratio(double t);
+ICS_API double ics_ellipse_ratio_to_t(double rat);
 
 #define ICS_ELLIPSE_MAX_SAMPLES 4096
 
@@ -60,8 +60,8 @@ typedef struct ics_ellipse_shape {
  * Errors: ICS_ERR_NAN (any argument NaN), ICS_ERR_NEGATIVE_VARIANCE, ICS_ERR_INFINITE (variance
  * or angle infinite), ICS_ERR_RANGE (nsamples outside 1..ICS_ELLIPSE_MAX_SAMPLES, offset not
  * finite), ICS_ERR_INVALID_ARG (shape NULL). */
-ics_status ics_ellipse_kernel(double varx, double vary, double angle_deg, int nsamples,
-                              double offset, ics_ellipse_shape *shape, double *xy);
+ICS_API ics_status ics_ellipse_kernel(double varx, double vary, double angle_deg, int nsamples,
+                                      double offset, ics_ellipse_shape *shape, double *xy);
 
 #ifdef __cplusplus
 }

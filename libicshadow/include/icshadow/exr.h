@@ -31,22 +31,23 @@ typedef enum ics_exr_type {
 } ics_exr_type;
 
 /* 1 when the library was built with OpenEXR, else 0. */
-int ics_exr_available(void);
+ICS_API int ics_exr_available(void);
 
-/* Reads `path` into *img (3 or 4 channels, as in the file). On failure *img is empty and,
- * when msg is non-NULL, msg receives a one-line reason (truncated to msg_size):
+/* Reads `path` into a new image *out (3 or 4 channels, as in the file; ics_image_destroy frees
+ * it). On failure *out is NULL and, when msg is non-NULL, msg receives a one-line reason
+ * (truncated to msg_size):
  * ICS_ERR_IO (cannot open / read / truncated data), ICS_ERR_PARSE (not an EXR, corrupt header
  * or chunk), ICS_ERR_UNSUPPORTED (tiled/deep/multi-part, wrong channel set, UINT or
  * subsampled channels, or no OpenEXR at build time), ICS_ERR_INVALID_ARG (NaN / inf /
  * negative pixel), ICS_ERR_SIZE, ICS_ERR_NOMEM. */
-ics_status ics_exr_read(const char *path, ics_image *img, char *msg, size_t msg_size);
+ICS_API ics_status ics_exr_read(const char *path, ics_image **out, char *msg, size_t msg_size);
 
 /* Writes *img (3 or 4 channels) to `path` directly (callers wanting atomic output write a
  * temporary name and rename). ICS_ERR_INVALID_ARG for a NaN / inf / negative pixel, or a value
  * that overflows half when type is ICS_EXR_HALF; ICS_ERR_IO on write errors (the partial file
  * is removed). */
-ics_status ics_exr_write(const char *path, const ics_image *img, ics_exr_type type, char *msg,
-                         size_t msg_size);
+ICS_API ics_status ics_exr_write(const char *path, const ics_image *img, ics_exr_type type,
+                                 char *msg, size_t msg_size);
 
 #ifdef __cplusplus
 }

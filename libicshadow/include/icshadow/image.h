@@ -1,7 +1,8 @@
 /* icshadow/image.h — a simple float image: W x H pixels, 3 (RGB) or 4 (RGBA) interleaved
  * channels, rows top to bottom (row 0 is the top row, as in OpenEXR and the latitude-longitude
  * layout of docs/architecture.md "Frames and file formats"), linear values. Pure C, no
- * dependencies. */
+ * dependencies. An image is a heap object with public fields: ics_image_create (or a reader
+ * such as ics_exr_read) makes it, ics_image_destroy frees it. */
 #ifndef ICSHADOW_IMAGE_H
 #define ICSHADOW_IMAGE_H
 
@@ -21,20 +22,17 @@ typedef struct ics_image {
   float *data;  /* width * height * channels floats, pixel (i, j) at (j * width + i) * channels */
 } ics_image;
 
-/* Allocates a zero-filled image. ICS_ERR_SIZE unless 1 <= width, height <= ICS_IMAGE_MAX_DIM;
- * ICS_ERR_INVALID_ARG unless channels is 3 or 4; ICS_ERR_NOMEM. On failure *img is empty. */
-ics_status ics_image_init(ics_image *img, int width, int height, int channels);
-/* Frees the pixels and empties the struct (safe on an empty or zeroed struct). */
-void ics_image_free(ics_image *img);
-
-/* The same on the heap: *out is a new image (ics_image_destroy it); NULL on failure. */
-ics_status ics_image_create(ics_image **out, int width, int height, int channels);
-void ics_image_destroy(ics_image *img); /* NULL is allowed */
+/* Creates a zero-filled image. ICS_ERR_SIZE unless 1 <= width, height <= ICS_IMAGE_MAX_DIM;
+ * ICS_ERR_INVALID_ARG unless channels is 3 or 4 (or out is NULL); ICS_ERR_NOMEM. On failure
+ * *out is NULL. */
+ICS_API ics_status ics_image_create(ics_image **out, int width, int height, int channels);
+/* Frees the pixels and the image (NULL is fine). */
+ICS_API void ics_image_destroy(ics_image *img);
 
 /* First pixel whose R, G or B is NaN, infinite or negative (alpha is not checked):
  * returns 0 and sets *i, *j (column, row) and *c (channel) for it; 1 when all are finite
  * and >= 0. NULL out-pointers are allowed. */
-int ics_image_find_bad(const ics_image *img, int *i, int *j, int *c);
+ICS_API int ics_image_find_bad(const ics_image *img, int *i, int *j, int *c);
 
 #ifdef __cplusplus
 }

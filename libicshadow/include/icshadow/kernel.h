@@ -45,22 +45,15 @@
 
 #include <stdint.h>
 
+#include "icshadow/class.h"
 #include "icshadow/status.h"
+#include "icshadow/taps.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 #define ICS_KERNEL_MAX_TAPS 65536 /* any member's tap count is at most this */
-
-typedef struct ics_tap1d {
-  double x; /* offset in pixels */
-  double w; /* weight */
-} ics_tap1d;
-
-typedef struct ics_tap2d {
-  double x, y, w;
-} ics_tap2d;
 
 typedef enum ics_kernel_member {
   ICS_KERNEL_DIRAC = 0,
@@ -73,37 +66,11 @@ typedef enum ics_kernel_member {
 } ics_kernel_member;
 
 /* "dirac", "tophat", "stochastic-dirac", "gauss", "ellipse", "poisson"; NULL when out of range. */
-const char *ics_kernel_member_name(ics_kernel_member m);
+ICS_API const char *ics_kernel_member_name(ics_kernel_member m);
 /* 1 for members with per-iteration random taps (STOCH_DIRAC, ELLIPSE, POISSON), else 0. */
-int ics_kernel_member_stochastic(ics_kernel_member m);
+ICS_API int ics_kernel_member_stochastic(ics_kernel_member m);
 /* Bit 1: has a 1D form, bit 2: has a 2D form (GAUSS: 3). 0 when out of range. */
-int ics_kernel_member_dims(ics_kernel_member m);
-
-/* 1D class: mean and variance (pixels, pixels^2). */
-typedef struct ics_class1d {
-  double mean, var;
-} ics_class1d;
-
-/* 2D class: mean vector and covariance [[cxx, cxy], [cxy, cyy]]. */
-typedef struct ics_class2d {
-  double mean[2];
-  double cxx, cxy, cyy;
-} ics_class2d;
-
-/* ICS_OK, or ICS_ERR_INVALID_ARG (NULL), ICS_ERR_NAN, ICS_ERR_INFINITE, ICS_ERR_NEGATIVE_VARIANCE
- * (var < 0; 2D: an eigenvalue < -1e-12 * trace, i.e. not positive semi-definite). */
-ics_status ics_class1d_check(const ics_class1d *c);
-ics_status ics_class2d_check(const ics_class2d *c);
-/* Class from eigenvalues varx, vary and the rotation alpha (degrees ccw from +x) of the x axis:
- * Sigma = R(alpha) diag(varx, vary) R(alpha)^T, computed by light.h's ics_cov_from_eig (exact
- * at multiples of 90 degrees); the mean is checked here and the result by ics_class2d_check. */
-ics_status ics_class2d_from_axes(double mx, double my, double varx, double vary, double angle_deg,
-                                 ics_class2d *out);
-/* Inverse: varx = the larger eigenvalue, angle_deg = direction of its eigenvector in (-90, 90]
- * (0 when cxy = 0 and cxx = cyy); vary = the smaller eigenvalue (clamped to >= 0), formed as
- * det / varx so it keeps its relative accuracy for huge ratios. The same algorithm as light.h's
- * ics_cov_to_eig, on any class ics_class2d_check accepts (its tolerance, -1e-12 trace). */
-ics_status ics_class2d_to_axes(const ics_class2d *c, double *varx, double *vary, double *angle_deg);
+ICS_API int ics_kernel_member_dims(ics_kernel_member m);
 
 /* A member of a 1D class. nsamples and param as described above; 0 selects the default. */
 typedef struct ics_kernel1d {
@@ -123,52 +90,27 @@ typedef struct ics_kernel2d {
 } ics_kernel2d;
 
 /* Fill *k with the member, the class and default parameters (seed 0). Validates. */
-ics_status ics_kernel1d_init(ics_kernel1d *k, ics_kernel_member m, double mean, double var);
-ics_status ics_kernel2d_init(ics_kernel2d *k, ics_kernel_member m, const ics_class2d *cls);
+ICS_API ics_status ics_kernel1d_init(ics_kernel1d *k, ics_kernel_member m, double mean, double var);
+ICS_API ics_status ics_kernel2d_init(ics_kernel2d *k, ics_kernel_member m, const ics_class2d *cls);
 
 /* Cost: the largest number of taps any iteration produces (> 0), or 0 when *k is invalid. */
-int ics_kernel1d_max_taps(const ics_kernel1d *k);
-int ics_kernel2d_max_taps(const ics_kernel2d *k);
+ICS_API int ics_kernel1d_max_taps(const ics_kernel1d *k);
+ICS_API int ics_kernel2d_max_taps(const ics_kernel2d *k);
 
 /* Taps of iteration `iter` (ignored by deterministic members) into taps[0 .. cap-1]; *ntaps gets
  * the count. Weights sum to 1. Errors: ICS_ERR_INVALID_ARG (NULL, member without this
  * dimension), class errors as ics_class*_check, ICS_ERR_RANGE (parameter out of range: nsamples
  * < 0 or > limit, param < 0 or not finite, TOPHAT exact box impossible, GAUSS N = 1 with var > 0),
  * ICS_ERR_SIZE (cap < taps needed). */
-ics_status ics_kernel1d_taps(const ics_kernel1d *k, uint64_t iter, ics_tap1d *taps, int cap,
-                             int *ntaps);
-ics_status ics_kernel2d_taps(const ics_kernel2d *k, uint64_t iter, ics_tap2d *taps, int cap,
-                             int *ntaps);
+ICS_API ics_status ics_kernel1d_taps(const ics_kernel1d *k, uint64_t iter, ics_tap1d *taps, int cap,
+                                     int *ntaps);
+ICS_API ics_status ics_kernel2d_taps(const ics_kernel2d *k, uint64_t iter, ics_tap2d *taps, int cap,
+                                     int *ntaps);
 
 /* Expected moments of the taps over the member's randomness, in closed form (not measured): the
  * class itself for every member except TOPHAT with param = 1 (raw box: sigma^2 + E_box[f(1-f)]). */
-ics_status ics_kernel1d_expected(const ics_kernel1d *k, double *mean, double *var);
-ics_status ics_kernel2d_expected(const ics_kernel2d *k, double mean[2], double cov[3]);
-
-/* Measured moments of a tap list (compensated sums): total weight, mean, central variance
- * (2D: cov = {cxx, cxy, cyy}). Divides by the total weight; NaN when it is 0. */
-void ics_taps1d_moments(const ics_tap1d *t, int n, double *wsum, double *mean, double *var);
-void ics_taps2d_moments(const ics_tap2d *t, int n, double *wsum, double mean[2], double cov[3]);
-
-/* Per-iteration member choice (Lyapunov mixing): step i uses members[i % nmembers] with
- * iteration index i. All members should share one class (not enforced: a schedule of different
- * classes is legal and its moments still add). */
-typedef struct ics_schedule1d {
-  const ics_kernel1d *members;
-  int nmembers;
-} ics_schedule1d;
-
-typedef struct ics_schedule2d {
-  const ics_kernel2d *members;
-  int nmembers;
-} ics_schedule2d;
-
-ics_status ics_schedule1d_taps(const ics_schedule1d *s, uint64_t step, ics_tap1d *taps, int cap,
-                               int *ntaps);
-ics_status ics_schedule2d_taps(const ics_schedule2d *s, uint64_t step, ics_tap2d *taps, int cap,
-                               int *ntaps);
-int ics_schedule1d_max_taps(const ics_schedule1d *s); /* 0 when invalid */
-int ics_schedule2d_max_taps(const ics_schedule2d *s);
+ICS_API ics_status ics_kernel1d_expected(const ics_kernel1d *k, double *mean, double *var);
+ICS_API ics_status ics_kernel2d_expected(const ics_kernel2d *k, double mean[2], double cov[3]);
 
 #ifdef __cplusplus
 }

@@ -6,11 +6,11 @@
  * (dx/dz, dy/dz) = (tan wx, tan wy); wx, wy are the x-tilt and y-tilt angles in DEGREES.
  * |w| >= 90 degrees has no point on the plane: rejected (NaN / ICS_ERR_RANGE).
  *
- * Precision near 90 degrees: ics_tan_deg reduces |w| > 45 to cot(90 - |w|) where 90 - |w| is
+ * Precision near 90 degrees: ics_light_tan_deg reduces |w| > 45 to cot(90 - |w|) where 90 - |w| is
  * exact (Sterbenz), so its error is ~1 ulp of the result at every representable angle (the
  * naive tan(w * pi / 180) loses up to 1/(90 - w) ulps-of-degree: ~1e-12 relative at
  * 90 - 2^-20). The problem itself is ill-conditioned: the condition number of w -> tan w is
- * ics_tilt_condition(w) = 2 w / sin(2 w) (w in radians), ~ pi/2 / (90 - w in rad), so an
+ * ics_light_tilt_condition(w) = 2 w / sin(2 w) (w in radians), ~ pi/2 / (90 - w in rad), so an
  * angle known to 1 ulp gives a relative error of ulp(w) * cond / |w|. See docs/theory.md.
  *
  * Covariance: [[cxx, cxy], [cxy, cyy]] = R(alpha) diag(varx, vary) R(alpha)^T, alpha in degrees
@@ -34,10 +34,10 @@ extern "C" {
 /* ---- tilt angles ---- */
 
 /* tan of an angle in degrees, accurate near +-90 (see above); NaN for |w| >= 90 or NaN/inf. */
-double ics_tan_deg(double w_deg);
+ICS_API double ics_light_tan_deg(double w_deg);
 /* Condition number |w tan'(w) / tan(w)| = 2w/sin(2w) of the tilt map (1 at w = 0);
  * NaN for |w| >= 90. */
-double ics_tilt_condition(double w_deg);
+ICS_API double ics_light_tilt_condition(double w_deg);
 
 /* ---- 2D Gaussian lights ---- */
 
@@ -56,75 +56,69 @@ typedef struct ics_light {
 /* R(alpha) diag(varx, vary) R(alpha)^T (cos, sin of alpha exact at multiples of 90 degrees and
  * ~1 ulp relative near them). ICS_ERR_NAN / ICS_ERR_INFINITE / ICS_ERR_NEGATIVE_VARIANCE on bad
  * input. */
-ics_status ics_cov_from_eig(double varx, double vary, double alpha_deg, double cov[3]);
+ICS_API ics_status ics_light_cov_from_eig(double varx, double vary, double alpha_deg,
+                                          double cov[3]);
 /* Inverse: varx >= vary, alpha in (-90, 90]; ICS_ERR_INVALID_ARG if cov is not symmetric
  * positive semidefinite (up to rounding: eigenvalues >= -8 eps * trace are clamped to 0). */
-ics_status ics_cov_to_eig(const double cov[3], double *varx, double *vary, double *alpha_deg);
+ICS_API ics_status ics_light_cov_to_eig(const double cov[3], double *varx, double *vary,
+                                        double *alpha_deg);
 
-/* A Gaussian light from tilt angles, (varx, vary, alpha), colour (NULL: white) and weight.
- * ICS_ERR_RANGE when a tilt is at or beyond +-90 degrees; ICS_ERR_NAN, ICS_ERR_INFINITE,
+/* Fills *out with a Gaussian light from tilt angles, (varx, vary, alpha), colour (NULL: white) and
+ * weight. ICS_ERR_RANGE when a tilt is at or beyond +-90 degrees; ICS_ERR_NAN, ICS_ERR_INFINITE,
  * ICS_ERR_NEGATIVE_VARIANCE, ICS_ERR_INVALID_ARG (negative weight or colour) otherwise. */
-ics_status ics_light_from_tilt(ics_light *out, double wx_deg, double wy_deg, double varx,
-                               double vary, double alpha_deg, const double color[3],
-                               double weight);
+ICS_API ics_status ics_light_init_tilt(ics_light *out, double wx_deg, double wy_deg, double varx,
+                                       double vary, double alpha_deg, const double color[3],
+                                       double weight);
 
 /* Eq. 7/15 in 1D: mu_k = -e mu_l, var_k = d1 e var_l. ICS_ERR_RANGE unless e > 0, d1 > 0;
  * ICS_ERR_NEGATIVE_VARIANCE for var_l < 0; NaN/inf rejected. */
-ics_status ics_kernel_map_1d(double mu_l, double var_l, double e, double d1, double *mu_k,
-                             double *var_k);
+ICS_API ics_status ics_light_kernel_map_1d(double mu_l, double var_l, double e, double d1,
+                                           double *mu_k, double *var_k);
 /* Eq. 7/15 in 2D: mean_k = -e mean_l, cov_k = d1 e cov_l (cov as cxx, cxy, cyy).
- * ICS_ERR_NEGATIVE_VARIANCE unless cov_l is positive semidefinite (ics_cov_to_eig's check). */
-ics_status ics_kernel_map_2d(const ics_light *l, double e, double d1, double mean_k[2],
-                             double cov_k[3]);
+ * ICS_ERR_NEGATIVE_VARIANCE unless cov_l is positive semidefinite (the check of
+ * ics_light_cov_to_eig). */
+ICS_API ics_status ics_light_kernel_map_2d(const ics_light *l, double e, double d1,
+                                           double mean_k[2], double cov_k[3]);
 
 /* ---- 1D light functions (densities on the light-plane x axis, integral 1) ---- */
 
-typedef enum ics_light1d_kind {
-  ICS_LIGHT1D_GAUSS, /* mean, variance (variance 0: a point light, a Dirac at the mean) */
-  ICS_LIGHT1D_BOX,   /* uniform on [lo, hi], lo < hi */
-  ICS_LIGHT1D_MIX,   /* Gaussian mixture, weights normalised to sum 1, each variance > 0 */
-  ICS_LIGHT1D_TAB    /* piecewise-linear density through (x_i, p_i), normalised */
-} ics_light1d_kind;
+#define ICS_LIGHT1D_MAX_MIX 16 /* components of a mixture */
 
-#define ICS_LIGHT1D_MAX_MIX 16
+/* A 1D light: an opaque object, made by one of the ics_light1d_create_* below (*out NULL on
+ * failure) and freed by ics_light1d_destroy (NULL is fine). The constructors reject NaN/inf
+ * inputs (ICS_ERR_NAN / ICS_ERR_INFINITE) and inputs whose derived quantities overflow
+ * (ICS_ERR_RANGE: a box width hi - lo or its variance, a mixture's weight sum, mean or
+ * variance, a table's mean or variance not finite, e.g. box:-1e308,1e308); a NULL out is
+ * ICS_ERR_INVALID_ARG, and ICS_ERR_NOMEM. */
+typedef struct ics_light1d ics_light1d;
 
-typedef struct ics_light1d {
-  ics_light1d_kind kind;
-  int n;        /* mixture components or table nodes */
-  double a, b;  /* GAUSS: mean, variance; BOX: lo, hi */
-  double w[ICS_LIGHT1D_MAX_MIX], mu[ICS_LIGHT1D_MAX_MIX], var[ICS_LIGHT1D_MAX_MIX];
-  double *x, *p, *c; /* TAB (owned): nodes, normalised density, cdf at the nodes */
-  double mean_, var_; /* cached moments */
-} ics_light1d;
-
-/* The constructors reject NaN/inf inputs (ICS_ERR_NAN / ICS_ERR_INFINITE) and inputs whose
- * derived quantities overflow (ICS_ERR_RANGE: a box width hi - lo or its variance, a mixture's
- * weight sum, mean or variance, a table's mean or variance not finite, e.g. box:-1e308,1e308);
- * on an error *l holds no light. */
-ics_status ics_light1d_gauss(ics_light1d *l, double mean, double var);
-ics_status ics_light1d_box(ics_light1d *l, double lo, double hi);
-/* n in 1..ICS_LIGHT1D_MAX_MIX components; weights >= 0 with a positive sum (ICS_ERR_INVALID_ARG
- * when it is 0); var > 0. */
-ics_status ics_light1d_mix(ics_light1d *l, int n, const double *w, const double *mu,
-                           const double *var);
-/* n >= 2 strictly increasing nodes, densities >= 0 with positive integral (copied). */
-ics_status ics_light1d_tab(ics_light1d *l, int n, const double *x, const double *p);
-/* Frees a table light's copies (no-op for the others); the struct may then be re-initialised. */
-void ics_light1d_free(ics_light1d *l);
+/* Gaussian of that mean and variance (variance 0: a point light, a Dirac at the mean). */
+ICS_API ics_status ics_light1d_create_gauss(ics_light1d **out, double mean, double var);
+/* Uniform on [lo, hi], lo < hi (else ICS_ERR_RANGE). */
+ICS_API ics_status ics_light1d_create_box(ics_light1d **out, double lo, double hi);
+/* Gaussian mixture of n in 1..ICS_LIGHT1D_MAX_MIX components (else ICS_ERR_SIZE); weights >= 0
+ * with a positive sum (ICS_ERR_INVALID_ARG when it is 0), normalised to sum 1; var > 0. */
+ICS_API ics_status ics_light1d_create_mix(ics_light1d **out, int n, const double *w,
+                                          const double *mu, const double *var);
+/* Piecewise-linear density through (x_i, p_i), normalised: n >= 2 strictly increasing nodes
+ * (else ICS_ERR_SIZE / ICS_ERR_INVALID_ARG), densities >= 0 with positive integral (copied). */
+ICS_API ics_status ics_light1d_create_tab(ics_light1d **out, int n, const double *x,
+                                          const double *p);
+ICS_API void ics_light1d_destroy(ics_light1d *l);
 
 /* pdf, cdf L(x), survival 1 - L(x) (computed without cancellation), quantile L^-1(p) for p in
  * [0, 1] (NaN otherwise; the smallest x with L(x) >= p for flat parts), upper quantile
  * x with 1 - L(x) = q. A point light's pdf is +inf at the mean and 0 elsewhere; its cdf
  * steps at the mean (L(mean) = 1). */
-double ics_light1d_pdf(const ics_light1d *l, double x);
-double ics_light1d_cdf(const ics_light1d *l, double x);
-double ics_light1d_sf(const ics_light1d *l, double x);
-double ics_light1d_quantile(const ics_light1d *l, double p);
-double ics_light1d_isf(const ics_light1d *l, double q);
-double ics_light1d_mean(const ics_light1d *l);
-double ics_light1d_var(const ics_light1d *l);
+ICS_API double ics_light1d_pdf(const ics_light1d *l, double x);
+ICS_API double ics_light1d_cdf(const ics_light1d *l, double x);
+ICS_API double ics_light1d_sf(const ics_light1d *l, double x);
+ICS_API double ics_light1d_quantile(const ics_light1d *l, double p);
+ICS_API double ics_light1d_isf(const ics_light1d *l, double q);
+ICS_API double ics_light1d_mean(const ics_light1d *l);
+ICS_API double ics_light1d_var(const ics_light1d *l);
 /* Third standardised moment E[(X - mu)^3] / sigma^3 (0 for a point light). */
-double ics_light1d_skewness(const ics_light1d *l);
+ICS_API double ics_light1d_skewness(const ics_light1d *l);
 
 #ifdef __cplusplus
 }

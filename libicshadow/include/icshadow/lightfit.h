@@ -2,20 +2,12 @@
  * (Patel et al. 2013, Sec. 3.2 last paragraphs: "project [the environment map] onto the
  * virtual light plane to define l(x), and perform Gaussian fitting on l(x)").
  *
- * Frames (docs/architecture.md "Frames and file formats"): latitude-longitude map W x H,
- * pixel (i, j) centre u = (i + 1/2)/W, v = (j + 1/2)/H, theta = pi v from +y, phi = 2 pi u - pi,
- * direction (sin theta sin phi, cos theta, sin theta cos phi). Directions with dz > 0 (behind
- * the viewer) map to the plane point (x, y) = (dx/dz, dy/dz) = (tan wx, tan wy), and the light
- * function is the density l(x, y) = L(w) dw/dA, dw/dA = (1 + x^2 + y^2)^(-3/2), so
- * integral of l over the plane = integral of L over the hemisphere. Radiance is reduced to
- * luminance Y = 0.2126 R + 0.7152 G + 0.0722 B for the fit; colours are fitted afterwards.
- *
- * Cut-off: a pixel whose centre is behind the viewer is kept when its centre is within
- * max_angle_deg of +z (plane radius <= tan max_angle) and dz at its worst corner is at least
- * half of dz at its centre (ics_envmap_pixel_kept); the energy of the others is left out and
- * reported (ics_lightfit_report.cutoff_loss). The second condition cuts rim pixels that reach
- * (nearly) 90 degrees, where the plane area and footprint are unbounded, whatever the cut-off.
- * dz <= 0 at the centre (in front of the viewer) is reported separately.
+ * Frames, the plane density l(x, y) = L(w) dw/dA of a map and the kept-pixel rule of the
+ * cut-off are envmap.h's (docs/architecture.md "Frames and file formats"). Radiance is reduced
+ * to luminance Y = 0.2126 R + 0.7152 G + 0.0722 B for the fit; colours are fitted afterwards.
+ * Cut-off: only the kept pixels (ics_envmap_pixel_kept with max_angle_deg) are fitted; the
+ * energy of the others is left out and reported (ics_lightfit_report.cutoff_loss), and dz <= 0
+ * at the centre (in front of the viewer) separately.
  *
  * Light convention (docs/lights_format.md): weight = luminance power of the light, the
  * integral of its Y over the plane (= over the hemisphere, in map units x steradian); color =
@@ -87,53 +79,21 @@ typedef struct ics_lightfit_report {
   int converged;        /* 1: EM stopped at |dLL| <= tol; 0: it ran out of max_iter */
 } ics_lightfit_report;
 
-void ics_lightfit_defaults(ics_lightfit_params *p);
+/* Fills *out with the defaults given above. A zeroed struct is not the defaults: seed 0,
+ * max_iter 0 and tol 0 are settings of their own. */
+ICS_API void ics_lightfit_params_init(ics_lightfit_params *out);
 
 /* Fits p->k Gaussians to env (3 or 4 channels; alpha ignored). lights must hold p->k entries;
  * entries past report->k_fit are zeroed. ICS_ERR_INVALID_ARG for bad parameters, a NaN / inf /
  * negative pixel, or a map without light inside the cut-off; ICS_ERR_SIZE for maps smaller than
  * 4 x 2; ICS_ERR_NOMEM. */
-ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *p, ics_light *lights,
-                        ics_lightfit_report *report);
+ICS_API ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *p,
+                                ics_light *lights, ics_lightfit_report *report);
 
 /* The error fields (l1, l2, edge) and energies of any set of n lights against env, with the
  * cut-off max_angle_deg (k_fit = n, iterations = samples = 0). */
-ics_status ics_lightfit_errors(const ics_image *env, double max_angle_deg,
-                               const ics_light *lights, int n, ics_lightfit_report *report);
-
-/* Synthetic environment map: env (already initialised, 3 or 4 channels) is overwritten with
- * sky_rgb (NULL: black) plus n Gaussian lights drawn with radiance
- * weight color g(x) (1 + |x|^2)^(3/2), averaged over supersample^2 points per pixel
- * (1..16). Lights with a covariance eigenvalue below (pixel size on the plane / 4)^2 are
- * widened to it along that axis; lights narrower than that in both axes are drawn as a delta
- * into the one pixel holding their mean (energy weight color). Alpha is set to 1.
- * ICS_ERR_INVALID_ARG for bad lights (negative weight / colour / non-PSD covariance, NaN). */
-ics_status ics_envmap_render(ics_image *env, const double sky_rgb[3], const ics_light *lights,
-                             int n, int supersample);
-
-/* The same, calling progress(ctx, rows_done, rows) after each row of pixels (progress may be
- * NULL). */
-ics_status ics_envmap_render_progress(ics_image *env, const double sky_rgb[3],
-                                      const ics_light *lights, int n, int supersample,
-                                      void (*progress)(void *ctx, int rows_done, int rows),
-                                      void *ctx);
-
-/* Plane point and solid angle of pixel (i, j) of a W x H map: returns 0 (and *x, *y, *domega)
- * when the pixel centre is behind the viewer (dz > 0), -1 otherwise. */
-int ics_envmap_pixel(int width, int height, int i, int j, double *x, double *y, double *domega);
-
-/* 1 when the fit keeps pixel (i, j) of a W x H map with the cut-off max_angle_deg (in (0, 90)):
- * its centre is within the cut-off and dz at its worst corner >= half of dz at its centre;
- * 0 otherwise (also for bad arguments). */
-int ics_envmap_pixel_kept(int width, int height, int i, int j, double max_angle_deg);
-
-/* The map projected onto the light plane at pixel (i, j) of env (3 or 4 channels; alpha
- * ignored): the plane point (x, y) of the pixel centre (as ics_envmap_pixel) and, per colour
- * channel, the light density l = L dw/dA = L (1 + x^2 + y^2)^(-3/2) of the pixel's radiance L
- * in rgb. Returns 0 when the centre is behind the viewer (dz > 0), -1 otherwise or for bad
- * arguments (then nothing is written). x or y may be NULL. */
-int ics_envmap_plane_density(const ics_image *env, int i, int j, double *x, double *y,
-                             double rgb[3]);
+ICS_API ics_status ics_lightfit_errors(const ics_image *env, double max_angle_deg,
+                                       const ics_light *lights, int n, ics_lightfit_report *report);
 
 #ifdef __cplusplus
 }

@@ -42,7 +42,7 @@ extern "C" {
 
 #define ICS_LUT_MIN_SIZE 4
 #define ICS_LUT_MAX_SIZE 65536
-/* Grid density of the stamped errors: points per table interval (see ics_lut_grid_new). */
+/* Grid density of the stamped errors: points per table interval (see ics_lut_grid_create). */
 #define ICS_LUT_STAMP_PER_INTERVAL 16
 
 #define ICS_LUT_BUILTIN_SIZE 256
@@ -64,7 +64,7 @@ typedef struct ics_lut_tables {
 
 /* Fill s[0..n-1] and g[0..n-1] from the exact functions (ellipse.c). n in
  * [ICS_LUT_MIN_SIZE, ICS_LUT_MAX_SIZE], else ICS_ERR_RANGE; ICS_ERR_INVALID_ARG for NULL. */
-ics_status ics_lut_build(int n, double *s, double *g);
+ICS_API ics_status ics_lut_build(int n, double *s, double *g);
 
 /* Evaluators on given tables (double arithmetic). ratio_to_ab writes the unit radii
  * a = 1 - t and b = t, each with its own relative precision. vx_ab takes a = 1 - t and b = t
@@ -74,32 +74,33 @@ ics_status ics_lut_build(int n, double *s, double *g);
  * a = sqrt(varx / g(t)), b = sqrt(vary / g(1 - t)); (0, 0) for varx = vary = 0; NaN for
  * negative, NaN or infinite variances. Domain: variances <= DBL_MAX / 4 (FLT_MAX / 4 for the
  * float code): beyond, var / g (g >= 1/3) may overflow to +inf. */
-double ics_lut_tables_ratio_to_t(const ics_lut_tables *L, double rat);
-void ics_lut_tables_ratio_to_ab(const ics_lut_tables *L, double rat, double *a, double *b);
-double ics_lut_tables_vx(const ics_lut_tables *L, double t);
-double ics_lut_tables_vx_ab(const ics_lut_tables *L, double a, double b);
-void ics_lut_tables_ellipse_radii(const ics_lut_tables *L, double varx, double vary, double *a,
-                                  double *b);
+ICS_API double ics_lut_tables_ratio_to_t(const ics_lut_tables *L, double rat);
+ICS_API void ics_lut_tables_ratio_to_ab(const ics_lut_tables *L, double rat, double *a, double *b);
+ICS_API double ics_lut_tables_vx(const ics_lut_tables *L, double t);
+ICS_API double ics_lut_tables_vx_ab(const ics_lut_tables *L, double a, double b);
+ICS_API void ics_lut_tables_ellipse_radii(const ics_lut_tables *L, double varx, double vary,
+                                          double *a, double *b);
 
 /* The same in float arithmetic on float-rounded tables: a C mirror, operation for operation, of
  * the GLSL and OpenCL evaluators written by ics_lut_write (IEEE single, correctly rounded sqrt and
  * division, no contraction). sf, gf: the tables rounded to float. */
-void ics_lut_float_ratio_to_ab(int n, const float *sf, float rat, float *a, float *b);
-float ics_lut_float_vx(int n, const float *gf, float t);
-void ics_lut_float_ellipse_radii(int n, const float *sf, const float *gf, float varx, float vary,
-                                 float *a, float *b);
+ICS_API void ics_lut_float_ratio_to_ab(int n, const float *sf, float rat, float *a, float *b);
+ICS_API float ics_lut_float_vx(int n, const float *gf, float t);
+ICS_API void ics_lut_float_ellipse_radii(int n, const float *sf, const float *gf, float varx,
+                                         float vary, float *a, float *b);
 
 /* The library's own checked-in tables (lut_data.c, n = ICS_LUT_BUILTIN_SIZE), double evaluation. */
-const ics_lut_tables *ics_lut_builtin(void);
-double ics_lut_ratio_to_t(double rat); /* ratioToab */
-void ics_lut_ratio_to_ab(double rat, double *a, double *b);
-double ics_lut_vx(double t); /* abToVarx */
-double ics_lut_vx_ab(double a, double b);
-void ics_lut_ellipse_radii(double varx, double vary, double *a, double *b);
+ICS_API const ics_lut_tables *ics_lut_builtin(void);
+ICS_API double ics_lut_ratio_to_t(double rat); /* ratioToab */
+ICS_API void ics_lut_ratio_to_ab(double rat, double *a, double *b);
+ICS_API double ics_lut_vx(double t); /* abToVarx */
+ICS_API double ics_lut_vx_ab(double a, double b);
+ICS_API void ics_lut_ellipse_radii(double varx, double vary, double *a, double *b);
 /* What lut_data.c was stamped with: maximum relative errors (ratio, vx, radii) and the number
- * of grid points they were measured on (double evaluation, ics_lut_grid_new(n,
- * ICS_LUT_STAMP_PER_INTERVAL)). */
-void ics_lut_builtin_stamp(double *ratio_err, double *vx_err, double *radii_err, long *points);
+ * of grid points they were measured on (double evaluation, on the grid of
+ * ics_lut_grid_create(&grid, n, ICS_LUT_STAMP_PER_INTERVAL)). */
+ICS_API void ics_lut_builtin_stamp(double *ratio_err, double *vx_err, double *radii_err,
+                                   long *points);
 
 /* ---- measurement -------------------------------------------------------------------------
  * A grid of test points with their exact values: the ratio (and radii) points are uniform in w
@@ -109,11 +110,14 @@ void ics_lut_builtin_stamp(double *ratio_err, double *vx_err, double *radii_err,
  * t = 10^-k and 1 - 10^-k (k = 1..15) and t = 0, 1. These points are float-representable, so
  * the same grid measures the float evaluators; a few more are for double evaluation only:
  * rat = DBL_MIN, DBL_MAX, 1e-300, 1e300, t = 1e-300, 1 - 2^-53, and 1 - 10^-k for k > 7.
- * Radii points are (varx, vary) = (1, rat) for finite rat <= DBL_MAX / 4 (float: FLT_MAX / 4). */
+ * Radii points are (varx, vary) = (1, rat) for finite rat <= DBL_MAX / 4 (float: FLT_MAX / 4).
+ * The grid is an opaque object: ics_lut_grid_create makes it (n in [ICS_LUT_MIN_SIZE,
+ * ICS_LUT_MAX_SIZE], per_interval in [2, 1024], else ICS_ERR_RANGE; *out NULL on failure),
+ * ics_lut_grid_destroy frees it (NULL is fine). */
 typedef struct ics_lut_grid ics_lut_grid;
-ics_status ics_lut_grid_new(int n, int per_interval, ics_lut_grid **grid);
-void ics_lut_grid_free(ics_lut_grid *grid);
-long ics_lut_grid_points(const ics_lut_grid *grid); /* ratio points + varx points */
+ICS_API ics_status ics_lut_grid_create(ics_lut_grid **out, int n, int per_interval);
+ICS_API void ics_lut_grid_destroy(ics_lut_grid *grid);
+ICS_API long ics_lut_grid_points(const ics_lut_grid *grid); /* ratio points + varx points */
 
 typedef struct ics_lut_error {
   double ratio;    /* max relative error of a = 1 - t and of b = t from ratio_to_ab */
@@ -127,8 +131,8 @@ typedef struct ics_lut_error {
 
 /* Measure tables on a grid. use_float: evaluate through the float mirror on float-rounded
  * tables (what a GLSL / OpenCL header computes); else double evaluation. */
-ics_status ics_lut_measure(const ics_lut_grid *grid, const ics_lut_tables *L, int use_float,
-                           ics_lut_error *err);
+ICS_API ics_status ics_lut_measure(const ics_lut_grid *grid, const ics_lut_tables *L, int use_float,
+                                   ics_lut_error *err);
 
 /* ---- header writers ------------------------------------------------------------------------ */
 typedef enum ics_lut_lang {
@@ -142,8 +146,9 @@ typedef enum ics_lut_lang {
  * backslash or comment end, else ICS_ERR_INVALID_ARG); err_double and err_float are the
  * measured errors of double and float evaluation (the float one is stamped in the GLSL and
  * OpenCL headers, the double one in the C ones). ICS_ERR_IO if a write fails. */
-ics_status ics_lut_write(FILE *f, ics_lut_lang lang, const ics_lut_tables *L, const char *command,
-                         const ics_lut_error *err_double, const ics_lut_error *err_float);
+ICS_API ics_status ics_lut_write(FILE *f, ics_lut_lang lang, const ics_lut_tables *L,
+                                 const char *command, const ics_lut_error *err_double,
+                                 const ics_lut_error *err_float);
 
 #ifdef __cplusplus
 }

@@ -1,7 +1,9 @@
 /* icshadow/minmax.h — 1D min-max mipmaps for volumetric shadows (Chen, Baran, Durand, Jarosz
- * 2011, "Real-Time Volumetric Shadows using 1D Min-Max Mipmaps"), the brute-force ray march they
- * are compared with, the low-rank (SVD) approximation of the smooth integrand, and epipolar
- * rectification of a directional light's shadow map over a synthetic height-field scene.
+ * 2011, "Real-Time Volumetric Shadows using 1D Min-Max Mipmaps"): the trees, their traversal,
+ * the prefix sums they integrate and the brute-force ray march they are compared with. The
+ * low-rank (SVD) approximation of the smooth integrand is in svd.h, the epipolar rectification
+ * of a directional light's shadow map in epipolar.h, the synthetic height-field scene in
+ * heightfield.h.
  *
  * Conventions (docs/minmax.md has the derivations):
  *  - A rectified shadow map has `rows` rows (epipolar slices, coordinate alpha) of d samples
@@ -58,16 +60,16 @@ typedef struct ics_minmax ics_minmax; /* opaque: one min-max tree per row */
 /* Build the trees of `rows` rows of d samples; row r starts at values + r * stride
  * (stride >= d; ICS_ERR_SIZE if (rows - 1) stride + d floats are not addressable). Values may
  * be +-inf, not NaN. */
-ics_status ics_minmax_create(ics_minmax **out, const float *values, size_t rows, size_t d,
-                             size_t stride);
-void ics_minmax_destroy(ics_minmax *t);
-size_t ics_minmax_rows(const ics_minmax *t);
-size_t ics_minmax_samples(const ics_minmax *t); /* d */
-size_t ics_minmax_leaves(const ics_minmax *t);  /* P, the padded leaf count */
+ICS_API ics_status ics_minmax_create(ics_minmax **out, const float *values, size_t rows, size_t d,
+                                     size_t stride);
+ICS_API void ics_minmax_destroy(ics_minmax *t);
+ICS_API size_t ics_minmax_rows(const ics_minmax *t);
+ICS_API size_t ics_minmax_samples(const ics_minmax *t); /* d */
+ICS_API size_t ics_minmax_leaves(const ics_minmax *t); /* P, the padded leaf count */
 /* (min, max) stored at node k in [1, 2P) of a row, and the node's sample range [g0, g1)
  * clipped to [0, d) (g0 == g1 for nodes entirely in the padding). */
-ics_status ics_minmax_node(const ics_minmax *t, size_t row, size_t k, float *lo, float *hi);
-ics_status ics_minmax_node_range(const ics_minmax *t, size_t k, size_t *g0, size_t *g1);
+ICS_API ics_status ics_minmax_node(const ics_minmax *t, size_t row, size_t k, float *lo, float *hi);
+ICS_API ics_status ics_minmax_node_range(const ics_minmax *t, size_t k, size_t *g0, size_t *g1);
 
 /* A camera ray in one row: h(gamma) = beta0 + slope * gamma over gamma in [0, gamma_end). */
 typedef struct ics_minmax_ray {
@@ -83,99 +85,26 @@ enum { ICS_MINMAX_UNVISITED = 0, ICS_MINMAX_LIT = 1, ICS_MINMAX_SHADOWED = 2, IC
  * increasing order, and their count *nseg. At most maxseg runs are written; *nseg is the full
  * count (so a caller can retry with more room). node_class (NULL or 2P entries, zeroed by the
  * call) receives each visited node's class. */
-ics_status ics_minmax_segments(const ics_minmax *t, size_t row, const ics_minmax_ray *ray,
-                               size_t *seg, size_t maxseg, size_t *nseg,
-                               unsigned char *node_class);
+ICS_API ics_status ics_minmax_segments(const ics_minmax *t, size_t row, const ics_minmax_ray *ray,
+                                       size_t *seg, size_t maxseg, size_t *nseg,
+                                       unsigned char *node_class);
 
 /* The traversal with integration: out[i] = sum over lit samples of Gamma_i, read from prefix
  * sums prefix[i*ld + k] (k = 0..d, ld >= d+1), i < nterms. */
-ics_status ics_minmax_integrate(const ics_minmax *t, size_t row, const ics_minmax_ray *ray,
-                                const double *prefix, size_t nterms, size_t ld, double *out);
+ICS_API ics_status ics_minmax_integrate(const ics_minmax *t, size_t row, const ics_minmax_ray *ray,
+                                        const double *prefix, size_t nterms, size_t ld,
+                                        double *out);
 
 /* Compensated (Neumaier) prefix sums: prefix[i*ldp + k] = sum_{g<k} terms[i*ldt + g], k=0..d;
  * each is within u |prefix| + d^2 u^2 A of the exact sum. */
-ics_status ics_minmax_prefix(const double *terms, size_t nterms, size_t d, size_t ldt,
-                             double *prefix, size_t ldp);
+ICS_API ics_status ics_minmax_prefix(const double *terms, size_t nterms, size_t d, size_t ldt,
+                                     double *prefix, size_t ldp);
 
 /* Brute-force ray marching at the same resolution (the reference): visit every sample
  * gamma < gamma_end of `row` (d values), and where S > h(gamma) add terms[i*ldt + gamma] to
  * out[i] (plain summation in sample order). */
-ics_status ics_minmax_march(const float *row, size_t d, const ics_minmax_ray *ray,
-                            const double *terms, size_t nterms, size_t ldt, double *out);
-
-/* ---- low-rank approximation: one-sided Jacobi SVD -------------------------------------- */
-/* A (m x n, row-major, m >= n >= 1) = U diag(s) V^T with U m x n (orthonormal columns where
- * s > 0; columns of zero singular values are zero), s descending >= 0, V n x n orthogonal.
- * Hestenes one-sided Jacobi: rotate column pairs until every pair is orthogonal to
- * |<a_p, a_q>| <= eps ||a_p|| ||a_q||, eps = 2^-52. Measured (tests/test_minmax.c):
- * ||A - U S V^T||_F <= 10 n u ||A||_F and ||U^T U - I||, ||V^T V - I|| <= 10 n u (max entry).
- * A is scaled by a power of two internally, so any finite A works (entries up to DBL_MAX, or
- * tiny ones) as long as its singular values are finite: ICS_ERR_INFINITE if one exceeds DBL_MAX
- * (e.g. several entries near 1e308 in one column). ICS_ERR_RANGE only if 64 sweeps do not
- * converge. */
-ics_status ics_svd(const double *A, size_t m, size_t n, double *U, double *s, double *V);
-/* A_N = sum_{i<N} s_i U_i V_i^T into out (m x n); N <= n. */
-ics_status ics_svd_truncate(const double *U, const double *s, const double *V, size_t m,
-                            size_t n, size_t N, double *out);
-
-/* ---- epipolar rectification for a directional light ------------------------------------ */
-/* Light plane basis U, V (orthonormal, perpendicular to the unit direction L toward the light);
- * light-space coordinates of a world point p: u = p.U, v = p.V, depth = -(p.L). The epipole is
- * the eye's (u, v). Slice alpha is the half-plane through the eye spanned by L and the
- * direction w(alpha) = cos(alpha) U + sin(alpha) V; row r holds alpha_r = 2 pi (r + 1/2) / rows.
- * Sample gamma of a row is the light ray at radial distance gamma * dgamma from the eye's light
- * ray. A camera ray from the eye with direction v (not parallel to L) lies in slice
- * alpha = atan2(v.V, v.U), and its light depth at sample gamma is
- *     depth_eye - gamma * dgamma * (v.L) / |v - (v.L) L|,
- * a line in gamma: every camera ray lies in one row, as Chen's rectification requires. */
-typedef struct ics_epi_frame {
-  double eye[3];
-  double L[3], U[3], V[3];
-  double eu, ev, depth_eye; /* the eye in light space (epipole and its depth) */
-  double dgamma;            /* world distance between samples along a row */
-  size_t rows, d;
-} ics_epi_frame;
-
-ics_status ics_epi_frame_init(ics_epi_frame *f, const double eye[3], const double to_light[3],
-                              size_t rows, size_t d, double dgamma);
-/* World point -> continuous (alpha in [0, 2 pi), gamma = radial distance / dgamma, depth). */
-ics_status ics_epi_locate(const ics_epi_frame *f, const double p[3], double *alpha,
-                          double *gamma, double *depth);
-/* Camera ray direction -> its slice angle alpha, the nearest row, and its line h(gamma)
- * (gamma_end is left to the caller). ICS_ERR_RANGE if dir is (nearly) parallel to L. */
-ics_status ics_epi_ray(const ics_epi_frame *f, const double dir[3], double *alpha, size_t *row,
-                       ics_minmax_ray *ray);
-/* The unit direction of the ray at angle beta from L in row r's slice. */
-ics_status ics_epi_ray_dir(const ics_epi_frame *f, size_t row, double beta, double dir[3]);
-
-/* Resample an orthographic shadow map (w x h depths, texel (i, j) centred at light-plane point
- * (u0 + (i + 1/2) texel, v0 + (j + 1/2) texel), row-major by j) into rows x d rectified depths:
- * nearest texel; samples outside the map get +inf (no occluder). */
-ics_status ics_epi_rectify(const ics_epi_frame *f, const float *smap, size_t w, size_t h,
-                           double u0, double v0, double texel, float *out);
-
-/* ---- a synthetic height-field scene -------------------------------------------------- */
-/* The plane y = 0 (infinite) with axis-aligned boxes standing on it and spherical caps
- * (spheres centred at y = cy <= 0, the part above the plane). y is up. */
-#define ICS_HF_MAX_SHAPES 16
-typedef struct ics_hf_scene {
-  size_t nboxes, ncaps;
-  double box[ICS_HF_MAX_SHAPES][4]; /* x0, x1, z0, z1; height in box_h */
-  double box_h[ICS_HF_MAX_SHAPES];
-  double cap[ICS_HF_MAX_SHAPES][4]; /* cx, cy, cz, radius */
-} ics_hf_scene;
-
-/* The default scene: 6 boxes and 4 caps over [-6, 6]^2, heights <= 2.5. */
-void ics_hf_scene_default(ics_hf_scene *s);
-/* Nearest hit t > tmin of the ray o + t dir with the scene (+inf if none; NaN for a NULL
- * pointer). ics_hf_scene_default(NULL) does nothing. */
-double ics_hf_scene_hit(const ics_hf_scene *s, const double o[3], const double dir[3],
-                        double tmin);
-/* Render the orthographic shadow map of the frame's light: w x w texels covering the square of
- * half-size half centred at the epipole (u0 = eu - half, texel = 2 half / w); each texel holds
- * the light depth of the first hit of its light ray (+inf if none). */
-ics_status ics_hf_shadow_map(const ics_hf_scene *s, const ics_epi_frame *f, size_t w,
-                             double half, float *smap);
+ICS_API ics_status ics_minmax_march(const float *row, size_t d, const ics_minmax_ray *ray,
+                                    const double *terms, size_t nterms, size_t ldt, double *out);
 
 #ifdef __cplusplus
 }

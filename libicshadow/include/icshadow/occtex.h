@@ -83,66 +83,77 @@ typedef enum ics_occ_prefilter { ICS_OCC_MIPMAP, ICS_OCC_NBUFFERS, ICS_OCC_SAT, 
 typedef enum ics_occ_combine { ICS_OCC_PRODUCT, ICS_OCC_SUM, ICS_OCC_MAX, ICS_OCC_COMBINE_COUNT } ics_occ_combine;
 
 /* "mipmap", "nbuffers", "sat"; "product", "sum", "max" (NULL for an unknown value). */
-const char *ics_occ_prefilter_name(ics_occ_prefilter pf);
-const char *ics_occ_combine_name(ics_occ_combine c);
+ICS_API const char *ics_occtex_prefilter_name(ics_occ_prefilter pf);
+ICS_API const char *ics_occtex_combine_name(ics_occ_combine c);
 
-/* Synthetic scenes, deterministic in `seed`, inside x, y in [-1, 1], z in [1, 2]:
- *   ICS_OCC_SCENE_FOLIAGE  nboxes small cubes (side 0.06 .. 0.16) scattered in a canopy;
- *   ICS_OCC_SCENE_PLATES   nboxes thin square plates (thickness 0.01) at random depths and sizes;
- *   ICS_OCC_SCENE_BLOCKS   nboxes larger blocks (sides 0.1 .. 0.5), overlapping in depth. */
-typedef enum ics_occ_scene_kind { ICS_OCC_SCENE_FOLIAGE, ICS_OCC_SCENE_PLATES, ICS_OCC_SCENE_BLOCKS } ics_occ_scene_kind;
-ics_status ics_occ_scene_make(ics_occ_scene_kind kind, int nboxes, uint64_t seed, ics_occ_box *out);
+/* Synthetic sets of nboxes occluder boxes into out, deterministic in `seed`, inside x, y in
+ * [-1, 1], z in [1, 2]:
+ *   ICS_OCC_BOXES_FOLIAGE  nboxes small cubes (side 0.06 .. 0.16) scattered in a canopy;
+ *   ICS_OCC_BOXES_PLATES   nboxes thin square plates (thickness 0.01) at random depths and sizes;
+ *   ICS_OCC_BOXES_BLOCKS   nboxes larger blocks (sides 0.1 .. 0.5), overlapping in depth. */
+typedef enum ics_occ_boxes_kind {
+  ICS_OCC_BOXES_FOLIAGE,
+  ICS_OCC_BOXES_PLATES,
+  ICS_OCC_BOXES_BLOCKS
+} ics_occ_boxes_kind;
+ICS_API ics_status ics_occtex_boxes_make(ics_occ_boxes_kind kind, int nboxes, uint64_t seed,
+                                         ics_occ_box *out);
 
 /* Slice boxes into K occlusion textures tex[k n^2 + j n + i] (slice k, row j, column i): the
  * fraction of texel (i, j) covered by the orthographic projection of the union of the box parts
  * inside slice k, estimated with ss x ss sub-texel samples at the sub-cell centres (exact when
  * box edges fall on sub-cell edges). Boxes may overlap and extend outside the grid. */
-ics_status ics_occ_slice(const ics_occ_box *boxes, size_t nboxes, const ics_occ_grid *grid,
-                         int slices, double z_near, double z_far, int ss, float *tex);
+ICS_API ics_status ics_occtex_slice_boxes(const ics_occ_box *boxes, size_t nboxes,
+                                          const ics_occ_grid *grid, int slices, double z_near,
+                                          double z_far, int ss, float *tex);
 
 /* The occlusion-texture object: K textures + their prefilters (opaque). */
 typedef struct ics_occtex ics_occtex;
 
-/* Copies K textures (layout as in ics_occ_slice; values must be finite, clamped to [0, 1] on
- * input) for slices between z_near and z_far. No prefilter is built yet. */
-ics_status ics_occtex_create(const float *tex, const ics_occ_grid *grid, int slices, double z_near,
-                             double z_far, ics_occtex **out);
-void ics_occtex_free(ics_occtex *ot);
+/* Creates the object from K textures, copied (layout as in ics_occtex_slice_boxes; values must be
+ * finite, clamped to [0, 1] on input), for slices between z_near and z_far; *out is NULL on
+ * failure. No prefilter is built yet. ics_occtex_destroy frees it (NULL is fine). */
+ICS_API ics_status ics_occtex_create(ics_occtex **out, const float *tex, const ics_occ_grid *grid,
+                                     int slices, double z_near, double z_far);
+ICS_API void ics_occtex_destroy(ics_occtex *ot);
 
 /* Build one prefilter for every slice (again: rebuilds). */
-ics_status ics_occtex_prefilter(ics_occtex *ot, ics_occ_prefilter pf);
+ICS_API ics_status ics_occtex_prefilter(ics_occtex *ot, ics_occ_prefilter pf);
 
 /* Box average of slice k's texture through prefilter pf: centre (u, v) and size (su, sv) >= 0 in
  * texel units (u = (x - x0)/texel). A zero-size box is a point lookup (the texel containing
  * (u, v) for SAT; level-0 bilinear filtering for the other two). */
-ics_status ics_occtex_box(const ics_occtex *ot, ics_occ_prefilter pf, int k, double u, double v,
-                          double su, double sv, double *out);
+ICS_API ics_status ics_occtex_box(const ics_occtex *ot, ics_occ_prefilter pf, int k, double u,
+                                  double v, double su, double sv, double *out);
 
 /* Occlusion at n points P[3 i .. 3 i + 2] = (x, y, z), z > 0, for the rectangular light, through
  * prefilter pf and combination c, with slice fading (see top). occ[i] in [0, 1]. */
-ics_status ics_occtex_shadow(const ics_occtex *ot, const ics_occ_light *light, ics_occ_prefilter pf,
-                             ics_occ_combine c, const double *P, size_t n, double *occ);
+ICS_API ics_status ics_occtex_shadow(const ics_occtex *ot, const ics_occ_light *light,
+                                     ics_occ_prefilter pf, ics_occ_combine c, const double *P,
+                                     size_t n, double *occ);
 
 /* Per-slice contributions at one point (before combination): w[k] (fade weight) and o[k] (box
  * average), arrays of K. */
-ics_status ics_occtex_slices_at(const ics_occtex *ot, const ics_occ_light *light,
-                                ics_occ_prefilter pf, const double P[3], double *w, double *o);
+ICS_API ics_status ics_occtex_slices_at(const ics_occtex *ot, const ics_occ_light *light,
+                                        ics_occ_prefilter pf, const double P[3], double *w,
+                                        double *o);
 
 /* Combine K faded contributions f[k] = w_k O_k in [0, 1]: product 1 - prod(1 - f_k), sum
  * min(1, sum f_k), or max f_k (k = 0: 0). NaN, for every combination alike, if c is unknown,
  * k < 0, f is NULL with k > 0, or any f_k is NaN or outside [0, 1] (not clamped: such a value
  * is a caller's error). ics_occtex_shadow clamps w_k O_k to [0, 1] (rounding) before calling. */
-double ics_occ_combine_values(ics_occ_combine c, const double *f, int k);
+ICS_API double ics_occtex_combine_values(ics_occ_combine c, const double *f, int k);
 
-int ics_occtex_slices(const ics_occtex *ot);
+ICS_API int ics_occtex_slices(const ics_occtex *ot);
 /* Bottom plane z_{k+1} of slice k (NaN if k is out of range). */
-double ics_occtex_plane(const ics_occtex *ot, int k);
+ICS_API double ics_occtex_plane(const ics_occtex *ot, int k);
 
 /* Brute-force reference: occlusion of the light seen from P (n points), by m x m rays to the
  * centres of an m x m grid of light cells, each tested against every box (slab test, boxes
  * closed). Midpoint-rule error: at most 2/m per straight shadow edge crossing the light. */
-ics_status ics_occ_exact(const ics_occ_box *boxes, size_t nboxes, const ics_occ_light *light, int m,
-                         const double *P, size_t n, double *occ);
+ICS_API ics_status ics_occtex_exact(const ics_occ_box *boxes, size_t nboxes,
+                                    const ics_occ_light *light, int m, const double *P, size_t n,
+                                    double *occ);
 
 #ifdef __cplusplus
 }

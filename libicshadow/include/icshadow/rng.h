@@ -24,11 +24,11 @@ extern "C" {
 #endif
 
 /* The raw Philox-4x32-10 bijection (Random123 word order). */
-void ics_philox4x32_10(const uint32_t ctr[4], const uint32_t key[2], uint32_t out[4]);
+ICS_API void ics_rng_philox4x32_10(const uint32_t ctr[4], const uint32_t key[2], uint32_t out[4]);
 
 /* Stateless draws: the index-th 64-bit word / uniform of stream `stream` under `seed`. */
-uint64_t ics_rng_u64_at(uint64_t seed, uint64_t stream, uint64_t index);
-double ics_rng_uniform_at(uint64_t seed, uint64_t stream, uint64_t index);
+ICS_API uint64_t ics_rng_u64_at(uint64_t seed, uint64_t stream, uint64_t index);
+ICS_API double ics_rng_uniform_at(uint64_t seed, uint64_t stream, uint64_t index);
 
 /* A cursor over one stream: next draws words index, index + 1, ... (the state is only the
  * cursor; two cursors on the same (seed, stream, index) give the same numbers). */
@@ -38,10 +38,11 @@ typedef struct ics_rng {
   uint64_t index;
 } ics_rng;
 
-ics_rng ics_rng_make(uint64_t seed, uint64_t stream); /* index 0 */
-uint64_t ics_rng_next_u64(ics_rng *r);
-double ics_rng_uniform(ics_rng *r); /* [0, 1), 53 bits, consumes 1 word */
-double ics_rng_normal(ics_rng *r);  /* standard normal, consumes 2 words */
+/* Fills *out with the cursor at index 0 of stream `stream` under `seed`. */
+ICS_API void ics_rng_init(ics_rng *out, uint64_t seed, uint64_t stream);
+ICS_API uint64_t ics_rng_next_u64(ics_rng *r);
+ICS_API double ics_rng_uniform(ics_rng *r); /* [0, 1), 53 bits, consumes 1 word */
+ICS_API double ics_rng_normal(ics_rng *r); /* standard normal, consumes 2 words */
 
 #ifdef __cplusplus
 }

@@ -43,8 +43,9 @@
  * ICS_ERR_INFINITE, float sums that overflow -> ICS_ERR_RANGE (detected after the pass; on
  * such an error from _rebuild the table is invalid and its box sums return
  * ICS_ERR_INVALID_ARG until a successful rebuild). NULL pointers -> ICS_ERR_INVALID_ARG.
- * Allocation failure -> ICS_ERR_NOMEM. Objects are opaque; free with the matching _free
- * (NULL is fine). The library is single-threaded; a built table may be read from several
+ * Allocation failure -> ICS_ERR_NOMEM. Tables are opaque objects: ics_sat2d_create /
+ * ics_sat3d_create make one (*out NULL on failure), ics_sat2d_destroy / ics_sat3d_destroy free
+ * it (NULL is fine). The library is single-threaded; a built table may be read from several
  * threads at once. */
 #ifndef ICSHADOW_SAT_H
 #define ICSHADOW_SAT_H
@@ -71,13 +72,13 @@ typedef enum ics_sat_precision {
 #define ICS_SAT_PRECISION_COUNT 4
 
 /* "float", "float-offset", "compensated", "double"; NULL for an unknown mode. */
-const char *ics_sat_precision_name(ics_sat_precision mode);
+ICS_API const char *ics_sat_precision_name(ics_sat_precision mode);
 /* Parse one of the names above; ICS_ERR_PARSE when unknown. */
-ics_status ics_sat_precision_parse(const char *name, ics_sat_precision *mode);
+ICS_API ics_status ics_sat_precision_parse(const char *name, ics_sat_precision *mode);
 /* The error factor of the bound above for dims = 2 or 3 (NaN for an unknown mode or dims). */
-double ics_sat_error_factor(ics_sat_precision mode, int dims);
+ICS_API double ics_sat_error_factor(ics_sat_precision mode, int dims);
 /* Bytes per table cell of a mode (4 or 8; 0 for an unknown mode). */
-size_t ics_sat_cell_bytes(ics_sat_precision mode);
+ICS_API size_t ics_sat_cell_bytes(ics_sat_precision mode);
 
 /* ---- 2D ------------------------------------------------------------------------------ */
 typedef struct ics_sat2d ics_sat2d;
@@ -85,52 +86,52 @@ typedef struct ics_sat2d ics_sat2d;
 /* Build the SAT of a width x height float image (row stride in elements, >= width, and the
  * input span (height - 1) * stride + width at most ICS_SAT_MAX_SPAN_BYTES / 4 floats; otherwise
  * ICS_ERR_INVALID_ARG). */
-ics_status ics_sat2d_build(ics_sat2d **out, const float *data, size_t width, size_t height,
-                           size_t stride, ics_sat_precision mode);
+ICS_API ics_status ics_sat2d_create(ics_sat2d **out, const float *data, size_t width, size_t height,
+                                    size_t stride, ics_sat_precision mode);
 /* Recompute an existing table from new data of the same size (no allocation: the steady
  * state of a renderer whose transfer function or time step changes). */
-ics_status ics_sat2d_rebuild(ics_sat2d *sat, const float *data, size_t stride);
-void ics_sat2d_free(ics_sat2d *sat);
-void ics_sat2d_size(const ics_sat2d *sat, size_t *width, size_t *height);
-ics_sat_precision ics_sat2d_precision(const ics_sat2d *sat);
+ICS_API ics_status ics_sat2d_rebuild(ics_sat2d *sat, const float *data, size_t stride);
+ICS_API void ics_sat2d_destroy(ics_sat2d *sat);
+ICS_API void ics_sat2d_size(const ics_sat2d *sat, size_t *width, size_t *height);
+ICS_API ics_sat_precision ics_sat2d_precision(const ics_sat2d *sat);
 /* The offset m subtracted before summing (0 unless ICS_SAT_FLOAT_OFFSET). */
-double ics_sat2d_offset(const ics_sat2d *sat);
+ICS_API double ics_sat2d_offset(const ics_sat2d *sat);
 
 /* Sum over [x0, x1) x [y0, y1): rejected outside the table (ICS_ERR_RANGE). */
-ics_status ics_sat2d_box_sum(const ics_sat2d *sat, long x0, long y0, long x1, long y1,
-                             double *sum);
-/* Same, cells outside the table count as 0 (any long bounds allowed, x0 <= x1, y0 <= y1). */
-ics_status ics_sat2d_box_sum_clamped(const ics_sat2d *sat, long x0, long y0, long x1, long y1,
+ICS_API ics_status ics_sat2d_box_sum(const ics_sat2d *sat, long x0, long y0, long x1, long y1,
                                      double *sum);
+/* Same, cells outside the table count as 0 (any long bounds allowed, x0 <= x1, y0 <= y1). */
+ICS_API ics_status ics_sat2d_box_sum_clamped(const ics_sat2d *sat, long x0, long y0, long x1,
+                                             long y1, double *sum);
 /* Mean over the part of the box inside the table (the box filter with border
  * renormalisation); ICS_ERR_RANGE when that part is empty. */
-ics_status ics_sat2d_box_mean_clamped(const ics_sat2d *sat, long x0, long y0, long x1, long y1,
-                                      double *mean);
+ICS_API ics_status ics_sat2d_box_mean_clamped(const ics_sat2d *sat, long x0, long y0, long x1,
+                                              long y1, double *mean);
 /* Integral of the piecewise-constant image over the continuous box [x0, x1] x [y0, y1]
  * (clamped: outside is 0). NaN bounds -> ICS_ERR_NAN, inverted -> ICS_ERR_INVALID_ARG. */
-ics_status ics_sat2d_integral(const ics_sat2d *sat, double x0, double y0, double x1, double y1,
-                              double *sum);
+ICS_API ics_status ics_sat2d_integral(const ics_sat2d *sat, double x0, double y0, double x1,
+                                      double y1, double *sum);
 /* The inclusive table entry S(x, y) (0 <= x < width, 0 <= y < height), NaN outside. */
-double ics_sat2d_at(const ics_sat2d *sat, size_t x, size_t y);
+ICS_API double ics_sat2d_at(const ics_sat2d *sat, size_t x, size_t y);
 
 /* ---- 3D ------------------------------------------------------------------------------ */
 typedef struct ics_sat3d ics_sat3d;
 
 /* Build the SAT of a width x height x depth float volume (tightly packed, x fastest). */
-ics_status ics_sat3d_build(ics_sat3d **out, const float *data, size_t width, size_t height,
-                           size_t depth, ics_sat_precision mode);
-ics_status ics_sat3d_rebuild(ics_sat3d *sat, const float *data);
-void ics_sat3d_free(ics_sat3d *sat);
-void ics_sat3d_size(const ics_sat3d *sat, size_t *width, size_t *height, size_t *depth);
-ics_sat_precision ics_sat3d_precision(const ics_sat3d *sat);
-double ics_sat3d_offset(const ics_sat3d *sat);
-ics_status ics_sat3d_box_sum(const ics_sat3d *sat, long x0, long y0, long z0, long x1, long y1,
-                             long z1, double *sum);
-ics_status ics_sat3d_box_sum_clamped(const ics_sat3d *sat, long x0, long y0, long z0, long x1,
+ICS_API ics_status ics_sat3d_create(ics_sat3d **out, const float *data, size_t width, size_t height,
+                                    size_t depth, ics_sat_precision mode);
+ICS_API ics_status ics_sat3d_rebuild(ics_sat3d *sat, const float *data);
+ICS_API void ics_sat3d_destroy(ics_sat3d *sat);
+ICS_API void ics_sat3d_size(const ics_sat3d *sat, size_t *width, size_t *height, size_t *depth);
+ICS_API ics_sat_precision ics_sat3d_precision(const ics_sat3d *sat);
+ICS_API double ics_sat3d_offset(const ics_sat3d *sat);
+ICS_API ics_status ics_sat3d_box_sum(const ics_sat3d *sat, long x0, long y0, long z0, long x1,
                                      long y1, long z1, double *sum);
-ics_status ics_sat3d_integral(const ics_sat3d *sat, const double lo[3], const double hi[3],
-                              double *sum);
-double ics_sat3d_at(const ics_sat3d *sat, size_t x, size_t y, size_t z);
+ICS_API ics_status ics_sat3d_box_sum_clamped(const ics_sat3d *sat, long x0, long y0, long z0,
+                                             long x1, long y1, long z1, double *sum);
+ICS_API ics_status ics_sat3d_integral(const ics_sat3d *sat, const double lo[3], const double hi[3],
+                                      double *sum);
+ICS_API double ics_sat3d_at(const ics_sat3d *sat, size_t x, size_t y, size_t z);
 
 #ifdef __cplusplus
 }

@@ -1,8 +1,8 @@
 /* icshadow/ssat.h — the spherical 3D summed-area table of Ament et al. 2014 (SSAT) for point
  * lights: box-filtered optical depth and transmittance of an extinction volume (volume.h) in
- * constant time, in any precision mode of sat.h. Its brute-force reference is
- * ics_volume_tau_point (volume.h). Objects are opaque; free with ics_ssat_free (NULL is
- * fine). */
+ * constant time, in any precision mode of sat.h. Its brute-force reference is ics_volume_tau_point
+ * (volume.h). Objects are opaque: ics_ssat_create makes one (*out NULL on failure),
+ * ics_ssat_destroy frees it (NULL is fine). */
 #ifndef ICSHADOW_SSAT_H
 #define ICSHADOW_SSAT_H
 
@@ -35,21 +35,23 @@ extern "C" {
  * NaN light -> ICS_ERR_NAN. */
 #define ICS_SSAT_MAX_DISTANCE 4294967296.0 /* 2^32 volume diagonals */
 typedef struct ics_ssat ics_ssat;
-ics_status ics_ssat_build(ics_ssat **out, const ics_volume *vol, const double light_pos[3],
-                          size_t n_phi, size_t n_theta, size_t n_r, ics_sat_precision mode);
-void ics_ssat_free(ics_ssat *ssat);
+ICS_API ics_status ics_ssat_create(ics_ssat **out, const ics_volume *vol, const double light_pos[3],
+                                   size_t n_phi, size_t n_theta, size_t n_r,
+                                   ics_sat_precision mode);
+ICS_API void ics_ssat_destroy(ics_ssat *ssat);
 /* Frame axes and grid size (cells along phi, theta, r). Any output pointer may be NULL. */
-void ics_ssat_frame(const ics_ssat *ssat, double e_x[3], double e_y[3], double e_z[3],
-                    size_t n[3]);
+ICS_API void ics_ssat_frame(const ics_ssat *ssat, double e_x[3], double e_y[3], double e_z[3],
+                            size_t n[3]);
 /* tau_bar at p for a square patch of half-width U at p facing the light: the angular box
  * phi_p +- min(atan(U/R) / sin(theta_p), pi), theta_p +- atan(U/R) clamped to [0, pi]
  * (R = |p - x_L|), r in [0, R]. When the phi half-width reaches pi (the patch covers a pole)
  * the box is the polar cap over the whole ring; otherwise phi wraps around at +-pi (two SAT
  * lookups). Constant time. Needs U > 0 (ICS_ERR_INVALID_ARG otherwise); p at the light (or
  * so far that |p - x_L| overflows) -> ICS_ERR_RANGE. */
-ics_status ics_ssat_tau(const ics_ssat *ssat, const double p[3], double half_width, double *tau);
-ics_status ics_ssat_transmittance(const ics_ssat *ssat, const double p[3], double half_width,
-                                  double *transmittance);
+ICS_API ics_status ics_ssat_tau(const ics_ssat *ssat, const double p[3], double half_width,
+                                double *tau);
+ICS_API ics_status ics_ssat_transmittance(const ics_ssat *ssat, const double p[3],
+                                          double half_width, double *transmittance);
 
 #ifdef __cplusplus
 }

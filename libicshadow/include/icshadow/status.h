@@ -3,6 +3,8 @@
 #ifndef ICSHADOW_STATUS_H
 #define ICSHADOW_STATUS_H
 
+#include "icshadow/api.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -29,7 +31,7 @@ typedef enum ics_status {
 } ics_status;
 
 /* A static, human-readable message for a status code (never NULL). */
-const char *ics_status_str(ics_status status);
+ICS_API const char *ics_status_str(ics_status status);
 
 #ifdef __cplusplus
 }

@@ -25,7 +25,7 @@ typedef struct ics_volume {
 } ics_volume;
 
 /* sigma_t at a world point (0 outside the volume box). */
-double ics_volume_sample(const ics_volume *vol, const double p[3]);
+ICS_API double ics_volume_sample(const ics_volume *vol, const double p[3]);
 
 /* Directional light (the reference of ics_csat_tau): the optical depth toward `dir` averaged
  * over a square patch of half-width U = half_width at p spanned by r_u, r_v, by brute-force
@@ -33,19 +33,20 @@ double ics_volume_sample(const ics_volume *vol, const double p[3]);
  * grid of rays on the patch (midpoint rule), each marched toward `dir` with step `step`
  * (midpoint rule) until it leaves the volume box. U = 0 marches the single ray through p.
  * U < 0, step <= 0 or n_patch < 1 -> ICS_ERR_INVALID_ARG. */
-ics_status ics_volume_tau_directional(const ics_volume *vol, const double r_u[3],
-                                      const double r_v[3], const double dir[3], const double p[3],
-                                      double half_width, int n_patch, double step, double *tau);
+ICS_API ics_status ics_volume_tau_directional(const ics_volume *vol, const double r_u[3],
+                                              const double r_v[3], const double dir[3],
+                                              const double p[3], double half_width, int n_patch,
+                                              double step, double *tau);
 
 /* Point light at light_pos (the reference of ics_ssat_tau): n_patch x n_patch rays over the
  * SSAT's angular box of the patch of half-width U > 0 at p, in the SSAT's frame (derived from
- * vol and light_pos as in ics_ssat_build; midpoint in phi and in cos(theta), i.e. uniform in
+ * vol and light_pos as in ics_ssat_create; midpoint in phi and in cos(theta), i.e. uniform in
  * solid angle), each marched from the light to radius R = |p - light_pos| with step `step`,
- * averaged. The same light limit as ics_ssat_build (ICS_ERR_RANGE); p at the light ->
+ * averaged. The same light limit as ics_ssat_create (ICS_ERR_RANGE); p at the light ->
  * ICS_ERR_RANGE; U <= 0, step <= 0 or n_patch < 1 -> ICS_ERR_INVALID_ARG. */
-ics_status ics_volume_tau_point(const ics_volume *vol, const double light_pos[3],
-                                const double p[3], double half_width, int n_patch, double step,
-                                double *tau);
+ICS_API ics_status ics_volume_tau_point(const ics_volume *vol, const double light_pos[3],
+                                        const double p[3], double half_width, int n_patch,
+                                        double step, double *tau);
 
 #ifdef __cplusplus
 }
