@@ -69,7 +69,7 @@ static int pixel_hits(const ics_plan *p, int bi, int bj, ics_hits *h, hit_t **hv
       memcpy(x->n, h->h[i].n, sizeof x->n);
     }
   }
-  qsort(*hv, (size_t)n, sizeof **hv, cmp_hit);
+  if (n > 1) qsort(*hv, (size_t)n, sizeof **hv, cmp_hit);
   return n;
 }
 

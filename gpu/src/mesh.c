@@ -49,17 +49,16 @@ static double tri_centroid(const tri_t *t, int axis) {
   return t->v0[axis] + (t->e1[axis] + t->e2[axis]) / 3;
 }
 
+/* a triangle index with its sort key (qsort has no context argument: keys travel with it) */
 typedef struct {
-  const tri_t *tris;
-  int axis;
-} sort_ctx;
+  double key;
+  int index;
+} keyed_t;
 
-static sort_ctx g_sort; /* qsort has no context argument; build is single-threaded */
-
-static int cmp_centroid(const void *a, const void *b) {
-  double ca = tri_centroid(&g_sort.tris[*(const int *)a], g_sort.axis);
-  double cb = tri_centroid(&g_sort.tris[*(const int *)b], g_sort.axis);
-  return (ca > cb) - (ca < cb);
+static int cmp_keyed(const void *a, const void *b) {
+  const keyed_t *x = a, *y = b;
+  if (x->key != y->key) return (x->key > y->key) - (x->key < y->key);
+  return (x->index > y->index) - (x->index < y->index);
 }
 
 static int build(ics_mesh *m, int first, int count) {
@@ -87,12 +86,17 @@ static int build(ics_mesh *m, int first, int count) {
   for (int i = 1; i < 3; i++)
     if (chi[i] - clo[i] > chi[axis] - clo[axis]) axis = i;
   if (!(chi[axis] > clo[axis])) return id; /* all centroids equal: one leaf */
-  g_sort.tris = m->tris;
-  g_sort.axis = axis;
-  qsort(m->order + first, (size_t)count, sizeof *m->order, cmp_centroid);
+  keyed_t *kv = malloc(sizeof *kv * (size_t)count);
+  if (!kv) return -1;
+  for (int k = 0; k < count; k++)
+    kv[k] = (keyed_t){tri_centroid(&m->tris[m->order[first + k]], axis), m->order[first + k]};
+  qsort(kv, (size_t)count, sizeof *kv, cmp_keyed);
+  for (int k = 0; k < count; k++) m->order[first + k] = kv[k].index;
+  free(kv);
   int half = count / 2;
   int l = build(m, first, half);
-  int r = build(m, first + half, count - half);
+  int r = l < 0 ? -1 : build(m, first + half, count - half);
+  if (r < 0) return -1;
   m->nodes[id].left = l;
   m->nodes[id].right = r;
   m->nodes[id].count = 0;
@@ -105,13 +109,21 @@ static int cmp_u64(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-static const double *g_xyz; /* for cmp_pos (qsort has no context); build is single-threaded */
+/* a vertex position with its index */
+typedef struct {
+  double p[3];
+  int index;
+} vertex_t;
 
 static int cmp_pos(const void *a, const void *b) {
-  const double *p = g_xyz + 3 * *(const int *)a, *q = g_xyz + 3 * *(const int *)b;
+  const vertex_t *x = a, *y = b;
   for (int i = 0; i < 3; i++)
-    if (p[i] != q[i]) return (p[i] > q[i]) - (p[i] < q[i]);
-  return 0;
+    if (x->p[i] != y->p[i]) return (x->p[i] > y->p[i]) - (x->p[i] < y->p[i]);
+  return (x->index > y->index) - (x->index < y->index);
+}
+
+static int same_pos(const vertex_t *x, const vertex_t *y) {
+  return x->p[0] == y->p[0] && x->p[1] == y->p[1] && x->p[2] == y->p[2];
 }
 
 /* Closedness on positions, not indices: files often split a vertex by its normal or texture
@@ -119,16 +131,18 @@ static int cmp_pos(const void *a, const void *b) {
 static int is_closed(const double *xyz, int nverts, const int *tri, int ntris) {
   size_t ne = 3 * (size_t)ntris;
   uint64_t *e = malloc(sizeof *e * ne);
-  int *ord = malloc(sizeof *ord * (size_t)nverts), *canon = malloc(sizeof *canon * (size_t)nverts);
+  vertex_t *ord = malloc(sizeof *ord * (size_t)nverts);
+  int *canon = malloc(sizeof *canon * (size_t)nverts);
   if (!e || !ord || !canon) {
     free(e), free(ord), free(canon);
     return 0;
   }
-  for (int i = 0; i < nverts; i++) ord[i] = i;
-  g_xyz = xyz;
+  for (int i = 0; i < nverts; i++)
+    ord[i] = (vertex_t){{xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}, i};
   qsort(ord, (size_t)nverts, sizeof *ord, cmp_pos);
   for (int i = 0; i < nverts; i++)
-    canon[ord[i]] = i > 0 && cmp_pos(&ord[i], &ord[i - 1]) == 0 ? canon[ord[i - 1]] : ord[i];
+    canon[ord[i].index] =
+        i > 0 && same_pos(&ord[i], &ord[i - 1]) ? canon[ord[i - 1].index] : ord[i].index;
   free(ord);
   for (int t = 0; t < ntris; t++)
     for (int k = 0; k < 3; k++) {
@@ -177,7 +191,10 @@ ics_status ics_mesh_create_triangles(ics_mesh **out, const double *xyz, int nver
     }
     m->order[t] = t;
   }
-  build(m, 0, ntris);
+  if (build(m, 0, ntris) < 0) {
+    ics_mesh_destroy(m);
+    return ICS_ERR_NOMEM;
+  }
   memcpy(m->lo, m->nodes[0].lo, sizeof m->lo);
   memcpy(m->hi, m->nodes[0].hi, sizeof m->hi);
   double diag = 0;
@@ -271,7 +288,7 @@ int ics_mesh_hits(const ics_mesh *m, const double orig[3], const double dir[3], 
   /* sort this mesh's crossings, merge coincident ones, count and drop those at t <= 0 */
   int n = h->n - start;
   ics_hit *t = h->h + start;
-  qsort(t, (size_t)n, sizeof *t, cmp_hit_t);
+  if (n > 1) qsort(t, (size_t)n, sizeof *t, cmp_hit_t);
   int w = 0;
   double tol = dlen > 0 ? m->eps / dlen : 0;
   for (int i = 0; i < n; i++) {

@@ -447,8 +447,9 @@ static int read_materials(rctx *c, json_t *o) {
   const char *key;
   json_t *val;
   json_object_foreach(o, key, val) {
-    if (read_material(c, key, val, &c->s->materials[c->s->nmaterials])) return -1;
-    c->s->nmaterials++;
+    /* counted before it is read, so what a failed read allocated (a grid) is freed with the
+     * scene */
+    if (read_material(c, key, val, &c->s->materials[c->s->nmaterials++])) return -1;
   }
   return 0;
 }
