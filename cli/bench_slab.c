@@ -183,19 +183,19 @@ int bench_slab(int argc, char **argv) {
                  "  {\"shape\": \"rect\", \"center\": [0, 0, %d], \"normal\": [0, 0, 1], \"size\": [%d, %d], \"material\": \"white\"}]}",
                  n, n, n, m->kernel, m->samples, m->comp, -mean[0], mean[1], cov[0], -cov[1],
                  -cov[1], cov[2], -0.25 * n, n / 2, 2 * n, -slabs, 2 * n, 2 * n);
-        char msg[CLI_MSG_MAX];
-        ics_scene *s;
+        char msg[CLI_MSG_MAX] = "";
+        ics_scene *s = NULL;
         ics_plan *p = NULL;
         ics_status st = ics_scene_create_json(&s, json, "bench", NULL, msg, sizeof msg);
         ics_plan_opts po = {.threads = threads[ti]};
         if (st == ICS_OK) st = ics_plan_create(&p, s, &po, msg, sizeof msg);
         if (st != ICS_OK) {
           free(fa), free(fb);
-          if (p) ics_plan_destroy(p);
+          ics_scene_destroy(s);
           return cli_status_error(CMD, st, "%s %dx%d: %s", m->label, n, n, msg);
         }
         ics_render_opts ro = {.backend = backend, .threads = threads[ti]};
-        ics_renderer *r;
+        ics_renderer *r = NULL;
         st = ics_renderer_create(&r, &ro, msg, sizeof msg);
         double t[50], fl[50], err = 0;
         int K = ics_plan_slabs(p) - 1, bw, bh;
@@ -226,7 +226,7 @@ int bench_slab(int argc, char **argv) {
           const ics_plan_pass *q = ics_plan_pass_at(p, i);
           if (q->light == 0) sscanf(q->detail, "%*s %*s %63[a-z]", mode);
         }
-        if (st == ICS_OK) ics_renderer_destroy(r);
+        if (r) ics_renderer_destroy(r);
         ics_plan_destroy(p);
         ics_scene_destroy(s);
         if (st != ICS_OK) {

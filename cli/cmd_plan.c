@@ -61,7 +61,7 @@ int cmd_plan(int argc, char **argv) {
   ics_render_settings rs;
   ics_plan_opts po;
   if ((rc = scene_args_load(CMD, &a, &s, &rs, &po))) return rc;
-  char msg[CLI_MSG_MAX];
+  char msg[CLI_MSG_MAX] = "";
   ics_plan *p;
   ics_status st = ics_plan_create(&p, s, &po, msg, sizeof msg);
   if (st != ICS_OK) {

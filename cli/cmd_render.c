@@ -97,6 +97,9 @@ int cmd_render(int argc, char **argv) {
   if (rc) return rc;
   if (backends) return list_backends();
   if (!exr && !png) return cli_error(CMD, "nothing to write: give -o OUT.exr and/or --png OUT.png");
+  size_t ne = exr ? strlen(exr) : 0;
+  if (ne >= 4 && !strcmp(exr + ne - 4, ".png"))
+    return cli_error(CMD, "-o %s: -o writes OpenEXR; give the PNG preview with --png", exr);
   if ((exr && !strcmp(exr, "-")) || (png && !strcmp(png, "-")))
     return cli_error(CMD, "images are written to files, not to stdout (the summary goes there)");
   if (exr && !ics_exr_available())
@@ -111,7 +114,7 @@ int cmd_render(int argc, char **argv) {
   ics_render_settings rs;
   ics_plan_opts po;
   if ((rc = scene_args_load(CMD, &a, &s, &rs, &po))) return rc;
-  char msg[CLI_MSG_MAX];
+  char msg[CLI_MSG_MAX] = "";
   double t0 = cli_now_s();
   ics_plan *plan;
   ics_status st = ics_plan_create(&plan, s, &po, msg, sizeof msg);
@@ -149,7 +152,8 @@ int cmd_render(int argc, char **argv) {
     have_e = 1;
     st = ics_exr_write(oe.write_path, img, ICS_EXR_FLOAT, msg, sizeof msg);
     if (st != ICS_OK) {
-      rc = cli_status_error(CMD, st, "cannot write %s: %s", exr, msg);
+      rc = st == ICS_ERR_IO || st == ICS_ERR_NOMEM ? cli_failure(CMD, "cannot write %s: %s", exr, msg)
+                                                   : cli_error(CMD, "cannot write %s: %s", exr, msg);
       goto abort;
     }
   }
@@ -161,7 +165,8 @@ int cmd_render(int argc, char **argv) {
     have_p = 1;
     st = ics_output_png(img, op.write_path, msg, sizeof msg);
     if (st != ICS_OK) {
-      rc = cli_status_error(CMD, st, "cannot write %s: %s", png, msg);
+      rc = st == ICS_ERR_IO || st == ICS_ERR_NOMEM ? cli_failure(CMD, "cannot write %s: %s", png, msg)
+                                                   : cli_error(CMD, "cannot write %s: %s", png, msg);
       goto abort;
     }
   }

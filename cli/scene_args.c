@@ -20,7 +20,7 @@ static int parse_res(const char *cmd, const char *opt, const char *v, void *dest
 
 void scene_args_options(scene_args *a, cli_option *o) {
   const cli_option opts[SCENE_ARGS_NOPTS] = {
-      {NULL, .kind = CLI_STRING, .dest = &a->scene},
+      {NULL, .kind = CLI_STRING, .dest = &a->scene, .given = &a->scenes},
       {"--resolution", .kind = CLI_CALL, .dest = a->res, .parse = parse_res},
       {"--kernel", .kind = CLI_STRING, .dest = &a->kernel},
       {"--samples", .kind = CLI_INT, .dest = &a->samples, .lo = 2, .hi = 64, .given = &a->have_samples},
@@ -69,7 +69,8 @@ static const char *radii_name(int i) { return i == 0 ? "exact" : i == 1 ? "lut" 
 
 int scene_args_load(const char *cmd, const scene_args *a, ics_scene **s, ics_render_settings *rs,
                     ics_plan_opts *po) {
-  char msg[CLI_MSG_MAX];
+  char msg[CLI_MSG_MAX] = "";
+  if (a->scenes > 1) return cli_error(cmd, "give one SCENE (got %d)", a->scenes);
   ics_status st = a->scene ? ics_scene_create_file(s, a->scene, msg, sizeof msg)
                            : ics_scene_create_default(s);
   if (st != ICS_OK)

@@ -20,6 +20,7 @@ typedef struct scene_args {
   uint64_t seed;
   int have_seed, have_slab, have_d1, have_samples;
   int threads;       /* --threads (0: all cores) */
+  int scenes;        /* SCENE arguments given */
 } scene_args;
 
 #define SCENE_ARGS_NOPTS 10

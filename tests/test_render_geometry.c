@@ -105,8 +105,37 @@ static void test_shapes(void) {
     for (int j = 0; j < 4; j++) err = fmax(err, fabs(h.h[j].t - want[j]));
     CHECK(err < 1e-12, "torus crossings off by %.3g", err);
   }
+  /* far eyes: a closed shape is crossed an even number of times whatever the distance */
+  int odd = 0;
+  for (int i = 0; i < 2000; i++) {
+    double dist = 3000, o2[3], tg[3], d2[3];
+    for (int c = 0; c < 3; c++) o2[c] = t->center[c] + dist * (2 * test_rng_unit() - 1);
+    for (int c = 0; c < 3; c++) tg[c] = t->center[c] + 2 * test_rng_unit() - 1;
+    for (int c = 0; c < 3; c++) d2[c] = tg[c] - o2[c];
+    h.n = 0;
+    behind = 0;
+    ics_object_hits(t, o2, d2, &h, &behind);
+    odd += (h.n + behind) & 1;
+  }
+  CHECK(odd == 0, "torus seen from distance 3000: %d of 2000 rays cross an odd number of times", odd);
   ics_hits_free(&h);
   ics_scene_destroy(s);
+  /* extreme normal lengths keep their direction */
+  const char *fmt =
+      "{\"camera\": {\"eye\": [0, 0, 5], \"target\": [0, 0, 0], \"height\": 3, \"resolution\": [8, 8]},"
+      " \"render\": {\"slab_spacing\": 0.05, \"d1\": 1}, \"lights\": [{\"mean\": [0, 0], \"var\": [0.01, 0.01]}],"
+      " \"materials\": {\"m\": {}}, \"objects\": [{\"shape\": \"disk\", \"center\": [0, 0, 0], \"normal\": [0, 0, %s],"
+      " \"radius\": 1, \"material\": \"m\"}]}";
+  const char *lens[2] = {"1e-200", "1e200"};
+  for (int i = 0; i < 2; i++) {
+    char j[2048];
+    snprintf(j, sizeof j, fmt, lens[i]);
+    ics_scene *sn = scene_from_json(j);
+    const ics_object *dk = ics_scene_object(sn, 0);
+    CHECK(dk->ax[2][2] == 1 && fabs(dk->ax[0][0]) + fabs(dk->ax[1][1]) > 0.5,
+          "disk normal of length %s: frame z (%g %g %g)", lens[i], dk->ax[2][0], dk->ax[2][1], dk->ax[2][2]);
+    ics_scene_destroy(sn);
+  }
 }
 
 static void test_meshes(const char *dir) {
@@ -134,6 +163,26 @@ static void test_meshes(const char *dir) {
     return;
   }
   CHECK(ics_scene_object(sm, 0)->closed, "the cube mesh is closed");
+  {
+    /* rays grazing the cube's silhouette edges and through its face diagonals: even counts */
+    const ics_object *cube = ics_scene_object(sm, 0);
+    ics_hits h = {0};
+    int odd = 0;
+    for (int i = 0; i < 400; i++) {
+      double a = 0.4 * (i % 20) / 19 - 0.2; /* along an edge of the cube (half 0.4, centre 0.1) */
+      double org[4][3] = {{0.5, a, 3}, {a + 0.1, 0.4, 3}, {0.5, 0.4, 3}, {0.1 + a, a, 3}};
+      for (int k = 0; k < 4; k++) {
+        double dir[3] = {0, 0, -1};
+        if (k == 3) dir[0] = 0.3, dir[1] = 0.3; /* through edges between a face's two triangles */
+        h.n = 0;
+        int behind = 0;
+        ics_object_hits(cube, org[k], dir, &h, &behind);
+        odd += (h.n + behind) & 1;
+      }
+    }
+    CHECK(odd == 0, "cube mesh: %d grazing rays cross an odd number of times", odd);
+    ics_hits_free(&h);
+  }
   render_result rb = render_scene(sb, NULL, 1), rm = render_scene(sm, NULL, 1);
   double d = 0;
   for (size_t i = 0; i < 4 * 48 * 48; i++) d = fmax(d, fabs(rb.img->data[i] - rm.img->data[i]));

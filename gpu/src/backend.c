@@ -46,6 +46,7 @@ struct ics_renderer {
 ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, char *msg,
                                size_t msg_size) {
   *out = NULL;
+  if (msg && msg_size) msg[0] = 0;
   ics_render_opts o = {0};
   if (opts) o = *opts;
   const ics_backend *b = NULL;
@@ -84,6 +85,7 @@ const char *ics_renderer_backend(const ics_renderer *r) { return r->b->name; }
 ics_status ics_renderer_render(ics_renderer *r, const ics_plan *plan, ics_image **out,
                                ics_render_stats *stats, char *msg, size_t msg_size) {
   *out = NULL;
+  if (msg && msg_size) msg[0] = 0;
   ics_render_stats local;
   if (!stats) stats = &local;
   memset(stats, 0, sizeof *stats);
@@ -97,6 +99,7 @@ ics_status ics_renderer_render(ics_renderer *r, const ics_plan *plan, ics_image 
   }
   st = r->b->render(r->state, plan, &r->opts, img, stats, msg, msg_size);
   if (st != ICS_OK) {
+    if (msg && msg_size && !msg[0]) snprintf(msg, msg_size, "render failed: %s", ics_status_str(st));
     ics_image_destroy(img);
     return st;
   }

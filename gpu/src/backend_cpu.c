@@ -248,7 +248,16 @@ static void slab_job(void *ctx, int t, int n) {
                   j->scratch + (size_t)t * P->Wb);
   double t1 = now_s();
   shade_rows(j, y0, y1, t);
-  for (int l = 0; l < P->nlights; l++) ics_prop_apron(&P->buf, j->dst[l], P->nch, y0, y1, 0);
+  for (int l = 0; l < P->nlights; l++) {
+    /* signed weights can ring (values outside [0, 1] that the slabs amplify): clamp them */
+    if (P->kernels[l].comp == ICS_RC_SIGNED)
+      for (int c = 0; c < P->nch; c++)
+        for (int y = y0; y < y1; y++) {
+          float *row = j->dst[l] + (size_t)c * P->buf.plane + ics_buf_index(&P->buf, 0, y);
+          for (int x = 0; x < P->Wb; x++) row[x] = row[x] < 0 ? 0 : row[x] > 1 ? 1 : row[x];
+        }
+    ics_prop_apron(&P->buf, j->dst[l], P->nch, y0, y1, 0);
+  }
   double t2 = now_s();
   j->prop_s[t] += t1 - t0;
   j->shade_s[t] += t2 - t1;

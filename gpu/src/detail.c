@@ -26,7 +26,9 @@ static double grad(int hash, double x, double y, double z) {
 
 double ics_perlin_noise(const uint8_t p[512], double x, double y, double z) {
   double fx = floor(x), fy = floor(y), fz = floor(z);
-  int X = (int)((long long)fx & 255), Y = (int)((long long)fy & 255), Z = (int)((long long)fz & 255);
+  /* the lattice cell modulo 256, in floating point (no integer conversion can overflow) */
+  int X = (int)(fx - 256 * floor(fx / 256)) & 255, Y = (int)(fy - 256 * floor(fy / 256)) & 255,
+      Z = (int)(fz - 256 * floor(fz / 256)) & 255;
   x -= fx, y -= fy, z -= fz;
   double u = fade(x), v = fade(y), w = fade(z);
   int A = p[X] + Y, AA = p[A] + Z, AB = p[A + 1] + Z;

@@ -102,8 +102,9 @@ static double quartic(const double k[5], double s) {
   return (((s + k[3]) * s + k[2]) * s + k[1]) * s + k[0];
 }
 
-static int torus_hits(const ics_object *o, const double q0[3], const double e0[3], ics_hits *h,
+static int torus_hits(const ics_object *o, const double q_orig[3], const double e0[3], ics_hits *h,
                       int *behind) {
+  const double *q0 = q_orig;
   double R = o->half[0], r = o->half[1];
   double len = sqrt(dot3(e0, e0));
   if (!(len > 0)) return 0;
@@ -115,6 +116,14 @@ static int torus_hits(const ics_object *o, const double q0[3], const double e0[3
   double disc = A * A - (qq - rad * rad);
   if (!(disc > 0)) return 0;
   double sq = sqrt(disc), sa = -A - sq, sb = -A + sq;
+  /* the quartic is formed about the chord's start, not the ray origin: its coefficients then
+   * stay of the torus's size wherever the eye is (about the origin they grow like its distance
+   * to the fourth power, and far eyes lost crossings) */
+  double q1[3] = {q0[0] + sa * d[0], q0[1] + sa * d[1], q0[2] + sa * d[2]};
+  double base = sa;
+  q0 = q1;
+  A = dot3(q0, d), qq = dot3(q0, q0);
+  sa = 0, sb -= base;
   double B = qq + R * R - r * r;
   double a2 = d[0] * d[0] + d[1] * d[1], a1 = q0[0] * d[0] + q0[1] * d[1],
          a0 = q0[0] * q0[0] + q0[1] * q0[1];
@@ -145,9 +154,9 @@ static int torus_hits(const ics_object *o, const double q0[3], const double e0[3
     if (flo == 0 && i > 0) continue; /* counted as the previous piece's upper end */
     if ((flo < 0) == (fhi < 0) && fhi != 0) continue;
     if (fhi == 0) {
-      double n[3];
-      torus_normal(o, q0, e0, hi / len, n);
-      if (push_hit(h, behind, hi / len, n)) return -1;
+      double n[3], tr = (hi + base) / len;
+      torus_normal(o, q_orig, e0, tr, n);
+      if (push_hit(h, behind, tr, n)) return -1;
       continue;
     }
     for (int it = 0; it < 200 && hi - lo > 0; it++) {
@@ -161,8 +170,8 @@ static int torus_hits(const ics_object *o, const double q0[3], const double e0[3
         hi = mid;
       }
     }
-    double n[3], tr = 0.5 * (lo + hi) / len;
-    torus_normal(o, q0, e0, tr, n);
+    double n[3], tr = (0.5 * (lo + hi) + base) / len;
+    torus_normal(o, q_orig, e0, tr, n);
     if (push_hit(h, behind, tr, n)) return -1;
   }
   return 0;
@@ -261,7 +270,11 @@ void ics_object_bounds(const ics_object *o, double lo[3], double hi[3]) {
   }
 }
 
+/* scaled first, so that tiny (1e-200) and huge (1e200) vectors keep their direction */
 static void normalize3(double v[3]) {
+  double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+  if (!(m > 0) || !isfinite(m)) return;
+  v[0] /= m, v[1] /= m, v[2] /= m;
   double n = sqrt(dot3(v, v));
   v[0] /= n, v[1] /= n, v[2] /= n;
 }
@@ -277,7 +290,7 @@ void ics_frame_from_normal(const double n[3], const double *up, double ax[3][3])
   normalize3(z);
   double y[3];
   double cand[3] = {0, 1, 0};
-  if (up) memcpy(cand, up, sizeof cand);
+  if (up) memcpy(cand, up, sizeof cand), normalize3(cand);
   /* y = the candidate made perpendicular to z; fall back to world axes when parallel */
   for (int attempt = 0; attempt < 3; attempt++) {
     double d = dot3(cand, z);

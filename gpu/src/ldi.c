@@ -73,12 +73,9 @@ static int pixel_hits(const ics_plan *p, int bi, int bj, ics_hits *h, hit_t **hv
   return n;
 }
 
-/* Slabs by which a surface's occlusion of the light buffers is delayed (docs/renderer.md
- * "Surface bias"): a surface tilted against the slabs changes depth by s slabs per pixel, and a
- * whole pixel's occlusion entering at the slab of its centre would shadow the neighbours that lie
- * slightly deeper on the same surface ("acne", rows of stripes). bias = ceil(s) + 1 (0 for a
- * surface parallel to the slabs, at most ICS_FRAG_MAX_BIAS). */
-static int surface_bias(const ics_plan *p, const double n[3], double z) {
+/* The depth slope of a surface, in slabs per pixel: s = q tan(theta) / e (theta between its
+ * normal and the view direction); infinite for a surface seen edge-on. */
+static double surface_slope(const ics_plan *p, const double n[3], double z) {
   const ics_camera *c = &p->cam;
   double nr = 0, nu = 0, nf = 0;
   for (int i = 0; i < 3; i++) {
@@ -87,11 +84,8 @@ static int surface_bias(const ics_plan *p, const double n[3], double z) {
     nf += n[i] * c->f[i];
   }
   double lat = sqrt(nr * nr + nu * nu);
-  if (!(lat > 1e-12 * fabs(nf))) return 0;
-  double s = fabs(nf) > 0 ? lat / fabs(nf) * ics_plan_pixel_size(p, z) / p->e : INFINITY;
-  if (!(s < ICS_FRAG_MAX_BIAS)) return ICS_FRAG_MAX_BIAS;
-  int b = (int)ceil(s) + 1;
-  return b > ICS_FRAG_MAX_BIAS ? ICS_FRAG_MAX_BIAS : b;
+  if (!(lat > 0)) return 0;
+  return fabs(nf) > 0 ? lat / fabs(nf) * ics_plan_pixel_size(p, z) / p->e : INFINITY;
 }
 
 static void ldi_rows(void *ctx, int t, int nt) {
@@ -126,11 +120,17 @@ static void ldi_rows(void *ctx, int t, int nt) {
       }
       ics_fragment *f = l->frag + l->offset[px];
       for (int i = 0; i < n; i++) {
-        double k = floor((hv[i].t - p->z0) / p->e + 1e-6);
+        /* the fragment's slab, and the slab its occlusion enters (docs/renderer.md "Surface
+         * bias"): a surface tilted by s slabs per pixel delays its occlusion by 3 s slabs (its
+         * neighbours up to 3 pixels away, deeper on the same surface, are shaded first), continuous
+         * in s and 0 for a surface parallel to the slabs */
+        double u = (hv[i].t - p->z0) / p->e + 1e-6, k = floor(u);
+        double ko = floor(u + 3 * fmin(surface_slope(p, hv[i].n, hv[i].t), ICS_FRAG_MAX_BIAS));
         if (k < 0) k = 0;
         if (k > p->K - 1) k = p->K - 1;
+        int bias = (int)fmin(fmax(ko - k, 0), ICS_FRAG_MAX_BIAS);
         f[i].z = (float)hv[i].t;
-        f[i].code = ics_frag_code(hv[i].obj, surface_bias(p, hv[i].n, hv[i].t), (int)k);
+        f[i].code = ics_frag_code(hv[i].obj, bias, (int)k);
       }
       if (l->inside0) l->inside0[px] = inside;
     }
@@ -198,7 +198,7 @@ ics_status ics_ldi_build(ics_plan *p, int threads, char *msg, size_t msg_size) {
     double k = floor((zmax - p->z0) / p->e + 1e-6) + 1;
     if (k > ICS_FRAG_MAX_SLABS) {
       if (msg)
-        snprintf(msg, msg_size, "%.0f slabs (depth range %.6g / slab_spacing %.6g) exceed the "
+        snprintf(msg, msg_size, "%.3g slabs (depth range %.6g / slab_spacing %.6g) exceed the "
                  "limit %d: increase render.slab_spacing", k, zmax - p->z0, p->e, ICS_FRAG_MAX_SLABS);
       st = ICS_ERR_SIZE;
       goto done;

@@ -289,10 +289,16 @@ int ics_mesh_hits(const ics_mesh *m, const double orig[3], const double dir[3], 
   int n = h->n - start;
   ics_hit *t = h->h + start;
   if (n > 1) qsort(t, (size_t)n, sizeof *t, cmp_hit_t);
+  /* a ray through an edge shared by two triangles facing the same way (relative to the ray)
+   * crosses once: merge such pairs; two at the same t facing opposite ways are a graze along a
+   * silhouette, which crosses twice or not at all: keep both */
   int w = 0;
   double tol = dlen > 0 ? m->eps / dlen : 0;
   for (int i = 0; i < n; i++) {
-    if (w > 0 && t[i].t - t[w - 1].t <= tol) continue;
+    if (w > 0 && t[i].t - t[w - 1].t <= tol &&
+        (t[i].n[0] * dir[0] + t[i].n[1] * dir[1] + t[i].n[2] * dir[2] > 0) ==
+            (t[w - 1].n[0] * dir[0] + t[w - 1].n[1] * dir[1] + t[w - 1].n[2] * dir[2] > 0))
+      continue;
     t[w++] = t[i];
   }
   int keep = 0;

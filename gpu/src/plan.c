@@ -15,6 +15,7 @@
 #include <time.h>
 
 #include "geometry.h"
+#include "icshadow/conv.h"
 #include "mesh.h"
 #include "plan_internal.h"
 #include "scene_internal.h"
@@ -66,17 +67,38 @@ static void add_omitted(ics_plan *p, const char *name, const char *reason) {
   snprintf(q->reason, sizeof q->reason, "%s", reason);
 }
 
-/* depth range of the objects' bounding boxes (clamped to depths > 0) */
-static void bounds_depth(const ics_scene *s, const ics_camera *c, double *zlo, double *zhi) {
+/* The depth range the slabs will likely cover, before the geometry pass: the crossings of a
+ * coarse grid of camera rays over the view (33 x 33, the view's edges included); without any
+ * crossing, the objects' bounding boxes (clamped to depths > 0). Used only to size the padding
+ * and to refuse absurd work early: the geometry pass then fixes the exact range. */
+static void estimate_depth(const ics_plan *p, double *zlo, double *zhi) {
+  const ics_scene *s = p->scene;
   *zlo = INFINITY;
   *zhi = -INFINITY;
+  ics_hits h = {0};
+  int n = 33;
+  for (int a = 0; a < n; a++)
+    for (int b = 0; b < n; b++) {
+      double o[3], d[3];
+      /* buffer coordinates of the image's pixels: the padding is not known yet (0 here) */
+      int bi = (int)((double)a / (n - 1) * (p->W - 1)), bj = (int)((double)b / (n - 1) * (p->H - 1));
+      ics_plan_ray(p, bi, bj, o, d);
+      for (int k = 0; k < s->nobjects; k++) {
+        h.n = 0;
+        int behind = 0;
+        if (ics_object_hits(&s->objects[k], o, d, &h, &behind)) break;
+        for (int i = 0; i < h.n; i++) *zlo = fmin(*zlo, h.h[i].t), *zhi = fmax(*zhi, h.h[i].t);
+      }
+    }
+  ics_hits_free(&h);
+  if (*zhi >= *zlo) return;
   for (int k = 0; k < s->nobjects; k++) {
     double lo[3], hi[3];
     ics_object_bounds(&s->objects[k], lo, hi);
     for (int m = 0; m < 8; m++) {
       double pnt[3] = {m & 1 ? hi[0] : lo[0], m & 2 ? hi[1] : lo[1], m & 4 ? hi[2] : lo[2]};
       double z = 0;
-      for (int i = 0; i < 3; i++) z += (pnt[i] - c->eye[i]) * c->f[i];
+      for (int i = 0; i < 3; i++) z += (pnt[i] - p->cam.eye[i]) * p->cam.f[i];
       *zlo = fmin(*zlo, z);
       *zhi = fmax(*zhi, z);
     }
@@ -86,7 +108,8 @@ static void bounds_depth(const ics_scene *s, const ics_camera *c, double *zlo, d
   if (*zhi < *zlo) *zhi = *zlo;
 }
 
-#define ICS_PLAN_MAX_APRON 64
+#define ICS_PLAN_MAX_APRON 64             /* pixels; kernels that reach farther clamp */
+#define ICS_PLAN_MAX_PERSPECTIVE_TAPS 400 /* taps per slab a perspective step compensates */
 
 static int grey(const double t[3]) { return t[0] == t[1] && t[1] == t[2]; }
 
@@ -95,6 +118,7 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   ics_plan_opts o = {0};
   if (opts) o = *opts;
   *out = NULL;
+  if (msg && msg_size) msg[0] = 0;
   if (!s) return ICS_ERR_INVALID_ARG;
   ics_plan *p = calloc(1, sizeof *p);
   if (!p) return ICS_ERR_NOMEM;
@@ -123,16 +147,28 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   int persp = p->cam.projection == ICS_PROJ_PERSPECTIVE;
 
   double zlo, zhi;
-  bounds_depth(s, &p->cam, &zlo, &zhi);
+  estimate_depth(p, &zlo, &zhi);
   p->q_ref = ics_plan_pixel_size(p, 0.5 * (zlo + zhi));
   double k_est = floor((zhi - zlo) / p->e) + 2;
   if (k_est > ICS_FRAG_MAX_SLABS) {
     if (msg)
-      snprintf(msg, msg_size, "about %.0f slabs (depth range %.6g / slab_spacing %.6g) exceed "
+      snprintf(msg, msg_size, "about %.3g slabs (depth range %.6g / slab_spacing %.6g) exceed "
                "the limit %d: increase render.slab_spacing", k_est, zhi - zlo, p->e,
                ICS_FRAG_MAX_SLABS);
     free(p);
     return ICS_ERR_SIZE;
+  }
+  {
+    /* the work, estimated from the unpadded image (the padding only adds to it) */
+    double work = k_est * (double)p->W * p->H * (p->nlights ? p->nlights : 1);
+    if (work > ICS_PLAN_MAX_WORK) {
+      if (msg)
+        snprintf(msg, msg_size, "about %.3g slabs x %d x %d pixels x %d light(s) = %.3g updates "
+                 "exceed the work limit %.3g: increase render.slab_spacing or lower the resolution",
+                 k_est, p->W, p->H, p->nlights, work, ICS_PLAN_MAX_WORK);
+      free(p);
+      return ICS_ERR_SIZE;
+    }
   }
 
   /* kernels */
@@ -151,6 +187,17 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
       if (st != ICS_OK) goto fail;
       p->light_path[k] = sqrt(1 + s->lights[k].mean[0] * s->lights[k].mean[0] +
                               s->lights[k].mean[1] * s->lights[k].mean[1]);
+      const ics_slab_kernel *sk = &p->kernels[k];
+      double big = fmax(fmax(fabs(sk->mean_px[0]), fabs(sk->mean_px[1])),
+                        fmax(sk->cov_px[0], sk->cov_px[2]));
+      if (!(big <= 1e6)) {
+        if (msg)
+          snprintf(msg, msg_size, "light %d: its per-slab kernel is %.3g pixels (mean or variance) "
+                   "at a pixel size of %.3g: the slab spacing, d1 or the light's spread is out of "
+                   "proportion to the image", k, big, p->q_ref);
+        st = ICS_ERR_RANGE;
+        goto fail;
+      }
     }
   }
 
@@ -250,8 +297,24 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   size_t state_bytes = npx * (2 * sizeof(uint32_t) + (p->nvol ? sizeof(uint64_t) : 0));
   size_t image_bytes = nimg * 4 * sizeof(float);
   size_t tap_bytes = 0;
-  for (int k = 0; k < p->nlights; k++)
-    tap_bytes += (size_t)p->kernels[k].entries * (size_t)p->kernels[k].cap * sizeof(ics_tap2d);
+  for (int k = 0; k < p->nlights; k++) {
+    const ics_slab_kernel *sk = &p->kernels[k];
+    tap_bytes += (size_t)sk->entries * (size_t)sk->cap * sizeof(ics_tap2d);
+    if (persp) {
+      /* the perspective step's classes (propagate.h): Q^2 compensated sets of up to
+       * 4 n + 9 taps (12 bytes each) and their scratch (24 bytes each) */
+      size_t n = (size_t)sk->out_entries * (size_t)sk->cap, cls = (size_t)ICS_PROP_CLASSES * ICS_PROP_CLASSES;
+      if (n > ICS_PLAN_MAX_PERSPECTIVE_TAPS) {
+        if (msg)
+          snprintf(msg, msg_size, "light %d: %zu taps per slab; perspective cameras take at most "
+                   "%d (each slab compensates %zu classes of them): fewer samples or an "
+                   "orthographic camera", k, n, ICS_PLAN_MAX_PERSPECTIVE_TAPS, cls);
+        st = ICS_ERR_SIZE;
+        goto fail;
+      }
+      tap_bytes += cls * (4 * n + 9) * 36;
+    }
+  }
   p->backend_bytes = (size_t)p->nlights * buf_bytes + state_bytes + image_bytes + tap_bytes;
   size_t offset_bytes = (npx + 1) * sizeof(uint32_t);
   size_t mesh_bytes = 0, grid_bytes = 0;
@@ -267,6 +330,14 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
                "light(s), %d channel(s)), over render.memory_limit_mib = %g",
                p->memory_bytes / 1048576.0, p->Wb, p->Hb, p->nlights, p->nch,
                p->rs.memory_limit_mib);
+    st = ICS_ERR_SIZE;
+    goto fail;
+  }
+  if (p->buf.plane > ICS_CONV_MAX_LEN) { /* the loops index a plane with 32-bit integers */
+    if (msg)
+      snprintf(msg, msg_size, "light buffers of %d x %d pixels (with padding and apron) exceed "
+               "%zu pixels: lower the resolution or render.max_pad", p->Wb, p->Hb,
+               (size_t)ICS_CONV_MAX_LEN);
     st = ICS_ERR_SIZE;
     goto fail;
   }
@@ -327,6 +398,7 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   *out = p;
   return ICS_OK;
 fail:
+  if (msg && msg_size && !msg[0]) snprintf(msg, msg_size, "cannot plan the render: %s", ics_status_str(st));
   ics_plan_destroy(p);
   return st;
 }

@@ -148,7 +148,9 @@ int ics_prop_prepare_perspective(ics_prop_taps *pt, const ics_tap2d *taps, int n
     double dx = (double)(cl % Q) / Q, dy = (double)(cl / Q) / Q;
     for (int j = 0; j < ntaps; j++) in[j] = (ics_tap2d){taps[j].x * s - dx, taps[j].y * s - dy, taps[j].w};
     int nout;
-    if (ics_slab_compensate_exact(in, ntaps, out + (size_t)cl * cap, cap, &nout) != ICS_OK) return -1;
+    if (ics_taps2d_compensate(in, ntaps, ICS_COMP_NONNEG, out + (size_t)cl * cap, cap, &nout, NULL) !=
+        ICS_OK)
+      return -1;
     pt->off[cl] = nout;
     if (nout > maxn) maxn = nout;
   }

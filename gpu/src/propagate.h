@@ -60,7 +60,8 @@ void ics_prop_release(ics_prop_taps *pt);
 /* A perspective step (s != 1) with the magnification's fractional read offset folded into the
  * taps: the read of pixel p is p + D_p - s x_j with D_p = (s - 1)(p - c); for each of Q^2 classes
  * d = (i, j) / Q of the fraction (Q = ICS_PROP_CLASSES) the offsets -s x_j + d are compensated to
- * integer taps with exactly their moments (ics_slab_compensate_exact), and pixel p takes the
+ * non-negative integer taps with their moments (the core's ICS_COMP_NONNEG: exact where the
+ * variance exceeds the fraction's f (1 - f), else the closest, a little wider), and pixel p takes the
  * results of the four classes around frac(D_p) at p + floor(D_p), blended linearly: reads at
  * integer offsets, so the interpolation adds only r (1 - r) / Q^2 <= 1 / (4 Q^2) px^2 per axis and
  * slab (r: where the fraction lies between its classes) instead of up to 1/4, and no drift (a

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "geometry.h"
 #include "icshadow/lightsfile.h"
@@ -124,6 +125,11 @@ static int read_camera(rctx *c, json_t *o) {
                   "ones take \"height\")", W(c, "camera"));
     if (!h) return fail(c, ICS_ERR_PARSE, "%s: an orthographic camera needs \"height\"", W(c, "camera"));
     if (positive(c, W(c, "camera.height"), h, &cam->height)) return -1;
+    double dist = 0;
+    for (int i = 0; i < 3; i++) dist += (cam->target[i] - cam->eye[i]) * (cam->target[i] - cam->eye[i]);
+    if (!(cam->height >= 1e-9 * sqrt(dist) && cam->height >= 1e-150 && cam->height <= 1e12))
+      return fail(c, ICS_ERR_RANGE, "%s: %.3g is out of proportion to the scene (at least 1e-9 of "
+                  "the eye-target distance, at most 1e12)", W(c, "camera.height"), cam->height);
   } else {
     if (h)
       return fail(c, ICS_ERR_PARSE, "%s: \"height\" is for orthographic cameras (perspective "
@@ -184,7 +190,7 @@ static int read_render(rctx *c, json_t *o) {
     r->seed = (uint64_t)sd;
   }
   if ((x = json_object_get(o, "background")) &&
-      nonneg_vec(c, W(c, "render.background"), x, 3, r->background, "r, g, b", INFINITY))
+      nonneg_vec(c, W(c, "render.background"), x, 3, r->background, "r, g, b", 1e30))
     return -1;
   if ((x = json_object_get(o, "max_pad"))) {
     long long mp;
@@ -210,6 +216,20 @@ static int read_render(rctx *c, json_t *o) {
 }
 
 /* ---- lights -------------------------------------------------------------------------------- */
+/* power (weight x colour) and tilt the renderer can carry in float buffers and images */
+#define ICS_SCENE_MAX_POWER 1e30
+static int light_out_of_range(rctx *c, const char *where, const ics_light *l) {
+  for (int i = 0; i < 3; i++)
+    if (!(l->weight * l->color[i] <= ICS_SCENE_MAX_POWER))
+      return fail(c, ICS_ERR_RANGE, "%s: weight x color = %.3g is over %g", where,
+                  l->weight * l->color[i], ICS_SCENE_MAX_POWER);
+  if (!(fabs(l->mean[0]) <= 1e6 && fabs(l->mean[1]) <= 1e6))
+    return fail(c, ICS_ERR_RANGE, "%s: mean (%.3g, %.3g) is beyond 1e6 (a tilt of 89.99994 degrees)",
+                where, l->mean[0], l->mean[1]);
+  if (!(l->cov[0] <= 1e12 && l->cov[2] <= 1e12))
+    return fail(c, ICS_ERR_RANGE, "%s: variance over 1e12", where);
+  return 0;
+}
 static int read_lights(rctx *c, json_t *arr, json_t *file) {
   ics_scene *s = c->s;
   if (arr && file)
@@ -239,6 +259,11 @@ static int read_lights(rctx *c, json_t *arr, json_t *file) {
       return fail(c, ICS_ERR_SIZE, "%s: %d lights, at most %d in a scene", W(c, "lights_file"),
                   n, ICS_SCENE_MAX_LIGHTS);
     }
+    for (int k = 0; k < n; k++)
+      if (light_out_of_range(c, W(c, "lights_file: lights[%d]", k), &l[k])) {
+        free(l);
+        return -1;
+      }
     memcpy(s->lights, l, sizeof *l * (size_t)n);
     s->nlights = n;
     free(l);
@@ -249,11 +274,13 @@ static int read_lights(rctx *c, json_t *arr, json_t *file) {
   if (n == 0 || n > ICS_SCENE_MAX_LIGHTS)
     return fail(c, ICS_ERR_SIZE, "%s: must hold 1..%d lights, not %zu", W(c, "lights"),
                 ICS_SCENE_MAX_LIGHTS, n);
-  for (size_t k = 0; k < n; k++)
+  for (size_t k = 0; k < n; k++) {
     if (ics_light_from_json(&c->j, W(c, "lights[%zu]", k), json_array_get(arr, k), &s->lights[k])) {
       c->st = ICS_ERR_PARSE;
       return -1;
     }
+    if (light_out_of_range(c, W(c, "lights[%zu]", k), &s->lights[k])) return -1;
+  }
   s->nlights = (int)n;
   return 0;
 }
@@ -380,7 +407,7 @@ static int read_material(rctx *c, const char *name, json_t *o, ics_material *m) 
   json_t *x;
   m->color[0] = m->color[1] = m->color[2] = 1;
   snprintf(w2, sizeof w2, "%s.color", where);
-  if ((x = json_object_get(o, "color")) && nonneg_vec(c, w2, x, 3, m->color, "r, g, b", INFINITY))
+  if ((x = json_object_get(o, "color")) && nonneg_vec(c, w2, x, 3, m->color, "r, g, b", 1e30))
     return -1;
   snprintf(w2, sizeof w2, "%s.transport", where);
   if ((x = json_object_get(o, "transport")) && nonneg_vec(c, w2, x, 3, m->transport, "r, g, b", 1))
@@ -758,6 +785,7 @@ static ics_status create(ics_scene **out, json_t *root, const char *name, const 
 ics_status ics_scene_create_json(ics_scene **out, const char *json, const char *name,
                                  const char *dir, char *msg, size_t msg_size) {
   *out = NULL;
+  if (msg && msg_size) msg[0] = 0;
   json_error_t je;
   json_t *root = json_loads(json, JSON_REJECT_DUPLICATES, &je);
   if (!root) {
@@ -769,6 +797,12 @@ ics_status ics_scene_create_json(ics_scene **out, const char *json, const char *
 
 ics_status ics_scene_create_file(ics_scene **out, const char *path, char *msg, size_t msg_size) {
   *out = NULL;
+  if (msg && msg_size) msg[0] = 0;
+  struct stat sb;
+  if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
+    if (msg) snprintf(msg, msg_size, "%s: is a directory, not a scene file", path);
+    return ICS_ERR_IO;
+  }
   FILE *f = fopen(path, "rb");
   if (!f) {
     int e = errno;

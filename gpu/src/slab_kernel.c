@@ -331,23 +331,43 @@ static ics_status init(ics_slab_kernel *sk, const ics_scene *s, int k, double q,
       }
     }
     if (!ok) {
-      /* too narrow for per-pixel random taps: a deterministic 3 x 3 Gaussian with signed
-       * compensation per slab keeps the exact mean and covariance */
-      char why[160];
-      snprintf(why, sizeof why, "per-slab variance (%.3g, %.3g) px^2 is too small for expected "
-               "compensation: 3 x 3 Gaussian taps with signed compensation instead",
-               sk->cov_px[0], sk->cov_px[2]);
+      /* too narrow for per-pixel random taps: a deterministic 3 x 3 Gaussian with the core's
+       * non-negative compensation per slab keeps the exact mean and covariance when it can (the
+       * variance above the mean's fraction's f (1 - f)); else the integer-shift schedule does */
       sk->run_member = ICS_RK_GAUSS;
       sk->run_samples = 3;
-      sk->comp = ICS_RC_SIGNED;
-      stoch = 0;
+      sk->comp = ICS_RC_NONNEG;
       sk->entries = 1;
       sk->base_taps = 9;
+      ics_tap2d *b = realloc(sk->base, sizeof *b * 9);
+      if (!b) return ICS_ERR_NOMEM;
+      sk->base = b;
       memcpy(cls, sk->cov_px, sizeof cls);
       st = member_taps(sk, cls, sk->base);
-      if (st == ICS_OK) st = per_slab_compensation(sk, q, msg, msg_size, k);
-      snprintf(sk->why, sizeof sk->why, "%s", why);
-      return st;
+      double resid[3] = {0, 0, 0};
+      if (st == ICS_OK) {
+        ics_tap2d raw[9], out[4 * 9 + 9];
+        int nout;
+        for (int j = 0; j < 9; j++)
+          raw[j] = (ics_tap2d){sk->base[j].x + sk->mean_px[0], sk->base[j].y + sk->mean_px[1], sk->base[j].w};
+        st = ics_taps2d_compensate(raw, 9, ICS_COMP_NONNEG, out, 4 * 9 + 9, &nout, resid);
+      }
+      double tr = sk->cov_px[0] + sk->cov_px[2];
+      if (st == ICS_OK && fabs(resid[0]) + fabs(resid[1]) + fabs(resid[2]) <= 1e-9 * tr) {
+        st = per_slab_compensation(sk, q, msg, msg_size, k);
+        snprintf(sk->why, sizeof sk->why, "per-slab variance (%.3g, %.3g) px^2 is too small for "
+                 "expected compensation: 3 x 3 Gaussian taps, non-negative compensation (exact)",
+                 sk->cov_px[0], sk->cov_px[2]);
+        return st;
+      }
+      char why[160];
+      snprintf(why, sizeof why, "per-slab variance (%.3g, %.3g) px^2 is below what non-negative "
+               "taps reach at this mean: integer shifts and exact integer taps",
+               sk->cov_px[0], sk->cov_px[2]);
+      sk->run_member = sk->member;
+      sk->run_samples = sk->samples;
+      sk->comp = ICS_RC_INTEGER;
+      return set_integer(sk, why);
     }
     memcpy(sk->class_px, cls, sizeof cls);
     sk->mode = stoch ? ICS_SLAB_TABLE : ICS_SLAB_TAPS;
@@ -466,14 +486,6 @@ ics_status ics_slab_kernel_taps(const ics_slab_kernel *sk, uint64_t slab, double
   if (st == ICS_OK && sk->comp == ICS_RC_SIGNED && ics_taps_amplification(out, *nout) > 1 + 1e-9)
     st = ics_taps2d_compensate(raw, sk->base_taps, ICS_COMP_NONNEG, out, sk->cap, nout, NULL);
   free(raw);
-  return st;
-}
-
-ics_status ics_slab_compensate_exact(const ics_tap2d *in, int n, ics_tap2d *out, int cap,
-                                     int *nout) {
-  ics_status st = ics_taps2d_compensate(in, n, ICS_COMP_SIGNED, out, cap, nout, NULL);
-  if (st == ICS_OK && ics_taps_amplification(out, *nout) > 1 + 1e-9)
-    st = ics_taps2d_compensate(in, n, ICS_COMP_NONNEG, out, cap, nout, NULL);
   return st;
 }
 

@@ -70,10 +70,6 @@ ics_status ics_slab_kernel_taps(const ics_slab_kernel *sk, uint64_t slab, double
 /* max over a 33 x 33 grid of frequencies in [-pi, pi]^2 of |sum_j w_j exp(i w . x_j)|: 1 for
  * non-negative weights summing to 1, more when signed weights amplify a frequency. */
 double ics_taps_amplification(const ics_tap2d *t, int n);
-/* Integer taps with the moments of `in` exactly: the core's signed compensation, unless its
- * weights amplify a frequency (then the slabs would blow it up), else the non-negative one. */
-ics_status ics_slab_compensate_exact(const ics_tap2d *in, int n, ics_tap2d *out, int cap,
-                                     int *nout);
 
 /* Entries between a slab's candidates: M / (K N) for the ellipse (its N taps are M / N apart, so
  * K candidates M / (K N) apart are K distinct tap sets), M / K for Poisson, 1 when K = M. */
