@@ -35,7 +35,7 @@ ics_cli_test(NAME cli_render_syntax RC 2 ARGS "render|${rd}/syntax.json|-o|${rd}
 file(WRITE ${rd}/negvar.json "{\"camera\": {\"eye\": [0, 0, 2], \"target\": [0, 0, 0], \"height\": 1, \"resolution\": [8, 8]}, \"render\": {\"slab_spacing\": 0.1, \"d1\": 1}, \"lights\": [{\"mean\": [0, 0], \"var\": [-1, 0]}], \"materials\": {\"m\": {}}, \"objects\": [{\"shape\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0.5, \"material\": \"m\"}]}\n")
 ics_cli_test(NAME cli_render_negative_variance RC 2 ARGS "render|${rd}/negvar.json|-o|${rd}/v.exr"
   ERR "negvar.json: lights\\[0\\].var: expected \\[varx, vary\\], finite and >= 0" NOFILE ${rd}/v.exr)
-file(WRITE ${rd}/huge.json "{\"camera\": {\"eye\": [0, 0, 2], \"target\": [0, 0, 0], \"height\": 1, \"resolution\": [16384, 16384]}, \"render\": {\"slab_spacing\": 0.1, \"d1\": 1, \"memory_limit_mib\": 100}, \"lights\": [{\"mean\": [0, 0], \"var\": [0.1, 0.1]}], \"materials\": {\"m\": {}}, \"objects\": [{\"shape\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0.5, \"material\": \"m\"}]}\n")
+file(WRITE ${rd}/huge.json "{\"camera\": {\"eye\": [0, 0, 2], \"target\": [0, 0, 0], \"height\": 1, \"resolution\": [16384, 16384]}, \"render\": {\"slab_spacing\": 0.01, \"d1\": 1, \"memory_limit_mib\": 100}, \"lights\": [{\"mean\": [0, 0], \"var\": [1e-6, 1e-6]}], \"materials\": {\"m\": {}}, \"objects\": [{\"shape\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0.5, \"material\": \"m\"}]}\n")
 ics_cli_test(NAME cli_render_over_budget RC 2 ARGS "render|${rd}/huge.json|-o|${rd}/h.exr"
   ERR "the plan needs at least [0-9.]+ MiB .* over render.memory_limit_mib = 100" NOFILE ${rd}/h.exr)
 ics_cli_test(NAME cli_plan_over_budget RC 2 ARGS "plan|${rd}/huge.json" ERR "over render.memory_limit_mib")
@@ -47,4 +47,11 @@ ics_cli_test(NAME cli_bench_slab RC 0 ARGS "bench|slab|--sizes|32|--slabs|8|--th
 ics_cli_test(NAME cli_bench_slab_help RC 0 ARGS "bench|slab|--help" OUT "memcpy floor")
 ics_cli_test(NAME cli_bench_slab_bad_kernel RC 2 ARGS "bench|slab|--kernels|box" ERR "--kernels: unknown member 'box'")
 ics_cli_test(NAME cli_bench_slab_bad_size RC 2 ARGS "bench|slab|--sizes|8" ERR "--sizes: expected integers in 16..4096")
+endif()
+if(ICS_HAVE_RENDER)
+ics_cli_test(NAME cli_render_two_scenes RC 2 ARGS "render|${disk}|${disk}|-o|${rd}/t.exr" ERR "give one SCENE \\(got 2\\)" NOFILE ${rd}/t.exr)
+ics_cli_test(NAME cli_render_directory RC 2 ARGS "render|${rd}|-o|${rd}/dir.exr" ERR "is a directory, not a scene file" NOFILE ${rd}/dir.exr)
+ics_cli_test(NAME cli_render_png_as_exr RC 2 ARGS "render|-o|${rd}/p.png" ERR "-o writes OpenEXR; give the PNG preview with --png" NOFILE ${rd}/p.png)
+ics_cli_test(NAME cli_render_kernel_out_of_proportion RC 2 ARGS "render|${disk}|--slab-spacing|1e5|-o|${rd}/k2.exr"
+  ERR "light 0: its per-slab kernel is .* out of proportion" NOFILE ${rd}/k2.exr)
 endif()
