@@ -28,13 +28,15 @@ typedef struct {
   const char *kernel;
   int samples;
   const char *comp;
+  int run; /* render.rotation_run */
 } member_t;
 
 static const member_t members[] = {
-    {"ellipse2", "ellipse", 2, "expected"}, {"ellipse3", "ellipse", 3, "expected"},
-    {"poisson8", "poisson", 8, "expected"}, {"poisson16", "poisson", 16, "expected"},
-    {"gauss19", "gauss", 19, "nonneg"},     {"tophat5", "tophat", 5, "nonneg"},
-    {"ellipse2-signed", "ellipse", 2, "signed"}, {"integer", "gauss", 3, "integer"},
+    {"ellipse2", "ellipse", 2, "expected", 1},         {"ellipse2-run16", "ellipse", 2, "expected", 16},
+    {"ellipse3", "ellipse", 3, "expected", 1},         {"poisson8", "poisson", 8, "expected", 1},
+    {"poisson16", "poisson", 16, "expected", 1},       {"gauss19", "gauss", 19, "nonneg", 1},
+    {"tophat5", "tophat", 5, "nonneg", 1},             {"ellipse2-signed", "ellipse", 2, "signed", 1},
+    {"integer", "gauss", 3, "integer", 1},
 };
 #define NMEMBERS ((int)(sizeof members / sizeof *members))
 #endif
@@ -53,8 +55,8 @@ static void help(FILE *f) {
           "  --sizes N,...     square buffer sides (default 512,768; 16..4096)\n"
           "  --slabs K         slabs (default 256; 1..4096)\n"
           "  --threads T,...   thread counts (default 1,2)\n"
-          "  --kernels K,...   members (default all): ellipse2 ellipse3 poisson8 poisson16 gauss19\n"
-          "                    tophat5 ellipse2-signed integer\n"
+          "  --kernels K,...   members (default all): ellipse2 ellipse2-run16 ellipse3 poisson8\n"
+          "                    poisson16 gauss19 tophat5 ellipse2-signed integer\n"
           "  --backend B       cpu (default) or another backend of `icshadow render --backends`\n"
           "  --cov C,C,C       per-slab covariance in px^2 (default 2,0.5,1)\n"
           "  --mean MX,MY      per-slab mean in px (default 0.3,-0.2)\n"
@@ -175,13 +177,13 @@ int bench_slab(int argc, char **argv) {
         snprintf(json, sizeof json,
                  "{\"camera\": {\"eye\": [0, 0, 1], \"target\": [0, 0, 0], \"height\": %d, \"resolution\": [%d, %d]},"
                  " \"render\": {\"slab_spacing\": 1, \"d1\": 1, \"kernel\": \"%s\", \"samples\": %d,"
-                 " \"compensate\": \"%s\", \"max_pad\": 0, \"seed\": 1},"
+                 " \"compensate\": \"%s\", \"max_pad\": 0, \"seed\": 1, \"rotation_run\": %d},"
                  " \"lights\": [{\"mean\": [%.17g, %.17g], \"cov\": [[%.17g, %.17g], [%.17g, %.17g]]}],"
                  " \"materials\": {\"black\": {\"color\": [0, 0, 0]}, \"white\": {}},"
                  " \"objects\": [{\"shape\": \"rect\", \"center\": [%.17g, 0, 0], \"normal\": [0, 0, 1],"
                  "  \"size\": [%d, %d], \"material\": \"black\"},"
                  "  {\"shape\": \"rect\", \"center\": [0, 0, %d], \"normal\": [0, 0, 1], \"size\": [%d, %d], \"material\": \"white\"}]}",
-                 n, n, n, m->kernel, m->samples, m->comp, -mean[0], mean[1], cov[0], -cov[1],
+                 n, n, n, m->kernel, m->samples, m->comp, m->run, -mean[0], mean[1], cov[0], -cov[1],
                  -cov[1], cov[2], -0.25 * n, n / 2, 2 * n, -slabs, 2 * n, 2 * n);
         char msg[CLI_MSG_MAX] = "";
         ics_scene *s = NULL;

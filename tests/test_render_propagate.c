@@ -40,7 +40,7 @@ static float *pack(const float *plain, int nch, const ics_buf_layout *L) {
 
 typedef enum { PORTABLE, AVX512 } path_t;
 
-static void run(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
+static void step(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
                 int nch, path_t path) {
   uint32_t scratch[W];
   if (path == AVX512)
@@ -62,7 +62,7 @@ static void test_stencil(path_t path, int apron) {
   ics_tap2d taps[4] = {{0.3, -1.2, 0.4}, {-2.6, 0.7, 0.25}, {1, 2, 0.25}, {4.5, -3.25, 0.1}};
   ics_prop_taps pt = {0};
   CHECK(ics_prop_prepare(&pt, taps, 1, 4, 4, 1, 0, 0, &L) == 0 && pt.stencil, "prepare stencil");
-  run(&pt, src, dst, &L, 1, path);
+  step(&pt, src, dst, &L, 1, path);
   ics_conv2d_step(plain, ref, W, H, taps, 4, NULL);
   double worst = 0;
   for (int y = 0; y < H; y++)
@@ -77,7 +77,10 @@ static void test_stencil(path_t path, int apron) {
 
 /* M tap sets of 2 taps (an antipodal pair around a mean); each pixel uses the set its RNG word
  * picks, and the reference applies that set to that pixel alone */
-static void test_sets(int M, path_t path, int apron) {
+static void test_sets_run(int M, path_t path, int apron, int run);
+static void test_sets(int M, path_t path, int apron) { test_sets_run(M, path, apron, 1); }
+
+static void test_sets_run(int M, path_t path, int apron, int run) {
   float *plain = malloc(sizeof(float) * 3 * W * H), *tmp = malloc(sizeof(float) * W * H);
   fill(plain), fill(plain + W * H), fill(plain + 2 * W * H);
   ics_buf_layout L;
@@ -91,21 +94,23 @@ static void test_sets(int M, path_t path, int apron) {
   }
   ics_prop_taps pt = {0};
   CHECK(ics_prop_prepare(&pt, t, M, 2, 2, 1, 0, 0, &L) == 0 && !pt.stencil, "prepare sets");
-  pt.seed = 12345, pt.light = 1, pt.slab = 7;
-  run(&pt, src, dst, &L, 3, path);
+  pt.seed = 12345, pt.light = 1, pt.slab = 7, pt.run = run, pt.phase = run > 1 ? 5 : 0;
+  step(&pt, src, dst, &L, 3, path);
   double worst = 0;
   for (int y = 0; y < H; y += 3)
     for (int x = 0; x < W; x++) {
-      int e = (int)ics_slab_choice(12345, 1, 7, (uint32_t)(y * W + x), (uint32_t)M);
+      int e = run > 1 ? (int)ics_prop_run_choice(&pt, W, x, y)
+                      : (int)ics_slab_choice(12345, 1, 7, (uint32_t)(y * W + x), (uint32_t)M);
       for (int c = 0; c < 3; c++) {
         ics_conv2d_step(plain + (size_t)c * W * H, tmp, W, H, t + 2 * e, 2, NULL);
         worst = fmax(worst, fabs(dst[(size_t)c * L.plane + ics_buf_index(&L, x, y)] - tmp[y * W + x]) /
                                 0x1p-24);
       }
     }
-  CHECK(worst <= 4, "%s, %d sets, per pixel vs engine: %.2f ulps of 1", path_name(path, &L), M, worst);
-  printf("%d tap sets (%s, apron %d, 3 channels) vs ics_conv2d_step per pixel: max %.2f float ulps\n",
-         M, path_name(path, &L), apron, worst);
+  CHECK(worst <= 4, "%s, %d sets, runs of %d, per pixel vs engine: %.2f ulps of 1",
+        path_name(path, &L), M, run, worst);
+  printf("%d tap sets (%s, apron %d, runs of %d, 3 channels) vs ics_conv2d_step per pixel: max "
+         "%.2f float ulps\n", M, path_name(path, &L), apron, run, worst);
   ics_prop_release(&pt);
   free(plain), free(tmp), free(src), free(dst), free(t);
 }
@@ -180,7 +185,9 @@ int main(void) {
     test_sets(4, PORTABLE, apron);
     test_sets(ICS_SLAB_TABLE_M, PORTABLE, apron);
   }
+  test_sets_run(4, PORTABLE, 8, 16);
   if (ics_prop_avx512_available()) {
+    test_sets_run(4, AVX512, 8, 16);
     test_stencil(AVX512, 8);
     test_sets(4, AVX512, 8);
     test_sets(ICS_SLAB_TABLE_M, AVX512, 8);

@@ -323,7 +323,9 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
                 : ics_prop_prepare(&j->pt[l], scratch[l], sk->out_entries, n / sk->out_entries,
                                    sk->cap, s, P->cx, P->cy, &P->buf))
         goto nomem;
-      j->pt[l].seed = P->rs.seed; /* table choices; perspective: the fraction's dither */
+      j->pt[l].seed = P->rs.seed; /* table choices */
+      j->pt[l].run = P->rs.rotation_run;
+      j->pt[l].phase = (int)ics_slab_choice(P->rs.seed, (uint32_t)l, (uint32_t)k, UINT32_MAX - 2, 16);
       j->pt[l].light = (uint32_t)l;
       j->pt[l].slab = (uint32_t)k;
     }

@@ -242,7 +242,16 @@ void ics_prop_pixel(const ics_prop_taps *pt, int e, const float *src, float *dst
   }
 }
 
+uint32_t ics_prop_run_choice(const ics_prop_taps *pt, int w, int x, int y) {
+  uint32_t id = (uint32_t)((size_t)y * (size_t)(w + 32) + 16 * (size_t)((x + 16 - pt->phase) / 16));
+  return ics_slab_choice(pt->seed, pt->light, pt->slab, id, (uint32_t)pt->entries);
+}
+
 void ics_prop_entries_row(const ics_prop_taps *pt, int w, int y, uint32_t *ent) {
+  if (pt->run > 1) {
+    for (int x = 0; x < w; x++) ent[x] = ics_prop_run_choice(pt, w, x, y);
+    return;
+  }
   uint32_t first = (uint32_t)((size_t)y * w);
   uint32_t words[4], block = UINT32_MAX;
   for (int x = 0; x < w; x++) {

@@ -48,6 +48,8 @@ typedef struct ics_prop_taps {
   int classes;        /* perspective: Q x Q classes of the magnification's fraction (0: none) */
   size_t classes_cap; /* capacity of the perspective arrays */
   uint64_t seed;      /* entry selection: ics_slab_entry_block(seed, light, slab, ...) */
+  int run;            /* 1: a choice per pixel; 16: runs of 16 pixels share one (ics_prop_run_choice) */
+  int phase;          /* runs start at x = phase (mod 16) this slab */
   uint32_t light, slab;
 } ics_prop_taps;
 
@@ -80,5 +82,8 @@ void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, const 
 void ics_prop_pixel(const ics_prop_taps *pt, int e, const float *src, float *dst,
                     const ics_buf_layout *L, int nch, int x, int y);
 void ics_prop_entries_row(const ics_prop_taps *pt, int w, int y, uint32_t *ent);
+/* The choice of the run holding pixel (x, y) of a w-wide buffer (pt->run = 16): the choice
+ * (ics_slab_choice) of the counter y (w + 32) + 16 floor((x + 16 - phase) / 16). */
+uint32_t ics_prop_run_choice(const ics_prop_taps *pt, int w, int x, int y);
 
 #endif

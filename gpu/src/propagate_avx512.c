@@ -162,6 +162,62 @@ TGT static void candidates_row(const ics_prop_taps *pt, const float *src, float 
   }
 }
 
+/* the choices of runs 0 .. nruns-1 of row y (run m starts at x = phase - 16 + 16 m): run m is
+ * the counter Y + 16 m, Y = y (w + 32) (ics_prop_run_choice), whose word is word G % 4 of block
+ * (G / 4) 16 + Y % 16 with G = Y / 16 + m: one 16-lane Philox call gives 64 runs */
+TGT static void run_choices(const ics_prop_taps *pt, int w, int y, int nruns, uint32_t *out) {
+  uint32_t Y = (uint32_t)((size_t)y * (size_t)(w + 32)), c0 = Y % 16, G0 = Y / 16;
+  const __m512i Mt = _mm512_set1_epi32(pt->entries);
+  const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  uint32_t tmp[4][16];
+  for (uint32_t q0 = G0 / 4; q0 <= (G0 + (uint32_t)nruns - 1) / 4; q0 += 16) {
+    __m512i c[4] = {_mm512_add_epi32(_mm512_set1_epi32((int)(16 * q0 + c0)), _mm512_slli_epi32(iota, 4)),
+                    _mm512_set1_epi32((int)pt->slab), _mm512_set1_epi32((int)pt->light),
+                    _mm512_set1_epi32(0x736c6162)};
+    philox16(c, (uint32_t)pt->seed, (uint32_t)(pt->seed >> 32));
+    for (int k = 0; k < 4; k++) {
+      __m512i lo, hi;
+      mul32x32(c[k], Mt, &lo, &hi);
+      _mm512_storeu_si512((void *)tmp[k], hi);
+    }
+    for (uint32_t i = 0; i < 16; i++)
+      for (uint32_t k = 0; k < 4; k++) {
+        uint32_t G = 4 * (q0 + i) + k;
+        if (G >= G0 && G < G0 + (uint32_t)nruns) out[G - G0] = tmp[k][i];
+      }
+  }
+}
+
+/* runs of 16 pixels sharing one tap set: each vector is one run (its start moved by the slab's
+ * phase, the row's ends masked), so only its own set is evaluated */
+TGT static void runs_row(const ics_prop_taps *pt, const float *src, float *dst,
+                         const ics_buf_layout *L, int nch, int y, uint32_t *scratch) {
+  int w = L->w, n = pt->ntaps, stride = L->stride;
+  int nruns = (w - pt->phase + 16 + 15) / 16;
+  run_choices(pt, w, y, nruns, scratch);
+  for (int c = 0; c < nch; c++) {
+    const float *S = src + (size_t)c * L->plane + ics_buf_index(L, 0, y);
+    float *D = dst + (size_t)c * L->plane + ics_buf_index(L, 0, y);
+    int m = 0;
+    for (int x = pt->phase - 16; x < w; x += 16, m++) {
+      int e = (int)scratch[m];
+      int lo = x < 0 ? -x : 0, hi = x + 16 > w ? w - x : 16;
+      __mmask16 mk = (__mmask16)(((1u << hi) - 1) & ~((1u << lo) - 1));
+      __m512 acc = _mm512_setzero_ps();
+      for (int j = e * n; j < (e + 1) * n; j++) {
+        const float *p = S + x + pt->off[j];
+        __m512 fx = _mm512_set1_ps(pt->fx[j]), fy = _mm512_set1_ps(pt->fy[j]);
+        __m512 a = _mm512_maskz_loadu_ps(mk, p), b = _mm512_maskz_loadu_ps(mk, p + 1);
+        __m512 cc = _mm512_maskz_loadu_ps(mk, p + stride), d = _mm512_maskz_loadu_ps(mk, p + stride + 1);
+        __m512 top = _mm512_fmadd_ps(fx, _mm512_sub_ps(b, a), a);
+        __m512 bot = _mm512_fmadd_ps(fx, _mm512_sub_ps(d, cc), cc);
+        acc = _mm512_fmadd_ps(_mm512_set1_ps(pt->w[j]), _mm512_fmadd_ps(fy, _mm512_sub_ps(bot, top), top), acc);
+      }
+      _mm512_mask_storeu_ps(D + x, mk, acc);
+    }
+  }
+}
+
 TGT static void table_row(const ics_prop_taps *pt, const float *src, float *dst,
                           const ics_buf_layout *L, int nch, int y, const uint32_t *ent) {
   int w = L->w, n = pt->ntaps, stride = L->stride;
@@ -208,6 +264,10 @@ TGT void ics_prop_rows_avx512(const ics_prop_taps *pt, const float *src, float *
                               const ics_buf_layout *L, int nch, int y0, int y1,
                               uint32_t *scratch) {
   for (int y = y0; y < y1; y++) {
+    if (pt->entries > 1 && pt->run > 1) {
+      runs_row(pt, src, dst, L, nch, y, scratch);
+      continue;
+    }
     if (pt->entries > 1) entries_row(pt, L->w, y, scratch);
     if (pt->stencil)
       stencil_row(pt, src, dst, L, nch, y);

@@ -150,10 +150,11 @@ static int read_camera(rctx *c, json_t *o) {
 static int read_render(rctx *c, json_t *o) {
   static const char *const known[] = {"slab_spacing", "d1", "kernel", "samples", "compensate",
                                       "radii", "seed", "background", "max_pad",
-                                      "memory_limit_mib", "pixel_rotations", "preintegrate"};
+                                      "memory_limit_mib", "pixel_rotations", "preintegrate",
+                                      "rotation_run"};
   ics_render_settings *r = &c->s->settings;
   if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", W(c, "render"));
-  if (J(ics_jkeys(&c->j, W(c, "render"), o, known, 12))) return -1;
+  if (J(ics_jkeys(&c->j, W(c, "render"), o, known, 13))) return -1;
   json_t *x;
   if (!json_object_get(o, "slab_spacing"))
     return fail(c, ICS_ERR_PARSE, "%s: missing \"slab_spacing\"", W(c, "render"));
@@ -204,6 +205,13 @@ static int read_render(rctx *c, json_t *o) {
       return fail(c, ICS_ERR_RANGE, "%s: %lld (expected 1, 2, 4, 8 or 384)",
                   W(c, "render.pixel_rotations"), pr);
     r->pixel_rotations = (int)pr;
+  }
+  if ((x = json_object_get(o, "rotation_run"))) {
+    long long rr;
+    if (J(ics_jint(&c->j, W(c, "render.rotation_run"), x, 1, 16, &rr))) return -1;
+    if (rr != 1 && rr != 16)
+      return fail(c, ICS_ERR_RANGE, "%s: %lld (expected 1 or 16)", W(c, "render.rotation_run"), rr);
+    r->rotation_run = (int)rr;
   }
   if ((x = json_object_get(o, "preintegrate"))) {
     if (!json_is_boolean(x)) return fail(c, ICS_ERR_PARSE, "%s: expected true or false", W(c, "render.preintegrate"));

@@ -68,6 +68,8 @@ typedef struct ics_render_settings {
                           function integrated between them (Engel 2001; Patel Fig. 19) */
   int pixel_rotations; /* ellipse / poisson: rotations a pixel chooses from per slab (1, 2, 4, 8
                           or 384; default 4) */
+  int rotation_run;    /* 1: every pixel chooses; 16: runs of 16 pixels of a row share a choice
+                          (their start moved by a random phase each slab) */
   uint64_t seed;
   double background[3];
   int max_pad;         /* < 0: default (larger image side) */
