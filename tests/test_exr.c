@@ -1,7 +1,9 @@
 /* test_exr.c — OpenEXR I/O: float and half round trips (bit-exact; the half data uses values
  * exactly representable in half, different in every channel so a channel swap is caught),
  * and clear errors for missing, corrupt, truncated, wrong-channel, UINT, NaN / inf /
- * negative files. Files with channel sets or values ics_exr_write refuses are made here with
+ * negative files; named channel sets (ics_exr_write_channels / ics_exr_read_channels) round
+ * trip by name, read files written independently, and refuse repeated or empty names and
+ * non-finite values. Files with channel sets or values ics_exr_write refuses are made here with
  * the OpenEXR Core API directly (write_raw). */
 #include <math.h>
 #include <stdint.h>
@@ -306,6 +308,93 @@ int main(int argc, char **argv) {
   expect_fail(tmpf("inf.exr"), ICS_ERR_INVALID_ARG, "pixel (x 2, y 1) channel B is infinite");
   CHECK(write_raw(tmpf("neg.exr"), 5, 4, 3, rgb, EXR_PIXEL_FLOAT, v_neg) == 0, "raw neg");
   expect_fail(tmpf("neg.exr"), ICS_ERR_INVALID_ARG, "pixel (x 0, y 0) channel R is negative");
+
+  /* named channels: float and half round trips by name (the file holds them sorted by name, so
+   * the order read back differs from the order written), negative values allowed */
+  {
+    static const char *const names[] = {"R", "G", "B", "A", "light0.V", "light1.R", "Z"};
+    enum { NW = 23, NH = 19, NC = 7 };
+    float *data = malloc(sizeof(float) * NW * NH * NC);
+    for (int p = 0; p < NW * NH; p++)
+      for (int c = 0; c < NC; c++) data[p * NC + c] = (float)((p % 64) / 8.0 + 16 * c - 40);
+    ics_exr_channels w = {NW, NH, NC, names, data};
+    for (int half = 0; half < 2; half++) {
+      const char *path = tmpf(half ? "chan_h.exr" : "chan_f.exr");
+      st = ics_exr_write_channels(path, &w, half ? ICS_EXR_HALF : ICS_EXR_FLOAT, 0, msg, sizeof msg);
+      CHECK(st == ICS_OK, "write channels (%s): %s", half ? "half" : "float", msg);
+      ics_exr_channels *r = NULL;
+      st = ics_exr_read_channels(path, &r, msg, sizeof msg);
+      CHECK(st == ICS_OK && r && r->width == NW && r->height == NH && r->count == NC,
+            "read channels: %s", msg);
+      if (st != ICS_OK) continue;
+      CHECK(!strcmp(r->names[0], "A") && !strcmp(r->names[NC - 1], "light1.R"),
+            "file order sorted by name: %s ... %s", r->names[0], r->names[NC - 1]);
+      int wrong = 0;
+      for (int c = 0; c < NC; c++) {
+        int k = ics_exr_channel_index(r, names[c]);
+        CHECK(k >= 0, "channel %s read back", names[c]);
+        for (int p = 0; k >= 0 && p < NW * NH; p++) wrong += r->data[p * NC + k] != data[p * NC + c];
+      }
+      CHECK(wrong == 0, "channels round trip (%s): %d values differ", half ? "half" : "float", wrong);
+      CHECK(ics_exr_channel_index(r, "light0") == -1, "no channel 'light0'");
+      ics_exr_channels_destroy(r);
+    }
+    /* latlong = 0 writes no envmap attribute; ics_exr_write's files carry latlong */
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    exr_context_t ctx;
+    exr_envmap_t env;
+    CHECK(exr_start_read(&ctx, tmpf("chan_f.exr"), &init) == 0 &&
+              exr_attr_get_envmap(ctx, 0, "envmap", &env) != 0, "no envmap attribute");
+    exr_finish(&ctx);
+    CHECK(exr_start_read(&ctx, tmpf("h.exr"), &init) == 0 &&
+              exr_attr_get_envmap(ctx, 0, "envmap", &env) == 0 && env == EXR_ENVMAP_LATLONG,
+          "ics_exr_write: envmap latlong");
+    exr_finish(&ctx);
+    /* refusals, no file left */
+    static const char *const twice[] = {"R", "G", "B", "A", "Z", "light1.R", "Z"};
+    static const char *const empty[] = {"R", "G", "B", "A", "", "light1.R", "Z"};
+    remove(tmpf("chan_bad.exr"));
+    w.names = twice;
+    st = ics_exr_write_channels(tmpf("chan_bad.exr"), &w, ICS_EXR_FLOAT, 0, msg, sizeof msg);
+    CHECK(st == ICS_ERR_INVALID_ARG && strstr(msg, "\"Z\" given twice"), "repeated name: %s", msg);
+    w.names = empty;
+    st = ics_exr_write_channels(tmpf("chan_bad.exr"), &w, ICS_EXR_FLOAT, 0, msg, sizeof msg);
+    CHECK(st == ICS_ERR_INVALID_ARG && strstr(msg, "channel 4"), "empty name: %s", msg);
+    w.names = names;
+    data[(3 * NW + 5) * NC + 6] = INFINITY;
+    st = ics_exr_write_channels(tmpf("chan_bad.exr"), &w, ICS_EXR_FLOAT, 0, msg, sizeof msg);
+    CHECK(st == ICS_ERR_INVALID_ARG && strstr(msg, "pixel (x 5, y 3) channel Z is NaN or infinite"),
+          "infinite value: %s", msg);
+    w.count = 0;
+    st = ics_exr_write_channels(tmpf("chan_bad.exr"), &w, ICS_EXR_FLOAT, 0, msg, sizeof msg);
+    CHECK(st == ICS_ERR_INVALID_ARG, "no channels refused");
+    CHECK(!file_exists(tmpf("chan_bad.exr")), "no file after refused channel writes");
+    free(data);
+  }
+  /* files written independently (write_raw) read by name; NaN refused with its place,
+   * negative values accepted */
+  {
+    ics_exr_channels unset, *r = &unset;
+    st = ics_exr_read_channels(tmpf("rgbz.exr"), &r, msg, sizeof msg);
+    CHECK(st == ICS_OK && r->count == 4, "read R, G, B, Z: %s", msg);
+    int wrong = 0;
+    for (int c = 0; st == ICS_OK && c < 4; c++) {
+      int k = ics_exr_channel_index(r, rgbz[c]);
+      for (int p = 0; p < 20; p++) wrong += k < 0 || r->data[p * 4 + k] != v_plain(c, p);
+    }
+    CHECK(wrong == 0, "raw R, G, B, Z by name: %d wrong", wrong);
+    if (st == ICS_OK) ics_exr_channels_destroy(r);
+    r = &unset;
+    st = ics_exr_read_channels(tmpf("nan.exr"), &r, msg, sizeof msg);
+    CHECK(st == ICS_ERR_INVALID_ARG && r == NULL && strstr(msg, "pixel (x 3, y 2) channel G is NaN"),
+          "channels: NaN refused: %s", msg);
+    st = ics_exr_read_channels(tmpf("neg.exr"), &r, msg, sizeof msg);
+    CHECK(st == ICS_OK && r && r->count == 3 && r->data[ics_exr_channel_index(r, "R")] == -0.5f,
+          "channels: negative accepted: %s", msg);
+    ics_exr_channels_destroy(r);
+    st = ics_exr_read_channels(tmpf("missing.exr"), &r, msg, sizeof msg);
+    CHECK(st == ICS_ERR_IO && r == NULL && strstr(msg, "cannot open"), "channels: missing: %s", msg);
+  }
 
   if (system("rm -rf test_exr_tmp") != 0) return 1;
   return test_summary("exr");

@@ -3,10 +3,10 @@
  * Built against OpenEXR only when CMake found it (ICS_HAVE_OPENEXR); otherwise every entry
  * point returns ICS_ERR_UNSUPPORTED. Reading: exr_start_read parses the header; each scanline
  * chunk is decoded with its own decode pipeline into PLANAR float buffers (one per channel,
- * user_pixel_stride 4 bytes), then interleaved into the ics_image. Writing: exr_start_write,
- * one part, required attributes, channels (B, G, R[, A] — the library sorts them), header,
- * then one encode pipeline per chunk reading planar float buffers (the library converts to
- * half when asked). Error messages of the library are captured per thread (custom
+ * user_pixel_stride 4 bytes), then interleaved into the ics_image. Writing (ics_exr_write_channels;
+ * ics_exr_write is R, G, B[, A] through it): exr_start_write, one part, required attributes,
+ * channels added in reverse order (the library sorts them by name), header, then one encode
+ * pipeline per chunk reading planar float buffers (the library converts to half when asked). Error messages of the library are captured per thread (custom
  * error_handler_fn) instead of printed. */
 #include "icshadow/exr.h"
 
@@ -26,6 +26,15 @@ static void set_msg(char *msg, size_t n, const char *fmt, ...) {
   va_end(ap);
 }
 
+static const char *const chan_names[4] = {"R", "G", "B", "A"};
+
+/* the index of `name` among n names, or -1 */
+static int find_name(const char *const *names, int n, const char *name) {
+  for (int k = 0; k < n; k++)
+    if (!strcmp(names[k], name)) return k;
+  return -1;
+}
+
 #ifndef ICS_HAVE_OPENEXR
 
 int ics_exr_available(void) { return 0; }
@@ -37,10 +46,19 @@ ics_status ics_exr_read(const char *path, ics_image **out, char *msg, size_t msg
   return ICS_ERR_UNSUPPORTED;
 }
 
-ics_status ics_exr_write(const char *path, const ics_image *img, ics_exr_type type, char *msg,
-                         size_t msg_size) {
-  (void)img;
+ics_status ics_exr_read_channels(const char *path, ics_exr_channels **out, char *msg,
+                                 size_t msg_size) {
+  if (out) *out = NULL;
+  set_msg(msg, msg_size, "%s: cannot read OpenEXR: OpenEXR was not found when libicshadow was "
+          "built (install libopenexr-dev and rebuild)", path ? path : "(null)");
+  return ICS_ERR_UNSUPPORTED;
+}
+
+ics_status ics_exr_write_channels(const char *path, const ics_exr_channels *ch, ics_exr_type type,
+                                  int latlong, char *msg, size_t msg_size) {
+  (void)ch;
   (void)type;
+  (void)latlong;
   set_msg(msg, msg_size, "%s: cannot write OpenEXR: OpenEXR was not found when libicshadow was "
           "built (install libopenexr-dev and rebuild)", path ? path : "(null)");
   return ICS_ERR_UNSUPPORTED;
@@ -72,18 +90,27 @@ static ics_status map_err(exr_result_t rv) {
   }
 }
 
-static const char *chan_names[4] = {"R", "G", "B", "A"};
+static int chan_index(const char *name) { return find_name(chan_names, 4, name); }
 
-static int chan_index(const char *name) {
-  for (int c = 0; c < 4; c++)
-    if (!strcmp(name, chan_names[c])) return c;
-  return -1;
+/* What read_file returns: the display window's pixels, interleaved, `n` channels. */
+typedef struct {
+  long W, H;
+  int n;
+  char **names; /* n names; one block with the strings after the pointers */
+  float *data;
+} exr_pixels;
+
+/* the slot of a file channel: its R, G, B, A index (rgba) or its place in names */
+static int slot_of(const char *name, int rgba, char *const *names, int n) {
+  return rgba ? chan_index(name) : find_name((const char *const *)names, n, name);
 }
 
-ics_status ics_exr_read(const char *path, ics_image **out, char *msg, size_t msg_size) {
-  if (!out) return ICS_ERR_INVALID_ARG;
-  *out = NULL;
-  if (!path) return ICS_ERR_INVALID_ARG;
+/* Reads `path`: header checks, every channel decoded PLANAR into float, interleaved into the
+ * display window. rgba: the channel set must be R, G, B[, A] (slots in that order); else any
+ * set of HALF / FLOAT channels (slots in the file's order). Non-finite values are refused (and
+ * negative R, G, B when rgba) with their position. */
+static ics_status read_file(const char *path, int rgba, exr_pixels *px, char *msg, size_t msg_size) {
+  memset(px, 0, sizeof *px);
   FILE *probe = fopen(path, "rb");
   if (!probe) {
     set_msg(msg, msg_size, "%s: cannot open: %s", path, strerror(errno));
@@ -104,14 +131,13 @@ ics_status ics_exr_read(const char *path, ics_image **out, char *msg, size_t msg
   }
 
   ics_status st = ICS_OK;
-  float *planes[4] = {NULL, NULL, NULL, NULL};
-  ics_image *img = NULL;
-  int parts = 0;
+  float **planes = NULL;
+  int parts = 0, nch = 0;
   exr_storage_t storage;
   const exr_attr_chlist_t *chl = NULL;
   exr_attr_box2i_t dw, disp;
   int have[4] = {0, 0, 0, 0};
-  long w = 0, h = 0;
+  long w = 0, h = 0, W = 0, H = 0;
   if (exr_get_count(ctx, &parts) != EXR_ERR_SUCCESS || parts != 1) {
     set_msg(msg, msg_size, "%s: %d parts; only single-part images are supported", path, parts);
     st = ICS_ERR_UNSUPPORTED;
@@ -124,7 +150,7 @@ ics_status ics_exr_read(const char *path, ics_image **out, char *msg, size_t msg
     goto done;
   }
   exr_envmap_t envmap;
-  if (exr_attr_get_envmap(ctx, 0, "envmap", &envmap) == EXR_ERR_SUCCESS &&
+  if (rgba && exr_attr_get_envmap(ctx, 0, "envmap", &envmap) == EXR_ERR_SUCCESS &&
       envmap != EXR_ENVMAP_LATLONG) {
     set_msg(msg, msg_size, "%s: a cube map; only latitude-longitude maps are supported", path);
     st = ICS_ERR_UNSUPPORTED;
@@ -137,9 +163,15 @@ ics_status ics_exr_read(const char *path, ics_image **out, char *msg, size_t msg
     st = ICS_ERR_PARSE;
     goto done;
   }
+  if (chl->num_channels < 1 || chl->num_channels > ICS_EXR_MAX_CHANNELS) {
+    set_msg(msg, msg_size, "%s: %d channels (1..%d supported)", path, chl->num_channels,
+            ICS_EXR_MAX_CHANNELS);
+    st = ICS_ERR_UNSUPPORTED;
+    goto done;
+  }
   for (int c = 0; c < chl->num_channels; c++) {
     const exr_attr_chlist_entry_t *e = &chl->entries[c];
-    int k = chan_index(e->name.str);
+    int k = rgba ? chan_index(e->name.str) : c;
     if (k < 0) {
       set_msg(msg, msg_size, "%s: unexpected channel '%s' (expected R, G, B and optionally A)",
               path, e->name.str);
@@ -157,32 +189,58 @@ ics_status ics_exr_read(const char *path, ics_image **out, char *msg, size_t msg
       st = ICS_ERR_UNSUPPORTED;
       goto done;
     }
-    have[k] = 1;
+    if (rgba) have[k] = 1;
   }
-  if (!have[0] || !have[1] || !have[2]) {
+  if (rgba && (!have[0] || !have[1] || !have[2])) {
     set_msg(msg, msg_size, "%s: wrong channel set: missing %s%s%s (expected R, G, B and "
             "optionally A)", path, have[0] ? "" : "R ", have[1] ? "" : "G ", have[2] ? "" : "B");
     st = ICS_ERR_UNSUPPORTED;
     goto done;
+  }
+  nch = rgba ? (have[3] ? 4 : 3) : chl->num_channels;
+  /* the names: pointers, then the strings, one block */
+  size_t bytes = (size_t)nch * sizeof(char *);
+  for (int c = 0; c < chl->num_channels; c++) bytes += strlen(chl->entries[c].name.str) + 1;
+  px->names = malloc(bytes);
+  planes = calloc((size_t)nch, sizeof *planes);
+  if (!px->names || !planes) {
+    st = ICS_ERR_NOMEM;
+    set_msg(msg, msg_size, "%s: out of memory", path);
+    goto done;
+  }
+  char *str = (char *)(px->names + nch);
+  for (int c = 0; c < chl->num_channels; c++) {
+    const char *nm = chl->entries[c].name.str;
+    int k = rgba ? chan_index(nm) : c;
+    size_t len = strlen(nm) + 1;
+    memcpy(str, nm, len);
+    px->names[k] = str;
+    str += len;
   }
   /* the image is the DISPLAY window (the latitude-longitude frame); the data window is placed
    * inside it at its offset, pixels outside the data window are 0 (OpenEXR: no data there),
    * data outside the display window is dropped */
   w = (long)dw.max.x - dw.min.x + 1;
   h = (long)dw.max.y - dw.min.y + 1;
-  long W = (long)disp.max.x - disp.min.x + 1, H = (long)disp.max.y - disp.min.y + 1;
-  int nch = have[3] ? 4 : 3;
+  W = (long)disp.max.x - disp.min.x + 1;
+  H = (long)disp.max.y - disp.min.y + 1;
   if (!(w > 0 && w <= ICS_IMAGE_MAX_DIM && h > 0 && h <= ICS_IMAGE_MAX_DIM)) {
     set_msg(msg, msg_size, "%s: data window %ld x %ld: sizes must be in 1..%d", path, w, h,
             ICS_IMAGE_MAX_DIM);
     st = ICS_ERR_SIZE;
     goto done;
   }
-  st = ics_image_create(&img, (int)(W > 0 && W <= ICS_IMAGE_MAX_DIM ? W : 0),
-                        (int)(H > 0 && H <= ICS_IMAGE_MAX_DIM ? H : 0), nch);
-  if (st != ICS_OK) {
+  if (!(W > 0 && W <= ICS_IMAGE_MAX_DIM && H > 0 && H <= ICS_IMAGE_MAX_DIM)) {
     set_msg(msg, msg_size, "%s: cannot hold a %ld x %ld image (display window): %s", path, W, H,
-            ics_status_str(st));
+            ics_status_str(ICS_ERR_SIZE));
+    st = ICS_ERR_SIZE;
+    goto done;
+  }
+  px->data = calloc((size_t)W * (size_t)H * (size_t)nch, sizeof *px->data);
+  if (!px->data) {
+    set_msg(msg, msg_size, "%s: cannot hold a %ld x %ld image (display window): %s", path, W, H,
+            ics_status_str(ICS_ERR_NOMEM));
+    st = ICS_ERR_NOMEM;
     goto done;
   }
   for (int k = 0; k < nch; k++) {
@@ -209,7 +267,7 @@ ics_status ics_exr_read(const char *path, ics_image **out, char *msg, size_t msg
     if (rv == EXR_ERR_SUCCESS) {
       for (int c = 0; c < dec.channel_count; c++) {
         exr_coding_channel_info_t *ch = &dec.channels[c];
-        int k = chan_index(ch->channel_name);
+        int k = slot_of(ch->channel_name, rgba, px->names, nch);
         size_t row0 = (size_t)(ci.start_y - dw.min.y);
         if (k < 0 || k >= nch || ci.start_y < dw.min.y || ci.start_y + ci.height - 1 > dw.max.y ||
             ch->width != w) {
@@ -233,7 +291,6 @@ ics_status ics_exr_read(const char *path, ics_image **out, char *msg, size_t msg
       goto done;
     }
   }
-  memset(img->data, 0, (size_t)W * (size_t)H * nch * sizeof *img->data);
   for (long y = 0; y < h; y++) {
     long Y = y + dw.min.y - disp.min.y;
     if (Y < 0 || Y >= H) continue;
@@ -241,59 +298,132 @@ ics_status ics_exr_read(const char *path, ics_image **out, char *msg, size_t msg
       long X = x + dw.min.x - disp.min.x;
       if (X < 0 || X >= W) continue;
       size_t p = (size_t)y * (size_t)w + (size_t)x, q = (size_t)Y * (size_t)W + (size_t)X;
-      for (int k = 0; k < nch; k++) img->data[q * nch + k] = planes[k][p];
+      for (int k = 0; k < nch; k++) px->data[q * nch + k] = planes[k][p];
     }
   }
-  int bi, bj, bc;
-  if (!ics_image_find_bad(img, &bi, &bj, &bc)) {
-    float v = img->data[((size_t)bj * W + bi) * nch + bc];
-    set_msg(msg, msg_size, "%s: pixel (x %d, y %d) channel %s is %s (%g): radiance must be "
-            "finite and >= 0", path, bi, bj, chan_names[bc],
-            isnan(v) ? "NaN" : isinf(v) ? "infinite" : "negative", (double)v);
+  for (size_t i = 0; i < (size_t)W * (size_t)H * (size_t)nch; i++) {
+    float v = px->data[i];
+    int k = (int)(i % (size_t)nch);
+    if (isfinite(v) && !(rgba && k < 3 && v < 0)) continue;
+    size_t q = i / (size_t)nch;
+    set_msg(msg, msg_size, "%s: pixel (x %zu, y %zu) channel %s is %s (%g): %s", path,
+            q % (size_t)W, q / (size_t)W, px->names[k],
+            isnan(v) ? "NaN" : isinf(v) ? "infinite" : "negative", (double)v,
+            rgba ? "radiance must be finite and >= 0" : "values must be finite");
     st = ICS_ERR_INVALID_ARG;
+    break;
   }
 done:
-  for (int k = 0; k < 4; k++) free(planes[k]);
+  if (planes)
+    for (int k = 0; k < nch; k++) free(planes[k]);
+  free(planes);
   exr_finish(&ctx);
-  if (st == ICS_OK)
-    *out = img;
-  else
-    ics_image_destroy(img);
+  if (st == ICS_OK) {
+    px->W = W, px->H = H, px->n = nch;
+  } else {
+    free(px->names), free(px->data);
+    memset(px, 0, sizeof *px);
+  }
   return st;
 }
 
-ics_status ics_exr_write(const char *path, const ics_image *img, ics_exr_type type, char *msg,
-                         size_t msg_size) {
-  if (!path || !img || !img->data || (img->channels != 3 && img->channels != 4) ||
-      img->width < 1 || img->height < 1 || (type != ICS_EXR_HALF && type != ICS_EXR_FLOAT)) {
+ics_status ics_exr_read(const char *path, ics_image **out, char *msg, size_t msg_size) {
+  if (!out) return ICS_ERR_INVALID_ARG;
+  *out = NULL;
+  if (!path) return ICS_ERR_INVALID_ARG;
+  exr_pixels px;
+  ics_status st = read_file(path, 1, &px, msg, msg_size);
+  if (st != ICS_OK) return st;
+  free(px.names);
+  ics_image *img = malloc(sizeof *img);
+  if (!img) {
+    free(px.data);
+    set_msg(msg, msg_size, "%s: out of memory", path);
+    return ICS_ERR_NOMEM;
+  }
+  img->width = (int)px.W, img->height = (int)px.H, img->channels = px.n, img->data = px.data;
+  *out = img;
+  return ICS_OK;
+}
+
+ics_status ics_exr_read_channels(const char *path, ics_exr_channels **out, char *msg,
+                                 size_t msg_size) {
+  if (!out) return ICS_ERR_INVALID_ARG;
+  *out = NULL;
+  if (!path) return ICS_ERR_INVALID_ARG;
+  exr_pixels px;
+  ics_status st = read_file(path, 0, &px, msg, msg_size);
+  if (st != ICS_OK) return st;
+  ics_exr_channels *ch = malloc(sizeof *ch);
+  if (!ch) {
+    free(px.names), free(px.data);
+    set_msg(msg, msg_size, "%s: out of memory", path);
+    return ICS_ERR_NOMEM;
+  }
+  ch->width = (int)px.W, ch->height = (int)px.H, ch->count = px.n;
+  ch->names = (const char *const *)px.names;
+  ch->data = px.data;
+  *out = ch;
+  return ICS_OK;
+}
+
+/* names are 1..255 bytes and pairwise distinct: "" or a repeated name is the caller's error */
+static int check_names(const ics_exr_channels *ch, char *msg, size_t msg_size, const char *path) {
+  for (int c = 0; c < ch->count; c++) {
+    const char *n = ch->names[c];
+    size_t len = n ? strlen(n) : 0;
+    if (len < 1 || len > 255) {
+      set_msg(msg, msg_size, "%s: channel %d: a name of 1 to 255 bytes expected", path, c);
+      return 0;
+    }
+    if (find_name(ch->names, c, n) >= 0) {
+      set_msg(msg, msg_size, "%s: channel name \"%s\" given twice", path, n);
+      return 0;
+    }
+  }
+  return 1;
+}
+
+ics_status ics_exr_write_channels(const char *path, const ics_exr_channels *ch, ics_exr_type type,
+                                  int latlong, char *msg, size_t msg_size) {
+  if (!path || !ch || !ch->data || !ch->names || ch->count < 1 ||
+      ch->count > ICS_EXR_MAX_CHANNELS || ch->width < 1 || ch->height < 1 ||
+      ch->width > ICS_IMAGE_MAX_DIM || ch->height > ICS_IMAGE_MAX_DIM ||
+      (type != ICS_EXR_HALF && type != ICS_EXR_FLOAT)) {
     set_msg(msg, msg_size, "%s: invalid image or pixel type", path ? path : "(null)");
     return ICS_ERR_INVALID_ARG;
   }
-  int bi, bj, bc;
-  if (!ics_image_find_bad(img, &bi, &bj, &bc)) {
-    set_msg(msg, msg_size, "%s: pixel (x %d, y %d) channel %s is NaN, infinite or negative", path,
-            bi, bj, chan_names[bc]);
-    return ICS_ERR_INVALID_ARG;
+  if (!check_names(ch, msg, msg_size, path)) return ICS_ERR_INVALID_ARG;
+  const int nch = ch->count;
+  const size_t npx = (size_t)ch->width * (size_t)ch->height;
+  for (size_t p = 0; p < npx * nch; p++) {
+    float v = ch->data[p];
+    size_t q = p / nch;
+    if (!isfinite(v)) {
+      set_msg(msg, msg_size, "%s: pixel (x %zu, y %zu) channel %s is NaN or infinite", path,
+              q % ch->width, q / ch->width, ch->names[p % nch]);
+      return ICS_ERR_INVALID_ARG;
+    }
+    if (type == ICS_EXR_HALF && fabsf(v) > 65504.0f) {
+      set_msg(msg, msg_size, "%s: pixel (x %zu, y %zu) value %g overflows half (max 65504); "
+              "write float", path, q % ch->width, q / ch->width, (double)v);
+      return ICS_ERR_INVALID_ARG;
+    }
   }
-  const int nch = img->channels;
-  const size_t npx = (size_t)img->width * (size_t)img->height;
-  if (type == ICS_EXR_HALF)
-    for (size_t p = 0; p < npx * nch; p++)
-      if (img->data[p] > 65504.0f) {
-        size_t q = p / nch;
-        set_msg(msg, msg_size, "%s: pixel (x %zu, y %zu) value %g overflows half (max 65504); "
-                "write float", path, q % img->width, q / img->width, (double)img->data[p]);
-        return ICS_ERR_INVALID_ARG;
-      }
-  float *planes[4] = {NULL, NULL, NULL, NULL};
+  float **planes = calloc((size_t)nch, sizeof *planes);
+  if (!planes) {
+    set_msg(msg, msg_size, "%s: out of memory", path);
+    return ICS_ERR_NOMEM;
+  }
   for (int k = 0; k < nch; k++) {
     planes[k] = malloc(npx * sizeof(float));
     if (!planes[k]) {
       for (int q = 0; q < k; q++) free(planes[q]);
+      free(planes);
       set_msg(msg, msg_size, "%s: out of memory", path);
       return ICS_ERR_NOMEM;
     }
-    for (size_t p = 0; p < npx; p++) planes[k][p] = img->data[p * nch + k];
+    for (size_t p = 0; p < npx; p++) planes[k][p] = ch->data[p * nch + k];
   }
 
   exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
@@ -305,33 +435,34 @@ ics_status ics_exr_write(const char *path, const ics_image *img, ics_exr_type ty
   exr_result_t rv = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
   if (rv == EXR_ERR_SUCCESS) rv = exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part);
   if (rv == EXR_ERR_SUCCESS)
-    rv = exr_initialize_required_attr_simple(ctx, part, img->width, img->height,
+    rv = exr_initialize_required_attr_simple(ctx, part, ch->width, ch->height,
                                              EXR_COMPRESSION_ZIP);
   for (int k = nch - 1; k >= 0 && rv == EXR_ERR_SUCCESS; k--)
-    rv = exr_add_channel(ctx, part, chan_names[k], pt, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+    rv = exr_add_channel(ctx, part, ch->names[k], pt, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
   if (rv == EXR_ERR_SUCCESS) rv = exr_set_lineorder(ctx, part, EXR_LINEORDER_INCREASING_Y);
-  if (rv == EXR_ERR_SUCCESS) rv = exr_attr_set_envmap(ctx, part, "envmap", EXR_ENVMAP_LATLONG);
+  if (rv == EXR_ERR_SUCCESS && latlong)
+    rv = exr_attr_set_envmap(ctx, part, "envmap", EXR_ENVMAP_LATLONG);
   if (rv == EXR_ERR_SUCCESS) rv = exr_write_header(ctx);
   int32_t lines = 1;
   if (rv == EXR_ERR_SUCCESS) rv = exr_get_scanlines_per_chunk(ctx, part, &lines);
-  for (int y = 0; rv == EXR_ERR_SUCCESS && y < img->height; y += lines) {
+  for (int y = 0; rv == EXR_ERR_SUCCESS && y < ch->height; y += lines) {
     exr_chunk_info_t ci;
     exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
     rv = exr_write_scanline_chunk_info(ctx, part, y, &ci);
     if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_initialize(ctx, part, &ci, &enc);
     if (rv == EXR_ERR_SUCCESS) {
       for (int c = 0; c < enc.channel_count; c++) {
-        exr_coding_channel_info_t *ch = &enc.channels[c];
-        int k = chan_index(ch->channel_name);
-        if (k < 0 || k >= nch) {
+        exr_coding_channel_info_t *cc = &enc.channels[c];
+        int k = find_name(ch->names, nch, cc->channel_name);
+        if (k < 0) {
           rv = EXR_ERR_INVALID_ARGUMENT;
           break;
         }
-        ch->encode_from_ptr = (const uint8_t *)(planes[k] + (size_t)ci.start_y * img->width);
-        ch->user_pixel_stride = (int32_t)sizeof(float);
-        ch->user_line_stride = (int32_t)(sizeof(float) * (size_t)img->width);
-        ch->user_data_type = EXR_PIXEL_FLOAT;
-        ch->user_bytes_per_element = (int16_t)sizeof(float);
+        cc->encode_from_ptr = (const uint8_t *)(planes[k] + (size_t)ci.start_y * ch->width);
+        cc->user_pixel_stride = (int32_t)sizeof(float);
+        cc->user_line_stride = (int32_t)(sizeof(float) * (size_t)ch->width);
+        cc->user_data_type = EXR_PIXEL_FLOAT;
+        cc->user_bytes_per_element = (int16_t)sizeof(float);
       }
     }
     if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_choose_default_routines(ctx, part, &enc);
@@ -341,6 +472,7 @@ ics_status ics_exr_write(const char *path, const ics_image *img, ics_exr_type ty
   exr_result_t frv = exr_finish(&ctx);
   if (rv == EXR_ERR_SUCCESS) rv = frv;
   for (int k = 0; k < nch; k++) free(planes[k]);
+  free(planes);
   if (rv != EXR_ERR_SUCCESS) {
     set_msg(msg, msg_size, "%s: cannot write OpenEXR: %s", path,
             exr_lastmsg[0] ? exr_lastmsg : exr_get_default_error_message(rv));
@@ -351,3 +483,31 @@ ics_status ics_exr_write(const char *path, const ics_image *img, ics_exr_type ty
 }
 
 #endif
+
+ics_status ics_exr_write(const char *path, const ics_image *img, ics_exr_type type, char *msg,
+                         size_t msg_size) {
+  if (!path || !img || !img->data || (img->channels != 3 && img->channels != 4)) {
+    set_msg(msg, msg_size, "%s: invalid image or pixel type", path ? path : "(null)");
+    return ICS_ERR_INVALID_ARG;
+  }
+  if (!ics_exr_available()) return ics_exr_write_channels(path, NULL, type, 1, msg, msg_size);
+  int bi, bj, bc;
+  if (img->width >= 1 && img->height >= 1 && !ics_image_find_bad(img, &bi, &bj, &bc)) {
+    set_msg(msg, msg_size, "%s: pixel (x %d, y %d) channel %s is NaN, infinite or negative", path,
+            bi, bj, chan_names[bc]);
+    return ICS_ERR_INVALID_ARG;
+  }
+  ics_exr_channels ch = {img->width, img->height, img->channels, chan_names, img->data};
+  return ics_exr_write_channels(path, &ch, type, 1, msg, msg_size);
+}
+
+void ics_exr_channels_destroy(ics_exr_channels *ch) {
+  if (!ch) return;
+  free((void *)ch->names);
+  free((void *)ch->data);
+  free(ch);
+}
+
+int ics_exr_channel_index(const ics_exr_channels *ch, const char *name) {
+  return ch && name ? find_name(ch->names, ch->count, name) : -1;
+}

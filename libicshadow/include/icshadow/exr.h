@@ -12,7 +12,9 @@
  * path writes half data in reversed channel order (ABGR), measured here (docs/architecture.md
  * "Stack facts measured here"); the planar path has no such special case.
  * Pixels that are NaN, infinite or negative (R, G, B) are rejected with their position.
- * Written files are ZIP-compressed, INCREASING_Y, and carry envmap = latlong. */
+ * Written files are ZIP-compressed, INCREASING_Y; ics_exr_write's carry envmap = latlong.
+ * ics_exr_write_channels writes any set of named float channels (a render with its AOVs, an
+ * estimate with its standard error); ics_exr_read_channels reads them back. */
 #ifndef ICSHADOW_EXR_H
 #define ICSHADOW_EXR_H
 
@@ -48,6 +50,38 @@ ICS_API ics_status ics_exr_read(const char *path, ics_image **out, char *msg, si
  * is removed). */
 ICS_API ics_status ics_exr_write(const char *path, const ics_image *img, ics_exr_type type,
                                  char *msg, size_t msg_size);
+
+/* Channels per file that ics_exr_write_channels accepts. */
+#define ICS_EXR_MAX_CHANNELS 256
+
+/* Named float channels of one image, interleaved. */
+typedef struct ics_exr_channels {
+  int width, height;        /* 1..ICS_IMAGE_MAX_DIM */
+  int count;                /* 1..ICS_EXR_MAX_CHANNELS */
+  const char *const *names; /* count distinct names of 1..255 bytes ("R", "light0.V", "Z") */
+  const float *data;        /* pixel (i, j) channel c at ((j * width + i) * count + c), row 0 at
+                               the top */
+} ics_exr_channels;
+
+/* Writes *ch to `path` directly, as ics_exr_write does (envmap = latlong only when latlong is
+ * non-zero). Values may be negative; ICS_ERR_INVALID_ARG for a NaN or infinite value (its
+ * pixel and channel named), one that overflows half when type is ICS_EXR_HALF, an empty or
+ * repeated name, or sizes out of range; ICS_ERR_IO on write errors (the partial file is
+ * removed); ICS_ERR_UNSUPPORTED without OpenEXR. */
+ICS_API ics_status ics_exr_write_channels(const char *path, const ics_exr_channels *ch,
+                                          ics_exr_type type, int latlong, char *msg,
+                                          size_t msg_size);
+
+/* Reads every channel of `path` (HALF or FLOAT; in the file's order, which is sorted by name)
+ * into a new *out (ics_exr_channels_destroy frees it); the image is the display window as in
+ * ics_exr_read. Errors as for ics_exr_read, except that any channel set is accepted and only
+ * NaN and infinite values are refused. */
+ICS_API ics_status ics_exr_read_channels(const char *path, ics_exr_channels **out, char *msg,
+                                         size_t msg_size);
+/* Frees what ics_exr_read_channels made (NULL is fine). */
+ICS_API void ics_exr_channels_destroy(ics_exr_channels *ch);
+/* The index of the channel called `name`, or -1. */
+ICS_API int ics_exr_channel_index(const ics_exr_channels *ch, const char *name);
 
 #ifdef __cplusplus
 }
