@@ -1,7 +1,7 @@
 /* cmd_render.c — `icshadow render [SCENE] [-o out.exr] [--png out.png] [--backend B]
  * [--threads N] ...`: plans and renders a scene (the embedded default scene without SCENE) with
- * the slab renderer (libicshadow_render), writes a float RGBA OpenEXR and/or an sRGB PNG
- * preview (atomically, both or neither), and prints a JSON summary with the time per pass. */
+ * the slab renderer (libicshadow_render), writes a float RGBA OpenEXR (with AOVs when asked)
+ * and/or an sRGB PNG preview (atomically, both or neither), and prints a JSON summary with the time per pass. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,6 +25,10 @@ static void help(FILE *f) {
           "  -o OUT.exr          float RGBA OpenEXR, row 0 at the top (RGB over the background,\n"
           "                      A = opacity)\n"
           "  --png OUT.png       8-bit sRGB preview\n"
+          "  --aov LIST          AOVs in the EXR beside R, G, B, A, at each pixel's first surface:\n"
+          "                      visibility (lightL.V, or lightL.R/G/B with coloured transport:\n"
+          "                      the fraction of light L reaching it), depth (Z, view depth);\n"
+          "                      comma-separated, or all. 0 where a pixel has no surface\n"
           "  --backend B         auto (default) or a backend of `icshadow render --backends`\n"
           "  --backends          list the backends built into this binary and exit\n"
           "  --progress          show progress on stderr even when it is not a terminal\n"
@@ -58,6 +62,48 @@ static void json_str(FILE *f, const char *s) {
   fputc('"', f);
 }
 
+/* --aov: "visibility", "depth", "all", comma-separated; 0 and *bits set, or -1 */
+static int parse_aovs(const char *list, unsigned *bits) {
+  *bits = 0;
+  const char *p = list;
+  for (;;) {
+    size_t n = strcspn(p, ",");
+    if (n == 10 && !strncmp(p, "visibility", n))
+      *bits |= ICS_AOV_VISIBILITY;
+    else if (n == 5 && !strncmp(p, "depth", n))
+      *bits |= ICS_AOV_DEPTH;
+    else if (n == 3 && !strncmp(p, "all", n))
+      *bits |= ICS_AOV_VISIBILITY | ICS_AOV_DEPTH;
+    else
+      return cli_error(CMD, "--aov %s: '%.*s' is not an AOV (visibility, depth, all)", list, (int)n, p);
+    if (!p[n]) return 0;
+    p += n + 1;
+  }
+}
+
+/* the image's R, G, B, A and the AOV channels as one float EXR */
+static ics_status write_exr(const char *path, const ics_image *img, const ics_exr_channels *aov,
+                            char *msg, size_t msg_size) {
+  static const char *const rgba[4] = {"R", "G", "B", "A"};
+  int na = aov ? aov->count : 0, n = 4 + na;
+  size_t npx = (size_t)img->width * img->height;
+  const char **names = malloc(sizeof *names * (size_t)n);
+  float *data = malloc(sizeof *data * npx * (size_t)n);
+  if (!names || !data) {
+    free(names), free(data);
+    snprintf(msg, msg_size, "out of memory");
+    return ICS_ERR_NOMEM;
+  }
+  for (int c = 0; c < n; c++) names[c] = c < 4 ? rgba[c] : aov->names[c - 4];
+  for (size_t p = 0; p < npx; p++)
+    for (int c = 0; c < n; c++)
+      data[p * n + c] = c < 4 ? img->data[p * 4 + c] : aov->data[p * na + c - 4];
+  ics_exr_channels ch = {img->width, img->height, n, names, data};
+  ics_status st = ics_exr_write_channels(path, &ch, ICS_EXR_FLOAT, 0, msg, msg_size);
+  free(names), free(data);
+  return st;
+}
+
 static int list_backends(void) {
   for (int i = 0; i < ics_backend_count(); i++) {
     char why[256] = "";
@@ -81,13 +127,14 @@ int cmd_render(int argc, char **argv) {
 #else
   scene_args a;
   memset(&a, 0, sizeof a);
-  const char *exr = NULL, *png = NULL, *backend = NULL;
+  const char *exr = NULL, *png = NULL, *backend = NULL, *aov_list = NULL;
   int force_progress = 0, backends = 0;
-  cli_option opts[SCENE_ARGS_NOPTS + 5];
+  cli_option opts[SCENE_ARGS_NOPTS + 6];
   scene_args_options(&a, opts);
   const cli_option mine[] = {
       {"-o", .kind = CLI_FILE, .dest = &exr},
       {"--png", .kind = CLI_FILE, .dest = &png},
+      {"--aov", .kind = CLI_STRING, .dest = &aov_list},
       {"--backend", .kind = CLI_STRING, .dest = &backend},
       {"--backends", .kind = CLI_FLAG, .dest = &backends},
       {"--progress", .kind = CLI_FLAG, .dest = &force_progress},
@@ -102,6 +149,9 @@ int cmd_render(int argc, char **argv) {
     return cli_error(CMD, "-o %s: -o writes OpenEXR; give the PNG preview with --png", exr);
   if ((exr && !strcmp(exr, "-")) || (png && !strcmp(png, "-")))
     return cli_error(CMD, "images are written to files, not to stdout (the summary goes there)");
+  unsigned aovs = 0;
+  if (aov_list && parse_aovs(aov_list, &aovs)) return 2;
+  if (aovs && !exr) return cli_error(CMD, "--aov: AOVs go into the EXR; give -o OUT.exr");
   if (exr && !ics_exr_available())
     return cli_failure(CMD, "cannot write OpenEXR: OpenEXR was not found when icshadow was built");
   if (png && !ics_output_png_available())
@@ -129,10 +179,11 @@ int cmd_render(int argc, char **argv) {
   if (sp.p.on) ro.progress = on_slab, ro.progress_ctx = &sp;
   ics_renderer *r;
   ics_image *img = NULL;
+  ics_exr_channels *aov = NULL;
   ics_render_stats stats;
   st = ics_renderer_create(&r, &ro, msg, sizeof msg);
   if (st == ICS_OK) {
-    st = ics_renderer_render(r, plan, &img, &stats, msg, sizeof msg);
+    st = ics_renderer_render_aovs(r, plan, aovs, &img, aovs ? &aov : NULL, &stats, msg, sizeof msg);
     ics_renderer_destroy(r);
   }
   if (sp.p.on) cli_progress_done(&sp.p);
@@ -150,7 +201,7 @@ int cmd_render(int argc, char **argv) {
       goto done;
     }
     have_e = 1;
-    st = ics_exr_write(oe.write_path, img, ICS_EXR_FLOAT, msg, sizeof msg);
+    st = write_exr(oe.write_path, img, aov, msg, sizeof msg);
     if (st != ICS_OK) {
       rc = st == ICS_ERR_IO || st == ICS_ERR_NOMEM ? cli_failure(CMD, "cannot write %s: %s", exr, msg)
                                                    : cli_error(CMD, "cannot write %s: %s", exr, msg);
@@ -192,6 +243,11 @@ int cmd_render(int argc, char **argv) {
            stats.ns_per_px_slab, ics_plan_memory_bytes(plan));
     if (exr) printf(", \"exr\": "), json_str(stdout, exr);
     if (png) printf(", \"png\": "), json_str(stdout, png);
+    if (aov) {
+      printf(", \"aovs\": [");
+      for (int c = 0; c < aov->count; c++) printf("%s", c ? ", " : ""), json_str(stdout, aov->names[c]);
+      printf("]");
+    }
     printf("}\n");
   }
   goto done;
@@ -200,6 +256,7 @@ abort:
   if (have_p) cli_output_abort(&op);
 done:
   ics_image_destroy(img);
+  ics_exr_channels_destroy(aov);
   ics_plan_destroy(plan);
   ics_scene_destroy(s);
   return rc;

@@ -55,3 +55,12 @@ ics_cli_test(NAME cli_render_png_as_exr RC 2 ARGS "render|-o|${rd}/p.png" ERR "-
 ics_cli_test(NAME cli_render_kernel_out_of_proportion RC 2 ARGS "render|${disk}|--slab-spacing|1e5|-o|${rd}/k2.exr"
   ERR "light 0: its per-slab kernel is .* out of proportion" NOFILE ${rd}/k2.exr)
 endif()
+if(ICS_HAVE_RENDER)
+# AOVs: named in the summary; refused without an EXR or with an unknown name
+ics_cli_test(NAME cli_render_aov RC 0 ARGS "render|${disk}|--resolution|32x32|--aov|visibility,depth|-o|${rd}/aov.exr"
+  OUT "\"aovs\": \\[\"light0.V\", \"Z\"\\]")
+ics_cli_test(NAME cli_render_aov_unknown RC 2 ARGS "render|${disk}|--aov|normal|-o|${rd}/aov2.exr"
+  ERR "--aov normal: 'normal' is not an AOV \\(visibility, depth, all\\)" NOFILE ${rd}/aov2.exr)
+ics_cli_test(NAME cli_render_aov_png_only RC 2 ARGS "render|${disk}|--aov|depth|--png|${rd}/aov3.png"
+  ERR "AOVs go into the EXR; give -o OUT.exr" NOFILE ${rd}/aov3.png)
+endif()

@@ -1,5 +1,5 @@
 /* render_util.h — helpers for the renderer's tests: a scene from JSON text (or a file) through
- * plan and CPU render to an RGBA image, with optional setting overrides. Exits 2 on a setup
+ * plan and CPU render to an RGBA image (and AOVs when asked), with optional setting overrides. Exits 2 on a setup
  * failure (a test bug), so no check runs on a missing image. */
 #ifndef ICS_RENDER_UTIL_H
 #define ICS_RENDER_UTIL_H
@@ -12,14 +12,16 @@
 
 typedef struct render_result {
   ics_image *img;
+  ics_exr_channels *aov; /* render_scene_aovs with aovs != 0 */
   ics_render_stats stats;
   size_t memory_bytes;
   int slabs;
 } render_result;
 
-/* Renders scene s with `threads` threads (0: all) and the settings rs (NULL: the scene's). */
-static inline render_result render_scene(const ics_scene *s, const ics_render_settings *rs,
-                                         int threads) {
+/* Renders scene s with `threads` threads (0: all) and the settings rs (NULL: the scene's), with
+ * the AOVs `aovs` (ICS_AOV_* bits; 0: none). */
+static inline render_result render_scene_aovs(const ics_scene *s, const ics_render_settings *rs,
+                                              int threads, unsigned aovs) {
   render_result r;
   memset(&r, 0, sizeof r);
   char msg[4096];
@@ -38,7 +40,8 @@ static inline render_result render_scene(const ics_scene *s, const ics_render_se
   ro.threads = threads;
   ics_renderer *rr;
   if (ics_renderer_create(&rr, &ro, msg, sizeof msg) != ICS_OK ||
-      ics_renderer_render(rr, p, &r.img, &r.stats, msg, sizeof msg) != ICS_OK) {
+      ics_renderer_render_aovs(rr, p, aovs, &r.img, aovs ? &r.aov : NULL, &r.stats, msg,
+                               sizeof msg) != ICS_OK) {
     fprintf(stderr, "render_util: render: %s\n", msg);
     exit(2);
   }
@@ -47,6 +50,11 @@ static inline render_result render_scene(const ics_scene *s, const ics_render_se
   ics_renderer_destroy(rr);
   ics_plan_destroy(p);
   return r;
+}
+
+static inline render_result render_scene(const ics_scene *s, const ics_render_settings *rs,
+                                         int threads) {
+  return render_scene_aovs(s, rs, threads, 0);
 }
 
 static inline ics_scene *scene_from_json(const char *json) {

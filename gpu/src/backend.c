@@ -82,10 +82,53 @@ void ics_renderer_destroy(ics_renderer *r) {
 
 const char *ics_renderer_backend(const ics_renderer *r) { return r->b->name; }
 
-ics_status ics_renderer_render(ics_renderer *r, const ics_plan *plan, ics_image **out,
-                               ics_render_stats *stats, char *msg, size_t msg_size) {
+/* The AOV channels asked for: their names (one block: pointers, then the strings, as
+ * ics_exr_channels_destroy frees it) and zeroed data. */
+static ics_status aov_create(const ics_plan *P, unsigned aovs, ics_exr_channels **out,
+                             ics_aov_buf *buf) {
+  int nl = P->nlights, nch = P->nch;
+  int count = ((aovs & ICS_AOV_VISIBILITY) ? nl * nch : 0) + ((aovs & ICS_AOV_DEPTH) ? 1 : 0);
+  buf->count = count;
+  buf->vis = (aovs & ICS_AOV_VISIBILITY) && nl ? 0 : -1;
+  buf->z = (aovs & ICS_AOV_DEPTH) ? count - 1 : -1;
+  enum { NAME = 24 }; /* "light%d.%c": at most 15 bytes */
+  char **names = malloc((size_t)(count ? count : 1) * (sizeof(char *) + NAME));
+  float *data = calloc((size_t)P->W * P->H * (size_t)(count ? count : 1), sizeof *data);
+  ics_exr_channels *ch = malloc(sizeof *ch);
+  if (!names || !data || !ch) {
+    free(names), free(data), free(ch);
+    return ICS_ERR_NOMEM;
+  }
+  char *str = (char *)(names + (count ? count : 1));
+  static const char rgb[3] = {'R', 'G', 'B'};
+  for (int l = 0; buf->vis >= 0 && l < nl; l++)
+    for (int c = 0; c < nch; c++) {
+      char *nm = str + (size_t)(l * nch + c) * NAME;
+      snprintf(nm, NAME, "light%d.%c", l, nch == 1 ? 'V' : rgb[c]);
+      names[buf->vis + l * nch + c] = nm;
+    }
+  if (buf->z >= 0) {
+    names[buf->z] = str + (size_t)buf->z * NAME;
+    snprintf(names[buf->z], NAME, "Z");
+  }
+  buf->data = data;
+  ch->width = P->W, ch->height = P->H, ch->count = count;
+  ch->names = (const char *const *)names;
+  ch->data = data;
+  *out = ch;
+  return ICS_OK;
+}
+
+ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsigned aovs,
+                                    ics_image **out, ics_exr_channels **aov_out,
+                                    ics_render_stats *stats, char *msg, size_t msg_size) {
   *out = NULL;
+  if (aov_out) *aov_out = NULL;
   if (msg && msg_size) msg[0] = 0;
+  if ((aovs & ~(ICS_AOV_VISIBILITY | ICS_AOV_DEPTH)) || (aovs && !aov_out)) {
+    if (msg) snprintf(msg, msg_size, "AOVs 0x%x: unknown bits or nowhere to put them", aovs);
+    return ICS_ERR_INVALID_ARG;
+  }
   ics_render_stats local;
   if (!stats) stats = &local;
   memset(stats, 0, sizeof *stats);
@@ -97,12 +140,26 @@ ics_status ics_renderer_render(ics_renderer *r, const ics_plan *plan, ics_image 
                       ics_status_str(st));
     return st;
   }
-  st = r->b->render(r->state, plan, &r->opts, img, stats, msg, msg_size);
+  ics_exr_channels *ch = NULL;
+  ics_aov_buf buf;
+  if (aovs && aov_create(plan, aovs, &ch, &buf) != ICS_OK) {
+    if (msg) snprintf(msg, msg_size, "cannot allocate the AOVs (%dx%d)", plan->W, plan->H);
+    ics_image_destroy(img);
+    return ICS_ERR_NOMEM;
+  }
+  st = r->b->render(r->state, plan, &r->opts, img, ch ? &buf : NULL, stats, msg, msg_size);
   if (st != ICS_OK) {
     if (msg && msg_size && !msg[0]) snprintf(msg, msg_size, "render failed: %s", ics_status_str(st));
     ics_image_destroy(img);
+    ics_exr_channels_destroy(ch);
     return st;
   }
   *out = img;
+  if (aov_out) *aov_out = ch;
   return ICS_OK;
+}
+
+ics_status ics_renderer_render(ics_renderer *r, const ics_plan *plan, ics_image **out,
+                               ics_render_stats *stats, char *msg, size_t msg_size) {
+  return ics_renderer_render_aovs(r, plan, 0, out, NULL, stats, msg, msg_size);
 }

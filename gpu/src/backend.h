@@ -6,13 +6,24 @@
 
 #include "icshadow/renderer.h"
 
+/* The AOV channels a backend fills beside the image (docs/renderer.md "AOVs"): W x H pixels of
+ * `count` floats, zero-initialised; -1 marks a channel set not asked for. */
+typedef struct ics_aov_buf {
+  int count;
+  int vis;     /* light l, buffer channel c at vis + l nch + c (nch: the plan's 1 or 3) */
+  int z;       /* the view depth of the first surface */
+  float *data; /* pixel (i, j) at (j W + i) count */
+} ics_aov_buf;
+
 typedef struct ics_backend {
   const char *name;
   const char *description;
   int (*available)(char *why, size_t why_size);
   ics_status (*create)(void **state, const ics_render_opts *opts, char *msg, size_t msg_size);
+  /* aov: NULL when no AOV was asked for */
   ics_status (*render)(void *state, const ics_plan *plan, const ics_render_opts *opts,
-                       ics_image *img, ics_render_stats *stats, char *msg, size_t msg_size);
+                       ics_image *img, ics_aov_buf *aov, ics_render_stats *stats, char *msg,
+                       size_t msg_size);
   void (*destroy)(void *state);
 } ics_backend;
 

@@ -69,6 +69,8 @@ typedef struct {
   int vol_obj[ICS_MAX_VOLUMES];
   uint32_t *scratch;     /* per thread: Wb words (table entries of a row) */
   int *row_next;         /* per row: the first slab at which some pixel of it has work */
+  ics_aov_buf *aov;      /* NULL: no AOVs */
+  uint8_t *aov_seen;     /* per view pixel: its first surface recorded */
   double prop_s[256], shade_s[256], detail_s[256];
 } job_t;
 
@@ -166,6 +168,21 @@ static void surface_occlusion(job_t *j, size_t q, int obj) {
       j->dst[l][(size_t)c * plane + q] *= (float)(1 - a * (1 - m->transport[c]));
 }
 
+/* the AOVs of view pixel (ii, jj) at its first surface (depth z): V[l nch + c], the light
+ * arriving at its slab (read before this slab's occlusions) */
+static void record_aov(job_t *j, int ii, int jj, const float *V, double z) {
+  const ics_plan *P = j->p;
+  size_t v = (size_t)jj * P->W + ii;
+  ics_aov_buf *a = j->aov;
+  float *o = a->data + v * (size_t)a->count;
+  j->aov_seen[v] = 1;
+  if (a->vis >= 0)
+    for (int l = 0; l < P->nlights; l++)
+      for (int c = 0; c < P->nch; c++)
+        o[a->vis + l * P->nch + c] = V[l * P->nch + c];
+  if (a->z >= 0) o[a->z] = (float)z;
+}
+
 static void shade_rows(job_t *j, int y0, int y1, int t) {
   const ics_plan *P = j->p;
   const ics_scene *s = P->scene;
@@ -197,6 +214,10 @@ static void shade_rows(job_t *j, int y0, int y1, int t) {
         for (int c = 0; c < 3; c++)
           L[c] += lt->color[c] * lt->weight * j->dst[l][(size_t)(P->nch == 3 ? c : 0) * plane + q];
       }
+      float V[ICS_SCENE_MAX_LIGHTS * 3]; /* AOVs: the light arriving, per light and channel */
+      if (j->aov && inview)
+        for (int l = 0; l < P->nlights; l++)
+          for (int c = 0; c < P->nch; c++) V[l * P->nch + c] = j->dst[l][(size_t)c * plane + q];
       /* surface occlusions due at this slab (fragment slab + bias == k), after the light
        * arriving here was read: a surface never shadows its own slab */
       for (uint32_t f = acur; f < end && ics_frag_slab(&ldi->frag[f]) <= k; f++) {
@@ -218,8 +239,12 @@ static void shade_rows(job_t *j, int y0, int y1, int t) {
         int obj = ics_frag_obj(&ldi->frag[cur]);
         if (P->vol_bit[obj] >= 0)
           mask ^= 1ull << P->vol_bit[obj];
-        else if (inview)
+        else if (inview) {
           surface_colour(j, obj, L, C);
+          if (j->aov && !j->aov_seen[(size_t)jj * P->W + ii] &&
+              s->materials[s->objects[obj].material].opacity > 0)
+            record_aov(j, ii, jj, V, ldi->frag[cur].z);
+        }
         za = zn;
         cur++;
         has = cur < end && ics_frag_slab(&ldi->frag[cur]) == k;
@@ -264,7 +289,8 @@ static void slab_job(void *ctx, int t, int n) {
 }
 
 static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_opts *o,
-                             ics_image *img, ics_render_stats *st, char *msg, size_t msg_size) {
+                             ics_image *img, ics_aov_buf *aov, ics_render_stats *st, char *msg,
+                             size_t msg_size) {
   cpu_state *cs = state;
   double t_start = now_s();
   int nl = P->nlights, nt = ics_pool_size(cs->pool);
@@ -285,7 +311,10 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->scratch = malloc(sizeof *j->scratch * (size_t)P->Wb * (size_t)nt);
   j->row_next = calloc((size_t)P->Hb, sizeof *j->row_next); /* 0: look at every row first */
   j->mask = P->nvol ? malloc(sizeof *j->mask * npx) : NULL;
-  if (!j->pt || !j->cursor || !j->acursor || !j->scratch || !j->row_next || (P->nvol && !j->mask))
+  j->aov = aov;
+  j->aov_seen = aov ? calloc((size_t)P->W * P->H, 1) : NULL;
+  if (!j->pt || !j->cursor || !j->acursor || !j->scratch || !j->row_next || (P->nvol && !j->mask) ||
+      (aov && !j->aov_seen))
     goto nomem;
   for (int l = 0; l < nl; l++) {
     j->src[l] = malloc(sizeof(float) * (size_t)P->nch * P->buf.plane);
@@ -372,6 +401,7 @@ done:
     free(j->scratch);
     free(j->row_next);
     free(j->mask);
+    free(j->aov_seen);
   }
   free(bufs);
   free(scratch);

@@ -9,6 +9,7 @@
 #include <stddef.h>
 
 #include "icshadow/api.h"
+#include "icshadow/exr.h"
 #include "icshadow/image.h"
 #include "icshadow/plan.h"
 #include "icshadow/status.h"
@@ -47,6 +48,24 @@ ICS_API const char *ics_renderer_backend(const ics_renderer *r);
 /* Renders the plan into a new RGBA image (*out; ics_image_destroy it). stats may be NULL. */
 ICS_API ics_status ics_renderer_render(ics_renderer *r, const ics_plan *plan, ics_image **out,
                                        ics_render_stats *stats, char *msg, size_t msg_size);
+
+/* Arbitrary output variables beside the image, at the FIRST SURFACE of each pixel (the first
+ * opaque-or-translucent surface along the camera ray, volumes passed through; docs/renderer.md):
+ * ICS_AOV_VISIBILITY: per light, the fraction of its light reaching that surface, channels
+ *   "lightL.V" (one light-buffer channel) or "lightL.R", "lightL.G", "lightL.B" (coloured
+ *   transport), L = 0, 1, ... in scene order;
+ * ICS_AOV_DEPTH: "Z", the surface's view depth (distance from the eye along the view axis).
+ * Pixels without a surface hold 0 in every AOV channel. */
+#define ICS_AOV_VISIBILITY 1u
+#define ICS_AOV_DEPTH 2u
+
+/* As ics_renderer_render, and with aovs != 0 the AOVs asked for as a new *aov_out
+ * (ics_exr_channels_destroy frees it; ics_exr_write_channels writes it). The AOVs take
+ * W H (lights x channels + 1) floats beyond the plan's memory_bytes. ICS_ERR_INVALID_ARG for
+ * unknown bits or aovs != 0 with aov_out NULL. */
+ICS_API ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsigned aovs,
+                                            ics_image **out, ics_exr_channels **aov_out,
+                                            ics_render_stats *stats, char *msg, size_t msg_size);
 
 /* The backend table. */
 ICS_API int ics_backend_count(void);
