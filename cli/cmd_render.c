@@ -2,11 +2,14 @@
  * [--threads N] ...`: plans and renders a scene (the embedded default scene without SCENE) with
  * the slab renderer (libicshadow_render), writes a float RGBA OpenEXR (with AOVs when asked)
  * and/or an sRGB PNG preview (atomically, both or neither), and prints a JSON summary with the time per pass. */
+#define _POSIX_C_SOURCE 200809L /* open_memstream */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "commands.h"
+#include "render_compare.h"
 #include "scene_args.h"
 
 static const char CMD[] = "render";
@@ -28,9 +31,18 @@ static void help(FILE *f) {
           "  --aov LIST          AOVs in the EXR beside R, G, B, A, at each pixel's first surface:\n"
           "                      visibility (lightL.V, or lightL.R/G/B with coloured transport:\n"
           "                      the fraction of light L reaching it), depth (Z, view depth);\n"
+          "                      stderr (--backend mc: standard errors, stderr.R ...);\n"
           "                      comma-separated, or all. 0 where a pixel has no surface\n"
           "  --backend B         auto (default) or a backend of `icshadow render --backends`\n"
           "  --backends          list the backends built into this binary and exit\n"
+          "  --spp N             mc: samples per pixel (1..16777216; default 64 when no other stop)\n"
+          "  --time S            mc: stop after S seconds\n"
+          "  --noise E           mc: stop once the RMS standard error of R, G, B is at most E\n"
+          "                      (the first of --spp, --time, --noise that is reached stops)\n"
+          "  --compare REF.exr   compare R, G, B with a reference image (e.g. an mc render): RMSE,\n"
+          "                      max error, PSNR, the reference's time and noise, in the summary\n"
+          "  --reference N       the same against the Monte-Carlo reference rendered here with N\n"
+          "                      samples per pixel (1..16777216)\n"
           "  --progress          show progress on stderr even when it is not a terminal\n"
           "Output files are written to a temporary name and renamed once both are complete.\n"
           "Exit status: 0 ok, 1 cannot write or out of memory, 2 bad input.\n");
@@ -50,6 +62,18 @@ static void on_slab(void *ctx, int k, int n) {
   cli_progress_say(&sp->p, "slab %d/%d", k, n);
 }
 
+/* mc: samples per pixel so far (of n, or open-ended when n = 0) */
+static void on_sample(void *ctx, int k, int n) {
+  slab_progress *sp = ctx;
+  double t = cli_now_s();
+  if ((n == 0 || k < n) && t - sp->t_last < 0.25) return;
+  sp->t_last = t;
+  if (n)
+    cli_progress_say(&sp->p, "sample %d/%d", k, n);
+  else
+    cli_progress_say(&sp->p, "sample %d", k);
+}
+
 static void json_str(FILE *f, const char *s) {
   fputc('"', f);
   for (; *s; s++) {
@@ -62,8 +86,9 @@ static void json_str(FILE *f, const char *s) {
   fputc('"', f);
 }
 
-/* --aov: "visibility", "depth", "all", comma-separated; 0 and *bits set, or -1 */
-static int parse_aovs(const char *list, unsigned *bits) {
+/* --aov: "visibility", "depth", "stderr", "all" (with all_extra: the backend's further AOVs),
+ * comma-separated; 0 and *bits set, or the exit status after the message */
+static int parse_aovs(const char *list, unsigned all_extra, unsigned *bits) {
   *bits = 0;
   const char *p = list;
   for (;;) {
@@ -72,18 +97,21 @@ static int parse_aovs(const char *list, unsigned *bits) {
       *bits |= ICS_AOV_VISIBILITY;
     else if (n == 5 && !strncmp(p, "depth", n))
       *bits |= ICS_AOV_DEPTH;
+    else if (n == 6 && !strncmp(p, "stderr", n))
+      *bits |= ICS_AOV_STDERR;
     else if (n == 3 && !strncmp(p, "all", n))
-      *bits |= ICS_AOV_VISIBILITY | ICS_AOV_DEPTH;
+      *bits |= ICS_AOV_VISIBILITY | ICS_AOV_DEPTH | all_extra;
     else
-      return cli_error(CMD, "--aov %s: '%.*s' is not an AOV (visibility, depth, all)", list, (int)n, p);
+      return cli_error(CMD, "--aov %s: '%.*s' is not an AOV (visibility, depth, stderr, all)", list,
+                       (int)n, p);
     if (!p[n]) return 0;
     p += n + 1;
   }
 }
 
-/* the image's R, G, B, A and the AOV channels as one float EXR */
+/* the image's R, G, B, A and the AOV channels as one float EXR, with the summary as its info */
 static ics_status write_exr(const char *path, const ics_image *img, const ics_exr_channels *aov,
-                            char *msg, size_t msg_size) {
+                            const char *info, char *msg, size_t msg_size) {
   static const char *const rgba[4] = {"R", "G", "B", "A"};
   int na = aov ? aov->count : 0, n = 4 + na;
   size_t npx = (size_t)img->width * img->height;
@@ -98,7 +126,7 @@ static ics_status write_exr(const char *path, const ics_image *img, const ics_ex
   for (size_t p = 0; p < npx; p++)
     for (int c = 0; c < n; c++)
       data[p * n + c] = c < 4 ? img->data[p * 4 + c] : aov->data[p * na + c - 4];
-  ics_exr_channels ch = {img->width, img->height, n, names, data};
+  ics_exr_channels ch = {img->width, img->height, n, names, data, info};
   ics_status st = ics_exr_write_channels(path, &ch, ICS_EXR_FLOAT, 0, msg, msg_size);
   free(names), free(data);
   return st;
@@ -127,9 +155,11 @@ int cmd_render(int argc, char **argv) {
 #else
   scene_args a;
   memset(&a, 0, sizeof a);
-  const char *exr = NULL, *png = NULL, *backend = NULL, *aov_list = NULL;
-  int force_progress = 0, backends = 0;
-  cli_option opts[SCENE_ARGS_NOPTS + 6];
+  const char *exr = NULL, *png = NULL, *backend = NULL, *aov_list = NULL, *compare = NULL;
+  int force_progress = 0, backends = 0, spp = 0, ref_spp = 0, given_ref = 0;
+  double time_s = 0, noise = 0;
+  int given_spp = 0, given_time = 0, given_noise = 0;
+  cli_option opts[SCENE_ARGS_NOPTS + 11];
   scene_args_options(&a, opts);
   const cli_option mine[] = {
       {"-o", .kind = CLI_FILE, .dest = &exr},
@@ -138,6 +168,11 @@ int cmd_render(int argc, char **argv) {
       {"--backend", .kind = CLI_STRING, .dest = &backend},
       {"--backends", .kind = CLI_FLAG, .dest = &backends},
       {"--progress", .kind = CLI_FLAG, .dest = &force_progress},
+      {"--spp", .kind = CLI_INT, .dest = &spp, .lo = 1, .hi = 1 << 24, .given = &given_spp},
+      {"--time", .kind = CLI_VARIANCE, .dest = &time_s, .given = &given_time},
+      {"--noise", .kind = CLI_VARIANCE, .dest = &noise, .given = &given_noise},
+      {"--compare", .kind = CLI_FILE, .dest = &compare},
+      {"--reference", .kind = CLI_INT, .dest = &ref_spp, .lo = 1, .hi = 1 << 24, .given = &given_ref},
   };
   memcpy(opts + SCENE_ARGS_NOPTS, mine, sizeof mine);
   int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
@@ -149,8 +184,17 @@ int cmd_render(int argc, char **argv) {
     return cli_error(CMD, "-o %s: -o writes OpenEXR; give the PNG preview with --png", exr);
   if ((exr && !strcmp(exr, "-")) || (png && !strcmp(png, "-")))
     return cli_error(CMD, "images are written to files, not to stdout (the summary goes there)");
+  int mc = backend && !strcmp(backend, "mc");
+  if ((given_spp || given_time || given_noise) && !mc)
+    return cli_error(CMD, "%s: only the Monte-Carlo reference takes a stop (give --backend mc)",
+                     given_spp ? "--spp" : given_time ? "--time" : "--noise");
+  if (given_time && !(time_s > 0)) return cli_error(CMD, "--time: must be > 0 seconds");
+  if (given_noise && !(noise > 0)) return cli_error(CMD, "--noise: must be > 0");
+  if (compare && given_ref) return cli_error(CMD, "give --compare or --reference, not both");
+  if (compare && !ics_exr_available())
+    return cli_failure(CMD, "--compare: OpenEXR was not found when icshadow was built");
   unsigned aovs = 0;
-  if (aov_list && parse_aovs(aov_list, &aovs)) return 2;
+  if (aov_list && (rc = parse_aovs(aov_list, mc ? ICS_AOV_STDERR : 0, &aovs))) return rc;
   if (aovs && !exr) return cli_error(CMD, "--aov: AOVs go into the EXR; give -o OUT.exr");
   if (exr && !ics_exr_available())
     return cli_failure(CMD, "cannot write OpenEXR: OpenEXR was not found when icshadow was built");
@@ -175,8 +219,9 @@ int cmd_render(int argc, char **argv) {
   double t_plan = cli_now_s() - t0;
   slab_progress sp = {.t_last = cli_now_s()};
   cli_progress_init(&sp.p, "render", force_progress);
-  ics_render_opts ro = {.backend = backend, .threads = a.threads};
-  if (sp.p.on) ro.progress = on_slab, ro.progress_ctx = &sp;
+  ics_render_opts ro = {.backend = backend, .threads = a.threads, .spp = spp, .time_s = time_s,
+                        .noise = noise};
+  if (sp.p.on) ro.progress = mc ? on_sample : on_slab, ro.progress_ctx = &sp;
   ics_renderer *r;
   ics_image *img = NULL;
   ics_exr_channels *aov = NULL;
@@ -192,16 +237,65 @@ int cmd_render(int argc, char **argv) {
     rc = cli_status_error(CMD, st, "%s", msg);
     goto done;
   }
+  render_comparison cmp;
+  int have_cmp = compare || given_ref;
+  if (compare && (rc = render_compare_file(CMD, compare, img, &cmp))) goto done;
+  if (given_ref) {
+    cli_progress_init(&sp.p, "reference", force_progress);
+    rc = render_compare_mc(CMD, plan, ref_spp, a.threads, sp.p.on ? on_sample : NULL, &sp, img, &cmp);
+    if (sp.p.on) cli_progress_done(&sp.p);
+    if (rc) goto done;
+  }
+  /* the summary, printed last and kept in the EXR */
+  char *summary = NULL;
+  size_t summary_len = 0;
+  FILE *sf = open_memstream(&summary, &summary_len);
+  if (!sf) {
+    rc = cli_failure(CMD, "out of memory");
+    goto done;
+  }
+  {
+    int W, H, bw, bh;
+    ics_plan_sizes(plan, &W, &H, &bw, &bh);
+    fprintf(sf, "{\"scene\": ");
+    json_str(sf, a.scene ? a.scene : "default");
+    fprintf(sf, ", \"backend\": \"%s\", \"device\": ", stats.backend);
+    json_str(sf, stats.device);
+    fprintf(sf, ", \"threads\": %d, \"resolution\": [%d, %d], \"light_buffer\": [%d, %d], \"slabs\": %d,"
+            " \"kernel\": \"%s\", \"samples\": %d, \"seed\": %llu,"
+            " \"ms_plan\": %.17g, \"ms_geometry\": %.17g, \"ms_render\": %.17g,"
+            " \"ms_convolution\": %.17g, \"ms_shading\": %.17g, \"ms_detail\": %.17g,"
+            " \"ns_per_px_slab\": %.17g, \"memory_bytes\": %zu",
+            stats.threads, W, H, bw, bh, stats.slabs, ics_render_kernel_name(rs.kernel), rs.samples,
+            (unsigned long long)rs.seed, 1e3 * t_plan, 1e3 * ics_plan_geometry_seconds(plan),
+            stats.ms_total, stats.ms_convolution, stats.ms_shading, stats.ms_detail,
+            stats.ns_per_px_slab, ics_plan_memory_bytes(plan));
+    if (exr) fprintf(sf, ", \"exr\": "), json_str(sf, exr);
+    if (png) fprintf(sf, ", \"png\": "), json_str(sf, png);
+    if (mc) fprintf(sf, ", \"spp\": %d, \"noise\": %.17g", stats.spp, stats.noise);
+    if (aov) {
+      fprintf(sf, ", \"aovs\": [");
+      for (int c = 0; c < aov->count; c++) fprintf(sf, "%s", c ? ", " : ""), json_str(sf, aov->names[c]);
+      fprintf(sf, "]");
+    }
+    if (have_cmp) fprintf(sf, ", \"compare\": "), render_comparison_json(sf, &cmp);
+    fprintf(sf, "}");
+  }
+  if (fclose(sf) != 0 || !summary) {
+    free(summary);
+    rc = cli_failure(CMD, "out of memory");
+    goto done;
+  }
   /* both files complete before either is renamed into place */
   cli_output oe = {0}, op = {0};
   int have_e = 0, have_p = 0;
   if (exr) {
     if (cli_output_open(&oe, CMD, exr) != 0) {
       rc = 1;
-      goto done;
+      goto done_summary;
     }
     have_e = 1;
-    st = write_exr(oe.write_path, img, aov, msg, sizeof msg);
+    st = write_exr(oe.write_path, img, aov, summary, msg, sizeof msg);
     if (st != ICS_OK) {
       rc = st == ICS_ERR_IO || st == ICS_ERR_NOMEM ? cli_failure(CMD, "cannot write %s: %s", exr, msg)
                                                    : cli_error(CMD, "cannot write %s: %s", exr, msg);
@@ -223,37 +317,16 @@ int cmd_render(int argc, char **argv) {
   }
   if ((have_e && cli_output_commit(&oe) != 0) || (have_p && cli_output_commit(&op) != 0)) {
     rc = 1;
-    goto done;
+    goto done_summary;
   }
-  {
-    int W, H, bw, bh;
-    ics_plan_sizes(plan, &W, &H, &bw, &bh);
-    printf("{\"scene\": ");
-    json_str(stdout, a.scene ? a.scene : "default");
-    printf(", \"backend\": \"%s\", \"device\": ", stats.backend);
-    json_str(stdout, stats.device);
-    printf(", \"threads\": %d, \"resolution\": [%d, %d], \"light_buffer\": [%d, %d], \"slabs\": %d,"
-           " \"kernel\": \"%s\", \"samples\": %d, \"seed\": %llu,"
-           " \"ms_plan\": %.17g, \"ms_geometry\": %.17g, \"ms_render\": %.17g,"
-           " \"ms_convolution\": %.17g, \"ms_shading\": %.17g, \"ms_detail\": %.17g,"
-           " \"ns_per_px_slab\": %.17g, \"memory_bytes\": %zu",
-           stats.threads, W, H, bw, bh, stats.slabs, ics_render_kernel_name(rs.kernel), rs.samples,
-           (unsigned long long)rs.seed, 1e3 * t_plan, 1e3 * ics_plan_geometry_seconds(plan),
-           stats.ms_total, stats.ms_convolution, stats.ms_shading, stats.ms_detail,
-           stats.ns_per_px_slab, ics_plan_memory_bytes(plan));
-    if (exr) printf(", \"exr\": "), json_str(stdout, exr);
-    if (png) printf(", \"png\": "), json_str(stdout, png);
-    if (aov) {
-      printf(", \"aovs\": [");
-      for (int c = 0; c < aov->count; c++) printf("%s", c ? ", " : ""), json_str(stdout, aov->names[c]);
-      printf("]");
-    }
-    printf("}\n");
-  }
-  goto done;
+  printf("%s\n", summary);
+  goto done_summary;
 abort:
   if (have_e) cli_output_abort(&oe);
   if (have_p) cli_output_abort(&op);
+done_summary:
+  free(summary);
+  goto done;
 done:
   ics_image_destroy(img);
   ics_exr_channels_destroy(aov);

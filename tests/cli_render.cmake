@@ -60,7 +60,38 @@ if(ICS_HAVE_RENDER)
 ics_cli_test(NAME cli_render_aov RC 0 ARGS "render|${disk}|--resolution|32x32|--aov|visibility,depth|-o|${rd}/aov.exr"
   OUT "\"aovs\": \\[\"light0.V\", \"Z\"\\]")
 ics_cli_test(NAME cli_render_aov_unknown RC 2 ARGS "render|${disk}|--aov|normal|-o|${rd}/aov2.exr"
-  ERR "--aov normal: 'normal' is not an AOV \\(visibility, depth, all\\)" NOFILE ${rd}/aov2.exr)
+  ERR "--aov normal: 'normal' is not an AOV \\(visibility, depth, stderr, all\\)" NOFILE ${rd}/aov2.exr)
 ics_cli_test(NAME cli_render_aov_png_only RC 2 ARGS "render|${disk}|--aov|depth|--png|${rd}/aov3.png"
   ERR "AOVs go into the EXR; give -o OUT.exr" NOFILE ${rd}/aov3.png)
+endif()
+if(ICS_HAVE_RENDER)
+# the Monte-Carlo reference: its stops, its standard errors, and refusals
+ics_cli_test(NAME cli_render_mc RC 0 ARGS "render|${disk}|--backend|mc|--spp|4|--resolution|32x32|--aov|all|-o|${rd}/mc.exr"
+  OUT "\"backend\": \"mc\".*\"spp\": 4, \"noise\": [0-9.e+-]+.*\"aovs\": \\[\"light0.V\", \"Z\", \"stderr.R\", \"stderr.G\", \"stderr.B\", \"stderr.A\", \"stderr.light0.V\"\\]")
+ics_cli_test(NAME cli_render_spp_without_mc RC 2 ARGS "render|${disk}|--spp|4|-o|${rd}/mc2.exr"
+  ERR "--spp: only the Monte-Carlo reference takes a stop \\(give --backend mc\\)" NOFILE ${rd}/mc2.exr)
+ics_cli_test(NAME cli_render_mc_bad_time RC 2 ARGS "render|${disk}|--backend|mc|--time|0|-o|${rd}/mc3.exr"
+  ERR "--time: must be > 0 seconds" NOFILE ${rd}/mc3.exr)
+ics_cli_test(NAME cli_render_mc_bad_spp RC 2 ARGS "render|${disk}|--backend|mc|--spp|0|-o|${rd}/mc4.exr"
+  ERR "--spp: expected an integer in 1..16777216" NOFILE ${rd}/mc4.exr)
+ics_cli_test(NAME cli_render_stderr_on_cpu RC 2 ARGS "render|${disk}|--aov|stderr|-o|${rd}/mc5.exr"
+  ERR "backend cpu does not make the AOV stderr \\(only mc estimates a standard error\\)" NOFILE ${rd}/mc5.exr)
+endif()
+if(ICS_HAVE_RENDER)
+# error against a reference: in the same run (--reference N) and from a file (--compare REF.exr)
+ics_cli_test(NAME cli_render_reference RC 0 ARGS "render|${disk}|--resolution|32x32|--reference|8|-o|${rd}/cmp.exr"
+  OUT "\"compare\": {\"reference\": \"mc\", \"reference_backend\": \"mc\", \"reference_spp\": 8, \"ms_reference\": [0-9.e+-]+, \"reference_noise\": [0-9.e+-]+, \"rmse\": [0-9.e+-]+, \"rmse_beyond_noise\": [0-9.e+-]+, \"max_error\": [0-9.e+-]+, \"max_at\": \\[[0-9]+, [0-9]+\\], \"psnr_db\": [0-9.e+-]+}")
+ics_cli_test(NAME cli_render_compare_missing RC 2 ARGS "render|${disk}|--compare|${rd}/nonexistent.exr|-o|${rd}/cmp2.exr"
+  ERR "--compare: .*nonexistent.exr: cannot open" NOFILE ${rd}/cmp2.exr)
+ics_cli_test(NAME cli_render_compare_both RC 2 ARGS "render|${disk}|--compare|${rd}/x.exr|--reference|4|-o|${rd}/cmp3.exr"
+  ERR "give --compare or --reference, not both" NOFILE ${rd}/cmp3.exr)
+endif()
+if(ICS_HAVE_RENDER)
+# against the file cli_render_mc wrote (32 x 32, with its standard errors and summary)
+set_tests_properties(cli_render_mc PROPERTIES FIXTURES_SETUP mc_exr)
+ics_cli_test(NAME cli_render_compare_file RC 0 ARGS "render|${disk}|--resolution|32x32|--compare|${rd}/mc.exr|--png|${rd}/cmp4.png"
+  OUT "\"compare\": {\"reference\": \"[^\"]*mc.exr\", \"reference_backend\": \"mc\", \"reference_spp\": 4, \"ms_reference\": [0-9.e+-]+, \"reference_noise\": [0-9.e+-]+,")
+ics_cli_test(NAME cli_render_compare_size RC 2 ARGS "render|${disk}|--compare|${rd}/mc.exr|-o|${rd}/cmp5.exr"
+  ERR "--compare: .*mc.exr is 32x32, the render 128x128" NOFILE ${rd}/cmp5.exr)
+set_tests_properties(cli_render_compare_file cli_render_compare_size PROPERTIES FIXTURES_REQUIRED mc_exr)
 endif()

@@ -1,5 +1,7 @@
-# Gaussian light fitting (pure C: synthetic maps -> fit), OpenEXR I/O (needs OpenEXR).
+# Gaussian light fitting (pure C: synthetic maps -> fit), float images and their comparison,
+# OpenEXR I/O (needs OpenEXR).
 ics_add_test(NAME test_lightfit SOURCES test_lightfit.c LABELS fast)
+ics_add_test(NAME test_image SOURCES test_image.c LABELS fast LIBS m)
 if(ICS_HAVE_OPENEXR)
   set(ICS_EXR_TEST_LIBS OpenEXR::OpenEXRCore)
 endif()

@@ -317,7 +317,7 @@ int main(int argc, char **argv) {
     float *data = malloc(sizeof(float) * NW * NH * NC);
     for (int p = 0; p < NW * NH; p++)
       for (int c = 0; c < NC; c++) data[p * NC + c] = (float)((p % 64) / 8.0 + 16 * c - 40);
-    ics_exr_channels w = {NW, NH, NC, names, data};
+    ics_exr_channels w = {NW, NH, NC, names, data, "made by test_exr"};
     for (int half = 0; half < 2; half++) {
       const char *path = tmpf(half ? "chan_h.exr" : "chan_f.exr");
       st = ics_exr_write_channels(path, &w, half ? ICS_EXR_HALF : ICS_EXR_FLOAT, 0, msg, sizeof msg);
@@ -337,6 +337,8 @@ int main(int argc, char **argv) {
       }
       CHECK(wrong == 0, "channels round trip (%s): %d values differ", half ? "half" : "float", wrong);
       CHECK(ics_exr_channel_index(r, "light0") == -1, "no channel 'light0'");
+      CHECK(r->info && !strcmp(r->info, "made by test_exr"), "info attribute: %s",
+            r->info ? r->info : "(none)");
       ics_exr_channels_destroy(r);
     }
     /* latlong = 0 writes no envmap attribute; ics_exr_write's files carry latlong */

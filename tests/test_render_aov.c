@@ -147,7 +147,7 @@ static void test_refusals(void) {
   CHECK(ics_renderer_create(&rr, &ro, msg, sizeof msg) == ICS_OK, "renderer: %s", msg);
   ics_image *img = (ics_image *)&msg;
   ics_exr_channels *aov = (ics_exr_channels *)&msg;
-  CHECK(ics_renderer_render_aovs(rr, p, 4u, &img, &aov, NULL, msg, sizeof msg) == ICS_ERR_INVALID_ARG &&
+  CHECK(ics_renderer_render_aovs(rr, p, 8u, &img, &aov, NULL, msg, sizeof msg) == ICS_ERR_INVALID_ARG &&
             img == NULL && aov == NULL && strstr(msg, "unknown bits"), "unknown AOV bit refused: %s", msg);
   img = (ics_image *)&msg;
   CHECK(ics_renderer_render_aovs(rr, p, ICS_AOV_DEPTH, &img, NULL, NULL, msg, sizeof msg) ==

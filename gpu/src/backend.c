@@ -1,6 +1,6 @@
 /* backend.c — the backend table and the renderer object (icshadow/renderer.h). "auto" takes the
- * first available entry in table order, which lists the preferred backends first and "cpu" last
- * (always available). */
+ * first available entry in table order, which lists the preferred slab renderers first and
+ * "cpu" last (always available), so it never reaches "mc", the Monte-Carlo reference, after it. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -8,7 +8,7 @@
 #include "backend.h"
 #include "plan_internal.h"
 
-static const ics_backend *const table[] = {&ics_backend_cpu};
+static const ics_backend *const table[] = {&ics_backend_cpu, &ics_backend_mc};
 #define NBACKENDS ((int)(sizeof table / sizeof *table))
 
 int ics_backend_count(void) { return NBACKENDS; }
@@ -87,11 +87,13 @@ const char *ics_renderer_backend(const ics_renderer *r) { return r->b->name; }
 static ics_status aov_create(const ics_plan *P, unsigned aovs, ics_exr_channels **out,
                              ics_aov_buf *buf) {
   int nl = P->nlights, nch = P->nch;
-  int count = ((aovs & ICS_AOV_VISIBILITY) ? nl * nch : 0) + ((aovs & ICS_AOV_DEPTH) ? 1 : 0);
+  int nvis = (aovs & ICS_AOV_VISIBILITY) ? nl * nch : 0, depth = (aovs & ICS_AOV_DEPTH) ? 1 : 0;
+  int nerr = (aovs & ICS_AOV_STDERR) ? 4 + nvis : 0, count = nvis + depth + nerr;
   buf->count = count;
-  buf->vis = (aovs & ICS_AOV_VISIBILITY) && nl ? 0 : -1;
-  buf->z = (aovs & ICS_AOV_DEPTH) ? count - 1 : -1;
-  enum { NAME = 24 }; /* "light%d.%c": at most 15 bytes */
+  buf->vis = nvis ? 0 : -1;
+  buf->z = depth ? nvis : -1;
+  buf->err = nerr ? nvis + depth : -1;
+  enum { NAME = 32 }; /* "stderr.light%d.%c": at most 22 bytes */
   char **names = malloc((size_t)(count ? count : 1) * (sizeof(char *) + NAME));
   float *data = calloc((size_t)P->W * P->H * (size_t)(count ? count : 1), sizeof *data);
   ics_exr_channels *ch = malloc(sizeof *ch);
@@ -100,19 +102,20 @@ static ics_status aov_create(const ics_plan *P, unsigned aovs, ics_exr_channels 
     return ICS_ERR_NOMEM;
   }
   char *str = (char *)(names + (count ? count : 1));
-  static const char rgb[3] = {'R', 'G', 'B'};
-  for (int l = 0; buf->vis >= 0 && l < nl; l++)
+  for (int c = 0; c < count; c++) names[c] = str + (size_t)c * NAME;
+  static const char rgb[3] = {'R', 'G', 'B'}, rgba[4] = {'R', 'G', 'B', 'A'};
+  for (int l = 0; l < nl && nvis; l++)
     for (int c = 0; c < nch; c++) {
-      char *nm = str + (size_t)(l * nch + c) * NAME;
-      snprintf(nm, NAME, "light%d.%c", l, nch == 1 ? 'V' : rgb[c]);
-      names[buf->vis + l * nch + c] = nm;
+      snprintf(names[buf->vis + l * nch + c], NAME, "light%d.%c", l, nch == 1 ? 'V' : rgb[c]);
+      if (nerr)
+        snprintf(names[buf->err + 4 + l * nch + c], NAME, "stderr.light%d.%c", l,
+                 nch == 1 ? 'V' : rgb[c]);
     }
-  if (buf->z >= 0) {
-    names[buf->z] = str + (size_t)buf->z * NAME;
-    snprintf(names[buf->z], NAME, "Z");
-  }
+  if (depth) snprintf(names[buf->z], NAME, "Z");
+  for (int c = 0; c < 4 && nerr; c++) snprintf(names[buf->err + c], NAME, "stderr.%c", rgba[c]);
   buf->data = data;
   ch->width = P->W, ch->height = P->H, ch->count = count;
+  ch->info = NULL;
   ch->names = (const char *const *)names;
   ch->data = data;
   *out = ch;
@@ -125,9 +128,22 @@ ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsig
   *out = NULL;
   if (aov_out) *aov_out = NULL;
   if (msg && msg_size) msg[0] = 0;
-  if ((aovs & ~(ICS_AOV_VISIBILITY | ICS_AOV_DEPTH)) || (aovs && !aov_out)) {
+  if ((aovs & ~(ICS_AOV_VISIBILITY | ICS_AOV_DEPTH | ICS_AOV_STDERR)) || (aovs && !aov_out)) {
     if (msg) snprintf(msg, msg_size, "AOVs 0x%x: unknown bits or nowhere to put them", aovs);
     return ICS_ERR_INVALID_ARG;
+  }
+  if (aovs & ~r->b->aovs) {
+    static const char *const aov_names[3] = {"visibility", "depth", "stderr"};
+    unsigned missing = aovs & ~r->b->aovs;
+    char list[64] = "";
+    for (int i = 0; i < 3; i++)
+      if (missing & (1u << i))
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", list[0] ? ", " : "",
+                 aov_names[i]);
+    if (msg)
+      snprintf(msg, msg_size, "backend %s does not make the AOV %s%s", r->b->name, list,
+               (missing & ICS_AOV_STDERR) ? " (only mc estimates a standard error)" : "");
+    return ICS_ERR_UNSUPPORTED;
   }
   ics_render_stats local;
   if (!stats) stats = &local;

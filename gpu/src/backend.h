@@ -1,6 +1,6 @@
 /* backend.h — the backend table's entries: a backend is a name, a description, an availability
  * test and create / render / destroy over its own state (sokol's backends, c-ray's opaque
- * renderer are the models). "cpu" always builds. */
+ * renderer are the models). "cpu" and "mc" always build. */
 #ifndef ICS_RENDER_BACKEND_H
 #define ICS_RENDER_BACKEND_H
 
@@ -12,12 +12,15 @@ typedef struct ics_aov_buf {
   int count;
   int vis;     /* light l, buffer channel c at vis + l nch + c (nch: the plan's 1 or 3) */
   int z;       /* the view depth of the first surface */
+  int err;     /* standard errors: R, G, B, A at err + 0..3, then visibility channel v at
+                  err + 4 + v - vis */
   float *data; /* pixel (i, j) at (j W + i) count */
 } ics_aov_buf;
 
 typedef struct ics_backend {
   const char *name;
   const char *description;
+  unsigned aovs; /* the ICS_AOV_* bits it makes */
   int (*available)(char *why, size_t why_size);
   ics_status (*create)(void **state, const ics_render_opts *opts, char *msg, size_t msg_size);
   /* aov: NULL when no AOV was asked for */
@@ -28,5 +31,6 @@ typedef struct ics_backend {
 } ics_backend;
 
 extern const ics_backend ics_backend_cpu;
+extern const ics_backend ics_backend_mc;
 
 #endif

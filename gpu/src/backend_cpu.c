@@ -411,5 +411,5 @@ done:
 }
 
 const ics_backend ics_backend_cpu = {
-    "cpu", "the slab renderer on the CPU (threads; always built; the reference backend)",
-    cpu_available, cpu_create, cpu_render, cpu_destroy};
+    "cpu", "the slab renderer on the CPU (threads; always built)",
+    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, cpu_available, cpu_create, cpu_render, cpu_destroy};

@@ -98,6 +98,7 @@ typedef struct {
   int n;
   char **names; /* n names; one block with the strings after the pointers */
   float *data;
+  char *info;   /* the "icshadow" string attribute, or NULL */
 } exr_pixels;
 
 /* the slot of a file channel: its R, G, B, A index (rgba) or its place in names */
@@ -198,6 +199,21 @@ static ics_status read_file(const char *path, int rgba, exr_pixels *px, char *ms
     goto done;
   }
   nch = rgba ? (have[3] ? 4 : 3) : chl->num_channels;
+  {
+    int32_t len = 0;
+    const char *str = NULL;
+    if (!rgba && exr_attr_get_string(ctx, 0, "icshadow", &len, &str) == EXR_ERR_SUCCESS && str &&
+        len >= 0) {
+      px->info = malloc((size_t)len + 1);
+      if (!px->info) {
+        st = ICS_ERR_NOMEM;
+        set_msg(msg, msg_size, "%s: out of memory", path);
+        goto done;
+      }
+      memcpy(px->info, str, (size_t)len);
+      px->info[len] = 0;
+    }
+  }
   /* the names: pointers, then the strings, one block */
   size_t bytes = (size_t)nch * sizeof(char *);
   for (int c = 0; c < chl->num_channels; c++) bytes += strlen(chl->entries[c].name.str) + 1;
@@ -321,7 +337,7 @@ done:
   if (st == ICS_OK) {
     px->W = W, px->H = H, px->n = nch;
   } else {
-    free(px->names), free(px->data);
+    free(px->names), free(px->data), free(px->info);
     memset(px, 0, sizeof *px);
   }
   return st;
@@ -356,13 +372,14 @@ ics_status ics_exr_read_channels(const char *path, ics_exr_channels **out, char 
   if (st != ICS_OK) return st;
   ics_exr_channels *ch = malloc(sizeof *ch);
   if (!ch) {
-    free(px.names), free(px.data);
+    free(px.names), free(px.data), free(px.info);
     set_msg(msg, msg_size, "%s: out of memory", path);
     return ICS_ERR_NOMEM;
   }
   ch->width = (int)px.W, ch->height = (int)px.H, ch->count = px.n;
   ch->names = (const char *const *)px.names;
   ch->data = px.data;
+  ch->info = px.info;
   *out = ch;
   return ICS_OK;
 }
@@ -442,6 +459,7 @@ ics_status ics_exr_write_channels(const char *path, const ics_exr_channels *ch, 
   if (rv == EXR_ERR_SUCCESS) rv = exr_set_lineorder(ctx, part, EXR_LINEORDER_INCREASING_Y);
   if (rv == EXR_ERR_SUCCESS && latlong)
     rv = exr_attr_set_envmap(ctx, part, "envmap", EXR_ENVMAP_LATLONG);
+  if (rv == EXR_ERR_SUCCESS && ch->info) rv = exr_attr_set_string(ctx, part, "icshadow", ch->info);
   if (rv == EXR_ERR_SUCCESS) rv = exr_write_header(ctx);
   int32_t lines = 1;
   if (rv == EXR_ERR_SUCCESS) rv = exr_get_scanlines_per_chunk(ctx, part, &lines);
@@ -497,7 +515,7 @@ ics_status ics_exr_write(const char *path, const ics_image *img, ics_exr_type ty
             bi, bj, chan_names[bc]);
     return ICS_ERR_INVALID_ARG;
   }
-  ics_exr_channels ch = {img->width, img->height, img->channels, chan_names, img->data};
+  ics_exr_channels ch = {img->width, img->height, img->channels, chan_names, img->data, NULL};
   return ics_exr_write_channels(path, &ch, type, 1, msg, msg_size);
 }
 
@@ -505,6 +523,7 @@ void ics_exr_channels_destroy(ics_exr_channels *ch) {
   if (!ch) return;
   free((void *)ch->names);
   free((void *)ch->data);
+  free((void *)ch->info);
   free(ch);
 }
 

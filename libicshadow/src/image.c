@@ -45,3 +45,24 @@ int ics_image_find_bad(const ics_image *img, int *i, int *j, int *c) {
     }
   return 1;
 }
+
+ics_status ics_image_diff_rgb(const ics_image *a, const ics_image *b, ics_image_diff *out) {
+  if (!a || !b || !out || !a->data || !b->data || a->width != b->width || a->height != b->height)
+    return ICS_ERR_INVALID_ARG;
+  ics_image_diff d = {0, 0, 0, 0, 0, 0};
+  double se = 0;
+  for (int y = 0; y < a->height; y++)
+    for (int x = 0; x < a->width; x++) {
+      size_t p = (size_t)y * a->width + x;
+      for (int c = 0; c < 3; c++) {
+        double e = fabs((double)a->data[p * a->channels + c] - b->data[p * b->channels + c]);
+        se += e * e;
+        if (e > d.max_abs) d.max_abs = e, d.max_x = x, d.max_y = y, d.max_channel = c;
+      }
+    }
+  double mse = se / (3.0 * (double)a->width * a->height);
+  d.rmse = sqrt(mse);
+  d.psnr = mse > 0 ? 10 * log10(1 / mse) : INFINITY;
+  *out = d;
+  return ICS_OK;
+}

@@ -1,6 +1,7 @@
 /* icshadow/renderer.h — renderers and the backend table. A backend is an entry in a runtime
- * table: "cpu" always builds (the reference the others are compared against); others ("gl",
- * "cl", "mc") are entries when built. A renderer owns a backend's context (threads, a GL context,
+ * table: "cpu" (the slab renderer) and "mc" (the Monte-Carlo reference it is measured against,
+ * docs/reference.md) always build; others ("gl", "cl") are entries when built. "auto" never
+ * picks "mc". A renderer owns a backend's context (threads, a GL context,
  * an OpenCL queue) and renders plans into RGBA float images (row 0 at the top; RGB composited
  * over the scene's background, A = accumulated opacity). */
 #ifndef ICSHADOW_RENDERER_H
@@ -23,8 +24,14 @@ typedef struct ics_render_opts {
   const char *backend; /* NULL or "auto": the best available (says which in the stats) */
   int threads;         /* 0: all cores */
   /* called after each slab from the rendering thread (slab = 1..nslabs); may be NULL */
+  /* slab renderers: after each slab (slab = 1..nslabs); "mc": after each pass of one sample per
+   * pixel (slab = samples so far, nslabs = spp, or 0 when the stop is a time or a noise) */
   void (*progress)(void *ctx, int slab, int nslabs);
   void *progress_ctx;
+  /* "mc" only: stop after `spp` samples per pixel, after `time_s` seconds, or once the noise
+   * (ics_render_stats.noise) is at most `noise`, whichever comes first; all 0: 64 samples */
+  int spp;
+  double time_s, noise;
 } ics_render_opts;
 
 /* Time per pass and what ran. */
@@ -36,6 +43,8 @@ typedef struct ics_render_stats {
   double ms_total;   /* the render call, geometry pass excluded (ics_plan_geometry_seconds) */
   double ms_convolution, ms_shading, ms_detail;
   double ns_per_px_slab; /* ms_convolution per (buffer pixel x slab x light) */
+  int spp;               /* "mc": samples per pixel taken */
+  double noise;          /* "mc": RMS over pixels and R, G, B of the standard error of the mean */
 } ics_render_stats;
 
 typedef struct ics_renderer ics_renderer;
@@ -54,15 +63,19 @@ ICS_API ics_status ics_renderer_render(ics_renderer *r, const ics_plan *plan, ic
  * ICS_AOV_VISIBILITY: per light, the fraction of its light reaching that surface, channels
  *   "lightL.V" (one light-buffer channel) or "lightL.R", "lightL.G", "lightL.B" (coloured
  *   transport), L = 0, 1, ... in scene order;
- * ICS_AOV_DEPTH: "Z", the surface's view depth (distance from the eye along the view axis).
- * Pixels without a surface hold 0 in every AOV channel. */
+ * ICS_AOV_DEPTH: "Z", the surface's view depth (distance from the eye along the view axis);
+ * ICS_AOV_STDERR ("mc" only): the standard error of the mean of R, G, B, A ("stderr.R", ...)
+ *   and, with ICS_AOV_VISIBILITY, of each visibility channel ("stderr.light0.V", ...).
+ * Pixels without a surface hold 0 in every visibility and depth channel. */
 #define ICS_AOV_VISIBILITY 1u
 #define ICS_AOV_DEPTH 2u
+#define ICS_AOV_STDERR 4u
 
 /* As ics_renderer_render, and with aovs != 0 the AOVs asked for as a new *aov_out
  * (ics_exr_channels_destroy frees it; ics_exr_write_channels writes it). The AOVs take
- * W H (lights x channels + 1) floats beyond the plan's memory_bytes. ICS_ERR_INVALID_ARG for
- * unknown bits or aovs != 0 with aov_out NULL. */
+ * W H (lights x channels + 1) floats (twice that and 4 more with ICS_AOV_STDERR) beyond the
+ * plan's memory_bytes. ICS_ERR_INVALID_ARG for unknown bits or aovs != 0 with aov_out NULL,
+ * ICS_ERR_UNSUPPORTED for an AOV the backend does not make (msg says which). */
 ICS_API ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsigned aovs,
                                             ics_image **out, ics_exr_channels **aov_out,
                                             ics_render_stats *stats, char *msg, size_t msg_size);

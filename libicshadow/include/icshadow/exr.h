@@ -61,6 +61,8 @@ typedef struct ics_exr_channels {
   const char *const *names; /* count distinct names of 1..255 bytes ("R", "light0.V", "Z") */
   const float *data;        /* pixel (i, j) channel c at ((j * width + i) * count + c), row 0 at
                                the top */
+  const char *info;         /* NULL, or a text kept in the file's string attribute "icshadow"
+                               (what made the image: the renderer writes its summary JSON) */
 } ics_exr_channels;
 
 /* Writes *ch to `path` directly, as ics_exr_write does (envmap = latlong only when latlong is
@@ -74,8 +76,9 @@ ICS_API ics_status ics_exr_write_channels(const char *path, const ics_exr_channe
 
 /* Reads every channel of `path` (HALF or FLOAT; in the file's order, which is sorted by name)
  * into a new *out (ics_exr_channels_destroy frees it); the image is the display window as in
- * ics_exr_read. Errors as for ics_exr_read, except that any channel set is accepted and only
- * NaN and infinite values are refused. */
+ * ics_exr_read, info the "icshadow" string attribute (NULL when absent). Errors as for
+ * ics_exr_read, except that any channel set is accepted and only NaN and infinite values are
+ * refused. */
 ICS_API ics_status ics_exr_read_channels(const char *path, ics_exr_channels **out, char *msg,
                                          size_t msg_size);
 /* Frees what ics_exr_read_channels made (NULL is fine). */

@@ -34,6 +34,19 @@ ICS_API void ics_image_destroy(ics_image *img);
  * and >= 0. NULL out-pointers are allowed. */
 ICS_API int ics_image_find_bad(const ics_image *img, int *i, int *j, int *c);
 
+/* The difference of two images' R, G, B (alpha is not compared), as image comparisons report it. */
+typedef struct ics_image_diff {
+  double rmse;      /* sqrt(mean over pixels and R, G, B of (a - b)^2) */
+  double max_abs;   /* max |a - b| */
+  int max_x, max_y; /* where max_abs is first reached (row order) */
+  int max_channel;  /* 0, 1, 2 */
+  double psnr;      /* 10 log10(1 / mse) in dB (peak value 1); INFINITY for identical images */
+} ics_image_diff;
+
+/* Compares a with b (same width and height; 3 or 4 channels each, in double precision).
+ * ICS_ERR_INVALID_ARG for a NULL argument or different sizes. */
+ICS_API ics_status ics_image_diff_rgb(const ics_image *a, const ics_image *b, ics_image_diff *out);
+
 #ifdef __cplusplus
 }
 #endif

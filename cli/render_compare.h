@@ -1,0 +1,39 @@
+/* render_compare.h — `icshadow render --compare REF.exr` and `--reference N`: the render's
+ * R, G, B against a reference image (a file, or the Monte-Carlo reference rendered in the same
+ * run), with the reference's own time and noise where known, so error can be set against time.
+ * docs/reference.md "Error against run time". */
+#ifndef ICS_CLI_RENDER_COMPARE_H
+#define ICS_CLI_RENDER_COMPARE_H
+
+#include <stdio.h>
+
+#ifdef ICS_HAVE_RENDER
+#include "icshadow/render.h"
+
+typedef struct render_comparison {
+  ics_image_diff d;
+  const char *reference; /* the file, or "mc" */
+  char ref_backend[16];  /* "" when unknown */
+  int ref_spp;           /* 0 when unknown */
+  double ms_reference;   /* NAN when unknown */
+  double ref_noise;      /* RMS standard error of the reference's R, G, B; NAN when unknown */
+} render_comparison;
+
+/* Compares img with the EXR at `path` (its R, G, B; its stderr.R/G/B for the noise; its
+ * "icshadow" summary for the backend, samples and time). Returns 0, or the exit status after
+ * the message (a missing or unreadable file, no R, G, B, another size: 2). */
+int render_compare_file(const char *cmd, const char *path, const ics_image *img,
+                        render_comparison *out);
+
+/* Renders `plan` with the Monte-Carlo reference at spp samples per pixel on `threads` threads
+ * (progress: ics_render_opts.progress, may be NULL) and compares img with it. Returns 0, or the
+ * exit status after the message. */
+int render_compare_mc(const char *cmd, const ics_plan *plan, int spp, int threads,
+                      void (*progress)(void *, int, int), void *progress_ctx,
+                      const ics_image *img, render_comparison *out);
+
+/* The comparison as a JSON object's members, after ", \"compare\": ". */
+void render_comparison_json(FILE *f, const render_comparison *c);
+#endif
+
+#endif

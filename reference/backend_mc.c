@@ -1,0 +1,190 @@
+/* backend_mc.c — the Monte-Carlo reference as a backend ("mc", docs/reference.md): progressive
+ * passes of one sample per pixel (mc_trace.c) over the worker pool (rows t, t + n, ...), the
+ * per-pixel mean and standard error of the mean (Welford), until a sample count, a time or a
+ * noise level is reached. Sample s of pixel p draws from the counter RNG's stream
+ * (tag, p, s) under the scene's seed, so the image depends on the seed and the sample count
+ * only, never on the thread count. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "backend.h"
+#include "mc_trace.h"
+#include "pool.h"
+#include "scene_internal.h"
+
+#define MC_STREAM_TAG 0x6dULL          /* "m", in the stream's top byte */
+#define MC_MAX_SPP (1 << 24)           /* samples per pixel: the stream's low 24 bits */
+#define MC_DEFAULT_SPP 64
+
+static double now_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+typedef struct {
+  ics_pool *pool;
+} mc_state;
+
+static int mc_available(char *why, size_t why_size) {
+  (void)why, (void)why_size;
+  return 1;
+}
+
+static ics_status mc_create(void **state, const ics_render_opts *o, char *msg, size_t msg_size) {
+  mc_state *s = calloc(1, sizeof *s);
+  if (!s) return ICS_ERR_NOMEM;
+  s->pool = ics_pool_create(o->threads);
+  if (!s->pool) {
+    free(s);
+    if (msg) snprintf(msg, msg_size, "cannot start %d worker threads", o->threads);
+    return ICS_ERR_NOMEM;
+  }
+  *state = s;
+  return ICS_OK;
+}
+
+static void mc_destroy(void *state) {
+  mc_state *s = state;
+  if (!s) return;
+  ics_pool_destroy(s->pool);
+  free(s);
+}
+
+typedef struct {
+  const mc_scene *m;
+  mc_thread *th;   /* per thread */
+  int *failed;     /* per thread */
+  int n;           /* samples per pixel before this pass */
+  int nv;          /* visibility values per pixel (lights x buffer channels), 0: none asked */
+  double *mean, *m2;   /* per pixel: R, G, B, A, then nv visibility values */
+  float *z;            /* per pixel: first-surface depth (0: none) */
+  uint8_t *surface;    /* per pixel: a first surface was found */
+} pass_t;
+
+static void pass_job(void *ctx, int t, int nt) {
+  pass_t *ps = ctx;
+  const ics_plan *P = ps->m->P;
+  int per = 4 + ps->nv, nch = P->nch;
+  mc_sample smp;
+  for (int j = t; j < P->H && !ps->failed[t]; j += nt)
+    for (int i = 0; i < P->W; i++) {
+      size_t p = (size_t)j * P->W + i;
+      ics_rng r;
+      ics_rng_init(&r, P->rs.seed, MC_STREAM_TAG << 56 | (uint64_t)p << 24 | (uint64_t)ps->n);
+      if (mc_pixel_sample(&ps->th[t], ps->m, i, j, ps->nv > 0, &r, &smp)) {
+        ps->failed[t] = 1;
+        return;
+      }
+      double x[4 + 3 * ICS_SCENE_MAX_LIGHTS];
+      memcpy(x, smp.rgba, sizeof smp.rgba);
+      for (int l = 0; l < ps->nv / (nch ? nch : 1); l++)
+        for (int c = 0; c < nch; c++) x[4 + l * nch + c] = smp.surface ? smp.vis[l][c] : 0;
+      double *mu = ps->mean + p * per, *m2 = ps->m2 + p * per, k = ps->n + 1;
+      for (int c = 0; c < per; c++) {
+        double d = x[c] - mu[c];
+        mu[c] += d / k;
+        m2[c] += d * (x[c] - mu[c]);
+      }
+      if (smp.surface) ps->surface[p] = 1, ps->z[p] = (float)smp.z;
+    }
+}
+
+/* RMS over pixels and R, G, B of the standard error of the mean after n samples */
+static double noise_of(const pass_t *ps, size_t npx, int n) {
+  if (n < 2) return INFINITY;
+  int per = 4 + ps->nv;
+  double sum = 0;
+  for (size_t p = 0; p < npx; p++)
+    for (int c = 0; c < 3; c++) sum += ps->m2[p * per + c] / ((double)(n - 1) * n);
+  return sqrt(sum / (3.0 * (double)npx));
+}
+
+static ics_status mc_render(void *state, const ics_plan *P, const ics_render_opts *o,
+                            ics_image *img, ics_aov_buf *aov, ics_render_stats *st, char *msg,
+                            size_t msg_size) {
+  mc_state *ms = state;
+  double t_start = now_s();
+  int nt = ics_pool_size(ms->pool);
+  size_t npx = (size_t)P->W * P->H;
+  if (o->spp < 0 || o->spp > MC_MAX_SPP || !(o->time_s >= 0) || !(o->noise >= 0) ||
+      isinf(o->time_s) || isinf(o->noise)) {
+    if (msg) snprintf(msg, msg_size, "mc: samples per pixel must be in 0..%d, time and noise "
+                      "finite and >= 0 (got %d, %g, %g)", MC_MAX_SPP, o->spp, o->time_s, o->noise);
+    return ICS_ERR_INVALID_ARG;
+  }
+  int spp = o->spp, stop_by_count = spp > 0;
+  if (spp == 0 && !(o->time_s > 0) && !(o->noise > 0)) spp = MC_DEFAULT_SPP, stop_by_count = 1;
+  if (!stop_by_count) spp = MC_MAX_SPP;
+  pass_t ps = {0};
+  mc_scene m;
+  ics_status status = mc_scene_init(&m, P);
+  if (status != ICS_OK) return status;
+  ps.m = &m;
+  ps.nv = aov && aov->vis >= 0 ? P->nlights * P->nch : 0;
+  int per = 4 + ps.nv;
+  ps.th = calloc((size_t)nt, sizeof *ps.th);
+  ps.failed = calloc((size_t)nt, sizeof *ps.failed);
+  ps.mean = calloc(npx * (size_t)per, sizeof *ps.mean);
+  ps.m2 = calloc(npx * (size_t)per, sizeof *ps.m2);
+  ps.z = calloc(npx, sizeof *ps.z);
+  ps.surface = calloc(npx, 1);
+  if (!ps.th || !ps.failed || !ps.mean || !ps.m2 || !ps.z || !ps.surface) goto nomem;
+  int n = 0;
+  double noise = INFINITY;
+  while (n < spp) {
+    ps.n = n;
+    ics_pool_run(ms->pool, pass_job, &ps);
+    for (int t = 0; t < nt; t++)
+      if (ps.failed[t]) goto nomem;
+    n++;
+    if (o->progress) o->progress(o->progress_ctx, n, stop_by_count ? spp : 0);
+    if (o->noise > 0 || n == spp) noise = noise_of(&ps, npx, n);
+    if (o->noise > 0 && noise <= o->noise) break;
+    if (o->time_s > 0 && now_s() - t_start >= o->time_s) break;
+  }
+  if (!(o->noise > 0) && n != spp) noise = noise_of(&ps, npx, n);
+  for (size_t p = 0; p < npx; p++)
+    for (int c = 0; c < 4; c++) img->data[p * 4 + c] = (float)ps.mean[p * per + c];
+  if (aov) {
+    for (size_t p = 0; p < npx; p++) {
+      float *a = aov->data + p * (size_t)aov->count;
+      const double *mu = ps.mean + p * per, *m2 = ps.m2 + p * per;
+      for (int v = 0; aov->vis >= 0 && v < ps.nv; v++) a[aov->vis + v] = (float)mu[4 + v];
+      if (aov->z >= 0) a[aov->z] = ps.surface[p] ? ps.z[p] : 0;
+      for (int c = 0; aov->err >= 0 && c < per; c++)
+        a[aov->err + c] = n > 1 ? (float)sqrt(m2[c] / ((double)(n - 1) * n)) : 0;
+    }
+  }
+  st->threads = nt;
+  st->slabs = 0;
+  st->spp = n;
+  st->noise = isfinite(noise) ? noise : 0;
+  snprintf(st->device, sizeof st->device, "CPU, %d thread%s (Monte Carlo)", nt, nt == 1 ? "" : "s");
+  st->ms_total = 1e3 * (now_s() - t_start);
+  st->ms_shading = st->ms_total;
+  goto done;
+nomem:
+  status = ICS_ERR_NOMEM;
+  if (msg) snprintf(msg, msg_size, "out of memory for the Monte-Carlo accumulators (%zu pixels)", npx);
+done:
+  for (int t = 0; ps.th && t < nt; t++) mc_thread_release(&ps.th[t]);
+  free(ps.th);
+  free(ps.failed);
+  free(ps.mean);
+  free(ps.m2);
+  free(ps.z);
+  free(ps.surface);
+  mc_scene_release(&m);
+  return status;
+}
+
+const ics_backend ics_backend_mc = {
+    "mc", "the Monte-Carlo reference: exact shadows by light sampling, delta and ratio tracking "
+          "(CPU threads; always built; never chosen by auto)",
+    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH | ICS_AOV_STDERR, mc_available, mc_create, mc_render,
+    mc_destroy};

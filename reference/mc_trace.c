@@ -1,0 +1,296 @@
+/* mc_trace.c — the Monte-Carlo reference's estimators (see mc_trace.h, docs/reference.md). */
+#include "mc_trace.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene_internal.h"
+
+double mc_detail_bound(const ics_detail *d) {
+  switch (d->fn) {
+  case ICS_DETAIL_PERLIN: return 2;
+  case ICS_DETAIL_FBM: {
+    double b = 0, amp = 1;
+    for (int o = 0; o < d->octaves; o++) b += 2 * amp, amp *= fabs(d->gain);
+    return b;
+  }
+  case ICS_DETAIL_RIDGED: {
+    /* each octave's signal is (offset - |n|)^2 <= max(offset^2, (offset - 2)^2) for |n| <= 2,
+     * times a weight in [0, 1], times lacunarity^-o (o >= 1) */
+    double a = d->offset, top = fmax(a * a, (a - 2) * (a - 2)), b = top, expo = 1;
+    for (int o = 1; o < d->octaves; o++) expo /= d->lacunarity, b += top * expo;
+    return b;
+  }
+  case ICS_DETAIL_GRID: {
+    double b = 0; /* samples outside the grid are 0 */
+    size_t n = (size_t)d->size[0] * d->size[1] * d->size[2];
+    for (size_t i = 0; i < n; i++) b = fmax(b, fabs((double)d->grid[i]));
+    return b;
+  }
+  default: return 0;
+  }
+}
+
+double mc_extinction_majorant(const ics_material *m) {
+  if (!m->volumetric) return 0;
+  if (m->detail.fn == ICS_DETAIL_NONE) return m->extinction;
+  double smax = 0;
+  if (m->ntransfer) {
+    /* piecewise linear and clamped: its maximum is at a node */
+    for (int i = 0; i < m->ntransfer; i++) smax = fmax(smax, m->transfer[i][4]);
+  } else {
+    double f = mc_detail_bound(&m->detail);
+    smax = fmax(0, m->detail.bias + fabs(m->detail.scale) * f);
+  }
+  return m->extinction * smax;
+}
+
+ics_status mc_scene_init(mc_scene *m, const ics_plan *P) {
+  memset(m, 0, sizeof *m);
+  const ics_scene *s = P->scene;
+  m->P = P;
+  m->s = s;
+  m->majorant = calloc((size_t)(s->nobjects ? s->nobjects : 1), sizeof *m->majorant);
+  if (!m->majorant) return ICS_ERR_NOMEM;
+  double extent = 0;
+  for (int i = 0; i < s->nobjects; i++) {
+    if (P->vol_bit[i] >= 0) {
+      m->vol_obj[P->vol_bit[i]] = i;
+      m->majorant[i] = mc_extinction_majorant(&s->materials[s->objects[i].material]);
+    }
+    double lo[3], hi[3];
+    ics_object_bounds(&s->objects[i], lo, hi);
+    for (int k = 0; k < 3; k++) extent = fmax(extent, fmax(fabs(lo[k]), fabs(hi[k])));
+  }
+  for (int k = 0; k < 3; k++) extent = fmax(extent, fabs(P->cam.eye[k]));
+  m->eps = 1e-9 * (1 + extent);
+  for (int l = 0; l < P->nlights; l++) {
+    const double *c = s->lights[l].cov;
+    double l11 = c[0] > 0 ? sqrt(c[0]) : 0, l21 = l11 > 0 ? c[1] / l11 : 0;
+    double r = c[2] - l21 * l21;
+    m->chol[l][0] = l11, m->chol[l][1] = l21, m->chol[l][2] = r > 0 ? sqrt(r) : 0;
+  }
+  return ICS_OK;
+}
+
+void mc_scene_release(mc_scene *m) {
+  free(m->majorant);
+  m->majorant = NULL;
+}
+
+void mc_thread_release(mc_thread *th) {
+  ics_hits_free(&th->hits);
+  free(th->x);
+  free(th->cam);
+  memset(th, 0, sizeof *th);
+}
+
+static int cmp_cross(const void *a, const void *b) {
+  const mc_cross *x = a, *y = b;
+  return x->t < y->t ? -1 : x->t > y->t ? 1 : x->obj - y->obj;
+}
+
+int mc_crossings(mc_thread *th, const mc_scene *m, const double orig[3], const double dir[3],
+                 double tmin, uint64_t *inside) {
+  const ics_scene *s = m->s;
+  th->nx = 0;
+  *inside = 0;
+  for (int k = 0; k < s->nobjects; k++) {
+    th->hits.n = 0;
+    int behind = 0;
+    if (ics_object_hits(&s->objects[k], orig, dir, &th->hits, &behind)) return -1;
+    int bit = m->P->vol_bit[k];
+    if (bit >= 0 && (behind & 1)) *inside |= 1ull << bit;
+    for (int i = 0; i < th->hits.n; i++) {
+      if (th->hits.h[i].t <= tmin) {
+        /* a volume's crossing in (0, tmin] still counts for the parity at the origin */
+        if (bit >= 0) *inside ^= 1ull << bit;
+        continue;
+      }
+      if (th->nx == th->cap) {
+        int cap = th->cap ? 2 * th->cap : 64;
+        mc_cross *x = realloc(th->x, sizeof *x * (size_t)cap);
+        if (!x) return -1;
+        th->x = x, th->cap = cap;
+      }
+      th->x[th->nx].t = th->hits.h[i].t;
+      th->x[th->nx++].obj = k;
+    }
+  }
+  if (th->nx > 1) qsort(th->x, (size_t)th->nx, sizeof *th->x, cmp_cross);
+  return 0;
+}
+
+/* the extinction of each volume of `inside` at p (detail evaluated), their sum, and the
+ * extinction-weighted colour */
+static double volume_at(const mc_scene *m, uint64_t inside, const double p[3], double *sig,
+                        double col[3]) {
+  const ics_scene *s = m->s;
+  double sum = 0;
+  if (col) col[0] = col[1] = col[2] = 0;
+  int n = 0;
+  for (uint64_t b = inside; b; b &= b - 1, n++) {
+    int obj = m->vol_obj[__builtin_ctzll(b)];
+    const ics_material *mat = &s->materials[s->objects[obj].material];
+    double scale = 1, c[3] = {mat->color[0], mat->color[1], mat->color[2]};
+    if (mat->detail.fn != ICS_DETAIL_NONE)
+      ics_material_transfer(mat, ics_detail_value(&m->P->detail[obj], p), c, &scale);
+    sig[n] = mat->extinction * scale;
+    sum += sig[n];
+    if (col)
+      for (int k = 0; k < 3; k++) col[k] += sig[n] * c[k];
+  }
+  if (col && sum > 0)
+    for (int k = 0; k < 3; k++) col[k] /= sum;
+  return sum;
+}
+
+static double majorant_of(const mc_scene *m, uint64_t inside, int *any_detail) {
+  double sum = 0;
+  *any_detail = 0;
+  for (uint64_t b = inside; b; b &= b - 1) {
+    int obj = m->vol_obj[__builtin_ctzll(b)];
+    sum += m->majorant[obj];
+    *any_detail |= m->s->materials[m->s->objects[obj].material].detail.fn != ICS_DETAIL_NONE;
+  }
+  return sum;
+}
+
+static double exp_step(ics_rng *r, double rate) { return -log(1 - ics_rng_uniform(r)) / rate; }
+
+int mc_light_transmittance(mc_thread *th, const mc_scene *m, int l, const double p[3],
+                           uint64_t inside, ics_rng *r, double T[3]) {
+  const ics_plan *P = m->P;
+  const ics_scene *s = m->s;
+  const ics_light *L = &s->lights[l];
+  const double *ch = m->chol[l];
+  double z1 = ics_rng_normal(r), z2 = ics_rng_normal(r);
+  double X = L->mean[0] + ch[0] * z1, Y = L->mean[1] + ch[1] * z1 + ch[2] * z2, w[3];
+  for (int k = 0; k < 3; k++) w[k] = X * P->cam.r[k] + Y * P->cam.u[k] - P->cam.f[k];
+  double wl = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  T[0] = T[1] = T[2] = 1;
+  uint64_t ignored;
+  if (mc_crossings(th, m, p, w, m->eps, &ignored)) return -1;
+  uint64_t mask = inside;
+  double ta = 0;
+  for (int i = 0; i <= th->nx; i++) {
+    double tb = i < th->nx ? th->x[i].t : INFINITY;
+    if (mask && tb < INFINITY) {
+      int detail;
+      double maj = majorant_of(m, mask, &detail), sig[ICS_MAX_VOLUMES];
+      if (!detail) {
+        double sc[3] = {0, 0, 0};
+        int n = 0;
+        volume_at(m, mask, p, sig, NULL);
+        for (uint64_t b = mask; b; b &= b - 1, n++) {
+          const double *tr = s->materials[s->objects[m->vol_obj[__builtin_ctzll(b)]].material].transport;
+          for (int c = 0; c < 3; c++) sc[c] += sig[n] * (1 - tr[c]);
+        }
+        for (int c = 0; c < 3; c++) T[c] *= exp(-sc[c] * (tb - ta) * wl);
+      } else if (maj > 0) { /* ratio tracking */
+        for (double t = ta + exp_step(r, maj * wl); t < tb; t += exp_step(r, maj * wl)) {
+          double q[3], sc[3] = {0, 0, 0};
+          for (int k = 0; k < 3; k++) q[k] = p[k] + t * w[k];
+          volume_at(m, mask, q, sig, NULL);
+          int n = 0;
+          for (uint64_t b = mask; b; b &= b - 1, n++) {
+            const double *tr = s->materials[s->objects[m->vol_obj[__builtin_ctzll(b)]].material].transport;
+            for (int c = 0; c < 3; c++) sc[c] += sig[n] * (1 - tr[c]);
+          }
+          for (int c = 0; c < 3; c++) T[c] *= 1 - sc[c] / maj;
+        }
+      }
+    }
+    if (i == th->nx) break;
+    int obj = th->x[i].obj, bit = P->vol_bit[obj];
+    if (bit >= 0) {
+      mask ^= 1ull << bit;
+    } else {
+      const ics_material *mat = &s->materials[s->objects[obj].material];
+      for (int c = 0; c < 3; c++) T[c] *= 1 - mat->opacity * (1 - mat->transport[c]);
+    }
+    if (T[0] == 0 && T[1] == 0 && T[2] == 0) break;
+    ta = tb;
+  }
+  return 0;
+}
+
+/* L(p) per channel and, when vis is non-NULL, the transmittance toward each light */
+static int light_at(mc_thread *th, const mc_scene *m, const double p[3], uint64_t inside,
+                    ics_rng *r, double Lc[3], double (*vis)[3]) {
+  Lc[0] = Lc[1] = Lc[2] = 0;
+  for (int l = 0; l < m->P->nlights; l++) {
+    const ics_light *L = &m->s->lights[l];
+    double T[3];
+    if (mc_light_transmittance(th, m, l, p, inside, r, T)) return -1;
+    for (int c = 0; c < 3; c++) Lc[c] += L->color[c] * L->weight * T[c];
+    if (vis) memcpy(vis[l], T, sizeof T);
+  }
+  return 0;
+}
+
+int mc_pixel_sample(mc_thread *th, const mc_scene *m, int i, int j, int want_vis, ics_rng *r,
+                    mc_sample *out) {
+  const ics_plan *P = m->P;
+  const ics_scene *s = m->s;
+  memset(out, 0, sizeof *out);
+  double o[3], d[3];
+  ics_plan_ray(P, i + P->pad[0], j + P->pad[2], o, d);
+  double dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]); /* path per unit depth */
+  uint64_t mask;
+  if (mc_crossings(th, m, o, d, 0, &mask)) return -1;
+  /* the light estimates below reuse th's crossing list: the camera's moves to th->cam */
+  int nx = th->nx;
+  if (nx > th->camcap) {
+    mc_cross *c = realloc(th->cam, sizeof *c * (size_t)nx);
+    if (!c) return -1;
+    th->cam = c, th->camcap = nx;
+  }
+  mc_cross *cam = th->cam;
+  if (nx) memcpy(cam, th->x, sizeof *cam * (size_t)nx);
+  double beta = 1, ta = 0, Lc[3];
+  int ended = 0;
+  for (int k = 0; k <= nx && (!ended || (want_vis && !out->surface)); k++) {
+    double tb = k < nx ? cam[k].t : INFINITY;
+    if (!ended && mask && tb < INFINITY) { /* delta tracking through the volumes */
+      int detail;
+      double maj = majorant_of(m, mask, &detail), sig[ICS_MAX_VOLUMES], col[3];
+      for (double t = maj > 0 ? ta + exp_step(r, maj * dl) : INFINITY; t < tb;
+           t += exp_step(r, maj * dl)) {
+        double q[3];
+        for (int c = 0; c < 3; c++) q[c] = o[c] + t * d[c];
+        double sg = volume_at(m, mask, q, sig, col);
+        if (detail && ics_rng_uniform(r) * maj >= sg) continue; /* a null collision */
+        if (light_at(th, m, q, mask, r, Lc, NULL)) return -1;
+        for (int c = 0; c < 3; c++) out->rgba[c] += beta * col[c] * Lc[c];
+        beta = 0;
+        ended = 1;
+        break;
+      }
+    }
+    if (k == nx) break;
+    int obj = cam[k].obj, bit = P->vol_bit[obj];
+    if (bit >= 0) {
+      mask ^= 1ull << bit;
+    } else {
+      const ics_material *mat = &s->materials[s->objects[obj].material];
+      int first = !out->surface && mat->opacity > 0;
+      if (first || !ended) {
+        double q[3];
+        for (int c = 0; c < 3; c++) q[c] = o[c] + tb * d[c];
+        if (light_at(th, m, q, mask, r, Lc, first && want_vis ? out->vis : NULL)) return -1;
+        if (first) out->surface = 1, out->z = tb;
+        if (!ended) {
+          for (int c = 0; c < 3; c++) out->rgba[c] += beta * mat->opacity * mat->color[c] * Lc[c];
+          beta *= 1 - mat->opacity;
+          if (beta == 0) ended = 1;
+        }
+      }
+    }
+    ta = tb;
+  }
+  for (int c = 0; c < 3; c++) out->rgba[c] += beta * P->rs.background[c];
+  out->rgba[3] = 1 - beta;
+  return 0;
+}

@@ -1,0 +1,80 @@
+/* mc_trace.h — the estimators of the Monte-Carlo reference (backend "mc", docs/reference.md):
+ * the scene's semantics (docs/scene-format.md) evaluated without slabs. One sample of a pixel
+ * walks its camera ray through every crossing in order: a surface of opacity a and colour c adds
+ * beta a c (x) L(p) and leaves beta (1 - a); a volume is crossed by delta tracking against a
+ * majorant of its extinction, and a real collision adds beta c(p) (x) L(p) and ends the walk (the
+ * transmittance as a probability); what escapes adds beta background. L(p) = sum_k colour_k
+ * weight_k T_k(p), where T_k(p) is one sample of the transmittance toward light k: a direction
+ * X ~ N(mu_k, Sigma_k) on the virtual light plane, the ray p + t (X_x r + X_y u - f), surfaces
+ * passing 1 - a (1 - T_c), volumes exp(-sigma (1 - T_c) length) (exact for constant extinction,
+ * ratio tracking through detail). Every estimator is unbiased for the model's exact value. */
+#ifndef ICS_MC_TRACE_H
+#define ICS_MC_TRACE_H
+
+#include <stdint.h>
+
+#include "geometry.h"
+#include "icshadow/rng.h"
+#include "plan_internal.h"
+
+/* What the estimators read, fixed per render. */
+typedef struct mc_scene {
+  const ics_plan *P;
+  const ics_scene *s;
+  double *majorant;  /* per object: a bound of its extinction (volumes), 0 for surfaces */
+  int vol_obj[ICS_MAX_VOLUMES]; /* the object of each volume bit */
+  double chol[ICS_SCENE_MAX_LIGHTS][3]; /* per light: Sigma = L L^T, (l11, l21, l22) */
+  double eps;        /* crossings at ray parameters <= eps from a ray's origin are its own */
+} mc_scene;
+
+/* One crossing of a ray: parameter and object. */
+typedef struct mc_cross {
+  double t;
+  int obj;
+} mc_cross;
+
+/* Per-thread scratch. */
+typedef struct mc_thread {
+  ics_hits hits;
+  mc_cross *x;     /* the last ray's crossings */
+  int nx, cap;
+  mc_cross *cam;   /* the camera ray's, while light rays use x */
+  int camcap;
+} mc_thread;
+
+/* One sample of one pixel. */
+typedef struct mc_sample {
+  double rgba[4];
+  int surface;                          /* the ray meets a surface (opacity > 0) */
+  double z;                             /* its view depth */
+  double vis[ICS_SCENE_MAX_LIGHTS][3];  /* the transmittance toward each light there */
+} mc_sample;
+
+/* Majorants and light factors for plan P. ICS_ERR_NOMEM. */
+ics_status mc_scene_init(mc_scene *m, const ics_plan *P);
+void mc_scene_release(mc_scene *m);
+void mc_thread_release(mc_thread *th);
+
+/* A bound of |f| for the detail function d's noise part (v = bias + scale f): rigorous for
+ * improved noise (|noise| <= 2: the gradients' dot products with offsets in [-1, 1]^3 are at most
+ * 2 and the interpolation is convex), fBm, ridged multifractal and grids. */
+double mc_detail_bound(const ics_detail *d);
+/* A bound of material m's extinction over every detail value its detail can take. */
+double mc_extinction_majorant(const ics_material *m);
+
+/* The crossings of orig + t dir with t > tmin, sorted by t, in th->x (th->nx); *inside gets the
+ * volumes (bits of P->vol_bit) containing orig by parity. -1 when out of memory. */
+int mc_crossings(mc_thread *th, const mc_scene *m, const double orig[3], const double dir[3],
+                 double tmin, uint64_t *inside);
+
+/* One sample of the transmittance toward light l from p, inside the volumes `inside`, per
+ * channel. -1 when out of memory. */
+int mc_light_transmittance(mc_thread *th, const mc_scene *m, int l, const double p[3],
+                           uint64_t inside, ics_rng *r, double T[3]);
+
+/* One sample of view pixel (i, j). want_vis: also the first surface's transmittances (even
+ * where the walk ended in a volume in front of it). -1 when out of memory. */
+int mc_pixel_sample(mc_thread *th, const mc_scene *m, int i, int j, int want_vis, ics_rng *r,
+                    mc_sample *out);
+
+#endif
