@@ -340,7 +340,31 @@ static void test_errno(void) {
   ics_light1d_destroy(mx);
 }
 
+/* ics_light_cov_sqrt: R R = cov for PSD matrices; a nearly singular one the readers accept keeps
+ * its large variance (a Cholesky factor with the pivot 1e-10 would make the y-variance 1e4) */
+static void test_cov_sqrt(void) {
+  const double covs[4][3] = {{0.02, 0.005, 0.01}, {1, 0, 0}, {0, 0, 0.3}, {4e-6, -1.9e-6, 1e-6}};
+  double worst = 0;
+  for (int k = 0; k < 4; k++) {
+    double r[3];
+    CHECK(ics_light_cov_sqrt(covs[k], r) == 1, "PSD %d", k);
+    double sq[3] = {r[0] * r[0] + r[1] * r[1], r[0] * r[1] + r[1] * r[2], r[1] * r[1] + r[2] * r[2]};
+    double tr = covs[k][0] + covs[k][2];
+    for (int i = 0; i < 3; i++) worst = fmax(worst, fabs(sq[i] - covs[k][i]) / tr);
+  }
+  CHECK(worst < 4e-16, "R R = cov: worst relative %g", worst);
+  const double near[3] = {1e-20, 1e-8, 0.01};
+  double r[3];
+  int psd = ics_light_cov_sqrt(near, r);
+  double vy = r[1] * r[1] + r[2] * r[2], vx = r[0] * r[0] + r[1] * r[1];
+  CHECK(psd == 0 && fabs(vy - 0.01) < 1e-9 && vx < 1e-12, "nearly singular: psd %d, (R R)yy %.17g, xx %g",
+        psd, vy, vx);
+  const double bad[3] = {NAN, 0, 1};
+  CHECK(ics_light_cov_sqrt(bad, r) == -1, "NaN refused");
+}
+
 int main(void) {
+  test_cov_sqrt();
   test_overflow();
   test_normal();
   test_gauss();

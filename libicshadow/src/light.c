@@ -86,6 +86,12 @@ ics_status ics_light_cov_to_eig(const double cov[3], double *varx, double *vary,
   return ICS_OK;
 }
 
+int ics_light_cov_sqrt(const double cov[3], double root[3]) {
+  for (int i = 0; i < 3; i++)
+    if (!isfinite(cov[i])) return -1;
+  return ics_sym2_sqrt(cov[0], cov[1], cov[2], root);
+}
+
 ics_status ics_light_init_tilt(ics_light *out, double wx, double wy, double varx, double vary,
                                double alpha, const double color[3], double weight) {
   ics_status s;

@@ -63,6 +63,13 @@ ICS_API ics_status ics_light_cov_from_eig(double varx, double vary, double alpha
 ICS_API ics_status ics_light_cov_to_eig(const double cov[3], double *varx, double *vary,
                                         double *alpha_deg);
 
+/* The symmetric positive-semidefinite square root R of a covariance {cxx, cxy, cyy} (R R = cov,
+ * so mu + R z with z ~ N(0, I) samples N(mu, cov)), with eigenvalues below 0 taken as 0: a
+ * nearly singular matrix that the readers accept (determinant slightly below 0) gets the root of
+ * its nearest PSD matrix, not a Cholesky factor blown up by a tiny pivot. Returns 1 when cov is
+ * PSD as computed, 0 when an eigenvalue was raised to 0; -1 (root unset) for a non-finite entry. */
+ICS_API int ics_light_cov_sqrt(const double cov[3], double root[3]);
+
 /* Fills *out with a Gaussian light from tilt angles, (varx, vary, alpha), colour (NULL: white) and
  * weight. ICS_ERR_RANGE when a tilt is at or beyond +-90 degrees; ICS_ERR_NAN, ICS_ERR_INFINITE,
  * ICS_ERR_NEGATIVE_VARIANCE, ICS_ERR_INVALID_ARG (negative weight or colour) otherwise. */
