@@ -117,6 +117,10 @@ static ics_status mc_render(void *state, const ics_plan *P, const ics_render_opt
                       "finite and >= 0 (got %d, %g, %g)", MC_MAX_SPP, o->spp, o->time_s, o->noise);
     return ICS_ERR_INVALID_ARG;
   }
+  if (aov && aov->err >= 0 && o->spp == 1) {
+    if (msg) snprintf(msg, msg_size, "mc: a standard error needs at least 2 samples per pixel");
+    return ICS_ERR_INVALID_ARG;
+  }
   int spp = o->spp, stop_by_count = spp > 0;
   if (spp == 0 && !(o->time_s > 0) && !(o->noise > 0)) spp = MC_DEFAULT_SPP, stop_by_count = 1;
   if (!stop_by_count) spp = MC_MAX_SPP;
@@ -144,6 +148,7 @@ static ics_status mc_render(void *state, const ics_plan *P, const ics_render_opt
     n++;
     if (o->progress) o->progress(o->progress_ctx, n, stop_by_count ? spp : 0);
     if (o->noise > 0 || n == spp) noise = noise_of(&ps, npx, n);
+    if (n < 2) continue; /* a time or noise stop takes at least 2 samples: a standard error */
     if (o->noise > 0 && noise <= o->noise) break;
     if (o->time_s > 0 && now_s() - t_start >= o->time_s) break;
   }
@@ -163,7 +168,7 @@ static ics_status mc_render(void *state, const ics_plan *P, const ics_render_opt
   st->threads = nt;
   st->slabs = 0;
   st->spp = n;
-  st->noise = isfinite(noise) ? noise : 0;
+  st->noise = n > 1 ? noise : NAN;
   snprintf(st->device, sizeof st->device, "CPU, %d thread%s (Monte Carlo)", nt, nt == 1 ? "" : "s");
   st->ms_total = 1e3 * (now_s() - t_start);
   st->ms_shading = st->ms_total;

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "icshadow/light.h"
 #include "scene_internal.h"
 
 double mc_detail_bound(const ics_detail *d) {
@@ -35,13 +36,18 @@ double mc_detail_bound(const ics_detail *d) {
 double mc_extinction_majorant(const ics_material *m) {
   if (!m->volumetric) return 0;
   if (m->detail.fn == ICS_DETAIL_NONE) return m->extinction;
-  double smax = 0;
+  /* the detail values the function can reach */
+  double f = mc_detail_bound(&m->detail), vlo = m->detail.bias - fabs(m->detail.scale) * f,
+         vhi = m->detail.bias + fabs(m->detail.scale) * f, smax = 0;
   if (m->ntransfer) {
-    /* piecewise linear and clamped: its maximum is at a node */
-    for (int i = 0; i < m->ntransfer; i++) smax = fmax(smax, m->transfer[i][4]);
+    /* piecewise linear and clamped: its maximum over [vlo, vhi] is at an end or a node within */
+    double rgb[3], s;
+    ics_material_transfer(m, vlo, rgb, &s), smax = fmax(smax, s);
+    ics_material_transfer(m, vhi, rgb, &s), smax = fmax(smax, s);
+    for (int i = 0; i < m->ntransfer; i++)
+      if (m->transfer[i][0] > vlo && m->transfer[i][0] < vhi) smax = fmax(smax, m->transfer[i][4]);
   } else {
-    double f = mc_detail_bound(&m->detail);
-    smax = fmax(0, m->detail.bias + fabs(m->detail.scale) * f);
+    smax = fmax(0, vhi);
   }
   return m->extinction * smax;
 }
@@ -65,12 +71,7 @@ ics_status mc_scene_init(mc_scene *m, const ics_plan *P) {
   }
   for (int k = 0; k < 3; k++) extent = fmax(extent, fabs(P->cam.eye[k]));
   m->eps = 1e-9 * (1 + extent);
-  for (int l = 0; l < P->nlights; l++) {
-    const double *c = s->lights[l].cov;
-    double l11 = c[0] > 0 ? sqrt(c[0]) : 0, l21 = l11 > 0 ? c[1] / l11 : 0;
-    double r = c[2] - l21 * l21;
-    m->chol[l][0] = l11, m->chol[l][1] = l21, m->chol[l][2] = r > 0 ? sqrt(r) : 0;
-  }
+  for (int l = 0; l < P->nlights; l++) ics_light_cov_sqrt(s->lights[l].cov, m->root[l]);
   return ICS_OK;
 }
 
@@ -115,6 +116,7 @@ int mc_crossings(mc_thread *th, const mc_scene *m, const double orig[3], const d
         th->x = x, th->cap = cap;
       }
       th->x[th->nx].t = th->hits.h[i].t;
+      memcpy(th->x[th->nx].n, th->hits.h[i].n, sizeof th->x[th->nx].n);
       th->x[th->nx++].obj = k;
     }
   }
@@ -159,24 +161,34 @@ static double majorant_of(const mc_scene *m, uint64_t inside, int *any_detail) {
 
 static double exp_step(ics_rng *r, double rate) { return -log(1 - ics_rng_uniform(r)) / rate; }
 
+static double dot3(const double a[3], const double b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
 int mc_light_transmittance(mc_thread *th, const mc_scene *m, int l, const double p[3],
-                           uint64_t inside, ics_rng *r, double T[3]) {
+                           const mc_surface *own, ics_rng *r, double T[3]) {
   const ics_plan *P = m->P;
   const ics_scene *s = m->s;
   const ics_light *L = &s->lights[l];
-  const double *ch = m->chol[l];
+  const double *R = m->root[l];
   double z1 = ics_rng_normal(r), z2 = ics_rng_normal(r);
-  double X = L->mean[0] + ch[0] * z1, Y = L->mean[1] + ch[1] * z1 + ch[2] * z2, w[3];
+  double X = L->mean[0] + R[0] * z1 + R[1] * z2, Y = L->mean[1] + R[1] * z1 + R[2] * z2, w[3];
   for (int k = 0; k < 3; k++) w[k] = X * P->cam.r[k] + Y * P->cam.u[k] - P->cam.f[k];
   double wl = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
   T[0] = T[1] = T[2] = 1;
-  uint64_t ignored;
-  if (mc_crossings(th, m, p, w, m->eps, &ignored)) return -1;
-  uint64_t mask = inside;
+  if (own && dot3(w, own->n) * dot3(own->d, own->n) > 0) /* through the surface itself */
+    for (int c = 0; c < 3; c++) T[c] *= 1 - own->mat->opacity * (1 - own->mat->transport[c]);
+  /* the ray's own volume state just off p (robust where p lies on a volume's boundary: a point
+   * strictly inside has the camera's), up to the eye plane: depth falls by 1 per unit t */
+  uint64_t mask;
+  if (mc_crossings(th, m, p, w, m->eps, &mask)) return -1;
+  double tmax = 0;
+  for (int k = 0; k < 3; k++) tmax += (p[k] - P->cam.eye[k]) * P->cam.f[k];
   double ta = 0;
-  for (int i = 0; i <= th->nx; i++) {
-    double tb = i < th->nx ? th->x[i].t : INFINITY;
-    if (mask && tb < INFINITY) {
+  for (int i = 0; i <= th->nx && ta < tmax; i++) {
+    double tb = i < th->nx && th->x[i].t < tmax ? th->x[i].t : tmax;
+    int at_crossing = i < th->nx && th->x[i].t < tmax;
+    if (mask && tb > ta) {
       int detail;
       double maj = majorant_of(m, mask, &detail), sig[ICS_MAX_VOLUMES];
       if (!detail) {
@@ -202,7 +214,7 @@ int mc_light_transmittance(mc_thread *th, const mc_scene *m, int l, const double
         }
       }
     }
-    if (i == th->nx) break;
+    if (!at_crossing) break;
     int obj = th->x[i].obj, bit = P->vol_bit[obj];
     if (bit >= 0) {
       mask ^= 1ull << bit;
@@ -216,14 +228,15 @@ int mc_light_transmittance(mc_thread *th, const mc_scene *m, int l, const double
   return 0;
 }
 
-/* L(p) per channel and, when vis is non-NULL, the transmittance toward each light */
-static int light_at(mc_thread *th, const mc_scene *m, const double p[3], uint64_t inside,
+/* L(p) per channel and, when vis is non-NULL, the transmittance toward each light; own: the
+ * surface p lies on, or NULL */
+static int light_at(mc_thread *th, const mc_scene *m, const double p[3], const mc_surface *own,
                     ics_rng *r, double Lc[3], double (*vis)[3]) {
   Lc[0] = Lc[1] = Lc[2] = 0;
   for (int l = 0; l < m->P->nlights; l++) {
     const ics_light *L = &m->s->lights[l];
     double T[3];
-    if (mc_light_transmittance(th, m, l, p, inside, r, T)) return -1;
+    if (mc_light_transmittance(th, m, l, p, own, r, T)) return -1;
     for (int c = 0; c < 3; c++) Lc[c] += L->color[c] * L->weight * T[c];
     if (vis) memcpy(vis[l], T, sizeof T);
   }
@@ -249,9 +262,15 @@ int mc_pixel_sample(mc_thread *th, const mc_scene *m, int i, int j, int want_vis
   }
   mc_cross *cam = th->cam;
   if (nx) memcpy(cam, th->x, sizeof *cam * (size_t)nx);
+  /* the first surface (opacity > 0), from the geometry alone */
+  int first = -1;
+  for (int k = 0; k < nx && first < 0; k++)
+    if (P->vol_bit[cam[k].obj] < 0 && s->materials[s->objects[cam[k].obj].material].opacity > 0)
+      first = k;
+  if (first >= 0) out->surface = 1, out->z = cam[first].t;
   double beta = 1, ta = 0, Lc[3];
   int ended = 0;
-  for (int k = 0; k <= nx && (!ended || (want_vis && !out->surface)); k++) {
+  for (int k = 0; k <= nx && (!ended || (want_vis && k <= first)); k++) {
     double tb = k < nx ? cam[k].t : INFINITY;
     if (!ended && mask && tb < INFINITY) { /* delta tracking through the volumes */
       int detail;
@@ -262,7 +281,7 @@ int mc_pixel_sample(mc_thread *th, const mc_scene *m, int i, int j, int want_vis
         for (int c = 0; c < 3; c++) q[c] = o[c] + t * d[c];
         double sg = volume_at(m, mask, q, sig, col);
         if (detail && ics_rng_uniform(r) * maj >= sg) continue; /* a null collision */
-        if (light_at(th, m, q, mask, r, Lc, NULL)) return -1;
+        if (light_at(th, m, q, NULL, r, Lc, NULL)) return -1;
         for (int c = 0; c < 3; c++) out->rgba[c] += beta * col[c] * Lc[c];
         beta = 0;
         ended = 1;
@@ -275,12 +294,12 @@ int mc_pixel_sample(mc_thread *th, const mc_scene *m, int i, int j, int want_vis
       mask ^= 1ull << bit;
     } else {
       const ics_material *mat = &s->materials[s->objects[obj].material];
-      int first = !out->surface && mat->opacity > 0;
-      if (first || !ended) {
+      int vis_here = want_vis && k == first;
+      if (mat->opacity > 0 && (vis_here || !ended)) {
         double q[3];
         for (int c = 0; c < 3; c++) q[c] = o[c] + tb * d[c];
-        if (light_at(th, m, q, mask, r, Lc, first && want_vis ? out->vis : NULL)) return -1;
-        if (first) out->surface = 1, out->z = tb;
+        mc_surface own = {cam[k].n, d, mat};
+        if (light_at(th, m, q, &own, r, Lc, vis_here ? out->vis : NULL)) return -1;
         if (!ended) {
           for (int c = 0; c < 3; c++) out->rgba[c] += beta * mat->opacity * mat->color[c] * Lc[c];
           beta *= 1 - mat->opacity;

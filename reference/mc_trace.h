@@ -7,7 +7,11 @@
  * weight_k T_k(p), where T_k(p) is one sample of the transmittance toward light k: a direction
  * X ~ N(mu_k, Sigma_k) on the virtual light plane, the ray p + t (X_x r + X_y u - f), surfaces
  * passing 1 - a (1 - T_c), volumes exp(-sigma (1 - T_c) length) (exact for constant extinction,
- * ratio tracking through detail). Every estimator is unbiased for the model's exact value. */
+ * ratio tracking through detail). A shadow ray from a surface point that leaves on the far side
+ * of that surface (the side the camera ray goes on to) crosses the surface itself and is filtered
+ * by it: a surface is lit only from its viewed side (the limit of Patel's slicing). Light enters
+ * the scene at the eye plane (depth 0): what lies behind the camera casts no shadow, as in the
+ * slab renderer. Every estimator is unbiased for the model's exact value. */
 #ifndef ICS_MC_TRACE_H
 #define ICS_MC_TRACE_H
 
@@ -23,7 +27,7 @@ typedef struct mc_scene {
   const ics_scene *s;
   double *majorant;  /* per object: a bound of its extinction (volumes), 0 for surfaces */
   int vol_obj[ICS_MAX_VOLUMES]; /* the object of each volume bit */
-  double chol[ICS_SCENE_MAX_LIGHTS][3]; /* per light: Sigma = L L^T, (l11, l21, l22) */
+  double root[ICS_SCENE_MAX_LIGHTS][3]; /* per light: Sigma = R R, R symmetric (ra, rb, rd) */
   double eps;        /* crossings at ray parameters <= eps from a ray's origin are its own */
 } mc_scene;
 
@@ -31,6 +35,7 @@ typedef struct mc_scene {
 typedef struct mc_cross {
   double t;
   int obj;
+  double n[3]; /* the surface normal there (not normalised, sign arbitrary) */
 } mc_cross;
 
 /* Per-thread scratch. */
@@ -63,17 +68,25 @@ double mc_detail_bound(const ics_detail *d);
 double mc_extinction_majorant(const ics_material *m);
 
 /* The crossings of orig + t dir with t > tmin, sorted by t, in th->x (th->nx); *inside gets the
- * volumes (bits of P->vol_bit) containing orig by parity. -1 when out of memory. */
+ * volumes (bits of P->vol_bit) containing orig + tmin dir by parity. -1 when out of memory. */
 int mc_crossings(mc_thread *th, const mc_scene *m, const double orig[3], const double dir[3],
                  double tmin, uint64_t *inside);
 
-/* One sample of the transmittance toward light l from p, inside the volumes `inside`, per
- * channel. -1 when out of memory. */
-int mc_light_transmittance(mc_thread *th, const mc_scene *m, int l, const double p[3],
-                           uint64_t inside, ics_rng *r, double T[3]);
+/* The surface a shading point lies on, seen along the camera direction d. */
+typedef struct mc_surface {
+  const double *n, *d;
+  const ics_material *mat;
+} mc_surface;
 
-/* One sample of view pixel (i, j). want_vis: also the first surface's transmittances (even
- * where the walk ended in a volume in front of it). -1 when out of memory. */
+/* One sample of the transmittance toward light l from p, per channel (the volumes around p from
+ * the ray's own crossings); own: the surface p lies on (NULL for a point in a volume). -1 when out
+ * of memory. */
+int mc_light_transmittance(mc_thread *th, const mc_scene *m, int l, const double p[3],
+                           const mc_surface *own, ics_rng *r, double T[3]);
+
+/* One sample of view pixel (i, j): the first surface (opacity > 0) and its depth always;
+ * want_vis: also its transmittances (even where the walk ended in a volume in front of it).
+ * -1 when out of memory. */
 int mc_pixel_sample(mc_thread *th, const mc_scene *m, int i, int j, int want_vis, ics_rng *r,
                     mc_sample *out);
 

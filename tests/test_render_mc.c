@@ -14,6 +14,12 @@
  *   standard errors of the mean, per channel;
  * - a two-light scene against the sum of its one-light renders (independent seeds): the
  *   per-pixel z-scores' mean square in [0.8, 1.25], none beyond 6;
+ * - a surface is lit only from its viewed side: a plane seen obliquely (normal (0, 0.8, 0.6),
+ *   camera along -z) under a light whose directions straddle it, X_y ~ N(-0.8, 0.01): the light
+ *   reaches the viewed side for 0.8 X_y + 0.6 > 0, so V = Phi(-0.5) = 0.30854 (mean over the
+ *   plane's pixels within 4 standard errors);
+ * - the same slab resting on the receiver, listed before and after it (coincident crossings);
+ * - the depth AOV behind smoke every walk ends in; an occluder behind the eye casts no shadow;
  * - 1 and 2 threads bit-identical; the detail bounds hold on 200000 random points; a noise stop
  *   ends at or below its noise; the stderr AOV is refused by the slab renderer. */
 #include <math.h>
@@ -96,10 +102,19 @@ static void test_disk(void) {
   release(&r);
 }
 
-static void test_slab(int through_transfer) {
+/* layout: 0 the slab floating, 1 the same through a transfer function, 2 and 3 the slab resting on
+ * the receiver (its bottom face at the receiver's depth), listed before and after it: the shading
+ * point lies on the volume's boundary, so its shadow ray's volume state must come from its own
+ * crossings, whatever order the two coincident crossings sort in */
+static void test_slab(int layout) {
+  const int through_transfer = layout == 1;
   const double sigma = 1.5, l = 0.8, col[3] = {0.8, 0.6, 0.4}, T[3] = {0.5, 0.2, 0};
   const double mu[2] = {0.3, -0.2}, k = sqrt(1 + mu[0] * mu[0] + mu[1] * mu[1]);
   char json[4096];
+  const char *receiver_first = "{\"shape\": \"rect\", \"center\": [0, 0, -1], \"normal\": [0, 0, 1], \"size\": [20, 20], \"material\": \"white\"}, ",
+             *receiver_last = ", {\"shape\": \"rect\", \"center\": [0, 0, -1], \"normal\": [0, 0, 1], \"size\": [20, 20], \"material\": \"white\"}";
+  static const char *const what[4] = {"", " (transfer, null collisions)", " (on the receiver, listed first)",
+                                      " (on the receiver, listed after it)"};
   /* through_transfer: detail value 0.3 everywhere (scale 0), mapped to half the extinction
    * scale of the transfer function's top node, so the majorant is twice the extinction */
   snprintf(json, sizeof json,
@@ -108,14 +123,13 @@ static void test_slab(int through_transfer) {
            " \"lights\": [{\"mean\": [%g, %g], \"cov\": [[0, 0], [0, 0]]}],"
            " \"materials\": {\"smoke\": {\"color\": [%g, %g, %g], \"extinction\": %g, \"transport\": [%g, %g, %g]%s},"
            "  \"white\": {}},"
-           " \"objects\": [{\"shape\": \"box\", \"center\": [0, 0, 0], \"size\": [20, 20, %g], \"material\": \"smoke\"},"
-           "  {\"shape\": \"rect\", \"center\": [0, 0, -1], \"normal\": [0, 0, 1], \"size\": [20, 20], \"material\": \"white\"}]}",
+           " \"objects\": [%s{\"shape\": \"box\", \"center\": [0, 0, %g], \"size\": [20, 20, %g], \"material\": \"smoke\"}%s]}",
            mu[0], mu[1], col[0], col[1], col[2], through_transfer ? 2 * sigma : sigma, T[0], T[1], T[2],
            through_transfer
                ? ", \"detail\": {\"function\": \"perlin\", \"scale\": 0, \"bias\": 0.3},"
                  " \"transfer\": [[0, 0.8, 0.6, 0.4, 0], [0.3, 0.8, 0.6, 0.4, 0.5], [1, 0.8, 0.6, 0.4, 1]]"
                : "",
-           l);
+           layout == 3 ? receiver_first : "", layout >= 2 ? -1 + l / 2 : 0, l, layout == 3 ? "" : receiver_last);
   render_result r = mc_render(json, 64, 0, ICS_AOV_STDERR);
   int W = r.img->width, H = r.img->height, ie = ics_exr_channel_index(r.aov, "stderr.R");
   double worst = 0;
@@ -129,11 +143,76 @@ static void test_slab(int through_transfer) {
       var += se * se;
     }
     double mean = sum / (W * H), se = sqrt(var) / (W * H), z = (mean - exact) / se;
-    printf("slab%s, channel %d: %.6f, exact %.6f (standard error %.2g, z %.2f)\n",
-           through_transfer ? " (transfer, null collisions)" : "", c, mean, exact, se, z);
+    printf("slab%s, channel %d: %.6f, exact %.6f (standard error %.2g, z %.2f)\n", what[layout], c,
+           mean, exact, se, z);
     worst = fmax(worst, fabs(z));
   }
-  CHECK(worst <= 4, "Beer-Lambert slab%s: |z| %.2f", through_transfer ? " (transfer)" : "", worst);
+  CHECK(worst <= 4, "Beer-Lambert slab%s: |z| %.2f", what[layout], worst);
+  release(&r);
+}
+
+static void test_own_side(void) {
+  const char *json =
+      "{\"camera\": {\"eye\": [0, 0, 2], \"target\": [0, 0, 0], \"height\": 1, \"resolution\": [32, 32]},"
+      " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"seed\": 13},"
+      " \"lights\": [{\"mean\": [0, -0.8], \"cov\": [[0.01, 0], [0, 0.01]]}],"
+      " \"materials\": {\"white\": {}},"
+      " \"objects\": [{\"shape\": \"rect\", \"center\": [0, 0, 0], \"normal\": [0, 0.8, 0.6], \"size\": [10, 10], \"material\": \"white\"}]}";
+  render_result r = mc_render(json, 64, 0, ICS_AOV_STDERR);
+  int npx = r.img->width * r.img->height, ie = ics_exr_channel_index(r.aov, "stderr.R");
+  double sum = 0, var = 0, exact = 0.5 * erfc(0.5 / sqrt(2));
+  for (int p = 0; p < npx; p++) {
+    sum += r.img->data[p * 4];
+    double se = r.aov->data[(size_t)p * r.aov->count + ie];
+    var += se * se;
+  }
+  double mean = sum / npx, se = sqrt(var) / npx, z = (mean - exact) / se;
+  printf("plane lit from its viewed side only: V %.5f, exact %.5f (standard error %.2g, z %.2f)\n",
+         mean, exact, se, z);
+  CHECK(fabs(z) <= 4, "own side: |z| %.2f", fabs(z));
+  release(&r);
+}
+
+/* the depth AOV is the first surface's, from the geometry alone: behind a smoke slab so dense that
+ * every camera walk ends in it, the receiver at view depth 3 is still found at each pixel */
+static void test_depth_behind_smoke(void) {
+  const char *json =
+      "{\"camera\": {\"eye\": [0, 0, 2], \"target\": [0, 0, 0], \"height\": 1, \"resolution\": [16, 16]},"
+      " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"seed\": 17},"
+      " \"lights\": [{\"mean\": [0.1, 0], \"cov\": [[0.01, 0], [0, 0.01]]}],"
+      " \"materials\": {\"smoke\": {\"extinction\": 200}, \"white\": {}},"
+      " \"objects\": [{\"shape\": \"box\", \"center\": [0, 0, 0], \"size\": [20, 20, 0.8], \"material\": \"smoke\"},"
+      "  {\"shape\": \"rect\", \"center\": [0, 0, -1], \"normal\": [0, 0, 1], \"size\": [20, 20], \"material\": \"white\"}]}";
+  render_result r = mc_render(json, 4, 0, ICS_AOV_DEPTH | ICS_AOV_VISIBILITY);
+  int npx = r.img->width * r.img->height, iz = ics_exr_channel_index(r.aov, "Z"),
+      iv = ics_exr_channel_index(r.aov, "light0.V");
+  double worst = 0, vmax = 0;
+  for (int p = 0; p < npx; p++) {
+    worst = fmax(worst, fabs(r.aov->data[(size_t)p * r.aov->count + iz] - 3));
+    vmax = fmax(vmax, r.aov->data[(size_t)p * r.aov->count + iv]);
+  }
+  printf("depth behind dense smoke: max |Z - 3| %.2g, max visibility %.2g (exp(-160) expected)\n", worst, vmax);
+  CHECK(iz >= 0 && worst <= 1e-5, "depth behind smoke: |Z - 3| up to %g", worst);
+  CHECK(iv >= 0 && vmax <= 1e-6, "visibility under dense smoke: %g", vmax);
+  release(&r);
+}
+
+/* light enters at the eye plane: an opaque plane behind the camera, across every shadow ray,
+ * casts no shadow (V = 1 exactly on the white receiver) */
+static void test_behind_eye(void) {
+  const char *json =
+      "{\"camera\": {\"eye\": [0, 0, 2], \"target\": [0, 0, 0], \"height\": 1, \"resolution\": [16, 16]},"
+      " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"seed\": 19},"
+      " \"lights\": [{\"mean\": [0.1, 0], \"cov\": [[0.01, 0], [0, 0.01]]}],"
+      " \"materials\": {\"black\": {\"color\": [0, 0, 0]}, \"white\": {}},"
+      " \"objects\": [{\"shape\": \"rect\", \"center\": [0, 0, 3], \"normal\": [0, 0, 1], \"size\": [100, 100], \"material\": \"black\"},"
+      "  {\"shape\": \"rect\", \"center\": [0, 0, -1], \"normal\": [0, 0, 1], \"size\": [20, 20], \"material\": \"white\"}]}";
+  render_result r = mc_render(json, 4, 0, 0);
+  int npx = r.img->width * r.img->height;
+  double worst = 0;
+  for (int p = 0; p < npx; p++) worst = fmax(worst, fabs(r.img->data[p * 4] - 1));
+  printf("an occluder behind the eye: max |V - 1| %.2g\n", worst);
+  CHECK(worst <= 1e-6, "an occluder behind the eye darkens the receiver: |V - 1| up to %g", worst);
   release(&r);
 }
 
@@ -257,9 +336,11 @@ int main(void) {
   gl_init(GL_N);
   test_bounds();
   test_disk();
-  test_slab(0);
-  test_slab(1);
+  for (int layout = 0; layout < 4; layout++) test_slab(layout);
   test_two_lights();
+  test_own_side();
+  test_depth_behind_smoke();
+  test_behind_eye();
   test_threads_and_stops();
   return test_summary("test_render_mc");
 }

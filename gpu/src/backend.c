@@ -156,6 +156,15 @@ ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsig
                       ics_status_str(st));
     return st;
   }
+  int nvis = (aovs & ICS_AOV_VISIBILITY) ? plan->nlights * plan->nch : 0;
+  int naov = nvis + ((aovs & ICS_AOV_DEPTH) ? 1 : 0) + ((aovs & ICS_AOV_STDERR) ? 4 + nvis : 0);
+  if (naov > ICS_EXR_MAX_CHANNELS - 4) {
+    if (msg)
+      snprintf(msg, msg_size, "%d AOV channels (%d lights x %d channels): an EXR holds at most %d "
+               "beside R, G, B, A", naov, plan->nlights, plan->nch, ICS_EXR_MAX_CHANNELS - 4);
+    ics_image_destroy(img);
+    return ICS_ERR_SIZE;
+  }
   ics_exr_channels *ch = NULL;
   ics_aov_buf buf;
   if (aovs && aov_create(plan, aovs, &ch, &buf) != ICS_OK) {

@@ -403,8 +403,12 @@ static int check_names(const ics_exr_channels *ch, char *msg, size_t msg_size, c
 
 ics_status ics_exr_write_channels(const char *path, const ics_exr_channels *ch, ics_exr_type type,
                                   int latlong, char *msg, size_t msg_size) {
-  if (!path || !ch || !ch->data || !ch->names || ch->count < 1 ||
-      ch->count > ICS_EXR_MAX_CHANNELS || ch->width < 1 || ch->height < 1 ||
+  if (path && ch && (ch->count < 1 || ch->count > ICS_EXR_MAX_CHANNELS)) {
+    set_msg(msg, msg_size, "%s: %d channels (1..%d per file)", path, ch->count,
+            ICS_EXR_MAX_CHANNELS);
+    return ICS_ERR_INVALID_ARG;
+  }
+  if (!path || !ch || !ch->data || !ch->names || ch->width < 1 || ch->height < 1 ||
       ch->width > ICS_IMAGE_MAX_DIM || ch->height > ICS_IMAGE_MAX_DIM ||
       (type != ICS_EXR_HALF && type != ICS_EXR_FLOAT)) {
     set_msg(msg, msg_size, "%s: invalid image or pixel type", path ? path : "(null)");

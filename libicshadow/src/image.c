@@ -47,7 +47,9 @@ int ics_image_find_bad(const ics_image *img, int *i, int *j, int *c) {
 }
 
 ics_status ics_image_diff_rgb(const ics_image *a, const ics_image *b, ics_image_diff *out) {
-  if (!a || !b || !out || !a->data || !b->data || a->width != b->width || a->height != b->height)
+  if (!a || !b || !out || !a->data || !b->data || a->width != b->width ||
+      a->height != b->height || (a->channels != 3 && a->channels != 4) ||
+      (b->channels != 3 && b->channels != 4))
     return ICS_ERR_INVALID_ARG;
   ics_image_diff d = {0, 0, 0, 0, 0, 0};
   double se = 0;

@@ -29,7 +29,9 @@ typedef struct ics_render_opts {
   void (*progress)(void *ctx, int slab, int nslabs);
   void *progress_ctx;
   /* "mc" only: stop after `spp` samples per pixel, after `time_s` seconds, or once the noise
-   * (ics_render_stats.noise) is at most `noise`, whichever comes first; all 0: 64 samples */
+   * (ics_render_stats.noise) is at most `noise`, whichever comes first (a time or noise stop
+   * after 2 samples at the earliest; a noise stop alone may run to 2^24: bound it with a time);
+   * all 0: 64 samples */
   int spp;
   double time_s, noise;
 } ics_render_opts;
@@ -44,7 +46,8 @@ typedef struct ics_render_stats {
   double ms_convolution, ms_shading, ms_detail;
   double ns_per_px_slab; /* ms_convolution per (buffer pixel x slab x light) */
   int spp;               /* "mc": samples per pixel taken */
-  double noise;          /* "mc": RMS over pixels and R, G, B of the standard error of the mean */
+  double noise;          /* "mc": RMS over pixels and R, G, B of the standard error of the mean
+                            (NAN after 1 sample) */
 } ics_render_stats;
 
 typedef struct ics_renderer ics_renderer;
@@ -75,7 +78,9 @@ ICS_API ics_status ics_renderer_render(ics_renderer *r, const ics_plan *plan, ic
  * (ics_exr_channels_destroy frees it; ics_exr_write_channels writes it). The AOVs take
  * W H (lights x channels + 1) floats (twice that and 4 more with ICS_AOV_STDERR) beyond the
  * plan's memory_bytes. ICS_ERR_INVALID_ARG for unknown bits or aovs != 0 with aov_out NULL,
- * ICS_ERR_UNSUPPORTED for an AOV the backend does not make (msg says which). */
+ * ICS_ERR_UNSUPPORTED for an AOV the backend does not make (msg says which), ICS_ERR_SIZE for
+ * more AOV channels than an EXR holds beside R, G, B, A (ICS_EXR_MAX_CHANNELS - 4); all before
+ * rendering. */
 ICS_API ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsigned aovs,
                                             ics_image **out, ics_exr_channels **aov_out,
                                             ics_render_stats *stats, char *msg, size_t msg_size);

@@ -44,7 +44,7 @@ typedef struct ics_image_diff {
 } ics_image_diff;
 
 /* Compares a with b (same width and height; 3 or 4 channels each, in double precision).
- * ICS_ERR_INVALID_ARG for a NULL argument or different sizes. */
+ * ICS_ERR_INVALID_ARG for a NULL argument, different sizes or another channel count. */
 ICS_API ics_status ics_image_diff_rgb(const ics_image *a, const ics_image *b, ics_image_diff *out);
 
 #ifdef __cplusplus
