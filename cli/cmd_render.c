@@ -17,8 +17,9 @@ static const char CMD[] = "render";
 static void help(FILE *f) {
   fprintf(f,
           "usage: icshadow render [SCENE] [-o OUT.exr] [--png OUT.png] [--backend B] [options]\n"
-          "Renders a scene with the slab renderer (Patel et al. 2013, Sec. 4; docs/renderer.md):\n"
-          "the embedded default scene when no SCENE is given. Prints a JSON summary on stdout\n"
+          "Renders a scene with the slab renderer (Patel et al. 2013, Sec. 4; docs/renderer.md), or\n"
+          "with the Monte-Carlo reference (--backend mc; docs/reference.md): the embedded default\n"
+          "scene when no SCENE is given. Prints a JSON summary on stdout\n"
           "(backend, threads, slabs, ms per frame and per pass, memory); progress on stderr.\n\n"
           "options:\n");
 #ifdef ICS_HAVE_RENDER
@@ -38,11 +39,14 @@ static void help(FILE *f) {
           "  --spp N             mc: samples per pixel (1..16777216; default 64 when no other stop)\n"
           "  --time S            mc: stop after S seconds\n"
           "  --noise E           mc: stop once the RMS standard error of R, G, B is at most E\n"
-          "                      (the first of --spp, --time, --noise that is reached stops)\n"
+          "                      (the first of --spp, --time, --noise that is reached stops; a time\n"
+          "                      or noise stop takes 2 samples at least; bound --noise with --time)\n"
           "  --compare REF.exr   compare R, G, B with a reference image (e.g. an mc render): RMSE,\n"
           "                      max error, PSNR, the reference's time and noise, in the summary\n"
           "  --reference N       the same against the Monte-Carlo reference rendered here with N\n"
           "                      samples per pixel (1..16777216)\n"
+          "  --diff-png FILE     with --compare / --reference: render minus reference, x4, as a\n"
+          "                      picture (red: brighter, blue: darker than the reference)\n"
           "  --progress          show progress on stderr even when it is not a terminal\n"
           "Output files are written to a temporary name and renamed once both are complete.\n"
           "Exit status: 0 ok, 1 cannot write or out of memory, 2 bad input.\n");
@@ -155,11 +159,12 @@ int cmd_render(int argc, char **argv) {
 #else
   scene_args a;
   memset(&a, 0, sizeof a);
-  const char *exr = NULL, *png = NULL, *backend = NULL, *aov_list = NULL, *compare = NULL;
+  const char *exr = NULL, *png = NULL, *backend = NULL, *aov_list = NULL, *compare = NULL,
+             *diff_png = NULL;
   int force_progress = 0, backends = 0, spp = 0, ref_spp = 0, given_ref = 0;
   double time_s = 0, noise = 0;
   int given_spp = 0, given_time = 0, given_noise = 0;
-  cli_option opts[SCENE_ARGS_NOPTS + 11];
+  cli_option opts[SCENE_ARGS_NOPTS + 12];
   scene_args_options(&a, opts);
   const cli_option mine[] = {
       {"-o", .kind = CLI_FILE, .dest = &exr},
@@ -169,20 +174,22 @@ int cmd_render(int argc, char **argv) {
       {"--backends", .kind = CLI_FLAG, .dest = &backends},
       {"--progress", .kind = CLI_FLAG, .dest = &force_progress},
       {"--spp", .kind = CLI_INT, .dest = &spp, .lo = 1, .hi = 1 << 24, .given = &given_spp},
-      {"--time", .kind = CLI_VARIANCE, .dest = &time_s, .given = &given_time},
-      {"--noise", .kind = CLI_VARIANCE, .dest = &noise, .given = &given_noise},
+      {"--time", .kind = CLI_FINITE, .dest = &time_s, .given = &given_time},
+      {"--noise", .kind = CLI_FINITE, .dest = &noise, .given = &given_noise},
       {"--compare", .kind = CLI_FILE, .dest = &compare},
+      {"--diff-png", .kind = CLI_FILE, .dest = &diff_png},
       {"--reference", .kind = CLI_INT, .dest = &ref_spp, .lo = 1, .hi = 1 << 24, .given = &given_ref},
   };
   memcpy(opts + SCENE_ARGS_NOPTS, mine, sizeof mine);
   int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
   if (rc) return rc;
   if (backends) return list_backends();
-  if (!exr && !png) return cli_error(CMD, "nothing to write: give -o OUT.exr and/or --png OUT.png");
+  if (!exr && !png && !diff_png)
+    return cli_error(CMD, "nothing to write: give -o OUT.exr and/or --png OUT.png");
   size_t ne = exr ? strlen(exr) : 0;
   if (ne >= 4 && !strcmp(exr + ne - 4, ".png"))
     return cli_error(CMD, "-o %s: -o writes OpenEXR; give the PNG preview with --png", exr);
-  if ((exr && !strcmp(exr, "-")) || (png && !strcmp(png, "-")))
+  if ((exr && !strcmp(exr, "-")) || (png && !strcmp(png, "-")) || (diff_png && !strcmp(diff_png, "-")))
     return cli_error(CMD, "images are written to files, not to stdout (the summary goes there)");
   int mc = backend && !strcmp(backend, "mc");
   if ((given_spp || given_time || given_noise) && !mc)
@@ -191,6 +198,13 @@ int cmd_render(int argc, char **argv) {
   if (given_time && !(time_s > 0)) return cli_error(CMD, "--time: must be > 0 seconds");
   if (given_noise && !(noise > 0)) return cli_error(CMD, "--noise: must be > 0");
   if (compare && given_ref) return cli_error(CMD, "give --compare or --reference, not both");
+  if (given_ref && mc)
+    return cli_error(CMD, "--reference: this render is the Monte-Carlo reference itself (same seed, "
+                     "same samples); compare two mc renders with --compare REF.exr and another --seed");
+  if (diff_png && !compare && !given_ref)
+    return cli_error(CMD, "--diff-png: give --compare REF.exr or --reference N");
+  if (diff_png && !ics_output_png_available())
+    return cli_failure(CMD, "cannot write PNG: libpng was not found when the renderer was built");
   if (compare && !ics_exr_available())
     return cli_failure(CMD, "--compare: OpenEXR was not found when icshadow was built");
   unsigned aovs = 0;
@@ -226,6 +240,7 @@ int cmd_render(int argc, char **argv) {
   ics_image *img = NULL;
   ics_exr_channels *aov = NULL;
   ics_render_stats stats;
+  render_comparison cmp = {0};
   st = ics_renderer_create(&r, &ro, msg, sizeof msg);
   if (st == ICS_OK) {
     st = ics_renderer_render_aovs(r, plan, aovs, &img, aovs ? &aov : NULL, &stats, msg, sizeof msg);
@@ -237,7 +252,6 @@ int cmd_render(int argc, char **argv) {
     rc = cli_status_error(CMD, st, "%s", msg);
     goto done;
   }
-  render_comparison cmp;
   int have_cmp = compare || given_ref;
   if (compare && (rc = render_compare_file(CMD, compare, img, &cmp))) goto done;
   if (given_ref) {
@@ -261,18 +275,27 @@ int cmd_render(int argc, char **argv) {
     json_str(sf, a.scene ? a.scene : "default");
     fprintf(sf, ", \"backend\": \"%s\", \"device\": ", stats.backend);
     json_str(sf, stats.device);
-    fprintf(sf, ", \"threads\": %d, \"resolution\": [%d, %d], \"light_buffer\": [%d, %d], \"slabs\": %d,"
-            " \"kernel\": \"%s\", \"samples\": %d, \"seed\": %llu,"
-            " \"ms_plan\": %.17g, \"ms_geometry\": %.17g, \"ms_render\": %.17g,"
-            " \"ms_convolution\": %.17g, \"ms_shading\": %.17g, \"ms_detail\": %.17g,"
-            " \"ns_per_px_slab\": %.17g, \"memory_bytes\": %zu",
-            stats.threads, W, H, bw, bh, stats.slabs, ics_render_kernel_name(rs.kernel), rs.samples,
+    fprintf(sf, ", \"threads\": %d, \"resolution\": [%d, %d]", stats.threads, W, H);
+    if (!mc)
+      fprintf(sf, ", \"light_buffer\": [%d, %d], \"slabs\": %d, \"kernel\": \"%s\", \"samples\": %d",
+              bw, bh, stats.slabs, ics_render_kernel_name(rs.kernel), rs.samples);
+    fprintf(sf, ", \"seed\": %llu, \"ms_plan\": %.17g, \"ms_geometry\": %.17g, \"ms_render\": %.17g",
             (unsigned long long)rs.seed, 1e3 * t_plan, 1e3 * ics_plan_geometry_seconds(plan),
-            stats.ms_total, stats.ms_convolution, stats.ms_shading, stats.ms_detail,
-            stats.ns_per_px_slab, ics_plan_memory_bytes(plan));
+            stats.ms_total);
+    if (!mc)
+      fprintf(sf, ", \"ms_convolution\": %.17g, \"ms_shading\": %.17g, \"ms_detail\": %.17g,"
+              " \"ns_per_px_slab\": %.17g, \"memory_bytes\": %zu", stats.ms_convolution,
+              stats.ms_shading, stats.ms_detail, stats.ns_per_px_slab, ics_plan_memory_bytes(plan));
     if (exr) fprintf(sf, ", \"exr\": "), json_str(sf, exr);
     if (png) fprintf(sf, ", \"png\": "), json_str(sf, png);
-    if (mc) fprintf(sf, ", \"spp\": %d, \"noise\": %.17g", stats.spp, stats.noise);
+    if (diff_png) fprintf(sf, ", \"diff_png\": "), json_str(sf, diff_png);
+    if (mc) {
+      fprintf(sf, ", \"spp\": %d, \"noise\": ", stats.spp);
+      if (isfinite(stats.noise))
+        fprintf(sf, "%.17g", stats.noise);
+      else
+        fprintf(sf, "null");
+    }
     if (aov) {
       fprintf(sf, ", \"aovs\": [");
       for (int c = 0; c < aov->count; c++) fprintf(sf, "%s", c ? ", " : ""), json_str(sf, aov->names[c]);
@@ -287,8 +310,8 @@ int cmd_render(int argc, char **argv) {
     goto done;
   }
   /* both files complete before either is renamed into place */
-  cli_output oe = {0}, op = {0};
-  int have_e = 0, have_p = 0;
+  cli_output oe = {0}, op = {0}, od = {0};
+  int have_e = 0, have_p = 0, have_d = 0;
   if (exr) {
     if (cli_output_open(&oe, CMD, exr) != 0) {
       rc = 1;
@@ -315,7 +338,23 @@ int cmd_render(int argc, char **argv) {
       goto abort;
     }
   }
-  if ((have_e && cli_output_commit(&oe) != 0) || (have_p && cli_output_commit(&op) != 0)) {
+  if (diff_png) {
+    if (cli_output_open(&od, CMD, diff_png) != 0) {
+      rc = 1;
+      goto abort;
+    }
+    have_d = 1;
+    ics_image *dimg = render_difference_image(img, cmp.ref, 4);
+    st = dimg ? ics_output_png(dimg, od.write_path, msg, sizeof msg) : ICS_ERR_NOMEM;
+    if (!dimg) snprintf(msg, sizeof msg, "out of memory");
+    ics_image_destroy(dimg);
+    if (st != ICS_OK) {
+      rc = cli_failure(CMD, "cannot write %s: %s", diff_png, msg);
+      goto abort;
+    }
+  }
+  if ((have_e && cli_output_commit(&oe) != 0) || (have_p && cli_output_commit(&op) != 0) ||
+      (have_d && cli_output_commit(&od) != 0)) {
     rc = 1;
     goto done_summary;
   }
@@ -324,12 +363,14 @@ int cmd_render(int argc, char **argv) {
 abort:
   if (have_e) cli_output_abort(&oe);
   if (have_p) cli_output_abort(&op);
+  if (have_d) cli_output_abort(&od);
 done_summary:
   free(summary);
   goto done;
 done:
   ics_image_destroy(img);
   ics_exr_channels_destroy(aov);
+  render_comparison_release(&cmp);
   ics_plan_destroy(plan);
   ics_scene_destroy(s);
   return rc;

@@ -45,7 +45,7 @@ int render_compare_file(const char *cmd, const char *path, const ics_image *img,
   ics_exr_channels *ch = NULL;
   char msg[CLI_MSG_MAX];
   ics_status st = ics_exr_read_channels(path, &ch, msg, sizeof msg);
-  if (st != ICS_OK) return cli_error(cmd, "--compare: %s", msg);
+  if (st != ICS_OK) return cli_status_error(cmd, st, "--compare: %s", msg);
   int k[3] = {ics_exr_channel_index(ch, "R"), ics_exr_channel_index(ch, "G"),
               ics_exr_channel_index(ch, "B")};
   int e[3] = {ics_exr_channel_index(ch, "stderr.R"), ics_exr_channel_index(ch, "stderr.G"),
@@ -72,6 +72,7 @@ int render_compare_file(const char *cmd, const char *path, const ics_image *img,
       }
     if (e[0] >= 0 && e[1] >= 0 && e[2] >= 0) out->ref_noise = sqrt(ss / (3.0 * npx));
     ics_image_diff_rgb(img, ref, &out->d);
+    out->ref = ref, ref = NULL;
     summary_string(ch->info, "backend", out->ref_backend, sizeof out->ref_backend);
     out->ms_reference = summary_number(ch->info, "ms_render");
     double spp = summary_number(ch->info, "spp");
@@ -103,8 +104,26 @@ int render_compare_mc(const char *cmd, const ics_plan *plan, int spp, int thread
   out->ref_spp = st.spp;
   out->ms_reference = st.ms_total;
   out->ref_noise = st.noise;
-  ics_image_destroy(ref);
+  out->ref = ref;
   return 0;
+}
+
+void render_comparison_release(render_comparison *c) {
+  ics_image_destroy(c->ref);
+  c->ref = NULL;
+}
+
+ics_image *render_difference_image(const ics_image *img, const ics_image *ref, double scale) {
+  ics_image *o;
+  if (ics_image_create(&o, img->width, img->height, 3) != ICS_OK) return NULL;
+  for (size_t p = 0; p < (size_t)img->width * img->height; p++) {
+    double d = 0;
+    for (int c = 0; c < 3; c++) d += img->data[p * img->channels + c] - ref->data[p * ref->channels + c];
+    d *= scale / 3;
+    o->data[p * 3] = (float)fmin(1, fmax(0, d));
+    o->data[p * 3 + 2] = (float)fmin(1, fmax(0, -d));
+  }
+  return o;
 }
 
 static void number(FILE *f, const char *key, double v) {

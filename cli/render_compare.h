@@ -12,6 +12,7 @@
 
 typedef struct render_comparison {
   ics_image_diff d;
+  ics_image *ref;        /* the reference's R, G, B (owned: render_comparison_release) */
   const char *reference; /* the file, or "mc" */
   char ref_backend[16];  /* "" when unknown */
   int ref_spp;           /* 0 when unknown */
@@ -31,6 +32,13 @@ int render_compare_file(const char *cmd, const char *path, const ics_image *img,
 int render_compare_mc(const char *cmd, const ics_plan *plan, int spp, int threads,
                       void (*progress)(void *, int, int), void *progress_ctx,
                       const ics_image *img, render_comparison *out);
+
+void render_comparison_release(render_comparison *c);
+
+/* A picture of render minus reference, mean over R, G, B, times `scale`: red where the render
+ * is brighter, blue where it is darker, black where they agree (clamped at 1). NULL when out of
+ * memory. */
+ics_image *render_difference_image(const ics_image *img, const ics_image *ref, double scale);
 
 /* The comparison as a JSON object's members, after ", \"compare\": ". */
 void render_comparison_json(FILE *f, const render_comparison *c);

@@ -72,6 +72,10 @@ ics_cli_test(NAME cli_render_spp_without_mc RC 2 ARGS "render|${disk}|--spp|4|-o
   ERR "--spp: only the Monte-Carlo reference takes a stop \\(give --backend mc\\)" NOFILE ${rd}/mc2.exr)
 ics_cli_test(NAME cli_render_mc_bad_time RC 2 ARGS "render|${disk}|--backend|mc|--time|0|-o|${rd}/mc3.exr"
   ERR "--time: must be > 0 seconds" NOFILE ${rd}/mc3.exr)
+ics_cli_test(NAME cli_render_mc_negative_noise RC 2 ARGS "render|${disk}|--backend|mc|--noise|-0.1|-o|${rd}/mc6.exr"
+  ERR "--noise: must be > 0" NOFILE ${rd}/mc6.exr)
+ics_cli_test(NAME cli_render_mc_nan_time RC 2 ARGS "render|${disk}|--backend|mc|--time|nan|-o|${rd}/mc7.exr"
+  ERR "--time" NOFILE ${rd}/mc7.exr)
 ics_cli_test(NAME cli_render_mc_bad_spp RC 2 ARGS "render|${disk}|--backend|mc|--spp|0|-o|${rd}/mc4.exr"
   ERR "--spp: expected an integer in 1..16777216" NOFILE ${rd}/mc4.exr)
 ics_cli_test(NAME cli_render_stderr_on_cpu RC 2 ARGS "render|${disk}|--aov|stderr|-o|${rd}/mc5.exr"
@@ -83,6 +87,12 @@ ics_cli_test(NAME cli_render_reference RC 0 ARGS "render|${disk}|--resolution|32
   OUT "\"compare\": {\"reference\": \"mc\", \"reference_backend\": \"mc\", \"reference_spp\": 8, \"ms_reference\": [0-9.e+-]+, \"reference_noise\": [0-9.e+-]+, \"rmse\": [0-9.e+-]+, \"rmse_beyond_noise\": [0-9.e+-]+, \"max_error\": [0-9.e+-]+, \"max_at\": \\[[0-9]+, [0-9]+\\], \"psnr_db\": [0-9.e+-]+}")
 ics_cli_test(NAME cli_render_compare_missing RC 2 ARGS "render|${disk}|--compare|${rd}/nonexistent.exr|-o|${rd}/cmp2.exr"
   ERR "--compare: .*nonexistent.exr: cannot open" NOFILE ${rd}/cmp2.exr)
+ics_cli_test(NAME cli_render_reference_of_mc RC 2 ARGS "render|${disk}|--backend|mc|--reference|4|-o|${rd}/cmp6.exr"
+  ERR "--reference: this render is the Monte-Carlo reference itself" NOFILE ${rd}/cmp6.exr)
+ics_cli_test(NAME cli_render_diff_png_alone RC 2 ARGS "render|${disk}|--diff-png|${rd}/diff0.png"
+  ERR "--diff-png: give --compare REF.exr or --reference N" NOFILE ${rd}/diff0.png)
+ics_cli_test(NAME cli_render_diff_png RC 0 ARGS "render|${disk}|--resolution|32x32|--reference|4|--diff-png|${rd}/diff.png"
+  OUT "\"diff_png\": \"[^\"]*diff.png\".*\"compare\": {\"reference\": \"mc\"")
 ics_cli_test(NAME cli_render_compare_both RC 2 ARGS "render|${disk}|--compare|${rd}/x.exr|--reference|4|-o|${rd}/cmp3.exr"
   ERR "give --compare or --reference, not both" NOFILE ${rd}/cmp3.exr)
 endif()
