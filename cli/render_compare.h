@@ -1,7 +1,7 @@
 /* render_compare.h — `icshadow render --compare REF.exr` and `--reference N`: the render's
  * R, G, B against a reference image (a file, or the Monte-Carlo reference rendered in the same
  * run), with the reference's own time and noise where known, so error can be set against time.
- * docs/reference.md "Error against run time". */
+ * docs/reference.md "Comparing a render with the reference". */
 #ifndef ICS_CLI_RENDER_COMPARE_H
 #define ICS_CLI_RENDER_COMPARE_H
 
