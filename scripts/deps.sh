@@ -19,6 +19,8 @@ packages=(
   # figures, notebooks and table generators (Debian's python3, not a runtime dependency)
   python3 python3-numpy python3-matplotlib python3-mpmath python3-scipy
   jupyter-nbconvert python3-ipykernel python3-nbformat
+  # the Mitsuba 3 outside check: a virtual environment for the PyPI wheel (make mitsuba)
+  python3-venv
 )
 
 # Installed means dpkg's package state "installed", whatever the selection: a package on hold
