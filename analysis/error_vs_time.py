@@ -3,20 +3,29 @@
 Monte-Carlo reference itself, on one scene (default: the embedded default scene).
 
 Method (docs/results.md "Error against run time"):
-1. A reference: `icshadow render SCENE --backend mc --spp REF_SPP --seed 1001 --aov stderr`
-   (written once, reused when present). Its own noise (RMS standard error of R, G, B) is
-   reported; every comparison states `rmse_beyond_noise` = sqrt(max(rmse^2 - noise^2, 0)),
-   the render's error with the reference's noise taken out (E[rmse^2] = error^2 + noise^2).
-2. The configurations (kernel member, samples, compensation, slab spacing, preintegration,
-   rotation runs, d1) and Monte-Carlo renders at 4..256 samples per pixel under another seed, each
-   run REPS times in an interleaved order (configuration by configuration, round by round) so
+1. References: `icshadow render SCENE --backend mc --spp REF_SPP --seed 1001 --aov stderr`, one
+   per resolution swept (written once, reused when present; `--refs-only` makes them and stops).
+   Their own noise (RMS standard error of R, G, B) is reported; every comparison states
+   `rmse_beyond_noise` = sqrt(max(rmse^2 - noise^2, 0)), the render's error with the reference's
+   noise taken out (E[rmse^2] = error^2 + noise^2).
+2. Tasks, in a fixed order (the `task` column): the configurations (kernel member, samples,
+   compensation, slab spacing with and without preintegration, rotation runs, d1, LUT radii
+   against exact ones, resolution) and Monte-Carlo renders at 4..256 samples per pixel under the
+   seed 7 + task, each run REPS times in an interleaved order (task by task, round by round) so
    load drifts spread over all of them; `icshadow render ... --compare REF.exr` gives the error,
    the summary the time. Time is ms_plan + ms_render (the frame: plan with its geometry pass,
    then the render) for the slab renderer and ms_render for Monte Carlo (it uses no plan).
-3. CSV (method, parameters, ms median / min / max, rmse, rmse_beyond_noise, max_error, psnr) and
-   a log-log plot of error against time with the Pareto front marked.
+3. CSV (task, method, parameters, resolution, ms median / min / max, rmse, rmse_beyond_noise,
+   max_error, psnr, the reference's samples and noise, n_tasks) and a log-log plot of error
+   against time with the Pareto front marked.
+4. Shards: `--shard i/N` runs the tasks k with k mod N = i (seeds depend on k only, so a task's
+   result does not depend on N) and writes their rows; `--merge A.csv B.csv ... --csv OUT`
+   joins shards and refuses a missing or duplicated task or shards of different sweeps.
+   `--no-times` leaves the time columns out: what is left is a function of the inputs alone, so
+   merged shards equal the unsharded run byte for byte (tests/analysis.cmake checks that).
 
 Python is only the driver and the plot; all numbers come from the C tool.
+Exit status: 0 done, 1 a render failed, 2 bad arguments or shards that do not merge.
 """
 import argparse
 import csv
@@ -28,101 +37,206 @@ import subprocess
 import sys
 import tempfile
 
+TIME_COLUMNS = ("ms", "ms_min", "ms_max")
+
+
+def die(msg, code=2):
+    print(f"error_vs_time: {msg}", file=sys.stderr)
+    sys.exit(code)
+
 
 def run(cmd):
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
-        sys.exit(f"error_vs_time: {' '.join(cmd)} failed ({p.returncode}): {p.stderr.strip()}")
+        die(f"{' '.join(cmd)} failed ({p.returncode}): {p.stderr.strip()}", 1)
     return json.loads(p.stdout)
+
+
+def shard_spec(text):
+    try:
+        i, n = (int(v) for v in text.split("/"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected I/N, e.g. 0/3")
+    if n < 1 or not 0 <= i < n:
+        raise argparse.ArgumentTypeError(f"{text!r}: need N >= 1 and 0 <= I < N")
+    return i, n
+
+
+def write_csv(path, rows, fields):
+    """Atomically: a temporary file beside the target, renamed over it when complete."""
+    d = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=".evt", suffix=".csv", dir=d)
+    try:
+        with os.fdopen(fd, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=fields, lineterminator="\n")
+            w.writeheader()
+            for row in rows:
+                w.writerow({k: (f"{row[k]:.6g}" if isinstance(row[k], float) else row[k]) for k in fields})
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
+
+
+def merge(a):
+    rows, fields, n_tasks = {}, None, None
+    for path in a.merge:
+        try:
+            with open(path, newline="") as f:
+                r = csv.DictReader(f)
+                got = list(r)
+                fs = r.fieldnames
+        except OSError as e:
+            die(f"--merge: {path}: {e.strerror}")
+        if not fs or "task" not in fs or "n_tasks" not in fs:
+            die(f"--merge: {path} is not a sweep's CSV (no task / n_tasks columns)")
+        if fields is not None and fs != fields:
+            die(f"--merge: {path} has other columns than {a.merge[0]}")
+        fields = fs
+        for row in got:
+            k, n = int(row["task"]), int(row["n_tasks"])
+            if n_tasks is not None and n != n_tasks:
+                die(f"--merge: {path}: task {k} is from a sweep of {n} tasks, the others of {n_tasks}")
+            n_tasks = n
+            if k in rows:
+                die(f"--merge: task {k} is in two shards ({rows[k][1]} and {path})")
+            rows[k] = (row, path)
+    if n_tasks is None:
+        die("--merge: no rows")
+    missing = [k for k in range(n_tasks) if k not in rows]
+    if missing:
+        die(f"--merge: {len(missing)} of {n_tasks} tasks missing: {', '.join(map(str, missing[:20]))}")
+    write_csv(a.csv, [rows[k][0] for k in range(n_tasks)], fields)
+    print(f"merged {len(a.merge)} shards, {n_tasks} tasks -> {a.csv}", file=sys.stderr)
+    if a.plot and "ms" in fields:
+        replot(a)
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--icshadow", default="build/bin/icshadow")
     ap.add_argument("--scene", default=None, help="scene file (default: the embedded default scene)")
-    ap.add_argument("--ref", default="out/error_vs_time_ref.exr", help="reference EXR (made if absent)")
+    ap.add_argument("--ref", default="out/error_vs_time_ref.exr",
+                    help="reference EXR (made if absent); other resolutions: REF_WxH.exr")
     ap.add_argument("--ref-spp", type=int, default=1024)
+    ap.add_argument("--resolution", help="WxH for every task (default: the scene's)")
+    ap.add_argument("--resolutions", default=None,
+                    help="WxH,... swept with ellipse2 (default: half and twice the scene's)")
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--csv", default="out/error_vs_time.csv")
-    ap.add_argument("--plot", default="out/error_vs_time.png")
+    ap.add_argument("--plot", default=None)
     ap.add_argument("--images", help="PNG: the default configuration, the reference, the difference")
     ap.add_argument("--quick", action="store_true", help="fewer configurations (a smoke run)")
+    ap.add_argument("--shard", type=shard_spec, help="I/N: run the tasks k with k mod N = I")
+    ap.add_argument("--merge", nargs="+", metavar="CSV", help="join shards' CSVs into --csv")
+    ap.add_argument("--no-times", action="store_true", help="leave the time columns out")
+    ap.add_argument("--refs-only", action="store_true", help="make the references and stop")
     ap.add_argument("--replot", action="store_true", help="only redraw the plot from --csv")
     a = ap.parse_args()
+    if a.reps < 1 or a.ref_spp < 2:
+        die("--reps must be >= 1 and --ref-spp >= 2")
     if a.replot:
         return replot(a)
+    if a.merge:
+        return merge(a)
     ics = a.icshadow
-    os.makedirs(os.path.dirname(a.csv) or ".", exist_ok=True)
+    if not os.access(ics, os.X_OK):
+        die(f"{ics}: not an executable (build icshadow first)")
+    os.makedirs(os.path.dirname(os.path.abspath(a.csv)), exist_ok=True)
     tmp = tempfile.mkdtemp(prefix="evt")
     scene_text = subprocess.run([ics, "plan", "--print-scene"] if a.scene is None else ["cat", a.scene],
                                 capture_output=True, text=True, check=True).stdout
     base = json.loads(scene_text)
+    if a.resolution:
+        base["camera"]["resolution"] = [int(v) for v in a.resolution.split("x")]
+    W0, H0 = base["camera"]["resolution"]
+    res0 = f"{W0}x{H0}"
+    if a.resolutions is None:
+        a.resolutions = "" if a.quick else f"{W0 // 2}x{H0 // 2},{2 * W0}x{2 * H0}"
+    resolutions = [r for r in a.resolutions.split(",") if r and r != res0]
 
-    def scene_with(**render):
+    def scene_with(res=res0, **render):
         s = json.loads(json.dumps(base))
         s["render"].update(render)
-        path = os.path.join(tmp, "scene_%d.json" % abs(hash(json.dumps(render, sort_keys=True))))
+        s["camera"]["resolution"] = [int(v) for v in res.split("x")]
+        path = os.path.join(tmp, "scene_%d.json" % abs(hash(json.dumps([res, render], sort_keys=True))))
         with open(path, "w") as f:
             json.dump(s, f)
         return path
 
-    ref_png = os.path.splitext(a.ref)[0] + ".png"
-    if not os.path.exists(a.ref):
-        print(f"reference: mc, {a.ref_spp} spp -> {a.ref}", file=sys.stderr, flush=True)
-        run([ics, "render", scene_with(), "--backend", "mc", "--spp", str(a.ref_spp), "--seed", "1001",
-             "--aov", "stderr", "-o", a.ref, "--png", ref_png])
-    e0 = base["render"]["slab_spacing"]
-    configs = []  # (method, parameters, scene, extra args)
+    def ref_path(res):
+        return a.ref if res == res0 else os.path.splitext(a.ref)[0] + f"_{res}.exr"
+
+    e0, d10 = base["render"]["slab_spacing"], base["render"]["d1"]
+    tasks = []  # (method, parameters, resolution, scene, extra args)
     members = [("ellipse", 2, "expected"), ("ellipse", 3, "expected"), ("poisson", 8, "expected"),
                ("poisson", 16, "expected"), ("gauss", 19, "nonneg"), ("gauss", 19, "signed"),
                ("tophat", 5, "nonneg"), ("ellipse", 2, "signed"), ("ellipse", 2, "integer")]
     if a.quick:
         members = members[:1] + members[4:5]
     for k, n, comp in members:
-        configs.append(("slab", f"{k}{n} {comp} e={e0:g}", scene_with(),
-                        ["--kernel", k, "--samples", str(n), "--compensate", comp]))
+        tasks.append(("slab", f"{k}{n} {comp} e={e0:g}", res0, scene_with(),
+                      ["--kernel", k, "--samples", str(n), "--compensate", comp]))
     if not a.quick:
-        configs.append(("slab", f"ellipse2 expected e={e0:g} run16", scene_with(rotation_run=16), []))
+        tasks.append(("slab", f"ellipse2 expected e={e0:g} run16", res0, scene_with(rotation_run=16), []))
         for f in (0.5, 2, 4):
             for pre in (False, True):
-                configs.append(("slab", f"ellipse2 expected e={e0 * f:g}{' preint' if pre else ''}",
-                                scene_with(slab_spacing=e0 * f, preintegrate=pre), []))
-        configs.append(("slab", f"ellipse2 expected e={e0:g} preint", scene_with(preintegrate=True), []))
-        d10 = base["render"]["d1"]
+                tasks.append(("slab", f"ellipse2 expected e={e0 * f:g}{' preint' if pre else ''}", res0,
+                              scene_with(slab_spacing=e0 * f, preintegrate=pre), []))
+        tasks.append(("slab", f"ellipse2 expected e={e0:g} preint", res0, scene_with(preintegrate=True), []))
         for f in (0.25, 0.5, 2):
-            configs.append(("slab", f"ellipse2 expected e={e0:g} d1={d10 * f:g}", scene_with(d1=d10 * f), []))
+            tasks.append(("slab", f"ellipse2 expected e={e0:g} d1={d10 * f:g}", res0, scene_with(d1=d10 * f), []))
+        tasks.append(("slab", f"ellipse2 expected e={e0:g} lut", res0, scene_with(), ["--radii", "lut"]))
+    for res in resolutions:
+        tasks.append(("slab", f"ellipse2 expected e={e0:g} {res}", res, scene_with(res), []))
     for spp in ([4, 16] if a.quick else [4, 16, 64, 256]):
-        configs.append(("mc", f"{spp} spp", scene_with(), ["--backend", "mc", "--spp", str(spp), "--seed", "7"]))
-    times = {i: [] for i in range(len(configs))}
+        tasks.append(("mc", f"{spp} spp", res0, scene_with(), ["--backend", "mc", "--spp", str(spp)]))
+    n_tasks = len(tasks)
+    mine = [k for k in range(n_tasks) if a.shard is None or k % a.shard[1] == a.shard[0]]
+
+    ref_png = os.path.splitext(a.ref)[0] + ".png"
+    for res in sorted({tasks[k][2] for k in mine} | ({res0} if a.refs_only or a.images else set())):
+        if not os.path.exists(ref_path(res)):
+            print(f"reference: mc {res}, {a.ref_spp} spp -> {ref_path(res)}", file=sys.stderr, flush=True)
+            extra = ["--png", ref_png] if res == res0 else []
+            run([ics, "render", scene_with(res), "--backend", "mc", "--spp", str(a.ref_spp), "--seed", "1001",
+                 "--aov", "stderr", "-o", ref_path(res)] + extra)
+    if a.refs_only:
+        return
+
+    times = {k: [] for k in mine}
     result = {}
     for r in range(a.reps):
-        for i, (method, params, scene, extra) in enumerate(configs):
-            print(f"round {r + 1}/{a.reps}: {method} {params}", file=sys.stderr, flush=True)
-            s = run([ics, "render", scene, "--compare", a.ref, "--png", os.path.join(tmp, "x.png")] + extra)
-            ms = s["ms_render"] + (0 if method == "mc" else s["ms_plan"])
-            times[i].append(ms)
-            result[i] = s["compare"]
-    ref_info = result[0]
+        for k in mine:
+            method, params, res, scene, extra = tasks[k]
+            print(f"round {r + 1}/{a.reps}: task {k}: {method} {params}", file=sys.stderr, flush=True)
+            seed = ["--seed", str(7 + k)] if method == "mc" else []
+            s = run([ics, "render", scene, "--compare", ref_path(res), "--png", os.path.join(tmp, "x.png")]
+                    + extra + seed)
+            times[k].append(s["ms_render"] + (0 if method == "mc" else s["ms_plan"]))
+            result[k] = s["compare"]
     rows = []
-    for i, (method, params, _, _) in enumerate(configs):
-        c = result[i]
-        t = times[i]
-        rows.append({"method": method, "parameters": params, "ms": statistics.median(t), "ms_min": min(t),
-                     "ms_max": max(t), "rmse": c["rmse"], "rmse_beyond_noise": c["rmse_beyond_noise"],
-                     "max_error": c["max_error"], "psnr_db": c["psnr_db"],
-                     "reference_spp": c.get("reference_spp"), "reference_noise": c["reference_noise"]})
-    with open(a.csv, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        for row in rows:
-            w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()})
-    print(f"reference: {a.ref}, {ref_info.get('reference_spp')} spp, noise {ref_info['reference_noise']:.3g}, "
-          f"{ref_info['ms_reference']:.0f} ms")
-    plot(rows, ref_info.get("reference_spp"), ref_info["reference_noise"], a.reps, a.plot)
-    if a.images and os.path.exists(ref_png):
-        slab_png, diff_png = os.path.join(tmp, "slab.png"), os.path.join(tmp, "diff.png")
-        c = run([ics, "render", scene_with(), "--compare", a.ref, "--png", slab_png, "--diff-png", diff_png])
-        images(slab_png, ref_png, diff_png, c["compare"], a.images)
+    for k in mine:
+        method, params, res, _, _ = tasks[k]
+        c, t = result[k], times[k]
+        rows.append({"task": k, "method": method, "parameters": params, "resolution": res,
+                     "ms": statistics.median(t), "ms_min": min(t), "ms_max": max(t), "rmse": c["rmse"],
+                     "rmse_beyond_noise": c["rmse_beyond_noise"], "max_error": c["max_error"],
+                     "psnr_db": c["psnr_db"], "reference_spp": c.get("reference_spp"),
+                     "reference_noise": c["reference_noise"], "n_tasks": n_tasks})
+    fields = [f for f in rows[0] if not (a.no_times and f in TIME_COLUMNS)] if rows else ["task", "n_tasks"]
+    write_csv(a.csv, rows, fields)
+    print(f"{len(rows)} of {n_tasks} tasks -> {a.csv}", file=sys.stderr)
+    if a.shard is None and not a.no_times:
+        ref_info = result[mine[0]]
+        print(f"reference: {a.ref}, {ref_info.get('reference_spp')} spp, noise {ref_info['reference_noise']:.3g}, "
+              f"{ref_info['ms_reference']:.0f} ms")
+        if a.plot:
+            plot(rows, ref_info.get("reference_spp"), ref_info["reference_noise"], a.reps, a.plot)
+        if a.images and os.path.exists(ref_png):
+            slab_png, diff_png = os.path.join(tmp, "slab.png"), os.path.join(tmp, "diff.png")
+            c = run([ics, "render", scene_with(), "--compare", a.ref, "--png", slab_png, "--diff-png", diff_png])
+            images(slab_png, ref_png, diff_png, c["compare"], a.images)
 
 
 def images(slab_png, ref_png, diff_png, c, path):
@@ -153,9 +267,11 @@ def images(slab_png, ref_png, diff_png, c, path):
 
 def plot(rows, ref_spp, ref_noise, reps, path):
     """The Pareto front (no other row at once faster and more accurate) and error against time."""
+    res0 = rows[0].get("resolution")
+    same = [r for r in rows if r.get("resolution") == res0]  # other resolutions: other references
     for row in rows:
-        row["pareto"] = not any(o["ms"] < row["ms"] and o["rmse_beyond_noise"] < row["rmse_beyond_noise"]
-                                for o in rows if o is not row)
+        row["pareto"] = row in same and not any(
+            o["ms"] < row["ms"] and o["rmse_beyond_noise"] < row["rmse_beyond_noise"] for o in same if o is not row)
     for row in rows:
         print(f"{row['method']:4s} {row['parameters']:34s} {row['ms']:9.1f} ms [{row['ms_min']:.0f}, "
               f"{row['ms_max']:.0f}]  rmse {row['rmse']:.4g}  beyond noise {row['rmse_beyond_noise']:.4g}  "
@@ -167,13 +283,14 @@ def plot(rows, ref_spp, ref_noise, reps, path):
     except ImportError:
         print("error_vs_time: matplotlib not installed: no plot", file=sys.stderr)
         return
-    e0 = min(float(r["parameters"].split("e=")[1].split()[0]) for r in rows if "e=" in r["parameters"]
-             and "d1=" in r["parameters"])
+    e0 = float(rows[0]["parameters"].split("e=")[1].split()[0])
     fams = {}
     for r in rows:
         p = r["parameters"]
         if r["method"] == "mc":
             f = "Monte Carlo, samples per pixel"
+        elif r.get("resolution") != res0:
+            f = "ellipse2, resolution (against its own reference)"
         elif "d1=" in p:
             f = "ellipse2, d1"
         elif "preint" in p or float(p.split("e=")[1].split()[0]) != e0:
@@ -182,6 +299,7 @@ def plot(rows, ref_spp, ref_noise, reps, path):
             f = "kernel member / compensation (e = %g)" % e0
         fams.setdefault(f, []).append(r)
     style = {"Monte Carlo": ("s", "tab:red"), "ellipse2, d1": ("^", "tab:orange"),
+             "ellipse2, resolution": ("v", "tab:purple"),
              "ellipse2, slab": ("D", "tab:green"), "kernel": ("o", "tab:blue")}
     fig, (ax, side) = plt.subplots(1, 2, figsize=(11, 5.5), gridspec_kw={"width_ratios": [3, 1.15]})
     y = lambda r: max(r["rmse_beyond_noise"], 1e-5)
@@ -205,8 +323,8 @@ def plot(rows, ref_spp, ref_noise, reps, path):
     ax.set_yscale("log")
     ax.set_xlabel("time per frame, ms (median of %d; 2-core VM)" % reps)
     ax.set_ylabel("RMSE against the reference, its noise removed")
-    ax.set_title("Default scene: error against run time (reference: Monte Carlo, %s spp, noise %.2g)"
-                 % (ref_spp, ref_noise), fontsize=10)
+    ax.set_title("Error against run time, %s (reference: Monte Carlo, %s spp, noise %.2g)"
+                 % (res0, ref_spp, ref_noise), fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7.5, loc="lower left")
     side.axis("off")
@@ -219,6 +337,8 @@ def plot(rows, ref_spp, ref_noise, reps, path):
 
 
 def replot(a):
+    if not a.plot:
+        die("--replot needs --plot PNG")
     with open(a.csv) as f:
         rows = list(csv.DictReader(f))
     for r in rows:
