@@ -78,18 +78,6 @@ static void on_sample(void *ctx, int k, int n) {
     cli_progress_say(&sp->p, "sample %d", k);
 }
 
-static void json_str(FILE *f, const char *s) {
-  fputc('"', f);
-  for (; *s; s++) {
-    if (*s == '"' || *s == '\\') fputc('\\', f);
-    if ((unsigned char)*s < 0x20)
-      fprintf(f, "\\u%04x", (unsigned char)*s);
-    else
-      fputc(*s, f);
-  }
-  fputc('"', f);
-}
-
 /* --aov: "visibility", "depth", "stderr", "all" (with all_extra: the backend's further AOVs),
  * comma-separated; 0 and *bits set, or the exit status after the message */
 static int parse_aovs(const char *list, unsigned all_extra, unsigned *bits) {
@@ -272,9 +260,9 @@ int cmd_render(int argc, char **argv) {
     int W, H, bw, bh;
     ics_plan_sizes(plan, &W, &H, &bw, &bh);
     fprintf(sf, "{\"scene\": ");
-    json_str(sf, a.scene ? a.scene : "default");
+    cli_json_string(sf, a.scene ? a.scene : "default");
     fprintf(sf, ", \"backend\": \"%s\", \"device\": ", stats.backend);
-    json_str(sf, stats.device);
+    cli_json_string(sf, stats.device);
     fprintf(sf, ", \"threads\": %d, \"resolution\": [%d, %d]", stats.threads, W, H);
     if (!mc)
       fprintf(sf, ", \"light_buffer\": [%d, %d], \"slabs\": %d, \"kernel\": \"%s\", \"samples\": %d",
@@ -286,9 +274,9 @@ int cmd_render(int argc, char **argv) {
       fprintf(sf, ", \"ms_convolution\": %.17g, \"ms_shading\": %.17g, \"ms_detail\": %.17g,"
               " \"ns_per_px_slab\": %.17g, \"memory_bytes\": %zu", stats.ms_convolution,
               stats.ms_shading, stats.ms_detail, stats.ns_per_px_slab, ics_plan_memory_bytes(plan));
-    if (exr) fprintf(sf, ", \"exr\": "), json_str(sf, exr);
-    if (png) fprintf(sf, ", \"png\": "), json_str(sf, png);
-    if (diff_png) fprintf(sf, ", \"diff_png\": "), json_str(sf, diff_png);
+    if (exr) fprintf(sf, ", \"exr\": "), cli_json_string(sf, exr);
+    if (png) fprintf(sf, ", \"png\": "), cli_json_string(sf, png);
+    if (diff_png) fprintf(sf, ", \"diff_png\": "), cli_json_string(sf, diff_png);
     if (mc) {
       fprintf(sf, ", \"spp\": %d, \"noise\": ", stats.spp);
       if (isfinite(stats.noise))
@@ -298,7 +286,8 @@ int cmd_render(int argc, char **argv) {
     }
     if (aov) {
       fprintf(sf, ", \"aovs\": [");
-      for (int c = 0; c < aov->count; c++) fprintf(sf, "%s", c ? ", " : ""), json_str(sf, aov->names[c]);
+      for (int c = 0; c < aov->count; c++)
+        fprintf(sf, "%s", c ? ", " : ""), cli_json_string(sf, aov->names[c]);
       fprintf(sf, "]");
     }
     if (have_cmp) fprintf(sf, ", \"compare\": "), render_comparison_json(sf, &cmp);

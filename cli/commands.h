@@ -115,6 +115,8 @@ int cli_parse_options(const char *cmd, int argc, char **argv, int first, const c
 
 /* Seconds on the monotonic clock (CLOCK_MONOTONIC), for elapsed times. */
 double cli_now_s(void);
+/* s as a JSON string (quoted; '"' and '\\' escaped, control characters as \\u00XX). */
+void cli_json_string(FILE *f, const char *s);
 
 /* splitmix64 (Steele, Lea, Flood 2014) on a caller's state: reproducible benchmark data.
  * cli_splitmix_unit: uniform in [0, 1) from the top 53 bits of the next word. */

@@ -134,15 +134,8 @@ static void number(FILE *f, const char *key, double v) {
 }
 
 void render_comparison_json(FILE *f, const render_comparison *c) {
-  fputs("{\"reference\": \"", f);
-  for (const char *s = c->reference; *s; s++) {
-    if (*s == '"' || *s == '\\') fputc('\\', f);
-    if ((unsigned char)*s < 0x20)
-      fprintf(f, "\\u%04x", (unsigned char)*s);
-    else
-      fputc(*s, f);
-  }
-  fputc('"', f);
+  fputs("{\"reference\": ", f);
+  cli_json_string(f, c->reference);
   if (c->ref_backend[0]) fprintf(f, ", \"reference_backend\": \"%s\"", c->ref_backend);
   if (c->ref_spp) fprintf(f, ", \"reference_spp\": %d", c->ref_spp);
   number(f, "ms_reference", c->ms_reference);

@@ -9,9 +9,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "backend.h"
+#include "clock.h"
 #include "mc_trace.h"
 #include "pool.h"
 #include "scene_internal.h"
@@ -19,41 +19,6 @@
 #define MC_STREAM_TAG 0x6dULL          /* "m", in the stream's top byte */
 #define MC_MAX_SPP (1 << 24)           /* samples per pixel: the stream's low 24 bits */
 #define MC_DEFAULT_SPP 64
-
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-typedef struct {
-  ics_pool *pool;
-} mc_state;
-
-static int mc_available(char *why, size_t why_size) {
-  (void)why, (void)why_size;
-  return 1;
-}
-
-static ics_status mc_create(void **state, const ics_render_opts *o, char *msg, size_t msg_size) {
-  mc_state *s = calloc(1, sizeof *s);
-  if (!s) return ICS_ERR_NOMEM;
-  s->pool = ics_pool_create(o->threads);
-  if (!s->pool) {
-    free(s);
-    if (msg) snprintf(msg, msg_size, "cannot start %d worker threads", o->threads);
-    return ICS_ERR_NOMEM;
-  }
-  *state = s;
-  return ICS_OK;
-}
-
-static void mc_destroy(void *state) {
-  mc_state *s = state;
-  if (!s) return;
-  ics_pool_destroy(s->pool);
-  free(s);
-}
 
 typedef struct {
   const mc_scene *m;
@@ -107,9 +72,9 @@ static double noise_of(const pass_t *ps, size_t npx, int n) {
 static ics_status mc_render(void *state, const ics_plan *P, const ics_render_opts *o,
                             ics_image *img, ics_aov_buf *aov, ics_render_stats *st, char *msg,
                             size_t msg_size) {
-  mc_state *ms = state;
-  double t_start = now_s();
-  int nt = ics_pool_size(ms->pool);
+  ics_pool *pool = state;
+  double t_start = ics_clock_s();
+  int nt = ics_pool_size(pool);
   size_t npx = (size_t)P->W * P->H;
   if (o->spp < 0 || o->spp > MC_MAX_SPP || !(o->time_s >= 0) || !(o->noise >= 0) ||
       isinf(o->time_s) || isinf(o->noise)) {
@@ -142,7 +107,7 @@ static ics_status mc_render(void *state, const ics_plan *P, const ics_render_opt
   double noise = INFINITY;
   while (n < spp) {
     ps.n = n;
-    ics_pool_run(ms->pool, pass_job, &ps);
+    ics_pool_run(pool, pass_job, &ps);
     for (int t = 0; t < nt; t++)
       if (ps.failed[t]) goto nomem;
     n++;
@@ -150,7 +115,7 @@ static ics_status mc_render(void *state, const ics_plan *P, const ics_render_opt
     if (o->noise > 0 || n == spp) noise = noise_of(&ps, npx, n);
     if (n < 2) continue; /* a time or noise stop takes at least 2 samples: a standard error */
     if (o->noise > 0 && noise <= o->noise) break;
-    if (o->time_s > 0 && now_s() - t_start >= o->time_s) break;
+    if (o->time_s > 0 && ics_clock_s() - t_start >= o->time_s) break;
   }
   if (!(o->noise > 0) && n != spp) noise = noise_of(&ps, npx, n);
   for (size_t p = 0; p < npx; p++)
@@ -170,7 +135,7 @@ static ics_status mc_render(void *state, const ics_plan *P, const ics_render_opt
   st->spp = n;
   st->noise = n > 1 ? noise : NAN;
   snprintf(st->device, sizeof st->device, "CPU, %d thread%s (Monte Carlo)", nt, nt == 1 ? "" : "s");
-  st->ms_total = 1e3 * (now_s() - t_start);
+  st->ms_total = 1e3 * (ics_clock_s() - t_start);
   st->ms_shading = st->ms_total;
   goto done;
 nomem:
@@ -191,5 +156,5 @@ done:
 const ics_backend ics_backend_mc = {
     "mc", "the Monte-Carlo reference: exact shadows by light sampling, delta and ratio tracking "
           "(CPU threads; always built; never chosen by auto)",
-    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH | ICS_AOV_STDERR, mc_available, mc_create, mc_render,
-    mc_destroy};
+    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH | ICS_AOV_STDERR, ics_backend_always_available,
+    ics_backend_pool_create, mc_render, ics_backend_pool_destroy};

@@ -14,46 +14,9 @@
  * Pixels whose ray passes within 0.05 of the disk's edge or hits the disk are left out. */
 #include <math.h>
 
+#include "disk_eq4.h"
 #include "render_util.h"
 #include "testutil.h"
-
-#define GL_N 32
-static double gl_x[GL_N], gl_w[GL_N];
-
-static void gl_init(int n) {
-  for (int i = 0; i < n; i++) {
-    double x = cos(ICS_PI * (i + 0.75) / (n + 0.5)), p0 = 1, p1 = x, dp = 1;
-    for (int it = 0; it < 100; it++) {
-      p0 = 1, p1 = x;
-      for (int k = 2; k <= n; k++) {
-        double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
-        p0 = p1, p1 = p2;
-      }
-      dp = n * (x * p1 - p0) / (x * x - 1);
-      double dx = p1 / dp;
-      x -= dx;
-      if (fabs(dx) < 1e-16) break;
-    }
-    gl_x[i] = x;
-    gl_w[i] = 2 / ((1 - x * x) * dp * dp);
-  }
-}
-
-/* P(|q| < R) for q ~ N(m, S) */
-static double p_disk(double mx, double my, const double S[3], double R) {
-  double det = S[0] * S[2] - S[1] * S[1], i0 = S[2] / det, i1 = -S[1] / det, i2 = S[0] / det;
-  double sum = 0;
-  const int nt = 128;
-  for (int a = 0; a < GL_N; a++) {
-    double r = 0.5 * R * (gl_x[a] + 1), wr = 0.5 * R * gl_w[a], s = 0;
-    for (int b = 0; b < nt; b++) {
-      double th = 2 * ICS_PI * b / nt, x = r * cos(th) - mx, y = r * sin(th) - my;
-      s += exp(-0.5 * (i0 * x * x + 2 * i1 * x * y + i2 * y * y));
-    }
-    sum += wr * r * s * 2 * ICS_PI / nt;
-  }
-  return sum / (2 * ICS_PI * sqrt(det));
-}
 
 static const char *fmt =
     "{\"camera\": {\"projection\": \"perspective\", \"eye\": [0, 0, %.17g], \"target\": [0, 0, 0],"

@@ -7,6 +7,7 @@
 
 #include "backend.h"
 #include "plan_internal.h"
+#include "pool.h"
 
 static const ics_backend *const table[] = {&ics_backend_cpu, &ics_backend_mc};
 #define NBACKENDS ((int)(sizeof table / sizeof *table))
@@ -187,4 +188,22 @@ ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsig
 ics_status ics_renderer_render(ics_renderer *r, const ics_plan *plan, ics_image **out,
                                ics_render_stats *stats, char *msg, size_t msg_size) {
   return ics_renderer_render_aovs(r, plan, 0, out, NULL, stats, msg, msg_size);
+}
+
+ics_status ics_backend_pool_create(void **state, const ics_render_opts *opts, char *msg,
+                                   size_t msg_size) {
+  ics_pool *pool = ics_pool_create(opts->threads);
+  if (!pool) {
+    if (msg) snprintf(msg, msg_size, "cannot start %d worker threads", opts->threads);
+    return ICS_ERR_NOMEM;
+  }
+  *state = pool;
+  return ICS_OK;
+}
+
+void ics_backend_pool_destroy(void *state) { ics_pool_destroy(state); }
+
+int ics_backend_always_available(char *why, size_t why_size) {
+  (void)why, (void)why_size;
+  return 1;
 }

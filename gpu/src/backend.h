@@ -30,6 +30,14 @@ typedef struct ics_backend {
   void (*destroy)(void *state);
 } ics_backend;
 
+/* For the backends that run on a pool of CPU threads ("cpu", "mc"): the state is the pool
+ * itself (opts->threads workers; NULL and ICS_ERR_NOMEM with msg when they cannot start), and
+ * such a backend is always available. */
+ics_status ics_backend_pool_create(void **state, const ics_render_opts *opts, char *msg,
+                                   size_t msg_size);
+void ics_backend_pool_destroy(void *state);
+int ics_backend_always_available(char *why, size_t why_size);
+
 extern const ics_backend ics_backend_cpu;
 extern const ics_backend ics_backend_mc;
 

@@ -11,9 +11,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "backend.h"
+#include "clock.h"
 #include "icshadow/rng.h"
 #include "plan_internal.h"
 #include "pool.h"
@@ -21,41 +21,6 @@
 #include "scene_internal.h"
 
 #define JITTER_STREAM 0x6a69747400000000ULL /* "jitt": the sample depth inside a slab piece */
-
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-typedef struct {
-  ics_pool *pool;
-} cpu_state;
-
-static int cpu_available(char *why, size_t why_size) {
-  (void)why, (void)why_size;
-  return 1;
-}
-
-static ics_status cpu_create(void **state, const ics_render_opts *o, char *msg, size_t msg_size) {
-  cpu_state *s = calloc(1, sizeof *s);
-  if (!s) return ICS_ERR_NOMEM;
-  s->pool = ics_pool_create(o->threads);
-  if (!s->pool) {
-    free(s);
-    if (msg) snprintf(msg, msg_size, "cannot start %d worker threads", o->threads);
-    return ICS_ERR_NOMEM;
-  }
-  *state = s;
-  return ICS_OK;
-}
-
-static void cpu_destroy(void *state) {
-  cpu_state *s = state;
-  if (!s) return;
-  ics_pool_destroy(s->pool);
-  free(s);
-}
 
 typedef struct {
   const ics_plan *p;
@@ -91,7 +56,7 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
     double scale = 1, c[3] = {mat->color[0], mat->color[1], mat->color[2]};
     if (mat->detail.fn != ICS_DETAIL_NONE) {
       if (!have_ray) {
-        t0 = now_s();
+        t0 = ics_clock_s();
         ics_plan_ray(P, bi, bj, o, d);
         if (P->rs.preintegrate) {
           /* the piece's two ends (its detail varies linearly between them) */
@@ -115,7 +80,7 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
     objs[nv++] = obj;
     sum += sig[nv - 1];
   }
-  if (have_ray) j->detail_s[t] += now_s() - t0;
+  if (have_ray) j->detail_s[t] += ics_clock_s() - t0;
   if (!(sum > 0)) return;
   if (inview && C[3] < 1) {
     double dl = 1; /* camera path per unit depth */
@@ -267,11 +232,11 @@ static void slab_job(void *ctx, int t, int n) {
   const ics_plan *P = j->p;
   int y0, y1;
   ics_pool_band(P->Hb, t, n, &y0, &y1);
-  double t0 = now_s();
+  double t0 = ics_clock_s();
   for (int l = 0; l < P->nlights; l++)
     ics_prop_rows(&j->pt[l], j->src[l], j->dst[l], &P->buf, P->nch, y0, y1,
                   j->scratch + (size_t)t * P->Wb);
-  double t1 = now_s();
+  double t1 = ics_clock_s();
   shade_rows(j, y0, y1, t);
   for (int l = 0; l < P->nlights; l++) {
     /* signed weights can ring (values outside [0, 1] that the slabs amplify): clamp them */
@@ -283,7 +248,7 @@ static void slab_job(void *ctx, int t, int n) {
         }
     ics_prop_apron(&P->buf, j->dst[l], P->nch, y0, y1, 0);
   }
-  double t2 = now_s();
+  double t2 = ics_clock_s();
   j->prop_s[t] += t1 - t0;
   j->shade_s[t] += t2 - t1;
 }
@@ -291,9 +256,9 @@ static void slab_job(void *ctx, int t, int n) {
 static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_opts *o,
                              ics_image *img, ics_aov_buf *aov, ics_render_stats *st, char *msg,
                              size_t msg_size) {
-  cpu_state *cs = state;
-  double t_start = now_s();
-  int nl = P->nlights, nt = ics_pool_size(cs->pool);
+  ics_pool *pool = state;
+  double t_start = ics_clock_s();
+  int nl = P->nlights, nt = ics_pool_size(pool);
   size_t plane = (size_t)P->Wb * P->Hb, npx = plane;
   job_t *j = calloc(1, sizeof *j);
   float **bufs = calloc(2 * (size_t)(nl ? nl : 1), sizeof *bufs);
@@ -358,7 +323,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
       j->pt[l].light = (uint32_t)l;
       j->pt[l].slab = (uint32_t)k;
     }
-    ics_pool_run(cs->pool, slab_job, j);
+    ics_pool_run(pool, slab_job, j);
     for (int l = 0; l < nl; l++) ics_prop_apron(&P->buf, j->dst[l], P->nch, 0, 0, 1);
     for (int l = 0; l < nl; l++) {
       float *tmp = j->src[l];
@@ -382,7 +347,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   }
   if (nl && P->K)
     st->ns_per_px_slab = 1e6 * st->ms_convolution / ((double)npx * P->K * nl);
-  st->ms_total = 1e3 * (now_s() - t_start);
+  st->ms_total = 1e3 * (ics_clock_s() - t_start);
   goto done;
 nomem:
   status = ICS_ERR_NOMEM;
@@ -412,4 +377,5 @@ done:
 
 const ics_backend ics_backend_cpu = {
     "cpu", "the slab renderer on the CPU (threads; always built)",
-    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, cpu_available, cpu_create, cpu_render, cpu_destroy};
+    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, ics_backend_always_available,
+    ics_backend_pool_create, cpu_render, ics_backend_pool_destroy};

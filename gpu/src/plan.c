@@ -12,19 +12,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "clock.h"
 #include "geometry.h"
 #include "icshadow/conv.h"
 #include "mesh.h"
 #include "plan_internal.h"
 #include "scene_internal.h"
-
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 void ics_plan_ray(const ics_plan *p, int bi, int bj, double o[3], double d[3]) {
   const ics_camera *c = &p->cam;
@@ -342,9 +336,9 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
     goto fail;
   }
 
-  double t0 = now_s();
+  double t0 = ics_clock_s();
   st = ics_ldi_build(p, o.threads, msg, msg_size);
-  p->geometry_s = now_s() - t0;
+  p->geometry_s = ics_clock_s() - t0;
   if (st != ICS_OK) goto fail;
   size_t ldi_bytes = offset_bytes + p->ldi.nfrag * sizeof(ics_fragment) +
                      (p->ldi.inside0 ? npx * sizeof(uint64_t) : 0);
