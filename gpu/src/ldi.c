@@ -40,6 +40,7 @@ typedef struct {
   double zmin[256], zmax[256];
   int layers[256];
   int any_inside[256];
+  double reach;    /* kernel_reach, for the surface bias */
 } job_t;
 
 /* all crossings of pixel (bi, bj), sorted, into *hv (grown as needed); returns the count or -1 */
@@ -75,7 +76,25 @@ static int pixel_hits(const ics_plan *p, int bi, int bj, ics_hits *h, hit_t **hv
 
 /* The depth slope of a surface, in slabs per pixel: s = q tan(theta) / e (theta between its
  * normal and the view direction); infinite for a surface seen edge-on. */
-static double surface_slope(const ics_plan *p, const double n[3], double z) {
+/* How far one slab's kernel reaches laterally (world units), the largest over the lights: the
+ * 2-sample ellipse's taps sit at sqrt(2 lambda_max) of the per-slab covariance d1 e Sigma, and
+ * the mean moves the buffer by e |mu|. */
+static double kernel_reach(const ics_plan *p) {
+  double reach = 0;
+  for (int l = 0; l < p->nlights; l++) {
+    const ics_light *L = &p->scene->lights[l];
+    const double *c = L->cov;
+    double h = 0.5 * (c[0] + c[2]), d = sqrt(0.25 * (c[0] - c[2]) * (c[0] - c[2]) + c[1] * c[1]);
+    double r = sqrt(2 * p->rs.d1 * p->e * (h + d)) + p->e * hypot(L->mean[0], L->mean[1]);
+    if (r > reach) reach = r;
+  }
+  return reach;
+}
+
+/* The slabs a surface fragment's occlusion is delayed by: the surface's depth change over the
+ * larger of 3 pixels and the kernel's reach (its neighbours within what one slab's kernel reads
+ * are shaded first), in slabs; 0 for a surface parallel to the slabs. */
+static double surface_delay(const ics_plan *p, const double n[3], double z, double reach) {
   const ics_camera *c = &p->cam;
   double nr = 0, nu = 0, nf = 0;
   for (int i = 0; i < 3; i++) {
@@ -85,7 +104,8 @@ static double surface_slope(const ics_plan *p, const double n[3], double z) {
   }
   double lat = sqrt(nr * nr + nu * nu);
   if (!(lat > 0)) return 0;
-  return fabs(nf) > 0 ? lat / fabs(nf) * ics_plan_pixel_size(p, z) / p->e : INFINITY;
+  if (!(fabs(nf) > 0)) return INFINITY;
+  return lat / fabs(nf) * fmax(3 * ics_plan_pixel_size(p, z), reach) / p->e;
 }
 
 static void ldi_rows(void *ctx, int t, int nt) {
@@ -121,11 +141,9 @@ static void ldi_rows(void *ctx, int t, int nt) {
       ics_fragment *f = l->frag + l->offset[px];
       for (int i = 0; i < n; i++) {
         /* the fragment's slab, and the slab its occlusion enters (docs/renderer.md "Surface
-         * bias"): a surface tilted by s slabs per pixel delays its occlusion by 3 s slabs (its
-         * neighbours up to 3 pixels away, deeper on the same surface, are shaded first), continuous
-         * in s and 0 for a surface parallel to the slabs */
+         * bias"): continuous in the surface's tilt and 0 for a surface parallel to the slabs */
         double u = (hv[i].t - p->z0) / p->e + 1e-6, k = floor(u);
-        double ko = floor(u + 3 * fmin(surface_slope(p, hv[i].n, hv[i].t), ICS_FRAG_MAX_BIAS));
+        double ko = floor(u + fmin(surface_delay(p, hv[i].n, hv[i].t, j->reach), ICS_FRAG_MAX_BIAS));
         if (k < 0) k = 0;
         if (k > p->K - 1) k = p->K - 1;
         int bias = (int)fmin(fmax(ko - k, 0), ICS_FRAG_MAX_BIAS);
@@ -223,6 +241,7 @@ ics_status ics_ldi_build(ics_plan *p, int threads, char *msg, size_t msg_size) {
     goto done;
   }
   j->fill = 1;
+  j->reach = kernel_reach(p);
   ics_pool_run(pool, ldi_rows, j);
   if (j->failed) {
     if (msg) snprintf(msg, msg_size, "out of memory in the geometry pass");
