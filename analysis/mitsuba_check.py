@@ -5,25 +5,28 @@ renderer, Mitsuba 3 (PyPI `mitsuba`, variant scalar_rgb), on scenes both can exp
 Method (docs/results.md "The outside check"):
 - Two scenes in icshadow's world frame (camera along -z, lights behind the viewer, dz > 0):
   `disk`, an opaque disk over a white receiver; `medium`, a box of heterogeneous absorbing medium
-  (a 6 x 6 x 4 grid of extinctions, trilinear between cell centres, clamped at the edges: the
-  same convention in both renderers, checked below) over the receiver. One Gaussian light each.
+  (a 6 x 6 x 4 grid of extinctions, trilinear between cell centres, clamped at the edges, as
+  icshadow's grid detail; Mitsuba's gridvolume is checked to do the same) over the receiver. One
+  Gaussian light each.
 - icshadow: the scene file with the light in a lights file, rendered by `mc` with the visibility
   and depth AOVs and their standard errors. The visibility of light 0 at each pixel's first
   surface is the fraction of the light reaching the receiver there, V = int L V dw / int L dw.
 - Mitsuba: the same light as the environment map `icshadow make-env` writes from the same lights
-  file, columns reversed (Mitsuba's latitude-longitude map has phi = 2 pi u with direction
-  (sin t sin phi, cos t, -sin t cos phi); icshadow's phi = 2 pi u - pi with (sin t sin phi,
-  cos t, sin t cos phi): reversing u maps one onto the other, checked below on the map's peak)
-  and divided by cos(w, n) = w_z (icshadow's surfaces have no cosine factor; a diffuse receiver
-  of reflectance 1 under L / cos returns (1/pi) int L V dw). One radiance meter per icshadow
-  pixel centre, below the occluder and looking down (camera rays never cross the medium or the
-  disk), integrator `volpath`: V = I / I0, I0 the same meters without the occluder (the mean over
-  all meters and passes; its relative standard error is printed). The standard error of I comes
-  from K independent passes (seeds).
-- Compared where the first surface is the receiver (Z = 3): z = (V_mi - V_ics) / sqrt(se_mi^2 +
-  se_ics^2). Pass: mean z^2 in [0.75, 1.3] and max |z| <= 5 per scene (64 passes: the t-distribution of z is nearly normal); and a control (icshadow
-  with the light's covariance x 1.25) must fail the mean-z^2 window, so the check can see an
-  error of that size.
+  file, put on Mitsuba's lattice (columns reversed: Mitsuba's phi = 2 pi u with direction
+  (sin t sin phi, cos t, -sin t cos phi), icshadow's phi = 2 pi u - pi with (sin t sin phi, cos t,
+  sin t cos phi); rows interpolated in theta: Mitsuba's row k is at pi k / (H - 1), icshadow's row
+  j at pi (j + 1/2) / H), checked on the map's brightest pixel, and divided by cos(w, n) = w_z
+  (icshadow's surfaces have no cosine factor; a diffuse receiver of reflectance 1 under L / cos
+  returns (1/pi) int L V dw). One radiance meter per icshadow pixel centre, below the occluder and
+  looking down (camera rays never cross the medium or the disk), integrator `volpath`:
+  V = I / I0, I0 the same meters without the occluder (the mean over all meters and passes). The
+  standard errors come from K independent passes (seeds). The absolute scale is checked too:
+  pi I0 must be the map's power int L dw within 4 standard errors (a misplaced row shows there).
+- Compared over the penumbra (the receiver is the first surface, 0.02 < V_ics < 0.98; at least
+  100 points): z = (V_mi - V_ics) / sqrt(se_mi^2 + se_ics^2). Agreement: mean z^2 in [0.75, 1.3],
+  |mean z| sqrt(n) <= 4 (no bias) and max |z| <= 5 (64 passes: t-distributed z, nearly normal);
+  and a control (icshadow with the light's covariance x 1.25) must fail that agreement, so the
+  check can see an error of that size.
 
 Python is the driver only: both images come from the two renderers.
 Exit status: 0 pass, 1 a check failed, 2 Mitsuba or the tool is missing (77 with --skip-code).
@@ -73,7 +76,7 @@ def grid_values():
     return rng.uniform(0.0, 1.0, size=(nz, ny, nx)).astype(np.float32)  # x fastest
 
 
-def icshadow_scene(name, lights_file, grid_file, cov_scale):
+def icshadow_scene(name, lights_file, grid_file):
     s = SCENES[name]
     cx, cy = s["centre"]
     scene = {
@@ -113,14 +116,26 @@ def read_channels(mi, path):
 
 
 def mitsuba_env(mi, env_path):
-    """The make-env map reoriented for Mitsuba and divided by cos(w, +z)."""
+    """The make-env map on Mitsuba's lattice, divided by cos(w, +z). Columns: Mitsuba's column i
+    is at u = (i + 1/2) / W as icshadow's, running the other way (reversed). Rows: Mitsuba puts
+    row k at theta = pi k / (H - 1), pole rows on the poles; icshadow's row j is at pi (j + 1/2) / H,
+    so each column is interpolated linearly in theta onto Mitsuba's rows (the poles take the
+    nearest rows' values). Returns the map for Mitsuba and icshadow's own, with its integral of
+    L dw (channel R, exact pixel solid angles)."""
     img = np.array(mi.Bitmap(env_path), dtype=np.float64)[:, :, :3]
     H, W = img.shape[:2]
-    theta = math.pi * (np.arange(H) + 0.5) / H
+    th_mi = math.pi * np.arange(H) / (H - 1)
+    pos = np.clip((th_mi / math.pi) * H - 0.5, 0, H - 1)  # fractional icshadow row of each theta
+    j0 = np.minimum(np.floor(pos).astype(int), H - 2)
+    w = (pos - j0)[:, None, None]
+    rows = (1 - w) * img[j0] + w * img[j0 + 1]
     phi = 2 * math.pi * (np.arange(W) + 0.5) / W - math.pi
-    dz = np.sin(theta)[:, None] * np.cos(phi)[None, :]
-    out = np.where(dz[:, :, None] > 1e-3, img / np.maximum(dz, 1e-3)[:, :, None], 0.0)
-    return np.ascontiguousarray(out[:, ::-1, :]).astype(np.float32), img
+    dz = np.sin(th_mi)[:, None] * np.cos(phi)[None, :]
+    out = np.where(dz[:, :, None] > 1e-3, rows / np.maximum(dz, 1e-3)[:, :, None], 0.0)
+    edges = math.pi * np.arange(H + 1) / H
+    d_omega = (np.cos(edges[:-1]) - np.cos(edges[1:])) * 2 * math.pi / W
+    power = float(np.sum(img[:, :, 0] * d_omega[:, None]))
+    return np.ascontiguousarray(out[:, ::-1, :]).astype(np.float32), img, power
 
 
 def check_env_orientation(mi, env, img):
@@ -183,20 +198,25 @@ def mitsuba_scene(mi, name, env, grid, xs, ys, spp, occluder=True):
 
 
 def mitsuba_visibility(mi, name, env, grid, xs, ys, passes, spp):
+    """V = I / I0 at the meters with its standard error from the passes, and I0 with its own."""
     scene = mitsuba_scene(mi, name, env, grid, xs, ys, spp)
     free = mitsuba_scene(mi, name, env, grid, xs, ys, spp, occluder=False)
     I = np.array([np.array(mi.render(scene, spp=spp, seed=1000 + k))[0, :, 0] for k in range(passes)])
     I0 = np.array([np.array(mi.render(free, spp=spp, seed=5000 + k))[0, :, 0] for k in range(passes)])
-    i0 = I0.mean()
-    i0_rel_se = I0.std(ddof=1) / math.sqrt(I0.size) / i0
+    i0, i0_se = float(I0.mean()), float(I0.std(ddof=1)) / math.sqrt(I0.size)
     V = I.mean(axis=0) / i0
     se = I.std(axis=0, ddof=1) / math.sqrt(passes) / i0
-    return V.reshape(xs.shape), se.reshape(xs.shape), i0_rel_se
+    return V.reshape(xs.shape), se.reshape(xs.shape), i0, i0_se
 
 
-def compare(v_mi, se_mi, v_ics, se_ics, mask):
-    z = (v_mi - v_ics)[mask] / np.sqrt(se_mi[mask] ** 2 + se_ics[mask] ** 2)
-    return float(np.mean(z * z)), float(np.max(np.abs(z))), int(mask.sum())
+def z_scores(v_mi, se_mi, v_ics, se_ics, mask):
+    return (v_mi - v_ics)[mask] / np.sqrt(se_mi[mask] ** 2 + se_ics[mask] ** 2)
+
+
+def judge(z):
+    """Mean z^2 in [0.75, 1.3], |mean z| sqrt(n) <= 4 (no bias), max |z| <= 5."""
+    m2, mz, zmax = float(np.mean(z * z)), float(np.mean(z) * math.sqrt(z.size)), float(np.max(np.abs(z)))
+    return m2, mz, zmax, 0.75 <= m2 <= 1.3 and abs(mz) <= 4 and zmax <= 5
 
 
 def main():
@@ -205,12 +225,20 @@ def main():
     ap.add_argument("--spp", type=int, default=4096, help="icshadow mc samples per pixel")
     ap.add_argument("--passes", type=int, default=64, help="Mitsuba passes (standard error)")
     ap.add_argument("--pass-spp", type=int, default=64, help="Mitsuba samples per pass")
-    ap.add_argument("--scenes", default="disk,medium")
+    ap.add_argument("--scenes", default="disk,medium", help="comma-separated: " + ", ".join(SCENES))
     ap.add_argument("--json", help="write the summary here")
     ap.add_argument("--plot", help="PNG: V from both renderers and z per scene")
     ap.add_argument("--workdir", help="keep the intermediate files here")
+    ap.add_argument("--control-scale", type=float, default=1.25,
+                    help="the control's factor on the light's covariance (default 1.25)")
     ap.add_argument("--skip-code", action="store_true", help="exit 77 (skip) when Mitsuba is missing")
     a = ap.parse_args()
+    names = a.scenes.split(",")
+    for name in names:
+        if name not in SCENES:
+            die(f"--scenes: {name!r} is not a scene ({', '.join(SCENES)})", 2)
+    if a.passes < 8 or a.spp < 2 or a.pass_spp < 1:
+        die("--passes must be >= 8, --spp >= 2 and --pass-spp >= 1", 2)
     try:
         import mitsuba as mi
         mi.set_variant("scalar_rgb")
@@ -218,59 +246,66 @@ def main():
         die(f"Mitsuba 3 (scalar_rgb) is not available: {e}", 77 if a.skip_code else 2)
     if not os.access(a.icshadow, os.X_OK):
         die(f"{a.icshadow}: not an executable (build icshadow first)", 2)
-    work = a.workdir or tempfile.mkdtemp(prefix="mitsuba_check")
+    work = os.path.abspath(a.workdir or tempfile.mkdtemp(prefix="mitsuba_check"))
     os.makedirs(work, exist_ok=True)
     grid = grid_values()
     grid_file = os.path.join(work, "grid.raw")
     grid.tofile(grid_file)
     check_grid_convention(mi, grid)
     summary, ok, panels = {"mitsuba": mi.__version__, "variant": "scalar_rgb", "scenes": {}}, True, []
-    for name in a.scenes.split(","):
+    for name in names:
         light = SCENES[name]["light"]
         lights = os.path.join(work, f"{name}_lights.json")
         with open(lights, "w") as f:
             json.dump({"lights": [light]}, f)
         env_path = os.path.join(work, f"{name}_env.exr")
         run([a.icshadow, "make-env", "--lights", lights, "--size", "1024x512", "-o", env_path])
-        env, img = mitsuba_env(mi, env_path)
+        env, img, power = mitsuba_env(mi, env_path)
         check_env_orientation(mi, env, img)
         xs, ys = pixel_centres(name)
-        v_mi, se_mi, i0_rel = mitsuba_visibility(mi, name, env, grid, xs, ys, a.passes, a.pass_spp)
-        result = {"mitsuba_spp": a.passes * a.pass_spp, "icshadow_spp": a.spp,
-                  "I0_relative_standard_error": i0_rel}
-        for tag, scale in (("", 1.0), ("control", 1.25)):
+        v_mi, se_mi, i0, i0_se = mitsuba_visibility(mi, name, env, grid, xs, ys, a.passes, a.pass_spp)
+        # the absolute scale: a white diffuse receiver under L / cos returns (1/pi) int L dw
+        z_i0 = (math.pi * i0 - power) / (math.pi * i0_se)
+        result = {"mitsuba_spp": a.passes * a.pass_spp, "icshadow_spp": a.spp, "pi_I0": math.pi * i0,
+                  "map_power": power, "pi_I0_z": z_i0}
+        for tag, scale in (("", 1.0), ("control", a.control_scale)):
             lt = dict(light, cov=[[c * scale for c in row] for row in light["cov"]])
             lf = os.path.join(work, f"{name}_lights{tag}.json")
             with open(lf, "w") as f:
                 json.dump({"lights": [lt]}, f)
             sf = os.path.join(work, f"{name}{tag}.json")
             with open(sf, "w") as f:
-                json.dump(icshadow_scene(name, lf, grid_file, scale), f)
+                json.dump(icshadow_scene(name, lf, grid_file), f)
             exr = os.path.join(work, f"{name}{tag}.exr")
             run([a.icshadow, "render", sf, "--backend", "mc", "--spp", str(a.spp),
                  "--aov", "visibility,depth,stderr", "-o", exr])
             ch = read_channels(mi, exr)
-            mask = np.abs(ch["Z"] - (EYE_Z - RECEIVER_Z)) < 1e-4
-            m2, zmax, n = compare(v_mi, se_mi, ch["light0.V"], ch["stderr.light0.V"], mask)
+            v, se = ch["light0.V"], ch["stderr.light0.V"]
+            # the penumbra: where the receiver is the first surface and the light partly blocked
+            # (fully lit or umbra points carry no information and would dilute a bias)
+            pen = (np.abs(ch["Z"] - (EYE_Z - RECEIVER_Z)) < 1e-4) & (v > 0.02) & (v < 0.98)
+            if pen.sum() < 100:
+                die(f"{name}{tag}: only {int(pen.sum())} penumbra points (0.02 < V < 0.98); need 100", 1)
+            m2, mz, zmax, good = judge(z_scores(v_mi, se_mi, v, se, pen))
             if tag:
-                result.update(control_mean_z2=m2, control_max_z=zmax)
+                result.update(control_mean_z2=m2, control_mean_z_sqrt_n=mz, control_seen=not good)
             else:
-                result.update(points=n, mean_z2=m2, max_z=zmax,
-                              max_abs_diff=float(np.max(np.abs(v_mi - ch["light0.V"])[mask])),
-                              median_se=float(np.median(np.sqrt(se_mi ** 2 + ch["stderr.light0.V"] ** 2)[mask])))
-                panels.append((name, v_mi, ch["light0.V"], mask,
-                               np.where(mask, (v_mi - ch["light0.V"]) /
-                                        np.sqrt(se_mi ** 2 + ch["stderr.light0.V"] ** 2 + 1e-30), np.nan)))
-        passed = (0.75 <= result["mean_z2"] <= 1.3 and result["max_z"] <= 5.0 and
-                  not (0.75 <= result["control_mean_z2"] <= 1.3))
+                result.update(points=int(pen.sum()), mean_z2=m2, mean_z_sqrt_n=mz, max_z=zmax,
+                              max_abs_diff=float(np.max(np.abs(v_mi - v)[pen])),
+                              median_se=float(np.median(np.sqrt(se_mi ** 2 + se ** 2)[pen])), agree=good)
+                panels.append((name, v_mi, v, pen,
+                               np.where(pen, (v_mi - v) / np.sqrt(se_mi ** 2 + se ** 2 + 1e-30), np.nan)))
+        passed = bool(result["agree"] and result["control_seen"] and abs(z_i0) <= 4)
         result["pass"] = passed
         ok &= passed
         summary["scenes"][name] = result
-        print(f"{name}: {result['points']} points, mean z^2 {result['mean_z2']:.3f} (window "
-              f"[0.75, 1.3]), max |z| {result['max_z']:.2f} (limit 5), max |dV| "
-              f"{result['max_abs_diff']:.4f}, median combined standard error {result['median_se']:.4f}; "
-              f"control (covariance x 1.25): mean z^2 {result['control_mean_z2']:.2f}; I0 relative "
-              f"standard error {i0_rel:.1e} -> {'pass' if passed else 'FAIL'}")
+        print(f"{name}: {result['points']} penumbra points, mean z^2 {result['mean_z2']:.3f} (window "
+              f"[0.75, 1.3]), mean z sqrt(n) {result['mean_z_sqrt_n']:+.2f} (|.| <= 4), max |z| "
+              f"{result['max_z']:.2f} (<= 5), max |dV| {result['max_abs_diff']:.4f}, median combined "
+              f"standard error {result['median_se']:.4f}; control (covariance x {a.control_scale:g}): mean z^2 "
+              f"{result['control_mean_z2']:.2f}, mean z sqrt(n) {result['control_mean_z_sqrt_n']:+.1f} "
+              f"({'seen' if result['control_seen'] else 'NOT seen'}); pi I0 {math.pi * i0:.5f} vs the "
+              f"map's power {power:.5f} (z {z_i0:+.2f}, |.| <= 4) -> {'pass' if passed else 'FAIL'}")
     if a.json:
         with open(a.json, "w") as f:
             json.dump(summary, f, indent=1)
