@@ -29,9 +29,10 @@ Exit status: 0 done, 1 a render failed, 2 bad arguments or shards that do not me
 """
 import argparse
 import csv
+import hashlib
 import json
-import math
 import os
+import shutil
 import statistics
 import subprocess
 import sys
@@ -79,7 +80,7 @@ def write_csv(path, rows, fields):
 
 
 def merge(a):
-    rows, fields, n_tasks = {}, None, None
+    rows, fields, n_tasks, sweep = {}, None, None, None
     for path in a.merge:
         try:
             with open(path, newline="") as f:
@@ -88,16 +89,17 @@ def merge(a):
                 fs = r.fieldnames
         except OSError as e:
             die(f"--merge: {path}: {e.strerror}")
-        if not fs or "task" not in fs or "n_tasks" not in fs:
-            die(f"--merge: {path} is not a sweep's CSV (no task / n_tasks columns)")
+        if not fs or not {"task", "n_tasks", "sweep"} <= set(fs):
+            die(f"--merge: {path} is not a sweep's CSV (no task / n_tasks / sweep columns)")
         if fields is not None and fs != fields:
             die(f"--merge: {path} has other columns than {a.merge[0]}")
         fields = fs
         for row in got:
             k, n = int(row["task"]), int(row["n_tasks"])
-            if n_tasks is not None and n != n_tasks:
-                die(f"--merge: {path}: task {k} is from a sweep of {n} tasks, the others of {n_tasks}")
-            n_tasks = n
+            if n_tasks is not None and (n != n_tasks or row["sweep"] != sweep):
+                die(f"--merge: {path}: task {k} is from another sweep (sweep {row['sweep']}, {n} tasks; "
+                    f"the others: sweep {sweep}, {n_tasks} tasks)")
+            n_tasks, sweep = n, row["sweep"]
             if k in rows:
                 die(f"--merge: task {k} is in two shards ({rows[k][1]} and {path})")
             rows[k] = (row, path)
@@ -192,6 +194,9 @@ def main():
     for spp in ([4, 16] if a.quick else [4, 16, 64, 256]):
         tasks.append(("mc", f"{spp} spp", res0, scene_with(), ["--backend", "mc", "--spp", str(spp)]))
     n_tasks = len(tasks)
+    # what makes two shards parts of one sweep: the scene, the tasks and the references
+    sweep_id = hashlib.sha256(json.dumps([base, [t[:3] + (t[4],) for t in tasks], a.ref, a.ref_spp],
+                                         sort_keys=True).encode()).hexdigest()[:16]
     mine = [k for k in range(n_tasks) if a.shard is None or k % a.shard[1] == a.shard[0]]
 
     ref_png = os.path.splitext(a.ref)[0] + ".png"
@@ -202,6 +207,7 @@ def main():
             run([ics, "render", scene_with(res), "--backend", "mc", "--spp", str(a.ref_spp), "--seed", "1001",
                  "--aov", "stderr", "-o", ref_path(res)] + extra)
     if a.refs_only:
+        shutil.rmtree(tmp, ignore_errors=True)
         return
 
     times = {k: [] for k in mine}
@@ -215,6 +221,9 @@ def main():
                     + extra + seed)
             times[k].append(s["ms_render"] + (0 if method == "mc" else s["ms_plan"]))
             result[k] = s["compare"]
+            if s["compare"].get("reference_spp") != a.ref_spp:
+                die(f"{ref_path(res)} was made with {s['compare'].get('reference_spp')} samples per pixel, "
+                    f"not --ref-spp {a.ref_spp}: remove it (it is remade) or give its --ref-spp")
     rows = []
     for k in mine:
         method, params, res, _, _ = tasks[k]
@@ -223,7 +232,7 @@ def main():
                      "ms": statistics.median(t), "ms_min": min(t), "ms_max": max(t), "rmse": c["rmse"],
                      "rmse_beyond_noise": c["rmse_beyond_noise"], "max_error": c["max_error"],
                      "psnr_db": c["psnr_db"], "reference_spp": c.get("reference_spp"),
-                     "reference_noise": c["reference_noise"], "n_tasks": n_tasks})
+                     "reference_noise": c["reference_noise"], "n_tasks": n_tasks, "sweep": sweep_id})
     fields = [f for f in rows[0] if not (a.no_times and f in TIME_COLUMNS)] if rows else ["task", "n_tasks"]
     write_csv(a.csv, rows, fields)
     print(f"{len(rows)} of {n_tasks} tasks -> {a.csv}", file=sys.stderr)
@@ -237,6 +246,7 @@ def main():
             slab_png, diff_png = os.path.join(tmp, "slab.png"), os.path.join(tmp, "diff.png")
             c = run([ics, "render", scene_with(), "--compare", a.ref, "--png", slab_png, "--diff-png", diff_png])
             images(slab_png, ref_png, diff_png, c["compare"], a.images)
+    shutil.rmtree(tmp, ignore_errors=True)
 
 
 def images(slab_png, ref_png, diff_png, c, path):
@@ -266,12 +276,14 @@ def images(slab_png, ref_png, diff_png, c, path):
 
 
 def plot(rows, ref_spp, ref_noise, reps, path):
-    """The Pareto front (no other row at once faster and more accurate) and error against time."""
+    """The Pareto front (no other row at the same resolution at least as fast and as accurate and
+    better in one) and error against time."""
     res0 = rows[0].get("resolution")
     same = [r for r in rows if r.get("resolution") == res0]  # other resolutions: other references
     for row in rows:
         row["pareto"] = row in same and not any(
-            o["ms"] < row["ms"] and o["rmse_beyond_noise"] < row["rmse_beyond_noise"] for o in same if o is not row)
+            o["ms"] <= row["ms"] and o["rmse_beyond_noise"] <= row["rmse_beyond_noise"] and
+            (o["ms"] < row["ms"] or o["rmse_beyond_noise"] < row["rmse_beyond_noise"]) for o in same if o is not row)
     for row in rows:
         print(f"{row['method']:4s} {row['parameters']:34s} {row['ms']:9.1f} ms [{row['ms_min']:.0f}, "
               f"{row['ms_max']:.0f}]  rmse {row['rmse']:.4g}  beyond noise {row['rmse_beyond_noise']:.4g}  "
@@ -283,7 +295,7 @@ def plot(rows, ref_spp, ref_noise, reps, path):
     except ImportError:
         print("error_vs_time: matplotlib not installed: no plot", file=sys.stderr)
         return
-    e0 = float(rows[0]["parameters"].split("e=")[1].split()[0])
+    e0 = next(float(r["parameters"].split("e=")[1].split()[0]) for r in rows if "e=" in r["parameters"])
     fams = {}
     for r in rows:
         p = r["parameters"]
@@ -321,7 +333,7 @@ def plot(rows, ref_spp, ref_noise, reps, path):
     ax.plot([r["ms"] for r in front], [y(r) for r in front], "k--", lw=1, label="Pareto front", zorder=2)
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("time per frame, ms (median of %d; 2-core VM)" % reps)
+    ax.set_xlabel("time per frame, ms (median of %d runs, %d cores)" % (reps, os.cpu_count() or 1))
     ax.set_ylabel("RMSE against the reference, its noise removed")
     ax.set_title("Error against run time, %s (reference: Monte Carlo, %s spp, noise %.2g)"
                  % (res0, ref_spp, ref_noise), fontsize=10)
