@@ -320,13 +320,12 @@ def plot(panels, path):
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(len(panels), 3, figsize=(10, 3.0 * len(panels)), squeeze=False,
                            constrained_layout=True)
-    for r, (name, v_mi, v_ics, mask, z) in enumerate(panels):
-        for c, (img, title) in enumerate(((np.where(mask, v_mi, np.nan), f"{name}: Mitsuba 3 V"),
-                                          (np.where(mask, v_ics, np.nan), f"{name}: icshadow mc V"))):
+    for r, (name, v_mi, v_ics, _, z) in enumerate(panels):
+        for c, (img, title) in enumerate(((v_mi, f"{name}: Mitsuba 3 V"), (v_ics, f"{name}: icshadow mc V"))):
             im = ax[r][c].imshow(img, vmin=0, vmax=1, cmap="gray")
             ax[r][c].set_title(title)
         im2 = ax[r][2].imshow(z, vmin=-4, vmax=4, cmap="coolwarm")
-        ax[r][2].set_title(f"{name}: z = dV / combined standard error")
+        ax[r][2].set_title(f"{name}: z over the penumbra")
         fig.colorbar(im, ax=ax[r][:2].tolist(), shrink=0.8)
         fig.colorbar(im2, ax=ax[r][2], shrink=0.8)
         for c in range(3):

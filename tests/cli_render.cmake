@@ -104,4 +104,14 @@ ics_cli_test(NAME cli_render_compare_file RC 0 ARGS "render|${disk}|--resolution
 ics_cli_test(NAME cli_render_compare_size RC 2 ARGS "render|${disk}|--compare|${rd}/mc.exr|-o|${rd}/cmp5.exr"
   ERR "--compare: .*mc.exr is 32x32, the render 128x128" NOFILE ${rd}/cmp5.exr)
 set_tests_properties(cli_render_compare_file cli_render_compare_size PROPERTIES FIXTURES_REQUIRED mc_exr)
+# references that are not: a NaN pixel, R and G only, truncated (written by test_exr --write-bad)
+add_test(NAME cli_render_bad_refs COMMAND test_exr --write-bad . WORKING_DIRECTORY ${rd})
+set_tests_properties(cli_render_bad_refs PROPERTIES LABELS fast FIXTURES_SETUP render_bad_refs)
+foreach(bad "nan;channel G is NaN" "rg;wrong channel set: missing B|has no R, G, B channels" "trunc;corrupt or truncated")
+  list(GET bad 0 name)
+  list(GET bad 1 err)
+  ics_cli_test(NAME cli_render_compare_${name} RC 2 ARGS "render|${disk}|--compare|${rd}/${name}.exr|-o|${rd}/cmp_${name}.exr"
+    ERR "--compare: .*(${err})" NOFILE ${rd}/cmp_${name}.exr)
+  set_tests_properties(cli_render_compare_${name} PROPERTIES FIXTURES_REQUIRED render_bad_refs)
+endforeach()
 endif()
