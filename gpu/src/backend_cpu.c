@@ -37,6 +37,8 @@ typedef struct {
   ics_aov_buf *aov;      /* NULL: no AOVs */
   uint8_t *aov_seen;     /* per view pixel: its first surface recorded */
   double prop_s[256], shade_s[256], detail_s[256];
+  double dwell[ICS_SCENE_MAX_LIGHTS];    /* per light: slabs a light parcel takes to cross a pixel */
+  double sigma_px[ICS_SCENE_MAX_LIGHTS]; /* per light: the per-slab blur's largest sigma, pixels */
 } job_t;
 
 /* one volume piece of depth extent dz ending the events at (pixel p, depth za..za+dz) */
@@ -120,17 +122,30 @@ static void surface_colour(const job_t *j, int obj, const double L[3], float *C)
   C[3] += (float)wgt;
 }
 
-/* a surface's occlusion of the light leaving this slab (its slab + its bias); q is the pixel's
- * index in the light buffers' layout */
-static void surface_occlusion(job_t *j, size_t q, int obj) {
+/* a surface's occlusion of the light leaving this slab, `after` slabs after its first (slab +
+ * bias); q is the pixel's index in the light buffers' layout. Each pixel occludes at its own
+ * depth, so two neighbours whose depths differ by span slabs occlude at slabs span apart, and a
+ * light parcel moving sideways can slip between them (a steep surface leaks). Unless the light's
+ * per-slab blur (sigma pixels) smears the gap shut, each pixel therefore occludes for the span
+ * (its depth change over one pixel) after its first slab: the window is span (1 - sigma), 0 for
+ * sigma >= 1 (docs/renderer.md "Surface bias"). A parcel stays dwell = q / (e |mu|) slabs in a
+ * pixel, so over a window of n + 1 slabs it meets the fragment min(n + 1, dwell) times, and each
+ * slab passes that root's share: once in all. */
+static void surface_occlusion(job_t *j, size_t q, int obj, int span, int after) {
   const ics_plan *P = j->p;
   const ics_material *m = &P->scene->materials[P->scene->objects[obj].material];
   double a = m->opacity;
   if (!(a > 0)) return;
   size_t plane = P->buf.plane;
-  for (int l = 0; l < P->nlights; l++)
-    for (int c = 0; c < P->nch; c++)
-      j->dst[l][(size_t)c * plane + q] *= (float)(1 - a * (1 - m->transport[c]));
+  for (int l = 0; l < P->nlights; l++) {
+    double window = floor(span * fmax(0, 1 - j->sigma_px[l]));
+    if (after > window) continue;
+    double meets = fmin(window + 1, j->dwell[l]);
+    for (int c = 0; c < P->nch; c++) {
+      double pass = 1 - a * (1 - m->transport[c]);
+      j->dst[l][(size_t)c * plane + q] *= (float)(meets > 1 ? pow(pass, 1 / meets) : pass);
+    }
+  }
 }
 
 /* the AOVs of view pixel (ii, jj) at its first surface (depth z): V[l nch + c], the light
@@ -187,11 +202,13 @@ static void shade_rows(job_t *j, int y0, int y1, int t) {
        * arriving here was read: a surface never shadows its own slab */
       for (uint32_t f = acur; f < end && ics_frag_slab(&ldi->frag[f]) <= k; f++) {
         const ics_fragment *fr = &ldi->frag[f];
-        int obj = ics_frag_obj(fr);
-        if (P->vol_bit[obj] < 0 && ics_frag_slab(fr) + ics_frag_bias(fr) == k)
-          surface_occlusion(j, q, obj);
+        int obj = ics_frag_obj(fr), first = ics_frag_slab(fr) + ics_frag_bias(fr);
+        if (P->vol_bit[obj] < 0 && first <= k && k <= first + fr->span)
+          surface_occlusion(j, q, obj, fr->span, k - first);
       }
-      while (acur < end && ics_frag_slab(&ldi->frag[acur]) + ICS_FRAG_MAX_BIAS <= k) acur++;
+      while (acur < end && ics_frag_slab(&ldi->frag[acur]) + ics_frag_bias(&ldi->frag[acur]) +
+                               ldi->frag[acur].span <= k)
+        acur++;
       j->acursor[p] = acur;
       if (!has && !mask) goto next_pixel;
       double za = zf;
@@ -278,6 +295,14 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->mask = P->nvol ? malloc(sizeof *j->mask * npx) : NULL;
   j->aov = aov;
   j->aov_seen = aov ? calloc((size_t)P->W * P->H, 1) : NULL;
+  for (int l = 0; l < nl; l++) {
+    const ics_light *L = &P->scene->lights[l];
+    double shift = P->e * hypot(L->mean[0], L->mean[1]); /* world units per slab */
+    const double *c = L->cov;
+    double lmax = 0.5 * (c[0] + c[2]) + sqrt(0.25 * (c[0] - c[2]) * (c[0] - c[2]) + c[1] * c[1]);
+    j->dwell[l] = shift > 0 ? P->q_ref / shift : INFINITY;
+    j->sigma_px[l] = sqrt(P->rs.d1 * P->e * lmax) / P->q_ref;
+  }
   if (!j->pt || !j->cursor || !j->acursor || !j->scratch || !j->row_next || (P->nvol && !j->mask) ||
       (aov && !j->aov_seen))
     goto nomem;

@@ -91,10 +91,9 @@ static double kernel_reach(const ics_plan *p) {
   return reach;
 }
 
-/* The slabs a surface fragment's occlusion is delayed by: the surface's depth change over the
- * larger of 3 pixels and the kernel's reach (its neighbours within what one slab's kernel reads
- * are shaded first), in slabs; 0 for a surface parallel to the slabs. */
-static double surface_delay(const ics_plan *p, const double n[3], double z, double reach) {
+/* A surface's depth change per unit of lateral distance, in slabs (tan of its tilt from the view
+ * over the slab spacing); 0 for a surface parallel to the slabs. */
+static double surface_gradient(const ics_plan *p, const double n[3]) {
   const ics_camera *c = &p->cam;
   double nr = 0, nu = 0, nf = 0;
   for (int i = 0; i < 3; i++) {
@@ -104,8 +103,7 @@ static double surface_delay(const ics_plan *p, const double n[3], double z, doub
   }
   double lat = sqrt(nr * nr + nu * nu);
   if (!(lat > 0)) return 0;
-  if (!(fabs(nf) > 0)) return INFINITY;
-  return lat / fabs(nf) * fmax(3 * ics_plan_pixel_size(p, z), reach) / p->e;
+  return fabs(nf) > 0 ? lat / fabs(nf) / p->e : INFINITY;
 }
 
 static void ldi_rows(void *ctx, int t, int nt) {
@@ -143,12 +141,19 @@ static void ldi_rows(void *ctx, int t, int nt) {
         /* the fragment's slab, and the slab its occlusion enters (docs/renderer.md "Surface
          * bias"): continuous in the surface's tilt and 0 for a surface parallel to the slabs */
         double u = (hv[i].t - p->z0) / p->e + 1e-6, k = floor(u);
-        double ko = floor(u + fmin(surface_delay(p, hv[i].n, hv[i].t, j->reach), ICS_FRAG_MAX_BIAS));
+        double g = surface_gradient(p, hv[i].n), q = ics_plan_pixel_size(p, hv[i].t);
+        /* the delay: the depth change over the larger of 3 pixels and the kernel's reach (its
+         * neighbours within what one slab's kernel reads are shaded first); the span: the depth
+         * change over one pixel, from which the backend takes, per light, the window a light
+         * parcel cannot slip through between two neighbours */
+        double delay = fmin(g * fmax(3 * q, j->reach), ICS_FRAG_MAX_BIAS);
+        double ko = floor(u + delay), span = ceil(fmin(g * q, ICS_FRAG_MAX_SPAN));
         if (k < 0) k = 0;
         if (k > p->K - 1) k = p->K - 1;
         int bias = (int)fmin(fmax(ko - k, 0), ICS_FRAG_MAX_BIAS);
         f[i].z = (float)hv[i].t;
         f[i].code = ics_frag_code(hv[i].obj, bias, (int)k);
+        f[i].span = (uint8_t)fmax(span, 0);
       }
       if (l->inside0) l->inside0[px] = inside;
     }

@@ -19,10 +19,16 @@
 #define ICS_FRAG_SLAB_SHIFT (ICS_FRAG_OBJ_BITS + ICS_FRAG_BIAS_BITS)
 #define ICS_FRAG_MAX_SLABS (1 << (32 - ICS_FRAG_SLAB_SHIFT))
 
-/* One crossing of a buffer pixel's camera ray: depth and (object | bias << 12 | slab << 16). */
+#define ICS_FRAG_MAX_SPAN 255
+
+/* One crossing of a buffer pixel's camera ray: depth, (object | bias << 12 | slab << 16), and
+ * for a surface the span: its depth change over one pixel in slabs (rounded up), from which the
+ * backend draws the window of slabs, from slab + bias on, in which it occludes (docs/renderer.md
+ * "Surface bias"). */
 typedef struct ics_fragment {
   float z;
   uint32_t code;
+  uint8_t span;
 } ics_fragment;
 
 static inline uint32_t ics_frag_code(int obj, int bias, int slab) {
