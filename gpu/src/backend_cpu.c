@@ -37,8 +37,9 @@ typedef struct {
   ics_aov_buf *aov;      /* NULL: no AOVs */
   uint8_t *aov_seen;     /* per view pixel: its first surface recorded */
   double prop_s[256], shade_s[256], detail_s[256];
-  double dwell[ICS_SCENE_MAX_LIGHTS];    /* per light: slabs a light parcel takes to cross a pixel */
-  double sigma_px[ICS_SCENE_MAX_LIGHTS]; /* per light: the per-slab blur's largest sigma, pixels */
+  double window[ICS_SCENE_MAX_LIGHTS]; /* this slab, per light: 1 - its blur sigma in pixels, >= 0 */
+  double window_max;                   /* the largest over lights and slabs (the cursor's reach) */
+  double blur_world[ICS_SCENE_MAX_LIGHTS]; /* per light: the per-slab blur's sigma, world units */
 } job_t;
 
 /* one volume piece of depth extent dz ending the events at (pixel p, depth za..za+dz) */
@@ -124,23 +125,27 @@ static void surface_colour(const job_t *j, int obj, const double L[3], float *C)
 
 /* a surface's occlusion of the light leaving this slab, `after` slabs after its first (slab +
  * bias); q is the pixel's index in the light buffers' layout. Each pixel occludes at its own
- * depth, so two neighbours whose depths differ by span slabs occlude at slabs span apart, and a
+ * depth, so two neighbours whose depths differ by span slabs occlude span slabs apart, and a
  * light parcel moving sideways can slip between them (a steep surface leaks). Unless the light's
- * per-slab blur (sigma pixels) smears the gap shut, each pixel therefore occludes for the span
- * (its depth change over one pixel) after its first slab: the window is span (1 - sigma), 0 for
- * sigma >= 1 (docs/renderer.md "Surface bias"). A parcel stays dwell = q / (e |mu|) slabs in a
- * pixel, so over a window of n + 1 slabs it meets the fragment min(n + 1, dwell) times, and each
- * slab passes that root's share: once in all. */
-static void surface_occlusion(job_t *j, size_t q, int obj, int span, int after) {
+ * per-slab blur (sigma pixels) smears the gap shut, each fragment therefore keeps occluding for
+ * the window span (1 - sigma) slabs after its first. A parcel of light l moves by -e mu per slab,
+ * so the surface's depth under it changes by rho = -(dz/dr mu_x + dz/du mu_y) slabs per slab while
+ * its own depth grows by one: it stays (window + 1) / |1 - rho| slabs within the windows of the
+ * surface (clamped to [1, 8 (window + 1)]), and each of those slabs passes that root's share of
+ * 1 - a (1 - T): the parcel is filtered once in all (docs/renderer.md "Surface bias"). */
+static void surface_occlusion(job_t *j, size_t q, const ics_fragment *fr, int after) {
   const ics_plan *P = j->p;
-  const ics_material *m = &P->scene->materials[P->scene->objects[obj].material];
+  const ics_material *m = &P->scene->materials[P->scene->objects[ics_frag_obj(fr)].material];
   double a = m->opacity;
   if (!(a > 0)) return;
   size_t plane = P->buf.plane;
+  double gr = fr->grad[0] / ICS_FRAG_GRAD_SCALE, gu = fr->grad[1] / ICS_FRAG_GRAD_SCALE;
   for (int l = 0; l < P->nlights; l++) {
-    double window = floor(span * fmax(0, 1 - j->sigma_px[l]));
+    double window = floor(fr->span * j->window[l]);
     if (after > window) continue;
-    double meets = fmin(window + 1, j->dwell[l]);
+    const double *mu = P->scene->lights[l].mean;
+    double rho = -(gr * mu[0] + gu * mu[1]), rel = fabs(1 - rho);
+    double meets = rel > 0 ? fmin(fmax((window + 1) / rel, 1), 8 * (window + 1)) : 8 * (window + 1);
     for (int c = 0; c < P->nch; c++) {
       double pass = 1 - a * (1 - m->transport[c]);
       j->dst[l][(size_t)c * plane + q] *= (float)(meets > 1 ? pow(pass, 1 / meets) : pass);
@@ -203,11 +208,11 @@ static void shade_rows(job_t *j, int y0, int y1, int t) {
       for (uint32_t f = acur; f < end && ics_frag_slab(&ldi->frag[f]) <= k; f++) {
         const ics_fragment *fr = &ldi->frag[f];
         int obj = ics_frag_obj(fr), first = ics_frag_slab(fr) + ics_frag_bias(fr);
-        if (P->vol_bit[obj] < 0 && first <= k && k <= first + fr->span)
-          surface_occlusion(j, q, obj, fr->span, k - first);
+        if (P->vol_bit[obj] < 0 && first <= k && k <= first + fr->span * j->window_max)
+          surface_occlusion(j, q, fr, k - first);
       }
       while (acur < end && ics_frag_slab(&ldi->frag[acur]) + ics_frag_bias(&ldi->frag[acur]) +
-                               ldi->frag[acur].span <= k)
+                               ldi->frag[acur].span * j->window_max <= k)
         acur++;
       j->acursor[p] = acur;
       if (!has && !mask) goto next_pixel;
@@ -295,13 +300,14 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->mask = P->nvol ? malloc(sizeof *j->mask * npx) : NULL;
   j->aov = aov;
   j->aov_seen = aov ? calloc((size_t)P->W * P->H, 1) : NULL;
+  /* the largest pixel is the deepest slab's (perspective) */
+  double q_max = P->cam.projection == ICS_PROJ_PERSPECTIVE
+                     ? ics_plan_pixel_size(P, ics_plan_slab_depth(P, P->K - 1)) : P->q_ref;
   for (int l = 0; l < nl; l++) {
-    const ics_light *L = &P->scene->lights[l];
-    double shift = P->e * hypot(L->mean[0], L->mean[1]); /* world units per slab */
-    const double *c = L->cov;
+    const double *c = P->scene->lights[l].cov;
     double lmax = 0.5 * (c[0] + c[2]) + sqrt(0.25 * (c[0] - c[2]) * (c[0] - c[2]) + c[1] * c[1]);
-    j->dwell[l] = shift > 0 ? P->q_ref / shift : INFINITY;
-    j->sigma_px[l] = sqrt(P->rs.d1 * P->e * lmax) / P->q_ref;
+    j->blur_world[l] = sqrt(P->rs.d1 * P->e * lmax);
+    j->window_max = fmax(j->window_max, 1 - j->blur_world[l] / q_max);
   }
   if (!j->pt || !j->cursor || !j->acursor || !j->scratch || !j->row_next || (P->nvol && !j->mask) ||
       (aov && !j->aov_seen))
@@ -329,6 +335,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
     j->k = k;
     double zk = ics_plan_slab_depth(P, k), zp = ics_plan_slab_depth(P, k > 0 ? k - 1 : 0);
     double q = persp ? ics_plan_pixel_size(P, zk) : P->q_ref, s = persp ? zk / zp : 1;
+    for (int l = 0; l < nl; l++) j->window[l] = fmax(0, 1 - j->blur_world[l] / q);
     for (int l = 0; l < nl; l++) {
       const ics_slab_kernel *sk = &P->kernels[l];
       int n;

@@ -74,8 +74,21 @@ static int pixel_hits(const ics_plan *p, int bi, int bj, ics_hits *h, hit_t **hv
   return n;
 }
 
-/* The depth slope of a surface, in slabs per pixel: s = q tan(theta) / e (theta between its
- * normal and the view direction); infinite for a surface seen edge-on. */
+/* The depth gradient of a surface with normal n along the camera's r and u, dz/dr = -n.r / n.f
+ * and dz/du = -n.u / n.f (dimensionless), stored x ICS_FRAG_GRAD_SCALE and clamped. */
+static void surface_depth_gradient(const ics_plan *p, const double n[3], int16_t grad[2]) {
+  const ics_camera *c = &p->cam;
+  double nr = 0, nu = 0, nf = 0;
+  for (int i = 0; i < 3; i++) {
+    nr += n[i] * c->r[i];
+    nu += n[i] * c->u[i];
+    nf += n[i] * c->f[i];
+  }
+  double g[2] = {fabs(nf) > 0 ? -nr / nf : 0, fabs(nf) > 0 ? -nu / nf : 0};
+  for (int k = 0; k < 2; k++)
+    grad[k] = (int16_t)lrint(fmax(-32767, fmin(32767, g[k] * ICS_FRAG_GRAD_SCALE)));
+}
+
 /* How far one slab's kernel reaches laterally (world units), the largest over the lights: the
  * 2-sample ellipse's taps sit at sqrt(2 lambda_max) of the per-slab covariance d1 e Sigma, and
  * the mean moves the buffer by e |mu|. */
@@ -91,19 +104,14 @@ static double kernel_reach(const ics_plan *p) {
   return reach;
 }
 
-/* A surface's depth change per unit of lateral distance, in slabs (tan of its tilt from the view
- * over the slab spacing); 0 for a surface parallel to the slabs. */
-static double surface_gradient(const ics_plan *p, const double n[3]) {
-  const ics_camera *c = &p->cam;
-  double nr = 0, nu = 0, nf = 0;
-  for (int i = 0; i < 3; i++) {
-    nr += n[i] * c->r[i];
-    nu += n[i] * c->u[i];
-    nf += n[i] * c->f[i];
-  }
-  double lat = sqrt(nr * nr + nu * nu);
-  if (!(lat > 0)) return 0;
-  return fabs(nf) > 0 ? lat / fabs(nf) / p->e : INFINITY;
+/* A surface's depth change per unit of lateral distance, in slabs: the tan of its tilt from the
+ * pixel's ray d (the view direction for orthographic cameras) over the slab spacing; 0 for a
+ * surface facing the ray. */
+static double surface_gradient(const ics_plan *p, const double n[3], const double d[3]) {
+  double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2], dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  double nd = n[0] * d[0] + n[1] * d[1] + n[2] * d[2], c2 = nd * nd / (nn * dd);
+  if (!(c2 < 1)) return 0;
+  return c2 > 0 ? sqrt((1 - c2) / c2) / p->e : INFINITY;
 }
 
 static void ldi_rows(void *ctx, int t, int nt) {
@@ -137,15 +145,17 @@ static void ldi_rows(void *ctx, int t, int nt) {
         continue;
       }
       ics_fragment *f = l->frag + l->offset[px];
+      double ro[3], rd[3];
+      ics_plan_ray(p, bi, bj, ro, rd);
       for (int i = 0; i < n; i++) {
         /* the fragment's slab, and the slab its occlusion enters (docs/renderer.md "Surface
          * bias"): continuous in the surface's tilt and 0 for a surface parallel to the slabs */
         double u = (hv[i].t - p->z0) / p->e + 1e-6, k = floor(u);
-        double g = surface_gradient(p, hv[i].n), q = ics_plan_pixel_size(p, hv[i].t);
+        double g = surface_gradient(p, hv[i].n, rd), q = ics_plan_pixel_size(p, hv[i].t);
         /* the delay: the depth change over the larger of 3 pixels and the kernel's reach (its
          * neighbours within what one slab's kernel reads are shaded first); the span: the depth
          * change over one pixel, from which the backend takes, per light, the window a light
-         * parcel cannot slip through between two neighbours */
+         * parcel cannot slip through between two neighbours (backend_cpu.c surface_occlusion) */
         double delay = fmin(g * fmax(3 * q, j->reach), ICS_FRAG_MAX_BIAS);
         double ko = floor(u + delay), span = ceil(fmin(g * q, ICS_FRAG_MAX_SPAN));
         if (k < 0) k = 0;
@@ -153,7 +163,8 @@ static void ldi_rows(void *ctx, int t, int nt) {
         int bias = (int)fmin(fmax(ko - k, 0), ICS_FRAG_MAX_BIAS);
         f[i].z = (float)hv[i].t;
         f[i].code = ics_frag_code(hv[i].obj, bias, (int)k);
-        f[i].span = (uint8_t)fmax(span, 0);
+        f[i].span = p->vol_bit[hv[i].obj] >= 0 ? 0 : (uint8_t)fmax(span, 0); /* surfaces only */
+        surface_depth_gradient(p, hv[i].n, f[i].grad);
       }
       if (l->inside0) l->inside0[px] = inside;
     }

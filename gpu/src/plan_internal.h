@@ -22,14 +22,16 @@
 #define ICS_FRAG_MAX_SPAN 255
 
 /* One crossing of a buffer pixel's camera ray: depth, (object | bias << 12 | slab << 16), and
- * for a surface the span: its depth change over one pixel in slabs (rounded up), from which the
- * backend draws the window of slabs, from slab + bias on, in which it occludes (docs/renderer.md
- * "Surface bias"). */
+ * for a surface its depth gradient and the span: its depth change over one pixel in slabs
+ * (rounded up), from which the backend draws the window of slabs, from slab + bias on, in which it
+ * occludes (docs/renderer.md "Surface bias"). */
 typedef struct ics_fragment {
   float z;
   uint32_t code;
+  int16_t grad[2]; /* surfaces: the depth gradient along r and u (dz/dr, dz/du), x 64 (clamped) */
   uint8_t span;
 } ics_fragment;
+#define ICS_FRAG_GRAD_SCALE 64.0
 
 static inline uint32_t ics_frag_code(int obj, int bias, int slab) {
   return (uint32_t)obj | (uint32_t)bias << ICS_FRAG_OBJ_BITS | (uint32_t)slab << ICS_FRAG_SLAB_SHIFT;
