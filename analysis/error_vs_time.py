@@ -4,7 +4,8 @@ Monte-Carlo reference itself, on one scene (default: the embedded default scene)
 
 Method (docs/results.md "Error against run time"):
 1. References: `icshadow render SCENE --backend mc --spp REF_SPP --seed 1001 --aov stderr`, one
-   per resolution swept (written once, reused when present; `--refs-only` makes them and stops).
+   per resolution swept (written once with what they were made from beside them, REF.exr.json;
+   reused when that matches, refused when not; `--refs-only` makes them and stops).
    Their own noise (RMS standard error of R, G, B) is reported; every comparison states
    `rmse_beyond_noise` = sqrt(max(rmse^2 - noise^2, 0)), the render's error with the reference's
    noise taken out (E[rmse^2] = error^2 + noise^2).
@@ -201,11 +202,28 @@ def main():
 
     ref_png = os.path.splitext(a.ref)[0] + ".png"
     for res in sorted({tasks[k][2] for k in mine} | ({res0} if a.refs_only or a.images else set())):
-        if not os.path.exists(ref_path(res)):
-            print(f"reference: mc {res}, {a.ref_spp} spp -> {ref_path(res)}", file=sys.stderr, flush=True)
-            extra = ["--png", ref_png] if res == res0 else []
-            run([ics, "render", scene_with(res), "--backend", "mc", "--spp", str(a.ref_spp), "--seed", "1001",
-                 "--aov", "stderr", "-o", ref_path(res)] + extra)
+        # what a reference was made from, kept beside it (REF.exr.json): a reference of another
+        # scene, resolution or sample count is refused, not reused
+        made = {"scene": json.loads(open(scene_with(res)).read()), "spp": a.ref_spp, "seed": 1001}
+        side = ref_path(res) + ".json"
+        if os.path.exists(ref_path(res)):
+            try:
+                with open(side) as f:
+                    known = json.load(f)
+            except (OSError, ValueError):
+                known = None
+            if known != made:
+                die(f"{ref_path(res)} was not made for this scene and --ref-spp ({side} "
+                    f"{'differs' if known else 'is missing'}): remove it (it is remade) or give another --ref")
+            continue
+        print(f"reference: mc {res}, {a.ref_spp} spp -> {ref_path(res)}", file=sys.stderr, flush=True)
+        extra = ["--png", ref_png] if res == res0 else []
+        run([ics, "render", scene_with(res), "--backend", "mc", "--spp", str(a.ref_spp), "--seed", "1001",
+             "--aov", "stderr", "-o", ref_path(res)] + extra)
+        fd, tmp_side = tempfile.mkstemp(prefix=".evt", suffix=".json", dir=os.path.dirname(os.path.abspath(side)))
+        with os.fdopen(fd, "w") as f:
+            json.dump(made, f, sort_keys=True)
+        os.replace(tmp_side, side)
     if a.refs_only:
         shutil.rmtree(tmp, ignore_errors=True)
         return

@@ -4,7 +4,8 @@
 # references) run whole and as shards 0/3, 1/3, 2/3; the merged shards equal the whole run byte
 # for byte (--no-times: the rest is a function of the inputs). Then the refusals: a shard spec
 # out of range, a missing task, a task twice, a shard of another sweep (another resolution, the
-# same task count), a file that is not a sweep's — exit 2 with the reason and no output file.
+# same task count), a file that is not a sweep's, a reference made for another scene — exit 2
+# with the reason and no output file.
 set -u
 py=$1 evt=$2 cli=$3
 . "$(dirname "$0")/checks.sh"
@@ -30,6 +31,9 @@ expect '[ $rc -eq 2 ] && grep -q "is in two shards" "$dir/err" && [ ! -e "$dir/x
   --no-times --ref "$dir/ref2.exr" --shard 0/3 --csv "$dir/o0.csv" 2>> "$dir/log"
 "$py" "$evt" --merge "$dir/o0.csv" "$dir/s1.csv" "$dir/s2.csv" --csv "$dir/x.csv" 2> "$dir/err"; rc=$?
 expect '[ $rc -eq 2 ] && grep -q "is from another sweep" "$dir/err" && [ ! -e "$dir/x.csv" ]'
+"$py" "$evt" --icshadow "$cli" --quick --resolution 48x32 --resolutions 32x24 --ref-spp 16 --reps 1 \
+  --no-times --ref "$dir/ref.exr" --csv "$dir/x.csv" 2> "$dir/err"; rc=$?
+expect '[ $rc -eq 2 ] && grep -q "ref.exr was not made for this scene" "$dir/err" && [ ! -e "$dir/x.csv" ]'
 echo "a,b" > "$dir/other.csv"
 "$py" "$evt" --merge "$dir/other.csv" --csv "$dir/x.csv" 2> "$dir/err"; rc=$?
 expect '[ $rc -eq 2 ] && grep -q "not a sweep" "$dir/err" && [ ! -e "$dir/x.csv" ]'
