@@ -132,7 +132,8 @@ static void surface_colour(const job_t *j, int obj, const double L[3], float *C)
  * so the surface's depth under it changes by rho = -(dz/dr mu_x + dz/du mu_y) slabs per slab while
  * its own depth grows by one: it stays (window + 1) / |1 - rho| slabs within the windows of the
  * surface (clamped to [1, 8 (window + 1)]), and each of those slabs passes that root's share of
- * 1 - a (1 - T): the parcel is filtered once in all (docs/renderer.md "Surface bias"). */
+ * 1 - a (1 - T): the parcel is filtered once in all (docs/renderer.md "Surface bias"). Without a
+ * window the fragment filters at its one slab, as it always did. */
 static void surface_occlusion(job_t *j, size_t q, const ics_fragment *fr, int after) {
   const ics_plan *P = j->p;
   const ics_material *m = &P->scene->materials[P->scene->objects[ics_frag_obj(fr)].material];
@@ -144,8 +145,9 @@ static void surface_occlusion(job_t *j, size_t q, const ics_fragment *fr, int af
     double window = floor(fr->span * j->window[l]);
     if (after > window) continue;
     const double *mu = P->scene->lights[l].mean;
-    double rho = -(gr * mu[0] + gu * mu[1]), rel = fabs(1 - rho);
-    double meets = rel > 0 ? fmin(fmax((window + 1) / rel, 1), 8 * (window + 1)) : 8 * (window + 1);
+    double rho = -(gr * mu[0] + gu * mu[1]), rel = fabs(1 - rho), meets = 1;
+    if (window > 0) /* no window (a blur of a pixel or more): one slab, filtered as it is */
+      meets = rel > 0 ? fmin(fmax((window + 1) / rel, 1), 8 * (window + 1)) : 8 * (window + 1);
     for (int c = 0; c < P->nch; c++) {
       double pass = 1 - a * (1 - m->transport[c]);
       j->dst[l][(size_t)c * plane + q] *= (float)(meets > 1 ? pow(pass, 1 / meets) : pass);
@@ -304,9 +306,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   double q_max = P->cam.projection == ICS_PROJ_PERSPECTIVE
                      ? ics_plan_pixel_size(P, ics_plan_slab_depth(P, P->K - 1)) : P->q_ref;
   for (int l = 0; l < nl; l++) {
-    const double *c = P->scene->lights[l].cov;
-    double lmax = 0.5 * (c[0] + c[2]) + sqrt(0.25 * (c[0] - c[2]) * (c[0] - c[2]) + c[1] * c[1]);
-    j->blur_world[l] = sqrt(P->rs.d1 * P->e * lmax);
+    j->blur_world[l] = ics_plan_light_blur(P, l);
     j->window_max = fmax(j->window_max, 1 - j->blur_world[l] / q_max);
   }
   if (!j->pt || !j->cursor || !j->acursor || !j->scratch || !j->row_next || (P->nvol && !j->mask) ||

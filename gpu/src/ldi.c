@@ -95,10 +95,8 @@ static void surface_depth_gradient(const ics_plan *p, const double n[3], int16_t
 static double kernel_reach(const ics_plan *p) {
   double reach = 0;
   for (int l = 0; l < p->nlights; l++) {
-    const ics_light *L = &p->scene->lights[l];
-    const double *c = L->cov;
-    double h = 0.5 * (c[0] + c[2]), d = sqrt(0.25 * (c[0] - c[2]) * (c[0] - c[2]) + c[1] * c[1]);
-    double r = sqrt(2 * p->rs.d1 * p->e * (h + d)) + p->e * hypot(L->mean[0], L->mean[1]);
+    const double *mu = p->scene->lights[l].mean;
+    double r = sqrt(2) * ics_plan_light_blur(p, l) + p->e * hypot(mu[0], mu[1]);
     if (r > reach) reach = r;
   }
   return reach;

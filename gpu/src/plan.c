@@ -15,7 +15,9 @@
 
 #include "clock.h"
 #include "geometry.h"
+#include "icshadow/constants.h"
 #include "icshadow/conv.h"
+#include "icshadow/light.h"
 #include "mesh.h"
 #include "plan_internal.h"
 #include "scene_internal.h"
@@ -30,7 +32,7 @@ void ics_plan_ray(const ics_plan *p, int bi, int bj, double o[3], double d[3]) {
       d[i] = c->f[i];
     }
   } else {
-    double th = tan(c->fov_deg * (3.14159265358979323846 / 360)), asp = (double)p->W / p->H;
+    double th = tan(c->fov_deg * (ICS_PI / 360)), asp = (double)p->W / p->H;
     for (int i = 0; i < 3; i++) {
       o[i] = c->eye[i];
       d[i] = c->f[i] + (2 * s - 1) * th * asp * c->r[i] + (1 - 2 * t) * th * c->u[i];
@@ -40,10 +42,16 @@ void ics_plan_ray(const ics_plan *p, int bi, int bj, double o[3], double d[3]) {
 
 double ics_plan_pixel_size(const ics_plan *p, double z) {
   if (p->cam.projection == ICS_PROJ_ORTHOGRAPHIC) return p->cam.height / p->H;
-  return 2 * z * tan(p->cam.fov_deg * (3.14159265358979323846 / 360)) / p->H;
+  return 2 * z * tan(p->cam.fov_deg * (ICS_PI / 360)) / p->H;
 }
 
 double ics_plan_slab_depth(const ics_plan *p, int k) { return p->z0 + (k + 0.5) * p->e; }
+
+double ics_plan_light_blur(const ics_plan *p, int l) {
+  double varx, vary, alpha;
+  if (ics_light_cov_to_eig(p->scene->lights[l].cov, &varx, &vary, &alpha) != ICS_OK) return 0;
+  return sqrt(p->rs.d1 * p->e * fmax(varx, 0));
+}
 
 static void add_pass(ics_plan *p, const char *name, size_t bytes, int light, int taps,
                      const char *detail) {

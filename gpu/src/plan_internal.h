@@ -87,6 +87,9 @@ struct ics_plan {
 void ics_plan_ray(const ics_plan *p, int bi, int bj, double o[3], double d[3]);
 /* Pixel size (world units) at depth z. */
 double ics_plan_pixel_size(const ics_plan *p, double z);
+/* The per-slab blur of light l: the largest standard deviation (world units) of the per-slab
+ * covariance d1 e Sigma_l. */
+double ics_plan_light_blur(const ics_plan *p, int l);
 /* Depth of slab k's light plane (its middle). */
 double ics_plan_slab_depth(const ics_plan *p, int k);
 
