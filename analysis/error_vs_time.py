@@ -64,6 +64,20 @@ def shard_spec(text):
     return i, n
 
 
+def resolution_spec(text):
+    try:
+        w, h = (int(v) for v in text.split("x"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected WxH, e.g. 320x240")
+    if not (1 <= w <= 16384 and 1 <= h <= 16384):
+        raise argparse.ArgumentTypeError(f"{text!r}: sides in 1..16384")
+    return f"{w}x{h}"
+
+
+def resolutions_spec(text):
+    return ",".join(resolution_spec(r) for r in text.split(",") if r)
+
+
 def write_csv(path, rows, fields):
     """Atomically: a temporary file beside the target, renamed over it when complete."""
     d = os.path.dirname(os.path.abspath(path))
@@ -122,8 +136,8 @@ def main():
     ap.add_argument("--ref", default="out/error_vs_time_ref.exr",
                     help="reference EXR (made if absent); other resolutions: REF_WxH.exr")
     ap.add_argument("--ref-spp", type=int, default=1024)
-    ap.add_argument("--resolution", help="WxH for every task (default: the scene's)")
-    ap.add_argument("--resolutions", default=None,
+    ap.add_argument("--resolution", type=resolution_spec, help="WxH for every task (default: the scene's)")
+    ap.add_argument("--resolutions", type=resolutions_spec, default=None,
                     help="WxH,... swept with ellipse2 (default: half and twice the scene's)")
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--csv", default="out/error_vs_time.csv")

@@ -48,7 +48,7 @@ static void help(FILE *f) {
           "  --diff-png FILE     with --compare / --reference: render minus reference, x4, as a\n"
           "                      picture (red: brighter, blue: darker than the reference)\n"
           "  --progress          show progress on stderr even when it is not a terminal\n"
-          "Output files are written to a temporary name and renamed once both are complete.\n"
+          "Output files are written to a temporary name and renamed once all are complete.\n"
           "Exit status: 0 ok, 1 cannot write or out of memory, 2 bad input.\n");
 }
 
