@@ -41,6 +41,9 @@ static void help(FILE *f) {
           "  --noise E           mc: stop once the RMS standard error of R, G, B is at most E\n"
           "                      (the first of --spp, --time, --noise that is reached stops; a time\n"
           "                      or noise stop takes 2 samples at least; bound --noise with --time)\n"
+          "  --mc-mesh M         mc (and --reference): mesh crossings through embree (Embree 3)\n"
+          "                      or bvh (the renderer's own BVH); auto (default): Embree when\n"
+          "                      built in. The summary's device says which ran\n"
           "  --compare REF.exr   compare R, G, B with a reference image (e.g. an mc render): RMSE,\n"
           "                      max error, PSNR, the reference's time and noise, in the summary\n"
           "  --reference N       the same against the Monte-Carlo reference rendered here with N\n"
@@ -148,11 +151,11 @@ int cmd_render(int argc, char **argv) {
   scene_args a;
   memset(&a, 0, sizeof a);
   const char *exr = NULL, *png = NULL, *backend = NULL, *aov_list = NULL, *compare = NULL,
-             *diff_png = NULL;
+             *diff_png = NULL, *mc_mesh = NULL;
   int force_progress = 0, backends = 0, spp = 0, ref_spp = 0, given_ref = 0;
   double time_s = 0, noise = 0;
   int given_spp = 0, given_time = 0, given_noise = 0;
-  cli_option opts[SCENE_ARGS_NOPTS + 12];
+  cli_option opts[SCENE_ARGS_NOPTS + 13];
   scene_args_options(&a, opts);
   const cli_option mine[] = {
       {"-o", .kind = CLI_FILE, .dest = &exr},
@@ -167,6 +170,7 @@ int cmd_render(int argc, char **argv) {
       {"--compare", .kind = CLI_FILE, .dest = &compare},
       {"--diff-png", .kind = CLI_FILE, .dest = &diff_png},
       {"--reference", .kind = CLI_INT, .dest = &ref_spp, .lo = 1, .hi = 1 << 24, .given = &given_ref},
+      {"--mc-mesh", .kind = CLI_STRING, .dest = &mc_mesh},
   };
   memcpy(opts + SCENE_ARGS_NOPTS, mine, sizeof mine);
   int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
@@ -185,6 +189,11 @@ int cmd_render(int argc, char **argv) {
                      given_spp ? "--spp" : given_time ? "--time" : "--noise");
   if (given_time && !(time_s > 0)) return cli_error(CMD, "--time: must be > 0 seconds");
   if (given_noise && !(noise > 0)) return cli_error(CMD, "--noise: must be > 0");
+  if (mc_mesh && strcmp(mc_mesh, "auto") && strcmp(mc_mesh, "embree") && strcmp(mc_mesh, "bvh"))
+    return cli_error(CMD, "--mc-mesh %s: expected auto, embree or bvh", mc_mesh);
+  if (mc_mesh && !mc && !given_ref)
+    return cli_error(CMD, "--mc-mesh: only the Monte-Carlo reference takes it (give --backend mc "
+                     "or --reference N)");
   if (compare && given_ref) return cli_error(CMD, "give --compare or --reference, not both");
   if (given_ref && mc)
     return cli_error(CMD, "--reference: this render is the Monte-Carlo reference itself (same seed, "
@@ -222,7 +231,7 @@ int cmd_render(int argc, char **argv) {
   slab_progress sp = {.t_last = cli_now_s()};
   cli_progress_init(&sp.p, "render", force_progress);
   ics_render_opts ro = {.backend = backend, .threads = a.threads, .spp = spp, .time_s = time_s,
-                        .noise = noise};
+                        .noise = noise, .mc_mesh = mc_mesh};
   if (sp.p.on) ro.progress = mc ? on_sample : on_slab, ro.progress_ctx = &sp;
   ics_renderer *r;
   ics_image *img = NULL;
@@ -244,7 +253,8 @@ int cmd_render(int argc, char **argv) {
   if (compare && (rc = render_compare_file(CMD, compare, img, &cmp))) goto done;
   if (given_ref) {
     cli_progress_init(&sp.p, "reference", force_progress);
-    rc = render_compare_mc(CMD, plan, ref_spp, a.threads, sp.p.on ? on_sample : NULL, &sp, img, &cmp);
+    rc = render_compare_mc(CMD, plan, ref_spp, a.threads, mc_mesh, sp.p.on ? on_sample : NULL, &sp,
+                           img, &cmp);
     if (sp.p.on) cli_progress_done(&sp.p);
     if (rc) goto done;
   }

@@ -84,12 +84,12 @@ int render_compare_file(const char *cmd, const char *path, const ics_image *img,
 }
 
 int render_compare_mc(const char *cmd, const ics_plan *plan, int spp, int threads,
-                      void (*progress)(void *, int, int), void *progress_ctx,
+                      const char *mc_mesh, void (*progress)(void *, int, int), void *progress_ctx,
                       const ics_image *img, render_comparison *out) {
   init(out, "mc");
   char msg[CLI_MSG_MAX] = "";
   ics_render_opts ro = {.backend = "mc", .threads = threads, .spp = spp, .progress = progress,
-                        .progress_ctx = progress_ctx};
+                        .progress_ctx = progress_ctx, .mc_mesh = mc_mesh};
   ics_renderer *r;
   ics_image *ref = NULL;
   ics_render_stats st;

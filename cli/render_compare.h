@@ -27,10 +27,10 @@ int render_compare_file(const char *cmd, const char *path, const ics_image *img,
                         render_comparison *out);
 
 /* Renders `plan` with the Monte-Carlo reference at spp samples per pixel on `threads` threads
- * (progress: ics_render_opts.progress, may be NULL) and compares img with it. Returns 0, or the
- * exit status after the message. */
+ * (mc_mesh: ics_render_opts.mc_mesh; progress: ics_render_opts.progress, may be NULL) and
+ * compares img with it. Returns 0, or the exit status after the message. */
 int render_compare_mc(const char *cmd, const ics_plan *plan, int spp, int threads,
-                      void (*progress)(void *, int, int), void *progress_ctx,
+                      const char *mc_mesh, void (*progress)(void *, int, int), void *progress_ctx,
                       const ics_image *img, render_comparison *out);
 
 void render_comparison_release(render_comparison *c);

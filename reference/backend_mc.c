@@ -89,9 +89,23 @@ static ics_status mc_render(void *state, const ics_plan *P, const ics_render_opt
   int spp = o->spp, stop_by_count = spp > 0;
   if (spp == 0 && !(o->time_s > 0) && !(o->noise > 0)) spp = MC_DEFAULT_SPP, stop_by_count = 1;
   if (!stop_by_count) spp = MC_MAX_SPP;
+  char ver[32];
+  int have_embree = mc_embree_available(ver, sizeof ver), embree = have_embree;
+  if (o->mc_mesh && !strcmp(o->mc_mesh, "embree")) {
+    if (!have_embree) {
+      if (msg) snprintf(msg, msg_size, "mc: meshes through Embree: Embree was not found when the "
+                        "renderer was built (apt-get install libembree-dev and rebuild)");
+      return ICS_ERR_UNSUPPORTED;
+    }
+  } else if (o->mc_mesh && !strcmp(o->mc_mesh, "bvh")) {
+    embree = 0;
+  } else if (o->mc_mesh && strcmp(o->mc_mesh, "auto")) {
+    if (msg) snprintf(msg, msg_size, "mc: mesh crossings '%s': expected auto, embree or bvh", o->mc_mesh);
+    return ICS_ERR_INVALID_ARG;
+  }
   pass_t ps = {0};
   mc_scene m;
-  ics_status status = mc_scene_init(&m, P);
+  ics_status status = mc_scene_init(&m, P, embree, msg, msg_size);
   if (status != ICS_OK) return status;
   ps.m = &m;
   ps.nv = aov && aov->vis >= 0 ? P->nlights * P->nch : 0;
@@ -134,7 +148,9 @@ static ics_status mc_render(void *state, const ics_plan *P, const ics_render_opt
   st->slabs = 0;
   st->spp = n;
   st->noise = n > 1 ? noise : NAN;
-  snprintf(st->device, sizeof st->device, "CPU, %d thread%s (Monte Carlo)", nt, nt == 1 ? "" : "s");
+  snprintf(st->device, sizeof st->device, "CPU, %d thread%s (Monte Carlo%s%s)", nt, nt == 1 ? "" : "s",
+           !P->scene->nmeshes ? "" : m.embree ? "; meshes: Embree " : "; meshes: own BVH",
+           P->scene->nmeshes && m.embree ? ver : "");
   st->ms_total = 1e3 * (ics_clock_s() - t_start);
   st->ms_shading = st->ms_total;
   goto done;

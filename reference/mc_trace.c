@@ -52,7 +52,7 @@ double mc_extinction_majorant(const ics_material *m) {
   return m->extinction * smax;
 }
 
-ics_status mc_scene_init(mc_scene *m, const ics_plan *P) {
+ics_status mc_scene_init(mc_scene *m, const ics_plan *P, int embree, char *msg, size_t msg_size) {
   memset(m, 0, sizeof *m);
   const ics_scene *s = P->scene;
   m->P = P;
@@ -72,16 +72,26 @@ ics_status mc_scene_init(mc_scene *m, const ics_plan *P) {
   for (int k = 0; k < 3; k++) extent = fmax(extent, fabs(P->cam.eye[k]));
   m->eps = 1e-9 * (1 + extent);
   for (int l = 0; l < P->nlights; l++) ics_light_cov_sqrt(s->lights[l].cov, m->root[l]);
+  if (embree && s->nmeshes > 0) {
+    ics_status st = mc_embree_create(&m->embree, s, msg, msg_size);
+    if (st != ICS_OK) {
+      mc_scene_release(m);
+      return st;
+    }
+  }
   return ICS_OK;
 }
 
 void mc_scene_release(mc_scene *m) {
   free(m->majorant);
   m->majorant = NULL;
+  mc_embree_destroy(m->embree);
+  m->embree = NULL;
 }
 
 void mc_thread_release(mc_thread *th) {
   ics_hits_free(&th->hits);
+  mc_embree_scratch_free(&th->esc);
   free(th->x);
   free(th->cam);
   memset(th, 0, sizeof *th);
@@ -100,7 +110,10 @@ int mc_crossings(mc_thread *th, const mc_scene *m, const double orig[3], const d
   for (int k = 0; k < s->nobjects; k++) {
     th->hits.n = 0;
     int behind = 0;
-    if (ics_object_hits(&s->objects[k], orig, dir, &th->hits, &behind)) return -1;
+    if (m->embree && s->objects[k].shape == ICS_SHAPE_MESH
+            ? mc_embree_hits(m->embree, k, orig, dir, &th->esc, &th->hits, &behind)
+            : ics_object_hits(&s->objects[k], orig, dir, &th->hits, &behind))
+      return -1;
     int bit = m->P->vol_bit[k];
     if (bit >= 0 && (behind & 1)) *inside |= 1ull << bit;
     for (int i = 0; i < th->hits.n; i++) {

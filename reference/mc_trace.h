@@ -19,6 +19,7 @@
 
 #include "geometry.h"
 #include "icshadow/rng.h"
+#include "mc_embree.h"
 #include "plan_internal.h"
 
 /* What the estimators read, fixed per render. */
@@ -29,6 +30,7 @@ typedef struct mc_scene {
   int vol_obj[ICS_MAX_VOLUMES]; /* the object of each volume bit */
   double root[ICS_SCENE_MAX_LIGHTS][3]; /* per light: Sigma = R R, R symmetric (ra, rb, rd) */
   double eps;        /* crossings at ray parameters <= eps from a ray's origin are its own */
+  mc_embree *embree; /* mesh crossings through Embree, or NULL: the renderer's own BVH */
 } mc_scene;
 
 /* One crossing of a ray: parameter and object. */
@@ -45,6 +47,7 @@ typedef struct mc_thread {
   int nx, cap;
   mc_cross *cam;   /* the camera ray's, while light rays use x */
   int camcap;
+  mc_embree_scratch esc;
 } mc_thread;
 
 /* One sample of one pixel. */
@@ -55,8 +58,9 @@ typedef struct mc_sample {
   double vis[ICS_SCENE_MAX_LIGHTS][3];  /* the transmittance toward each light there */
 } mc_sample;
 
-/* Majorants and light factors for plan P. ICS_ERR_NOMEM. */
-ics_status mc_scene_init(mc_scene *m, const ics_plan *P);
+/* Majorants and light factors for plan P; with embree, Embree's scenes for the meshes (when the
+ * scene has any). ICS_ERR_NOMEM, or mc_embree_create's error with msg. */
+ics_status mc_scene_init(mc_scene *m, const ics_plan *P, int embree, char *msg, size_t msg_size);
 void mc_scene_release(mc_scene *m);
 void mc_thread_release(mc_thread *th);
 

@@ -14,8 +14,9 @@ packages=(
   # benchmarks: Boost.Math as a peer for the elliptic integrals
   libboost-dev
   # optional components: OpenEXR environment maps, jansson for lights/scene JSON (the renderer),
-  # libpng for render previews, Assimp for mesh files in scenes
-  libopenexr-dev libjansson-dev libpng-dev libassimp-dev
+  # libpng for render previews, Assimp for mesh files in scenes, Embree 3 for the Monte-Carlo
+  # reference's mesh crossings
+  libopenexr-dev libjansson-dev libpng-dev libassimp-dev libembree-dev
   # figures, notebooks and table generators (Debian's python3, not a runtime dependency)
   python3 python3-numpy python3-matplotlib python3-mpmath python3-scipy
   jupyter-nbconvert python3-ipykernel python3-nbformat

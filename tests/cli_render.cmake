@@ -70,6 +70,10 @@ ics_cli_test(NAME cli_render_mc RC 0 ARGS "render|${disk}|--backend|mc|--spp|4|-
   OUT "\"backend\": \"mc\".*\"spp\": 4, \"noise\": [0-9.e+-]+.*\"aovs\": \\[\"light0.V\", \"Z\", \"stderr.R\", \"stderr.G\", \"stderr.B\", \"stderr.A\", \"stderr.light0.V\"\\]")
 ics_cli_test(NAME cli_render_spp_without_mc RC 2 ARGS "render|${disk}|--spp|4|-o|${rd}/mc2.exr"
   ERR "--spp: only the Monte-Carlo reference takes a stop \\(give --backend mc\\)" NOFILE ${rd}/mc2.exr)
+ics_cli_test(NAME cli_render_mc_mesh_without_mc RC 2 ARGS "render|${disk}|--mc-mesh|bvh|-o|${rd}/mc7.exr"
+  ERR "--mc-mesh: only the Monte-Carlo reference takes it" NOFILE ${rd}/mc7.exr)
+ics_cli_test(NAME cli_render_mc_mesh_bad RC 2 ARGS "render|${disk}|--backend|mc|--mc-mesh|kd-tree|-o|${rd}/mc8.exr"
+  ERR "--mc-mesh kd-tree: expected auto, embree or bvh" NOFILE ${rd}/mc8.exr)
 ics_cli_test(NAME cli_render_mc_bad_time RC 2 ARGS "render|${disk}|--backend|mc|--time|0|-o|${rd}/mc3.exr"
   ERR "--time: must be > 0 seconds" NOFILE ${rd}/mc3.exr)
 ics_cli_test(NAME cli_render_mc_negative_noise RC 2 ARGS "render|${disk}|--backend|mc|--noise|-0.1|-o|${rd}/mc6.exr"

@@ -248,51 +248,39 @@ static int cmp_hit_t(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-int ics_mesh_hits(const ics_mesh *m, const double orig[3], const double dir[3], ics_hits *h,
-                  int *behind) {
-  double inv[3] = {1 / dir[0], 1 / dir[1], 1 / dir[2]};
-  int stack[128], sp = 0;
-  int start = h->n;
-  int nbehind = 0;
-  double dlen = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-  stack[sp++] = 0;
-  while (sp) {
-    const node_t *n = &m->nodes[stack[--sp]];
-    if (!box_hit(n, orig, inv)) continue;
-    if (n->left >= 0) {
-      if (sp + 2 > (int)(sizeof stack / sizeof *stack)) return -1;
-      stack[sp++] = n->left;
-      stack[sp++] = n->right;
-      continue;
-    }
-    for (int k = n->first; k < n->first + n->count; k++) {
-      const tri_t *t = &m->tris[m->order[k]];
-      double p[3] = {dir[1] * t->e2[2] - dir[2] * t->e2[1], dir[2] * t->e2[0] - dir[0] * t->e2[2],
-                     dir[0] * t->e2[1] - dir[1] * t->e2[0]};
-      double det = t->e1[0] * p[0] + t->e1[1] * p[1] + t->e1[2] * p[2];
-      if (det == 0) continue;
-      double s[3] = {orig[0] - t->v0[0], orig[1] - t->v0[1], orig[2] - t->v0[2]};
-      double u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) / det;
-      if (u < 0 || u > 1) continue;
-      double q[3] = {s[1] * t->e1[2] - s[2] * t->e1[1], s[2] * t->e1[0] - s[0] * t->e1[2],
-                     s[0] * t->e1[1] - s[1] * t->e1[0]};
-      double v = (dir[0] * q[0] + dir[1] * q[1] + dir[2] * q[2]) / det;
-      if (v < 0 || u + v > 1) continue;
-      double tt = (t->e2[0] * q[0] + t->e2[1] * q[1] + t->e2[2] * q[2]) / det;
-      double nrm[3] = {t->e1[1] * t->e2[2] - t->e1[2] * t->e2[1],
-                       t->e1[2] * t->e2[0] - t->e1[0] * t->e2[2],
-                       t->e1[0] * t->e2[1] - t->e1[1] * t->e2[0]};
-      if (ics_hits_push(h, tt, nrm)) return -1;
-    }
-  }
-  /* sort this mesh's crossings, merge coincident ones, count and drop those at t <= 0 */
-  int n = h->n - start;
+/* The crossing of the line orig + t dir with triangle t (Moller-Trumbore in double precision):
+ * pushed when the line passes inside it (inside_test) or, without the test, wherever it meets
+ * the triangle's plane (an accelerator has decided the hit). 0, or -1 when out of memory. */
+static int push_crossing(const tri_t *t, const double orig[3], const double dir[3], int inside_test,
+                         ics_hits *h) {
+  double p[3] = {dir[1] * t->e2[2] - dir[2] * t->e2[1], dir[2] * t->e2[0] - dir[0] * t->e2[2],
+                 dir[0] * t->e2[1] - dir[1] * t->e2[0]};
+  double det = t->e1[0] * p[0] + t->e1[1] * p[1] + t->e1[2] * p[2];
+  if (det == 0) return 0;
+  double s[3] = {orig[0] - t->v0[0], orig[1] - t->v0[1], orig[2] - t->v0[2]};
+  double u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) / det;
+  if (inside_test && (u < 0 || u > 1)) return 0;
+  double q[3] = {s[1] * t->e1[2] - s[2] * t->e1[1], s[2] * t->e1[0] - s[0] * t->e1[2],
+                 s[0] * t->e1[1] - s[1] * t->e1[0]};
+  double v = (dir[0] * q[0] + dir[1] * q[1] + dir[2] * q[2]) / det;
+  if (inside_test && (v < 0 || u + v > 1)) return 0;
+  double tt = (t->e2[0] * q[0] + t->e2[1] * q[1] + t->e2[2] * q[2]) / det;
+  double nrm[3] = {t->e1[1] * t->e2[2] - t->e1[2] * t->e2[1], t->e1[2] * t->e2[0] - t->e1[0] * t->e2[2],
+                   t->e1[0] * t->e2[1] - t->e1[1] * t->e2[0]};
+  return ics_hits_push(h, tt, nrm);
+}
+
+/* Sorts the crossings pushed since `start`, merges coincident ones, counts those at t <= 0 into
+ * *behind and drops them. */
+static void finish_hits(const ics_mesh *m, const double dir[3], ics_hits *h, int start, int *behind) {
+  int n = h->n - start, nbehind = 0;
   ics_hit *t = h->h + start;
   if (n > 1) qsort(t, (size_t)n, sizeof *t, cmp_hit_t);
   /* a ray through an edge shared by two triangles facing the same way (relative to the ray)
    * crosses once: merge such pairs; two at the same t facing opposite ways are a graze along a
    * silhouette, which crosses twice or not at all: keep both */
   int w = 0;
+  double dlen = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
   double tol = dlen > 0 ? m->eps / dlen : 0;
   for (int i = 0; i < n; i++) {
     if (w > 0 && t[i].t - t[w - 1].t <= tol &&
@@ -310,7 +298,43 @@ int ics_mesh_hits(const ics_mesh *m, const double orig[3], const double dir[3], 
   }
   h->n = start + keep;
   *behind += nbehind;
+}
+
+int ics_mesh_hits(const ics_mesh *m, const double orig[3], const double dir[3], ics_hits *h,
+                  int *behind) {
+  double inv[3] = {1 / dir[0], 1 / dir[1], 1 / dir[2]};
+  int stack[128], sp = 0;
+  int start = h->n;
+  stack[sp++] = 0;
+  while (sp) {
+    const node_t *n = &m->nodes[stack[--sp]];
+    if (!box_hit(n, orig, inv)) continue;
+    if (n->left >= 0) {
+      if (sp + 2 > (int)(sizeof stack / sizeof *stack)) return -1;
+      stack[sp++] = n->left;
+      stack[sp++] = n->right;
+      continue;
+    }
+    for (int k = n->first; k < n->first + n->count; k++)
+      if (push_crossing(&m->tris[m->order[k]], orig, dir, 1, h)) return -1;
+  }
+  finish_hits(m, dir, h, start, behind);
   return 0;
+}
+
+int ics_mesh_hits_of(const ics_mesh *m, const int *tris, int ntris, const double orig[3],
+                     const double dir[3], ics_hits *h, int *behind) {
+  int start = h->n;
+  for (int i = 0; i < ntris; i++)
+    if (push_crossing(&m->tris[tris[i]], orig, dir, 0, h)) return -1;
+  finish_hits(m, dir, h, start, behind);
+  return 0;
+}
+
+void ics_mesh_triangle(const ics_mesh *m, int k, double v[3][3]) {
+  const tri_t *t = &m->tris[k];
+  for (int i = 0; i < 3; i++)
+    v[0][i] = t->v0[i], v[1][i] = t->v0[i] + t->e1[i], v[2][i] = t->v0[i] + t->e2[i];
 }
 
 int ics_mesh_files_supported(void) {

@@ -31,6 +31,15 @@ void ics_mesh_bounds(const ics_mesh *m, double lo[3], double hi[3]);
  * triangles) are reported once. */
 int ics_mesh_hits(const ics_mesh *m, const double orig[3], const double dir[3], ics_hits *h,
                   int *behind);
+/* For another accelerator (the Monte-Carlo reference's Embree path, reference/mc_embree.c):
+ * triangle k's vertices (k in 0..count-1, the order of ics_mesh_create_triangles), and the
+ * crossings of the line orig + t dir with the listed triangles, which the accelerator found the
+ * line to pass through: t and normal computed as ics_mesh_hits computes them (double precision,
+ * without a second inside test), then sorted, merged and counted the same way (a triangle listed
+ * twice merges with itself). */
+void ics_mesh_triangle(const ics_mesh *m, int k, double v[3][3]);
+int ics_mesh_hits_of(const ics_mesh *m, const int *tris, int ntris, const double orig[3],
+                     const double dir[3], ics_hits *h, int *behind);
 /* 1 when the library was built with Assimp. */
 int ics_mesh_files_supported(void);
 

@@ -34,6 +34,10 @@ typedef struct ics_render_opts {
    * all 0: 64 samples */
   int spp;
   double time_s, noise;
+  /* "mc" only: mesh crossings through "embree" (Embree 3, when the renderer was built with it)
+   * or "bvh" (the renderer's own BVH, as the slab renderer's layered depth image); NULL or
+   * "auto": Embree when built in. The stats' device string says which ran. */
+  const char *mc_mesh;
 } ics_render_opts;
 
 /* Time per pass and what ran. */

@@ -1,0 +1,36 @@
+/* mc_embree.h — the Monte-Carlo reference's mesh crossings through Embree 3 (optional: built
+ * when CMake finds libembree-dev; docs/reference.md "Meshes"). Embree decides which triangles
+ * the line through a ray meets (its robust, watertight traversal in single precision, one scene
+ * per mesh object, an intersection filter that records every triangle and rejects it so the
+ * traversal goes on); the crossings' t and normals are then computed in double precision by the
+ * mesh's own code (ics_mesh_hits_of), so they are the same numbers the renderer's BVH gives
+ * wherever both find the same triangles. */
+#ifndef ICS_MC_EMBREE_H
+#define ICS_MC_EMBREE_H
+
+#include <stddef.h>
+
+#include "geometry.h"
+#include "icshadow/status.h"
+#include "scene_internal.h"
+
+typedef struct mc_embree mc_embree;
+
+/* Per-thread scratch: the triangles one query found. */
+typedef struct mc_embree_scratch {
+  int *tri;
+  int n, cap;
+} mc_embree_scratch;
+
+/* 1 when built with Embree; its version string ("3.13.5") or "" in ver. */
+int mc_embree_available(char *ver, size_t ver_size);
+/* One Embree scene per mesh object of s. ICS_ERR_UNSUPPORTED without Embree or when Embree
+ * fails (its error in msg), ICS_ERR_NOMEM. */
+ics_status mc_embree_create(mc_embree **out, const ics_scene *s, char *msg, size_t msg_size);
+void mc_embree_destroy(mc_embree *e);
+/* As ics_object_hits for mesh object obj. -1 when out of memory. */
+int mc_embree_hits(const mc_embree *e, int obj, const double orig[3], const double dir[3],
+                   mc_embree_scratch *sc, ics_hits *h, int *behind);
+void mc_embree_scratch_free(mc_embree_scratch *sc);
+
+#endif
