@@ -81,7 +81,7 @@ ics_status mc_embree_create(mc_embree **out, const ics_scene *s, char *msg, size
     mc_embree_destroy(e);
     return ICS_ERR_NOMEM;
   }
-  e->dev = rtcNewDevice("threads=1");
+  e->dev = rtcNewDevice(NULL);
   if (!e->dev) return embree_error(e, msg, msg_size, "rtcNewDevice");
   for (int k = 0; k < s->nobjects; k++) {
     const ics_object *o = &s->objects[k];
