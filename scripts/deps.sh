@@ -22,6 +22,9 @@ packages=(
   jupyter-nbconvert python3-ipykernel python3-nbformat
   # the Mitsuba 3 outside check: a virtual environment for the PyPI wheel (make mitsuba)
   python3-venv
+  # the sweep as a real Slurm job array on a single-node cluster on localhost
+  # (tests/cli/evt_slurm.sh through scripts/slurm_local.sh; nothing is started system-wide)
+  slurm-wlm munge
 )
 
 # Installed means dpkg's package state "installed", whatever the selection: a package on hold
