@@ -173,6 +173,7 @@ int cli_output_open(cli_output *out, const char *cmd, const char *path) {
   out->fp = NULL;
   out->cmd = cmd;
   out->tmp_path = NULL;
+  out->copy_path = NULL;
   out->target = NULL;
   out->path = path;
   out->write_path = path;
@@ -200,7 +201,25 @@ int cli_output_open(cli_output *out, const char *cmd, const char *path) {
       cli_output_abort(out);
       return -1;
     }
-    out->write_path = out->target;
+    const char *td = getenv("TMPDIR");
+    size_t n = strlen(td && *td ? td : "/tmp") + 32;
+    out->copy_path = malloc(n);
+    if (!out->copy_path) {
+      cli_output_abort(out);
+      return -1;
+    }
+    snprintf(out->copy_path, n, "%s/icshadow-out.XXXXXX", td && *td ? td : "/tmp");
+    int fd = mkstemp(out->copy_path);
+    if (fd < 0) {
+      cli_failure(cmd, "cannot create a temporary file for %s in %s: %s", path,
+                  td && *td ? td : "/tmp", strerror(errno));
+      free(out->copy_path);
+      out->copy_path = NULL;
+      cli_output_abort(out);
+      return -1;
+    }
+    close(fd);
+    out->write_path = out->copy_path;
     return 0;
   }
   size_t n = strlen(out->target) + 16;
@@ -247,17 +266,45 @@ void cli_output_abort(cli_output *out) {
     remove(out->tmp_path);
     free(out->tmp_path);
   }
+  if (out->copy_path) {
+    remove(out->copy_path);
+    free(out->copy_path);
+  }
   free(out->target);
   out->fp = NULL;
   out->tmp_path = NULL;
+  out->copy_path = NULL;
   out->target = NULL;
+}
+
+/* copies the file at `from` to the end of fp; 0, or -1 with errno */
+static int copy_into(const char *from, FILE *fp) {
+  FILE *in = fopen(from, "rb");
+  if (!in) return -1;
+  char buf[65536];
+  size_t n;
+  int bad = 0;
+  while (!bad && (n = fread(buf, 1, sizeof buf, in)) > 0) bad = fwrite(buf, 1, n, fp) != n;
+  int saved = errno;
+  bad |= ferror(in);
+  fclose(in);
+  errno = saved;
+  return bad ? -1 : 0;
 }
 
 int cli_output_commit(cli_output *out) {
   if (out->fp == stdout) return fflush(stdout) ? -1 : 0;
   int bad = 0;
+  if (out->copy_path) {
+    bad = out->fp && copy_into(out->copy_path, out->fp) != 0;
+    int saved = errno;
+    remove(out->copy_path);
+    free(out->copy_path);
+    out->copy_path = NULL;
+    errno = saved;
+  }
   if (out->fp) {
-    bad = ferror(out->fp);
+    bad |= ferror(out->fp);
     bad |= fclose(out->fp) != 0;
     out->fp = NULL;
   }

@@ -145,11 +145,14 @@ int cli_wants_help(int argc, char **argv);
  * path "-" means stdout (commit just flushes). A symbolic link is resolved first, so the file it
  * points to is replaced, not the link. An existing target that is not a regular file (a device,
  * a FIFO) is written in place: renaming over it would replace it.
- * Writers that need a file name rather than a FILE * write to `write_path`. */
+ * Writers that need a file name rather than a FILE * write to `write_path`: the temporary file,
+ * or for an in-place target a private temporary file under $TMPDIR (or /tmp) whose bytes commit
+ * copies into the target (so a library writer never opens a device or FIFO itself). */
 typedef struct cli_output {
   FILE *fp;
   const char *cmd;        /* the subcommand, for messages (cli_error) */
   char *tmp_path;         /* the temporary file; NULL for stdout and for in-place targets */
+  char *copy_path;        /* in-place targets: the private file copied in on commit, or NULL */
   char *target;           /* owned: where the result ends up (symbolic links resolved) */
   const char *path;       /* as given, for messages */
   const char *write_path; /* where the bytes go now: tmp_path, or the target itself */

@@ -111,6 +111,12 @@ set_tests_properties(cli_fit_light_black PROPERTIES FIXTURES_REQUIRED lf_black)
 add_test(NAME cli_lightfit_files COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/lightfit_files.sh $<TARGET_FILE:icshadow_cli>)
 set_tests_properties(cli_lightfit_files PROPERTIES LABELS fast)
 
+# outputs to a FIFO and to a full device made by the test (never removed, the cause named)
+if(ICS_HAVE_RENDER)
+  add_test(NAME cli_write_targets COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/write_targets.sh $<TARGET_FILE:icshadow_cli>)
+  set_tests_properties(cli_write_targets PROPERTIES LABELS "fast" TIMEOUT 60)
+endif()
+
 # bad maps: missing, not an EXR, NaN pixel, wrong channels, truncated (made by test_exr)
 # (written into the working directory: test_exr holds DIR in 256 bytes, and a longer build
 # path was cut, "Unable to open file for write")

@@ -6,11 +6,19 @@
  * user_pixel_stride 4 bytes), then interleaved into the ics_image. Writing (ics_exr_write_channels;
  * ics_exr_write is R, G, B[, A] through it): exr_start_write, one part, required attributes,
  * channels added in reverse order (the library sorts them by name), header, then one encode
- * pipeline per chunk reading planar float buffers (the library converts to half when asked). Error messages of the library are captured per thread (custom
- * error_handler_fn) instead of printed. */
+ * pipeline per chunk reading planar float buffers (the library converts to half when asked),
+ * into a temporary file beside the target that is renamed onto it once complete (write_target:
+ * a failure leaves the previous file as it was; devices, FIFOs and links to nothing are refused,
+ * never written in place or removed). Error messages of the library are captured per thread
+ * (custom error_handler_fn) instead of printed. */
+#define _XOPEN_SOURCE 700
 #include "icshadow/exr.h"
 
 #include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -401,6 +409,55 @@ static int check_names(const ics_exr_channels *ch, char *msg, size_t msg_size, c
   return 1;
 }
 
+/* Where a write of `path` ends up and the temporary it is written through: the target is path,
+ * or the file a symbolic link points to (the link stays); the temporary, TARGET.tmpPID-N, is
+ * created here (O_EXCL, mode 0666 less the umask, as a plain fopen would give), in the target's
+ * folder so the rename cannot cross file systems. A target that exists and is not a regular file
+ * (a device, FIFO, socket, directory) or a link to nothing is refused: the writer never writes a
+ * path in place and never removes a file it did not create. ICS_ERR_IO with the reason. */
+static ics_status write_target(const char *path, char target[PATH_MAX + 1], char tmp[PATH_MAX + 32],
+                               char *msg, size_t msg_size) {
+  struct stat st;
+  int is_link = lstat(path, &st) == 0 && S_ISLNK(st.st_mode);
+  if (stat(path, &st) == 0) {
+    if (!S_ISREG(st.st_mode)) {
+      set_msg(msg, msg_size, "%s: not a regular file (%s): an OpenEXR file is written to a "
+              "temporary file and renamed into place; write to a file instead", path,
+              S_ISDIR(st.st_mode) ? "a directory" : S_ISFIFO(st.st_mode) ? "a FIFO"
+              : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device" : "a socket");
+      return ICS_ERR_IO;
+    }
+  } else if (is_link) {
+    set_msg(msg, msg_size, "%s: a symbolic link to nothing; give the path it should point to", path);
+    return ICS_ERR_IO;
+  }
+  if (is_link) {
+    if (!realpath(path, target)) {
+      set_msg(msg, msg_size, "%s: cannot resolve the link: %s", path, strerror(errno));
+      return ICS_ERR_IO;
+    }
+  } else if (snprintf(target, PATH_MAX + 1, "%s", path) > PATH_MAX) {
+    set_msg(msg, msg_size, "%s: path too long", path);
+    return ICS_ERR_IO;
+  }
+  /* a name within 20 bytes of NAME_MAX takes its temporary from the name's first 64 bytes */
+  const char *slash = strrchr(target, '/');
+  int dirlen = slash ? (int)(slash - target) + 1 : 0, base_long = strlen(target + dirlen) > 235;
+  static _Atomic unsigned serial;
+  for (int attempt = 0; attempt < 100; attempt++) {
+    snprintf(tmp, PATH_MAX + 32, "%.*s%.*s.tmp%ld-%u", dirlen, target, base_long ? 64 : PATH_MAX,
+             target + dirlen, (long)getpid(), serial++);
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
+    if (fd >= 0) {
+      close(fd);
+      return ICS_OK;
+    }
+    if (errno != EEXIST) break;
+  }
+  set_msg(msg, msg_size, "%s: cannot create a temporary file beside it: %s", path, strerror(errno));
+  return ICS_ERR_IO;
+}
+
 ics_status ics_exr_write_channels(const char *path, const ics_exr_channels *ch, ics_exr_type type,
                                   int latlong, char *msg, size_t msg_size) {
   if (path && ch && (ch->count < 1 || ch->count > ICS_EXR_MAX_CHANNELS)) {
@@ -431,8 +488,12 @@ ics_status ics_exr_write_channels(const char *path, const ics_exr_channels *ch, 
       return ICS_ERR_INVALID_ARG;
     }
   }
+  char target[PATH_MAX + 1], tmp[PATH_MAX + 32];
+  ics_status tst = write_target(path, target, tmp, msg, msg_size);
+  if (tst != ICS_OK) return tst;
   float **planes = calloc((size_t)nch, sizeof *planes);
   if (!planes) {
+    remove(tmp);
     set_msg(msg, msg_size, "%s: out of memory", path);
     return ICS_ERR_NOMEM;
   }
@@ -441,6 +502,7 @@ ics_status ics_exr_write_channels(const char *path, const ics_exr_channels *ch, 
     if (!planes[k]) {
       for (int q = 0; q < k; q++) free(planes[q]);
       free(planes);
+      remove(tmp);
       set_msg(msg, msg_size, "%s: out of memory", path);
       return ICS_ERR_NOMEM;
     }
@@ -453,7 +515,7 @@ ics_status ics_exr_write_channels(const char *path, const ics_exr_channels *ch, 
   int part = 0;
   exr_lastmsg[0] = 0;
   exr_pixel_type_t pt = type == ICS_EXR_HALF ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT;
-  exr_result_t rv = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
+  exr_result_t rv = exr_start_write(&ctx, tmp, EXR_WRITE_FILE_DIRECTLY, &init);
   if (rv == EXR_ERR_SUCCESS) rv = exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part);
   if (rv == EXR_ERR_SUCCESS)
     rv = exr_initialize_required_attr_simple(ctx, part, ch->width, ch->height,
@@ -498,8 +560,14 @@ ics_status ics_exr_write_channels(const char *path, const ics_exr_channels *ch, 
   if (rv != EXR_ERR_SUCCESS) {
     set_msg(msg, msg_size, "%s: cannot write OpenEXR: %s", path,
             exr_lastmsg[0] ? exr_lastmsg : exr_get_default_error_message(rv));
-    remove(path);
+    remove(tmp);
     return map_err(rv) == ICS_ERR_PARSE ? ICS_ERR_IO : map_err(rv);
+  }
+  if (rename(tmp, target) != 0) {
+    set_msg(msg, msg_size, "%s: cannot write OpenEXR: renaming the finished file into place: %s",
+            path, strerror(errno));
+    remove(tmp);
+    return ICS_ERR_IO;
   }
   return ICS_OK;
 }

@@ -46,8 +46,12 @@ ICS_API ics_status ics_exr_read(const char *path, ics_image **out, char *msg, si
 
 /* Writes *img (3 or 4 channels) to `path` directly (callers wanting atomic output write a
  * temporary name and rename). ICS_ERR_INVALID_ARG for a NaN / inf / negative pixel, or a value
- * that overflows half when type is ICS_EXR_HALF; ICS_ERR_IO on write errors (the partial file
- * is removed). */
+ * that overflows half when type is ICS_EXR_HALF; ICS_ERR_IO on write errors. The file is
+ * written to a temporary file beside `path` (or beside the file a symbolic link names) and
+ * renamed onto it once complete: a failure leaves an existing file as it was and no temporary
+ * behind. A target that exists and is not a regular file (a device, FIFO, socket, directory) or
+ * a symbolic link to nothing is refused with ICS_ERR_IO before anything is opened; it is never
+ * written in place or removed (write to a file and copy it there). */
 ICS_API ics_status ics_exr_write(const char *path, const ics_image *img, ics_exr_type type,
                                  char *msg, size_t msg_size);
 
@@ -68,8 +72,9 @@ typedef struct ics_exr_channels {
 /* Writes *ch to `path` directly, as ics_exr_write does (envmap = latlong only when latlong is
  * non-zero). Values may be negative; ICS_ERR_INVALID_ARG for a NaN or infinite value (its
  * pixel and channel named), one that overflows half when type is ICS_EXR_HALF, an empty or
- * repeated name, or sizes out of range; ICS_ERR_IO on write errors (the partial file is
- * removed); ICS_ERR_UNSUPPORTED without OpenEXR. */
+ * repeated name, or sizes out of range; ICS_ERR_IO on write errors and refused targets (as for
+ * ics_exr_write: through a temporary file, renamed once complete); ICS_ERR_UNSUPPORTED without
+ * OpenEXR. */
 ICS_API ics_status ics_exr_write_channels(const char *path, const ics_exr_channels *ch,
                                           ics_exr_type type, int latlong, char *msg,
                                           size_t msg_size);
