@@ -169,6 +169,29 @@ int cli_wants_help(int argc, char **argv) {
   return 0;
 }
 
+/* The name a chain of symbolic links ending nowhere leads to (each relative link resolved
+ * against its own folder), malloc'd; NULL for a loop (40 levels, the kernel's limit) or a read
+ * error. */
+static char *link_destination(const char *path) {
+  char *cur = strdup(path);
+  for (int depth = 0; cur && depth < 40; depth++) {
+    struct stat st;
+    if (lstat(cur, &st) != 0) return cur; /* nothing there: the name to create */
+    char buf[4096];
+    ssize_t n = S_ISLNK(st.st_mode) ? readlink(cur, buf, sizeof buf - 1) : -1;
+    if (n < 0) break;
+    buf[n] = 0;
+    const char *slash = strrchr(cur, '/');
+    int dirlen = buf[0] == '/' || !slash ? 0 : (int)(slash - cur) + 1;
+    char *next = malloc((size_t)dirlen + (size_t)n + 1);
+    if (next) snprintf(next, (size_t)dirlen + (size_t)n + 1, "%.*s%s", dirlen, cur, buf);
+    free(cur);
+    cur = next;
+  }
+  free(cur);
+  return NULL;
+}
+
 int cli_output_open(cli_output *out, const char *cmd, const char *path) {
   out->fp = NULL;
   out->cmd = cmd;
@@ -182,20 +205,23 @@ int cli_output_open(cli_output *out, const char *cmd, const char *path) {
     return 0;
   }
   struct stat st;
-  int dangling = 0;
   if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode)) {
     out->target = realpath(path, NULL);
-    dangling = !out->target; /* a link to nothing yet: write through it, in place */
+    /* a link to nothing yet: the file it names is created (through a temporary, as any) */
+    if (!out->target && !(out->target = link_destination(path))) {
+      cli_failure(cmd, "cannot write %s: a symbolic link that cannot be followed", path);
+      return -1;
+    }
   }
   if (!out->target) out->target = strdup(path);
   if (!out->target) return -1;
-  if (dangling || (stat(out->target, &st) == 0 && !S_ISREG(st.st_mode))) {
+  if (stat(out->target, &st) == 0 && !S_ISREG(st.st_mode)) {
     if (S_ISDIR(st.st_mode)) {
       cli_failure(cmd, "cannot write %s: it is a directory", path);
       cli_output_abort(out);
       return -1;
     }
-    out->fp = fopen(out->target, "w"); /* device, FIFO or dangling link: in place */
+    out->fp = fopen(out->target, "w"); /* device or FIFO: in place */
     if (!out->fp) {
       cli_failure(cmd, "cannot open %s: %s", path, strerror(errno));
       cli_output_abort(out);

@@ -143,7 +143,8 @@ int cli_wants_help(int argc, char **argv);
 /* Atomic output: write to a temporary file beside `path`, then rename on commit; abort (or a
  * failed commit) removes the temporary file, so no partial output is ever left behind.
  * path "-" means stdout (commit just flushes). A symbolic link is resolved first, so the file it
- * points to is replaced, not the link. An existing target that is not a regular file (a device,
+ * points to is replaced, not the link; a link to nothing gets the file it names created, through
+ * a temporary file like any other. An existing target that is not a regular file (a device,
  * a FIFO) is written in place: renaming over it would replace it.
  * Writers that need a file name rather than a FILE * write to `write_path`: the temporary file,
  * or for an in-place target a private temporary file under $TMPDIR (or /tmp) whose bytes commit

@@ -3,8 +3,9 @@
 # reader gets the finished bytes (make-env, render: their EXR is written to a private temporary
 # file and copied in on commit); a character device that is full (a /dev/full of our own, mknod:
 # root only, skipped with the reason otherwise) makes make-env, render and lut fail with the
-# cause and exit 1 — and the device node is still there afterwards. No temporary is left in
-# TMPDIR (a private one here).
+# cause and exit 1 — and the device node is still there afterwards. A link to nothing gets its
+# file created whole or not at all. No temporary is left in TMPDIR (a private one here) or
+# beside the targets.
 set -u
 cli=$1
 . "$(dirname "$0")/checks.sh"
@@ -34,5 +35,14 @@ if [ "$(id -u)" -eq 0 ]; then
 else
   echo "SKIPPED the device checks: mknod needs root"
 fi
+# a link to nothing: the file it names is created whole, or not at all (a write past the file
+# size limit, as on a full disk, leaves neither a truncated file nor a temporary; the link stays)
+ln -s made.exr "$dir/dangling"
+"$cli" make-env --lights $L --size 64x32 -o "$dir/dangling" 2> "$dir/err"
+expect '[ $? -eq 0 ] && [ -L "$dir/dangling" ] && [ -f "$dir/made.exr" ]'
+ln -s big.exr "$dir/dangling2"
+( trap '' XFSZ; ulimit -f 8; "$cli" make-env --lights $L --size 512x256 -o "$dir/dangling2" ) 2> "$dir/err"; rc=$?
+expect '[ $rc -eq 1 ] && grep -q "File too large" "$dir/err" && [ -L "$dir/dangling2" ] && [ ! -e "$dir/big.exr" ]'
+expect '[ -z "$(ls "$dir" | grep tmp.)" ]'
 expect '[ -z "$(ls -A "$dir/tmp")" ]'
 finish cli_write_targets
