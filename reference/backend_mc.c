@@ -105,7 +105,7 @@ static ics_status mc_render(void *state, const ics_plan *P, const ics_render_opt
   }
   pass_t ps = {0};
   mc_scene m;
-  ics_status status = mc_scene_init(&m, P, embree, msg, msg_size);
+  ics_status status = mc_scene_init(&m, P, embree ? nt : 0, msg, msg_size);
   if (status != ICS_OK) return status;
   ps.m = &m;
   ps.nv = aov && aov->vis >= 0 ? P->nlights * P->nch : 0;

@@ -1,8 +1,10 @@
 /* mc_embree.c — mesh crossings for the Monte-Carlo reference through Embree 3 (see mc_embree.h,
  * docs/reference.md). The query covers the whole line through the ray, as ics_mesh_hits does:
- * Embree's segment starts at its origin (t >= 0), so the origin is moved back along the ray to
- * outside the mesh's bounding box, and t is measured from the real origin again in double
- * precision afterwards. */
+ * Embree's segment starts at its origin (t >= 0), so the query starts where the line enters the
+ * mesh's bounding box (padded by 0.1 % of its size; a line that misses it meets nothing), and t
+ * is measured from the real origin again in double precision afterwards. Each mesh's vertices
+ * and the query are in the mesh's own frame (its box's centre at 0): single precision then
+ * keeps its digits for a mesh or a ray origin far from the world's origin. */
 #include "mc_embree.h"
 
 #include <math.h>
@@ -20,6 +22,7 @@ struct mc_embree {
   int nobj;
   RTCScene *scene;        /* per object: NULL unless a mesh */
   const ics_mesh **mesh;  /* per object: its mesh, or NULL */
+  double (*ctr)[3];       /* per object: its box's centre, Embree's origin for it */
 };
 
 /* the context of one query: Embree's, then where the filter records triangles */
@@ -70,19 +73,33 @@ static ics_status embree_error(mc_embree *e, char *msg, size_t msg_size, const c
   return err == RTC_ERROR_OUT_OF_MEMORY ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
 }
 
-ics_status mc_embree_create(mc_embree **out, const ics_scene *s, char *msg, size_t msg_size) {
+ics_status mc_embree_create(mc_embree **out, const ics_scene *s, int threads, char *msg,
+                            size_t msg_size) {
   *out = NULL;
   mc_embree *e = calloc(1, sizeof *e);
   if (!e) return ICS_ERR_NOMEM;
   e->nobj = s->nobjects;
   e->scene = calloc((size_t)(s->nobjects ? s->nobjects : 1), sizeof *e->scene);
   e->mesh = calloc((size_t)(s->nobjects ? s->nobjects : 1), sizeof *e->mesh);
-  if (!e->scene || !e->mesh) {
+  e->ctr = calloc((size_t)(s->nobjects ? s->nobjects : 1), sizeof *e->ctr);
+  if (!e->scene || !e->mesh || !e->ctr) {
     mc_embree_destroy(e);
     return ICS_ERR_NOMEM;
   }
-  e->dev = rtcNewDevice(NULL);
+  char config[32];
+  snprintf(config, sizeof config, "threads=%d", threads > 0 ? threads : 0);
+  e->dev = rtcNewDevice(config);
   if (!e->dev) return embree_error(e, msg, msg_size, "rtcNewDevice");
+  /* every crossing needs the intersection filter, and both faces of every triangle */
+  if (!rtcGetDeviceProperty(e->dev, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED) ||
+      rtcGetDeviceProperty(e->dev, RTC_DEVICE_PROPERTY_BACKFACE_CULLING_ENABLED)) {
+    if (msg) snprintf(msg, msg_size, "Embree: this build of Embree %s (the reference needs "
+                      "intersection filters and no back-face culling): use --mc-mesh bvh",
+                      rtcGetDeviceProperty(e->dev, RTC_DEVICE_PROPERTY_BACKFACE_CULLING_ENABLED)
+                          ? "culls back faces" : "has no intersection filters");
+    mc_embree_destroy(e);
+    return ICS_ERR_UNSUPPORTED;
+  }
   for (int k = 0; k < s->nobjects; k++) {
     const ics_object *o = &s->objects[k];
     if (o->shape != ICS_SHAPE_MESH) continue;
@@ -91,6 +108,9 @@ ics_status mc_embree_create(mc_embree **out, const ics_scene *s, char *msg, size
     if (!sc) return embree_error(e, msg, msg_size, "rtcNewScene");
     e->scene[k] = sc;
     e->mesh[k] = o->mesh;
+    double lo[3], hi[3];
+    ics_mesh_bounds(o->mesh, lo, hi);
+    for (int i = 0; i < 3; i++) e->ctr[k][i] = 0.5 * (lo[i] + hi[i]);
     rtcSetSceneFlags(sc, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(sc, RTC_BUILD_QUALITY_MEDIUM);
     RTCGeometry g = rtcNewGeometry(e->dev, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -108,7 +128,7 @@ ics_status mc_embree_create(mc_embree **out, const ics_scene *s, char *msg, size
       double w[3][3];
       ics_mesh_triangle(o->mesh, t, w);
       for (int c = 0; c < 3; c++) {
-        for (int i = 0; i < 3; i++) v[9 * (size_t)t + 3 * c + i] = (float)w[c][i];
+        for (int i = 0; i < 3; i++) v[9 * (size_t)t + 3 * c + i] = (float)(w[c][i] - e->ctr[k][i]);
         ix[3 * (size_t)t + c] = 3 * (unsigned)t + (unsigned)c;
       }
     }
@@ -129,6 +149,7 @@ void mc_embree_destroy(mc_embree *e) {
     if (e->scene[k]) rtcReleaseScene(e->scene[k]);
   free(e->scene);
   free(e->mesh);
+  free(e->ctr);
   if (e->dev) rtcReleaseDevice(e->dev);
   free(e);
 }
@@ -136,26 +157,34 @@ void mc_embree_destroy(mc_embree *e) {
 int mc_embree_hits(const mc_embree *e, int obj, const double orig[3], const double dir[3],
                    mc_embree_scratch *sc, ics_hits *h, int *behind) {
   const ics_mesh *mesh = e->mesh[obj];
-  double lo[3], hi[3], c2 = 0, dd = 0;
+  const double *ctr = e->ctr[obj];
+  double lo[3], hi[3], t0 = -INFINITY, t1 = INFINITY, pad = 0;
   ics_mesh_bounds(mesh, lo, hi);
+  for (int i = 0; i < 3; i++) pad = fmax(pad, hi[i] - lo[i]);
+  pad = 1e-3 * pad + 1e-12;
+  /* where the line enters and leaves the padded box (double precision) */
   for (int i = 0; i < 3; i++) {
-    double c = 0.5 * (lo[i] + hi[i]) - orig[i], r = 0.5 * (hi[i] - lo[i]);
-    c2 += c * c + r * r + 2 * fabs(c) * r; /* (|c| + r)^2 per axis: a bound of the box's reach */
-    dd += dir[i] * dir[i];
+    double a = (lo[i] - pad - orig[i]) / dir[i], b = (hi[i] + pad - orig[i]) / dir[i];
+    if (isnan(a) || isnan(b)) continue; /* parallel to this slab, on its boundary */
+    if (a > b) {
+      double x = a;
+      a = b, b = x;
+    }
+    t0 = fmax(t0, a), t1 = fmin(t1, b);
   }
-  if (!(dd > 0)) return 0;
-  /* back by the farthest the box reaches from the origin, plus a margin */
-  double back = 1.001 * sqrt(c2 / dd) + 1e-3;
+  sc->n = 0;
+  if (!(t0 <= t1)) return ics_mesh_hits_of(mesh, sc->tri, 0, orig, dir, h, behind);
   query_t q;
   rtcInitIntersectContext(&q.ctx);
   q.sc = sc;
   q.oom = 0;
-  sc->n = 0;
   struct RTCRayHit rh;
   memset(&rh, 0, sizeof rh);
-  rh.ray.org_x = (float)(orig[0] - back * dir[0]);
-  rh.ray.org_y = (float)(orig[1] - back * dir[1]);
-  rh.ray.org_z = (float)(orig[2] - back * dir[2]);
+  /* from the entry point, in the object's own frame (its centre at 0), so single precision
+   * keeps its digits wherever the mesh and the ray's origin are */
+  rh.ray.org_x = (float)(orig[0] + t0 * dir[0] - ctr[0]);
+  rh.ray.org_y = (float)(orig[1] + t0 * dir[1] - ctr[1]);
+  rh.ray.org_z = (float)(orig[2] + t0 * dir[2] - ctr[2]);
   rh.ray.dir_x = (float)dir[0], rh.ray.dir_y = (float)dir[1], rh.ray.dir_z = (float)dir[2];
   rh.ray.tnear = 0;
   rh.ray.tfar = INFINITY;
@@ -177,8 +206,9 @@ int mc_embree_available(char *ver, size_t ver_size) {
   return 0;
 }
 
-ics_status mc_embree_create(mc_embree **out, const ics_scene *s, char *msg, size_t msg_size) {
-  (void)s;
+ics_status mc_embree_create(mc_embree **out, const ics_scene *s, int threads, char *msg,
+                            size_t msg_size) {
+  (void)s, (void)threads;
   *out = NULL;
   if (msg) snprintf(msg, msg_size, "Embree was not found when the renderer was built "
                     "(apt-get install libembree-dev and rebuild)");

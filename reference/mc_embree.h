@@ -24,9 +24,11 @@ typedef struct mc_embree_scratch {
 
 /* 1 when built with Embree; its version string ("3.13.5") or "" in ver. */
 int mc_embree_available(char *ver, size_t ver_size);
-/* One Embree scene per mesh object of s. ICS_ERR_UNSUPPORTED without Embree or when Embree
- * fails (its error in msg), ICS_ERR_NOMEM. */
-ics_status mc_embree_create(mc_embree **out, const ics_scene *s, char *msg, size_t msg_size);
+/* One Embree scene per mesh object of s, built on `threads` threads (0: Embree's default, all
+ * cores). ICS_ERR_UNSUPPORTED without Embree, with a build of Embree that lacks intersection
+ * filters or culls back faces, or when Embree fails (the reason in msg); ICS_ERR_NOMEM. */
+ics_status mc_embree_create(mc_embree **out, const ics_scene *s, int threads, char *msg,
+                            size_t msg_size);
 void mc_embree_destroy(mc_embree *e);
 /* As ics_object_hits for mesh object obj. -1 when out of memory. */
 int mc_embree_hits(const mc_embree *e, int obj, const double orig[3], const double dir[3],

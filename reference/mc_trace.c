@@ -72,8 +72,8 @@ ics_status mc_scene_init(mc_scene *m, const ics_plan *P, int embree, char *msg, 
   for (int k = 0; k < 3; k++) extent = fmax(extent, fabs(P->cam.eye[k]));
   m->eps = 1e-9 * (1 + extent);
   for (int l = 0; l < P->nlights; l++) ics_light_cov_sqrt(s->lights[l].cov, m->root[l]);
-  if (embree && s->nmeshes > 0) {
-    ics_status st = mc_embree_create(&m->embree, s, msg, msg_size);
+  if (embree > 0 && s->nmeshes > 0) {
+    ics_status st = mc_embree_create(&m->embree, s, embree, msg, msg_size);
     if (st != ICS_OK) {
       mc_scene_release(m);
       return st;

@@ -58,8 +58,9 @@ typedef struct mc_sample {
   double vis[ICS_SCENE_MAX_LIGHTS][3];  /* the transmittance toward each light there */
 } mc_sample;
 
-/* Majorants and light factors for plan P; with embree, Embree's scenes for the meshes (when the
- * scene has any). ICS_ERR_NOMEM, or mc_embree_create's error with msg. */
+/* Majorants and light factors for plan P; with embree > 0, Embree's scenes for the meshes (when
+ * the scene has any), built on `embree` threads. ICS_ERR_NOMEM, or mc_embree_create's error
+ * with msg. */
 ics_status mc_scene_init(mc_scene *m, const ics_plan *P, int embree, char *msg, size_t msg_size);
 void mc_scene_release(mc_scene *m);
 void mc_thread_release(mc_thread *th);

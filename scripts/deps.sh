@@ -23,7 +23,9 @@ packages=(
   # the Mitsuba 3 outside check: a virtual environment for the PyPI wheel (make mitsuba)
   python3-venv
   # the sweep as a real Slurm job array on a single-node cluster on localhost
-  # (tests/cli/evt_slurm.sh through scripts/slurm_local.sh; nothing is started system-wide)
+  # (tests/cli/evt_slurm.sh through scripts/slurm_local.sh, which starts private daemons under a
+  # scratch directory; munge's own install script may start the system's munge service, which
+  # the test does not use)
   slurm-wlm munge
 )
 

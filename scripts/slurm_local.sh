@@ -2,8 +2,8 @@
 # slurm_local.sh - private single-node Slurm cluster (slurm-wlm 22.05 + munge 0.5.x)
 # whose every file lives under one scratch directory: the test that runs the error-against-time
 # sweep as a real job array (tests/cli/evt_slurm.sh) starts one on localhost, and docs/results.md
-# shows how to try the job-array lines with it. DIR and every folder above it must be
-# searchable by all (munged's rule for its socket).
+# shows how to try the job-array lines with it. DIR must be a directory (not a link) owned by
+# root and writable by root only.
 #
 #   slurm_local.sh start DIR    # start munged, slurmctld, slurmd; wait for node idle
 #   slurm_local.sh stop  DIR    # cancel jobs, stop slurmd, slurmctld, munged
@@ -18,20 +18,29 @@
 _sl_log() { printf 'slurm_local: %s\n' "$*" >&2; }
 _sl_die() { _sl_log "ERROR: $*"; return 1; }
 
-# absolute path of DIR (created if needed)
+# absolute path of DIR (created if needed); refused when it is a symbolic link, not owned by
+# root or writable by group or others (root daemons read their configuration from it)
 _sl_absdir() {
     [ -n "$1" ] || { _sl_die "usage: start|stop DIR"; return 1; }
+    [ -L "$1" ] && { _sl_die "$1 is a symbolic link: give a directory (e.g. D=\$(mktemp -d))"; return 1; }
     mkdir -p -- "$1" || return 1
+    local owner mode
+    owner=$(stat -c %u -- "$1") mode=$(stat -c %a -- "$1")
+    if [ "$owner" != 0 ] || [ $((0$mode & 022)) -ne 0 ]; then
+        _sl_die "$1 must be owned by root and writable by root only (owner uid $owner, mode $mode)"
+        return 1
+    fi
     (cd -- "$1" && pwd -P)
 }
 
-# pid from pid file if that process is alive
+# pid from the pid file $1 if that process is alive and is the daemon $2 (not a reused pid)
 _sl_alive_pid() {
-    local f=$1 p
+    local f=$1 want=${2:-} p
     [ -s "$f" ] || return 1
     p=$(tr -dc '0-9' <"$f")
-    [ -n "$p" ] && kill -0 "$p" 2>/dev/null && { echo "$p"; return 0; }
-    return 1
+    [ -n "$p" ] && kill -0 "$p" 2>/dev/null || return 1
+    [ -z "$want" ] || [ "$(cat "/proc/$p/comm" 2>/dev/null)" = "$want" ] || return 1
+    echo "$p"
 }
 
 _sl_port_busy() {
@@ -76,7 +85,7 @@ slurm_local_start() {
         command -v "$p" >/dev/null 2>&1 || { _sl_die "$p not found in PATH"; return 1; }
     done
     for p in munged slurmctld slurmd; do
-        if _sl_alive_pid "$D/run/$p.pid" >/dev/null; then
+        if _sl_alive_pid "$D/run/$p.pid" "$p" >/dev/null; then
             _sl_die "$p already running for $D (pid $(cat "$D/run/$p.pid")); run stop first"
             return 1
         fi
@@ -96,7 +105,9 @@ slurm_local_start() {
     fi
     chmod 0600 "$key"
     rm -f "$sock" "$sock.lock"
-    munged --socket="$sock" --key-file="$key" --pid-file="$D/run/munged.pid" \
+    # --force: munged would refuse a folder above DIR that is 0700 (Debian's /root) or group
+    # writable; DIR itself is checked above
+    munged --force --socket="$sock" --key-file="$key" --pid-file="$D/run/munged.pid" \
            --log-file="$D/log/munged.log" --seed-file="$D/munged.seed" \
         || { _sl_fail "$D" "munged failed to start"; return 1; }
     if ! munge -n -S "$sock" | unmunge -S "$sock" >/dev/null 2>&1; then
@@ -252,7 +263,7 @@ slurm_local_stop() {
     local conf=$D/slurm.conf
 
     # cancel remaining jobs first, so no slurmstepd/job processes outlive slurmd
-    if _sl_alive_pid "$D/run/slurmctld.pid" >/dev/null && [ -e "$conf" ]; then
+    if _sl_alive_pid "$D/run/slurmctld.pid" slurmctld >/dev/null && [ -e "$conf" ]; then
         if [ -n "$(SLURM_CONF=$conf timeout 5 squeue -h -o %A 2>/dev/null)" ]; then
             SLURM_CONF=$conf timeout 5 scancel --quiet --user="$(id -un)" 2>/dev/null
             for i in $(seq 1 60); do
@@ -265,12 +276,12 @@ slurm_local_stop() {
     # slurmd and slurmctld in parallel (each takes 1-2 s), munged last
     local bg=
     for name in slurmd slurmctld; do
-        if pid=$(_sl_alive_pid "$D/run/$name.pid"); then
+        if pid=$(_sl_alive_pid "$D/run/$name.pid" "$name"); then
             _sl_kill_wait "$name" "$pid" & bg="$bg $!"
         fi
     done
     for pid in $bg; do wait "$pid" || rc=1; done
-    if pid=$(_sl_alive_pid "$D/run/munged.pid"); then
+    if pid=$(_sl_alive_pid "$D/run/munged.pid" munged); then
         _sl_kill_wait munged "$pid" || rc=1
     fi
     rm -f "$D/run/slurmd.pid" "$D/run/slurmctld.pid" "$D/run/munged.pid"

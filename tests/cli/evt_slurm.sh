@@ -30,9 +30,9 @@ fi
 export SLURM_CONF=$dir/cluster/slurm.conf
 E="$py $evt --icshadow $cli --quick --resolution 64x48 --resolutions 32x24 --ref-spp 16 --reps 1 --no-times --ref $dir/ref.exr"
 ref=$(sbatch --parsable -D "$dir" -o "$dir/refs.out" --wrap "$E --refs-only")
-arr=$(sbatch --parsable -D "$dir" --dependency=afterok:$ref --array=0-2 -o "$dir/shard_%a.out" \
+arr=$(sbatch --parsable -D "$dir" --kill-on-invalid-dep=yes --dependency=afterok:$ref --array=0-2 -o "$dir/shard_%a.out" \
       --wrap "$E --shard \$SLURM_ARRAY_TASK_ID/3 --csv $dir/shard_\$SLURM_ARRAY_TASK_ID.csv")
-mrg=$(sbatch --parsable -D "$dir" --dependency=afterok:$arr -o "$dir/merge.out" \
+mrg=$(sbatch --parsable -D "$dir" --kill-on-invalid-dep=yes --dependency=afterok:$arr -o "$dir/merge.out" \
       --wrap "$py $evt --merge $dir/shard_0.csv $dir/shard_1.csv $dir/shard_2.csv --csv $dir/merged.csv")
 expect '[ -n "$ref" ] && [ -n "$arr" ] && [ -n "$mrg" ]'
 for _ in $(seq 1 480); do  # at most 120 s
