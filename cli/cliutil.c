@@ -245,6 +245,7 @@ int cli_output_open(cli_output *out, const char *cmd, const char *path) {
       return -1;
     }
     close(fd);
+    cli_temp_register(out->copy_path);
     out->write_path = out->copy_path;
     return 0;
   }
@@ -276,6 +277,7 @@ int cli_output_open(cli_output *out, const char *cmd, const char *path) {
   umask(mask);
   if (fchmod(fd, 0666 & ~mask) != 0)
     cli_warning(cmd, "cannot set the mode of %s: %s", path, strerror(errno));
+  cli_temp_register(out->tmp_path);
   out->fp = fdopen(fd, "w");
   if (!out->fp) {
     close(fd);
@@ -290,10 +292,12 @@ void cli_output_abort(cli_output *out) {
   if (out->fp && out->fp != stdout) fclose(out->fp);
   if (out->tmp_path) {
     remove(out->tmp_path);
+    cli_temp_forget(out->tmp_path);
     free(out->tmp_path);
   }
   if (out->copy_path) {
     remove(out->copy_path);
+    cli_temp_forget(out->copy_path);
     free(out->copy_path);
   }
   free(out->target);
@@ -325,6 +329,7 @@ int cli_output_commit(cli_output *out) {
     bad = out->fp && copy_into(out->copy_path, out->fp) != 0;
     int saved = errno;
     remove(out->copy_path);
+    cli_temp_forget(out->copy_path);
     free(out->copy_path);
     out->copy_path = NULL;
     errno = saved;
@@ -339,6 +344,7 @@ int cli_output_commit(cli_output *out) {
     cli_failure(out->cmd, "cannot write %s: %s", out->path, strerror(errno));
     if (out->tmp_path) remove(out->tmp_path);
   }
+  if (out->tmp_path) cli_temp_forget(out->tmp_path);
   free(out->tmp_path);
   free(out->target);
   out->tmp_path = NULL;

@@ -159,6 +159,10 @@ typedef struct cli_output {
   const char *write_path; /* where the bytes go now: tmp_path, or the target itself */
 } cli_output;
 int cli_output_open(cli_output *out, const char *cmd, const char *path);
+/* Temporary files removed if SIGINT, SIGTERM, SIGHUP or SIGQUIT ends the process
+ * (cli/tempfiles.c); cli_output registers its own. forget also drops the names derived from path. */
+void cli_temp_register(const char *path);
+void cli_temp_forget(const char *path);
 int cli_output_commit(cli_output *out); /* 0 on success; reports errors on stderr */
 void cli_output_abort(cli_output *out);
 

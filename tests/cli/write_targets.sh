@@ -4,8 +4,8 @@
 # file and copied in on commit); a character device that is full (a /dev/full of our own, mknod:
 # root only, skipped with the reason otherwise) makes make-env, render and lut fail with the
 # cause and exit 1 — and the device node is still there afterwards. A link to nothing gets its
-# file created whole or not at all. No temporary is left in TMPDIR (a private one here) or
-# beside the targets.
+# file created whole or not at all. SIGTERM while a temporary is open removes it. No temporary
+# is left in TMPDIR (a private one here) or beside the targets.
 set -u
 cli=$1
 . "$(dirname "$0")/checks.sh"
@@ -43,6 +43,16 @@ expect '[ $? -eq 0 ] && [ -L "$dir/dangling" ] && [ -f "$dir/made.exr" ]'
 ln -s big.exr "$dir/dangling2"
 ( trap '' XFSZ; ulimit -f 8; "$cli" make-env --lights $L --size 512x256 -o "$dir/dangling2" ) 2> "$dir/err"; rc=$?
 expect '[ $rc -eq 1 ] && grep -q "File too large" "$dir/err" && [ -L "$dir/dangling2" ] && [ ! -e "$dir/big.exr" ]'
+# SIGTERM while a command holds a temporary: fit-light has written -o's temporary and waits to
+# open --plane-csv, a FIFO nobody reads; the signal removes the temporary and ends the process
+"$cli" make-env --lights $L --size 64x32 -o "$dir/map.exr" 2>> "$dir/err"
+mkfifo "$dir/plane.fifo"
+"$cli" fit-light "$dir/map.exr" --lights 1 -o "$dir/sig.json" --plane-csv "$dir/plane.fifo" > /dev/null 2>&1 &
+pid=$!
+for _ in $(seq 1 200); do ls "$dir" | grep -q "^sig.json.tmp" && break; sleep 0.05; done
+expect 'ls "$dir" | grep -q "^sig.json.tmp"'  # the temporary exists while it waits
+kill -TERM $pid; wait $pid; rc=$?
+expect '[ $rc -eq 143 ] && [ -z "$(ls "$dir" | grep "^sig.json")" ]'
 expect '[ -z "$(ls "$dir" | grep tmp.)" ]'
 expect '[ -z "$(ls -A "$dir/tmp")" ]'
 finish cli_write_targets
