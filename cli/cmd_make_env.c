@@ -12,8 +12,8 @@
 #include "lightsfile.h"
 
 /* the map (3 floats a pixel) and ics_exr_write's planar copy (3 more): 24 bytes a pixel, at most
- * 2 GiB together */
-#define MAX_PIXELS ((long)((1UL << 31) / 24))
+ * 2 GiB together; the readers' bound too, so every map make-env writes can be read back */
+#define MAX_PIXELS ICS_EXR_MAX_PIXELS
 
 static void help(FILE *f) {
   fprintf(f,

@@ -228,7 +228,22 @@ int main(int argc, char **argv) {
   raw_disp = box(0, 0, 7, 3);
   raw_data = box(-2, -1, 9, 4);
   CHECK(write_raw(tmpf("over.exr"), 12, 6, 3, rgb, EXR_PIXEL_FLOAT, v_plain) == 0, "raw overscan");
+  /* a tiny file whose display window claims 1793 x 64513 pixels (115.7 million): refused before
+   * anything is allocated (it used to allocate and clear 1.4 GB per channel) */
+  raw_disp = box(0, 0, 1792, 64512);
+  raw_data = box(0, 0, 7, 3);
+  CHECK(write_raw(tmpf("huge_disp.exr"), 8, 4, 3, rgb, EXR_PIXEL_FLOAT, v_plain) == 0, "raw huge display");
   raw_windows = 0;
+  CHECK(file_size(tmpf("huge_disp.exr")) < 2000, "the huge-window file is small (%ld bytes)",
+        file_size(tmpf("huge_disp.exr")));
+  st = ics_exr_read(tmpf("huge_disp.exr"), &b, msg, sizeof msg);
+  CHECK(st == ICS_ERR_SIZE && b == NULL && strstr(msg, "display window 1793 x 64513 is 115.7 million pixels"),
+        "huge display window refused: %s", msg);
+  {
+    ics_exr_channels *r = NULL;
+    st = ics_exr_read_channels(tmpf("huge_disp.exr"), &r, msg, sizeof msg);
+    CHECK(st == ICS_ERR_SIZE && r == NULL, "channels: huge display window refused: %s", msg);
+  }
   st = ics_exr_read(tmpf("win.exr"), &b, msg, sizeof msg);
   CHECK(st == ICS_OK && b->width == 128 && b->height == 64, "windowed read: %s, %dx%d", msg,
         b ? b->width : 0, b ? b->height : 0);

@@ -260,6 +260,16 @@ static ics_status read_file(const char *path, int rgba, exr_pixels *px, char *ms
     st = ICS_ERR_SIZE;
     goto done;
   }
+  /* both sides are at most 65536 here, so the products fit a long */
+  if (W * H > ICS_EXR_MAX_PIXELS || w * h > ICS_EXR_MAX_PIXELS) {
+    int disp_big = W * H > ICS_EXR_MAX_PIXELS;
+    long bw = disp_big ? W : w, bh = disp_big ? H : h;
+    set_msg(msg, msg_size, "%s: %s window %ld x %ld is %.4g million pixels, more than the %.4g "
+            "million a map may have (ICS_EXR_MAX_PIXELS)", path, disp_big ? "display" : "data",
+            bw, bh, 1e-6 * (double)(bw * bh), 1e-6 * ICS_EXR_MAX_PIXELS);
+    st = ICS_ERR_SIZE;
+    goto done;
+  }
   px->data = calloc((size_t)W * (size_t)H * (size_t)nch, sizeof *px->data);
   if (!px->data) {
     set_msg(msg, msg_size, "%s: cannot hold a %ld x %ld image (display window): %s", path, W, H,

@@ -58,6 +58,12 @@ ICS_API ics_status ics_exr_write(const char *path, const ics_image *img, ics_exr
 /* Channels per file that ics_exr_write_channels accepts. */
 #define ICS_EXR_MAX_CHANNELS 256
 
+/* Pixels (width x height) of the display window, and of the data window, that the readers
+ * accept: 2^31 / 24, about 89.5 million (a 3-channel map and its planar copy in 2 GiB; what
+ * `icshadow make-env` writes at most). A larger window is refused with ICS_ERR_SIZE before
+ * anything is allocated, whatever the file's size. */
+#define ICS_EXR_MAX_PIXELS ((long)((1UL << 31) / 24))
+
 /* Named float channels of one image, interleaved. */
 typedef struct ics_exr_channels {
   int width, height;        /* 1..ICS_IMAGE_MAX_DIM */
