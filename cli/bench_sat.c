@@ -489,7 +489,7 @@ static int bench_sat(int argc, char **argv, int dims) {
       {"--modes", .kind = CLI_CALL, .dest = &c, .parse = parse_modes},
       {"--reps", .kind = CLI_INT, .dest = &c.reps, .lo = 1, .hi = 100},
       {"--boxes", .kind = CLI_INT, .dest = &c.boxes, .lo = 0, .hi = 100000},
-      {"--chirp-csv", .kind = CLI_STRING, .dest = &chirp, .given = &given_chirp},
+      {"--chirp-csv", .kind = CLI_FILE, .dest = &chirp, .given = &given_chirp},
       {"--lights", .kind = CLI_FLAG, .dest = &lights},
   };
   int rc = cli_parse_options(cmd, argc, argv, 1, opts, CLI_NOPTS(opts));

@@ -421,6 +421,7 @@ int cli_parse_options(const char *cmd, int argc, char **argv, int first, const c
   const cli_option *positional = NULL;
   for (int k = 0; k < nopts; k++)
     if (!opts[k].name) positional = &opts[k];
+  unsigned char seen[256] = {0}; /* options given so far, by table index */
   for (int i = first; i < argc; i++) {
     const char *arg = argv[i], *opt = arg, *value = arg;
     const cli_option *o = find_option(opts, nopts, arg);
@@ -435,6 +436,8 @@ int cli_parse_options(const char *cmd, int argc, char **argv, int first, const c
       if (i + 1 >= argc) return cli_error(cmd, "%s: missing value", arg);
       value = argv[++i];
     }
+    if (opt && o - opts < (long)sizeof seen && seen[o - opts]++)
+      return cli_error(cmd, "%s given twice: give each option once", arg);
     if (o->given) ++*o->given;
     int rc = option_value(cmd, o, opt, value);
     if (rc) return rc;

@@ -172,8 +172,8 @@ int cmd_fit_light(int argc, char **argv) {
       {"--max-iter", .kind = CLI_INT, .dest = &max_iter, .lo = 1, .hi = 100000},
       {"--sweep", .kind = CLI_FLAG, .dest = &sweep},
       {"--progress", .kind = CLI_FLAG, .dest = &force_progress},
-      {"--plane-csv", .kind = CLI_STRING, .dest = &planep},
-      {"-o", .kind = CLI_STRING, .dest = &outp},
+      {"--plane-csv", .kind = CLI_FILE, .dest = &planep},
+      {"-o", .kind = CLI_FILE, .dest = &outp},
   };
   int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
   if (rc) return rc;

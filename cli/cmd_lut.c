@@ -4,6 +4,7 @@
  * The tables are built from the exact functions (ellipse.c), never from the library's own
  * checked-in tables, so this command can always regenerate them. Method: docs/lut.md. */
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -95,10 +96,15 @@ static int write_header(int n, const char *lang_name, ics_lut_lang lang, const c
     tables_free(&T);
     return 1;
   }
+  errno = 0;
   st = ics_lut_write(out.fp, lang, &T.view, command, &ed, &ef);
+  int write_errno = errno;
   tables_free(&T);
   if (st != ICS_OK) {
-    cli_failure(CMD, "writing failed: %s", ics_status_str(st));
+    if (st == ICS_ERR_IO && write_errno) /* the failed write's own reason (ENOSPC, EFBIG, ...) */
+      cli_failure(CMD, "cannot write %s: %s", path, strerror(write_errno));
+    else
+      cli_failure(CMD, "writing failed: %s", ics_status_str(st));
     cli_output_abort(&out);
     return 1;
   }
@@ -148,8 +154,11 @@ static int parse_sizes(const char *s, int *sizes, int cap, int *count) {
   char buf[512];
   if (strlen(s) >= sizeof buf) return -1;
   strcpy(buf, s);
-  for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-    if (*count >= cap) return -1;
+  /* split by hand: strtok would merge empty fields ("4,,8"), which are refused */
+  for (char *tok = buf, *next; tok; tok = next) {
+    next = strchr(tok, ',');
+    if (next) *next++ = 0;
+    if (!*tok || *count >= cap) return -1;
     if (cli_parse_int(tok, ICS_LUT_MIN_SIZE, ICS_LUT_MAX_SIZE, &sizes[*count]) != 0) return -1;
     if (*count && sizes[*count] <= sizes[*count - 1]) return -1;
     (*count)++;

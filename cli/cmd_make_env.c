@@ -96,7 +96,7 @@ int cmd_make_env(int argc, char **argv) {
       {"--supersample", .kind = CLI_INT, .dest = &ss, .lo = 1, .hi = 16},
       {"--half", .kind = CLI_FLAG, .dest = &half},
       {"--progress", .kind = CLI_FLAG, .dest = &force_progress},
-      {"-o", .kind = CLI_STRING, .dest = &outp},
+      {"-o", .kind = CLI_FILE, .dest = &outp},
   };
   int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
   if (rc) return rc;

@@ -6,6 +6,8 @@ ics_cli_test(NAME cli_kernel_ellipse_help RC 0 ARGS "kernel|ellipse|--help" OUT 
 # independently: mpmath quadrature of the arc-length moments of the ellipse (1 - t, t) at 30
 # digits, root-solved for V_y/V_x = 0.25, gives t = 0.29078618627769530, a = 1.5770614503123458,
 # b = 0.64661414624033227.
+ics_cli_test(NAME cli_kernel_repeated_option RC 2 ARGS "kernel|ellipse|--varx|1|--varx|2|--vary|0.25"
+  ERR "--varx given twice: give each option once")
 ics_cli_test(NAME cli_kernel_good RC 0 ARGS "kernel|ellipse|--varx|1|--vary|0.25|--angle|30|--samples|3|--offset|0.1"
   OUT "^{\"kernel\":\"ellipse\",\"varx\":1,\"vary\":0.25,\"angle_deg\":30,\"a\":1\\.57706145031234[0-9]*,\"b\":0\\.6466141462403[0-9]*,\"t\":0\\.2907861862776[0-9]*,\"samples\":3,\"offset\":0\\.10000000000000001,\"taps\":\\[\\[${num},${num}\\],\\[${num},${num}\\],\\[${num},${num}\\]\\]}\n$")
 # line light: a = sqrt(3 varx) = 3, taps at the segment's ends

@@ -29,6 +29,7 @@ ics_cli_test(NAME cli_lut_unknown_option RC 2 ARGS "lut|--size|64|--lang|glsl|--
 ics_cli_test(NAME cli_lut_report_with_output RC 2 ARGS "lut|--report|-o|${ics_lut_cli_dir}/report_with_output.out" ERR "--report takes no" NOFILE ${ics_lut_cli_dir}/report_with_output.out)
 ics_cli_test(NAME cli_lut_report_bad_sizes RC 2 ARGS "lut|--report|--sizes|8,abc" ERR "--sizes: expected increasing integers")
 ics_cli_test(NAME cli_lut_report_unsorted_sizes RC 2 ARGS "lut|--report|--sizes|16,8" ERR "--sizes: expected increasing")
+ics_cli_test(NAME cli_lut_report_empty_size RC 2 ARGS "lut|--report|--sizes|8,,16" ERR "--sizes: expected increasing integers")
 ics_cli_test(NAME cli_lut_sizes_without_report RC 2 ARGS "lut|--sizes|8|--size|8|--lang|c" ERR "--sizes goes with --report")
 # a write that cannot happen: runtime failure (exit 1), nothing left behind
 ics_cli_test(NAME cli_lut_unwritable RC 1 ARGS "lut|--size|16|--lang|glsl|-o|${ics_lut_cli_dir}/no/such/dir/x.glsl" ERR "cannot create" NOFILE ${ics_lut_cli_dir}/no/such/dir/x.glsl)

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# An empty output file name is a usage error (exit 2, a message, nothing on stdout) for both
-# `icshadow bench minmax --fig4-csv ""` and `icshadow bench occtex --fig3-csv ""`.
+# An empty output file name is a usage error (exit 2, a message, nothing on stdout) for
+# `icshadow bench minmax --fig4-csv ""`, `bench occtex --fig3-csv ""`, `bench sat2d --chirp-csv
+# ""`, `make-env -o ""` and `fit-light -o ""` / `--plane-csv ""` (make-env and fit-light used to
+# exit 1 trying to open "").
 set -u
 cli=$1
 fail=0
@@ -15,6 +17,10 @@ check() { # name, expected stderr text, then the command's arguments
 }
 check minmax "bench minmax: --fig4-csv: empty file name" bench minmax --samples 16 --fig4-csv ""
 check occtex "bench occtex: --fig3-csv: empty file name" bench occtex --sizes 8 --fig3-csv ""
+check sat "bench sat2d: --chirp-csv: empty file name" bench sat2d --chirp-csv ""
+check make_env "make-env: -o: empty file name" make-env --lights 0,0,0.01,0.01,0,1,1,1,1 --size 64x32 -o ""
+check fit_light "fit-light: -o: empty file name" fit-light map.exr --lights 1 -o ""
+check fit_light_plane "fit-light: --plane-csv: empty file name" fit-light map.exr --lights 1 -o x.json --plane-csv ""
 rm -f "$errf"
-[ $fail -eq 0 ] && echo "bench_empty_path: 2 passed"
+[ $fail -eq 0 ] && echo "bench_empty_path: 6 passed"
 exit $fail

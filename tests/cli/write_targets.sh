@@ -43,6 +43,9 @@ expect '[ $? -eq 0 ] && [ -L "$dir/dangling" ] && [ -f "$dir/made.exr" ]'
 ln -s big.exr "$dir/dangling2"
 ( trap '' XFSZ; ulimit -f 8; "$cli" make-env --lights $L --size 512x256 -o "$dir/dangling2" ) 2> "$dir/err"; rc=$?
 expect '[ $rc -eq 1 ] && grep -q "File too large" "$dir/err" && [ -L "$dir/dangling2" ] && [ ! -e "$dir/big.exr" ]'
+# a write past the file-size limit (as on a full disk) names its cause, not "input/output error"
+( trap '' XFSZ; ulimit -f 8; "$cli" lut --size 4096 --lang c -o "$dir/big.h" ) 2> "$dir/err"; rc=$?
+expect '[ $rc -eq 1 ] && grep -q "cannot write .*big.h: File too large" "$dir/err" && [ ! -e "$dir/big.h" ]'
 # SIGTERM while a command holds a temporary: fit-light has written -o's temporary and waits to
 # open --plane-csv, a FIFO nobody reads; the signal removes the temporary and ends the process
 "$cli" make-env --lights $L --size 64x32 -o "$dir/map.exr" 2>> "$dir/err"
