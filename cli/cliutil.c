@@ -322,8 +322,13 @@ static int copy_into(const char *from, FILE *fp) {
   return bad ? -1 : 0;
 }
 
-int cli_output_commit(cli_output *out) {
-  if (out->fp == stdout) return fflush(stdout) ? -1 : 0;
+/* Phase 1 of a commit: the bytes complete (stdout flushed; an in-place target gets its copy; the
+ * file closed). 0, or -1 with errno. The temporary (tmp_path) is left for phase 2. */
+static int finish(cli_output *out) {
+  if (out->fp == stdout) {
+    out->fp = NULL;
+    return fflush(stdout) || ferror(stdout) ? -1 : 0;
+  }
   int bad = 0;
   if (out->copy_path) {
     bad = out->fp && copy_into(out->copy_path, out->fp) != 0;
@@ -335,22 +340,50 @@ int cli_output_commit(cli_output *out) {
     errno = saved;
   }
   if (out->fp) {
+    int saved = errno;
     bad |= ferror(out->fp);
     bad |= fclose(out->fp) != 0;
+    if (bad && !errno) errno = saved ? saved : EIO;
     out->fp = NULL;
   }
-  if (!bad && out->tmp_path && rename(out->tmp_path, out->target) != 0) bad = 1;
-  if (bad) {
-    cli_failure(out->cmd, "cannot write %s: %s", out->path, strerror(errno));
-    if (out->tmp_path) remove(out->tmp_path);
+  return bad ? -1 : 0;
+}
+
+static void release(cli_output *out) {
+  if (out->tmp_path) {
+    remove(out->tmp_path); /* after a rename: gone already */
+    cli_temp_forget(out->tmp_path);
   }
-  if (out->tmp_path) cli_temp_forget(out->tmp_path);
   free(out->tmp_path);
   free(out->target);
   out->tmp_path = NULL;
   out->target = NULL;
+}
+
+int cli_outputs_commit(cli_output *const *outs, int n) {
+  int failed = -1, err = 0;
+  for (int i = 0; i < n; i++) {
+    errno = 0;
+    if (finish(outs[i]) != 0 && failed < 0) failed = i, err = errno ? errno : EIO;
+  }
+  if (failed >= 0) { /* none of them: every temporary removed */
+    const char *name = outs[failed]->path && strcmp(outs[failed]->path, "-") ? outs[failed]->path : "stdout";
+    cli_failure(outs[failed]->cmd, "cannot write %s: %s", name, strerror(err));
+    for (int i = 0; i < n; i++) release(outs[i]);
+    return -1;
+  }
+  int bad = 0;
+  for (int i = 0; i < n; i++) {
+    if (outs[i]->tmp_path && rename(outs[i]->tmp_path, outs[i]->target) != 0) {
+      cli_failure(outs[i]->cmd, "cannot write %s: %s", outs[i]->path, strerror(errno));
+      bad = 1;
+    }
+    release(outs[i]);
+  }
   return bad ? -1 : 0;
 }
+
+int cli_output_commit(cli_output *out) { return cli_outputs_commit(&out, 1); }
 
 int cli_parse_seed(const char *s, uint64_t *out) {
   if (!s || !*s) return -1;

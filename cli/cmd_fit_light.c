@@ -125,8 +125,12 @@ static int fit_and_write(const ics_image *env, const char *inp, const char *outp
     fprintf(stderr, "fit-light: the map is explained by %d light%s; %d requested\n", r->k_fit,
             r->k_fit == 1 ? "" : "s", K);
 
-  /* -o first: when it cannot be opened, no plane CSV is written either */
-  cli_output out, pout;
+  /* -o first: when it cannot be opened, no plane CSV is written either. The table on stdout,
+   * the lights file and the plane CSV are committed together, stdout first: when one cannot be
+   * completed (a full disk, a closed stdout), no file is replaced */
+  cli_output out, pout, sout;
+  cli_output *all[3];
+  int n = 0, to_stdout = !strcmp(outp, "-");
   if (cli_output_open(&out, CMD, outp) != 0) return 1;
   if (lights_write(out.fp, lights, r->k_fit) != 0) {
     cli_output_abort(&out);
@@ -138,20 +142,20 @@ static int fit_and_write(const ics_image *env, const char *inp, const char *outp
       return 1;
     }
     write_plane_csv(pout.fp, env, p->max_angle_deg);
-    if (cli_output_commit(&pout) != 0) {
-      cli_output_abort(&out);
-      return 1;
+  }
+  if (!to_stdout) {
+    cli_output_open(&sout, CMD, "-");
+    fprintf(sout.fp, "k,fitted,l1,l2,edge,seconds,iterations,samples,cutoff_loss\n");
+    for (int k = k0; k <= K; k++) {
+      const ics_lightfit_report *q = &rep[k - 1];
+      fprintf(sout.fp, "%d,%d,%.17g,%.17g,%.17g,%.17g,%d,%d,%.17g\n", k, q->k_fit, q->l1, q->l2,
+              q->edge, secs[k - 1], q->iterations, q->samples, q->cutoff_loss);
     }
+    all[n++] = &sout;
   }
-  if (cli_output_commit(&out) != 0) return 1;
-  if (!strcmp(outp, "-")) return 0;
-  printf("k,fitted,l1,l2,edge,seconds,iterations,samples,cutoff_loss\n");
-  for (int k = k0; k <= K; k++) {
-    const ics_lightfit_report *q = &rep[k - 1];
-    printf("%d,%d,%.17g,%.17g,%.17g,%.17g,%d,%d,%.17g\n", k, q->k_fit, q->l1, q->l2, q->edge,
-           secs[k - 1], q->iterations, q->samples, q->cutoff_loss);
-  }
-  return cli_stdout_failed(CMD);
+  all[n++] = &out;
+  if (planep) all[n++] = &pout;
+  return cli_outputs_commit(all, n) ? 1 : 0;
 }
 
 int cmd_fit_light(int argc, char **argv) {

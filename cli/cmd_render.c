@@ -352,12 +352,19 @@ int cmd_render(int argc, char **argv) {
       goto abort;
     }
   }
-  if ((have_e && cli_output_commit(&oe) != 0) || (have_p && cli_output_commit(&op) != 0) ||
-      (have_d && cli_output_commit(&od) != 0)) {
-    rc = 1;
-    goto done_summary;
+  {
+    /* the summary and every file together, the summary first: when one cannot be completed
+     * (a full disk, a closed stdout), no file is replaced */
+    cli_output os;
+    cli_output_open(&os, CMD, "-");
+    fprintf(os.fp, "%s\n", summary);
+    cli_output *all[4] = {&os};
+    int n = 1;
+    if (have_e) all[n++] = &oe;
+    if (have_p) all[n++] = &op;
+    if (have_d) all[n++] = &od;
+    if (cli_outputs_commit(all, n) != 0) rc = 1;
   }
-  printf("%s\n", summary);
   goto done_summary;
 abort:
   if (have_e) cli_output_abort(&oe);

@@ -164,6 +164,11 @@ int cli_output_open(cli_output *out, const char *cmd, const char *path);
 void cli_temp_register(const char *path);
 void cli_temp_forget(const char *path);
 int cli_output_commit(cli_output *out); /* 0 on success; reports errors on stderr */
+/* Commits several outputs of one command together: each is completed first (flushed, closed,
+ * copied into an in-place target), and only when all are complete are the temporaries renamed
+ * into place; when one cannot be completed, every temporary is removed and no file is replaced.
+ * Put stdout first when a command prints too, so a failed stdout commits no file. */
+int cli_outputs_commit(cli_output *const *outs, int n);
 void cli_output_abort(cli_output *out);
 
 #endif

@@ -4,7 +4,8 @@
 # file and copied in on commit); a character device that is full (a /dev/full of our own, mknod:
 # root only, skipped with the reason otherwise) makes make-env, render and lut fail with the
 # cause and exit 1 — and the device node is still there afterwards. A link to nothing gets its
-# file created whole or not at all. SIGTERM while a temporary is open removes it. No temporary
+# file created whole or not at all. A command's outputs are committed together: a full stdout
+# leaves fit-light's and render's files unwritten. SIGTERM while a temporary is open removes it. No temporary
 # is left in TMPDIR (a private one here) or beside the targets.
 set -u
 cli=$1
@@ -46,6 +47,11 @@ expect '[ $rc -eq 1 ] && grep -q "File too large" "$dir/err" && [ -L "$dir/dangl
 # a write past the file-size limit (as on a full disk) names its cause, not "input/output error"
 ( trap '' XFSZ; ulimit -f 8; "$cli" lut --size 4096 --lang c -o "$dir/big.h" ) 2> "$dir/err"; rc=$?
 expect '[ $rc -eq 1 ] && grep -q "cannot write .*big.h: File too large" "$dir/err" && [ ! -e "$dir/big.h" ]'
+# all or none: when stdout fails (a full one), the files of the same command are not written
+"$cli" fit-light "$dir/made.exr" --lights 1 -o "$dir/none.json" --plane-csv "$dir/none.csv" > /dev/full 2> "$dir/err"; rc=$?
+expect '[ $rc -eq 1 ] && grep -q "cannot write stdout: No space left on device" "$dir/err" && [ ! -e "$dir/none.json" ] && [ ! -e "$dir/none.csv" ]'
+"$cli" render --resolution 32x24 -o "$dir/none.exr" --png "$dir/none.png" > /dev/full 2> "$dir/err"; rc=$?
+expect '[ $rc -eq 1 ] && grep -q "cannot write stdout" "$dir/err" && [ ! -e "$dir/none.exr" ] && [ ! -e "$dir/none.png" ]'
 # SIGTERM while a command holds a temporary: fit-light has written -o's temporary and waits to
 # open --plane-csv, a FIFO nobody reads; the signal removes the temporary and ends the process
 "$cli" make-env --lights $L --size 64x32 -o "$dir/map.exr" 2>> "$dir/err"
