@@ -9,6 +9,9 @@ set(DATA ${CMAKE_CURRENT_SOURCE_DIR}/data/lightfit)
 set(M3 "0.35,0.25,0.004,0.004,0,1,0.2,1,0.2:-0.45,-0.05,0.02,0.012,20,2,1,0.25,0.15:0.15,-0.55,0.012,0.0012,-70,1.5,0.2,0.3,1")
 
 ics_cli_test(NAME cli_make_env_help RC 0 ARGS "make-env|--help" OUT "usage: icshadow make-env.*--size WxH")
+# the work budget: 16 lights x 16384x4096 x 16 samples = 1.7e10 evaluations, refused before drawing
+ics_cli_test(NAME cli_make_env_budget RC 2 ARGS "make-env|--lights|0,0,0.01,0.01:0,0,0.01,0.01:0,0,0.01,0.01:0,0,0.01,0.01:0,0,0.01,0.01:0,0,0.01,0.01:0,0,0.01,0.01:0,0,0.01,0.01:0,0,0.01,0.01:0,0,0.01,0.01:0,0,0.01,0.01:0,0,0.01,0.01:0,0,0.01,0.01:0,0,0.01,0.01:0,0,0.01,0.01:0,0,0.01,0.01|--size|16384x4096|-o|${D}/lf_budget.exr"
+  ERR "16 lights x 16384x4096 pixels x 16 samples is 1.72e.10 light evaluations, above the budget" NOFILE ${D}/lf_budget.exr)
 ics_cli_test(NAME cli_fit_light_help RC 0 ARGS "fit-light|--help" OUT "usage: icshadow fit-light.*--max-angle DEG")
 
 if(NOT ICS_HAVE_OPENEXR)
