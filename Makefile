@@ -1,12 +1,14 @@
 # Thin front door over CMake + CTest. See README.md.
 BUILD      ?= build
 ASAN_BUILD ?= build-asan
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 600
 PREFIX     ?= /usr/local
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 PYTHON     ?= /usr/bin/python3
 CMAKE_ARGS ?=
 
-.PHONY: all deps mitsuba configure test test-asan demo figs notebooks bench analysis error-vs-time install clean
+.PHONY: all deps mitsuba configure test test-asan test-fuzz fuzz demo figs notebooks bench analysis error-vs-time install clean
 
 all: configure
 	cmake --build $(BUILD) -j $(JOBS)
@@ -52,6 +54,23 @@ test: deps $(TEST_MITSUBA)
 	cmake --build $(BUILD) -j $(JOBS)
 	cd $(BUILD) && ctest --output-on-failure -L 'fast|medium' -j $(JOBS)
 	$(MAKE) test-asan
+	$(MAKE) test-fuzz
+
+# The libFuzzer harnesses (fuzz/, clang with ASan+UBSan), a few seconds each from their seed
+# corpora; `make fuzz FUZZ_SECONDS=N` runs each for N seconds (default 600) and prints
+# executions, coverage and findings.
+FUZZ_TARGETS = fuzz_exr_read fuzz_lights_spec
+test-fuzz:
+	CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=Debug -DICS_FUZZ=ON -DICS_ENFORCE_OPENEXR=ON \
+	  -DICS_ENFORCE_JANSSON=ON -DICS_MITSUBA_PYTHON= $(CMAKE_ARGS)
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(FUZZ_TARGETS)
+	cd $(FUZZ_BUILD) && ctest --output-on-failure -L fuzz -j $(JOBS)
+
+fuzz: deps
+	CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=Debug -DICS_FUZZ=ON -DICS_ENFORCE_OPENEXR=ON \
+	  -DICS_ENFORCE_JANSSON=ON -DICS_MITSUBA_PYTHON= $(CMAKE_ARGS)
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(FUZZ_TARGETS)
+	@for h in $(FUZZ_TARGETS); do fuzz/run.sh $(FUZZ_BUILD)/bin/$$h fuzz/corpus/$${h#fuzz_} $(FUZZ_SECONDS) || exit 1; done
 
 test-asan:
 	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DICS_SANITIZE=ON $(ENFORCE) -DICS_MITSUBA_PYTHON= $(CMAKE_ARGS)
@@ -138,4 +157,4 @@ install: all
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) out
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) out

@@ -11,6 +11,8 @@ packages=(
   libmpfr-dev libgmp-dev glslang-tools pocl-opencl-icd ocl-icd-opencl-dev opencl-headers
   # tests: locale sources, so cli_locale_numbers can compile a decimal-comma locale (localedef)
   locales
+  # tests: the libFuzzer harnesses (fuzz/; clang 14 with its runtime libraries)
+  clang libclang-rt-14-dev
   # benchmarks: Boost.Math as a peer for the elliptic integrals
   libboost-dev
   # optional components: OpenEXR environment maps, jansson for lights/scene JSON (the renderer),
