@@ -74,6 +74,7 @@ int render_compare_file(const char *cmd, const char *path, const ics_image *img,
     ics_image_diff_rgb(img, ref, &out->d);
     out->ref = ref, ref = NULL;
     summary_string(ch->info, "backend", out->ref_backend, sizeof out->ref_backend);
+    summary_string(ch->info, "device", out->ref_device, sizeof out->ref_device);
     out->ms_reference = summary_number(ch->info, "ms_render");
     double spp = summary_number(ch->info, "spp");
     out->ref_spp = isfinite(spp) ? (int)spp : 0;
@@ -101,6 +102,7 @@ int render_compare_mc(const char *cmd, const ics_plan *plan, int spp, int thread
   if (s != ICS_OK) return cli_status_error(cmd, s, "--reference: %s", msg);
   ics_image_diff_rgb(img, ref, &out->d);
   snprintf(out->ref_backend, sizeof out->ref_backend, "mc");
+  snprintf(out->ref_device, sizeof out->ref_device, "%s", st.device);
   out->ref_spp = st.spp;
   out->ms_reference = st.ms_total;
   out->ref_noise = st.noise;
@@ -137,6 +139,7 @@ void render_comparison_json(FILE *f, const render_comparison *c) {
   fputs("{\"reference\": ", f);
   cli_json_string(f, c->reference);
   if (c->ref_backend[0]) fprintf(f, ", \"reference_backend\": \"%s\"", c->ref_backend);
+  if (c->ref_device[0]) fputs(", \"reference_device\": ", f), cli_json_string(f, c->ref_device);
   if (c->ref_spp) fprintf(f, ", \"reference_spp\": %d", c->ref_spp);
   number(f, "ms_reference", c->ms_reference);
   number(f, "reference_noise", c->ref_noise);

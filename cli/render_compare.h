@@ -15,6 +15,7 @@ typedef struct render_comparison {
   ics_image *ref;        /* the reference's R, G, B (owned: render_comparison_release) */
   const char *reference; /* the file, or "mc" */
   char ref_backend[16];  /* "" when unknown */
+  char ref_device[128];  /* the reference's device string ("... meshes: Embree 3.13.5"), "" when unknown */
   int ref_spp;           /* 0 when unknown */
   double ms_reference;   /* NAN when unknown */
   double ref_noise;      /* RMS standard error of the reference's R, G, B; NAN when unknown */

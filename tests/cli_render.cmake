@@ -88,7 +88,7 @@ endif()
 if(ICS_HAVE_RENDER)
 # error against a reference: in the same run (--reference N) and from a file (--compare REF.exr)
 ics_cli_test(NAME cli_render_reference RC 0 ARGS "render|${disk}|--resolution|32x32|--reference|8|-o|${rd}/cmp.exr"
-  OUT "\"compare\": {\"reference\": \"mc\", \"reference_backend\": \"mc\", \"reference_spp\": 8, \"ms_reference\": [0-9.e+-]+, \"reference_noise\": [0-9.e+-]+, \"rmse\": [0-9.e+-]+, \"rmse_beyond_noise\": [0-9.e+-]+, \"max_error\": [0-9.e+-]+, \"max_at\": \\[[0-9]+, [0-9]+\\], \"psnr_db\": [0-9.e+-]+}")
+  OUT "\"compare\": {\"reference\": \"mc\", \"reference_backend\": \"mc\", \"reference_device\": \"CPU, [0-9]+ threads? \\(Monte Carlo\\)\", \"reference_spp\": 8, \"ms_reference\": [0-9.e+-]+, \"reference_noise\": [0-9.e+-]+, \"rmse\": [0-9.e+-]+, \"rmse_beyond_noise\": [0-9.e+-]+, \"max_error\": [0-9.e+-]+, \"max_at\": \\[[0-9]+, [0-9]+\\], \"psnr_db\": [0-9.e+-]+}")
 ics_cli_test(NAME cli_render_compare_missing RC 2 ARGS "render|${disk}|--compare|${rd}/nonexistent.exr|-o|${rd}/cmp2.exr"
   ERR "--compare: .*nonexistent.exr: cannot open" NOFILE ${rd}/cmp2.exr)
 ics_cli_test(NAME cli_render_reference_of_mc RC 2 ARGS "render|${disk}|--backend|mc|--reference|4|-o|${rd}/cmp6.exr"
@@ -104,7 +104,7 @@ if(ICS_HAVE_RENDER)
 # against the file cli_render_mc wrote (32 x 32, with its standard errors and summary)
 set_tests_properties(cli_render_mc PROPERTIES FIXTURES_SETUP mc_exr)
 ics_cli_test(NAME cli_render_compare_file RC 0 ARGS "render|${disk}|--resolution|32x32|--compare|${rd}/mc.exr|--png|${rd}/cmp4.png"
-  OUT "\"compare\": {\"reference\": \"[^\"]*mc.exr\", \"reference_backend\": \"mc\", \"reference_spp\": 4, \"ms_reference\": [0-9.e+-]+, \"reference_noise\": [0-9.e+-]+,")
+  OUT "\"compare\": {\"reference\": \"[^\"]*mc.exr\", \"reference_backend\": \"mc\", \"reference_device\": \"CPU, [0-9]+ threads? \\(Monte Carlo\\)\", \"reference_spp\": 4, \"ms_reference\": [0-9.e+-]+, \"reference_noise\": [0-9.e+-]+,")
 ics_cli_test(NAME cli_render_compare_size RC 2 ARGS "render|${disk}|--compare|${rd}/mc.exr|-o|${rd}/cmp5.exr"
   ERR "--compare: .*mc.exr is 32x32, the render 128x128" NOFILE ${rd}/cmp5.exr)
 set_tests_properties(cli_render_compare_file cli_render_compare_size PROPERTIES FIXTURES_REQUIRED mc_exr)
