@@ -385,6 +385,12 @@ int cli_outputs_commit(cli_output *const *outs, int n) {
 
 int cli_output_commit(cli_output *out) { return cli_outputs_commit(&out, 1); }
 
+const char *cli_output_reason(const cli_output *out, const char *msg) {
+  size_t n = out->write_path ? strlen(out->write_path) : 0;
+  if (n && !strncmp(msg, out->write_path, n) && msg[n] == ':' && msg[n + 1] == ' ') return msg + n + 2;
+  return msg;
+}
+
 int cli_parse_seed(const char *s, uint64_t *out) {
   if (!s || !*s) return -1;
   for (const char *p = s; *p; p++)

@@ -161,7 +161,7 @@ int cmd_make_env(int argc, char **argv) {
   st = ics_exr_write(out.write_path, env, half ? ICS_EXR_HALF : ICS_EXR_FLOAT, err, sizeof err);
   ics_image_destroy(env);
   if (st != ICS_OK) {
-    cli_error(CMD, "cannot write %s: %s", outp, err);
+    cli_error(CMD, "cannot write %s: %s", outp, cli_output_reason(&out, err));
     cli_output_abort(&out);
     return st == ICS_ERR_INVALID_ARG ? 2 : 1;
   }

@@ -320,8 +320,8 @@ int cmd_render(int argc, char **argv) {
     have_e = 1;
     st = write_exr(oe.write_path, img, aov, summary, msg, sizeof msg);
     if (st != ICS_OK) {
-      rc = st == ICS_ERR_IO || st == ICS_ERR_NOMEM ? cli_failure(CMD, "cannot write %s: %s", exr, msg)
-                                                   : cli_error(CMD, "cannot write %s: %s", exr, msg);
+      rc = st == ICS_ERR_IO || st == ICS_ERR_NOMEM ? cli_failure(CMD, "cannot write %s: %s", exr, cli_output_reason(&oe, msg))
+                                                   : cli_error(CMD, "cannot write %s: %s", exr, cli_output_reason(&oe, msg));
       goto abort;
     }
   }
@@ -333,8 +333,8 @@ int cmd_render(int argc, char **argv) {
     have_p = 1;
     st = ics_output_png(img, op.write_path, msg, sizeof msg);
     if (st != ICS_OK) {
-      rc = st == ICS_ERR_IO || st == ICS_ERR_NOMEM ? cli_failure(CMD, "cannot write %s: %s", png, msg)
-                                                   : cli_error(CMD, "cannot write %s: %s", png, msg);
+      rc = st == ICS_ERR_IO || st == ICS_ERR_NOMEM ? cli_failure(CMD, "cannot write %s: %s", png, cli_output_reason(&op, msg))
+                                                   : cli_error(CMD, "cannot write %s: %s", png, cli_output_reason(&op, msg));
       goto abort;
     }
   }
@@ -349,7 +349,7 @@ int cmd_render(int argc, char **argv) {
     if (!dimg) snprintf(msg, sizeof msg, "out of memory");
     ics_image_destroy(dimg);
     if (st != ICS_OK) {
-      rc = cli_failure(CMD, "cannot write %s: %s", diff_png, msg);
+      rc = cli_failure(CMD, "cannot write %s: %s", diff_png, cli_output_reason(&od, msg));
       goto abort;
     }
   }

@@ -159,6 +159,9 @@ typedef struct cli_output {
   const char *write_path; /* where the bytes go now: tmp_path, or the target itself */
 } cli_output;
 int cli_output_open(cli_output *out, const char *cmd, const char *path);
+/* A by-name writer's message (it starts with the path it was given, out->write_path: the
+ * output's temporary file) without that prefix, for a message that names out->path instead. */
+const char *cli_output_reason(const cli_output *out, const char *msg);
 /* Temporary files removed if SIGINT, SIGTERM, SIGHUP or SIGQUIT ends the process
  * (cli/tempfiles.c); cli_output registers its own. forget also drops the names derived from path. */
 void cli_temp_register(const char *path);
