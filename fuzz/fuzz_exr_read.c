@@ -12,6 +12,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "fuzz_require.h"
 #include "icshadow.h"
 
 static char in_path[256], out_path[256];
@@ -23,13 +24,6 @@ static void paths(void) {
   snprintf(out_path, sizeof out_path, "%s/fuzz_exr_out.%ld.exr", td && *td ? td : "/tmp", (long)getpid());
 }
 
-#define REQUIRE(c)                                                                                \
-  do {                                                                                            \
-    if (!(c)) {                                                                                   \
-      fprintf(stderr, "fuzz_exr_read: invariant failed: %s\n", #c);                               \
-      abort();                                                                                    \
-    }                                                                                             \
-  } while (0)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   paths();

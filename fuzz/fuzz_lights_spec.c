@@ -14,15 +14,9 @@
 #include <unistd.h>
 
 #include "commands.h"
+#include "fuzz_require.h"
 #include "lightsfile.h"
 
-#define REQUIRE(c)                                                                                \
-  do {                                                                                            \
-    if (!(c)) {                                                                                   \
-      fprintf(stderr, "fuzz_lights_spec: invariant failed: %s\n", #c);                            \
-      abort();                                                                                    \
-    }                                                                                             \
-  } while (0)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   if (size > 4096) return 0;
