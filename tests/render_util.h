@@ -1,6 +1,7 @@
 /* render_util.h — helpers for the renderer's tests: a scene from JSON text (or a file) through
- * plan and CPU render to an RGBA image (and AOVs when asked), with optional setting overrides. Exits 2 on a setup
- * failure (a test bug), so no check runs on a missing image. */
+ * plan and render (the CPU backend, or one named) to an RGBA image (and AOVs when asked), with
+ * optional setting overrides. Exits 2 on a setup or render failure, so no check runs on a
+ * missing image. */
 #ifndef ICS_RENDER_UTIL_H
 #define ICS_RENDER_UTIL_H
 
@@ -18,10 +19,11 @@ typedef struct render_result {
   int slabs;
 } render_result;
 
-/* Renders scene s with `threads` threads (0: all) and the settings rs (NULL: the scene's), with
- * the AOVs `aovs` (ICS_AOV_* bits; 0: none). */
-static inline render_result render_scene_aovs(const ics_scene *s, const ics_render_settings *rs,
-                                              int threads, unsigned aovs) {
+/* Renders scene s on `backend` with `threads` threads (0: all) and the settings rs (NULL: the
+ * scene's), with the AOVs `aovs` (ICS_AOV_* bits; 0: none). */
+static inline render_result render_scene_on(const char *backend, const ics_scene *s,
+                                            const ics_render_settings *rs, int threads,
+                                            unsigned aovs) {
   render_result r;
   memset(&r, 0, sizeof r);
   char msg[4096];
@@ -36,13 +38,13 @@ static inline render_result render_scene_aovs(const ics_scene *s, const ics_rend
   }
   ics_render_opts ro;
   memset(&ro, 0, sizeof ro);
-  ro.backend = "cpu";
+  ro.backend = backend;
   ro.threads = threads;
   ics_renderer *rr;
   if (ics_renderer_create(&rr, &ro, msg, sizeof msg) != ICS_OK ||
       ics_renderer_render_aovs(rr, p, aovs, &r.img, aovs ? &r.aov : NULL, &r.stats, msg,
                                sizeof msg) != ICS_OK) {
-    fprintf(stderr, "render_util: render: %s\n", msg);
+    fprintf(stderr, "render_util: render (%s): %s\n", backend, msg);
     exit(2);
   }
   r.memory_bytes = ics_plan_memory_bytes(p);
@@ -50,6 +52,11 @@ static inline render_result render_scene_aovs(const ics_scene *s, const ics_rend
   ics_renderer_destroy(rr);
   ics_plan_destroy(p);
   return r;
+}
+
+static inline render_result render_scene_aovs(const ics_scene *s, const ics_render_settings *rs,
+                                              int threads, unsigned aovs) {
+  return render_scene_on("cpu", s, rs, threads, aovs);
 }
 
 static inline render_result render_scene(const ics_scene *s, const ics_render_settings *rs,

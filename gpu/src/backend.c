@@ -1,6 +1,8 @@
 /* backend.c — the backend table and the renderer object (icshadow/renderer.h). "auto" takes the
  * first available entry in table order, which lists the preferred slab renderers first and
- * "cpu" last (always available), so it never reaches "mc", the Monte-Carlo reference, after it. */
+ * "cpu" last (always available), so it never reaches "mc", the Monte-Carlo reference, after it.
+ * "cl" sits after "cpu" until it renders every scene the cpu backend does (volumes): auto does
+ * not pick it yet. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,7 +11,11 @@
 #include "plan_internal.h"
 #include "pool.h"
 
-static const ics_backend *const table[] = {&ics_backend_cpu, &ics_backend_mc};
+static const ics_backend *const table[] = {&ics_backend_cpu,
+#ifdef ICS_HAVE_OPENCL
+                                           &ics_backend_cl,
+#endif
+                                           &ics_backend_mc};
 #define NBACKENDS ((int)(sizeof table / sizeof *table))
 
 int ics_backend_count(void) { return NBACKENDS; }
@@ -55,9 +61,12 @@ ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, 
     for (int i = 0; i < NBACKENDS && !b; i++)
       if (table[i]->available(NULL, 0)) b = table[i];
   } else {
-    char why[256];
+    char why[1024];
     if (!ics_backend_available(o.backend, why, sizeof why)) {
-      if (msg) snprintf(msg, msg_size, "backend %s", why);
+      if (msg) {
+        if (find(o.backend)) snprintf(msg, msg_size, "backend %s: %s", o.backend, why);
+        else snprintf(msg, msg_size, "backend %s", why);
+      }
       return ICS_ERR_UNSUPPORTED;
     }
     b = find(o.backend);

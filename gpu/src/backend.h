@@ -40,5 +40,8 @@ int ics_backend_always_available(char *why, size_t why_size);
 
 extern const ics_backend ics_backend_cpu;
 extern const ics_backend ics_backend_mc;
+#ifdef ICS_HAVE_OPENCL
+extern const ics_backend ics_backend_cl; /* gpu/cl/backend_cl.c */
+#endif
 
 #endif

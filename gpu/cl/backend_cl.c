@@ -1,0 +1,666 @@
+/* backend_cl.c — the "cl" backend: the slab renderer on an OpenCL 1.2 device (PoCL here; any
+ * platform with cl_khr_fp64). Method and tolerances: docs/backend_cl.md.
+ *
+ * The host resolves each slab's taps exactly as the CPU backend does (ics_slab_kernel_taps, then
+ * ics_prop_prepare or ics_prop_prepare_perspective) and uploads them; the device runs the two
+ * kernels of slab.cl per slab: ics_prop for every light buffer, then ics_shade over the buffer
+ * pixels (occlusions, surface colours, the clamp of signed kernels). The layered depth image is
+ * the plan's, built on the host and uploaded once, with the objects' materials, detail functions
+ * (Perlin, fBm, ridged; grid detail is refused before anything runs: ICS_ERR_UNSUPPORTED) and
+ * transfer functions.
+ *
+ * Device choice: ICS_CL_DEVICE, when set, is a device index in the order of the platform list
+ * (platform by platform), or a case-insensitive substring of "platform: device"; otherwise the
+ * first GPU with fp64, else the first device with fp64. The program is built once per renderer
+ * (PoCL caches the binary in POCL_CACHE_DIR across runs). Every OpenCL call is checked; a failure
+ * names the call and the error code. */
+#define _POSIX_C_SOURCE 200809L
+#define CL_TARGET_OPENCL_VERSION 120
+#include <CL/cl.h>
+#include <ctype.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "backend.h"
+#include "clock.h"
+#include "plan_internal.h"
+#include "propagate.h"
+#include "icshadow/constants.h"
+#include "scene_internal.h"
+#include "slab_cl_source.h" /* ics_slab_cl_source: gpu/cl/slab.cl (cmake/embed_text.cmake) */
+
+static const char *cl_err_name(cl_int e) {
+  switch (e) {
+#define E(x) case x: return #x;
+    E(CL_DEVICE_NOT_FOUND) E(CL_DEVICE_NOT_AVAILABLE) E(CL_COMPILER_NOT_AVAILABLE)
+    E(CL_MEM_OBJECT_ALLOCATION_FAILURE) E(CL_OUT_OF_RESOURCES) E(CL_OUT_OF_HOST_MEMORY)
+    E(CL_BUILD_PROGRAM_FAILURE) E(CL_INVALID_VALUE) E(CL_INVALID_DEVICE) E(CL_INVALID_CONTEXT)
+    E(CL_INVALID_COMMAND_QUEUE) E(CL_INVALID_MEM_OBJECT) E(CL_INVALID_BUFFER_SIZE)
+    E(CL_INVALID_PROGRAM) E(CL_INVALID_KERNEL) E(CL_INVALID_KERNEL_ARGS) E(CL_INVALID_ARG_INDEX)
+    E(CL_INVALID_ARG_VALUE) E(CL_INVALID_ARG_SIZE) E(CL_INVALID_WORK_DIMENSION)
+    E(CL_INVALID_WORK_GROUP_SIZE) E(CL_INVALID_GLOBAL_WORK_SIZE) E(CL_INVALID_EVENT)
+    E(CL_INVALID_OPERATION) E(CL_INVALID_PLATFORM)
+#undef E
+    case -1001: return "CL_PLATFORM_NOT_FOUND_KHR";
+    default: return "an unknown OpenCL error";
+  }
+}
+
+#define MAX_DEVICES 64
+
+typedef struct cl_pick {
+  cl_platform_id platform;
+  cl_device_id device;
+  char name[120]; /* "platform: device" */
+} cl_pick;
+
+static int has_fp64(cl_device_id d) {
+  char ext[8192] = "";
+  clGetDeviceInfo(d, CL_DEVICE_EXTENSIONS, sizeof ext - 1, ext, NULL);
+  return strstr(ext, "cl_khr_fp64") != NULL;
+}
+
+static int contains_nocase(const char *hay, const char *needle) {
+  size_t n = strlen(needle);
+  for (; *hay; hay++) {
+    size_t i = 0;
+    while (i < n && hay[i] && tolower((unsigned char)hay[i]) == tolower((unsigned char)needle[i])) i++;
+    if (i == n) return 1;
+  }
+  return n == 0;
+}
+
+/* The device to run on (file comment); 0, or -1 with the reason in why. */
+static int pick_device(cl_pick *out, char *why, size_t why_size) {
+  cl_platform_id plats[16];
+  cl_uint np = 0;
+  cl_int e = clGetPlatformIDs(16, plats, &np);
+  if (e != CL_SUCCESS || np == 0) {
+    if (why) snprintf(why, why_size, "no OpenCL platform (%s; install an ICD such as "
+                      "pocl-opencl-icd)", e != CL_SUCCESS ? cl_err_name(e) : "none listed");
+    return -1;
+  }
+  cl_pick all[MAX_DEVICES];
+  cl_device_type type[MAX_DEVICES];
+  int fp64[MAX_DEVICES], n = 0;
+  for (cl_uint i = 0; i < np && n < MAX_DEVICES; i++) {
+    cl_device_id devs[MAX_DEVICES];
+    cl_uint nd = 0;
+    if (clGetDeviceIDs(plats[i], CL_DEVICE_TYPE_ALL, MAX_DEVICES, devs, &nd) != CL_SUCCESS) continue;
+    char pname[64] = "";
+    clGetPlatformInfo(plats[i], CL_PLATFORM_NAME, sizeof pname - 1, pname, NULL);
+    for (cl_uint j = 0; j < nd && n < MAX_DEVICES; j++) {
+      char dname[64] = "";
+      clGetDeviceInfo(devs[j], CL_DEVICE_NAME, sizeof dname - 1, dname, NULL);
+      clGetDeviceInfo(devs[j], CL_DEVICE_TYPE, sizeof type[n], &type[n], NULL);
+      all[n].platform = plats[i];
+      all[n].device = devs[j];
+      snprintf(all[n].name, sizeof all[n].name, "%s: %s", pname, dname);
+      fp64[n] = has_fp64(devs[j]);
+      n++;
+    }
+  }
+  if (!n) {
+    if (why) snprintf(why, why_size, "no OpenCL device on %u platform%s", np, np == 1 ? "" : "s");
+    return -1;
+  }
+  const char *want = getenv("ICS_CL_DEVICE");
+  int chosen = -1;
+  if (want && *want) {
+    char *end;
+    long idx = strtol(want, &end, 10);
+    if (!*end && end != want) {
+      if (idx < 0 || idx >= n) {
+        if (why) snprintf(why, why_size, "ICS_CL_DEVICE=%s: there are devices 0..%d", want, n - 1);
+        return -1;
+      }
+      chosen = (int)idx;
+    } else {
+      for (int i = 0; i < n && chosen < 0; i++)
+        if (contains_nocase(all[i].name, want)) chosen = i;
+      if (chosen < 0) {
+        if (why) {
+          int m = snprintf(why, why_size, "ICS_CL_DEVICE=%s matches no device (", want);
+          for (int i = 0; i < n && m >= 0 && (size_t)m < why_size; i++)
+            m += snprintf(why + m, why_size - (size_t)m, "%s%d: %s", i ? "; " : "", i, all[i].name);
+          if (m >= 0 && (size_t)m < why_size) snprintf(why + m, why_size - (size_t)m, ")");
+        }
+        return -1;
+      }
+    }
+    if (!fp64[chosen]) {
+      if (why) snprintf(why, why_size, "OpenCL device %s lacks cl_khr_fp64, which the cl backend "
+                        "needs", all[chosen].name);
+      return -1;
+    }
+  } else {
+    for (int i = 0; i < n && chosen < 0; i++)
+      if (fp64[i] && (type[i] & CL_DEVICE_TYPE_GPU)) chosen = i;
+    for (int i = 0; i < n && chosen < 0; i++)
+      if (fp64[i]) chosen = i;
+    if (chosen < 0) {
+      if (why) snprintf(why, why_size, "no OpenCL device with cl_khr_fp64 (%d device%s; first: %s)",
+                        n, n == 1 ? "" : "s", all[0].name);
+      return -1;
+    }
+  }
+  *out = all[chosen];
+  return 0;
+}
+
+static int cl_available(char *why, size_t why_size) {
+  cl_pick pk;
+  return pick_device(&pk, why, why_size) == 0;
+}
+
+typedef struct cl_state {
+  cl_context ctx;
+  cl_command_queue q;
+  cl_program prog;
+  cl_kernel prop[3], entries, shade, apron[2]; /* ics_prop_stencil, _table, _classes; ics_shade;
+                                        ics_apron_sides, _ends */
+  cl_device_id dev;
+  cl_ulong max_alloc;
+  char device[128];
+} cl_state;
+
+static void cl_destroy(void *state) {
+  cl_state *s = state;
+  if (!s) return;
+  for (int i = 0; i < 3; i++)
+    if (s->prop[i]) clReleaseKernel(s->prop[i]);
+  if (s->shade) clReleaseKernel(s->shade);
+  if (s->entries) clReleaseKernel(s->entries);
+  for (int i = 0; i < 2; i++)
+    if (s->apron[i]) clReleaseKernel(s->apron[i]);
+  if (s->prog) clReleaseProgram(s->prog);
+  if (s->q) clReleaseCommandQueue(s->q);
+  if (s->ctx) clReleaseContext(s->ctx);
+  free(s);
+}
+
+static ics_status cl_create(void **state, const ics_render_opts *opts, char *msg, size_t msg_size) {
+  (void)opts;
+  *state = NULL;
+  cl_pick pk;
+  char why[1024];
+  if (pick_device(&pk, why, sizeof why)) {
+    if (msg) snprintf(msg, msg_size, "backend cl: %s", why);
+    return ICS_ERR_UNSUPPORTED;
+  }
+  cl_state *s = calloc(1, sizeof *s);
+  if (!s) return ICS_ERR_NOMEM;
+  s->dev = pk.device;
+  snprintf(s->device, sizeof s->device, "OpenCL, %s", pk.name);
+  clGetDeviceInfo(s->dev, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof s->max_alloc, &s->max_alloc, NULL);
+  cl_int e;
+  const char *call = "clCreateContext";
+  cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)pk.platform, 0};
+  s->ctx = clCreateContext(props, 1, &s->dev, NULL, NULL, &e);
+  if (e != CL_SUCCESS) goto fail;
+  call = "clCreateCommandQueue";
+  s->q = clCreateCommandQueue(s->ctx, s->dev, CL_QUEUE_PROFILING_ENABLE, &e);
+  if (e != CL_SUCCESS) goto fail;
+  call = "clCreateProgramWithSource";
+  const char *src = ics_slab_cl_source;
+  s->prog = clCreateProgramWithSource(s->ctx, 1, &src, NULL, &e);
+  if (e != CL_SUCCESS) goto fail;
+  e = clBuildProgram(s->prog, 1, &s->dev, "-cl-std=CL1.2", NULL, NULL);
+  if (e != CL_SUCCESS) {
+    char log[2048] = "";
+    clGetProgramBuildInfo(s->prog, s->dev, CL_PROGRAM_BUILD_LOG, sizeof log - 1, log, NULL);
+    if (msg) snprintf(msg, msg_size, "backend cl: building slab.cl for %s failed (%s): %s",
+                      pk.name, cl_err_name(e), log);
+    cl_destroy(s);
+    return ICS_ERR_UNSUPPORTED;
+  }
+  static const char *const prop_names[3] = {"ics_prop_stencil", "ics_prop_table", "ics_prop_classes"};
+  for (int i = 0; i < 3; i++) {
+    call = prop_names[i];
+    s->prop[i] = clCreateKernel(s->prog, prop_names[i], &e);
+    if (e != CL_SUCCESS) goto fail;
+  }
+  call = "clCreateKernel(ics_entries)";
+  s->entries = clCreateKernel(s->prog, "ics_entries", &e);
+  if (e != CL_SUCCESS) goto fail;
+  call = "clCreateKernel(ics_shade)";
+  s->shade = clCreateKernel(s->prog, "ics_shade", &e);
+  if (e != CL_SUCCESS) goto fail;
+  static const char *const apron_names[2] = {"ics_apron_sides", "ics_apron_ends"};
+  for (int i = 0; i < 2; i++) {
+    call = apron_names[i];
+    s->apron[i] = clCreateKernel(s->prog, apron_names[i], &e);
+    if (e != CL_SUCCESS) goto fail;
+  }
+  *state = s;
+  return ICS_OK;
+fail:
+  if (msg) snprintf(msg, msg_size, "backend cl: %s on %s: %s", call, pk.name, cl_err_name(e));
+  cl_destroy(s);
+  return e == CL_OUT_OF_HOST_MEMORY || e == CL_OUT_OF_RESOURCES ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
+}
+
+/* Per light: the device copies of its prepared taps, grown as a slab needs more. */
+typedef struct cl_taps {
+  cl_mem ix, iy, off, fx, fy, w;
+  size_t cap;
+} cl_taps;
+
+/* slab.cl's buf_layout and shade_args, field for field (OpenCL C scalars have these sizes and
+ * alignments) */
+typedef struct buf_layout {
+  cl_int w, h, stride, plane, origin;
+} buf_layout;
+typedef struct shade_args {
+  buf_layout B;
+  cl_int nch, nlights, k, nvol, W, H, pad_l, pad_t, preintegrate;
+  cl_uint seed_lo, seed_hi;
+  cl_double zf, zb, window_max;
+} shade_args;
+
+/* slab.cl's object record: OBJ_STRIDE doubles (the O_* offsets there) */
+#define OBJ_STRIDE 24
+
+typedef struct cl_job {
+  cl_state *s;
+  shade_args args;
+  const ics_plan *P;
+  cl_int err;
+  const char *call;
+  cl_mem src, dst, offset, fz, fcode, fgrad, fspan, cursor, acursor, inside, obj, tt, perm, vol_obj,
+      cam, lcol, lmu, lpath, window, signed_l, img, flags, ent;
+  cl_taps taps[ICS_SCENE_MAX_LIGHTS];
+} cl_job;
+
+static cl_mem job_buffer(cl_job *j, size_t bytes, const void *init, const char *what) {
+  if (j->err != CL_SUCCESS) return NULL;
+  cl_int e;
+  cl_mem m = clCreateBuffer(j->s->ctx, CL_MEM_READ_WRITE | (init ? CL_MEM_COPY_HOST_PTR : 0),
+                            bytes ? bytes : 4, (void *)init, &e);
+  if (e != CL_SUCCESS) j->err = e, j->call = what;
+  return m;
+}
+
+static void job_write(cl_job *j, cl_mem m, size_t bytes, const void *data, const char *what) {
+  if (j->err != CL_SUCCESS || !bytes) return;
+  cl_int e = clEnqueueWriteBuffer(j->s->q, m, CL_TRUE, 0, bytes, data, 0, NULL, NULL);
+  if (e != CL_SUCCESS) j->err = e, j->call = what;
+}
+
+static void release(cl_mem *m) {
+  if (*m) clReleaseMemObject(*m);
+  *m = NULL;
+}
+
+/* uploads light l's prepared taps (n of them) */
+static void upload_taps(cl_job *j, int l, const ics_prop_taps *pt, size_t n) {
+  cl_taps *t = &j->taps[l];
+  int bilinear = !pt->stencil && !pt->classes;
+  if (n > t->cap) {
+    release(&t->ix), release(&t->iy), release(&t->off), release(&t->fx), release(&t->fy);
+    release(&t->w);
+    t->cap = n;
+    t->off = job_buffer(j, n * sizeof(cl_int), NULL, "clCreateBuffer(taps)");
+    t->ix = job_buffer(j, n * sizeof(cl_int), NULL, "clCreateBuffer(taps)");
+    t->iy = job_buffer(j, n * sizeof(cl_int), NULL, "clCreateBuffer(taps)");
+    t->fx = job_buffer(j, n * sizeof(cl_float), NULL, "clCreateBuffer(taps)");
+    t->fy = job_buffer(j, n * sizeof(cl_float), NULL, "clCreateBuffer(taps)");
+    t->w = job_buffer(j, n * sizeof(cl_float), NULL, "clCreateBuffer(taps)");
+  }
+  job_write(j, t->ix, n * sizeof(cl_int), pt->ix, "clEnqueueWriteBuffer(taps)");
+  job_write(j, t->iy, n * sizeof(cl_int), pt->iy, "clEnqueueWriteBuffer(taps)");
+  job_write(j, t->w, n * sizeof(cl_float), pt->w, "clEnqueueWriteBuffer(taps)");
+  if (!pt->classes) job_write(j, t->off, n * sizeof(cl_int), pt->off, "clEnqueueWriteBuffer(taps)");
+  if (bilinear) {
+    job_write(j, t->fx, n * sizeof(cl_float), pt->fx, "clEnqueueWriteBuffer(taps)");
+    job_write(j, t->fy, n * sizeof(cl_float), pt->fy, "clEnqueueWriteBuffer(taps)");
+  }
+}
+
+static void set_arg(cl_job *j, cl_kernel k, cl_uint i, size_t size, const void *v) {
+  if (j->err != CL_SUCCESS) return;
+  cl_int e = clSetKernelArg(k, i, size, v);
+  if (e != CL_SUCCESS) j->err = e, j->call = "clSetKernelArg";
+}
+#define ARG(k, i, v) set_arg(j, k, i, sizeof(v), &(v))
+
+static double event_ms(cl_event ev) {
+  cl_ulong t0 = 0, t1 = 0;
+  clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_START, sizeof t0, &t0, NULL);
+  clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof t1, &t1, NULL);
+  return t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0;
+}
+
+/* one slab: every light's step, then the shading; their device times into the stats */
+static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stats *st) {
+  const ics_plan *P = j->P;
+  cl_state *s = j->s;
+  cl_int nch = P->nch;
+  buf_layout B = j->args.B;
+  /* work-groups of 16 x 8 (the kernels skip the pixels beyond the buffer): a bounded group, so
+   * PoCL's per-group stack (private memory times the group size) stays small */
+  size_t local[2] = {16, 8};
+  size_t global[2] = {((size_t)P->Wb + 15) / 16 * 16, ((size_t)P->Hb + 7) / 8 * 8};
+  cl_event evs[2 * ICS_SCENE_MAX_LIGHTS + 1];
+  int nev = 0;
+  for (int l = 0; l < P->nlights && j->err == CL_SUCCESS; l++) {
+    const ics_prop_taps *pt = &pts[l];
+    /* light l's planes start at base (a sub-buffer would need the device's base-address
+     * alignment, so the kernels add base themselves) */
+    cl_int mode = pt->classes ? 2 : pt->stencil ? 0 : 1, ntaps = pt->ntaps, entries = pt->entries;
+    cl_int base = l * nch * B.plane, run = pt->run, phase = pt->phase, Q = pt->classes;
+    cl_uint seed_lo = (cl_uint)pt->seed, seed_hi = (cl_uint)(pt->seed >> 32), light = pt->light,
+            slab = pt->slab;
+    cl_double sc = pt->s, cx = pt->cx, cy = pt->cy;
+    cl_taps *t = &j->taps[l];
+    cl_kernel kp = s->prop[mode];
+    cl_int clamped = pt->s != 1 || pt->reach > P->buf.apron; /* as propagate.c */
+    ARG(kp, 0, j->src), ARG(kp, 1, j->dst), ARG(kp, 2, base), ARG(kp, 3, B), ARG(kp, 4, nch);
+    ARG(kp, 5, ntaps), ARG(kp, 6, t->ix), ARG(kp, 7, t->iy), ARG(kp, 8, t->off);
+    ARG(kp, 9, t->w), ARG(kp, 10, clamped);
+    if (mode == 1) {
+      cl_kernel ke = s->entries;
+      cl_int bw = B.w, bh = B.h;
+      ARG(ke, 0, j->ent), ARG(ke, 1, bw), ARG(ke, 2, bh), ARG(ke, 3, entries);
+      ARG(ke, 4, seed_lo), ARG(ke, 5, seed_hi), ARG(ke, 6, light), ARG(ke, 7, slab);
+      ARG(ke, 8, run), ARG(ke, 9, phase);
+      if (j->err != CL_SUCCESS) break;
+      cl_int e = clEnqueueNDRangeKernel(s->q, ke, 2, NULL, global, local, 0, NULL, &evs[nev]);
+      if (e != CL_SUCCESS) {
+        j->err = e, j->call = "clEnqueueNDRangeKernel(ics_entries)";
+        break;
+      }
+      nev++;
+      ARG(kp, 11, j->ent), ARG(kp, 12, t->fx), ARG(kp, 13, t->fy);
+    } else if (mode == 2) {
+      ARG(kp, 11, Q), ARG(kp, 12, sc), ARG(kp, 13, cx), ARG(kp, 14, cy);
+    }
+    if (j->err != CL_SUCCESS) break;
+    cl_int e = clEnqueueNDRangeKernel(s->q, kp, 2, NULL, global, local, 0, NULL, &evs[nev]);
+    if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueNDRangeKernel(ics_prop)";
+    else nev++;
+  }
+  int nprop = nev;
+  if (j->err == CL_SUCCESS) {
+    cl_kernel ks = s->shade;
+    shade_args A = j->args;
+    A.k = k;
+    A.zf = P->z0 + k * P->e;
+    A.zb = A.zf + P->e;
+    cl_mem *bufs[] = {&j->dst, NULL, &j->offset, &j->fz, &j->fcode, &j->fgrad, &j->fspan,
+                      &j->cursor, &j->acursor, &j->inside, &j->obj, &j->tt, &j->perm, &j->vol_obj,
+                      &j->cam, &j->lcol, &j->lmu, &j->lpath, &j->window, &j->signed_l, &j->img,
+                      &j->flags};
+    for (cl_uint i = 0; i < sizeof bufs / sizeof *bufs; i++) {
+      if (bufs[i]) set_arg(j, ks, i, sizeof(cl_mem), bufs[i]);
+      else set_arg(j, ks, i, sizeof A, &A);
+    }
+    if (j->err == CL_SUCCESS) {
+      cl_int e = clEnqueueNDRangeKernel(s->q, ks, 2, NULL, global, local, 0, NULL, &evs[nev]);
+      if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueNDRangeKernel(ics_shade)";
+      else nev++;
+    }
+  }
+  /* the apron of the light leaving this slab */
+  cl_int A = P->buf.apron, nplanes = P->nlights * nch;
+  if (A > 0 && nplanes > 0) {
+    size_t g_sides[3] = {2 * (size_t)A, (size_t)P->Hb, (size_t)nplanes};
+    size_t g_ends[3] = {(size_t)P->buf.stride, 2 * (size_t)A, (size_t)nplanes};
+    for (int i = 0; i < 2 && j->err == CL_SUCCESS; i++) {
+      ARG(s->apron[i], 0, j->dst), ARG(s->apron[i], 1, B), ARG(s->apron[i], 2, A);
+      if (j->err != CL_SUCCESS) break;
+      cl_int e = clEnqueueNDRangeKernel(s->q, s->apron[i], 3, NULL, i ? g_ends : g_sides, NULL, 0,
+                                        NULL, NULL);
+      if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueNDRangeKernel(ics_apron)";
+    }
+  }
+  if (nev) {
+    cl_int e = clWaitForEvents((cl_uint)nev, evs);
+    if (e != CL_SUCCESS && j->err == CL_SUCCESS) j->err = e, j->call = "clWaitForEvents (slab)";
+    for (int i = 0; i < nev; i++) {
+      double ms = event_ms(evs[i]);
+      if (i < nprop) st->ms_convolution += ms;
+      else st->ms_shading += ms;
+      clReleaseEvent(evs[i]);
+    }
+  }
+}
+
+static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opts *o,
+                            ics_image *img, ics_aov_buf *aov, ics_render_stats *st, char *msg,
+                            size_t msg_size) {
+  (void)aov; /* the table entry makes no AOVs: the renderer refuses them before this */
+  cl_state *s = state;
+  double t_start = ics_clock_s();
+  const ics_scene *sc = P->scene;
+  for (int i = 0; i < sc->nobjects; i++)
+    if (sc->materials[sc->objects[i].material].detail.fn == ICS_DETAIL_GRID) {
+      if (msg) snprintf(msg, msg_size, "backend cl: object %d's material '%s' has grid detail, "
+                        "which the cl backend does not evaluate yet (use --backend cpu)", i,
+                        sc->materials[sc->objects[i].material].name);
+      return ICS_ERR_UNSUPPORTED;
+    }
+  int nl = P->nlights, nch = P->nch, nobj = sc->nobjects ? sc->nobjects : 1;
+  size_t plane = P->buf.plane, npx = (size_t)P->Wb * P->Hb, nfrag = P->ldi.nfrag;
+  size_t lbytes = sizeof(float) * (size_t)(nl ? nl : 1) * (size_t)nch * plane;
+  if ((size_t)(nl ? nl : 1) * (size_t)nch * plane > INT_MAX || npx + 1 > UINT_MAX) {
+    if (msg) snprintf(msg, msg_size, "backend cl: %d lights x %d channels x %dx%d buffer pixels "
+                      "exceed the kernels' 32-bit indices", nl, nch, P->Wb, P->Hb);
+    return ICS_ERR_SIZE;
+  }
+  if (lbytes > s->max_alloc) {
+    if (msg) snprintf(msg, msg_size, "backend cl: the light buffers take %zu bytes, over the "
+                      "device's largest allocation (%llu bytes, %s)", lbytes,
+                      (unsigned long long)s->max_alloc, s->device);
+    return ICS_ERR_SIZE;
+  }
+  ics_status status = ICS_OK;
+  cl_job job;
+  memset(&job, 0, sizeof job);
+  cl_job *j = &job;
+  j->s = s;
+  j->P = P;
+  /* host copies of what the device reads */
+  size_t nf = nfrag ? nfrag : 1, ntt = 0;
+  for (int i = 0; i < sc->nobjects; i++) ntt += (size_t)sc->materials[sc->objects[i].material].ntransfer;
+  float *fz = malloc(sizeof *fz * nf);
+  uint32_t *fcode = malloc(sizeof *fcode * nf);
+  cl_float2 *fgrad = malloc(sizeof *fgrad * nf);
+  uint8_t *fspan = malloc(nf);
+  double *obj = calloc((size_t)nobj * OBJ_STRIDE, sizeof *obj);
+  double *tt = calloc(5 * (ntt ? ntt : 1), sizeof *tt);
+  uint8_t *perm = calloc((size_t)nobj, 512);
+  cl_ulong *inside = P->nvol ? malloc(sizeof *inside * npx) : NULL;
+  double cam[17], lcol[3 * ICS_SCENE_MAX_LIGHTS], lmu[2 * ICS_SCENE_MAX_LIGHTS];
+  double window[ICS_SCENE_MAX_LIGHTS], blur[ICS_SCENE_MAX_LIGHTS], cum[ICS_SCENE_MAX_LIGHTS][2];
+  cl_int signed_l[ICS_SCENE_MAX_LIGHTS], vol_obj[ICS_MAX_VOLUMES] = {0};
+  ics_prop_taps *pts = calloc((size_t)(nl ? nl : 1), sizeof *pts);
+  ics_tap2d **scratch = calloc((size_t)(nl ? nl : 1), sizeof *scratch);
+  if (!fz || !fcode || !fgrad || !fspan || !obj || !tt || !perm || (P->nvol && !inside) || !pts ||
+      !scratch)
+    goto nomem;
+  for (size_t f = 0; f < nfrag; f++) {
+    const ics_fragment *fr = &P->ldi.frag[f];
+    fz[f] = fr->z;
+    fcode[f] = fr->code;
+    fgrad[f].s[0] = (float)(fr->grad[0] / ICS_FRAG_GRAD_SCALE); /* exact: int16 / 64 */
+    fgrad[f].s[1] = (float)(fr->grad[1] / ICS_FRAG_GRAD_SCALE);
+    fspan[f] = fr->span;
+  }
+  /* objects (slab.cl's O_* offsets), their transfer rows and noise permutations */
+  for (int i = 0, row = 0; i < sc->nobjects; i++) {
+    const ics_material *m = &sc->materials[sc->objects[i].material];
+    const ics_detail *d = &m->detail;
+    double *o = obj + (size_t)i * OBJ_STRIDE;
+    o[0] = m->opacity;
+    for (int c = 0; c < 3; c++) o[1 + c] = m->color[c], o[4 + c] = m->transport[c];
+    o[7] = m->extinction;
+    o[8] = P->vol_bit[i];
+    o[9] = d->fn;
+    o[10] = d->frequency, o[11] = d->lacunarity, o[12] = d->gain, o[13] = d->offset;
+    o[14] = d->time, o[15] = d->scale, o[16] = d->bias, o[17] = d->octaves;
+    o[18] = m->ntransfer, o[19] = row;
+    memcpy(tt + 5 * (size_t)row, m->transfer, sizeof(double) * 5 * (size_t)m->ntransfer);
+    row += m->ntransfer;
+    if (P->vol_bit[i] >= 0) vol_obj[P->vol_bit[i]] = i;
+    if (d->fn != ICS_DETAIL_NONE && P->detail) memcpy(perm + 512 * (size_t)i, P->detail[i].perm, 512);
+  }
+  if (inside) {
+    if (P->ldi.inside0) memcpy(inside, P->ldi.inside0, sizeof *inside * npx);
+    else memset(inside, 0, sizeof *inside * npx);
+  }
+  const ics_camera *cm = &P->cam;
+  for (int i = 0; i < 3; i++)
+    cam[i] = cm->eye[i], cam[3 + i] = cm->r[i], cam[6 + i] = cm->u[i], cam[9 + i] = cm->f[i];
+  cam[12] = cm->height;
+  cam[13] = cm->height * P->W / P->H; /* as ics_plan_ray computes them */
+  cam[14] = tan(cm->fov_deg * (ICS_PI / 360));
+  cam[15] = (double)P->W / P->H;
+  cam[16] = cm->projection == ICS_PROJ_PERSPECTIVE;
+  double q_max = P->cam.projection == ICS_PROJ_PERSPECTIVE
+                     ? ics_plan_pixel_size(P, ics_plan_slab_depth(P, P->K - 1)) : P->q_ref;
+  double wmax = 0;
+  for (int l = 0; l < nl; l++) {
+    const ics_light *lt = &sc->lights[l];
+    for (int c = 0; c < 3; c++) lcol[3 * l + c] = lt->color[c] * lt->weight;
+    lmu[2 * l] = lt->mean[0], lmu[2 * l + 1] = lt->mean[1];
+    signed_l[l] = P->kernels[l].comp == ICS_RC_SIGNED;
+    blur[l] = ics_plan_light_blur(P, l);
+    wmax = fmax(wmax, 1 - blur[l] / q_max);
+    cum[l][0] = cum[l][1] = 0;
+    const ics_slab_kernel *sk = &P->kernels[l];
+    scratch[l] = malloc(sizeof **scratch * (size_t)sk->entries * (size_t)sk->cap);
+    if (!scratch[l]) goto nomem;
+  }
+  buf_layout B = {P->buf.w, P->buf.h, P->buf.stride, (cl_int)P->buf.plane, (cl_int)P->buf.origin};
+  j->args = (shade_args){.B = B, .nch = nch,
+                         .nlights = nl, .nvol = P->nvol, .W = P->W, .H = P->H,
+                         .pad_l = P->pad[0], .pad_t = P->pad[2],
+                         .preintegrate = P->rs.preintegrate, .seed_lo = (cl_uint)P->rs.seed,
+                         .seed_hi = (cl_uint)(P->rs.seed >> 32), .window_max = wmax};
+  j->src = job_buffer(j, lbytes, NULL, "clCreateBuffer(light buffers)");
+  j->dst = job_buffer(j, lbytes, NULL, "clCreateBuffer(light buffers)");
+  j->offset = job_buffer(j, sizeof(cl_uint) * (npx + 1), P->ldi.offset, "clCreateBuffer(LDI)");
+  j->cursor = job_buffer(j, sizeof(cl_uint) * (npx + 1), P->ldi.offset, "clCreateBuffer(LDI)");
+  j->acursor = job_buffer(j, sizeof(cl_uint) * (npx + 1), P->ldi.offset, "clCreateBuffer(LDI)");
+  j->fz = job_buffer(j, sizeof *fz * nf, fz, "clCreateBuffer(LDI)");
+  j->fcode = job_buffer(j, sizeof *fcode * nf, fcode, "clCreateBuffer(LDI)");
+  j->fgrad = job_buffer(j, sizeof *fgrad * nf, fgrad, "clCreateBuffer(LDI)");
+  j->fspan = job_buffer(j, nf, fspan, "clCreateBuffer(LDI)");
+  j->inside = job_buffer(j, inside ? sizeof *inside * npx : 8, inside, "clCreateBuffer(volumes)");
+  j->obj = job_buffer(j, sizeof *obj * (size_t)nobj * OBJ_STRIDE, obj, "clCreateBuffer(objects)");
+  j->tt = job_buffer(j, sizeof *tt * 5 * (ntt ? ntt : 1), tt, "clCreateBuffer(objects)");
+  j->perm = job_buffer(j, 512 * (size_t)nobj, perm, "clCreateBuffer(objects)");
+  j->vol_obj = job_buffer(j, sizeof vol_obj, vol_obj, "clCreateBuffer(objects)");
+  j->cam = job_buffer(j, sizeof cam, cam, "clCreateBuffer(camera)");
+  j->lcol = job_buffer(j, sizeof lcol, lcol, "clCreateBuffer(lights)");
+  j->lmu = job_buffer(j, sizeof lmu, lmu, "clCreateBuffer(lights)");
+  j->lpath = job_buffer(j, sizeof P->light_path, (void *)P->light_path, "clCreateBuffer(lights)");
+  j->window = job_buffer(j, sizeof window, NULL, "clCreateBuffer(lights)");
+  j->signed_l = job_buffer(j, sizeof signed_l, signed_l, "clCreateBuffer(lights)");
+  j->img = job_buffer(j, sizeof(float) * 4 * (size_t)P->W * P->H, NULL, "clCreateBuffer(image)");
+  const cl_int no_flags = 0;
+  j->flags = job_buffer(j, sizeof no_flags, &no_flags, "clCreateBuffer(flags)");
+  j->ent = job_buffer(j, sizeof(cl_uint) * npx, NULL, "clCreateBuffer(tap-set choices)");
+  if (j->err == CL_SUCCESS) {
+    const cl_float one = 1, zero = 0;
+    cl_int e = clEnqueueFillBuffer(s->q, j->src, &one, sizeof one, 0, lbytes, 0, NULL, NULL);
+    if (e == CL_SUCCESS)
+      e = clEnqueueFillBuffer(s->q, j->img, &zero, sizeof zero, 0,
+                              sizeof(float) * 4 * (size_t)P->W * P->H, 0, NULL, NULL);
+    if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueFillBuffer";
+  }
+  int persp = P->cam.projection == ICS_PROJ_PERSPECTIVE;
+  for (int k = 0; k < P->K && j->err == CL_SUCCESS; k++) {
+    double zk = ics_plan_slab_depth(P, k), zp = ics_plan_slab_depth(P, k > 0 ? k - 1 : 0);
+    double q = persp ? ics_plan_pixel_size(P, zk) : P->q_ref, mag = persp ? zk / zp : 1;
+    for (int l = 0; l < nl; l++) {
+      const ics_slab_kernel *sk = &P->kernels[l];
+      int n;
+      window[l] = fmax(0, 1 - blur[l] / q);
+      status = ics_slab_kernel_taps(sk, (uint64_t)k, q, cum[l], scratch[l], &n);
+      if (status != ICS_OK) {
+        if (msg) snprintf(msg, msg_size, "light %d, slab %d: kernel taps: %s", l, k,
+                          ics_status_str(status));
+        goto done;
+      }
+      ics_prop_taps *pt = &pts[l];
+      if (persp ? ics_prop_prepare_perspective(pt, scratch[l], n, mag, P->cx, P->cy, &P->buf)
+                : ics_prop_prepare(pt, scratch[l], sk->out_entries, n / sk->out_entries, sk->cap,
+                                   mag, P->cx, P->cy, &P->buf))
+        goto nomem;
+      pt->seed = P->rs.seed;
+      pt->run = P->rs.rotation_run;
+      pt->phase = (int)ics_slab_choice(P->rs.seed, (uint32_t)l, (uint32_t)k, UINT32_MAX - 2, 16);
+      pt->light = (uint32_t)l;
+      pt->slab = (uint32_t)k;
+      upload_taps(j, l, pt, (size_t)pt->ntaps * (size_t)(pt->stencil ? 1 : pt->entries));
+    }
+    job_write(j, j->window, sizeof(double) * (size_t)(nl ? nl : 1), window, "clEnqueueWriteBuffer(window)");
+    run_slab(j, k, pts, st);
+    cl_mem tmp = j->src;
+    j->src = j->dst;
+    j->dst = tmp;
+    if (j->err == CL_SUCCESS && o->progress) o->progress(o->progress_ctx, k + 1, P->K);
+  }
+  if (j->err == CL_SUCCESS) {
+    cl_int e = clEnqueueReadBuffer(s->q, j->img, CL_TRUE, 0, sizeof(float) * 4 * (size_t)P->W * P->H,
+                                   img->data, 0, NULL, NULL);
+    if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueReadBuffer(image)";
+  }
+  cl_int flags = 0;
+  if (j->err == CL_SUCCESS) {
+    cl_int e = clEnqueueReadBuffer(s->q, j->flags, CL_TRUE, 0, sizeof flags, &flags, 0, NULL, NULL);
+    if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueReadBuffer(flags)";
+  }
+  if (j->err == CL_SUCCESS && (flags & 1)) { /* slab.cl FLAG_VOLUMES */
+    if (msg) snprintf(msg, msg_size, "backend cl: more than 8 volumes overlap at some point of "
+                      "this scene, more than the cl backend holds per pixel (use --backend cpu)");
+    status = ICS_ERR_UNSUPPORTED;
+    goto done;
+  }
+  if (j->err != CL_SUCCESS) {
+    if (msg) snprintf(msg, msg_size, "backend cl: %s on %s: %s", j->call, s->device,
+                      cl_err_name(j->err));
+    status = j->err == CL_MEM_OBJECT_ALLOCATION_FAILURE || j->err == CL_OUT_OF_RESOURCES ||
+                     j->err == CL_OUT_OF_HOST_MEMORY || j->err == CL_INVALID_BUFFER_SIZE
+                 ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
+    goto done;
+  }
+  for (size_t i = 0; i < (size_t)P->W * P->H; i++) {
+    float *C = img->data + 4 * i;
+    for (int c = 0; c < 3; c++) C[c] += (1 - C[3]) * (float)P->rs.background[c];
+  }
+  st->threads = 0;
+  st->slabs = P->K;
+  snprintf(st->device, sizeof st->device, "%s", s->device);
+  if (nl && P->K) st->ns_per_px_slab = 1e6 * st->ms_convolution / ((double)npx * P->K * nl);
+  st->ms_total = 1e3 * (ics_clock_s() - t_start);
+  goto done;
+nomem:
+  status = ICS_ERR_NOMEM;
+  if (msg) snprintf(msg, msg_size, "backend cl: out of host memory for the upload (%zu fragments)", nfrag);
+done:;
+  cl_mem *all[] = {&j->src, &j->dst, &j->offset, &j->fz, &j->fcode, &j->fgrad, &j->fspan,
+                   &j->cursor, &j->acursor, &j->inside, &j->obj, &j->tt, &j->perm, &j->vol_obj,
+                   &j->cam, &j->lcol, &j->lmu, &j->lpath, &j->window, &j->signed_l, &j->img,
+                   &j->flags, &j->ent};
+  for (size_t i = 0; i < sizeof all / sizeof *all; i++) release(all[i]);
+  for (int l = 0; l < nl; l++) {
+    cl_taps *t = &j->taps[l];
+    release(&t->ix), release(&t->iy), release(&t->off), release(&t->fx), release(&t->fy);
+    release(&t->w);
+    if (pts) ics_prop_release(&pts[l]);
+    if (scratch) free(scratch[l]);
+  }
+  free(fz), free(fcode), free(fgrad), free(fspan), free(obj), free(tt), free(perm), free(inside);
+  free(pts), free(scratch);
+  return status;
+}
+
+const ics_backend ics_backend_cl = {
+    "cl", "the slab renderer on an OpenCL device (PoCL or any OpenCL 1.2 platform with fp64; not picked by auto)", 0,
+    cl_available, cl_create, cl_render, cl_destroy};
