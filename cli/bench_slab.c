@@ -1,5 +1,5 @@
 /* bench_slab.c — `icshadow bench slab [options]`: the propagation of one light buffer through
- * the slabs, for each kernel member, sizes, thread counts and backends, as CSV. Each run renders,
+ * the slabs, for each kernel member, sizes, thread counts and backends (side by side), as CSV. Each run renders,
  * through the public renderer API, a scene made for it: an edge occluder in the first slab and a
  * receiver after `slabs` slabs, world units = pixels (so the per-slab kernel class is the given
  * mean and covariance in pixels), no padding; the error is taken on the receiver's visible half
@@ -44,7 +44,7 @@ static const member_t members[] = {
 static void help(FILE *f) {
   fprintf(f,
           "usage: icshadow bench slab [--sizes N,N,...] [--slabs K] [--threads T,T,...]\n"
-          "       [--kernels K,K,...] [--backend B] [--cov CXX,CXY,CYY] [--mean MX,MY] [--reps R]\n"
+          "       [--kernels K,K,...] [--backend B,...] [--cov CXX,CXY,CYY] [--mean MX,MY] [--reps R]\n"
           "Light-buffer propagation through K slabs per kernel member, side by side with the\n"
           "memcpy floor measured between the repetitions, as CSV:\n"
           "  backend,kernel,samples,mode,width,height,slabs,threads,ns_per_px_slab,ns_min,ns_max,\n"
@@ -57,7 +57,9 @@ static void help(FILE *f) {
           "  --threads T,...   thread counts (default 1,2)\n"
           "  --kernels K,...   members (default all): ellipse2 ellipse2-run16 ellipse3 poisson8\n"
           "                    poisson16 gauss19 tophat5 ellipse2-signed integer\n"
-          "  --backend B       cpu (default) or another backend of `icshadow render --backends`\n"
+          "  --backend B,...   cpu (default) and/or other backends of `icshadow render --backends`,\n"
+          "                    run side by side for each member and size (a device backend\n"
+          "                    such as cl runs once, threads 0)\n"
           "  --cov C,C,C       per-slab covariance in px^2 (default 2,0.5,1)\n"
           "  --mean MX,MY      per-slab mean in px (default 0.3,-0.2)\n"
           "  --reps R          repetitions, median reported (default 3; 1..50)\n"
@@ -110,7 +112,7 @@ int bench_slab(int argc, char **argv) {
   (void)argc, (void)argv;
   return cli_failure(CMD, "the renderer was not built (it needs jansson)");
 #else
-  const char *sizes_s = "512,768", *threads_s = "1,2", *kernels_s = NULL, *backend = "cpu";
+  const char *sizes_s = "512,768", *threads_s = "1,2", *kernels_s = NULL, *backend_s = "cpu";
   const char *cov_s = "2,0.5,1", *mean_s = "0.3,-0.2";
   int slabs = 256, reps = 3, force = 0;
   const cli_option opts[] = {
@@ -118,7 +120,7 @@ int bench_slab(int argc, char **argv) {
       {"--slabs", .kind = CLI_INT, .dest = &slabs, .lo = 1, .hi = 4096},
       {"--threads", .kind = CLI_STRING, .dest = &threads_s},
       {"--kernels", .kind = CLI_STRING, .dest = &kernels_s},
-      {"--backend", .kind = CLI_STRING, .dest = &backend},
+      {"--backend", .kind = CLI_STRING, .dest = &backend_s},
       {"--cov", .kind = CLI_STRING, .dest = &cov_s},
       {"--mean", .kind = CLI_STRING, .dest = &mean_s},
       {"--reps", .kind = CLI_INT, .dest = &reps, .lo = 1, .hi = 50},
@@ -152,8 +154,20 @@ int bench_slab(int argc, char **argv) {
   } else {
     for (int i = 0; i < NMEMBERS; i++) use[nuse++] = i;
   }
-  char why[256];
-  if (!ics_backend_available(backend, why, sizeof why)) return cli_error(CMD, "--backend: %s", why);
+  /* --backend: one or several, run side by side for each member and size */
+  char blist[256], *backends[4];
+  int nb = 0;
+  if (strlen(backend_s) >= sizeof blist) return cli_error(CMD, "--backend: too long");
+  snprintf(blist, sizeof blist, "%s", backend_s);
+  for (char *q = blist, *end; q; q = end) {
+    end = strchr(q, ',');
+    if (end) *end++ = 0;
+    if (!*q) return cli_error(CMD, "--backend: an empty name in '%s'", backend_s);
+    if (nb == 4) return cli_error(CMD, "--backend: at most 4 backends");
+    char why[1024];
+    if (!ics_backend_available(q, why, sizeof why)) return cli_error(CMD, "--backend: %s: %s", q, why);
+    backends[nb++] = q;
+  }
   cli_progress prog;
   cli_progress_init(&prog, "bench slab", force);
   printf("backend,kernel,samples,mode,width,height,slabs,threads,ns_per_px_slab,ns_min,ns_max,"
@@ -169,8 +183,10 @@ int bench_slab(int argc, char **argv) {
     }
     for (size_t i = 0; i < npx; i++) fa[i] = (float)(i % 7);
     for (int ki = 0; ki < nuse; ki++)
-      for (int ti = 0; ti < nt; ti++) {
+      for (int bi = 0; bi < nb; bi++)
+      for (int ti = 0, cpu_threads = 1; ti < nt && cpu_threads; ti++) {
         const member_t *m = &members[use[ki]];
+        const char *backend = backends[bi];
         /* world units = pixels: height n, slab spacing 1, d1 1; light mean -mean (Eq. 7), the
          * row axis pointing down (y components change sign) */
         char json[2048];
@@ -207,6 +223,7 @@ int bench_slab(int argc, char **argv) {
           ics_render_stats stats;
           st = ics_renderer_render(r, p, &img, &stats, msg, sizeof msg);
           if (st != ICS_OK) break;
+          cpu_threads = stats.threads > 0; /* a device backend: one row, threads 0 */
           double floor_ns = now_floor_ns(npx, K, fa, fb);
           if (rep > 0) t[rep - 1] = stats.ns_per_px_slab, fl[rep - 1] = floor_ns;
           if (rep == reps) {
@@ -240,7 +257,7 @@ int bench_slab(int argc, char **argv) {
         double med = t[reps / 2], fmed = fl[reps / 2];
         if (reps > 1 && t[reps - 1] > 1.3 * t[0]) busy = 1;
         printf("%s,%s,%d,%s,%d,%d,%d,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.3g,%d\n", backend, m->label,
-               m->samples, mode, bw, bh, K, threads[ti], med, t[0], t[reps - 1], fmed,
+               m->samples, mode, bw, bh, K, cpu_threads ? threads[ti] : 0, med, t[0], t[reps - 1], fmed,
                fmed / med, err, reps);
         fflush(stdout);
       }

@@ -8,3 +8,22 @@ if(TARGET test_render_cl)
   target_include_directories(test_render_cl PRIVATE ${CMAKE_SOURCE_DIR}/gpu/src)
 endif()
 set_tests_properties(test_render_cl PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
+
+# on the command line: the default scene through --backend cl, its device in the summary; a
+# device that does not exist refused before anything is written; bench slab side by side
+if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
+  set(rdc ${CMAKE_CURRENT_BINARY_DIR}/tmp/cli_render_cl)
+  file(MAKE_DIRECTORY ${rdc})
+  ics_cli_test(NAME cli_render_cl RC 0 LABELS medium
+    ARGS "render|--backend|cl|--resolution|64x48|-o|${rdc}/default.exr"
+    OUT "\"backend\": \"cl\", \"device\": \"OpenCL, [^\"]+\".*\"ns_per_px_slab\": [0-9.e+-]+")
+  ics_cli_test(NAME cli_render_cl_no_device RC 2 LABELS medium
+    ARGS "render|--backend|cl|-o|${rdc}/none.exr"
+    ERR "icshadow render: --backend: ICS_CL_DEVICE=no-such-device matches no device \\(0: " NOFILE ${rdc}/none.exr)
+  ics_cli_test(NAME cli_bench_slab_cl RC 0 LABELS medium
+    ARGS "bench|slab|--sizes|64|--slabs|4|--threads|1|--reps|1|--kernels|ellipse2,gauss19|--backend|cpu,cl"
+    OUT "cpu,ellipse2,.*\ncl,ellipse2,2,table,64,64,4,0,.*\ncpu,gauss19,.*\ncl,gauss19,19,taps,64,64,4,0,")
+  set_tests_properties(cli_render_cl cli_bench_slab_cl PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
+  set_tests_properties(cli_render_cl_no_device PROPERTIES
+    ENVIRONMENT "POCL_CACHE_DIR=${ics_pocl_cache};ICS_CL_DEVICE=no-such-device")
+endif()

@@ -21,54 +21,55 @@
 #define TOL_MAX 1e-5 /* largest |cl - cpu| over the pixels and channels */
 #define TOL_RMS 1e-6
 
-static const char *const variants[][2] = {
-    {"ellipse, 2 lights, coloured transport, translucent",
+/* name, the mode light 0's kernel runs in (the plan's pass detail), scene */
+static const char *const variants[][3] = {
+    {"ellipse, 2 lights, coloured transport, translucent", "table",
      "{\"camera\": {\"eye\": [0, 0.5, 3], \"target\": [0, 0, 0], \"height\": 2.4, \"resolution\": [96, 72]},"
      " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"seed\": 5},"
-     " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.02, 0.006], \"angle_deg\": 25},"
+     " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.2, 0.06], \"angle_deg\": 25},"
      "  {\"mean\": [-0.3, 0.1], \"var\": [0.01, 0.01], \"color\": [0.4, 0.6, 1], \"weight\": 0.5}],"
      " \"materials\": {\"floor\": {\"color\": [0.8, 0.8, 0.75]}, \"glass\": {\"color\": [0.3, 0.6, 0.9],"
      "  \"opacity\": 0.4, \"transport\": [0.2, 0.5, 0.8]}, \"red\": {\"color\": [0.9, 0.2, 0.1]}},"
      " \"objects\": [{\"shape\": \"rect\", \"center\": [0, -0.5, 0], \"normal\": [0, 1, 0], \"size\": [4, 4], \"material\": \"floor\"},"
      "  {\"shape\": \"sphere\", \"center\": [-0.3, 0.1, 0], \"radius\": 0.4, \"material\": \"glass\"},"
      "  {\"shape\": \"box\", \"center\": [0.5, -0.2, 0.3], \"size\": [0.4, 0.6, 0.4], \"material\": \"red\"}]}"},
-    {"poisson 8, 384 rotations, rotation runs of 16",
+    {"poisson 8, 384 rotations, rotation runs of 16", "table",
      "{\"camera\": {\"eye\": [0, 0.5, 3], \"target\": [0, 0, 0], \"height\": 2.4, \"resolution\": [96, 72]},"
      " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"kernel\": \"poisson\", \"pixel_rotations\": 384,"
      "  \"rotation_run\": 16, \"seed\": 11},"
-     " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.02, 0.006], \"angle_deg\": 25}],"
+     " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.2, 0.06], \"angle_deg\": 25}],"
      " \"materials\": {\"floor\": {}, \"dark\": {\"color\": [0.1, 0.1, 0.1]}},"
      " \"objects\": [{\"shape\": \"rect\", \"center\": [0, -0.5, 0], \"normal\": [0, 1, 0], \"size\": [4, 4], \"material\": \"floor\"},"
      "  {\"shape\": \"torus\", \"center\": [0, 0, 0], \"normal\": [0.3, 1, 0.2], \"major_radius\": 0.5, \"minor_radius\": 0.15, \"material\": \"dark\"}]}"},
-    {"ellipse 3, 1 rotation per slab",
+    {"ellipse 3, 1 rotation per slab (one tap set: the stencil kernel)", "table",
      "{\"camera\": {\"eye\": [0, 0.5, 3], \"target\": [0, 0, 0], \"height\": 2.4, \"resolution\": [96, 72]},"
      " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"samples\": 3, \"pixel_rotations\": 1},"
-     " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.02, 0.006], \"angle_deg\": 25}],"
+     " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.2, 0.06], \"angle_deg\": 25}],"
      " \"materials\": {\"floor\": {}, \"dark\": {\"color\": [0.1, 0.1, 0.1]}},"
      " \"objects\": [{\"shape\": \"rect\", \"center\": [0, -0.5, 0], \"normal\": [0, 1, 0], \"size\": [4, 4], \"material\": \"floor\"},"
      "  {\"shape\": \"disk\", \"center\": [0, 0.1, 0], \"normal\": [0, 1, 0.3], \"radius\": 0.5, \"material\": \"dark\"}]}"},
-    {"gauss 19, nonneg (stencil)",
+    {"gauss 19, nonneg (stencil)", "taps",
      "{\"camera\": {\"eye\": [0, 0.5, 3], \"target\": [0, 0, 0], \"height\": 2.4, \"resolution\": [96, 72]},"
      " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"kernel\": \"gauss\"},"
-     " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.02, 0.006], \"angle_deg\": 25}],"
+     " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.2, 0.06], \"angle_deg\": 25}],"
      " \"materials\": {\"floor\": {}, \"dark\": {\"color\": [0.1, 0.1, 0.1]}},"
      " \"objects\": [{\"shape\": \"rect\", \"center\": [0, -0.5, 0], \"normal\": [0, 1, 0], \"size\": [4, 4], \"material\": \"floor\"},"
      "  {\"shape\": \"disk\", \"center\": [0, 0.1, 0], \"normal\": [0, 1, 0.3], \"radius\": 0.5, \"material\": \"dark\"}]}"},
-    {"tophat, signed compensation (clamped buffers)",
+    {"tophat, signed compensation (clamped buffers)", "taps",
      "{\"camera\": {\"eye\": [0, 0.5, 3], \"target\": [0, 0, 0], \"height\": 2.4, \"resolution\": [96, 72]},"
      " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"kernel\": \"tophat\", \"compensate\": \"signed\"},"
      " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.004, 0.002]}],"
      " \"materials\": {\"floor\": {}, \"dark\": {\"color\": [0.1, 0.1, 0.1]}},"
      " \"objects\": [{\"shape\": \"rect\", \"center\": [0, -0.5, 0], \"normal\": [0, 1, 0], \"size\": [4, 4], \"material\": \"floor\"},"
      "  {\"shape\": \"disk\", \"center\": [0, 0.1, 0], \"normal\": [0, 1, 0.3], \"radius\": 0.5, \"material\": \"dark\"}]}"},
-    {"ellipse, integer compensation",
+    {"ellipse, integer compensation", "integer",
      "{\"camera\": {\"eye\": [0, 0.5, 3], \"target\": [0, 0, 0], \"height\": 2.4, \"resolution\": [96, 72]},"
      " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"compensate\": \"integer\"},"
-     " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.02, 0.006], \"angle_deg\": 25}],"
+     " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.2, 0.06], \"angle_deg\": 25}],"
      " \"materials\": {\"floor\": {}, \"dark\": {\"color\": [0.1, 0.1, 0.1]}},"
      " \"objects\": [{\"shape\": \"rect\", \"center\": [0, -0.5, 0], \"normal\": [0, 1, 0], \"size\": [4, 4], \"material\": \"floor\"},"
      "  {\"shape\": \"disk\", \"center\": [0, 0.1, 0], \"normal\": [0, 1, 0.3], \"radius\": 0.5, \"material\": \"dark\"}]}"},
-    {"perspective camera (classes), volume with ridged detail",
+    {"perspective camera (classes), volume with ridged detail", "table",
      "{\"camera\": {\"projection\": \"perspective\", \"eye\": [0, 0.6, 3], \"target\": [0, 0, 0], \"fov_deg\": 40,"
      "  \"resolution\": [96, 72]},"
      " \"render\": {\"slab_spacing\": 0.03, \"d1\": 1, \"seed\": 3},"
@@ -77,10 +78,10 @@ static const char *const variants[][2] = {
      "  \"transport\": [0.1, 0.1, 0.1], \"detail\": {\"function\": \"ridged\", \"octaves\": 3, \"frequency\": 3}}},"
      " \"objects\": [{\"shape\": \"rect\", \"center\": [0, -0.5, 0], \"normal\": [0, 1, 0], \"size\": [4, 4], \"material\": \"floor\"},"
      "  {\"shape\": \"sphere\", \"center\": [0, 0.1, 0], \"radius\": 0.5, \"material\": \"fog\"}]}"},
-    {"two overlapping volumes: plain and Perlin with a transfer function, preintegrated",
+    {"two overlapping volumes: plain and Perlin with a transfer function, preintegrated", "table",
      "{\"camera\": {\"eye\": [0, 0.5, 3], \"target\": [0, 0, 0], \"height\": 2.4, \"resolution\": [96, 72]},"
      " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"preintegrate\": true},"
-     " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.02, 0.006], \"angle_deg\": 25}],"
+     " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.2, 0.06], \"angle_deg\": 25}],"
      " \"materials\": {\"floor\": {}, \"haze\": {\"color\": [0.7, 0.8, 1], \"extinction\": 2},"
      "  \"smoke\": {\"color\": [1, 0.9, 0.8], \"extinction\": 9, \"transport\": [0.3, 0.2, 0.1],"
      "  \"detail\": {\"function\": \"perlin\", \"frequency\": 4, \"scale\": 1.5, \"bias\": 0.3},"
@@ -90,7 +91,22 @@ static const char *const variants[][2] = {
      "  {\"shape\": \"sphere\", \"center\": [0.2, 0.1, 0], \"radius\": 0.45, \"material\": \"smoke\"}]}"},
 };
 
-static void compare(const char *what, const ics_scene *s) {
+static void compare(const char *what, const char *mode, const ics_scene *s) {
+  if (mode) { /* the path this variant is for */
+    char msg[1024], got[64] = "";
+    ics_plan_opts po = {0};
+    ics_plan *p;
+    if (ics_plan_create(&p, s, &po, msg, sizeof msg) != ICS_OK) {
+      fprintf(stderr, "plan: %s\n", msg);
+      exit(2);
+    }
+    for (int i = 0; i < ics_plan_pass_count(p); i++) {
+      const ics_plan_pass *q = ics_plan_pass_at(p, i);
+      if (q->light == 0) sscanf(q->detail, "%*s %*s %63[a-z]", got);
+    }
+    ics_plan_destroy(p);
+    CHECK(!strcmp(got, mode), "%s: light 0 runs in mode '%s', the variant is for '%s'", what, got, mode);
+  }
   render_result a = render_scene_on("cpu", s, NULL, 0, 0), b = render_scene_on("cl", s, NULL, 0, 0);
   double maxd = 0, sum = 0;
   int at = 0;
@@ -143,16 +159,16 @@ int main(int argc, char **argv) {
     return 77;
   }
   ics_scene *s = scene_from_json(ics_scene_default_json());
-  compare("the embedded default scene", s);
+  compare("the embedded default scene", "table", s);
   ics_scene_destroy(s);
   for (int i = 1; i < argc; i++) {
     s = scene_from_file(argv[i]);
-    compare(argv[i], s);
+    compare(argv[i], NULL, s);
     ics_scene_destroy(s);
   }
   for (size_t v = 0; v < sizeof variants / sizeof *variants; v++) {
-    s = scene_from_json(variants[v][1]);
-    compare(variants[v][0], s);
+    s = scene_from_json(variants[v][2]);
+    compare(variants[v][0], variants[v][1], s);
     ics_scene_destroy(s);
   }
   const char *td = getenv("TMPDIR");
@@ -175,10 +191,10 @@ int main(int argc, char **argv) {
   refused("grid detail", json, ICS_ERR_UNSUPPORTED, "grid detail");
   remove(grid);
   setenv("ICS_CL_DEVICE", "no such device anywhere", 1);
-  refused("ICS_CL_DEVICE naming no device", variants[0][1], ICS_ERR_UNSUPPORTED,
+  refused("ICS_CL_DEVICE naming no device", variants[0][2], ICS_ERR_UNSUPPORTED,
           "ICS_CL_DEVICE=no such device anywhere matches no device");
   setenv("ICS_CL_DEVICE", "99", 1);
-  refused("ICS_CL_DEVICE out of range", variants[0][1], ICS_ERR_UNSUPPORTED, "ICS_CL_DEVICE=99");
+  refused("ICS_CL_DEVICE out of range", variants[0][2], ICS_ERR_UNSUPPORTED, "ICS_CL_DEVICE=99");
   unsetenv("ICS_CL_DEVICE");
   return test_summary("test_render_cl");
 }

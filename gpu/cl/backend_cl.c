@@ -379,7 +379,11 @@ static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stat
       ARG(kp, 11, Q), ARG(kp, 12, sc), ARG(kp, 13, cx), ARG(kp, 14, cy);
     }
     if (j->err != CL_SUCCESS) break;
-    cl_int e = clEnqueueNDRangeKernel(s->q, kp, 2, NULL, global, local, 0, NULL, &evs[nev]);
+    /* the stencil: 16 pixels per work-item, groups of 8 x 8 */
+    size_t local_st[2] = {8, 8};
+    size_t global_st[2] = {((size_t)P->Wb + 127) / 128 * 8, ((size_t)P->Hb + 7) / 8 * 8};
+    cl_int e = clEnqueueNDRangeKernel(s->q, kp, 2, NULL, mode == 0 ? global_st : global,
+                                      mode == 0 ? local_st : local, 0, NULL, &evs[nev]);
     if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueNDRangeKernel(ics_prop)";
     else nev++;
   }
