@@ -160,7 +160,7 @@ typedef struct cl_state {
   cl_context ctx;
   cl_command_queue q;
   cl_program prog;
-  cl_kernel prop[3], entries, shade, apron[2]; /* ics_prop_stencil, _table, _classes; ics_shade;
+  cl_kernel prop[3], entries[2], shade, apron[2]; /* ics_prop_stencil, _table, _classes; ics_shade;
                                         ics_apron_sides, _ends */
   cl_device_id dev;
   cl_ulong max_alloc;
@@ -173,7 +173,8 @@ static void cl_destroy(void *state) {
   for (int i = 0; i < 3; i++)
     if (s->prop[i]) clReleaseKernel(s->prop[i]);
   if (s->shade) clReleaseKernel(s->shade);
-  if (s->entries) clReleaseKernel(s->entries);
+  for (int i = 0; i < 2; i++)
+    if (s->entries[i]) clReleaseKernel(s->entries[i]);
   for (int i = 0; i < 2; i++)
     if (s->apron[i]) clReleaseKernel(s->apron[i]);
   if (s->prog) clReleaseProgram(s->prog);
@@ -223,9 +224,12 @@ static ics_status cl_create(void **state, const ics_render_opts *opts, char *msg
     s->prop[i] = clCreateKernel(s->prog, prop_names[i], &e);
     if (e != CL_SUCCESS) goto fail;
   }
-  call = "clCreateKernel(ics_entries)";
-  s->entries = clCreateKernel(s->prog, "ics_entries", &e);
-  if (e != CL_SUCCESS) goto fail;
+  static const char *const entry_names[2] = {"ics_entries_pixel", "ics_entries_run"};
+  for (int i = 0; i < 2; i++) {
+    call = entry_names[i];
+    s->entries[i] = clCreateKernel(s->prog, entry_names[i], &e);
+    if (e != CL_SUCCESS) goto fail;
+  }
   call = "clCreateKernel(ics_shade)";
   s->shade = clCreateKernel(s->prog, "ics_shade", &e);
   if (e != CL_SUCCESS) goto fail;
@@ -362,28 +366,36 @@ static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stat
     ARG(kp, 5, ntaps), ARG(kp, 6, t->ix), ARG(kp, 7, t->iy), ARG(kp, 8, t->off);
     ARG(kp, 9, t->w), ARG(kp, 10, clamped);
     if (mode == 1) {
-      cl_kernel ke = s->entries;
-      cl_int bw = B.w, bh = B.h;
-      ARG(ke, 0, j->ent), ARG(ke, 1, bw), ARG(ke, 2, bh), ARG(ke, 3, entries);
-      ARG(ke, 4, seed_lo), ARG(ke, 5, seed_hi), ARG(ke, 6, light), ARG(ke, 7, slab);
-      ARG(ke, 8, run), ARG(ke, 9, phase);
+      cl_kernel ke = s->entries[run > 1];
+      cl_int bw = B.w, bh = B.h, npx = B.w * B.h;
+      size_t g_px[1] = {((size_t)npx + 63) / 64 * 16};
+      size_t g_run[2] = {(size_t)B.w / 16 + 2, (size_t)B.h};
+      ARG(ke, 0, j->ent);
+      if (run > 1) {
+        ARG(ke, 1, bw), ARG(ke, 2, bh), ARG(ke, 3, entries), ARG(ke, 4, seed_lo);
+        ARG(ke, 5, seed_hi), ARG(ke, 6, light), ARG(ke, 7, slab), ARG(ke, 8, phase);
+      } else {
+        ARG(ke, 1, npx), ARG(ke, 2, entries), ARG(ke, 3, seed_lo), ARG(ke, 4, seed_hi);
+        ARG(ke, 5, light), ARG(ke, 6, slab);
+      }
       if (j->err != CL_SUCCESS) break;
-      cl_int e = clEnqueueNDRangeKernel(s->q, ke, 2, NULL, global, local, 0, NULL, &evs[nev]);
+      cl_int e = clEnqueueNDRangeKernel(s->q, ke, run > 1 ? 2 : 1, NULL, run > 1 ? g_run : g_px,
+                                        NULL, 0, NULL, &evs[nev]);
       if (e != CL_SUCCESS) {
-        j->err = e, j->call = "clEnqueueNDRangeKernel(ics_entries)";
+        j->err = e, j->call = "clEnqueueNDRangeKernel(ics_entries_*)";
         break;
       }
       nev++;
-      ARG(kp, 11, j->ent), ARG(kp, 12, t->fx), ARG(kp, 13, t->fy);
+      ARG(kp, 11, j->ent), ARG(kp, 12, t->fx), ARG(kp, 13, t->fy), ARG(kp, 14, entries);
     } else if (mode == 2) {
       ARG(kp, 11, Q), ARG(kp, 12, sc), ARG(kp, 13, cx), ARG(kp, 14, cy);
     }
     if (j->err != CL_SUCCESS) break;
-    /* the stencil: 16 pixels per work-item, groups of 8 x 8 */
+    /* the stencil and the table: 16 pixels per work-item, groups of 8 x 8 */
     size_t local_st[2] = {8, 8};
     size_t global_st[2] = {((size_t)P->Wb + 127) / 128 * 8, ((size_t)P->Hb + 7) / 8 * 8};
-    cl_int e = clEnqueueNDRangeKernel(s->q, kp, 2, NULL, mode == 0 ? global_st : global,
-                                      mode == 0 ? local_st : local, 0, NULL, &evs[nev]);
+    cl_int e = clEnqueueNDRangeKernel(s->q, kp, 2, NULL, mode < 2 ? global_st : global,
+                                      mode < 2 ? local_st : local, 0, NULL, &evs[nev]);
     if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueNDRangeKernel(ics_prop)";
     else nev++;
   }

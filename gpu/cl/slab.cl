@@ -131,47 +131,100 @@ __kernel __attribute__((reqd_work_group_size(8, 8, 1))) void ics_prop_stencil(PR
   }
 }
 
-/* the tap set of each pixel of a table step (below) */
-__kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_entries(
-    __global uint *ent, int w, int h, int entries, uint seed_lo, uint seed_hi, uint light,
-    uint slab, int run, int phase) {
-  int x = (int)get_global_id(0), y = (int)get_global_id(1);
-  if (x >= w || y >= h) return;
-  uint id = run > 1 ? (uint)y * (uint)(w + 32) + 16u * (uint)((x + 16 - phase) / 16)
-                    : (uint)(y * w + x);
-  ent[y * w + x] = slab_choice(seed_lo, seed_hi, light, slab, id, (uint)entries);
+/* The tap set of each pixel of a table step (below), the choices of ics_prop_entries_row and
+ * ics_prop_run_choice. Per pixel (run 1): one work-item per Philox block b, whose four words
+ * are the choices of pixels 64 (b / 16) + b % 16 + 16 i (i = 0..3) of the row-major w x h grid.
+ * Per run of 16 (run 16): one work-item per run k of row y, the pixels x with
+ * (x + 16 - phase) / 16 = k. No loops but the pixels' writes, so PoCL vectorises the rounds. */
+__kernel void ics_entries_pixel(__global uint *ent, int npx, int entries, uint seed_lo,
+                                uint seed_hi, uint light, uint slab) {
+  uint b = (uint)get_global_id(0), first = 64u * (b / 16u) + b % 16u;
+  if (first >= (uint)npx) return;
+  uint c0 = b, c1 = slab, c2 = light, c3 = 0x736c6162u, k0 = seed_lo, k1 = seed_hi;
+  PHILOX(c0, c1, c2, c3, k0, k1)
+  uint words[4] = {c0, c1, c2, c3};
+  for (int i = 0; i < 4 && first + 16u * i < (uint)npx; i++)
+    ent[first + 16u * i] = (uint)(((ulong)words[i] * (uint)entries) >> 32);
+}
+__kernel void ics_entries_run(__global uint *ent, int w, int h, int entries, uint seed_lo,
+                              uint seed_hi, uint light, uint slab, int phase) {
+  int k = (int)get_global_id(0), y = (int)get_global_id(1);
+  int xa = max(16 * k - 16 + phase, 0), xb = min(16 * k + phase, w);
+  if (y >= h || xa >= xb) return;
+  uint e = slab_choice(seed_lo, seed_hi, light, slab, (uint)y * (uint)(w + 32) + 16u * (uint)k,
+                       (uint)entries);
+  for (int x = xa; x < xb; x++) ent[y * w + x] = e;
+}
+
+/* one pixel of a table step: tap set starting at e0 (ntaps taps) */
+static float table_pixel(__global const float *S, buf_layout B, int x, int y, int p, int e0,
+                         int ntaps, __global const int *ix, __global const int *iy,
+                         __global const int *off, __global const float *wt,
+                         __global const float *fx, __global const float *fy, int clamped) {
+  float acc = 0;
+  for (int j = e0; j < e0 + ntaps; j++) {
+    float a, b, cc, d;
+    if (clamped) {
+      int x0 = x + ix[j], y0 = y + iy[j];
+      int xa = clampi(x0, B.w - 1), xb = clampi(x0 + 1, B.w - 1);
+      int ya = clampi(y0, B.h - 1), yb = clampi(y0 + 1, B.h - 1);
+      a = S[AT(B, xa, ya)], b = S[AT(B, xb, ya)], cc = S[AT(B, xa, yb)], d = S[AT(B, xb, yb)];
+    } else {
+      __global const float *r0 = S + p + off[j];
+      a = r0[0], b = r0[1], cc = r0[B.stride], d = r0[B.stride + 1];
+    }
+    float top = a + fx[j] * (b - a), bot = cc + fx[j] * (d - cc);
+    acc += wt[j] * (top + fy[j] * (bot - top));
+  }
+  return acc;
 }
 
 /* a table of `entries` bilinear tap sets, pixel (x, y) taking set ent[y w + x] (ics_entries:
  * chosen per pixel, run 1, or per run of 16 pixels of a row starting at x = phase, run 16, by
  * the counter RNG as ics_prop_entries_row and ics_prop_run_choice choose; a kernel of its own,
- * without loops, so PoCL vectorises the ten Philox rounds across pixels) */
-__kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_prop_table(
-    PROP_ARGS, __global const uint *ent, __global const float *fx, __global const float *fy) {
-  int x = (int)get_global_id(0), y = (int)get_global_id(1);
-  if (x >= B.w || y >= B.h) return;
-  int p = AT(B, x, y);
+ * without loops, so PoCL vectorises the ten Philox rounds across pixels). A work-item makes 16
+ * consecutive pixels of a row: with at most TABLE_VEC entries and reads within the apron, every
+ * tap set its pixels use is applied to all 16 as float16 and each pixel keeps its own set's
+ * result (the same arithmetic per pixel as the scalar loop; a per-pixel gather does not
+ * vectorise); otherwise pixel by pixel. */
+#define TABLE_VEC 8
+__kernel __attribute__((reqd_work_group_size(8, 8, 1))) void ics_prop_table(
+    PROP_ARGS, __global const uint *ent, __global const float *fx, __global const float *fy,
+    int entries) {
+  int x0 = 16 * (int)get_global_id(0), y = (int)get_global_id(1);
+  if (x0 >= B.w || y >= B.h) return;
+  int p = AT(B, x0, y);
   src += base;
   dst += base;
-  int e0 = (int)ent[y * B.w + x] * ntaps;
+  __global const uint *E = ent + y * B.w + x0;
+  if (!clamped && entries <= TABLE_VEC && x0 + 16 <= B.w) {
+    uint16 e16 = vload16(0, E);
+    for (int c = 0; c < nch; c++) {
+      __global const float *S = src + c * B.plane + p;
+      float16 acc = 0;
+      for (uint e = 0; e < (uint)entries; e++) {
+        int16 mine = e16 == (uint16)e;
+        if (!any(mine)) continue;
+        float16 r = 0;
+        for (int j = (int)e * ntaps; j < (int)e * ntaps + ntaps; j++) {
+          __global const float *r0 = S + off[j];
+          float16 a = vload16(0, r0), b = vload16(0, r0 + 1);
+          float16 cc = vload16(0, r0 + B.stride), d = vload16(0, r0 + B.stride + 1);
+          float16 top = a + fx[j] * (b - a), bot = cc + fx[j] * (d - cc);
+          r += wt[j] * (top + fy[j] * (bot - top));
+        }
+        acc = select(acc, r, mine);
+      }
+      vstore16(acc, 0, dst + c * B.plane + p);
+    }
+    return;
+  }
   for (int c = 0; c < nch; c++) {
     __global const float *S = src + c * B.plane;
-    float acc = 0;
-    for (int j = e0; j < e0 + ntaps; j++) {
-      float a, b, cc, d;
-      if (clamped) {
-        int x0 = x + ix[j], y0 = y + iy[j];
-        int xa = clampi(x0, B.w - 1), xb = clampi(x0 + 1, B.w - 1);
-        int ya = clampi(y0, B.h - 1), yb = clampi(y0 + 1, B.h - 1);
-        a = S[AT(B, xa, ya)], b = S[AT(B, xb, ya)], cc = S[AT(B, xa, yb)], d = S[AT(B, xb, yb)];
-      } else {
-        __global const float *r0 = S + p + off[j];
-        a = r0[0], b = r0[1], cc = r0[B.stride], d = r0[B.stride + 1];
-      }
-      float top = a + fx[j] * (b - a), bot = cc + fx[j] * (d - cc);
-      acc += wt[j] * (top + fy[j] * (bot - top));
-    }
-    dst[c * B.plane + p] = acc;
+    for (int x = x0; x < x0 + 16 && x < B.w; x++)
+      dst[c * B.plane + p + (x - x0)] = table_pixel(S, B, x, y, p + (x - x0),
+                                                    (int)E[x - x0] * ntaps, ntaps, ix, iy, off,
+                                                    wt, fx, fy, clamped);
   }
 }
 
