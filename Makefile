@@ -133,6 +133,9 @@ bench: deps all
 	$(BUILD)/bin/icshadow bench minmax --scene noise
 	@echo "== icshadow bench minmax --svd-table (error of the N-term SVD integrand)"
 	$(BUILD)/bin/icshadow bench minmax --svd-table
+	@b=cpu; if $(BUILD)/bin/icshadow render --backends | grep '^cl ' | grep -qv 'not available'; then b=cpu,cl; fi; \
+	  echo "== icshadow bench slab --backend $$b (the slab step per kernel member, backends side by side)"; \
+	  $(BUILD)/bin/icshadow bench slab --backend $$b
 
 # Stability sweep of the exact functions: max ulp error vs MPFR and ns per call per region, and
 # the scipy comparison; 5000 inputs per region, the size docs/analysis.md and README quote.
