@@ -3,21 +3,18 @@
  *
  * The host resolves each slab's taps exactly as the CPU backend does (ics_slab_kernel_taps, then
  * ics_prop_prepare or ics_prop_prepare_perspective) and uploads them; the device runs the two
- * kernels of slab.cl per slab: ics_prop for every light buffer, then ics_shade over the buffer
- * pixels (occlusions, surface colours, the clamp of signed kernels). The layered depth image is
+ * kernels of slab.cl per slab: the tap-set choices and the step of every light buffer
+ * (ics_entries_*, ics_prop_*), then ics_shade over the buffer pixels (occlusions, surface colours,
+ * volumes, the clamp of signed kernels) and the apron (ics_apron_*). The layered depth image is
  * the plan's, built on the host and uploaded once, with the objects' materials, detail functions
  * (Perlin, fBm, ridged; grid detail is refused before anything runs: ICS_ERR_UNSUPPORTED) and
  * transfer functions.
  *
- * Device choice: ICS_CL_DEVICE, when set, is a device index in the order of the platform list
- * (platform by platform), or a case-insensitive substring of "platform: device"; otherwise the
- * first GPU with fp64, else the first device with fp64. The program is built once per renderer
+ * The device is cl_device.c's choice (ICS_CL_DEVICE or the first GPU with fp64). The program is
+ * built once per renderer
  * (PoCL caches the binary in POCL_CACHE_DIR across runs). Every OpenCL call is checked; a failure
  * names the call and the error code. */
 #define _POSIX_C_SOURCE 200809L
-#define CL_TARGET_OPENCL_VERSION 120
-#include <CL/cl.h>
-#include <ctype.h>
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
@@ -25,6 +22,7 @@
 #include <string.h>
 
 #include "backend.h"
+#include "cl_device.h"
 #include "clock.h"
 #include "plan_internal.h"
 #include "propagate.h"
@@ -32,219 +30,47 @@
 #include "scene_internal.h"
 #include "slab_cl_source.h" /* ics_slab_cl_source: gpu/cl/slab.cl (cmake/embed_text.cmake) */
 
-static const char *cl_err_name(cl_int e) {
-  switch (e) {
-#define E(x) case x: return #x;
-    E(CL_DEVICE_NOT_FOUND) E(CL_DEVICE_NOT_AVAILABLE) E(CL_COMPILER_NOT_AVAILABLE)
-    E(CL_MEM_OBJECT_ALLOCATION_FAILURE) E(CL_OUT_OF_RESOURCES) E(CL_OUT_OF_HOST_MEMORY)
-    E(CL_BUILD_PROGRAM_FAILURE) E(CL_INVALID_VALUE) E(CL_INVALID_DEVICE) E(CL_INVALID_CONTEXT)
-    E(CL_INVALID_COMMAND_QUEUE) E(CL_INVALID_MEM_OBJECT) E(CL_INVALID_BUFFER_SIZE)
-    E(CL_INVALID_PROGRAM) E(CL_INVALID_KERNEL) E(CL_INVALID_KERNEL_ARGS) E(CL_INVALID_ARG_INDEX)
-    E(CL_INVALID_ARG_VALUE) E(CL_INVALID_ARG_SIZE) E(CL_INVALID_WORK_DIMENSION)
-    E(CL_INVALID_WORK_GROUP_SIZE) E(CL_INVALID_GLOBAL_WORK_SIZE) E(CL_INVALID_EVENT)
-    E(CL_INVALID_OPERATION) E(CL_INVALID_PLATFORM)
-#undef E
-    case -1001: return "CL_PLATFORM_NOT_FOUND_KHR";
-    default: return "an unknown OpenCL error";
-  }
-}
-
-#define MAX_DEVICES 64
-
-typedef struct cl_pick {
-  cl_platform_id platform;
-  cl_device_id device;
-  char name[120]; /* "platform: device" */
-} cl_pick;
-
-static int has_fp64(cl_device_id d) {
-  char ext[8192] = "";
-  clGetDeviceInfo(d, CL_DEVICE_EXTENSIONS, sizeof ext - 1, ext, NULL);
-  return strstr(ext, "cl_khr_fp64") != NULL;
-}
-
-static int contains_nocase(const char *hay, const char *needle) {
-  size_t n = strlen(needle);
-  for (; *hay; hay++) {
-    size_t i = 0;
-    while (i < n && hay[i] && tolower((unsigned char)hay[i]) == tolower((unsigned char)needle[i])) i++;
-    if (i == n) return 1;
-  }
-  return n == 0;
-}
-
-/* The device to run on (file comment); 0, or -1 with the reason in why. */
-static int pick_device(cl_pick *out, char *why, size_t why_size) {
-  cl_platform_id plats[16];
-  cl_uint np = 0;
-  cl_int e = clGetPlatformIDs(16, plats, &np);
-  if (e != CL_SUCCESS || np == 0) {
-    if (why) snprintf(why, why_size, "no OpenCL platform (%s; install an ICD such as "
-                      "pocl-opencl-icd)", e != CL_SUCCESS ? cl_err_name(e) : "none listed");
-    return -1;
-  }
-  cl_pick all[MAX_DEVICES];
-  cl_device_type type[MAX_DEVICES];
-  int fp64[MAX_DEVICES], n = 0;
-  for (cl_uint i = 0; i < np && n < MAX_DEVICES; i++) {
-    cl_device_id devs[MAX_DEVICES];
-    cl_uint nd = 0;
-    if (clGetDeviceIDs(plats[i], CL_DEVICE_TYPE_ALL, MAX_DEVICES, devs, &nd) != CL_SUCCESS) continue;
-    char pname[64] = "";
-    clGetPlatformInfo(plats[i], CL_PLATFORM_NAME, sizeof pname - 1, pname, NULL);
-    for (cl_uint j = 0; j < nd && n < MAX_DEVICES; j++) {
-      char dname[64] = "";
-      clGetDeviceInfo(devs[j], CL_DEVICE_NAME, sizeof dname - 1, dname, NULL);
-      clGetDeviceInfo(devs[j], CL_DEVICE_TYPE, sizeof type[n], &type[n], NULL);
-      all[n].platform = plats[i];
-      all[n].device = devs[j];
-      snprintf(all[n].name, sizeof all[n].name, "%s: %s", pname, dname);
-      fp64[n] = has_fp64(devs[j]);
-      n++;
-    }
-  }
-  if (!n) {
-    if (why) snprintf(why, why_size, "no OpenCL device on %u platform%s", np, np == 1 ? "" : "s");
-    return -1;
-  }
-  const char *want = getenv("ICS_CL_DEVICE");
-  int chosen = -1;
-  if (want && *want) {
-    char *end;
-    long idx = strtol(want, &end, 10);
-    if (!*end && end != want) {
-      if (idx < 0 || idx >= n) {
-        if (why) snprintf(why, why_size, "ICS_CL_DEVICE=%s: there are devices 0..%d", want, n - 1);
-        return -1;
-      }
-      chosen = (int)idx;
-    } else {
-      for (int i = 0; i < n && chosen < 0; i++)
-        if (contains_nocase(all[i].name, want)) chosen = i;
-      if (chosen < 0) {
-        if (why) {
-          int m = snprintf(why, why_size, "ICS_CL_DEVICE=%s matches no device (", want);
-          for (int i = 0; i < n && m >= 0 && (size_t)m < why_size; i++)
-            m += snprintf(why + m, why_size - (size_t)m, "%s%d: %s", i ? "; " : "", i, all[i].name);
-          if (m >= 0 && (size_t)m < why_size) snprintf(why + m, why_size - (size_t)m, ")");
-        }
-        return -1;
-      }
-    }
-    if (!fp64[chosen]) {
-      if (why) snprintf(why, why_size, "OpenCL device %s lacks cl_khr_fp64, which the cl backend "
-                        "needs", all[chosen].name);
-      return -1;
-    }
-  } else {
-    for (int i = 0; i < n && chosen < 0; i++)
-      if (fp64[i] && (type[i] & CL_DEVICE_TYPE_GPU)) chosen = i;
-    for (int i = 0; i < n && chosen < 0; i++)
-      if (fp64[i]) chosen = i;
-    if (chosen < 0) {
-      if (why) snprintf(why, why_size, "no OpenCL device with cl_khr_fp64 (%d device%s; first: %s)",
-                        n, n == 1 ? "" : "s", all[0].name);
-      return -1;
-    }
-  }
-  *out = all[chosen];
-  return 0;
-}
-
-static int cl_available(char *why, size_t why_size) {
-  cl_pick pk;
-  return pick_device(&pk, why, why_size) == 0;
-}
+static int cl_available(char *why, size_t why_size) { return ics_cl_available(why, why_size); }
 
 typedef struct cl_state {
-  cl_context ctx;
-  cl_command_queue q;
+  ics_cl_dev d;
   cl_program prog;
-  cl_kernel prop[3], entries[2], shade, apron[2]; /* ics_prop_stencil, _table, _classes; ics_shade;
-                                        ics_apron_sides, _ends */
-  cl_device_id dev;
-  cl_ulong max_alloc;
-  char device[128];
+  cl_kernel k[8]; /* KERNEL_NAMES, in that order */
 } cl_state;
+
+static const char *const KERNEL_NAMES[8] = {"ics_prop_stencil", "ics_prop_table",
+                                            "ics_prop_classes", "ics_entries_pixel",
+                                            "ics_entries_run", "ics_shade", "ics_apron_sides",
+                                            "ics_apron_ends"};
+enum { K_PROP = 0, K_ENTRIES = 3, K_SHADE = 5, K_APRON = 6 };
 
 static void cl_destroy(void *state) {
   cl_state *s = state;
   if (!s) return;
-  for (int i = 0; i < 3; i++)
-    if (s->prop[i]) clReleaseKernel(s->prop[i]);
-  if (s->shade) clReleaseKernel(s->shade);
-  for (int i = 0; i < 2; i++)
-    if (s->entries[i]) clReleaseKernel(s->entries[i]);
-  for (int i = 0; i < 2; i++)
-    if (s->apron[i]) clReleaseKernel(s->apron[i]);
+  for (int i = 0; i < 8; i++)
+    if (s->k[i]) clReleaseKernel(s->k[i]);
   if (s->prog) clReleaseProgram(s->prog);
-  if (s->q) clReleaseCommandQueue(s->q);
-  if (s->ctx) clReleaseContext(s->ctx);
+  ics_cl_dev_close(&s->d);
   free(s);
 }
 
 static ics_status cl_create(void **state, const ics_render_opts *opts, char *msg, size_t msg_size) {
   (void)opts;
   *state = NULL;
-  cl_pick pk;
-  char why[1024];
-  if (pick_device(&pk, why, sizeof why)) {
-    if (msg) snprintf(msg, msg_size, "backend cl: %s", why);
-    return ICS_ERR_UNSUPPORTED;
-  }
   cl_state *s = calloc(1, sizeof *s);
   if (!s) return ICS_ERR_NOMEM;
-  s->dev = pk.device;
-  snprintf(s->device, sizeof s->device, "OpenCL, %s", pk.name);
-  clGetDeviceInfo(s->dev, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof s->max_alloc, &s->max_alloc, NULL);
-  cl_int e;
-  const char *call = "clCreateContext";
-  cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)pk.platform, 0};
-  s->ctx = clCreateContext(props, 1, &s->dev, NULL, NULL, &e);
-  if (e != CL_SUCCESS) goto fail;
-  call = "clCreateCommandQueue";
-  s->q = clCreateCommandQueue(s->ctx, s->dev, CL_QUEUE_PROFILING_ENABLE, &e);
-  if (e != CL_SUCCESS) goto fail;
-  call = "clCreateProgramWithSource";
-  const char *src = ics_slab_cl_source;
-  s->prog = clCreateProgramWithSource(s->ctx, 1, &src, NULL, &e);
-  if (e != CL_SUCCESS) goto fail;
-  e = clBuildProgram(s->prog, 1, &s->dev, "-cl-std=CL1.2", NULL, NULL);
-  if (e != CL_SUCCESS) {
-    char log[2048] = "";
-    clGetProgramBuildInfo(s->prog, s->dev, CL_PROGRAM_BUILD_LOG, sizeof log - 1, log, NULL);
-    if (msg) snprintf(msg, msg_size, "backend cl: building slab.cl for %s failed (%s): %s",
-                      pk.name, cl_err_name(e), log);
+  char why[2048];
+  ics_status st = ics_cl_dev_open(&s->d, why, sizeof why);
+  if (st == ICS_OK)
+    st = ics_cl_build(&s->d, ics_slab_cl_source, "slab.cl", 8, KERNEL_NAMES, &s->prog, s->k, why,
+                      sizeof why);
+  if (st != ICS_OK) {
+    if (msg) snprintf(msg, msg_size, "backend cl: %s", why);
     cl_destroy(s);
-    return ICS_ERR_UNSUPPORTED;
-  }
-  static const char *const prop_names[3] = {"ics_prop_stencil", "ics_prop_table", "ics_prop_classes"};
-  for (int i = 0; i < 3; i++) {
-    call = prop_names[i];
-    s->prop[i] = clCreateKernel(s->prog, prop_names[i], &e);
-    if (e != CL_SUCCESS) goto fail;
-  }
-  static const char *const entry_names[2] = {"ics_entries_pixel", "ics_entries_run"};
-  for (int i = 0; i < 2; i++) {
-    call = entry_names[i];
-    s->entries[i] = clCreateKernel(s->prog, entry_names[i], &e);
-    if (e != CL_SUCCESS) goto fail;
-  }
-  call = "clCreateKernel(ics_shade)";
-  s->shade = clCreateKernel(s->prog, "ics_shade", &e);
-  if (e != CL_SUCCESS) goto fail;
-  static const char *const apron_names[2] = {"ics_apron_sides", "ics_apron_ends"};
-  for (int i = 0; i < 2; i++) {
-    call = apron_names[i];
-    s->apron[i] = clCreateKernel(s->prog, apron_names[i], &e);
-    if (e != CL_SUCCESS) goto fail;
+    return st;
   }
   *state = s;
   return ICS_OK;
-fail:
-  if (msg) snprintf(msg, msg_size, "backend cl: %s on %s: %s", call, pk.name, cl_err_name(e));
-  cl_destroy(s);
-  return e == CL_OUT_OF_HOST_MEMORY || e == CL_OUT_OF_RESOURCES ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
 }
 
 /* Per light: the device copies of its prepared taps, grown as a slab needs more. */
@@ -282,7 +108,7 @@ typedef struct cl_job {
 static cl_mem job_buffer(cl_job *j, size_t bytes, const void *init, const char *what) {
   if (j->err != CL_SUCCESS) return NULL;
   cl_int e;
-  cl_mem m = clCreateBuffer(j->s->ctx, CL_MEM_READ_WRITE | (init ? CL_MEM_COPY_HOST_PTR : 0),
+  cl_mem m = clCreateBuffer(j->s->d.ctx, CL_MEM_READ_WRITE | (init ? CL_MEM_COPY_HOST_PTR : 0),
                             bytes ? bytes : 4, (void *)init, &e);
   if (e != CL_SUCCESS) j->err = e, j->call = what;
   return m;
@@ -290,7 +116,7 @@ static cl_mem job_buffer(cl_job *j, size_t bytes, const void *init, const char *
 
 static void job_write(cl_job *j, cl_mem m, size_t bytes, const void *data, const char *what) {
   if (j->err != CL_SUCCESS || !bytes) return;
-  cl_int e = clEnqueueWriteBuffer(j->s->q, m, CL_TRUE, 0, bytes, data, 0, NULL, NULL);
+  cl_int e = clEnqueueWriteBuffer(j->s->d.q, m, CL_TRUE, 0, bytes, data, 0, NULL, NULL);
   if (e != CL_SUCCESS) j->err = e, j->call = what;
 }
 
@@ -331,13 +157,6 @@ static void set_arg(cl_job *j, cl_kernel k, cl_uint i, size_t size, const void *
 }
 #define ARG(k, i, v) set_arg(j, k, i, sizeof(v), &(v))
 
-static double event_ms(cl_event ev) {
-  cl_ulong t0 = 0, t1 = 0;
-  clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_START, sizeof t0, &t0, NULL);
-  clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof t1, &t1, NULL);
-  return t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0;
-}
-
 /* one slab: every light's step, then the shading; their device times into the stats */
 static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stats *st) {
   const ics_plan *P = j->P;
@@ -360,13 +179,13 @@ static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stat
             slab = pt->slab;
     cl_double sc = pt->s, cx = pt->cx, cy = pt->cy;
     cl_taps *t = &j->taps[l];
-    cl_kernel kp = s->prop[mode];
+    cl_kernel kp = s->k[K_PROP + mode];
     cl_int clamped = pt->s != 1 || pt->reach > P->buf.apron; /* as propagate.c */
     ARG(kp, 0, j->src), ARG(kp, 1, j->dst), ARG(kp, 2, base), ARG(kp, 3, B), ARG(kp, 4, nch);
     ARG(kp, 5, ntaps), ARG(kp, 6, t->ix), ARG(kp, 7, t->iy), ARG(kp, 8, t->off);
     ARG(kp, 9, t->w), ARG(kp, 10, clamped);
     if (mode == 1) {
-      cl_kernel ke = s->entries[run > 1];
+      cl_kernel ke = s->k[K_ENTRIES + (run > 1)];
       cl_int bw = B.w, bh = B.h, npx = B.w * B.h;
       size_t g_px[1] = {((size_t)npx + 63) / 64 * 16};
       size_t g_run[2] = {(size_t)B.w / 16 + 2, (size_t)B.h};
@@ -379,7 +198,7 @@ static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stat
         ARG(ke, 5, light), ARG(ke, 6, slab);
       }
       if (j->err != CL_SUCCESS) break;
-      cl_int e = clEnqueueNDRangeKernel(s->q, ke, run > 1 ? 2 : 1, NULL, run > 1 ? g_run : g_px,
+      cl_int e = clEnqueueNDRangeKernel(s->d.q, ke, run > 1 ? 2 : 1, NULL, run > 1 ? g_run : g_px,
                                         NULL, 0, NULL, &evs[nev]);
       if (e != CL_SUCCESS) {
         j->err = e, j->call = "clEnqueueNDRangeKernel(ics_entries_*)";
@@ -394,14 +213,14 @@ static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stat
     /* the stencil and the table: 16 pixels per work-item, groups of 8 x 8 */
     size_t local_st[2] = {8, 8};
     size_t global_st[2] = {((size_t)P->Wb + 127) / 128 * 8, ((size_t)P->Hb + 7) / 8 * 8};
-    cl_int e = clEnqueueNDRangeKernel(s->q, kp, 2, NULL, mode < 2 ? global_st : global,
+    cl_int e = clEnqueueNDRangeKernel(s->d.q, kp, 2, NULL, mode < 2 ? global_st : global,
                                       mode < 2 ? local_st : local, 0, NULL, &evs[nev]);
     if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueNDRangeKernel(ics_prop)";
     else nev++;
   }
   int nprop = nev;
   if (j->err == CL_SUCCESS) {
-    cl_kernel ks = s->shade;
+    cl_kernel ks = s->k[K_SHADE];
     shade_args A = j->args;
     A.k = k;
     A.zf = P->z0 + k * P->e;
@@ -415,7 +234,7 @@ static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stat
       else set_arg(j, ks, i, sizeof A, &A);
     }
     if (j->err == CL_SUCCESS) {
-      cl_int e = clEnqueueNDRangeKernel(s->q, ks, 2, NULL, global, local, 0, NULL, &evs[nev]);
+      cl_int e = clEnqueueNDRangeKernel(s->d.q, ks, 2, NULL, global, local, 0, NULL, &evs[nev]);
       if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueNDRangeKernel(ics_shade)";
       else nev++;
     }
@@ -426,9 +245,9 @@ static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stat
     size_t g_sides[3] = {2 * (size_t)A, (size_t)P->Hb, (size_t)nplanes};
     size_t g_ends[3] = {(size_t)P->buf.stride, 2 * (size_t)A, (size_t)nplanes};
     for (int i = 0; i < 2 && j->err == CL_SUCCESS; i++) {
-      ARG(s->apron[i], 0, j->dst), ARG(s->apron[i], 1, B), ARG(s->apron[i], 2, A);
+      ARG(s->k[K_APRON + i], 0, j->dst), ARG(s->k[K_APRON + i], 1, B), ARG(s->k[K_APRON + i], 2, A);
       if (j->err != CL_SUCCESS) break;
-      cl_int e = clEnqueueNDRangeKernel(s->q, s->apron[i], 3, NULL, i ? g_ends : g_sides, NULL, 0,
+      cl_int e = clEnqueueNDRangeKernel(s->d.q, s->k[K_APRON + i], 3, NULL, i ? g_ends : g_sides, NULL, 0,
                                         NULL, NULL);
       if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueNDRangeKernel(ics_apron)";
     }
@@ -437,7 +256,7 @@ static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stat
     cl_int e = clWaitForEvents((cl_uint)nev, evs);
     if (e != CL_SUCCESS && j->err == CL_SUCCESS) j->err = e, j->call = "clWaitForEvents (slab)";
     for (int i = 0; i < nev; i++) {
-      double ms = event_ms(evs[i]);
+      double ms = ics_cl_event_ms(evs[i]);
       if (i < nprop) st->ms_convolution += ms;
       else st->ms_shading += ms;
       clReleaseEvent(evs[i]);
@@ -467,10 +286,10 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
                       "exceed the kernels' 32-bit indices", nl, nch, P->Wb, P->Hb);
     return ICS_ERR_SIZE;
   }
-  if (lbytes > s->max_alloc) {
+  if (lbytes > s->d.max_alloc) {
     if (msg) snprintf(msg, msg_size, "backend cl: the light buffers take %zu bytes, over the "
                       "device's largest allocation (%llu bytes, %s)", lbytes,
-                      (unsigned long long)s->max_alloc, s->device);
+                      (unsigned long long)s->d.max_alloc, s->d.name);
     return ICS_ERR_SIZE;
   }
   ics_status status = ICS_OK;
@@ -583,9 +402,9 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
   j->ent = job_buffer(j, sizeof(cl_uint) * npx, NULL, "clCreateBuffer(tap-set choices)");
   if (j->err == CL_SUCCESS) {
     const cl_float one = 1, zero = 0;
-    cl_int e = clEnqueueFillBuffer(s->q, j->src, &one, sizeof one, 0, lbytes, 0, NULL, NULL);
+    cl_int e = clEnqueueFillBuffer(s->d.q, j->src, &one, sizeof one, 0, lbytes, 0, NULL, NULL);
     if (e == CL_SUCCESS)
-      e = clEnqueueFillBuffer(s->q, j->img, &zero, sizeof zero, 0,
+      e = clEnqueueFillBuffer(s->d.q, j->img, &zero, sizeof zero, 0,
                               sizeof(float) * 4 * (size_t)P->W * P->H, 0, NULL, NULL);
     if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueFillBuffer";
   }
@@ -623,13 +442,13 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
     if (j->err == CL_SUCCESS && o->progress) o->progress(o->progress_ctx, k + 1, P->K);
   }
   if (j->err == CL_SUCCESS) {
-    cl_int e = clEnqueueReadBuffer(s->q, j->img, CL_TRUE, 0, sizeof(float) * 4 * (size_t)P->W * P->H,
+    cl_int e = clEnqueueReadBuffer(s->d.q, j->img, CL_TRUE, 0, sizeof(float) * 4 * (size_t)P->W * P->H,
                                    img->data, 0, NULL, NULL);
     if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueReadBuffer(image)";
   }
   cl_int flags = 0;
   if (j->err == CL_SUCCESS) {
-    cl_int e = clEnqueueReadBuffer(s->q, j->flags, CL_TRUE, 0, sizeof flags, &flags, 0, NULL, NULL);
+    cl_int e = clEnqueueReadBuffer(s->d.q, j->flags, CL_TRUE, 0, sizeof flags, &flags, 0, NULL, NULL);
     if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueReadBuffer(flags)";
   }
   if (j->err == CL_SUCCESS && (flags & 1)) { /* slab.cl FLAG_VOLUMES */
@@ -639,11 +458,9 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
     goto done;
   }
   if (j->err != CL_SUCCESS) {
-    if (msg) snprintf(msg, msg_size, "backend cl: %s on %s: %s", j->call, s->device,
-                      cl_err_name(j->err));
-    status = j->err == CL_MEM_OBJECT_ALLOCATION_FAILURE || j->err == CL_OUT_OF_RESOURCES ||
-                     j->err == CL_OUT_OF_HOST_MEMORY || j->err == CL_INVALID_BUFFER_SIZE
-                 ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
+    if (msg) snprintf(msg, msg_size, "backend cl: %s on %s: %s", j->call, s->d.name,
+                      ics_cl_err_name(j->err));
+    status = ics_cl_status(j->err);
     goto done;
   }
   for (size_t i = 0; i < (size_t)P->W * P->H; i++) {
@@ -652,7 +469,7 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
   }
   st->threads = 0;
   st->slabs = P->K;
-  snprintf(st->device, sizeof st->device, "%s", s->device);
+  snprintf(st->device, sizeof st->device, "%s", s->d.name);
   if (nl && P->K) st->ns_per_px_slab = 1e6 * st->ms_convolution / ((double)npx * P->K * nl);
   st->ms_total = 1e3 * (ics_clock_s() - t_start);
   goto done;
