@@ -27,3 +27,8 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
   set_tests_properties(cli_render_cl_no_device PROPERTIES
     ENVIRONMENT "POCL_CACHE_DIR=${ics_pocl_cache};ICS_CL_DEVICE=no-such-device")
 endif()
+
+# summed-area tables on the device (icshadow/cl.h) equal the core's bit for bit
+ics_add_test(NAME test_sat_cl SOURCES test_sat_cl.c LABELS medium
+  LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER OPENCL)
+set_tests_properties(test_sat_cl PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
