@@ -12,6 +12,9 @@
 
 #include "commands.h"
 #include "icshadow.h"
+#ifdef ICS_HAVE_RENDER
+#include "icshadow/cl.h"
+#endif
 
 /* the subcommand, for messages */
 static const char *sat_cmd(int dims) { return dims == 2 ? "bench sat2d" : "bench sat3d"; }
@@ -41,9 +44,13 @@ static void help(FILE *f, int dims) {
           "  --size N      %s (default %d)\n"
           "  --modes LIST  comma-separated: float,float-offset,compensated,double (default all)\n"
           "  --reps R      repetitions, 1..100 (default %d)\n"
-          "  --boxes B     random boxes for the error, 0..100000 (default 256)\n",
+          "  --boxes B     random boxes for the error, 0..100000 (default 256)\n"
+          "  --backend L   cpu (default), cl (the table built on the OpenCL device of\n"
+          "                icshadow/cl.h) or cpu,cl: side by side per mode; a cl row has kind\n"
+          "                sat%dd-cl, time_s the device time of the passes (transfers not\n"
+          "                counted: first_build_s has one whole call), its error from its table\n",
           dims, dims == 2 ? "N x N cells" : "N x N x N cells", dims == 2 ? 4096 : 512,
-          dims == 2 ? 9 : 5);
+          dims == 2 ? 9 : 5, dims);
   if (dims == 2)
     fprintf(f, "  --chirp-csv FILE  instead of the benchmark: write the chirp-occluder data of\n"
                "                Ament et al. 2014 Fig. 4 (box vs Gaussian filtering) as CSV\n");
@@ -277,6 +284,7 @@ typedef struct {
   size_t n[3];
   int modes[ICS_SAT_PRECISION_COUNT], nmodes;
   int reps, boxes;
+  int cpu, cl; /* --backend */
 } config;
 
 /* --modes: distinct precision mode names, comma-separated */
@@ -359,6 +367,108 @@ static ics_status box_any(const config *c, void *sat, const long lo[3], const lo
   return ics_sat3d_box_sum(sat, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], s);
 }
 
+/* A table's box sum: the CPU table, or the entries of a table read back from the device. */
+typedef struct {
+  const config *c;
+  void *sat;          /* CPU */
+  const void *table;  /* device: floats or doubles */
+  const float *lo;    /* device, compensated */
+  ics_sat_precision mode;
+  double off;
+} table_ref;
+
+static double raw_entry(const table_ref *t, long x, long y, long z) {
+  if (x < 0 || y < 0 || z < 0) return 0.0;
+  size_t i = ((size_t)z * t->c->n[1] + (size_t)y) * t->c->n[0] + (size_t)x;
+  if (t->mode == ICS_SAT_DOUBLE) return ((const double *)t->table)[i];
+  double v = ((const float *)t->table)[i];
+  return t->mode == ICS_SAT_COMPENSATED ? v + (double)t->lo[i] : v;
+}
+
+static ics_status box_ref(const table_ref *t, const long lo[3], const long hi[3], double *s) {
+  if (t->sat) return box_any(t->c, t->sat, lo, hi, s);
+  double v = 0;
+  for (int k = 0; k < 8; k++) {
+    long x = k & 1 ? lo[0] - 1 : hi[0] - 1, y = k & 2 ? lo[1] - 1 : hi[1] - 1,
+         z = k & 4 ? lo[2] - 1 : hi[2] - 1;
+    double sign = ((k & 1) ^ (k >> 1 & 1) ^ (k >> 2 & 1)) ? -1.0 : 1.0;
+    if (t->c->dims == 2 && (k & 4)) continue; /* no z corners in 2D (z0 - 1 < 0 anyway) */
+    v += sign * raw_entry(t, x, y, z);
+  }
+  *s = v + t->off * (double)(hi[0] - lo[0]) * (double)(hi[1] - lo[1]) * (double)(hi[2] - lo[2]);
+  return ICS_OK;
+}
+
+/* max relative error and max error / bound over the random boxes and the whole table */
+static void measure_error(const table_ref *t, const float *data, double *pre, double *max_rel,
+                          double *max_frac) {
+  const config *c = t->c;
+  double factor = ics_sat_error_factor(t->mode, c->dims);
+  size_t cells = c->n[0] * c->n[1] * c->n[2];
+  *max_rel = *max_frac = 0;
+  abs_prefix(data, c->n, t->off, pre);
+  uint64_t bs = 777;
+  for (int b = 0; b <= c->boxes; b++) {
+    long lo[3] = {0, 0, 0}, hi[3];
+    for (int a = 0; a < 3; a++) {
+      long n = (long)c->n[a];
+      if (b == c->boxes) { /* whole table */
+        hi[a] = n;
+        continue;
+      }
+      long e = 1 + (long)(cli_splitmix_unit(&bs) * 64);
+      if (e > n) e = n;
+      lo[a] = (long)(cli_splitmix_unit(&bs) * (double)(n - e + 1));
+      if (lo[a] > n - e) lo[a] = n - e;
+      hi[a] = lo[a] + e;
+    }
+    if (b == c->boxes && cells > ((size_t)1 << 26)) break; /* too slow to brute-force */
+    double got, exact, abs_box;
+    if (box_ref(t, lo, hi, &got) != ICS_OK) continue;
+    brute(data, c->n, lo, hi, t->off, &exact, &abs_box);
+    /* P = sum |a - m| over the prefix box [0, hi), exact up to double rounding */
+    double P = pre[((size_t)(hi[2] - 1) * c->n[1] + (size_t)(hi[1] - 1)) * c->n[0] +
+                   (size_t)(hi[0] - 1)];
+    double nsum = (double)hi[0] + (double)hi[1] + (c->dims == 3 ? (double)hi[2] : 0.0);
+    double bound = factor * (nsum + (c->dims == 3 ? 8 : 4)) * P;
+    double err = fabs(got - exact);
+    if (err / fabs(exact) > *max_rel) *max_rel = err / fabs(exact);
+    if (err / bound > *max_frac) *max_frac = err / bound;
+  }
+}
+
+#ifdef ICS_HAVE_RENDER
+/* The table of mode m built on the device: the first call (whole, wall clock), then R builds
+ * (device time of the passes) interleaved with the memcpy floor, its error, one CSV row. */
+static int cl_row(const config *c, ics_cl *cl, ics_sat_precision m, float off, const float *data,
+                  void *table, float *lo, const char *src, char *dst, size_t copy, size_t bytes,
+                  double *pre) {
+  char msg[1024];
+  double ms, t0 = cli_now_s();
+  ics_status st = ics_cl_sat_build(cl, data, c->n[0], c->n[1], c->n[2], m, off, table, lo, &ms,
+                                   msg, sizeof msg);
+  double first = cli_now_s() - t0, best = INFINITY, best_copy = INFINITY;
+  for (int r = 0; r < c->reps && st == ICS_OK; r++) {
+    t0 = cli_now_s();
+    memcpy(dst, src, copy);
+    double tc = cli_now_s() - t0;
+    if (tc < best_copy) best_copy = tc;
+    st = ics_cl_sat_build(cl, data, c->n[0], c->n[1], c->n[2], m, off, table, lo, &ms, msg,
+                          sizeof msg);
+    if (1e-3 * ms < best) best = 1e-3 * ms;
+  }
+  if (st != ICS_OK)
+    return cli_status_error(sat_cmd(c->dims), st, "--backend cl, %s: %s", ics_sat_precision_name(m), msg);
+  double max_rel, max_frac;
+  table_ref tr = {c, NULL, table, lo, m, m == ICS_SAT_FLOAT_OFFSET ? (double)off : 0.0};
+  measure_error(&tr, data, pre, &max_rel, &max_frac);
+  printf("sat%dd-cl,%s,%zu,%zu,%zu,%d,%.17g,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n", c->dims,
+         ics_sat_precision_name(m), c->n[0], c->n[1], c->n[2], c->reps, best, first, bytes,
+         best_copy, best_copy / best, (double)bytes / best * 1e-9, max_rel, max_frac, c->boxes);
+  return 0;
+}
+#endif
+
 static int run_bench(const config *c) {
   size_t cells = c->n[0] * c->n[1] * c->n[2];
   float *data = malloc(cells * sizeof(float));
@@ -379,6 +489,25 @@ static int run_bench(const config *c) {
     data[i] = (float)(1000.0 + (2.0 * cli_splitmix_unit(&seed) - 1.0));
   memset(src, 1, copy_max);
   memset(dst, 0, copy_max);
+#ifdef ICS_HAVE_RENDER
+  ics_cl *cl = NULL;
+  void *cltab = NULL;
+  float *cllo = NULL;
+  if (c->cl) {
+    char msg[2048];
+    if (ics_cl_create(&cl, msg, sizeof msg) != ICS_OK) {
+      free(data), free(src), free(dst), free(pre);
+      return cli_error(sat_cmd(c->dims), "--backend cl: %s", msg);
+    }
+    cltab = malloc(cells * sizeof(double));
+    cllo = malloc(cells * sizeof(float));
+    if (!cltab || !cllo) {
+      ics_cl_destroy(cl), free(cltab), free(cllo);
+      free(data), free(src), free(dst), free(pre);
+      return cli_failure(sat_cmd(c->dims), "out of memory");
+    }
+  }
+#endif
   printf("kind,mode,width,height,depth,reps,time_s,first_build_s,bytes,memcpy_s,floor_ratio,"
          "gbytes_per_s,max_rel_err,max_bound_frac,boxes\n");
   if (!stdout_ok(c->dims)) {
@@ -400,7 +529,7 @@ static int run_bench(const config *c) {
     size_t bytes = cells * 4 + cells * ics_sat_cell_bytes(m);
     size_t copy = bytes / 2;
     double best = INFINITY, best_copy = INFINITY;
-    for (int r = 0; r < c->reps; r++) {
+    for (int r = 0; r < (c->cpu ? c->reps : 0); r++) {
       t0 = cli_now_s();
       memcpy(dst, src, copy);
       double tc = cli_now_s() - t0;
@@ -418,46 +547,32 @@ static int run_bench(const config *c) {
       continue;
     }
     /* error on random boxes (and the whole table) */
-    double off = offset_any(c, sat), max_rel = 0, max_frac = 0;
-    double factor = ics_sat_error_factor(m, c->dims);
-    abs_prefix(data, c->n, off, pre);
-    uint64_t bs = 777;
-    for (int b = 0; b <= c->boxes; b++) {
-      long lo[3] = {0, 0, 0}, hi[3];
-      for (int a = 0; a < 3; a++) {
-        long n = (long)c->n[a];
-        if (b == c->boxes) { /* whole table */
-          hi[a] = n;
-          continue;
-        }
-        long e = 1 + (long)(cli_splitmix_unit(&bs) * 64);
-        if (e > n) e = n;
-        lo[a] = (long)(cli_splitmix_unit(&bs) * (double)(n - e + 1));
-        if (lo[a] > n - e) lo[a] = n - e;
-        hi[a] = lo[a] + e;
-      }
-      if (b == c->boxes && cells > ((size_t)1 << 26)) break; /* too slow to brute-force */
-      double got, exact, abs_box;
-      if (box_any(c, sat, lo, hi, &got) != ICS_OK) continue;
-      brute(data, c->n, lo, hi, off, &exact, &abs_box);
-      /* P = sum |a - m| over the prefix box [0, hi), exact up to double rounding */
-      double P = pre[((size_t)(hi[2] - 1) * c->n[1] + (size_t)(hi[1] - 1)) * c->n[0] +
-                     (size_t)(hi[0] - 1)];
-      double nsum = (double)hi[0] + (double)hi[1] + (c->dims == 3 ? (double)hi[2] : 0.0);
-      double bound = factor * (nsum + (c->dims == 3 ? 8 : 4)) * P;
-      double err = fabs(got - exact);
-      if (err / fabs(exact) > max_rel) max_rel = err / fabs(exact);
-      if (err / bound > max_frac) max_frac = err / bound;
+    double off = offset_any(c, sat), max_rel, max_frac;
+    if (c->cpu) {
+      table_ref tr = {c, sat, NULL, NULL, m, off};
+      measure_error(&tr, data, pre, &max_rel, &max_frac);
+      printf("sat%dd,%s,%zu,%zu,%zu,%d,%.17g,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n",
+             c->dims, ics_sat_precision_name(m), c->n[0], c->n[1], c->n[2], c->reps, best, first,
+             bytes, best_copy, best_copy / best, (double)bytes / best * 1e-9, max_rel, max_frac,
+             c->boxes);
     }
-    printf("sat%dd,%s,%zu,%zu,%zu,%d,%.17g,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n", c->dims,
-           ics_sat_precision_name(m), c->n[0], c->n[1], c->n[2], c->reps, best, first, bytes,
-           best_copy, best_copy / best, (double)bytes / best * 1e-9, max_rel, max_frac, c->boxes);
+#ifdef ICS_HAVE_RENDER
+    if (c->cl && cl_row(c, cl, m, (float)off, data, cltab, cllo, src, dst, copy, bytes, pre)) {
+      free_any(c, sat);
+      rc = 1;
+      break;
+    }
+#endif
     free_any(c, sat);
     if (!stdout_ok(c->dims)) {
       rc = 1;
       break;
     }
   }
+#ifdef ICS_HAVE_RENDER
+  ics_cl_destroy(cl);
+  free(cltab), free(cllo);
+#endif
   free(data), free(src), free(dst), free(pre);
   return rc;
 }
@@ -477,7 +592,7 @@ static int bench_sat(int argc, char **argv, int dims) {
   c.boxes = 256;
   for (int i = 0; i < ICS_SAT_PRECISION_COUNT; i++) c.modes[i] = i;
   c.nmodes = ICS_SAT_PRECISION_COUNT;
-  const char *cmd = sat_cmd(dims), *chirp = NULL;
+  const char *cmd = sat_cmd(dims), *chirp = NULL, *backend = "cpu";
   int size = 0, width = 0, height = 0, depth = 0, lights = 0;
   int given_size = 0, given_width = 0, given_height = 0, given_depth = 0, given_chirp = 0;
   const cli_option opts[] = {
@@ -491,9 +606,17 @@ static int bench_sat(int argc, char **argv, int dims) {
       {"--boxes", .kind = CLI_INT, .dest = &c.boxes, .lo = 0, .hi = 100000},
       {"--chirp-csv", .kind = CLI_FILE, .dest = &chirp, .given = &given_chirp},
       {"--lights", .kind = CLI_FLAG, .dest = &lights},
+      {"--backend", .kind = CLI_STRING, .dest = &backend},
   };
   int rc = cli_parse_options(cmd, argc, argv, 1, opts, CLI_NOPTS(opts));
   if (rc) return rc;
+  if (!strcmp(backend, "cpu")) c.cpu = 1;
+  else if (!strcmp(backend, "cl")) c.cl = 1;
+  else if (!strcmp(backend, "cpu,cl") || !strcmp(backend, "cl,cpu")) c.cpu = c.cl = 1;
+  else return cli_error(cmd, "--backend: expected cpu, cl or cpu,cl, got '%s'", backend);
+#ifndef ICS_HAVE_RENDER
+  if (c.cl) return cli_error(cmd, "--backend cl: built without the renderer library (jansson)");
+#endif
   if (dims == 2 && lights) return cli_error(cmd, "--lights is for sat3d");
   if (dims == 2 && given_depth) return cli_error(cmd, "--depth is for sat3d");
   if (dims == 3 && given_chirp) return cli_error(cmd, "--chirp-csv is for sat2d");
@@ -515,7 +638,8 @@ static int bench_sat(int argc, char **argv, int dims) {
     size_t b = ics_sat_cell_bytes((ics_sat_precision)c.modes[i]);
     if (b > max_out) max_out = b;
   }
-  double total = cells * 4 + cells * (double)max_out + cells * (4.0 + (double)max_out) + cells * 8;
+  double total = cells * 4 + cells * (double)max_out + cells * (4.0 + (double)max_out) + cells * 8 +
+                 (c.cl ? cells * 12 : 0); /* the device table read back */
   if (cells > 2147483648.0 || total > 8.0 * 1073741824.0)
     return cli_error(cmd, "%zu x %zu x %zu cells would allocate %.1f GiB (input, table, memcpy "
                      "buffers and the bound's prefix sums); the limit is 8 GiB and 2^31 cells",

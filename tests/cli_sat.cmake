@@ -57,3 +57,5 @@ set_tests_properties(cli_sat3d_lights PROPERTIES LABELS medium ENVIRONMENT LC_AL
 add_test(NAME cli_sat_stdout_full
   COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/sat_stdout_full.sh $<TARGET_FILE:icshadow_cli>)
 set_tests_properties(cli_sat_stdout_full PROPERTIES LABELS fast)
+ics_cli_test(NAME cli_sat2d_backend_unknown RC 2 ARGS "bench|sat2d|--backend|gpu"
+  ERR "--backend: expected cpu, cl or cpu,cl, got 'gpu'")
