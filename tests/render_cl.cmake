@@ -42,3 +42,7 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
     OUT "^kind,[^\n]*\nsat3d-cl,double,9,7,5,1,[^\n]*,0,0,20\n$")
   set_tests_properties(cli_sat2d_cl cli_sat3d_cl PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
 endif()
+# min-max mipmaps on the device: the same trees and the same integrated sums as the core's
+ics_add_test(NAME test_minmax_cl SOURCES test_minmax_cl.c LABELS medium
+  LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER OPENCL)
+set_tests_properties(test_minmax_cl PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})

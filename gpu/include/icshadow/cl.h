@@ -1,5 +1,6 @@
 /* icshadow/cl.h — libicshadow's primitives on an OpenCL device (part of the renderer library,
- * docs/sat.md "On OpenCL"): a device context and summed-area tables built on it. Built with
+ * docs/sat.md and docs/minmax.md "On OpenCL"): a device context, summed-area tables built on
+ * it, and 1D min-max mipmaps built and traversed on it. Built with
  * OpenCL (CMake finds it); without it every function returns ICS_ERR_UNSUPPORTED. The device is
  * the cl backend's choice: ICS_CL_DEVICE (an index or a substring of "platform: device"), else
  * the first GPU with fp64, else the first device with fp64 (docs/backend_cl.md). */
@@ -9,6 +10,7 @@
 #include <stddef.h>
 
 #include "icshadow/api.h"
+#include "icshadow/minmax.h"
 #include "icshadow/sat.h"
 #include "icshadow/status.h"
 
@@ -40,6 +42,31 @@ ICS_API const char *ics_cl_device(const ics_cl *cl);
 ICS_API ics_status ics_cl_sat_build(ics_cl *cl, const float *data, size_t w, size_t h, size_t d,
                                     ics_sat_precision mode, float offset, void *table, float *lo,
                                     double *ms_device, char *msg, size_t msg_size);
+
+/* Min-max trees (icshadow/minmax.h) of `rows` rows of d samples (row r at values + r stride)
+ * built on the device, where they stay for ics_cl_minmax_integrate. The same trees as
+ * ics_minmax_create (min and max are exact: equal node for node). NaN values are not checked
+ * here (ics_minmax_create refuses them). ICS_ERR_SIZE as ics_minmax_create, or for trees over
+ * the device's largest allocation. *ms_device: the device time of the build. */
+typedef struct ics_cl_minmax ics_cl_minmax;
+ICS_API ics_status ics_cl_minmax_create(ics_cl *cl, const float *values, size_t rows, size_t d,
+                                        size_t stride, ics_cl_minmax **out, double *ms_device,
+                                        char *msg, size_t msg_size);
+ICS_API void ics_cl_minmax_destroy(ics_cl_minmax *t); /* NULL is allowed */
+/* The nodes read back: rows x 2P (min, max) pairs, node k of row r at nodes[2 (r 2P + k)]
+ * (P = ics_minmax_leaves of the same rows; what ics_minmax_node returns; slot 0 unused). */
+ICS_API ics_status ics_cl_minmax_nodes(const ics_cl_minmax *t, float *nodes);
+/* ics_minmax_integrate for nrays rays at once, ray q in row ray_rows[q]: out[q nterms + i] (the
+ * same visits, runs and sums, in the CPU's order), nseg[q] (may be NULL) its count of lit runs.
+ * The prefix sums (prefix[i ld + k], k = 0..d, as ics_minmax_prefix writes them) are shared by
+ * the rows. ICS_ERR_RANGE for a row out of range or gamma_end > d (as ics_minmax_integrate),
+ * ICS_ERR_INVALID_ARG for ld < d + 1, NULL pointers or nterms 0, ICS_ERR_INFINITE / ICS_ERR_NAN
+ * for bad ray parameters; all checked before anything runs. */
+ICS_API ics_status ics_cl_minmax_integrate(ics_cl_minmax *t, const size_t *ray_rows,
+                                           const ics_minmax_ray *rays, size_t nrays,
+                                           const double *prefix, size_t nterms, size_t ld,
+                                           double *out, size_t *nseg, double *ms_device,
+                                           char *msg, size_t msg_size);
 
 #ifdef __cplusplus
 }
