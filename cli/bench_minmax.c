@@ -22,6 +22,9 @@
 
 #include "commands.h"
 #include "icshadow.h"
+#ifdef ICS_HAVE_RENDER
+#include "icshadow/cl.h"
+#endif
 
 #define GRID 64
 #define MAX_TERMS 10 /* beyond, s_N / s_1 < 1e-13 and the Nystrom factors are noise */
@@ -35,6 +38,8 @@
 static const char CMD[] = "bench minmax";
 static cli_progress g_prog; /* set up once the options are parsed */
 static int g_progress;    /* --progress given */
+static int g_cpu = 1;     /* --backend: the CPU rows, */
+static void *g_cl;        /* and the OpenCL context of the cl rows (ics_cl *, NULL: none) */
 
 static void help(FILE *f) {
   fprintf(f,
@@ -46,7 +51,7 @@ static void help(FILE *f) {
           "resolution, on the built-in height-field scene. One CSV line per depth-sample count\n"
           "(numbers printed with %%.17g):\n"
           "  samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,tree_bytes,march_bytes,\n"
-          "  speedup,speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err\n"
+          "  speedup,speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err,backend\n"
           "(times: seconds, min over --reps; speedup = march_s / traverse_s; speedup_with_build\n"
           "adds build_s + prefix_s to the tree side; max_rel_err = max |tree - march| / max |march|).\n"
           "Bytes read + written per repetition, counted from the data structures (float 4, double 8,\n"
@@ -67,6 +72,10 @@ static void help(FILE *f) {
           "                  fullres_max_rel,inscatter_max_rel for N = 1..10 at the first d\n"
           "  --fig4-csv FILE write Chen Fig. 4 data at the first --samples value and exit\n"
           "                  (paper_figs/chen_fig4.py passes --samples 64)\n"
+          "  --backend L     cpu (default), cl or cpu,cl: the trees built and traversed on the\n"
+          "                  CPU or on the OpenCL device (icshadow/cl.h; build_s and traverse_s\n"
+          "                  are its device times, all rays in one batch; march_s and prefix_s\n"
+          "                  the CPU's), one row each, side by side\n"
           "  --progress      progress on stderr (default: only when stderr is a terminal)\n"
           "\n"
           "Limits, checked per depth-sample count before anything runs (exit 2 naming the options):\n"
@@ -345,9 +354,44 @@ static int bench_one(const setup *S, int reps) {
     maxL = fmax(maxL, fabs(Lm[q]));
     maxe = fmax(maxe, fabs(Lt[q] - Lm[q]));
   }
-  printf("%zu,%zu,%zu,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", d,
-         S->rows, S->rays, N, tb, tp, tt, tm, tree_bytes, march_bytes, tm / tt, tm / (tb + tp + tt),
-         runs / (double)nr, maxe, maxL > 0 ? maxe / maxL : 0.0);
+  if (g_cpu)
+    printf("%zu,%zu,%zu,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,cpu\n",
+           d, S->rows, S->rays, N, tb, tp, tt, tm, tree_bytes, march_bytes, tm / tt,
+           tm / (tb + tp + tt), runs / (double)nr, maxe, maxL > 0 ? maxe / maxL : 0.0);
+#ifdef ICS_HAVE_RENDER
+  if (g_cl) {
+    /* the same trees and rays on the device: build and one batch of all rays, min over reps */
+    size_t *rr = malloc(sizeof *rr * nr);
+    double *oc = malloc(sizeof *oc * nr * N), cb = INFINITY, ct = INFINITY;
+    char msg[1024] = "";
+    if (!rr || !oc) st = ICS_ERR_NOMEM;
+    for (size_t q = 0; q < nr && rr; q++) rr[q] = q / S->rays;
+    if (st == ICS_OK) st = ics_minmax_prefix(S->terms, N, d, d, pre, d + 1);
+    for (int rep = 0; rep < reps && st == ICS_OK; rep++) {
+      ics_cl_minmax *tc = NULL;
+      double mb = 0, mt = 0;
+      st = ics_cl_minmax_create(g_cl, S->rect, S->rows, d, d, &tc, &mb, msg, sizeof msg);
+      if (st == ICS_OK)
+        st = ics_cl_minmax_integrate(tc, rr, S->ray, nr, pre, N, d + 1, oc, NULL, &mt, msg, sizeof msg);
+      ics_cl_minmax_destroy(tc);
+      cb = fmin(cb, 1e-3 * mb), ct = fmin(ct, 1e-3 * mt);
+    }
+    double maxc = 0;
+    for (size_t q = 0; q < nr && st == ICS_OK; q++) {
+      double L = 0;
+      for (size_t i = 0; i < N; i++) L += S->B[q * N + i] * oc[q * N + i];
+      maxc = fmax(maxc, fabs(L - Lm[q]));
+    }
+    free(rr), free(oc);
+    if (st != ICS_OK) {
+      free(Lt), free(Lm), free(pre);
+      return cli_status_error(CMD, st, "--backend cl, samples %zu: %s", d, msg[0] ? msg : ics_status_str(st));
+    }
+    printf("%zu,%zu,%zu,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,cl\n",
+           d, S->rows, S->rays, N, cb, tp, ct, tm, tree_bytes, march_bytes, tm / ct,
+           tm / (cb + tp + ct), runs / (double)nr, maxc, maxL > 0 ? maxc / maxL : 0.0);
+  }
+#endif
   free(Lt);
   free(Lm);
   free(pre);
@@ -510,7 +554,7 @@ int bench_minmax(int argc, char **argv) {
   }
   sample_list samples = {{1024, 2048, 4096}, 3};
   int rows = 256, rays = 128, terms = 4, reps = 5, table = 0, noise = 0;
-  const char *figpath = NULL;
+  const char *figpath = NULL, *backend = "cpu";
   int given_samples = 0, given_terms = 0, given_reps = 0;
   const cli_option opts[] = {
       {"--samples", .kind = CLI_CALL, .dest = &samples, .parse = parse_samples,
@@ -523,8 +567,15 @@ int bench_minmax(int argc, char **argv) {
       {"--svd-table", .kind = CLI_FLAG, .dest = &table},
       {"--fig4-csv", .kind = CLI_FILE, .dest = &figpath},
       {"--progress", .kind = CLI_FLAG, .dest = &g_progress},
+      {"--backend", .kind = CLI_STRING, .dest = &backend},
   };
   int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
+  if (rc) return rc;
+  int want_cl = 0;
+  if (!strcmp(backend, "cpu")) g_cpu = 1;
+  else if (!strcmp(backend, "cl")) g_cpu = 0, want_cl = 1;
+  else if (!strcmp(backend, "cpu,cl") || !strcmp(backend, "cl,cpu")) g_cpu = 1, want_cl = 1;
+  else return cli_error(CMD, "--backend: expected cpu, cl or cpu,cl, got '%s'", backend);
   if (rc) return rc;
   const int *dlist = samples.v, nd = samples.n;
   for (int k = 0; k < nd; k++)
@@ -570,17 +621,31 @@ int bench_minmax(int argc, char **argv) {
     cli_progress_done(&g_prog);
     return rc;
   }
+#ifdef ICS_HAVE_RENDER
+  if (want_cl) {
+    char msg[2048];
+    ics_cl *cl = NULL;
+    if (ics_cl_create(&cl, msg, sizeof msg) != ICS_OK) {
+      cli_progress_done(&g_prog);
+      return cli_error(CMD, "--backend cl: %s", msg);
+    }
+    g_cl = cl;
+  }
+#else
+  if (want_cl) return cli_error(CMD, "--backend cl: built without the renderer library (jansson)");
+#endif
   printf("samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,tree_bytes,march_bytes,speedup,"
-         "speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err\n");
+         "speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err,backend\n");
   for (int k = 0; k < nd; k++) {
     rc = setup_init(&S, (size_t)dlist[k], (size_t)rows, (size_t)rays, (size_t)terms, noise);
     if (rc == 0) rc = bench_one(&S, reps);
     setup_free(&S);
-    if (rc) {
-      cli_progress_done(&g_prog);
-      return rc;
-    }
+    if (rc) break;
   }
+#ifdef ICS_HAVE_RENDER
+  ics_cl_destroy(g_cl);
+  g_cl = NULL;
+#endif
   cli_progress_done(&g_prog);
-  return 0;
+  return rc;
 }

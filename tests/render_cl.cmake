@@ -46,3 +46,11 @@ endif()
 ics_add_test(NAME test_minmax_cl SOURCES test_minmax_cl.c LABELS medium
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER OPENCL)
 set_tests_properties(test_minmax_cl PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
+# bench minmax with the device's trees beside the CPU's (the sums' equality: test_minmax_cl)
+if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
+  set(f "[0-9.e+-]+")
+  ics_cli_test(NAME cli_minmax_cl RC 0 LABELS medium
+    ARGS "bench|minmax|--samples|64|--rows|8|--rays|4|--reps|1|--backend|cpu,cl"
+    OUT "\n64,8,4,4,${f},${f},${f},${f},[0-9]+,[0-9]+,${f},${f},${f},${f},${f},cpu\n64,8,4,4,${f},${f},${f},${f},[0-9]+,[0-9]+,${f},${f},${f},${f},${f},cl\n$")
+  set_tests_properties(cli_minmax_cl PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
+endif()
