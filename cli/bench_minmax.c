@@ -76,6 +76,7 @@ static void help(FILE *f) {
           "                  CPU or on the OpenCL device (icshadow/cl.h; build_s and traverse_s\n"
           "                  are its device times, all rays in one batch; march_s and prefix_s\n"
           "                  the CPU's), one row each, side by side\n"
+          CLI_CL_DEVICE_HELP
           "  --progress      progress on stderr (default: only when stderr is a terminal)\n"
           "\n"
           "Limits, checked per depth-sample count before anything runs (exit 2 naming the options):\n"
@@ -568,6 +569,7 @@ int bench_minmax(int argc, char **argv) {
       {"--fig4-csv", .kind = CLI_FILE, .dest = &figpath},
       {"--progress", .kind = CLI_FLAG, .dest = &g_progress},
       {"--backend", .kind = CLI_STRING, .dest = &backend},
+      {"--cl-device", .kind = CLI_CALL, .parse = cli_parse_cl_device},
   };
   int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
   if (rc) return rc;

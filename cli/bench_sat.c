@@ -48,7 +48,8 @@ static void help(FILE *f, int dims) {
           "  --backend L   cpu (default), cl (the table built on the OpenCL device of\n"
           "                icshadow/cl.h) or cpu,cl: side by side per mode; a cl row has kind\n"
           "                sat%dd-cl, time_s the device time of the passes (transfers not\n"
-          "                counted: first_build_s has one whole call), its error from its table\n",
+          "                counted: first_build_s has one whole call), its error from its table\n"
+          CLI_CL_DEVICE_HELP,
           dims, dims == 2 ? "N x N cells" : "N x N x N cells", dims == 2 ? 4096 : 512,
           dims == 2 ? 9 : 5, dims);
   if (dims == 2)
@@ -607,6 +608,7 @@ static int bench_sat(int argc, char **argv, int dims) {
       {"--chirp-csv", .kind = CLI_FILE, .dest = &chirp, .given = &given_chirp},
       {"--lights", .kind = CLI_FLAG, .dest = &lights},
       {"--backend", .kind = CLI_STRING, .dest = &backend},
+      {"--cl-device", .kind = CLI_CALL, .parse = cli_parse_cl_device},
   };
   int rc = cli_parse_options(cmd, argc, argv, 1, opts, CLI_NOPTS(opts));
   if (rc) return rc;

@@ -106,6 +106,14 @@ int cli_parse_numbers(const char *cmd, const char *opt, const char *spec, const 
   return 0;
 }
 
+int cli_parse_cl_device(const char *cmd, const char *opt, const char *value, void *dest) {
+  (void)dest;
+  if (!*value) return cli_error(cmd, "%s: expected a device index or name, got ''", opt);
+  if (setenv("ICS_CL_DEVICE", value, 1))
+    return cli_error(cmd, "%s: cannot set ICS_CL_DEVICE: %s", opt, strerror(errno));
+  return 0;
+}
+
 double cli_now_s(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);

@@ -36,6 +36,7 @@ static void help(FILE *f) {
           "                      comma-separated, or all. 0 where a pixel has no surface\n"
           "  --backend B         auto (default) or a backend of `icshadow render --backends`\n"
           "  --backends          list the backends built into this binary and exit\n"
+          CLI_CL_DEVICE_HELP
           "  --spp N             mc: samples per pixel (1..16777216; default 64 when no other stop)\n"
           "  --time S            mc: stop after S seconds\n"
           "  --noise E           mc: stop once the RMS standard error of R, G, B is at most E\n"
@@ -156,14 +157,13 @@ int cmd_render(int argc, char **argv) {
   int force_progress = 0, backends = 0, spp = 0, ref_spp = 0, given_ref = 0;
   double time_s = 0, noise = 0;
   int given_spp = 0, given_time = 0, given_noise = 0;
-  cli_option opts[SCENE_ARGS_NOPTS + 13];
-  scene_args_options(&a, opts);
   const cli_option mine[] = {
       {"-o", .kind = CLI_FILE, .dest = &exr},
       {"--png", .kind = CLI_FILE, .dest = &png},
       {"--aov", .kind = CLI_STRING, .dest = &aov_list},
       {"--backend", .kind = CLI_STRING, .dest = &backend},
       {"--backends", .kind = CLI_FLAG, .dest = &backends},
+      {"--cl-device", .kind = CLI_CALL, .parse = cli_parse_cl_device},
       {"--progress", .kind = CLI_FLAG, .dest = &force_progress},
       {"--spp", .kind = CLI_INT, .dest = &spp, .lo = 1, .hi = 1 << 24, .given = &given_spp},
       {"--time", .kind = CLI_FINITE, .dest = &time_s, .given = &given_time},
@@ -173,6 +173,8 @@ int cmd_render(int argc, char **argv) {
       {"--reference", .kind = CLI_INT, .dest = &ref_spp, .lo = 1, .hi = 1 << 24, .given = &given_ref},
       {"--mc-mesh", .kind = CLI_STRING, .dest = &mc_mesh},
   };
+  cli_option opts[SCENE_ARGS_NOPTS + CLI_NOPTS(mine)];
+  scene_args_options(&a, opts);
   memcpy(opts + SCENE_ARGS_NOPTS, mine, sizeof mine);
   int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
   if (rc) return rc;

@@ -113,6 +113,13 @@ int cli_parse_options(const char *cmd, int argc, char **argv, int first, const c
                       int nopts);
 #define CLI_NOPTS(table) ((int)(sizeof(table) / sizeof(table)[0]))
 
+/* --cl-device D (a CLI_CALL parser): the OpenCL device for the cl backend and the OpenCL
+ * primitives, as ICS_CL_DEVICE (an index or a substring of "platform: device"), which it sets
+ * for this process; an empty D is refused. */
+int cli_parse_cl_device(const char *cmd, const char *opt, const char *value, void *dest);
+#define CLI_CL_DEVICE_HELP \
+  "  --cl-device D       OpenCL device: an index or part of \"platform: device\" (as ICS_CL_DEVICE)\n"
+
 /* Seconds on the monotonic clock (CLOCK_MONOTONIC), for elapsed times. */
 double cli_now_s(void);
 /* s as a JSON string (quoted; '"' and '\\' escaped, control characters as \\u00XX). */

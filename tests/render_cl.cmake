@@ -24,6 +24,10 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
     ARGS "bench|slab|--sizes|64|--slabs|4|--threads|1|--reps|1|--kernels|ellipse2,gauss19|--backend|cpu,cl"
     OUT "cpu,ellipse2,.*\ncl,ellipse2,2,table,64,64,4,0,.*\ncpu,gauss19,.*\ncl,gauss19,19,taps,64,64,4,0,")
   set_tests_properties(cli_render_cl cli_bench_slab_cl PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
+  ics_cli_test(NAME cli_render_cl_device_flag RC 2 LABELS medium
+    ARGS "render|--backend|cl|--cl-device|no-such-device|-o|${rdc}/flag.exr"
+    ERR "ICS_CL_DEVICE=no-such-device matches no device" NOFILE ${rdc}/flag.exr)
+  set_tests_properties(cli_render_cl_device_flag PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
   set_tests_properties(cli_render_cl_no_device PROPERTIES
     ENVIRONMENT "POCL_CACHE_DIR=${ics_pocl_cache};ICS_CL_DEVICE=no-such-device")
 endif()

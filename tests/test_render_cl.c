@@ -2,12 +2,12 @@
  * default scene, every scene file given on the command line (scenes/), and variants that reach
  * each path of slab.cl (stencil, table with per-pixel and run-of-16 choices, 1 and 384
  * rotations, the perspective classes, integer and signed kernels, coloured transport, translucent
- * surfaces, volumes with and without detail, Perlin / fBm / ridged, preintegration, several
- * lights). Per image: the largest absolute difference and the RMS difference over R, G, B, A
- * against the cpu backend's image, within the tolerances of docs/backend_cl.md (the same float
+ * surfaces, volumes with and without detail, Perlin / fBm / ridged / grid detail,
+ * preintegration, several lights). Per image: the largest absolute difference and the RMS
+ * difference over R, G, B, A against the cpu backend's image (and of the AOVs), within the tolerances of docs/backend_cl.md (the same float
  * arithmetic in the same order; double libm calls, exp and pow, may differ in the last bits).
- * Then the refusals: grid detail and a device that does not exist (ICS_CL_DEVICE), each with
- * its message and no image. Exit 77 (skipped) when no OpenCL device with fp64 is at hand.
+ * Then the refusals: a device that does not exist (ICS_CL_DEVICE), with its message and no
+ * image. Exit 77 (skipped) when no OpenCL device with fp64 is at hand.
  * usage: test_render_cl [SCENE.json ...] */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -107,7 +107,8 @@ static void compare(const char *what, const char *mode, const ics_scene *s) {
     ics_plan_destroy(p);
     CHECK(!strcmp(got, mode), "%s: light 0 runs in mode '%s', the variant is for '%s'", what, got, mode);
   }
-  render_result a = render_scene_on("cpu", s, NULL, 0, 0), b = render_scene_on("cl", s, NULL, 0, 0);
+  const unsigned aovs = ICS_AOV_VISIBILITY | ICS_AOV_DEPTH;
+  render_result a = render_scene_on("cpu", s, NULL, 0, aovs), b = render_scene_on("cl", s, NULL, 0, aovs);
   double maxd = 0, sum = 0;
   int at = 0;
   size_t n = (size_t)a.img->width * a.img->height * 4;
@@ -117,15 +118,24 @@ static void compare(const char *what, const char *mode, const ics_scene *s) {
     if (!(d <= maxd)) maxd = d, at = (int)(i / 4);
     sum += d * d;
   }
-  double rms = sqrt(sum / (double)n);
-  printf("%-72s %dx%d, %3d slabs: max %.3g at (%d, %d), RMS %.3g (cl: %s, %.0f ms)\n", what,
+  double rms = sqrt(sum / (double)n), amax = 0; /* the AOVs: visibility per light, depth */
+  size_t na = (size_t)a.aov->count * a.aov->width * a.aov->height;
+  CHECK(a.aov->count == b.aov->count, "%s: AOV channels %d vs %d", what, a.aov->count, b.aov->count);
+  for (size_t i = 0; i < na && a.aov->count == b.aov->count; i++) {
+    double d = fabs((double)a.aov->data[i] - b.aov->data[i]);
+    if (!(d <= amax)) amax = d;
+  }
+  printf("%-72s %dx%d, %3d slabs: max %.3g at (%d, %d), RMS %.3g; AOVs max %.3g (%.0f ms)\n", what,
          a.img->width, a.img->height, b.stats.slabs, maxd, at % a.img->width, at / a.img->width,
-         rms, b.stats.device, b.stats.ms_total);
+         rms, amax, b.stats.ms_total);
   CHECK(maxd <= TOL_MAX, "%s: max difference %.3g > %.3g", what, maxd, TOL_MAX);
   CHECK(rms <= TOL_RMS, "%s: RMS difference %.3g > %.3g", what, rms, TOL_RMS);
+  CHECK(amax <= TOL_MAX, "%s: AOVs differ by %.3g > %.3g", what, amax, TOL_MAX);
   CHECK(!strcmp(b.stats.backend, "cl"), "%s: backend %s", what, b.stats.backend);
   ics_image_destroy(a.img);
   ics_image_destroy(b.img);
+  ics_exr_channels_destroy(a.aov);
+  ics_exr_channels_destroy(b.aov);
 }
 
 /* a render the cl backend refuses: status, message, no image */
@@ -171,24 +181,29 @@ int main(int argc, char **argv) {
     compare(variants[v][0], variants[v][1], s);
     ics_scene_destroy(s);
   }
+  /* grid detail: a 5 x 4 x 3 grid of random values over a box, preintegrated */
   const char *td = getenv("TMPDIR");
   char grid[1024], json[4096];
   snprintf(grid, sizeof grid, "%s/test_render_cl_grid.raw", td && *td ? td : "/tmp");
   FILE *f = fopen(grid, "wb");
-  const float cells[8] = {0, 1, 0, 1, 0, 1, 0, 1};
+  float cells[60];
+  for (int i = 0; i < 60; i++) cells[i] = (float)((test_rng_u64() >> 11) * 0x1p-53 * 1.5);
   if (!f || fwrite(cells, sizeof cells, 1, f) != 1 || fclose(f)) {
     fprintf(stderr, "cannot write %s\n", grid);
     return 2;
   }
   snprintf(json, sizeof json,
-           "{\"camera\": {\"eye\": [0, 0, 3], \"target\": [0, 0, 0], \"height\": 2, \"resolution\": [16, 16]},"
-           " \"render\": {\"slab_spacing\": 0.1, \"d1\": 1},"
-           " \"lights\": [{\"mean\": [0.1, 0.1], \"var\": [0.01, 0.01]}],"
-           " \"materials\": {\"g\": {\"extinction\": 2, \"detail\": {\"function\": \"grid\", \"file\": \"%s\","
-           " \"size\": [2, 2, 2]}}},"
-           " \"objects\": [{\"shape\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0.5, \"material\": \"g\"}]}",
+           "{\"camera\": {\"eye\": [0, 0.5, 3], \"target\": [0, 0, 0], \"height\": 2.4, \"resolution\": [96, 72]},"
+           " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"preintegrate\": true},"
+           " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.2, 0.06], \"angle_deg\": 25}],"
+           " \"materials\": {\"floor\": {}, \"g\": {\"extinction\": 5, \"transport\": [0.2, 0.3, 0.4],"
+           " \"detail\": {\"function\": \"grid\", \"file\": \"%s\", \"size\": [5, 4, 3], \"scale\": 1.2}}},"
+           " \"objects\": [{\"shape\": \"rect\", \"center\": [0, -0.5, 0], \"normal\": [0, 1, 0], \"size\": [4, 4], \"material\": \"floor\"},"
+           "  {\"shape\": \"box\", \"center\": [0, 0.1, 0], \"size\": [1.2, 0.8, 0.9], \"material\": \"g\"}]}",
            grid);
-  refused("grid detail", json, ICS_ERR_UNSUPPORTED, "grid detail");
+  s = scene_from_json(json);
+  compare("volume with grid detail (5 x 4 x 3), preintegrated", "table", s);
+  ics_scene_destroy(s);
   remove(grid);
   setenv("ICS_CL_DEVICE", "no such device anywhere", 1);
   refused("ICS_CL_DEVICE naming no device", variants[0][2], ICS_ERR_UNSUPPORTED,

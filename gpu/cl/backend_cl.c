@@ -7,8 +7,7 @@
  * (ics_entries_*, ics_prop_*), then ics_shade over the buffer pixels (occlusions, surface colours,
  * volumes, the clamp of signed kernels) and the apron (ics_apron_*). The layered depth image is
  * the plan's, built on the host and uploaded once, with the objects' materials, detail functions
- * (Perlin, fBm, ridged; grid detail is refused before anything runs: ICS_ERR_UNSUPPORTED) and
- * transfer functions.
+ * (Perlin, fBm, ridged, grids) and transfer functions.
  *
  * The device is cl_device.c's choice (ICS_CL_DEVICE or the first GPU with fp64). The program is
  * built once per renderer
@@ -87,12 +86,13 @@ typedef struct buf_layout {
 typedef struct shade_args {
   buf_layout B;
   cl_int nch, nlights, k, nvol, W, H, pad_l, pad_t, preintegrate;
+  cl_int aov_count, aov_vis, aov_z;
   cl_uint seed_lo, seed_hi;
   cl_double zf, zb, window_max;
 } shade_args;
 
 /* slab.cl's object record: OBJ_STRIDE doubles (the O_* offsets there) */
-#define OBJ_STRIDE 24
+#define OBJ_STRIDE 32
 
 typedef struct cl_job {
   cl_state *s;
@@ -100,8 +100,8 @@ typedef struct cl_job {
   const ics_plan *P;
   cl_int err;
   const char *call;
-  cl_mem src, dst, offset, fz, fcode, fgrad, fspan, cursor, acursor, inside, obj, tt, perm, vol_obj,
-      cam, lcol, lmu, lpath, window, signed_l, img, flags, ent;
+  cl_mem src, dst, offset, fz, fcode, fgrad, fspan, cursor, acursor, inside, obj, tt, perm, grids,
+      vol_obj, cam, lcol, lmu, lpath, window, signed_l, img, flags, ent, aov, aov_seen;
   cl_taps taps[ICS_SCENE_MAX_LIGHTS];
 } cl_job;
 
@@ -226,9 +226,9 @@ static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stat
     A.zf = P->z0 + k * P->e;
     A.zb = A.zf + P->e;
     cl_mem *bufs[] = {&j->dst, NULL, &j->offset, &j->fz, &j->fcode, &j->fgrad, &j->fspan,
-                      &j->cursor, &j->acursor, &j->inside, &j->obj, &j->tt, &j->perm, &j->vol_obj,
-                      &j->cam, &j->lcol, &j->lmu, &j->lpath, &j->window, &j->signed_l, &j->img,
-                      &j->flags};
+                      &j->cursor, &j->acursor, &j->inside, &j->obj, &j->tt, &j->perm, &j->grids,
+                      &j->vol_obj, &j->cam, &j->lcol, &j->lmu, &j->lpath, &j->window,
+                      &j->signed_l, &j->img, &j->flags, &j->aov, &j->aov_seen};
     for (cl_uint i = 0; i < sizeof bufs / sizeof *bufs; i++) {
       if (bufs[i]) set_arg(j, ks, i, sizeof(cl_mem), bufs[i]);
       else set_arg(j, ks, i, sizeof A, &A);
@@ -267,17 +267,9 @@ static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stat
 static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opts *o,
                             ics_image *img, ics_aov_buf *aov, ics_render_stats *st, char *msg,
                             size_t msg_size) {
-  (void)aov; /* the table entry makes no AOVs: the renderer refuses them before this */
   cl_state *s = state;
   double t_start = ics_clock_s();
   const ics_scene *sc = P->scene;
-  for (int i = 0; i < sc->nobjects; i++)
-    if (sc->materials[sc->objects[i].material].detail.fn == ICS_DETAIL_GRID) {
-      if (msg) snprintf(msg, msg_size, "backend cl: object %d's material '%s' has grid detail, "
-                        "which the cl backend does not evaluate yet (use --backend cpu)", i,
-                        sc->materials[sc->objects[i].material].name);
-      return ICS_ERR_UNSUPPORTED;
-    }
   int nl = P->nlights, nch = P->nch, nobj = sc->nobjects ? sc->nobjects : 1;
   size_t plane = P->buf.plane, npx = (size_t)P->Wb * P->Hb, nfrag = P->ldi.nfrag;
   size_t lbytes = sizeof(float) * (size_t)(nl ? nl : 1) * (size_t)nch * plane;
@@ -300,7 +292,13 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
   j->P = P;
   /* host copies of what the device reads */
   size_t nf = nfrag ? nfrag : 1, ntt = 0;
-  for (int i = 0; i < sc->nobjects; i++) ntt += (size_t)sc->materials[sc->objects[i].material].ntransfer;
+  size_t ncells = 0; /* grid detail cells, all objects */
+  for (int i = 0; i < sc->nobjects; i++) {
+    const ics_material *m = &sc->materials[sc->objects[i].material];
+    ntt += (size_t)m->ntransfer;
+    if (m->detail.fn == ICS_DETAIL_GRID)
+      ncells += (size_t)m->detail.size[0] * (size_t)m->detail.size[1] * (size_t)m->detail.size[2];
+  }
   float *fz = malloc(sizeof *fz * nf);
   uint32_t *fcode = malloc(sizeof *fcode * nf);
   cl_float2 *fgrad = malloc(sizeof *fgrad * nf);
@@ -308,14 +306,15 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
   double *obj = calloc((size_t)nobj * OBJ_STRIDE, sizeof *obj);
   double *tt = calloc(5 * (ntt ? ntt : 1), sizeof *tt);
   uint8_t *perm = calloc((size_t)nobj, 512);
+  float *grids = malloc(sizeof *grids * (ncells ? ncells : 1));
   cl_ulong *inside = P->nvol ? malloc(sizeof *inside * npx) : NULL;
   double cam[17], lcol[3 * ICS_SCENE_MAX_LIGHTS], lmu[2 * ICS_SCENE_MAX_LIGHTS];
   double window[ICS_SCENE_MAX_LIGHTS], blur[ICS_SCENE_MAX_LIGHTS], cum[ICS_SCENE_MAX_LIGHTS][2];
   cl_int signed_l[ICS_SCENE_MAX_LIGHTS], vol_obj[ICS_MAX_VOLUMES] = {0};
   ics_prop_taps *pts = calloc((size_t)(nl ? nl : 1), sizeof *pts);
   ics_tap2d **scratch = calloc((size_t)(nl ? nl : 1), sizeof *scratch);
-  if (!fz || !fcode || !fgrad || !fspan || !obj || !tt || !perm || (P->nvol && !inside) || !pts ||
-      !scratch)
+  if (!fz || !fcode || !fgrad || !fspan || !obj || !tt || !perm || !grids || (P->nvol && !inside) ||
+      !pts || !scratch)
     goto nomem;
   for (size_t f = 0; f < nfrag; f++) {
     const ics_fragment *fr = &P->ldi.frag[f];
@@ -326,6 +325,7 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
     fspan[f] = fr->span;
   }
   /* objects (slab.cl's O_* offsets), their transfer rows and noise permutations */
+  size_t cell = 0;
   for (int i = 0, row = 0; i < sc->nobjects; i++) {
     const ics_material *m = &sc->materials[sc->objects[i].material];
     const ics_detail *d = &m->detail;
@@ -342,6 +342,14 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
     row += m->ntransfer;
     if (P->vol_bit[i] >= 0) vol_obj[P->vol_bit[i]] = i;
     if (d->fn != ICS_DETAIL_NONE && P->detail) memcpy(perm + 512 * (size_t)i, P->detail[i].perm, 512);
+    if (d->fn == ICS_DETAIL_GRID && P->detail) { /* its cells and the object's box */
+      size_t n = (size_t)d->size[0] * (size_t)d->size[1] * (size_t)d->size[2];
+      memcpy(grids + cell, d->grid, sizeof *grids * n);
+      o[20] = (double)cell;
+      for (int a = 0; a < 3; a++)
+        o[21 + a] = d->size[a], o[24 + a] = P->detail[i].lo[a], o[27 + a] = P->detail[i].hi[a];
+      cell += n;
+    }
   }
   if (inside) {
     if (P->ldi.inside0) memcpy(inside, P->ldi.inside0, sizeof *inside * npx);
@@ -375,7 +383,9 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
                          .nlights = nl, .nvol = P->nvol, .W = P->W, .H = P->H,
                          .pad_l = P->pad[0], .pad_t = P->pad[2],
                          .preintegrate = P->rs.preintegrate, .seed_lo = (cl_uint)P->rs.seed,
-                         .seed_hi = (cl_uint)(P->rs.seed >> 32), .window_max = wmax};
+                         .seed_hi = (cl_uint)(P->rs.seed >> 32), .window_max = wmax,
+                         .aov_count = aov ? aov->count : 0, .aov_vis = aov ? aov->vis : -1,
+                         .aov_z = aov ? aov->z : -1};
   j->src = job_buffer(j, lbytes, NULL, "clCreateBuffer(light buffers)");
   j->dst = job_buffer(j, lbytes, NULL, "clCreateBuffer(light buffers)");
   j->offset = job_buffer(j, sizeof(cl_uint) * (npx + 1), P->ldi.offset, "clCreateBuffer(LDI)");
@@ -390,6 +400,7 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
   j->tt = job_buffer(j, sizeof *tt * 5 * (ntt ? ntt : 1), tt, "clCreateBuffer(objects)");
   j->perm = job_buffer(j, 512 * (size_t)nobj, perm, "clCreateBuffer(objects)");
   j->vol_obj = job_buffer(j, sizeof vol_obj, vol_obj, "clCreateBuffer(objects)");
+  j->grids = job_buffer(j, sizeof *grids * (ncells ? ncells : 1), grids, "clCreateBuffer(grid detail)");
   j->cam = job_buffer(j, sizeof cam, cam, "clCreateBuffer(camera)");
   j->lcol = job_buffer(j, sizeof lcol, lcol, "clCreateBuffer(lights)");
   j->lmu = job_buffer(j, sizeof lmu, lmu, "clCreateBuffer(lights)");
@@ -400,12 +411,20 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
   const cl_int no_flags = 0;
   j->flags = job_buffer(j, sizeof no_flags, &no_flags, "clCreateBuffer(flags)");
   j->ent = job_buffer(j, sizeof(cl_uint) * npx, NULL, "clCreateBuffer(tap-set choices)");
+  size_t aov_bytes = aov ? sizeof(float) * (size_t)aov->count * (size_t)P->W * P->H : 0;
+  j->aov = job_buffer(j, aov_bytes, NULL, "clCreateBuffer(AOVs)");
+  j->aov_seen = job_buffer(j, (size_t)P->W * P->H, NULL, "clCreateBuffer(AOVs)");
   if (j->err == CL_SUCCESS) {
     const cl_float one = 1, zero = 0;
     cl_int e = clEnqueueFillBuffer(s->d.q, j->src, &one, sizeof one, 0, lbytes, 0, NULL, NULL);
     if (e == CL_SUCCESS)
       e = clEnqueueFillBuffer(s->d.q, j->img, &zero, sizeof zero, 0,
                               sizeof(float) * 4 * (size_t)P->W * P->H, 0, NULL, NULL);
+    const cl_uchar no = 0;
+    if (e == CL_SUCCESS)
+      e = clEnqueueFillBuffer(s->d.q, j->aov_seen, &no, 1, 0, (size_t)P->W * P->H, 0, NULL, NULL);
+    if (e == CL_SUCCESS && aov_bytes)
+      e = clEnqueueFillBuffer(s->d.q, j->aov, &zero, sizeof zero, 0, aov_bytes, 0, NULL, NULL);
     if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueFillBuffer";
   }
   int persp = P->cam.projection == ICS_PROJ_PERSPECTIVE;
@@ -444,6 +463,8 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
   if (j->err == CL_SUCCESS) {
     cl_int e = clEnqueueReadBuffer(s->d.q, j->img, CL_TRUE, 0, sizeof(float) * 4 * (size_t)P->W * P->H,
                                    img->data, 0, NULL, NULL);
+    if (e == CL_SUCCESS && aov_bytes)
+      e = clEnqueueReadBuffer(s->d.q, j->aov, CL_TRUE, 0, aov_bytes, aov->data, 0, NULL, NULL);
     if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueReadBuffer(image)";
   }
   cl_int flags = 0;
@@ -478,9 +499,9 @@ nomem:
   if (msg) snprintf(msg, msg_size, "backend cl: out of host memory for the upload (%zu fragments)", nfrag);
 done:;
   cl_mem *all[] = {&j->src, &j->dst, &j->offset, &j->fz, &j->fcode, &j->fgrad, &j->fspan,
-                   &j->cursor, &j->acursor, &j->inside, &j->obj, &j->tt, &j->perm, &j->vol_obj,
-                   &j->cam, &j->lcol, &j->lmu, &j->lpath, &j->window, &j->signed_l, &j->img,
-                   &j->flags, &j->ent};
+                   &j->cursor, &j->acursor, &j->inside, &j->obj, &j->tt, &j->perm, &j->grids,
+                   &j->vol_obj, &j->cam, &j->lcol, &j->lmu, &j->lpath, &j->window, &j->signed_l,
+                   &j->img, &j->flags, &j->ent, &j->aov, &j->aov_seen};
   for (size_t i = 0; i < sizeof all / sizeof *all; i++) release(all[i]);
   for (int l = 0; l < nl; l++) {
     cl_taps *t = &j->taps[l];
@@ -489,11 +510,13 @@ done:;
     if (pts) ics_prop_release(&pts[l]);
     if (scratch) free(scratch[l]);
   }
-  free(fz), free(fcode), free(fgrad), free(fspan), free(obj), free(tt), free(perm), free(inside);
+  free(fz), free(fcode), free(fgrad), free(fspan), free(obj), free(tt), free(perm), free(grids);
+  free(inside);
   free(pts), free(scratch);
   return status;
 }
 
 const ics_backend ics_backend_cl = {
-    "cl", "the slab renderer on an OpenCL device (PoCL or any OpenCL 1.2 platform with fp64; not picked by auto)", 0,
+    "cl", "the slab renderer on an OpenCL device (PoCL or any OpenCL 1.2 platform with fp64; not picked by auto)",
+    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH,
     cl_available, cl_create, cl_render, cl_destroy};

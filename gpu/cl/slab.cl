@@ -272,13 +272,13 @@ __kernel void ics_apron_ends(__global float *buf, buf_layout B, int A) {
 /* ---- shading ---------------------------------------------------------------------------- */
 
 /* Objects: OBJ_STRIDE doubles each (the host's pack_objects) */
-#define OBJ_STRIDE 24
+#define OBJ_STRIDE 32
 #define O_OPACITY 0
 #define O_COLOR 1      /* 3 */
 #define O_TRANSPORT 4  /* 3 */
 #define O_EXTINCTION 7
 #define O_VOLBIT 8     /* its bit in the inside mask, -1 for a surface */
-#define O_DETAIL 9     /* 0 none, 1 perlin, 2 fbm, 3 ridged */
+#define O_DETAIL 9     /* 0 none, 1 perlin, 2 fbm, 3 ridged, 4 grid */
 #define O_FREQ 10
 #define O_LACUNARITY 11
 #define O_GAIN 12
@@ -289,6 +289,9 @@ __kernel void ics_apron_ends(__global float *buf, buf_layout B, int A) {
 #define O_OCTAVES 17
 #define O_NTRANSFER 18
 #define O_TRANSFER 19  /* first row in the transfer table (rows of v, r, g, b, scale) */
+#define O_GRID 20      /* grid detail: first cell in the grid table, then nx, ny, nz */
+#define O_GRID_LO 24   /* the grid's box: lo (3), hi (3) */
+#define O_GRID_HI 27
 
 /* Camera: eye, r, u, f (3 each), then h, w, tan(fov / 2), aspect, projection (1: perspective) */
 #define CAM_H 12
@@ -348,9 +351,43 @@ static double perlin(__global const uchar *p, double x, double y, double z) {
                               grad3(p[BB + 1], x - 1, y - 1, z - 1))));
 }
 
-static double detail_value(__global const double *ob, __global const uchar *perm, const double pt[3]) {
+/* ics_volume_sample: trilinear, cell centres at i + 1/2, clamped at the faces, 0 outside */
+static double grid_sample(__global const float *d, const size_t n[3], const double p[3]) {
+  long i0[3], i1[3];
+  double f[3];
+  for (int a = 0; a < 3; a++) {
+    if (!(p[a] >= 0.0 && p[a] <= (double)n[a])) return 0.0;
+    double g = p[a] - 0.5, fl = floor(g);
+    f[a] = g - fl;
+    long i = (long)fl, last = (long)n[a] - 1;
+    i0[a] = i < 0 ? 0 : i > last ? last : i;
+    i1[a] = i + 1 < 0 ? 0 : i + 1 > last ? last : i + 1;
+  }
+  size_t sy = n[0], sz = n[0] * n[1];
+#define V_(i, j, k) ((double)d[(size_t)(i) + (size_t)(j) * sy + (size_t)(k) * sz])
+  double c00 = V_(i0[0], i0[1], i0[2]) * (1 - f[0]) + V_(i1[0], i0[1], i0[2]) * f[0];
+  double c10 = V_(i0[0], i1[1], i0[2]) * (1 - f[0]) + V_(i1[0], i1[1], i0[2]) * f[0];
+  double c01 = V_(i0[0], i0[1], i1[2]) * (1 - f[0]) + V_(i1[0], i0[1], i1[2]) * f[0];
+  double c11 = V_(i0[0], i1[1], i1[2]) * (1 - f[0]) + V_(i1[0], i1[1], i1[2]) * f[0];
+#undef V_
+  double c0 = c00 * (1 - f[1]) + c10 * f[1], c1 = c01 * (1 - f[1]) + c11 * f[1];
+  return c0 * (1 - f[2]) + c1 * f[2];
+}
+
+static double detail_value(__global const double *ob, __global const uchar *perm,
+                           __global const float *grids, const double pt[3]) {
   const double drift[3] = {0.3713, 0.5129, 0.7731};
   int fn = (int)ob[O_DETAIL], octaves = (int)ob[O_OCTAVES];
+  if (fn == 4) { /* the grid over the object's box (detail.c) */
+    size_t n[3];
+    double q[3];
+    for (int i = 0; i < 3; i++) {
+      double lo = ob[O_GRID_LO + i], hi = ob[O_GRID_HI + i];
+      n[i] = (size_t)ob[O_GRID + 1 + i];
+      q[i] = hi > lo ? (pt[i] - lo) / (hi - lo) * (double)n[i] : 0;
+    }
+    return ob[O_BIAS] + ob[O_SCALE] * grid_sample(grids + (size_t)ob[O_GRID], n, q);
+  }
   double fr = ob[O_FREQ], tm = ob[O_TIME], lac = ob[O_LACUNARITY], gain = ob[O_GAIN];
   double x = fr * pt[0] + tm * drift[0], y = fr * pt[1] + tm * drift[1], z = fr * pt[2] + tm * drift[2];
   double f;
@@ -452,6 +489,8 @@ static void preintegrate(__global const double *ob, __global const double *tt, d
 typedef struct shade_args {
   buf_layout B; /* the light buffers (B.w x B.h = the LDI grid) */
   int nch, nlights, k, nvol, W, H, pad_l, pad_t, preintegrate;
+  int aov_count, aov_vis, aov_z; /* AOV floats per view pixel, offsets (-1: not asked; 0 count:
+                                    none) */
   uint seed_lo, seed_hi;
   double zf, zb, window_max;
 } shade_args;
@@ -459,7 +498,8 @@ typedef struct shade_args {
 /* backend_cpu.c volume_piece: one volume piece of depth extent dz from za */
 static void volume_piece(const shade_args *A, __global float *dst, __global const double *obj,
                          __global const double *tt, __global const uchar *perm,
-                         __global const int *vol_obj, __global const double *cam,
+                         __global const float *grids, __global const int *vol_obj,
+                         __global const double *cam,
                          __global const double *lpath, int p, int q, int bi, int bj, ulong mask,
                          double za, double dz, const double L[3], float4 *C, int inview,
                          __global int *flags) {
@@ -487,9 +527,9 @@ static void volume_piece(const shade_args *A, __global float *dst, __global cons
         have_ray = 1;
       }
       __global const uchar *pm = perm + 512 * ob_i;
-      double v = detail_value(ob, pm, pt);
+      double v = detail_value(ob, pm, grids, pt);
       if (A->preintegrate)
-        preintegrate(ob, tt, v, detail_value(ob, pm, pt2), c, &scale);
+        preintegrate(ob, tt, v, detail_value(ob, pm, grids, pt2), c, &scale);
       else
         transfer(ob, tt, v, c, &scale);
     }
@@ -552,11 +592,13 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_shade(__global
                         __global const float2 *fgrad, __global const uchar *fspan,
                         __global uint *cursor, __global uint *acursor, __global ulong *inside,
                         __global const double *obj, __global const double *tt,
-                        __global const uchar *perm, __global const int *vol_obj,
-                        __global const double *cam, __global const double *lcol,
+                        __global const uchar *perm, __global const float *grids,
+                        __global const int *vol_obj, __global const double *cam,
+                        __global const double *lcol,
                         __global const double *lmu, __global const double *lpath,
                         __global const double *window, __global const int *signed_l,
-                        __global float *img, __global int *flags) {
+                        __global float *img, __global int *flags, __global float *aov,
+                        __global uchar *aov_seen) {
   int bi = (int)get_global_id(0), bj = (int)get_global_id(1), k = A.k;
   if (bi >= A.B.w || bj >= A.B.h) return;
   int p = bj * A.B.w + bi, q = AT(A.B, bi, bj), nch = A.nch, plane = A.B.plane;
@@ -572,6 +614,20 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_shade(__global
     for (int l = 0; l < A.nlights; l++)
       for (int c = 0; c < 3; c++)
         L[c] += lcol[3 * l + c] * dst[(l * nch + (nch == 3 ? c : 0)) * plane + q];
+    /* the AOVs of the pixel's first surface, if it is in this slab: the light arriving (before
+     * this slab's occlusions) and its depth (backend_cpu.c record_aov) */
+    if (A.aov_count && inview && has && !aov_seen[(size_t)jj * A.W + ii])
+      for (uint f = cur; f < end && FRAG_SLAB(fcode[f]) == k; f++) {
+        __global const double *ob = obj + OBJ_STRIDE * FRAG_OBJ(fcode[f]);
+        if (ob[O_VOLBIT] >= 0 || !(ob[O_OPACITY] > 0)) continue;
+        __global float *o = aov + ((size_t)jj * A.W + ii) * A.aov_count;
+        if (A.aov_vis >= 0)
+          for (int l = 0; l < A.nlights; l++)
+            for (int c = 0; c < nch; c++) o[A.aov_vis + l * nch + c] = dst[(l * nch + c) * plane + q];
+        if (A.aov_z >= 0) o[A.aov_z] = fz[f];
+        aov_seen[(size_t)jj * A.W + ii] = 1;
+        break;
+      }
     for (uint f = acur; f < end && FRAG_SLAB(fcode[f]) <= k; f++) {
       uint code = fcode[f];
       int o = FRAG_OBJ(code), first = FRAG_SLAB(code) + FRAG_BIAS(code);
@@ -589,7 +645,7 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_shade(__global
         if (zn < za) zn = za;
         if (zn > A.zb) zn = A.zb;
         if (mask && zn > za)
-          volume_piece(&A, dst, obj, tt, perm, vol_obj, cam, lpath, p, q, bi, bj, mask, za, zn - za,
+          volume_piece(&A, dst, obj, tt, perm, grids, vol_obj, cam, lpath, p, q, bi, bj, mask, za, zn - za,
                        L, &C, inview, flags);
         if (!has) break;
         int o = FRAG_OBJ(fcode[cur]);
