@@ -126,7 +126,10 @@ BENCH_KINDS ?= sat2d sat3d minmax occtex
 bench: deps all
 	cmake --build $(BUILD) --target benchmarks -j $(JOBS)
 	@set -e; for b in $(BUILD)/bin/bench_*; do echo "== $$b"; $$b; done
-	@set -e; for k in $(BENCH_KINDS); do echo "== icshadow bench $$k"; $(BUILD)/bin/icshadow bench $$k; done
+	@b=cpu; if $(BUILD)/bin/icshadow render --backends | grep '^cl ' | grep -qv 'not available'; then b=cpu,cl; fi; \
+	  set -e; for k in $(BENCH_KINDS); do \
+	    case $$k in sat2d|sat3d|minmax) o="--backend $$b";; *) o=;; esac; \
+	    echo "== icshadow bench $$k $$o"; $(BUILD)/bin/icshadow bench $$k $$o; done
 	@echo "== icshadow bench sat3d --lights (CSAT / SSAT against brute-force marching)"
 	$(BUILD)/bin/icshadow bench sat3d --lights
 	@echo "== icshadow bench minmax --scene noise (a hard, forest-like scene)"
