@@ -31,8 +31,9 @@ enum { NFUNCS = sizeof funcs / sizeof funcs[0] };
 static void help(FILE *f) {
   fprintf(f, "usage: icshadow eval FUNC < numbers\n"
              "Reads one number per line from stdin and writes FUNC of it, one %%.17g per line.\n"
-             "Outside a function's domain the result is nan. A line that is not a number is\n"
-             "reported on stderr (with its line number), gives nan, and the exit status is 2.\n\n"
+             "Outside a function's domain the result is nan. A line that is not a number (a\n"
+             "blank line too) is reported on stderr with its line number, gives nan, and the\n"
+             "exit status is 2.\n\n"
              "FUNC:\n");
   for (int i = 0; i < NFUNCS; i++) fprintf(f, "  %-11s %s\n", funcs[i].name, funcs[i].what);
 }
@@ -49,10 +50,10 @@ int cmd_eval(int argc, char **argv) {
   const cli_option opts[] = {{NULL, .kind = CLI_STRING, .dest = &name, .given = &nnames}};
   int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
   if (rc) return rc;
-  if (nnames != 1) {
-    help(stderr);
-    return 2;
-  }
+  if (nnames == 0) return cli_error(CMD, "give a FUNC (the list: icshadow eval --help)");
+  if (nnames > 1)
+    return cli_error(CMD, "expected one FUNC, got %d arguments (the numbers come on stdin: "
+                     "icshadow eval FUNC < FILE)", nnames);
   int which = -1;
   for (int i = 0; i < NFUNCS; i++)
     if (!strcmp(name, funcs[i].name)) which = i;

@@ -7,7 +7,9 @@ ics_cli_test(NAME cli_unknown_command RC 2 ARGS "frobnicate" ERR "unknown comman
 ics_cli_test(NAME cli_eval_help RC 0 ARGS "eval|--help" OUT "ratio_to_t")
 ics_cli_test(NAME cli_eval_unknown_function RC 2 ARGS "eval|no_such_function"
   ERR "unknown function 'no_such_function'")
-ics_cli_test(NAME cli_eval_no_function RC 2 ARGS "eval" ERR "usage: icshadow eval FUNC")
+ics_cli_test(NAME cli_eval_no_function RC 2 ARGS "eval" ERR "icshadow eval: give a FUNC")
+ics_cli_test(NAME cli_eval_file_argument RC 2 ARGS "eval|ellipk|/nonexistent"
+  ERR "icshadow eval: expected one FUNC, got 2 arguments \\(the numbers come on stdin")
 add_test(NAME cli_eval_bad_line
   COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/eval_bad_line.sh $<TARGET_FILE:icshadow_cli>)
 set_tests_properties(cli_eval_bad_line PROPERTIES LABELS fast)
