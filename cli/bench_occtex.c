@@ -78,8 +78,8 @@ static double est_brute(double R, double M, double boxes) { return R * R * (M * 
 static void help(FILE *f) {
   fprintf(f,
           "usage: icshadow bench occtex [options]\n"
-          "Occlusion textures (Eisemann & Decoret 2006): synthetic scenes of boxes between a square\n"
-          "light (z = 0) and a receiver plane is cut into K slices, each slice's occlusion texture is\n"
+          "Occlusion textures (Eisemann & Decoret 2006): a synthetic scene of boxes between a square\n"
+          "light (z = 0) and a receiver plane is cut into K slices; each slice's occlusion texture is\n"
           "prefiltered (mipmap, nbuffers, sat) and looked up with the box of Eq. 4 at every receiver;\n"
           "slices are combined by product (Eq. 5), clamped sum or max. The reference is brute-force\n"
           "visibility (M x M rays to the light per receiver). CSV on stdout, header first, numbers\n"
