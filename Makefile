@@ -59,7 +59,7 @@ test: deps $(TEST_MITSUBA)
 # The libFuzzer harnesses (fuzz/, clang with ASan+UBSan), a few seconds each from their seed
 # corpora; `make fuzz FUZZ_SECONDS=N` runs each for N seconds (default 600) and prints
 # executions, coverage and findings.
-FUZZ_TARGETS = fuzz_exr_read fuzz_lights_spec fuzz_scene_json
+FUZZ_TARGETS = fuzz_exr_read fuzz_lights_spec fuzz_lights_file fuzz_scene_json
 test-fuzz:
 	CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=Debug -DICS_FUZZ=ON -DICS_ENFORCE_OPENEXR=ON \
 	  -DICS_ENFORCE_JANSSON=ON -DICS_MITSUBA_PYTHON= $(CMAKE_ARGS)
