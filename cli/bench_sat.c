@@ -511,12 +511,8 @@ static int run_bench(const config *c) {
 #endif
   printf("kind,mode,width,height,depth,reps,time_s,first_build_s,bytes,memcpy_s,floor_ratio,"
          "gbytes_per_s,max_rel_err,max_bound_frac,boxes\n");
-  if (!stdout_ok(c->dims)) {
-    free(data), free(src), free(dst), free(pre);
-    return 1;
-  }
-  int rc = 0;
-  for (int mi = 0; mi < c->nmodes; mi++) {
+  int header_ok = stdout_ok(c->dims), rc = header_ok ? 0 : 1;
+  for (int mi = 0; mi < c->nmodes && header_ok; mi++) {
     ics_sat_precision m = (ics_sat_precision)c->modes[mi];
     void *sat = NULL;
     double t0 = cli_now_s();

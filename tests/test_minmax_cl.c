@@ -114,6 +114,9 @@ int main(void) {
         "no rows");
   CHECK(ics_cl_minmax_create(cl, &one, 1, 2, 1, &tc, NULL, msg, sizeof msg) == ICS_ERR_INVALID_ARG,
         "stride < d");
+  const float with_nan[4] = {0.5f, NAN, 0.25f, 1};
+  CHECK(ics_cl_minmax_create(cl, with_nan, 1, 4, 4, &tc, NULL, msg, sizeof msg) == ICS_ERR_NAN && !tc,
+        "a NaN sample (the CPU refuses it too)");
   ics_cl_destroy(cl);
   return test_summary("test_minmax_cl");
 }

@@ -55,10 +55,24 @@ static const char *const variants[][3] = {
      " \"materials\": {\"floor\": {}, \"dark\": {\"color\": [0.1, 0.1, 0.1]}},"
      " \"objects\": [{\"shape\": \"rect\", \"center\": [0, -0.5, 0], \"normal\": [0, 1, 0], \"size\": [4, 4], \"material\": \"floor\"},"
      "  {\"shape\": \"disk\", \"center\": [0, 0.1, 0], \"normal\": [0, 1, 0.3], \"radius\": 0.5, \"material\": \"dark\"}]}"},
-    {"tophat, signed compensation (clamped buffers)", "taps",
+    {"tophat, signed compensation (values clamped to [0, 1])", "taps",
      "{\"camera\": {\"eye\": [0, 0.5, 3], \"target\": [0, 0, 0], \"height\": 2.4, \"resolution\": [96, 72]},"
      " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"kernel\": \"tophat\", \"compensate\": \"signed\"},"
      " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.004, 0.002]}],"
+     " \"materials\": {\"floor\": {}, \"dark\": {\"color\": [0.1, 0.1, 0.1]}},"
+     " \"objects\": [{\"shape\": \"rect\", \"center\": [0, -0.5, 0], \"normal\": [0, 1, 0], \"size\": [4, 4], \"material\": \"floor\"},"
+     "  {\"shape\": \"disk\", \"center\": [0, 0.1, 0], \"normal\": [0, 1, 0.3], \"radius\": 0.5, \"material\": \"dark\"}]}"},
+    {"gauss, a light wide enough that taps reach past the apron (clamped stencil reads)", "taps",
+     "{\"camera\": {\"eye\": [0, 0.5, 3], \"target\": [0, 0, 0], \"height\": 2.4, \"resolution\": [49, 35]},"
+     " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"kernel\": \"gauss\", \"samples\": 5},"
+     " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [200, 160]}],"
+     " \"materials\": {\"floor\": {}, \"dark\": {\"color\": [0.1, 0.1, 0.1]}},"
+     " \"objects\": [{\"shape\": \"rect\", \"center\": [0, -0.5, 0], \"normal\": [0, 1, 0], \"size\": [4, 4], \"material\": \"floor\"},"
+     "  {\"shape\": \"disk\", \"center\": [0, 0.1, 0], \"normal\": [0, 1, 0.3], \"radius\": 0.5, \"material\": \"dark\"}]}"},
+    {"ellipse, a light wide enough that taps reach past the apron (clamped table reads)", "table",
+     "{\"camera\": {\"eye\": [0, 0.5, 3], \"target\": [0, 0, 0], \"height\": 2.4, \"resolution\": [97, 71]},"
+     " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1},"
+     " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [150, 100], \"angle_deg\": 20}],"
      " \"materials\": {\"floor\": {}, \"dark\": {\"color\": [0.1, 0.1, 0.1]}},"
      " \"objects\": [{\"shape\": \"rect\", \"center\": [0, -0.5, 0], \"normal\": [0, 1, 0], \"size\": [4, 4], \"material\": \"floor\"},"
      "  {\"shape\": \"disk\", \"center\": [0, 0.1, 0], \"normal\": [0, 1, 0.3], \"radius\": 0.5, \"material\": \"dark\"}]}"},

@@ -444,8 +444,13 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
       ics_prop_taps *pt = &pts[l];
       if (persp ? ics_prop_prepare_perspective(pt, scratch[l], n, mag, P->cx, P->cy, &P->buf)
                 : ics_prop_prepare(pt, scratch[l], sk->out_entries, n / sk->out_entries, sk->cap,
-                                   mag, P->cx, P->cy, &P->buf))
-        goto nomem;
+                                   mag, P->cx, P->cy, &P->buf)) {
+        status = ICS_ERR_NOMEM; /* as the cpu backend reports it */
+        if (msg) snprintf(msg, msg_size, "backend cl: light %d, slab %d: the taps could not be "
+                          "prepared (out of memory, a tap out of range or a compensation that "
+                          "failed)", l, k);
+        goto done;
+      }
       pt->seed = P->rs.seed;
       pt->run = P->rs.rotation_run;
       pt->phase = (int)ics_slab_choice(P->rs.seed, (uint32_t)l, (uint32_t)k, UINT32_MAX - 2, 16);

@@ -120,8 +120,14 @@ cl_mem ics_cl_run_buffer(ics_cl_run *r, const ics_cl *cl, cl_mem_flags flags, si
 
 ics_status ics_cl_run_finish(ics_cl_run *r, const ics_cl *cl, cl_event *ev, double *ms_device,
                              char *msg, size_t msg_size) {
-  if (r->nev) clWaitForEvents((cl_uint)r->nev, ev);
+  if (r->nev) {
+    cl_int e = clWaitForEvents((cl_uint)r->nev, ev);
+    if (e != CL_SUCCESS && r->err == CL_SUCCESS) r->err = e, r->call = "clWaitForEvents";
+  }
   for (int i = 0; i < r->nev; i++) {
+    cl_int done = CL_COMPLETE; /* a command that failed on the device: a negative status */
+    clGetEventInfo(ev[i], CL_EVENT_COMMAND_EXECUTION_STATUS, sizeof done, &done, NULL);
+    if (done < 0 && r->err == CL_SUCCESS) r->err = done, r->call = "a kernel (execution status)";
     if (ms_device && r->err == CL_SUCCESS) *ms_device += ics_cl_event_ms(ev[i]);
     clReleaseEvent(ev[i]);
   }

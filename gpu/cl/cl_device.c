@@ -39,10 +39,26 @@ typedef struct cl_pick {
   char name[120]; /* "platform: device" */
 } cl_pick;
 
+/* A string property of a device (platform NULL) or of a platform, whatever its length: a
+ * malloc'ed string ("" when the query fails), or NULL when out of memory. */
+static char *info_string(cl_platform_id p, cl_device_id d, cl_uint what) {
+  size_t n = 0;
+  cl_int e = p ? clGetPlatformInfo(p, what, 0, NULL, &n) : clGetDeviceInfo(d, what, 0, NULL, &n);
+  char *s = malloc(e == CL_SUCCESS ? n + 1 : 1);
+  if (!s) return NULL;
+  s[0] = 0;
+  if (e == CL_SUCCESS) {
+    e = p ? clGetPlatformInfo(p, what, n, s, NULL) : clGetDeviceInfo(d, what, n, s, NULL);
+    s[e == CL_SUCCESS ? n : 0] = 0;
+  }
+  return s;
+}
+
 static int has_fp64(cl_device_id d) {
-  char ext[8192] = "";
-  clGetDeviceInfo(d, CL_DEVICE_EXTENSIONS, sizeof ext - 1, ext, NULL);
-  return strstr(ext, "cl_khr_fp64") != NULL;
+  char *ext = info_string(NULL, d, CL_DEVICE_EXTENSIONS);
+  int yes = ext && strstr(ext, "cl_khr_fp64") != NULL;
+  free(ext);
+  return yes;
 }
 
 static int contains_nocase(const char *hay, const char *needle) {
@@ -65,6 +81,7 @@ static int pick_device(cl_pick *out, char *why, size_t why_size) {
                       "pocl-opencl-icd)", e != CL_SUCCESS ? ics_cl_err_name(e) : "none listed");
     return -1;
   }
+  if (np > 16) np = 16; /* the count of all platforms; the first 16 were written */
   cl_pick all[MAX_DEVICES];
   cl_device_type type[MAX_DEVICES];
   int fp64[MAX_DEVICES], n = 0;
@@ -72,18 +89,20 @@ static int pick_device(cl_pick *out, char *why, size_t why_size) {
     cl_device_id devs[MAX_DEVICES];
     cl_uint nd = 0;
     if (clGetDeviceIDs(plats[i], CL_DEVICE_TYPE_ALL, MAX_DEVICES, devs, &nd) != CL_SUCCESS) continue;
-    char pname[64] = "";
-    clGetPlatformInfo(plats[i], CL_PLATFORM_NAME, sizeof pname - 1, pname, NULL);
+    if (nd > MAX_DEVICES) nd = MAX_DEVICES;
+    char *pname = info_string(plats[i], NULL, CL_PLATFORM_NAME);
     for (cl_uint j = 0; j < nd && n < MAX_DEVICES; j++) {
-      char dname[64] = "";
-      clGetDeviceInfo(devs[j], CL_DEVICE_NAME, sizeof dname - 1, dname, NULL);
+      char *dname = info_string(NULL, devs[j], CL_DEVICE_NAME);
+      type[n] = 0;
       clGetDeviceInfo(devs[j], CL_DEVICE_TYPE, sizeof type[n], &type[n], NULL);
       all[n].platform = plats[i];
       all[n].device = devs[j];
-      snprintf(all[n].name, sizeof all[n].name, "%s: %s", pname, dname);
+      snprintf(all[n].name, sizeof all[n].name, "%s: %s", pname ? pname : "", dname ? dname : "");
       fp64[n] = has_fp64(devs[j]);
+      free(dname);
       n++;
     }
+    free(pname);
   }
   if (!n) {
     if (why) snprintf(why, why_size, "no OpenCL device on %u platform%s", np, np == 1 ? "" : "s");
@@ -144,8 +163,14 @@ ics_status ics_cl_dev_open(ics_cl_dev *d, char *msg, size_t msg_size) {
   if (pick_device(&pk, msg, msg_size)) return ICS_ERR_UNSUPPORTED;
   d->device = pk.device;
   snprintf(d->name, sizeof d->name, "OpenCL, %s", pk.name);
-  clGetDeviceInfo(d->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof d->max_alloc, &d->max_alloc, NULL);
-  cl_int e;
+  cl_int e = clGetDeviceInfo(d->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof d->max_alloc,
+                             &d->max_alloc, NULL);
+  if (e != CL_SUCCESS) {
+    if (msg) snprintf(msg, msg_size, "clGetDeviceInfo(CL_DEVICE_MAX_MEM_ALLOC_SIZE) on %s: %s",
+                      pk.name, ics_cl_err_name(e));
+    memset(d, 0, sizeof *d);
+    return ICS_ERR_UNSUPPORTED;
+  }
   const char *call = "clCreateContext";
   cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)pk.platform, 0};
   d->ctx = clCreateContext(props, 1, &d->device, NULL, NULL, &e);

@@ -34,6 +34,12 @@ ics_status ics_cl_minmax_create(ics_cl *cl, const float *values, size_t rows, si
   if (rows == 0 || d == 0 || rows > ICS_MINMAX_MAX_ROWS || d > ICS_MINMAX_MAX_SAMPLES)
     return ICS_ERR_SIZE;
   if (stride < d) return ICS_ERR_INVALID_ARG;
+  /* ics_minmax_create's checks: the last row addressable, no NaN (a NaN node would send the
+   * traversal below the leaves) */
+  if ((rows - 1) > (SIZE_MAX / sizeof(float) - d) / stride) return ICS_ERR_SIZE;
+  for (size_t r = 0; r < rows; r++)
+    for (size_t g = 0; g < d; g++)
+      if (isnan(values[r * stride + g])) return ICS_ERR_NAN;
   size_t P = 1;
   while (P < d) P <<= 1;
   if (rows * 2 * P > ((size_t)1 << 31)) return ICS_ERR_SIZE;

@@ -18,8 +18,8 @@ ics_status ics_cl_sat_build(ics_cl *cl, const float *data, size_t w, size_t h, s
       mode != ICS_SAT_DOUBLE)
     return ICS_ERR_INVALID_ARG;
   if (!w || !h || !d || w > INT_MAX || h > INT_MAX || d > INT_MAX || w * h > INT_MAX ||
-      w * h * d > ((size_t)1 << 31)) {
-    if (msg) snprintf(msg, msg_size, "%zux%zux%zu cells: expected 1 .. 2^31", w, h, d);
+      w * h * d > INT_MAX) { /* the kernels' int counts (rows h d <= cells) */
+    if (msg) snprintf(msg, msg_size, "%zux%zux%zu cells: expected 1 .. 2^31 - 1", w, h, d);
     return ICS_ERR_SIZE;
   }
   size_t n = w * h * d, cell = mode == ICS_SAT_DOUBLE ? sizeof(double) : sizeof(float);

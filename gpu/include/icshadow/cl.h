@@ -18,6 +18,8 @@
 extern "C" {
 #endif
 
+/* One thread at a time per ics_cl (and the min-max trees made with it): the kernels it holds
+ * take their arguments per call. */
 typedef struct ics_cl ics_cl;
 
 /* Opens the device and builds the programs (*out NULL on failure; msg says why: no platform,
@@ -35,7 +37,7 @@ ICS_API const char *ics_cl_device(const ics_cl *cl);
  * pass ics_sat2d_offset / ics_sat3d_offset of a CPU table of the same data for the CPU's table);
  * the other modes ignore it. The sums are the CPU builder's, in its order: on x86-64 the table
  * equals the CPU's bit for bit. *ms_device (may be NULL) gets the device time of the passes
- * (profiling), without the transfers. ICS_ERR_SIZE for an empty volume, more than 2^31 cells or
+ * (profiling), without the transfers. ICS_ERR_SIZE for an empty volume, 2^31 cells or more or
  * buffers over the device's largest allocation; ICS_ERR_INVALID_ARG for NULL pointers or an
  * unknown mode; ICS_ERR_NOMEM when the device is out of memory. Non-finite input is not checked
  * (it propagates into the table as in any float sum). */
@@ -45,9 +47,9 @@ ICS_API ics_status ics_cl_sat_build(ics_cl *cl, const float *data, size_t w, siz
 
 /* Min-max trees (icshadow/minmax.h) of `rows` rows of d samples (row r at values + r stride)
  * built on the device, where they stay for ics_cl_minmax_integrate. The same trees as
- * ics_minmax_create (min and max are exact: equal node for node). NaN values are not checked
- * here (ics_minmax_create refuses them). ICS_ERR_SIZE as ics_minmax_create, or for trees over
- * the device's largest allocation. *ms_device: the device time of the build. */
+ * ics_minmax_create (min and max are exact: equal node for node) and the same refusals
+ * (ICS_ERR_NAN for a NaN value, ICS_ERR_SIZE), and ICS_ERR_SIZE for trees over the device's
+ * largest allocation. *ms_device: the device time of the build. */
 typedef struct ics_cl_minmax ics_cl_minmax;
 ICS_API ics_status ics_cl_minmax_create(ics_cl *cl, const float *values, size_t rows, size_t d,
                                         size_t stride, ics_cl_minmax **out, double *ms_device,
