@@ -3,7 +3,7 @@
  * each path of slab.cl (stencil, table with per-pixel and run-of-16 choices, 1 and 384
  * rotations, the perspective classes, integer and signed kernels, coloured transport, translucent
  * surfaces, volumes with and without detail, Perlin / fBm / ridged / grid detail,
- * preintegration, several lights). Per image: the largest absolute difference and the RMS
+ * preintegration, more overlapping volumes than ics_shade keeps, several lights). Per image: the largest absolute difference and the RMS
  * difference over R, G, B, A against the cpu backend's image (and of the AOVs), within the tolerances of docs/backend_cl.md (the same float
  * arithmetic in the same order; double libm calls, exp and pow, may differ in the last bits).
  * Then the refusals: a device that does not exist (ICS_CL_DEVICE), with its message and no
@@ -219,6 +219,23 @@ int main(int argc, char **argv) {
   compare("volume with grid detail (5 x 4 x 3), preintegrated", "table", s);
   ics_scene_destroy(s);
   remove(grid);
+  /* ten volumes overlapping at the centre (more than the 8 whose extinctions ics_shade keeps),
+   * with fBm detail in every other one */
+  int n = snprintf(json, sizeof json,
+                   "{\"camera\": {\"eye\": [0, 0.5, 3], \"target\": [0, 0, 0], \"height\": 2.4, \"resolution\": [64, 48]},"
+                   " \"render\": {\"slab_spacing\": 0.03, \"d1\": 1},"
+                   " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.2, 0.06]}, {\"mean\": [-0.3, 0.1], \"var\": [0.1, 0.1]}],"
+                   " \"materials\": {\"floor\": {}, \"a\": {\"extinction\": 1.5, \"transport\": [0.3, 0.2, 0.1]},"
+                   " \"b\": {\"extinction\": 2, \"color\": [0.8, 0.6, 0.4], \"detail\": {\"function\": \"fbm\", \"frequency\": 3}}},"
+                   " \"objects\": [{\"shape\": \"rect\", \"center\": [0, -0.6, 0], \"normal\": [0, 1, 0], \"size\": [4, 4], \"material\": \"floor\"}");
+  for (int v = 0; v < 10 && n > 0 && (size_t)n < sizeof json; v++)
+    n += snprintf(json + n, sizeof json - (size_t)n,
+                  ", {\"shape\": \"sphere\", \"center\": [%g, %g, 0], \"radius\": %g, \"material\": \"%c\"}",
+                  0.04 * v - 0.2, 0.02 * v, 0.5 + 0.02 * v, v % 2 ? 'b' : 'a');
+  if (n > 0 && (size_t)n + 3 < sizeof json) snprintf(json + n, sizeof json - (size_t)n, "]}");
+  s = scene_from_json(json);
+  compare("ten overlapping volumes (five with fBm detail), two lights", "table", s);
+  ics_scene_destroy(s);
   setenv("ICS_CL_DEVICE", "no such device anywhere", 1);
   refused("ICS_CL_DEVICE naming no device", variants[0][2], ICS_ERR_UNSUPPORTED,
           "ICS_CL_DEVICE=no such device anywhere matches no device");

@@ -101,7 +101,7 @@ typedef struct cl_job {
   cl_int err;
   const char *call;
   cl_mem src, dst, offset, fz, fcode, fgrad, fspan, cursor, acursor, inside, obj, tt, perm, grids,
-      vol_obj, cam, lcol, lmu, lpath, window, signed_l, img, flags, ent, aov, aov_seen;
+      vol_obj, cam, lcol, lmu, lpath, window, signed_l, img, ent, aov, aov_seen;
   cl_taps taps[ICS_SCENE_MAX_LIGHTS];
 } cl_job;
 
@@ -228,7 +228,7 @@ static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stat
     cl_mem *bufs[] = {&j->dst, NULL, &j->offset, &j->fz, &j->fcode, &j->fgrad, &j->fspan,
                       &j->cursor, &j->acursor, &j->inside, &j->obj, &j->tt, &j->perm, &j->grids,
                       &j->vol_obj, &j->cam, &j->lcol, &j->lmu, &j->lpath, &j->window,
-                      &j->signed_l, &j->img, &j->flags, &j->aov, &j->aov_seen};
+                      &j->signed_l, &j->img, &j->aov, &j->aov_seen};
     for (cl_uint i = 0; i < sizeof bufs / sizeof *bufs; i++) {
       if (bufs[i]) set_arg(j, ks, i, sizeof(cl_mem), bufs[i]);
       else set_arg(j, ks, i, sizeof A, &A);
@@ -408,8 +408,6 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
   j->window = job_buffer(j, sizeof window, NULL, "clCreateBuffer(lights)");
   j->signed_l = job_buffer(j, sizeof signed_l, signed_l, "clCreateBuffer(lights)");
   j->img = job_buffer(j, sizeof(float) * 4 * (size_t)P->W * P->H, NULL, "clCreateBuffer(image)");
-  const cl_int no_flags = 0;
-  j->flags = job_buffer(j, sizeof no_flags, &no_flags, "clCreateBuffer(flags)");
   j->ent = job_buffer(j, sizeof(cl_uint) * npx, NULL, "clCreateBuffer(tap-set choices)");
   size_t aov_bytes = aov ? sizeof(float) * (size_t)aov->count * (size_t)P->W * P->H : 0;
   j->aov = job_buffer(j, aov_bytes, NULL, "clCreateBuffer(AOVs)");
@@ -472,17 +470,6 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
       e = clEnqueueReadBuffer(s->d.q, j->aov, CL_TRUE, 0, aov_bytes, aov->data, 0, NULL, NULL);
     if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueReadBuffer(image)";
   }
-  cl_int flags = 0;
-  if (j->err == CL_SUCCESS) {
-    cl_int e = clEnqueueReadBuffer(s->d.q, j->flags, CL_TRUE, 0, sizeof flags, &flags, 0, NULL, NULL);
-    if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueReadBuffer(flags)";
-  }
-  if (j->err == CL_SUCCESS && (flags & 1)) { /* slab.cl FLAG_VOLUMES */
-    if (msg) snprintf(msg, msg_size, "backend cl: more than 8 volumes overlap at some point of "
-                      "this scene, more than the cl backend holds per pixel (use --backend cpu)");
-    status = ICS_ERR_UNSUPPORTED;
-    goto done;
-  }
   if (j->err != CL_SUCCESS) {
     if (msg) snprintf(msg, msg_size, "backend cl: %s on %s: %s", j->call, s->d.name,
                       ics_cl_err_name(j->err));
@@ -506,7 +493,7 @@ done:;
   cl_mem *all[] = {&j->src, &j->dst, &j->offset, &j->fz, &j->fcode, &j->fgrad, &j->fspan,
                    &j->cursor, &j->acursor, &j->inside, &j->obj, &j->tt, &j->perm, &j->grids,
                    &j->vol_obj, &j->cam, &j->lcol, &j->lmu, &j->lpath, &j->window, &j->signed_l,
-                   &j->img, &j->flags, &j->ent, &j->aov, &j->aov_seen};
+                   &j->img, &j->ent, &j->aov, &j->aov_seen};
   for (size_t i = 0; i < sizeof all / sizeof *all; i++) release(all[i]);
   for (int l = 0; l < nl; l++) {
     cl_taps *t = &j->taps[l];

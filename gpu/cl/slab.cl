@@ -301,8 +301,7 @@ __kernel void ics_apron_ends(__global float *buf, buf_layout B, int A) {
 #define CAM_PROJ 16
 
 #define JITTER_STREAM 0x6a69747400000000UL /* "jitt" (backend_cpu.c) */
-#define MAXV 8 /* volumes overlapping at one point: more set FLAG_VOLUMES (private memory) */
-#define FLAG_VOLUMES 1
+#define MAXV 8 /* overlapping volumes whose extinctions are kept (private memory) */
 
 #define FRAG_OBJ(code) ((int)((code) & 0xfffu))
 #define FRAG_BIAS(code) ((int)((code) >> 12 & 0xfu))
@@ -495,48 +494,56 @@ typedef struct shade_args {
   double zf, zb, window_max;
 } shade_args;
 
-/* backend_cpu.c volume_piece: one volume piece of depth extent dz from za */
+/* the extinction and colour of volume object ob_i at the piece's sample point(s) */
+static double volume_sig(const shade_args *A, __global const double *obj,
+                         __global const double *tt, __global const uchar *perm,
+                         __global const float *grids, int ob_i, const double pt[3],
+                         const double pt2[3], double c[3]) {
+  __global const double *ob = obj + OBJ_STRIDE * ob_i;
+  double scale = 1;
+  c[0] = ob[O_COLOR], c[1] = ob[O_COLOR + 1], c[2] = ob[O_COLOR + 2];
+  if (ob[O_DETAIL] != 0) {
+    __global const uchar *pm = perm + 512 * ob_i;
+    double v = detail_value(ob, pm, grids, pt);
+    if (A->preintegrate)
+      preintegrate(ob, tt, v, detail_value(ob, pm, grids, pt2), c, &scale);
+    else
+      transfer(ob, tt, v, c, &scale);
+  }
+  return ob[O_EXTINCTION] * scale;
+}
+
+#define LOWEST_BIT(m) ((int)(63 - clz((m) & (~(m) + 1))))
+
+/* backend_cpu.c volume_piece: one volume piece of depth extent dz from za. The extinctions of
+ * up to MAXV overlapping volumes are kept for the transmittance; with more, each is evaluated
+ * again per light (the same values: the sample point depends on the pixel and slab only). */
 static void volume_piece(const shade_args *A, __global float *dst, __global const double *obj,
                          __global const double *tt, __global const uchar *perm,
                          __global const float *grids, __global const int *vol_obj,
                          __global const double *cam,
                          __global const double *lpath, int p, int q, int bi, int bj, ulong mask,
-                         double za, double dz, const double L[3], float4 *C, int inview,
-                         __global int *flags) {
-  if (popcount(mask) > MAXV) {
-    atomic_or(flags, FLAG_VOLUMES);
-    return;
-  }
-  double sig[MAXV], col[MAXV][3];
-  int objs[MAXV], nv = 0, have_ray = 0;
-  double o[3], d[3], pt[3], pt2[3], sum = 0;
-  for (ulong m = mask; m; m &= m - 1) {
-    int bit = (int)(63 - clz(m & (~m + 1))), ob_i = vol_obj[bit];
-    __global const double *ob = obj + OBJ_STRIDE * ob_i;
-    double scale = 1, c[3] = {ob[O_COLOR], ob[O_COLOR + 1], ob[O_COLOR + 2]};
-    if (ob[O_DETAIL] != 0) {
-      if (!have_ray) {
-        plan_ray(cam, A->W, A->H, A->pad_l, A->pad_t, bi, bj, o, d);
-        if (A->preintegrate) {
-          for (int i = 0; i < 3; i++) pt[i] = o[i] + za * d[i], pt2[i] = o[i] + (za + dz) * d[i];
-        } else {
-          double xi = uniform_at(A->seed_lo, A->seed_hi, JITTER_STREAM | (ulong)A->k, (ulong)p);
-          double zs = za + xi * dz;
-          for (int i = 0; i < 3; i++) pt[i] = o[i] + zs * d[i];
-        }
-        have_ray = 1;
+                         double za, double dz, const double L[3], float4 *C, int inview) {
+  double sig[MAXV], o[3], d[3], pt[3], pt2[3], sum = 0, cc[3] = {0, 0, 0};
+  int nv = 0, have_ray = 0, keep = popcount(mask) <= MAXV;
+  for (ulong m = mask; m; m &= m - 1) /* the sample point, if some volume has detail */
+    if (obj[OBJ_STRIDE * vol_obj[LOWEST_BIT(m)] + O_DETAIL] != 0) {
+      plan_ray(cam, A->W, A->H, A->pad_l, A->pad_t, bi, bj, o, d);
+      if (A->preintegrate) {
+        for (int i = 0; i < 3; i++) pt[i] = o[i] + za * d[i], pt2[i] = o[i] + (za + dz) * d[i];
+      } else {
+        double xi = uniform_at(A->seed_lo, A->seed_hi, JITTER_STREAM | (ulong)A->k, (ulong)p);
+        double zs = za + xi * dz;
+        for (int i = 0; i < 3; i++) pt[i] = o[i] + zs * d[i];
       }
-      __global const uchar *pm = perm + 512 * ob_i;
-      double v = detail_value(ob, pm, grids, pt);
-      if (A->preintegrate)
-        preintegrate(ob, tt, v, detail_value(ob, pm, grids, pt2), c, &scale);
-      else
-        transfer(ob, tt, v, c, &scale);
+      have_ray = 1;
+      break;
     }
-    sig[nv] = ob[O_EXTINCTION] * scale;
-    for (int i = 0; i < 3; i++) col[nv][i] = c[i];
-    objs[nv++] = ob_i;
-    sum += sig[nv - 1];
+  for (ulong m = mask; m; m &= m - 1, nv++) {
+    double c[3], sg = volume_sig(A, obj, tt, perm, grids, vol_obj[LOWEST_BIT(m)], pt, pt2, c);
+    if (keep) sig[nv] = sg;
+    sum += sg;
+    for (int k = 0; k < 3; k++) cc[k] += sg * c[k];
   }
   if (!(sum > 0)) return;
   if (inview && C->w < 1) {
@@ -545,9 +552,7 @@ static void volume_piece(const shade_args *A, __global float *dst, __global cons
       if (!have_ray) plan_ray(cam, A->W, A->H, A->pad_l, A->pad_t, bi, bj, o, d);
       dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     }
-    double a = 1 - exp(-sum * dz * dl), wgt = (1 - C->w) * a, cc[3] = {0, 0, 0};
-    for (int i = 0; i < nv; i++)
-      for (int c = 0; c < 3; c++) cc[c] += sig[i] * col[i][c];
+    double a = 1 - exp(-sum * dz * dl), wgt = (1 - C->w) * a;
     C->x += (float)(wgt * (cc[0] / sum) * L[0]);
     C->y += (float)(wgt * (cc[1] / sum) * L[1]);
     C->z += (float)(wgt * (cc[2] / sum) * L[2]);
@@ -555,11 +560,14 @@ static void volume_piece(const shade_args *A, __global float *dst, __global cons
   }
   for (int l = 0; l < A->nlights; l++) {
     double pass[3] = {1, 1, 1};
-    for (int i = 0; i < nv; i++) {
-      __global const double *T = obj + OBJ_STRIDE * objs[i] + O_TRANSPORT;
-      for (int c = 0; c < A->nch; c++) pass[c] *= exp(-sig[i] * dz * lpath[l] * (1 - T[c]));
+    int i = 0;
+    for (ulong m = mask; m; m &= m - 1, i++) {
+      int ob_i = vol_obj[LOWEST_BIT(m)];
+      double c[3], sg = keep ? sig[i] : volume_sig(A, obj, tt, perm, grids, ob_i, pt, pt2, c);
+      __global const double *T = obj + OBJ_STRIDE * ob_i + O_TRANSPORT;
+      for (int k = 0; k < A->nch; k++) pass[k] *= exp(-sg * dz * lpath[l] * (1 - T[k]));
     }
-    for (int c = 0; c < A->nch; c++) dst[(l * A->nch + c) * A->B.plane + q] *= (float)pass[c];
+    for (int k = 0; k < A->nch; k++) dst[(l * A->nch + k) * A->B.plane + q] *= (float)pass[k];
   }
 }
 
@@ -597,7 +605,7 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_shade(__global
                         __global const double *lcol,
                         __global const double *lmu, __global const double *lpath,
                         __global const double *window, __global const int *signed_l,
-                        __global float *img, __global int *flags, __global float *aov,
+                        __global float *img, __global float *aov,
                         __global uchar *aov_seen) {
   int bi = (int)get_global_id(0), bj = (int)get_global_id(1), k = A.k;
   if (bi >= A.B.w || bj >= A.B.h) return;
@@ -646,7 +654,7 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_shade(__global
         if (zn > A.zb) zn = A.zb;
         if (mask && zn > za)
           volume_piece(&A, dst, obj, tt, perm, grids, vol_obj, cam, lpath, p, q, bi, bj, mask, za, zn - za,
-                       L, &C, inview, flags);
+                       L, &C, inview);
         if (!has) break;
         int o = FRAG_OBJ(fcode[cur]);
         __global const double *ob = obj + OBJ_STRIDE * o;
