@@ -16,6 +16,11 @@ all: configure
 deps:
 	scripts/deps.sh
 
+# the packages of one job only (scripts/deps.sh JOB): a user without root who lacks a package
+# the job does not use can still run it
+deps-%:
+	scripts/deps.sh $*
+
 # Mitsuba 3 for the outside check (tests/mitsuba.cmake): a virtual environment under the build
 # tree with Debian's numpy and matplotlib, the PyPI wheel pinned (PyPI must be reachable).
 # `make test MITSUBA=0` leaves the check out (it is then reported as skipped, with the reason).
@@ -66,7 +71,7 @@ test-fuzz:
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(FUZZ_TARGETS)
 	cd $(FUZZ_BUILD) && ctest --output-on-failure -L fuzz -j $(JOBS)
 
-fuzz: deps
+fuzz: deps-fuzz
 	CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=Debug -DICS_FUZZ=ON -DICS_ENFORCE_OPENEXR=ON \
 	  -DICS_ENFORCE_JANSSON=ON -DICS_MITSUBA_PYTHON= $(CMAKE_ARGS)
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(FUZZ_TARGETS)
@@ -83,7 +88,7 @@ test-asan:
 # isolines correct vs iterative, and an environment map of three Fig. 14-like lights fitted back
 # to Gaussian lights.
 DEMO_LIGHTS = -0.55,0.35,0.08,0.08,0,1,0.2,1,0.2:0.6,0.3,0.32,0.32,0,2,1,0.2,0.1:0.05,-0.6,0.3,0.002,-70,1,0.15,0.25,1
-demo: deps all
+demo: deps-demo all
 	@mkdir -p out
 	@echo "== the default scene: its render plan (icshadow plan), then the render (icshadow render)"
 	$(BUILD)/bin/icshadow plan -o out/default_plan.json
@@ -109,13 +114,13 @@ demo: deps all
 	@echo "wrote out/demo_env.exr and out/demo_lights.json"
 
 # Every paper_figs/*.py takes --cli and --out and writes PNG + CSV.
-figs: deps all
+figs: deps-figs all
 	@set -e; for f in paper_figs/*.py; do echo "== $$f"; $(PYTHON) $$f --cli $(BUILD)/bin/icshadow --out out/figs; done
 
 # Execute notebooks/iterative_shadows.ipynb headless into out/notebooks (kernel python3 = /usr/bin/python3 through
 # the repo's kernel spec in notebooks/kernels; the CLI path goes in as ICSHADOW_CLI). The absolute
 # paths come from the shell, quoted: $(CURDIR) and $(abspath) split a checkout path with blanks.
-notebooks: deps all
+notebooks: deps-notebooks all
 	JUPYTER_PATH="$$(pwd)/notebooks" PYDEVD_DISABLE_FILE_VALIDATION=1 ICSHADOW_CLI="$$(cd "$(BUILD)" && pwd)/bin/icshadow" $(PYTHON) -m nbconvert \
 	  --to notebook --execute --ExecutePreprocessor.kernel_name=python3 --ExecutePreprocessor.timeout=600 \
 	  --output-dir out/notebooks notebooks/iterative_shadows.ipynb
@@ -123,7 +128,7 @@ notebooks: deps all
 # Every bench/*.cmake adds a bench_* program to the `benchmarks` target; the peer primitives are
 # benchmarked by `icshadow bench KIND`. Each prints CSV.
 BENCH_KINDS ?= sat2d sat3d minmax occtex
-bench: deps all
+bench: deps-bench all
 	cmake --build $(BUILD) --target benchmarks -j $(JOBS)
 	@set -e; for b in $(BUILD)/bin/bench_*; do echo "== $$b"; $$b; done
 	@b=cpu; if $(BUILD)/bin/icshadow render --backends | grep '^cl ' | grep -qv 'not available'; then b=cpu,cl; fi; \
@@ -143,7 +148,7 @@ bench: deps all
 # Stability sweep of the exact functions: max ulp error vs MPFR and ns per call per region, and
 # the scipy comparison; 5000 inputs per region, the size docs/analysis.md and README quote.
 ANALYSIS_SAMPLES = 5000
-analysis: deps all
+analysis: deps-analysis all
 	@mkdir -p out/analysis
 	$(BUILD)/bin/stability_sweep --samples $(ANALYSIS_SAMPLES) --progress > out/analysis/stability.csv.tmp
 	mv out/analysis/stability.csv.tmp out/analysis/stability.csv

@@ -1,26 +1,45 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages that libicshadow's build, tests, benchmarks and figures need.
-# Checks with dpkg first, so a second run costs nothing. As root it runs apt-get; otherwise it
-# prints the exact apt-get line and exits non-zero.
+# Installs the Debian 12 packages that libicshadow's build, tests, benchmarks and figures need:
+# `scripts/deps.sh` (or `deps.sh test`) everything, `deps.sh JOB...` what those jobs need (core,
+# demo, figs, notebooks, bench, analysis, fuzz); `deps.sh --list [JOB...]` prints them instead.
+# Checks with dpkg first, so a second run costs nothing. As root it runs apt-get; otherwise it prints the exact apt-get line and exits non-zero.
 set -euo pipefail
 
+# The packages of each job (scripts/deps.sh JOB...; no JOB: everything, which `make test` needs).
+# A job lists only what it uses, so a user without root who lacks, say, Boost can still run the
+# demo.
+core=(build-essential cmake pkg-config)
+# the renderer (jansson: scenes and lights files; libpng: previews) and OpenEXR (maps, renders)
+render=(libjansson-dev libpng-dev libopenexr-dev)
+python=(python3 python3-numpy python3-matplotlib python3-mpmath python3-scipy)
+opencl=(pocl-opencl-icd ocl-icd-opencl-dev opencl-headers)
+declare -A jobs=(
+  [core]="${core[*]}"
+  [demo]="${core[*]} ${render[*]}"
+  # figures and table generators (Debian's python3, not a runtime dependency)
+  [figs]="${core[*]} ${render[*]} ${python[*]}"
+  [notebooks]="${core[*]} ${render[*]} ${python[*]} jupyter-nbconvert python3-ipykernel python3-nbformat"
+  # benchmarks: Boost.Math as a peer for the elliptic integrals, OpenCL for --backend cl
+  [bench]="${core[*]} ${render[*]} libboost-dev ${opencl[*]}"
+  # the stability sweep against MPFR and the scipy comparison
+  [analysis]="${core[*]} ${render[*]} libmpfr-dev libgmp-dev ${python[*]}"
+  # the libFuzzer harnesses (fuzz/; clang 14 with its runtime libraries)
+  [fuzz]="${core[*]} ${render[*]} clang libclang-rt-14-dev"
+)
 packages=(
-  # build
-  build-essential cmake pkg-config
-  # tests: MPFR references, GLSL and OpenCL compile checks of the generated LUT headers
-  libmpfr-dev libgmp-dev glslang-tools pocl-opencl-icd ocl-icd-opencl-dev opencl-headers
+  "${core[@]}" "${render[@]}" "${python[@]}" "${opencl[@]}"
+  # tests: MPFR references, GLSL compile checks of the generated LUT headers (OpenCL: above)
+  libmpfr-dev libgmp-dev glslang-tools
   # tests: locale sources, so cli_locale_numbers can compile a decimal-comma locale (localedef)
   locales
-  # tests: the libFuzzer harnesses (fuzz/; clang 14 with its runtime libraries)
+  # tests: the libFuzzer harnesses
   clang libclang-rt-14-dev
-  # benchmarks: Boost.Math as a peer for the elliptic integrals
+  # benchmarks: Boost.Math
   libboost-dev
-  # optional components: OpenEXR environment maps, jansson for lights/scene JSON (the renderer),
-  # libpng for render previews, Assimp for mesh files in scenes, Embree 3 for the Monte-Carlo
-  # reference's mesh crossings
-  libopenexr-dev libjansson-dev libpng-dev libassimp-dev libembree-dev
-  # figures, notebooks and table generators (Debian's python3, not a runtime dependency)
-  python3 python3-numpy python3-matplotlib python3-mpmath python3-scipy
+  # optional components of the renderer: Assimp for mesh files in scenes, Embree 3 for the
+  # Monte-Carlo reference's mesh crossings
+  libassimp-dev libembree-dev
+  # notebooks
   jupyter-nbconvert python3-ipykernel python3-nbformat
   # the Mitsuba 3 outside check: a virtual environment for the PyPI wheel (make mitsuba)
   python3-venv
@@ -30,10 +49,37 @@ packages=(
   # the test does not use)
   slurm-wlm munge
 )
+list=0
+if [ "${1:-}" = "--list" ]; then # print the packages (one per line) instead of checking them
+  list=1
+  shift
+fi
+if [ $# -gt 0 ]; then
+  wanted=()
+  for j in "$@"; do
+    case "$j" in
+      all | test) wanted+=("${packages[@]}") ;;
+      *)
+        if [ -z "${jobs[$j]+x}" ]; then
+          echo "deps.sh: unknown job '$j' (jobs: core demo figs notebooks bench analysis fuzz test all)" >&2
+          exit 2
+        fi
+        read -r -a more <<< "${jobs[$j]}"
+        wanted+=("${more[@]}")
+        ;;
+    esac
+  done
+  packages=("${wanted[@]}")
+fi
 
 # Installed means dpkg's package state "installed", whatever the selection: a package on hold
 # ("hold ok installed") is installed too (it was reported missing, and deps.sh failed as
 # non-root). One line per installed architecture of a Multi-Arch: same package.
+if [ $list -eq 1 ]; then
+  printf '%s\n' "${packages[@]}" | sort -u
+  exit 0
+fi
+
 missing=()
 for p in "${packages[@]}"; do
   status=$(dpkg-query -W -f='${db:Status-Status}\n' "$p" 2>/dev/null || true)
