@@ -190,6 +190,17 @@ static void test_fails_asymmetric_light(void) {
       double xc = ics_isoline_correct(lights[li], 0.5, 4.0);
       CHECK(fabs(xc + 4 * med[li]) < 1e-9, "correct 1/2-isoline %.17g vs -d median %.17g", xc,
             -4 * med[li]);
+      /* the conclusion at d = 4 (d1 = 1): correct vs iterative, the failure's size against
+       * A.5's prediction d (median - mean) */
+      double xi, disc, sd4 = sqrt(4.0 * ics_light1d_var(lights[li]));
+      CHECK(ics_isoline_iterative(lights[li], 0.5, 4.0, 1.0, E_SLAB, &o, &xi, &disc) == ICS_OK,
+            "iterated isoline of %s at d = 4", lname[li]);
+      double fail = xi - xc, pred = 4 * gap;
+      printf("    A.5 fails at d = 4: correct %+.7f, iterative %+.7f, failure %+.6f (%.4f sigma_n),"
+             " predicted d (median - mean) = %+.6f: %s\n", xc, xi, fail, fail / sd4, pred,
+             fabs(fail - pred) <= TOL_SYM * sd4 ? "as predicted" : "NOT as predicted");
+      CHECK(fabs(fail - pred) <= TOL_SYM * sd4, "%s (%s): failure %.6f vs predicted %.6f",
+            lname[li], ics_kernel_member_name(mem[k]), fail, pred);
     }
   }
   for (int li = 0; li < 3; li++) ics_light1d_destroy(lights[li]);
