@@ -10,6 +10,7 @@
 #include <ctype.h>
 #include <stdarg.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -331,7 +332,8 @@ static int copy_into(const char *from, FILE *fp) {
 }
 
 /* Phase 1 of a commit: the bytes complete (stdout flushed; an in-place target gets its copy; the
- * file closed). 0, or -1 with errno. The temporary (tmp_path) is left for phase 2. */
+ * file closed; a temporary flushed to the disk with fsync). 0, or -1 with errno. The temporary
+ * (tmp_path) is left for phase 2, the rename. */
 static int finish(cli_output *out) {
   if (out->fp == stdout) {
     out->fp = NULL;
@@ -353,6 +355,13 @@ static int finish(cli_output *out) {
     bad |= fclose(out->fp) != 0;
     if (bad && !errno) errno = saved ? saved : EIO;
     out->fp = NULL;
+  }
+  if (!bad && out->tmp_path) { /* the bytes on the disk before the rename names them */
+    int fd = open(out->tmp_path, O_RDONLY);
+    bad = fd < 0 || fsync(fd) != 0;
+    int saved = errno;
+    if (fd >= 0) close(fd);
+    errno = saved;
   }
   return bad ? -1 : 0;
 }

@@ -573,6 +573,18 @@ ics_status ics_exr_write_channels(const char *path, const ics_exr_channels *ch, 
     remove(tmp);
     return map_err(rv) == ICS_ERR_PARSE ? ICS_ERR_IO : map_err(rv);
   }
+  /* the bytes on the disk before the name: a crash after the rename leaves the whole new file
+   * or the old one, never an empty one */
+  int fd = open(tmp, O_RDONLY);
+  if (fd < 0 || fsync(fd) != 0) {
+    int saved = errno;
+    if (fd >= 0) close(fd);
+    set_msg(msg, msg_size, "%s: cannot write OpenEXR: flushing the finished file to disk: %s",
+            path, strerror(saved));
+    remove(tmp);
+    return ICS_ERR_IO;
+  }
+  close(fd);
   if (rename(tmp, target) != 0) {
     set_msg(msg, msg_size, "%s: cannot write OpenEXR: renaming the finished file into place: %s",
             path, strerror(errno));

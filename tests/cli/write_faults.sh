@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# write_faults.sh CLI SHIM — every writer of the CLI under a failing fsync and a failing rename
+# (tests/fault/fault_shim.c through LD_PRELOAD): exit status 1, a message naming the output and
+# the cause ("Input/output error"), the previous file intact, no temporary left beside it; and
+# with the shim loaded but no fault, the same commands replace the file.
+set -u
+cli=$1 shim=$2
+dir=$(mktemp -d "${TMPDIR:-/tmp}/write_faults.XXXXXX") || exit 2
+trap 'rm -rf "$dir"' EXIT
+fail=0
+printf 'previous\n' > "$dir/previous"
+same() { cmp -s "$1" "$dir/previous"; }
+run() { # name, output file, command...
+  local name=$1 out=$2
+  shift 2
+  for fault in fsync rename; do
+    printf 'previous\n' > "$out"
+    err=$(LD_PRELOAD=$shim ICS_FAULT=$fault "$@" 2>&1 > /dev/null); rc=$?
+    left=$(ls "$dir" | grep -c "\.tmp")
+    if [ $rc -ne 1 ] || ! printf '%s' "$err" | grep -q "$(basename "$out").*Input/output error" ||
+       ! same "$out" || [ "$left" -ne 0 ]; then
+      echo "$name, $fault fails: exit $rc, '$err', file: $(head -c 20 "$out" | tr -dc '[:print:]'), $left temporaries"
+      fail=1
+    else
+      echo "$name, $fault fails: exit 1, previous file intact, no temporary: $err"
+    fi
+  done
+  LD_PRELOAD=$shim "$@" > /dev/null 2>&1 || { echo "$name without a fault: exit $?"; fail=1; }
+  ! same "$out" || { echo "$name without a fault: file not replaced"; fail=1; }
+}
+run "lut -o" "$dir/lut.h" "$cli" lut --size 16 --lang c -o "$dir/lut.h"
+run "make-env -o" "$dir/env.exr" "$cli" make-env --lights '0.2,0.1,0.05,0.05,0,1,1,1,1' --size 32x16 -o "$dir/env.exr"
+run "render -o" "$dir/r.exr" "$cli" render --resolution 16x12 -o "$dir/r.exr"
+run "render --png" "$dir/r.png" "$cli" render --resolution 16x12 --png "$dir/r.png"
+"$cli" make-env --lights '0.2,0.1,0.05,0.05,0,1,1,1,1' --size 64x32 -o "$dir/in.exr" > /dev/null 2>&1
+run "fit-light -o" "$dir/l.json" "$cli" fit-light "$dir/in.exr" --lights 1 -o "$dir/l.json"
+exit $fail
