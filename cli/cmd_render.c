@@ -156,14 +156,14 @@ int cmd_render(int argc, char **argv) {
              *diff_png = NULL, *mc_mesh = NULL;
   int force_progress = 0, backends = 0, spp = 0, ref_spp = 0, given_ref = 0;
   double time_s = 0, noise = 0;
-  int given_spp = 0, given_time = 0, given_noise = 0;
+  int given_spp = 0, given_time = 0, given_noise = 0, given_cl_device = 0;
   const cli_option mine[] = {
       {"-o", .kind = CLI_FILE, .dest = &exr},
       {"--png", .kind = CLI_FILE, .dest = &png},
       {"--aov", .kind = CLI_STRING, .dest = &aov_list},
       {"--backend", .kind = CLI_STRING, .dest = &backend},
       {"--backends", .kind = CLI_FLAG, .dest = &backends},
-      {"--cl-device", .kind = CLI_CALL, .parse = cli_parse_cl_device},
+      {"--cl-device", .kind = CLI_CALL, .parse = cli_parse_cl_device, .given = &given_cl_device},
       {"--progress", .kind = CLI_FLAG, .dest = &force_progress},
       {"--spp", .kind = CLI_INT, .dest = &spp, .lo = 1, .hi = 1 << 24, .given = &given_spp},
       {"--time", .kind = CLI_FINITE, .dest = &time_s, .given = &given_time},
@@ -187,6 +187,9 @@ int cmd_render(int argc, char **argv) {
   if ((exr && !strcmp(exr, "-")) || (png && !strcmp(png, "-")) || (diff_png && !strcmp(diff_png, "-")))
     return cli_error(CMD, "images are written to files, not to stdout (the summary goes there)");
   int mc = backend && !strcmp(backend, "mc");
+  if (given_cl_device && !(backend && !strcmp(backend, "cl")))
+    cli_warning(CMD, "--cl-device only chooses the device of --backend cl (the backend is %s)",
+                backend ? backend : "auto");
   if ((given_spp || given_time || given_noise) && !mc)
     return cli_error(CMD, "%s: only the Monte-Carlo reference takes a stop (give --backend mc)",
                      given_spp ? "--spp" : given_time ? "--time" : "--noise");

@@ -27,6 +27,9 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
   ics_cli_test(NAME cli_render_cl_device_flag RC 2 LABELS medium
     ARGS "render|--backend|cl|--cl-device|no-such-device|-o|${rdc}/flag.exr"
     ERR "ICS_CL_DEVICE=no-such-device matches no device" NOFILE ${rdc}/flag.exr)
+  ics_cli_test(NAME cli_render_cl_device_other_backend RC 0 LABELS medium
+    ARGS "render|--cl-device|0|--resolution|16x12|-o|${rdc}/other.exr"
+    ERR "warning: --cl-device only chooses the device of --backend cl \\(the backend is auto\\)")
   set_tests_properties(cli_render_cl_device_flag PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
   set_tests_properties(cli_render_cl_no_device PROPERTIES
     ENVIRONMENT "POCL_CACHE_DIR=${ics_pocl_cache};ICS_CL_DEVICE=no-such-device")
