@@ -33,14 +33,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     REQUIRE(l == NULL && strstr(msg, path) != NULL);
   } else {
     REQUIRE(l && n >= 1 && n <= ICS_LIGHTSFILE_MAX);
-    for (int k = 0; k < n; k++) {
-      const ics_light *q = &l[k];
-      REQUIRE(isfinite(q->mean[0]) && isfinite(q->mean[1]));
-      REQUIRE(q->cov[0] >= 0 && q->cov[2] >= 0 && isfinite(q->cov[1]));
-      REQUIRE(q->cov[1] * q->cov[1] <= q->cov[0] * q->cov[2] * (1 + 1e-9) + 1e-300);
-      REQUIRE(isfinite(q->weight) && q->weight >= 0);
-      for (int c = 0; c < 3; c++) REQUIRE(isfinite(q->color[c]) && q->color[c] >= 0);
-    }
+    for (int k = 0; k < n; k++) require_light(&l[k]);
   }
   free(l);
   return 0;

@@ -1,13 +1,13 @@
 # The cl backend (gpu/cl, OpenCL on PoCL here) against the cpu backend: the default scene, the
 # scene files and variants reaching every kernel path; its refusals. Medium: PoCL builds the
-# program on first use (about a second, then cached in the build tree's PoCL cache).
+# program on first use (about a second, then cached in the build tree's PoCL cache, which
+# tests/CMakeLists.txt gives every test).
 file(GLOB ics_scene_files CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/scenes/*.json)
 ics_add_test(NAME test_render_cl SOURCES test_render_cl.c LABELS medium render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER OPENCL ARGS ${ics_scene_files})
 if(TARGET test_render_cl)
   target_include_directories(test_render_cl PRIVATE ${CMAKE_SOURCE_DIR}/gpu/src)
 endif()
-set_tests_properties(test_render_cl PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
 
 # on the command line: the default scene through --backend cl, its device in the summary; a
 # device that does not exist refused before anything is written; bench slab side by side
@@ -23,22 +23,18 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
   ics_cli_test(NAME cli_bench_slab_cl RC 0 LABELS medium
     ARGS "bench|slab|--sizes|64|--slabs|4|--threads|1|--reps|1|--kernels|ellipse2,gauss19|--backend|cpu,cl"
     OUT "cpu,ellipse2,.*\ncl,ellipse2,2,table,64,64,4,0,.*\ncpu,gauss19,.*\ncl,gauss19,19,taps,64,64,4,0,")
-  set_tests_properties(cli_render_cl cli_bench_slab_cl PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
   ics_cli_test(NAME cli_render_cl_device_flag RC 2 LABELS medium
     ARGS "render|--backend|cl|--cl-device|no-such-device|-o|${rdc}/flag.exr"
     ERR "ICS_CL_DEVICE=no-such-device matches no device" NOFILE ${rdc}/flag.exr)
   ics_cli_test(NAME cli_render_cl_device_other_backend RC 0 LABELS medium
     ARGS "render|--cl-device|0|--resolution|16x12|-o|${rdc}/other.exr"
     ERR "warning: --cl-device only chooses the device of --backend cl \\(the backend is auto\\)")
-  set_tests_properties(cli_render_cl_device_flag PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
-  set_tests_properties(cli_render_cl_no_device PROPERTIES
-    ENVIRONMENT "POCL_CACHE_DIR=${ics_pocl_cache};ICS_CL_DEVICE=no-such-device")
+  set_tests_properties(cli_render_cl_no_device PROPERTIES ENVIRONMENT ICS_CL_DEVICE=no-such-device)
 endif()
 
 # summed-area tables on the device (icshadow/cl.h) equal the core's bit for bit
 ics_add_test(NAME test_sat_cl SOURCES test_sat_cl.c LABELS medium
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER OPENCL)
-set_tests_properties(test_sat_cl PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
 # bench sat2d / sat3d with the device's table beside the CPU's, per mode
 if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
   ics_cli_test(NAME cli_sat2d_cl RC 0 LABELS medium
@@ -47,17 +43,14 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
   ics_cli_test(NAME cli_sat3d_cl RC 0 LABELS medium
     ARGS "bench|sat3d|--width|9|--height|7|--depth|5|--modes|double|--reps|1|--boxes|20|--backend|cl"
     OUT "^kind,[^\n]*\nsat3d-cl,double,9,7,5,1,[^\n]*,0,0,20\n$")
-  set_tests_properties(cli_sat2d_cl cli_sat3d_cl PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
 endif()
 # min-max mipmaps on the device: the same trees and the same integrated sums as the core's
 ics_add_test(NAME test_minmax_cl SOURCES test_minmax_cl.c LABELS medium
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER OPENCL)
-set_tests_properties(test_minmax_cl PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
 # bench minmax with the device's trees beside the CPU's (the sums' equality: test_minmax_cl)
 if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
   set(f "[0-9.e+-]+")
   ics_cli_test(NAME cli_minmax_cl RC 0 LABELS medium
     ARGS "bench|minmax|--samples|64|--rows|8|--rays|4|--reps|1|--backend|cpu,cl"
     OUT "\n64,8,4,4,${f},${f},${f},${f},[0-9]+,[0-9]+,${f},${f},${f},${f},${f},cpu\n64,8,4,4,${f},${f},${f},${f},[0-9]+,[0-9]+,${f},${f},${f},${f},${f},cl\n$")
-  set_tests_properties(cli_minmax_cl PROPERTIES ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
 endif()

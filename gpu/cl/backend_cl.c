@@ -363,16 +363,13 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
   cam[14] = tan(cm->fov_deg * (ICS_PI / 360));
   cam[15] = (double)P->W / P->H;
   cam[16] = cm->projection == ICS_PROJ_PERSPECTIVE;
-  double q_max = P->cam.projection == ICS_PROJ_PERSPECTIVE
-                     ? ics_plan_pixel_size(P, ics_plan_slab_depth(P, P->K - 1)) : P->q_ref;
-  double wmax = 0;
+  double wmax = ics_plan_window_max(P);
   for (int l = 0; l < nl; l++) {
     const ics_light *lt = &sc->lights[l];
     for (int c = 0; c < 3; c++) lcol[3 * l + c] = lt->color[c] * lt->weight;
     lmu[2 * l] = lt->mean[0], lmu[2 * l + 1] = lt->mean[1];
     signed_l[l] = P->kernels[l].comp == ICS_RC_SIGNED;
     blur[l] = ics_plan_light_blur(P, l);
-    wmax = fmax(wmax, 1 - blur[l] / q_max);
     cum[l][0] = cum[l][1] = 0;
     const ics_slab_kernel *sk = &P->kernels[l];
     scratch[l] = malloc(sizeof **scratch * (size_t)sk->entries * (size_t)sk->cap);
@@ -425,35 +422,16 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
       e = clEnqueueFillBuffer(s->d.q, j->aov, &zero, sizeof zero, 0, aov_bytes, 0, NULL, NULL);
     if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueFillBuffer";
   }
-  int persp = P->cam.projection == ICS_PROJ_PERSPECTIVE;
   for (int k = 0; k < P->K && j->err == CL_SUCCESS; k++) {
-    double zk = ics_plan_slab_depth(P, k), zp = ics_plan_slab_depth(P, k > 0 ? k - 1 : 0);
-    double q = persp ? ics_plan_pixel_size(P, zk) : P->q_ref, mag = persp ? zk / zp : 1;
+    double mag, q = ics_plan_slab_pixel(P, k, &mag);
     for (int l = 0; l < nl; l++) {
-      const ics_slab_kernel *sk = &P->kernels[l];
-      int n;
       window[l] = fmax(0, 1 - blur[l] / q);
-      status = ics_slab_kernel_taps(sk, (uint64_t)k, q, cum[l], scratch[l], &n);
-      if (status != ICS_OK) {
-        if (msg) snprintf(msg, msg_size, "light %d, slab %d: kernel taps: %s", l, k,
-                          ics_status_str(status));
-        goto done;
-      }
       ics_prop_taps *pt = &pts[l];
-      if (persp ? ics_prop_prepare_perspective(pt, scratch[l], n, mag, P->cx, P->cy, &P->buf)
-                : ics_prop_prepare(pt, scratch[l], sk->out_entries, n / sk->out_entries, sk->cap,
-                                   mag, P->cx, P->cy, &P->buf)) {
-        status = ICS_ERR_NOMEM; /* as the cpu backend reports it */
-        if (msg) snprintf(msg, msg_size, "backend cl: light %d, slab %d: the taps could not be "
-                          "prepared (out of memory, a tap out of range or a compensation that "
-                          "failed)", l, k);
-        goto done;
-      }
-      pt->seed = P->rs.seed;
-      pt->run = P->rs.rotation_run;
-      pt->phase = (int)ics_slab_choice(P->rs.seed, (uint32_t)l, (uint32_t)k, UINT32_MAX - 2, 16);
-      pt->light = (uint32_t)l;
-      pt->slab = (uint32_t)k;
+      status = ics_plan_slab_taps(P, l, k, q, mag, cum[l], scratch[l], pt, msg, msg_size);
+      if (status == ICS_ERR_NOMEM && msg)
+        snprintf(msg, msg_size, "backend cl: light %d, slab %d: the taps could not be prepared "
+                 "(out of memory, a tap out of range or a compensation that failed)", l, k);
+      if (status != ICS_OK) goto done;
       upload_taps(j, l, pt, (size_t)pt->ntaps * (size_t)(pt->stencil ? 1 : pt->entries));
     }
     job_write(j, j->window, sizeof(double) * (size_t)(nl ? nl : 1), window, "clEnqueueWriteBuffer(window)");
@@ -476,10 +454,7 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
     status = ics_cl_status(j->err);
     goto done;
   }
-  for (size_t i = 0; i < (size_t)P->W * P->H; i++) {
-    float *C = img->data + 4 * i;
-    for (int c = 0; c < 3; c++) C[c] += (1 - C[3]) * (float)P->rs.background[c];
-  }
+  ics_plan_over_background(P, img);
   st->threads = 0;
   st->slabs = P->K;
   snprintf(st->device, sizeof st->device, "%s", s->d.name);

@@ -303,12 +303,8 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->aov = aov;
   j->aov_seen = aov ? calloc((size_t)P->W * P->H, 1) : NULL;
   /* the largest pixel is the deepest slab's (perspective) */
-  double q_max = P->cam.projection == ICS_PROJ_PERSPECTIVE
-                     ? ics_plan_pixel_size(P, ics_plan_slab_depth(P, P->K - 1)) : P->q_ref;
-  for (int l = 0; l < nl; l++) {
-    j->blur_world[l] = ics_plan_light_blur(P, l);
-    j->window_max = fmax(j->window_max, 1 - j->blur_world[l] / q_max);
-  }
+  for (int l = 0; l < nl; l++) j->blur_world[l] = ics_plan_light_blur(P, l);
+  j->window_max = ics_plan_window_max(P);
   if (!j->pt || !j->cursor || !j->acursor || !j->scratch || !j->row_next || (P->nvol && !j->mask) ||
       (aov && !j->aov_seen))
     goto nomem;
@@ -330,30 +326,14 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   }
   for (int i = 0; i < P->scene->nobjects; i++)
     if (P->vol_bit[i] >= 0) j->vol_obj[P->vol_bit[i]] = i;
-  int persp = P->cam.projection == ICS_PROJ_PERSPECTIVE;
   for (int k = 0; k < P->K; k++) {
     j->k = k;
-    double zk = ics_plan_slab_depth(P, k), zp = ics_plan_slab_depth(P, k > 0 ? k - 1 : 0);
-    double q = persp ? ics_plan_pixel_size(P, zk) : P->q_ref, s = persp ? zk / zp : 1;
+    double s, q = ics_plan_slab_pixel(P, k, &s);
     for (int l = 0; l < nl; l++) j->window[l] = fmax(0, 1 - j->blur_world[l] / q);
     for (int l = 0; l < nl; l++) {
-      const ics_slab_kernel *sk = &P->kernels[l];
-      int n;
-      status = ics_slab_kernel_taps(sk, (uint64_t)k, q, cum[l], scratch[l], &n);
-      if (status != ICS_OK) {
-        if (msg) snprintf(msg, msg_size, "light %d, slab %d: kernel taps: %s", l, k,
-                          ics_status_str(status));
-        goto done;
-      }
-      if (persp ? ics_prop_prepare_perspective(&j->pt[l], scratch[l], n, s, P->cx, P->cy, &P->buf)
-                : ics_prop_prepare(&j->pt[l], scratch[l], sk->out_entries, n / sk->out_entries,
-                                   sk->cap, s, P->cx, P->cy, &P->buf))
-        goto nomem;
-      j->pt[l].seed = P->rs.seed; /* table choices */
-      j->pt[l].run = P->rs.rotation_run;
-      j->pt[l].phase = (int)ics_slab_choice(P->rs.seed, (uint32_t)l, (uint32_t)k, UINT32_MAX - 2, 16);
-      j->pt[l].light = (uint32_t)l;
-      j->pt[l].slab = (uint32_t)k;
+      status = ics_plan_slab_taps(P, l, k, q, s, cum[l], scratch[l], &j->pt[l], msg, msg_size);
+      if (status == ICS_ERR_NOMEM) goto nomem;
+      if (status != ICS_OK) goto done;
     }
     ics_pool_run(pool, slab_job, j);
     for (int l = 0; l < nl; l++) ics_prop_apron(&P->buf, j->dst[l], P->nch, 0, 0, 1);
@@ -364,11 +344,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
     }
     if (o->progress) o->progress(o->progress_ctx, k + 1, P->K);
   }
-  /* over the background */
-  for (size_t i = 0; i < (size_t)P->W * P->H; i++) {
-    float *C = img->data + 4 * i;
-    for (int c = 0; c < 3; c++) C[c] += (1 - C[3]) * (float)P->rs.background[c];
-  }
+  ics_plan_over_background(P, img);
   st->threads = nt;
   st->slabs = P->K;
   snprintf(st->device, sizeof st->device, "CPU, %d thread%s", nt, nt == 1 ? "" : "s");

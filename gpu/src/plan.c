@@ -53,6 +53,54 @@ double ics_plan_light_blur(const ics_plan *p, int l) {
   return sqrt(p->rs.d1 * p->e * fmax(varx, 0));
 }
 
+double ics_plan_slab_pixel(const ics_plan *p, int k, double *mag) {
+  if (p->cam.projection != ICS_PROJ_PERSPECTIVE) {
+    *mag = 1;
+    return p->q_ref;
+  }
+  double zk = ics_plan_slab_depth(p, k), zp = ics_plan_slab_depth(p, k > 0 ? k - 1 : 0);
+  *mag = zk / zp;
+  return ics_plan_pixel_size(p, zk);
+}
+
+double ics_plan_window_max(const ics_plan *p) {
+  double q_max = p->cam.projection == ICS_PROJ_PERSPECTIVE
+                     ? ics_plan_pixel_size(p, ics_plan_slab_depth(p, p->K - 1)) : p->q_ref;
+  double w = 0;
+  for (int l = 0; l < p->nlights; l++) w = fmax(w, 1 - ics_plan_light_blur(p, l) / q_max);
+  return w;
+}
+
+ics_status ics_plan_slab_taps(const ics_plan *p, int l, int k, double q, double mag,
+                              double cum[2], ics_tap2d *scratch, ics_prop_taps *pt, char *msg,
+                              size_t msg_size) {
+  const ics_slab_kernel *sk = &p->kernels[l];
+  int n;
+  ics_status st = ics_slab_kernel_taps(sk, (uint64_t)k, q, cum, scratch, &n);
+  if (st != ICS_OK) {
+    if (msg) snprintf(msg, msg_size, "light %d, slab %d: kernel taps: %s", l, k, ics_status_str(st));
+    return st;
+  }
+  if (p->cam.projection == ICS_PROJ_PERSPECTIVE
+          ? ics_prop_prepare_perspective(pt, scratch, n, mag, p->cx, p->cy, &p->buf)
+          : ics_prop_prepare(pt, scratch, sk->out_entries, n / sk->out_entries, sk->cap, mag,
+                             p->cx, p->cy, &p->buf))
+    return ICS_ERR_NOMEM;
+  pt->seed = p->rs.seed; /* table choices */
+  pt->run = p->rs.rotation_run;
+  pt->phase = (int)ics_slab_choice(p->rs.seed, (uint32_t)l, (uint32_t)k, UINT32_MAX - 2, 16);
+  pt->light = (uint32_t)l;
+  pt->slab = (uint32_t)k;
+  return ICS_OK;
+}
+
+void ics_plan_over_background(const ics_plan *p, ics_image *img) {
+  for (size_t i = 0; i < (size_t)p->W * p->H; i++) {
+    float *C = img->data + 4 * i;
+    for (int c = 0; c < 3; c++) C[c] += (1 - C[3]) * (float)p->rs.background[c];
+  }
+}
+
 static void add_pass(ics_plan *p, const char *name, size_t bytes, int light, int taps,
                      const char *detail) {
   ics_plan_pass *q = &p->passes[p->npasses++];

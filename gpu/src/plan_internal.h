@@ -9,6 +9,7 @@
 
 #include "detail.h"
 #include "propagate.h"
+#include "icshadow/image.h"
 #include "icshadow/plan.h"
 #include "slab_kernel.h"
 
@@ -92,6 +93,20 @@ double ics_plan_pixel_size(const ics_plan *p, double z);
 double ics_plan_light_blur(const ics_plan *p, int l);
 /* Depth of slab k's light plane (its middle). */
 double ics_plan_slab_depth(const ics_plan *p, int k);
+/* What every slab renderer does per slab, in one place: the pixel size of slab k (*mag: its
+ * magnification over slab k - 1, 1 for orthographic cameras and k = 0); the surface windows'
+ * reach over all slabs (the largest 1 - blur_l / q, q of the deepest slab); light l's taps of
+ * slab k prepared for the step (ics_slab_kernel_taps, then ics_prop_prepare or
+ * _perspective, and the table-choice fields): ICS_OK, the taps' error with msg ("light L, slab
+ * K: kernel taps: ..."), or ICS_ERR_NOMEM without msg when they cannot be prepared (cum: the
+ * light's integer-shift schedule state, scratch: sk->entries * sk->cap taps); and the image's
+ * RGB over the background by its accumulated alpha. */
+double ics_plan_slab_pixel(const ics_plan *p, int k, double *mag);
+double ics_plan_window_max(const ics_plan *p);
+ics_status ics_plan_slab_taps(const ics_plan *p, int l, int k, double q, double mag,
+                              double cum[2], ics_tap2d *scratch, ics_prop_taps *pt, char *msg,
+                              size_t msg_size);
+void ics_plan_over_background(const ics_plan *p, ics_image *img);
 
 /* Builds the LDI over the plan's buffer grid (geometry pass; ldi.c). */
 ics_status ics_ldi_build(ics_plan *p, int threads, char *msg, size_t msg_size);
