@@ -23,10 +23,9 @@
 #include "backend.h"
 #include "cl_device.h"
 #include "clock.h"
+#include "device_scene.h"
 #include "plan_internal.h"
 #include "propagate.h"
-#include "icshadow/constants.h"
-#include "scene_internal.h"
 #include "slab_cl_source.h" /* ics_slab_cl_source: gpu/cl/slab.cl (cmake/embed_text.cmake) */
 
 static int cl_available(char *why, size_t why_size) { return ics_cl_available(why, why_size); }
@@ -90,9 +89,6 @@ typedef struct shade_args {
   cl_uint seed_lo, seed_hi;
   cl_double zf, zb, window_max;
 } shade_args;
-
-/* slab.cl's object record: OBJ_STRIDE doubles (the O_* offsets there) */
-#define OBJ_STRIDE 32
 
 typedef struct cl_job {
   cl_state *s;
@@ -269,8 +265,7 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
                             size_t msg_size) {
   cl_state *s = state;
   double t_start = ics_clock_s();
-  const ics_scene *sc = P->scene;
-  int nl = P->nlights, nch = P->nch, nobj = sc->nobjects ? sc->nobjects : 1;
+  int nl = P->nlights, nch = P->nch;
   size_t plane = P->buf.plane, npx = (size_t)P->Wb * P->Hb, nfrag = P->ldi.nfrag;
   size_t lbytes = sizeof(float) * (size_t)(nl ? nl : 1) * (size_t)nch * plane;
   if ((size_t)(nl ? nl : 1) * (size_t)nch * plane > INT_MAX || npx + 1 > UINT_MAX) {
@@ -291,85 +286,18 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
   j->s = s;
   j->P = P;
   /* host copies of what the device reads */
-  size_t nf = nfrag ? nfrag : 1, ntt = 0;
-  size_t ncells = 0; /* grid detail cells, all objects */
-  for (int i = 0; i < sc->nobjects; i++) {
-    const ics_material *m = &sc->materials[sc->objects[i].material];
-    ntt += (size_t)m->ntransfer;
-    if (m->detail.fn == ICS_DETAIL_GRID)
-      ncells += (size_t)m->detail.size[0] * (size_t)m->detail.size[1] * (size_t)m->detail.size[2];
-  }
-  float *fz = malloc(sizeof *fz * nf);
-  uint32_t *fcode = malloc(sizeof *fcode * nf);
-  cl_float2 *fgrad = malloc(sizeof *fgrad * nf);
-  uint8_t *fspan = malloc(nf);
-  double *obj = calloc((size_t)nobj * OBJ_STRIDE, sizeof *obj);
-  double *tt = calloc(5 * (ntt ? ntt : 1), sizeof *tt);
-  uint8_t *perm = calloc((size_t)nobj, 512);
-  float *grids = malloc(sizeof *grids * (ncells ? ncells : 1));
-  cl_ulong *inside = P->nvol ? malloc(sizeof *inside * npx) : NULL;
-  double cam[17], lcol[3 * ICS_SCENE_MAX_LIGHTS], lmu[2 * ICS_SCENE_MAX_LIGHTS];
-  double window[ICS_SCENE_MAX_LIGHTS], blur[ICS_SCENE_MAX_LIGHTS], cum[ICS_SCENE_MAX_LIGHTS][2];
-  cl_int signed_l[ICS_SCENE_MAX_LIGHTS], vol_obj[ICS_MAX_VOLUMES] = {0};
+  ics_device_scene ds;
+  double window[ICS_SCENE_MAX_LIGHTS], cum[ICS_SCENE_MAX_LIGHTS][2];
   ics_prop_taps *pts = calloc((size_t)(nl ? nl : 1), sizeof *pts);
   ics_tap2d **scratch = calloc((size_t)(nl ? nl : 1), sizeof *scratch);
-  if (!fz || !fcode || !fgrad || !fspan || !obj || !tt || !perm || !grids || (P->nvol && !inside) ||
-      !pts || !scratch)
-    goto nomem;
-  for (size_t f = 0; f < nfrag; f++) {
-    const ics_fragment *fr = &P->ldi.frag[f];
-    fz[f] = fr->z;
-    fcode[f] = fr->code;
-    fgrad[f].s[0] = (float)(fr->grad[0] / ICS_FRAG_GRAD_SCALE); /* exact: int16 / 64 */
-    fgrad[f].s[1] = (float)(fr->grad[1] / ICS_FRAG_GRAD_SCALE);
-    fspan[f] = fr->span;
+  if (ics_device_scene_create(&ds, P) != ICS_OK) {
+    free(pts), free(scratch);
+    if (msg) snprintf(msg, msg_size, "backend cl: out of host memory for the upload (%zu fragments)", nfrag);
+    return ICS_ERR_NOMEM;
   }
-  /* objects (slab.cl's O_* offsets), their transfer rows and noise permutations */
-  size_t cell = 0;
-  for (int i = 0, row = 0; i < sc->nobjects; i++) {
-    const ics_material *m = &sc->materials[sc->objects[i].material];
-    const ics_detail *d = &m->detail;
-    double *o = obj + (size_t)i * OBJ_STRIDE;
-    o[0] = m->opacity;
-    for (int c = 0; c < 3; c++) o[1 + c] = m->color[c], o[4 + c] = m->transport[c];
-    o[7] = m->extinction;
-    o[8] = P->vol_bit[i];
-    o[9] = d->fn;
-    o[10] = d->frequency, o[11] = d->lacunarity, o[12] = d->gain, o[13] = d->offset;
-    o[14] = d->time, o[15] = d->scale, o[16] = d->bias, o[17] = d->octaves;
-    o[18] = m->ntransfer, o[19] = row;
-    memcpy(tt + 5 * (size_t)row, m->transfer, sizeof(double) * 5 * (size_t)m->ntransfer);
-    row += m->ntransfer;
-    if (P->vol_bit[i] >= 0) vol_obj[P->vol_bit[i]] = i;
-    if (d->fn != ICS_DETAIL_NONE && P->detail) memcpy(perm + 512 * (size_t)i, P->detail[i].perm, 512);
-    if (d->fn == ICS_DETAIL_GRID && P->detail) { /* its cells and the object's box */
-      size_t n = (size_t)d->size[0] * (size_t)d->size[1] * (size_t)d->size[2];
-      memcpy(grids + cell, d->grid, sizeof *grids * n);
-      o[20] = (double)cell;
-      for (int a = 0; a < 3; a++)
-        o[21 + a] = d->size[a], o[24 + a] = P->detail[i].lo[a], o[27 + a] = P->detail[i].hi[a];
-      cell += n;
-    }
-  }
-  if (inside) {
-    if (P->ldi.inside0) memcpy(inside, P->ldi.inside0, sizeof *inside * npx);
-    else memset(inside, 0, sizeof *inside * npx);
-  }
-  const ics_camera *cm = &P->cam;
-  for (int i = 0; i < 3; i++)
-    cam[i] = cm->eye[i], cam[3 + i] = cm->r[i], cam[6 + i] = cm->u[i], cam[9 + i] = cm->f[i];
-  cam[12] = cm->height;
-  cam[13] = cm->height * P->W / P->H; /* as ics_plan_ray computes them */
-  cam[14] = tan(cm->fov_deg * (ICS_PI / 360));
-  cam[15] = (double)P->W / P->H;
-  cam[16] = cm->projection == ICS_PROJ_PERSPECTIVE;
+  if (!pts || !scratch) goto nomem;
   double wmax = ics_plan_window_max(P);
   for (int l = 0; l < nl; l++) {
-    const ics_light *lt = &sc->lights[l];
-    for (int c = 0; c < 3; c++) lcol[3 * l + c] = lt->color[c] * lt->weight;
-    lmu[2 * l] = lt->mean[0], lmu[2 * l + 1] = lt->mean[1];
-    signed_l[l] = P->kernels[l].comp == ICS_RC_SIGNED;
-    blur[l] = ics_plan_light_blur(P, l);
     cum[l][0] = cum[l][1] = 0;
     const ics_slab_kernel *sk = &P->kernels[l];
     scratch[l] = malloc(sizeof **scratch * (size_t)sk->entries * (size_t)sk->cap);
@@ -388,22 +316,22 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
   j->offset = job_buffer(j, sizeof(cl_uint) * (npx + 1), P->ldi.offset, "clCreateBuffer(LDI)");
   j->cursor = job_buffer(j, sizeof(cl_uint) * (npx + 1), P->ldi.offset, "clCreateBuffer(LDI)");
   j->acursor = job_buffer(j, sizeof(cl_uint) * (npx + 1), P->ldi.offset, "clCreateBuffer(LDI)");
-  j->fz = job_buffer(j, sizeof *fz * nf, fz, "clCreateBuffer(LDI)");
-  j->fcode = job_buffer(j, sizeof *fcode * nf, fcode, "clCreateBuffer(LDI)");
-  j->fgrad = job_buffer(j, sizeof *fgrad * nf, fgrad, "clCreateBuffer(LDI)");
-  j->fspan = job_buffer(j, nf, fspan, "clCreateBuffer(LDI)");
-  j->inside = job_buffer(j, inside ? sizeof *inside * npx : 8, inside, "clCreateBuffer(volumes)");
-  j->obj = job_buffer(j, sizeof *obj * (size_t)nobj * OBJ_STRIDE, obj, "clCreateBuffer(objects)");
-  j->tt = job_buffer(j, sizeof *tt * 5 * (ntt ? ntt : 1), tt, "clCreateBuffer(objects)");
-  j->perm = job_buffer(j, 512 * (size_t)nobj, perm, "clCreateBuffer(objects)");
-  j->vol_obj = job_buffer(j, sizeof vol_obj, vol_obj, "clCreateBuffer(objects)");
-  j->grids = job_buffer(j, sizeof *grids * (ncells ? ncells : 1), grids, "clCreateBuffer(grid detail)");
-  j->cam = job_buffer(j, sizeof cam, cam, "clCreateBuffer(camera)");
-  j->lcol = job_buffer(j, sizeof lcol, lcol, "clCreateBuffer(lights)");
-  j->lmu = job_buffer(j, sizeof lmu, lmu, "clCreateBuffer(lights)");
+  j->fz = job_buffer(j, sizeof *ds.fz * ds.nfrag, ds.fz, "clCreateBuffer(LDI)");
+  j->fcode = job_buffer(j, sizeof *ds.fcode * ds.nfrag, ds.fcode, "clCreateBuffer(LDI)");
+  j->fgrad = job_buffer(j, 2 * sizeof *ds.fgrad * ds.nfrag, ds.fgrad, "clCreateBuffer(LDI)");
+  j->fspan = job_buffer(j, ds.nfrag, ds.fspan, "clCreateBuffer(LDI)");
+  j->inside = job_buffer(j, ds.inside ? sizeof *ds.inside * npx : 8, ds.inside, "clCreateBuffer(volumes)");
+  j->obj = job_buffer(j, sizeof *ds.obj * ds.nobj * ICS_DEV_OBJ_STRIDE, ds.obj, "clCreateBuffer(objects)");
+  j->tt = job_buffer(j, sizeof *ds.tt * 5 * ds.ntt, ds.tt, "clCreateBuffer(objects)");
+  j->perm = job_buffer(j, 512 * ds.nobj, ds.perm, "clCreateBuffer(objects)");
+  j->vol_obj = job_buffer(j, sizeof ds.vol_obj, ds.vol_obj, "clCreateBuffer(objects)");
+  j->grids = job_buffer(j, sizeof *ds.grids * ds.ncells, ds.grids, "clCreateBuffer(grid detail)");
+  j->cam = job_buffer(j, sizeof ds.cam, ds.cam, "clCreateBuffer(camera)");
+  j->lcol = job_buffer(j, sizeof ds.lcol, ds.lcol, "clCreateBuffer(lights)");
+  j->lmu = job_buffer(j, sizeof ds.lmu, ds.lmu, "clCreateBuffer(lights)");
   j->lpath = job_buffer(j, sizeof P->light_path, (void *)P->light_path, "clCreateBuffer(lights)");
   j->window = job_buffer(j, sizeof window, NULL, "clCreateBuffer(lights)");
-  j->signed_l = job_buffer(j, sizeof signed_l, signed_l, "clCreateBuffer(lights)");
+  j->signed_l = job_buffer(j, sizeof ds.signed_l, ds.signed_l, "clCreateBuffer(lights)");
   j->img = job_buffer(j, sizeof(float) * 4 * (size_t)P->W * P->H, NULL, "clCreateBuffer(image)");
   j->ent = job_buffer(j, sizeof(cl_uint) * npx, NULL, "clCreateBuffer(tap-set choices)");
   size_t aov_bytes = aov ? sizeof(float) * (size_t)aov->count * (size_t)P->W * P->H : 0;
@@ -425,7 +353,7 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
   for (int k = 0; k < P->K && j->err == CL_SUCCESS; k++) {
     double mag, q = ics_plan_slab_pixel(P, k, &mag);
     for (int l = 0; l < nl; l++) {
-      window[l] = fmax(0, 1 - blur[l] / q);
+      window[l] = fmax(0, 1 - ds.blur[l] / q);
       ics_prop_taps *pt = &pts[l];
       status = ics_plan_slab_taps(P, l, k, q, mag, cum[l], scratch[l], pt, msg, msg_size);
       if (status == ICS_ERR_NOMEM && msg)
@@ -477,8 +405,7 @@ done:;
     if (pts) ics_prop_release(&pts[l]);
     if (scratch) free(scratch[l]);
   }
-  free(fz), free(fcode), free(fgrad), free(fspan), free(obj), free(tt), free(perm), free(grids);
-  free(inside);
+  ics_device_scene_destroy(&ds);
   free(pts), free(scratch);
   return status;
 }

@@ -1,0 +1,105 @@
+/* device_scene.c — the plan flattened for a device (device_scene.h), shared by the cl and gl
+ * backends so both read the same records. */
+#include "device_scene.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "icshadow/constants.h"
+#include "scene_internal.h"
+
+void ics_device_scene_destroy(ics_device_scene *d) {
+  free(d->fz), free(d->fcode), free(d->fgrad), free(d->fspan), free(d->obj), free(d->tt);
+  free(d->perm), free(d->grids), free(d->inside);
+  memset(d, 0, sizeof *d);
+}
+
+ics_status ics_device_scene_create(ics_device_scene *d, const ics_plan *P) {
+  memset(d, 0, sizeof *d);
+  const ics_scene *sc = P->scene;
+  size_t npx = (size_t)P->Wb * P->Hb, nfrag = P->ldi.nfrag, ntt = 0, ncells = 0;
+  for (int i = 0; i < sc->nobjects; i++) {
+    const ics_material *m = &sc->materials[sc->objects[i].material];
+    ntt += (size_t)m->ntransfer;
+    if (m->detail.fn == ICS_DETAIL_GRID)
+      ncells += (size_t)m->detail.size[0] * (size_t)m->detail.size[1] * (size_t)m->detail.size[2];
+  }
+  d->nfrag = nfrag ? nfrag : 1;
+  d->nobj = sc->nobjects ? (size_t)sc->nobjects : 1;
+  d->ntt = ntt ? ntt : 1;
+  d->ncells = ncells ? ncells : 1;
+  d->fz = malloc(sizeof *d->fz * d->nfrag);
+  d->fcode = malloc(sizeof *d->fcode * d->nfrag);
+  d->fgrad = malloc(2 * sizeof *d->fgrad * d->nfrag);
+  d->fspan = malloc(d->nfrag);
+  d->obj = calloc(d->nobj * ICS_DEV_OBJ_STRIDE, sizeof *d->obj);
+  d->tt = calloc(5 * d->ntt, sizeof *d->tt);
+  d->perm = calloc(d->nobj, 512);
+  d->grids = malloc(sizeof *d->grids * d->ncells);
+  d->inside = P->nvol ? malloc(sizeof *d->inside * npx) : NULL;
+  if (!d->fz || !d->fcode || !d->fgrad || !d->fspan || !d->obj || !d->tt || !d->perm ||
+      !d->grids || (P->nvol && !d->inside)) {
+    ics_device_scene_destroy(d);
+    return ICS_ERR_NOMEM;
+  }
+  for (size_t f = 0; f < nfrag; f++) {
+    const ics_fragment *fr = &P->ldi.frag[f];
+    d->fz[f] = fr->z;
+    d->fcode[f] = fr->code;
+    d->fgrad[2 * f] = (float)(fr->grad[0] / ICS_FRAG_GRAD_SCALE); /* exact: int16 / 64 */
+    d->fgrad[2 * f + 1] = (float)(fr->grad[1] / ICS_FRAG_GRAD_SCALE);
+    d->fspan[f] = fr->span;
+  }
+  if (!nfrag) d->fz[0] = 0, d->fcode[0] = 0, d->fgrad[0] = d->fgrad[1] = 0, d->fspan[0] = 0;
+  /* objects (the O_* offsets of the device programs), their transfer rows and permutations */
+  size_t cell = 0;
+  for (int i = 0, row = 0; i < sc->nobjects; i++) {
+    const ics_material *m = &sc->materials[sc->objects[i].material];
+    const ics_detail *dt = &m->detail;
+    double *o = d->obj + (size_t)i * ICS_DEV_OBJ_STRIDE;
+    o[0] = m->opacity;
+    for (int c = 0; c < 3; c++) o[1 + c] = m->color[c], o[4 + c] = m->transport[c];
+    o[7] = m->extinction;
+    o[8] = P->vol_bit[i];
+    o[9] = dt->fn;
+    o[10] = dt->frequency, o[11] = dt->lacunarity, o[12] = dt->gain, o[13] = dt->offset;
+    o[14] = dt->time, o[15] = dt->scale, o[16] = dt->bias, o[17] = dt->octaves;
+    o[18] = m->ntransfer, o[19] = row;
+    memcpy(d->tt + 5 * (size_t)row, m->transfer, sizeof(double) * 5 * (size_t)m->ntransfer);
+    row += m->ntransfer;
+    if (P->vol_bit[i] >= 0) d->vol_obj[P->vol_bit[i]] = i;
+    if (dt->fn != ICS_DETAIL_NONE && P->detail)
+      memcpy(d->perm + 512 * (size_t)i, P->detail[i].perm, 512);
+    if (dt->fn == ICS_DETAIL_GRID && P->detail) { /* its cells and the object's box */
+      size_t n = (size_t)dt->size[0] * (size_t)dt->size[1] * (size_t)dt->size[2];
+      memcpy(d->grids + cell, dt->grid, sizeof *d->grids * n);
+      o[20] = (double)cell;
+      for (int a = 0; a < 3; a++)
+        o[21 + a] = dt->size[a], o[24 + a] = P->detail[i].lo[a], o[27 + a] = P->detail[i].hi[a];
+      cell += n;
+    }
+  }
+  if (!ncells) d->grids[0] = 0;
+  if (d->inside) {
+    if (P->ldi.inside0) memcpy(d->inside, P->ldi.inside0, sizeof *d->inside * npx);
+    else memset(d->inside, 0, sizeof *d->inside * npx);
+  }
+  const ics_camera *cm = &P->cam;
+  for (int i = 0; i < 3; i++)
+    d->cam[i] = cm->eye[i], d->cam[3 + i] = cm->r[i], d->cam[6 + i] = cm->u[i],
+    d->cam[9 + i] = cm->f[i];
+  d->cam[12] = cm->height;
+  d->cam[13] = cm->height * P->W / P->H; /* as ics_plan_ray computes them */
+  d->cam[14] = tan(cm->fov_deg * (ICS_PI / 360));
+  d->cam[15] = (double)P->W / P->H;
+  d->cam[16] = cm->projection == ICS_PROJ_PERSPECTIVE;
+  for (int l = 0; l < P->nlights; l++) {
+    const ics_light *lt = &sc->lights[l];
+    for (int c = 0; c < 3; c++) d->lcol[3 * l + c] = lt->color[c] * lt->weight;
+    d->lmu[2 * l] = lt->mean[0], d->lmu[2 * l + 1] = lt->mean[1];
+    d->signed_l[l] = P->kernels[l].comp == ICS_RC_SIGNED;
+    d->blur[l] = ics_plan_light_blur(P, l);
+  }
+  return ICS_OK;
+}
