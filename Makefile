@@ -50,7 +50,7 @@ configure:
 # configuration error there, never a silently skipped test.
 ENFORCE = -DICS_ENFORCE_MPFR=ON -DICS_ENFORCE_OPENCL=ON -DICS_ENFORCE_OPENEXR=ON \
           -DICS_ENFORCE_JANSSON=ON -DICS_ENFORCE_GLSLANG=ON -DICS_ENFORCE_PNG=ON \
-          -DICS_ENFORCE_ASSIMP=ON -DICS_ENFORCE_EMBREE=ON
+          -DICS_ENFORCE_ASSIMP=ON -DICS_ENFORCE_EMBREE=ON -DICS_ENFORCE_GL=ON
 
 # Release build: fast + medium labels; then the same fast tests under ASan+UBSan (the Mitsuba
 # check is medium: it does not run there).

@@ -413,4 +413,4 @@ done:;
 const ics_backend ics_backend_cl = {
     "cl", "the slab renderer on an OpenCL device (PoCL or any OpenCL 1.2 platform with fp64; not picked by auto)",
     ICS_AOV_VISIBILITY | ICS_AOV_DEPTH,
-    cl_available, cl_create, cl_render, cl_destroy};
+    cl_available, NULL, cl_create, cl_render, cl_destroy};

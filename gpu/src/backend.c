@@ -1,8 +1,9 @@
 /* backend.c — the backend table and the renderer object (icshadow/renderer.h). "auto" takes the
- * first available entry in table order, which lists the preferred slab renderers first and
- * "cpu" last (always available), so it never reaches "mc", the Monte-Carlo reference, after it.
- * "cl" sits after "cpu" until it renders every scene the cpu backend does (volumes): auto does
- * not pick it yet. */
+ * first entry in table order that it may pick (auto_pick, else available) and that starts;
+ * "cpu" is always available, so it never reaches what follows: "cl" (slower than cpu on PoCL)
+ * and "mc", the Monte-Carlo reference. "gl" comes first but auto picks it only on a GPU (an EGL
+ * device that is not Mesa's software one); an entry passed over or failing to start leaves a
+ * one-line note (ics_renderer_note). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,7 +12,11 @@
 #include "plan_internal.h"
 #include "pool.h"
 
-static const ics_backend *const table[] = {&ics_backend_cpu,
+static const ics_backend *const table[] = {
+#ifdef ICS_HAVE_GL
+                                           &ics_backend_gl,
+#endif
+                                           &ics_backend_cpu,
 #ifdef ICS_HAVE_OPENCL
                                            &ics_backend_cl,
 #endif
@@ -48,6 +53,7 @@ struct ics_renderer {
   const ics_backend *b;
   void *state;
   ics_render_opts opts;
+  char note[512]; /* why auto passed over an entry before the one it took ("" if none) */
 };
 
 ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, char *msg,
@@ -56,10 +62,26 @@ ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, 
   if (msg && msg_size) msg[0] = 0;
   ics_render_opts o = {0};
   if (opts) o = *opts;
-  const ics_backend *b = NULL;
+  ics_renderer *r = calloc(1, sizeof *r);
+  if (!r) return ICS_ERR_NOMEM;
+  r->opts = o;
   if (!o.backend || !strcmp(o.backend, "auto")) {
-    for (int i = 0; i < NBACKENDS && !b; i++)
-      if (table[i]->available(NULL, 0)) b = table[i];
+    for (int i = 0; i < NBACKENDS && !r->b; i++) {
+      char why[512] = "";
+      const ics_backend *c = table[i];
+      int ok = c->auto_pick ? c->auto_pick(why, sizeof why) : c->available(why, sizeof why);
+      if (ok) {
+        ics_status st = c->create(&r->state, &o, why, sizeof why);
+        if (st == ICS_OK) r->b = c;
+        else if (c == &ics_backend_cpu) { /* the last resort failed: say so */
+          if (msg) snprintf(msg, msg_size, "%s", why);
+          free(r);
+          return st;
+        }
+      }
+      if (!r->b && c->auto_pick && !r->note[0])
+        snprintf(r->note, sizeof r->note, "auto passed over %s: %s", c->name, why);
+    }
   } else {
     char why[1024];
     if (!ics_backend_available(o.backend, why, sizeof why)) {
@@ -67,18 +89,15 @@ ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, 
         if (find(o.backend)) snprintf(msg, msg_size, "backend %s: %s", o.backend, why);
         else snprintf(msg, msg_size, "backend %s", why);
       }
+      free(r);
       return ICS_ERR_UNSUPPORTED;
     }
-    b = find(o.backend);
-  }
-  ics_renderer *r = calloc(1, sizeof *r);
-  if (!r) return ICS_ERR_NOMEM;
-  r->b = b;
-  r->opts = o;
-  ics_status st = b->create(&r->state, &o, msg, msg_size);
-  if (st != ICS_OK) {
-    free(r);
-    return st;
+    r->b = find(o.backend);
+    ics_status st = r->b->create(&r->state, &o, msg, msg_size);
+    if (st != ICS_OK) {
+      free(r);
+      return st;
+    }
   }
   *out = r;
   return ICS_OK;
@@ -91,6 +110,7 @@ void ics_renderer_destroy(ics_renderer *r) {
 }
 
 const char *ics_renderer_backend(const ics_renderer *r) { return r->b->name; }
+const char *ics_renderer_note(const ics_renderer *r) { return r->note; }
 
 /* The AOV channels asked for: their names (one block: pointers, then the strings, as
  * ics_exr_channels_destroy frees it) and zeroed data. */

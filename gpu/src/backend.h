@@ -22,6 +22,8 @@ typedef struct ics_backend {
   const char *description;
   unsigned aovs; /* the ICS_AOV_* bits it makes */
   int (*available)(char *why, size_t why_size);
+  /* NULL: "auto" takes it when available; else whether auto takes it (0 with why: the notice) */
+  int (*auto_pick)(char *why, size_t why_size);
   ics_status (*create)(void **state, const ics_render_opts *opts, char *msg, size_t msg_size);
   /* aov: NULL when no AOV was asked for */
   ics_status (*render)(void *state, const ics_plan *plan, const ics_render_opts *opts,
@@ -42,6 +44,9 @@ extern const ics_backend ics_backend_cpu;
 extern const ics_backend ics_backend_mc;
 #ifdef ICS_HAVE_OPENCL
 extern const ics_backend ics_backend_cl; /* gpu/cl/backend_cl.c */
+#endif
+#ifdef ICS_HAVE_GL
+extern const ics_backend ics_backend_gl; /* gpu/gl/backend_gl.c */
 #endif
 
 #endif

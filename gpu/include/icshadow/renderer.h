@@ -60,6 +60,9 @@ ICS_API ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts
                                        char *msg, size_t msg_size);
 ICS_API void ics_renderer_destroy(ics_renderer *r); /* NULL is allowed */
 ICS_API const char *ics_renderer_backend(const ics_renderer *r);
+/* With backend "auto": why it passed over an entry it prefers to the one it took (e.g. "auto
+ * passed over gl: ..."), one line; "" when it took its first choice or the backend was named. */
+ICS_API const char *ics_renderer_note(const ics_renderer *r);
 
 /* Renders the plan into a new RGBA image (*out; ics_image_destroy it). stats may be NULL. */
 ICS_API ics_status ics_renderer_render(ics_renderer *r, const ics_plan *plan, ics_image **out,

@@ -1,0 +1,552 @@
+/* backend_gl.c — the "gl" backend: the slab renderer as OpenGL 4.5 compute shaders (gpu/gl/slab.comp)
+ * on a windowless context (gl_context.c: EGL's device or surfaceless platform, or OSMesa).
+ * Method and tolerances: docs/backend_gl.md.
+ *
+ * The same division of work as the cl backend: the host resolves each slab's taps exactly as
+ * the cpu backend does (ics_plan_slab_taps) and uploads them; per slab the device runs, per
+ * light, the tap-set choices and the step (ICS_K_ENTRIES_*, ICS_K_PROP_*), then the shading of
+ * every buffer pixel (ICS_K_SHADE) and the apron (ICS_K_APRON_*), with a shader-storage barrier
+ * between dispatches. The layered depth image and the scene's records are the plan's
+ * (device_scene.c), uploaded once per render into shader storage buffers. Device times come
+ * from GL_TIMESTAMP queries read after the last slab.
+ *
+ * Every failure names what failed: no context (each kind tried), a shader that does not
+ * compile or link (its log), a size over the driver's limits, GL_OUT_OF_MEMORY or another GL
+ * error after a slab, a lost context (glGetGraphicsResetStatus). */
+#define _POSIX_C_SOURCE 200809L
+#include <limits.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "backend.h"
+#include "clock.h"
+#include "device_scene.h"
+#include "gl_context.h"
+#include "plan_internal.h"
+#include "propagate.h"
+#include "slab_comp_source.h" /* ics_slab_comp_source: gpu/gl/slab.comp (cmake/embed_text.cmake) */
+
+/* the programs: slab.comp's entry points, the steps also with every read clamped (variants,
+ * not a uniform branch: llvmpipe would run both sides) */
+enum { P_STENCIL, P_STENCIL_CLAMPED, P_TABLE, P_TABLE_CLAMPED, P_CLASSES, P_ENTRIES_PIXEL,
+       P_ENTRIES_RUN, P_SELECT, P_COUNT, P_SHADE, P_SHADE_SURFACES, P_APRON_SIDES, P_APRON_ENDS,
+       NPROGS };
+static const char *const PROG_NAMES[NPROGS] = {
+    "ICS_K_PROP_STENCIL", "ICS_K_PROP_STENCIL", "ICS_K_PROP_TABLE", "ICS_K_PROP_TABLE",
+    "ICS_K_PROP_CLASSES", "ICS_K_ENTRIES_PIXEL", "ICS_K_ENTRIES_RUN", "ICS_K_SHADE_SELECT",
+    "ICS_K_SHADE_COUNT", "ICS_K_SHADE", "ICS_K_SHADE", "ICS_K_APRON_SIDES", "ICS_K_APRON_ENDS"};
+/* the second define of a variant */
+static const char *const PROG_VARIANT[NPROGS] = {[P_STENCIL_CLAMPED] = "ICS_CLAMPED",
+                                                 [P_TABLE_CLAMPED] = "ICS_CLAMPED",
+                                                 [P_SHADE_SURFACES] = "ICS_SURFACES_ONLY"};
+enum { SSBO_BINDINGS = 15 }; /* slab.comp's bindings 0..14 */
+
+/* slab.comp's tap record (std140: ivec4, vec4) */
+typedef struct gl_tap {
+  int32_t ix, iy, off, pad;
+  float w, fx, fy, pad2;
+} gl_tap;
+
+typedef struct gl_state {
+  ics_gl g;
+  GLuint prog[NPROGS];
+  GLint64 max_block; /* GL_MAX_SHADER_STORAGE_BLOCK_SIZE */
+  GLint max_texels;  /* GL_MAX_TEXTURE_BUFFER_SIZE */
+  size_t max_taps;   /* taps per light and slab: GL_MAX_UNIFORM_BLOCK_SIZE / 32, at most 4096 */
+  GLint max_groups[3];
+} gl_state;
+
+#define GL_ (s->g.gl)
+
+static void gl_destroy(void *state) {
+  gl_state *s = state;
+  if (!s) return;
+  if (s->g.ctx) {
+    ics_gl_make_current(&s->g);
+    for (int i = 0; i < NPROGS; i++)
+      if (s->prog[i]) GL_.DeleteProgram(s->prog[i]);
+  }
+  ics_gl_close(&s->g);
+  free(s);
+}
+
+/* the context kind asked for: ICS_GL_CONTEXT (set by --gl-context), else auto */
+static const char *context_kind(void) {
+  const char *k = getenv("ICS_GL_CONTEXT");
+  return k && *k ? k : "auto";
+}
+
+static int gl_available(char *why, size_t why_size) {
+  ics_gl g;
+  char w[1024];
+  if (ics_gl_open(&g, context_kind(), w, sizeof w) != ICS_OK) {
+    if (why) snprintf(why, why_size, "%s", w);
+    return 0;
+  }
+  ics_gl_close(&g);
+  return 1;
+}
+
+/* auto picks gl only on a GPU: an EGL device that is not Mesa's software one */
+static int gl_auto_pick(char *why, size_t why_size) {
+  if (ics_gl_hardware_device(why, why_size)) return 1;
+  return 0;
+}
+
+/* compiles and links entry point `i`; 0 with the log in msg */
+static int build(gl_state *s, int i, char *msg, size_t msg_size) {
+  const char *src = ics_slab_comp_source, *nl = strchr(src, '\n');
+  char head[160];
+  snprintf(head, sizeof head, "#define %s 1\n#define %s 1\n#define ICS_MAX_TAPS %zu\n#line 2\n",
+           PROG_NAMES[i], PROG_VARIANT[i] ? PROG_VARIANT[i] : "ICS_DEFAULT_VARIANT", s->max_taps);
+  const GLchar *parts[3] = {src, head, nl + 1};
+  const GLint lens[3] = {(GLint)(nl + 1 - src), -1, -1};
+  GLuint sh = GL_.CreateShader(GL_COMPUTE_SHADER);
+  GL_.ShaderSource(sh, 3, parts, lens);
+  GL_.CompileShader(sh);
+  GLint ok = 0;
+  GL_.GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+  char log[4096] = "";
+  if (!ok) {
+    GL_.GetShaderInfoLog(sh, sizeof log, NULL, log);
+    GL_.DeleteShader(sh);
+    snprintf(msg, msg_size, "backend gl: slab.comp (%s) does not compile on %s:\n%s", PROG_NAMES[i],
+             s->g.renderer, log);
+    return 0;
+  }
+  GLuint p = GL_.CreateProgram();
+  GL_.AttachShader(p, sh);
+  GL_.LinkProgram(p);
+  GL_.DeleteShader(sh);
+  GL_.GetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    GL_.GetProgramInfoLog(p, sizeof log, NULL, log);
+    GL_.DeleteProgram(p);
+    snprintf(msg, msg_size, "backend gl: slab.comp (%s) does not link on %s:\n%s", PROG_NAMES[i],
+             s->g.renderer, log);
+    return 0;
+  }
+  s->prog[i] = p;
+  return 1;
+}
+
+static ics_status gl_create(void **state, const ics_render_opts *opts, char *msg, size_t msg_size) {
+  (void)opts;
+  *state = NULL;
+  gl_state *s = calloc(1, sizeof *s);
+  if (!s) return ICS_ERR_NOMEM;
+  char why[1024];
+  if (ics_gl_open(&s->g, context_kind(), why, sizeof why) != ICS_OK) {
+    if (msg) snprintf(msg, msg_size, "backend gl: %s", why);
+    free(s);
+    return ICS_ERR_UNSUPPORTED;
+  }
+  GLint blocks = 0;
+  GL_.GetIntegerv(GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS, &blocks);
+  GL_.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &s->max_block);
+  GL_.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &s->max_texels);
+  GLint ubo = 0;
+  GL_.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &ubo);
+  s->max_taps = (size_t)ubo / sizeof(gl_tap) < 4096 ? (size_t)ubo / sizeof(gl_tap) : 4096;
+  for (GLuint i = 0; i < 3; i++) GL_.GetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, i, &s->max_groups[i]);
+  if (blocks < SSBO_BINDINGS) {
+    if (msg) snprintf(msg, msg_size, "backend gl: %s offers %d shader storage blocks to a compute "
+                      "shader, the shading needs %d", s->g.renderer, (int)blocks, SSBO_BINDINGS);
+    gl_destroy(s);
+    return ICS_ERR_UNSUPPORTED;
+  }
+  for (int i = 0; i < NPROGS; i++)
+    if (!build(s, i, msg, msg_size)) {
+      gl_destroy(s);
+      return ICS_ERR_UNSUPPORTED;
+    }
+  *state = s;
+  return ICS_OK;
+}
+
+/* uniforms by name (one the compiler removed is skipped) */
+static void u_int(gl_state *s, int p, const char *name, int v) {
+  GLint loc = GL_.GetUniformLocation(s->prog[p], name);
+  if (loc >= 0) GL_.ProgramUniform1i(s->prog[p], loc, v);
+}
+static void u_uint(gl_state *s, int p, const char *name, unsigned v) {
+  GLint loc = GL_.GetUniformLocation(s->prog[p], name);
+  if (loc >= 0) GL_.ProgramUniform1ui(s->prog[p], loc, v);
+}
+static void u_dbl(gl_state *s, int p, const char *name, double v) {
+  GLint loc = GL_.GetUniformLocation(s->prog[p], name);
+  if (loc >= 0) GL_.ProgramUniform1d(s->prog[p], loc, v);
+}
+
+/* a buffer of `bytes` (data or zeros), updatable from the host */
+static GLuint buffer(gl_state *s, size_t bytes, const void *data) {
+  GLuint b = 0;
+  GL_.CreateBuffers(1, &b);
+  GL_.NamedBufferStorage(b, (GLsizeiptr)(bytes ? bytes : 4), data, GL_DYNAMIC_STORAGE_BIT);
+  if (!data) {
+    const GLuint zero = 0;
+    GL_.ClearNamedBufferData(b, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  }
+  return b;
+}
+
+static const char *gl_err_name(GLenum e) {
+  switch (e) {
+  case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+  case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+  case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+  case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+  case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+  default: return "a GL error";
+  }
+}
+
+/* the device buffers of one render (slab.comp's bindings) */
+enum { B_SRC, B_DST, B_OFFSET, B_FZ, B_FCODE, B_FGRAD, B_FSPAN, B_PIX, B_OBJ, B_SD, B_PERM,
+       B_GRIDS, B_INTS, B_OUT, B_WORK, B_ENT, NBUF };
+
+typedef struct gl_job {
+  gl_state *s;
+  const ics_plan *P;
+  GLuint buf[NBUF], taps[ICS_SCENE_MAX_LIGHTS];
+  GLuint tex[2]; /* buffer textures over buf[B_SRC] and buf[B_DST], swapped with them */
+  size_t taps_cap[ICS_SCENE_MAX_LIGHTS];
+  gl_tap *host_taps;
+  size_t host_cap;
+  int off_window;
+  GLuint *queries; /* 3 per slab: start, after the steps, after the shading */
+} gl_job;
+
+/* uploads light l's prepared taps (n records, at most max_taps); 0 when out of host memory */
+static int upload_taps(gl_job *j, int l, const ics_prop_taps *pt, size_t n) {
+  gl_state *s = j->s;
+  if (n > j->host_cap) {
+    gl_tap *t = realloc(j->host_taps, n * sizeof *t);
+    if (!t) return 0;
+    j->host_taps = t, j->host_cap = n;
+  }
+  int bilinear = !pt->stencil && !pt->classes;
+  for (size_t i = 0; i < n; i++)
+    j->host_taps[i] = (gl_tap){pt->ix[i], pt->iy[i], pt->off && !pt->classes ? pt->off[i] : 0, 0,
+                               pt->w[i], bilinear ? pt->fx[i] : 0, bilinear ? pt->fy[i] : 0, 0};
+  if (!j->taps[l]) j->taps[l] = buffer(s, s->max_taps * sizeof(gl_tap), NULL);
+  GL_.NamedBufferSubData(j->taps[l], 0, (GLsizeiptr)(n * sizeof(gl_tap)), j->host_taps);
+  return 1;
+}
+
+static void dispatch(gl_state *s, int p, size_t gx, size_t gy, size_t gz) {
+  GL_.UseProgram(s->prog[p]);
+  GL_.DispatchCompute((GLuint)gx, (GLuint)gy, (GLuint)gz);
+  GL_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+/* one slab: every light's step, then the shading and the apron */
+static void run_slab(gl_job *j, int k, const ics_prop_taps *pts) {
+  gl_state *s = j->s;
+  const ics_plan *P = j->P;
+  int nch = P->nch, plane = (int)P->buf.plane;
+  size_t gx = ((size_t)P->Wb + 15) / 16, gy = ((size_t)P->Hb + 7) / 8;
+  GL_.QueryCounter(j->queries[3 * k], GL_TIMESTAMP);
+  GL_.BindTextureUnit(0, j->tex[0]);
+  GL_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, j->buf[B_DST]);
+  for (int l = 0; l < P->nlights; l++) {
+    const ics_prop_taps *pt = &pts[l];
+    int clamped = pt->s != 1 || pt->reach > P->buf.apron; /* as propagate.c */
+    int mode = pt->classes ? P_CLASSES : (pt->stencil ? P_STENCIL : P_TABLE) + clamped;
+    GL_.BindBufferRange(GL_UNIFORM_BUFFER, 0, j->taps[l], 0, (GLsizeiptr)(s->max_taps * sizeof(gl_tap)));
+    GL_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, j->buf[B_ENT]);
+    if (mode == P_TABLE || mode == P_TABLE_CLAMPED) {
+      int pe = pt->run > 1 ? P_ENTRIES_RUN : P_ENTRIES_PIXEL;
+      u_int(s, pe, "entries", pt->entries), u_uint(s, pe, "light", pt->light);
+      u_uint(s, pe, "slab", pt->slab), u_int(s, pe, "phase", pt->phase);
+      u_uint(s, pe, "seed_lo", (unsigned)pt->seed), u_uint(s, pe, "seed_hi", (unsigned)(pt->seed >> 32));
+      if (pe == P_ENTRIES_RUN)
+        dispatch(s, pe, ((size_t)P->Wb / 16 + 2 + 15) / 16, gy, 1);
+      else
+        dispatch(s, pe, (((size_t)P->Wb * P->Hb + 63) / 64 * 16 + 63) / 64, 1, 1);
+      u_int(s, mode, "entries", pt->entries);
+    } else if (mode == P_CLASSES) {
+      u_int(s, mode, "Q", pt->classes);
+      u_dbl(s, mode, "s", pt->s), u_dbl(s, mode, "cx", pt->cx), u_dbl(s, mode, "cy", pt->cy);
+    }
+    u_int(s, mode, "base", l * nch * plane), u_int(s, mode, "ntaps", pt->ntaps);
+    dispatch(s, mode, gx, gy, 1);
+  }
+  GL_.QueryCounter(j->queries[3 * k + 1], GL_TIMESTAMP);
+  /* the shading's bindings 1..14 (the steps took 2 and 3); 1 is the buffers the steps wrote */
+  static const int shade_binding[] = {B_DST, B_OFFSET, B_FZ, B_FCODE, B_FGRAD, B_FSPAN, B_PIX,
+                                      B_OBJ, B_SD, B_PERM, B_GRIDS, B_INTS, B_OUT, B_WORK};
+  for (int b = 0; b < 14; b++)
+    GL_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, (GLuint)(b + 1), j->buf[shade_binding[b]]);
+  for (int p = P_SELECT; p <= P_SHADE_SURFACES; p++) {
+    u_int(s, p, "k", k);
+    u_dbl(s, p, "zf", P->z0 + k * P->e), u_dbl(s, p, "zb", P->z0 + k * P->e + P->e);
+  }
+  /* the pixels with work, listed; their count as the shading's dispatch */
+  dispatch(s, P_SELECT, gx, gy, 1);
+  GL_.UseProgram(s->prog[P_COUNT]);
+  GL_.DispatchCompute(1, 1, 1);
+  GL_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  GL_.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, j->buf[B_WORK]);
+  for (int i = 0; i < 2; i++) { /* the volume pixels, then the others */
+    GL_.UseProgram(s->prog[i ? P_SHADE_SURFACES : P_SHADE]);
+    GL_.DispatchComputeIndirect((GLintptr)(i * 5 * sizeof(GLuint)));
+    GL_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  int A = P->buf.apron, nplanes = P->nlights * nch;
+  if (A > 0 && nplanes > 0) {
+    dispatch(s, P_APRON_SIDES, ((size_t)2 * A + 63) / 64, (size_t)P->Hb, (size_t)nplanes);
+    dispatch(s, P_APRON_ENDS, ((size_t)P->buf.stride + 63) / 64, 2 * (size_t)A, (size_t)nplanes);
+  }
+  GL_.QueryCounter(j->queries[3 * k + 2], GL_TIMESTAMP);
+}
+
+/* the driver's thread count where it runs on the CPU (llvmpipe: LP_NUM_THREADS, else every core) */
+static int software_threads(void) {
+  const char *t = getenv("LP_NUM_THREADS");
+  if (t && *t) return atoi(t);
+  long n = sysconf(_SC_NPROCESSORS_ONLN);
+  return n > 0 ? (int)n : 1;
+}
+
+static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opts *o,
+                            ics_image *img, ics_aov_buf *aov, ics_render_stats *st, char *msg,
+                            size_t msg_size) {
+  gl_state *s = state;
+  double t_start = ics_clock_s();
+  if (!ics_gl_make_current(&s->g)) {
+    if (msg) snprintf(msg, msg_size, "backend gl: the %s context cannot be made current", s->g.context);
+    return ICS_ERR_UNSUPPORTED;
+  }
+  int nl = P->nlights, nch = P->nch;
+  size_t npx = (size_t)P->Wb * P->Hb, nview = (size_t)P->W * P->H, plane = P->buf.plane;
+  size_t lbytes = sizeof(float) * (size_t)(nl ? nl : 1) * (size_t)nch * plane;
+  size_t aov_floats = aov ? (size_t)aov->count * nview : 0;
+  size_t out_floats = 4 * nview + aov_floats + nview;
+  size_t gx = ((size_t)P->Wb + 15) / 16, gy = ((size_t)P->Hb + 7) / 8;
+  if (lbytes / sizeof(float) > INT_MAX || out_floats > INT_MAX || npx + 1 > UINT_MAX) {
+    if (msg) snprintf(msg, msg_size, "backend gl: %d lights x %d channels x %dx%d buffer pixels "
+                      "exceed the shaders' 32-bit indices", nl, nch, P->Wb, P->Hb);
+    return ICS_ERR_SIZE;
+  }
+  if (lbytes / sizeof(float) > (size_t)s->max_texels) {
+    if (msg) snprintf(msg, msg_size, "backend gl: the light buffers hold %zu floats, over the "
+                      "driver's largest buffer texture (%d texels, %s)", lbytes / sizeof(float),
+                      s->max_texels, s->g.renderer);
+    return ICS_ERR_SIZE;
+  }
+  if (lbytes > (size_t)s->max_block || out_floats * sizeof(float) > (size_t)s->max_block ||
+      sizeof(uint32_t) * 4 * npx > (size_t)s->max_block) {
+    if (msg) snprintf(msg, msg_size, "backend gl: the light buffers take %zu bytes (the per-pixel "
+                      "state %zu), over the driver's largest shader storage block (%lld bytes, %s)",
+                      lbytes, sizeof(uint32_t) * 4 * npx, (long long)s->max_block, s->g.renderer);
+    return ICS_ERR_SIZE;
+  }
+  if (gx > (size_t)s->max_groups[0] || gy > (size_t)s->max_groups[1] ||
+      (size_t)nl * nch > (size_t)s->max_groups[2]) {
+    if (msg) snprintf(msg, msg_size, "backend gl: a %dx%d light buffer needs %zux%zu work groups, "
+                      "over the driver's %dx%d", P->Wb, P->Hb, gx, gy, s->max_groups[0], s->max_groups[1]);
+    return ICS_ERR_SIZE;
+  }
+  ics_device_scene ds;
+  if (ics_device_scene_create(&ds, P) != ICS_OK) {
+    if (msg) snprintf(msg, msg_size, "backend gl: out of host memory for the upload (%zu fragments)",
+                      P->ldi.nfrag);
+    return ICS_ERR_NOMEM;
+  }
+  ics_status status = ICS_OK;
+  gl_job job;
+  memset(&job, 0, sizeof job);
+  gl_job *j = &job;
+  j->s = s, j->P = P;
+  double cum[ICS_SCENE_MAX_LIGHTS][2] = {{0}}, window[ICS_SCENE_MAX_LIGHTS] = {0};
+  ics_prop_taps *pts = calloc((size_t)(nl ? nl : 1), sizeof *pts);
+  ics_tap2d **scratch = calloc((size_t)(nl ? nl : 1), sizeof *scratch);
+  /* host images of the packed buffers: per-pixel state (cursor, occlusion cursor, inside mask),
+   * the span bytes padded to words, the scene's doubles (transfer rows, camera, lights, windows)
+   * and ints (volume objects, signed lights) */
+  size_t nsd = 5 * ds.ntt + ICS_DEV_CAM + 3 * ICS_SCENE_MAX_LIGHTS + 2 * ICS_SCENE_MAX_LIGHTS +
+               2 * (size_t)ICS_SCENE_MAX_LIGHTS;
+  uint32_t *pix = malloc(sizeof *pix * 4 * (npx ? npx : 1));
+  uint8_t *span = calloc((ds.nfrag + 3) / 4, 4);
+  double *sd = calloc(nsd, sizeof *sd);
+  int32_t ints[ICS_MAX_VOLUMES + ICS_SCENE_MAX_LIGHTS];
+  j->queries = calloc(3 * (size_t)(P->K ? P->K : 1), sizeof *j->queries);
+  if (!pts || !scratch || !pix || !span || !sd || !j->queries) goto nomem;
+  for (int l = 0; l < nl; l++) {
+    const ics_slab_kernel *sk = &P->kernels[l];
+    scratch[l] = malloc(sizeof **scratch * (size_t)sk->entries * (size_t)sk->cap);
+    if (!scratch[l]) goto nomem;
+  }
+  for (size_t p = 0; p < npx; p++) {
+    uint64_t m = ds.inside ? ds.inside[p] : 0;
+    pix[4 * p] = pix[4 * p + 1] = P->ldi.offset[p];
+    pix[4 * p + 2] = (uint32_t)m, pix[4 * p + 3] = (uint32_t)(m >> 32);
+  }
+  memcpy(span, ds.fspan, ds.nfrag);
+  int off_cam = (int)(5 * ds.ntt), off_lcol = off_cam + ICS_DEV_CAM;
+  int off_lmu = off_lcol + 3 * ICS_SCENE_MAX_LIGHTS, off_lpath = off_lmu + 2 * ICS_SCENE_MAX_LIGHTS;
+  j->off_window = off_lpath + ICS_SCENE_MAX_LIGHTS;
+  memcpy(sd, ds.tt, sizeof *sd * 5 * ds.ntt);
+  memcpy(sd + off_cam, ds.cam, sizeof ds.cam);
+  memcpy(sd + off_lcol, ds.lcol, sizeof ds.lcol);
+  memcpy(sd + off_lmu, ds.lmu, sizeof ds.lmu);
+  memcpy(sd + off_lpath, P->light_path, sizeof P->light_path);
+  memcpy(ints, ds.vol_obj, sizeof ds.vol_obj);
+  memcpy(ints + ICS_MAX_VOLUMES, ds.signed_l, sizeof ds.signed_l);
+
+  while (GL_.GetError() != GL_NO_ERROR) {} /* what an earlier render left */
+  j->buf[B_SRC] = buffer(s, lbytes, NULL);
+  j->buf[B_DST] = buffer(s, lbytes, NULL);
+  const float one = 1;
+  GL_.ClearNamedBufferData(j->buf[B_SRC], GL_R32F, GL_RED, GL_FLOAT, &one);
+  GL_.CreateTextures(GL_TEXTURE_BUFFER, 2, j->tex);
+  GL_.TextureBuffer(j->tex[0], GL_R32F, j->buf[B_SRC]);
+  GL_.TextureBuffer(j->tex[1], GL_R32F, j->buf[B_DST]);
+  j->buf[B_OFFSET] = buffer(s, sizeof(uint32_t) * (npx + 1), P->ldi.offset);
+  j->buf[B_FZ] = buffer(s, sizeof *ds.fz * ds.nfrag, ds.fz);
+  j->buf[B_FCODE] = buffer(s, sizeof *ds.fcode * ds.nfrag, ds.fcode);
+  j->buf[B_FGRAD] = buffer(s, 2 * sizeof *ds.fgrad * ds.nfrag, ds.fgrad);
+  j->buf[B_FSPAN] = buffer(s, (ds.nfrag + 3) / 4 * 4, span);
+  j->buf[B_PIX] = buffer(s, sizeof *pix * 4 * (npx ? npx : 1), pix);
+  j->buf[B_OBJ] = buffer(s, sizeof *ds.obj * ds.nobj * ICS_DEV_OBJ_STRIDE, ds.obj);
+  j->buf[B_SD] = buffer(s, sizeof *sd * nsd, sd);
+  j->buf[B_PERM] = buffer(s, 512 * ds.nobj, ds.perm);
+  j->buf[B_GRIDS] = buffer(s, sizeof *ds.grids * ds.ncells, ds.grids);
+  j->buf[B_INTS] = buffer(s, sizeof ints, ints);
+  j->buf[B_OUT] = buffer(s, sizeof(float) * out_floats, NULL);
+  j->buf[B_WORK] = buffer(s, sizeof(uint32_t) * (10 + 2 * npx), NULL);
+  j->buf[B_ENT] = buffer(s, sizeof(uint32_t) * (npx ? npx : 1), NULL);
+  GL_.GenQueries((GLsizei)(3 * P->K), j->queries);
+  GLenum e = GL_.GetError();
+  if (e != GL_NO_ERROR) {
+    if (msg) snprintf(msg, msg_size, "backend gl: %s while allocating the buffers (%zu bytes of "
+                      "light buffers, %zu fragments) on %s", gl_err_name(e), 2 * lbytes,
+                      P->ldi.nfrag, s->g.renderer);
+    status = e == GL_OUT_OF_MEMORY ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
+    goto done;
+  }
+  /* what stays fixed over the render */
+  for (int p = 0; p < NPROGS; p++) {
+    u_int(s, p, "bw", P->buf.w), u_int(s, p, "bh", P->buf.h), u_int(s, p, "stride", P->buf.stride);
+    u_int(s, p, "plane", (int)P->buf.plane), u_int(s, p, "origin", (int)P->buf.origin);
+    u_int(s, p, "nch", nch);
+    u_uint(s, p, "seed_lo", (unsigned)P->rs.seed), u_uint(s, p, "seed_hi", (unsigned)(P->rs.seed >> 32));
+  }
+  for (int p = 0; p < NPROGS; p++) u_int(s, p, "npx", (int)npx);
+  u_int(s, P_APRON_SIDES, "A", P->buf.apron), u_int(s, P_APRON_ENDS, "A", P->buf.apron);
+  static const char *const shade_i[] = {"nlights", "nvol", "W", "H", "pad_l", "pad_t",
+                                        "preintegrate", "aov_count", "aov_vis", "aov_z", "off_aov",
+                                        "off_seen", "off_cam", "off_lcol", "off_lmu", "off_lpath",
+                                        "off_window", "off_signed"};
+  const int shade_v[] = {nl, P->nvol, P->W, P->H, P->pad[0], P->pad[2], P->rs.preintegrate,
+                         aov ? aov->count : 0, aov ? aov->vis : -1, aov ? aov->z : -1,
+                         (int)(4 * nview), (int)(4 * nview + aov_floats), off_cam, off_lcol,
+                         off_lmu, off_lpath, j->off_window, ICS_MAX_VOLUMES};
+  for (size_t i = 0; i < sizeof shade_v / sizeof *shade_v; i++)
+    for (int p = P_SELECT; p <= P_SHADE_SURFACES; p++) u_int(s, p, shade_i[i], shade_v[i]);
+  u_dbl(s, P_SHADE, "window_max", ics_plan_window_max(P));
+  u_dbl(s, P_SHADE_SURFACES, "window_max", ics_plan_window_max(P));
+  for (int k = 0; k < P->K; k++) {
+    double mag, q = ics_plan_slab_pixel(P, k, &mag);
+    for (int l = 0; l < nl; l++) {
+      window[l] = fmax(0, 1 - ds.blur[l] / q);
+      ics_prop_taps *pt = &pts[l];
+      status = ics_plan_slab_taps(P, l, k, q, mag, cum[l], scratch[l], pt, msg, msg_size);
+      size_t ntap = (size_t)pt->ntaps * (size_t)(pt->stencil ? 1 : pt->entries);
+      if (status == ICS_OK && ntap > s->max_taps) {
+        if (msg) snprintf(msg, msg_size, "backend gl: light %d, slab %d takes %zu taps, over the "
+                          "%zu of a uniform block on %s", l, k, ntap, s->max_taps, s->g.renderer);
+        status = ICS_ERR_SIZE;
+        goto done;
+      }
+      if (status == ICS_OK &&
+          !upload_taps(j, l, pt, ntap))
+        status = ICS_ERR_NOMEM;
+      if (status == ICS_ERR_NOMEM && msg)
+        snprintf(msg, msg_size, "backend gl: light %d, slab %d: the taps could not be prepared "
+                 "(out of memory, a tap out of range or a compensation that failed)", l, k);
+      if (status != ICS_OK) goto done;
+    }
+    GL_.NamedBufferSubData(j->buf[B_SD], (GLintptr)(sizeof(double) * (size_t)j->off_window),
+                           (GLsizeiptr)(sizeof(double) * (size_t)nl), window);
+    run_slab(j, k, pts);
+    GLuint tmp = j->buf[B_SRC];
+    j->buf[B_SRC] = j->buf[B_DST], j->buf[B_DST] = tmp;
+    tmp = j->tex[0], j->tex[0] = j->tex[1], j->tex[1] = tmp;
+    if ((e = GL_.GetError()) != GL_NO_ERROR) {
+      if (msg) snprintf(msg, msg_size, "backend gl: %s in slab %d on %s", gl_err_name(e), k,
+                        s->g.renderer);
+      status = e == GL_OUT_OF_MEMORY ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
+      goto done;
+    }
+    if (o->progress) {
+      GL_.Finish(); /* the slab done, so the progress is the device's */
+      o->progress(o->progress_ctx, k + 1, P->K);
+    }
+  }
+  GL_.GetNamedBufferSubData(j->buf[B_OUT], 0, (GLsizeiptr)(sizeof(float) * 4 * nview), img->data);
+  if (aov_floats)
+    GL_.GetNamedBufferSubData(j->buf[B_OUT], (GLintptr)(sizeof(float) * 4 * nview),
+                              (GLsizeiptr)(sizeof(float) * aov_floats), aov->data);
+  GLenum reset = GL_.GetGraphicsResetStatus();
+  if (reset != GL_NO_ERROR || (e = GL_.GetError()) != GL_NO_ERROR) {
+    if (msg) {
+      if (reset != GL_NO_ERROR)
+        snprintf(msg, msg_size, "backend gl: the context was lost (%s) on %s",
+                 reset == GL_GUILTY_CONTEXT_RESET ? "GL_GUILTY_CONTEXT_RESET"
+                 : reset == GL_INNOCENT_CONTEXT_RESET ? "GL_INNOCENT_CONTEXT_RESET"
+                                                      : "GL_UNKNOWN_CONTEXT_RESET", s->g.renderer);
+      else
+        snprintf(msg, msg_size, "backend gl: %s reading the image back from %s", gl_err_name(e),
+                 s->g.renderer);
+    }
+    status = reset == GL_NO_ERROR && e == GL_OUT_OF_MEMORY ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
+    goto done;
+  }
+  for (int k = 0; k < P->K; k++) {
+    GLuint64 t[3] = {0, 0, 0};
+    for (int i = 0; i < 3; i++) GL_.GetQueryObjectui64v(j->queries[3 * k + i], GL_QUERY_RESULT, &t[i]);
+    st->ms_convolution += 1e-6 * (double)(t[1] - t[0]);
+    st->ms_shading += 1e-6 * (double)(t[2] - t[1]);
+  }
+  ics_plan_over_background(P, img);
+  st->threads = s->g.software ? software_threads() : 0;
+  st->slabs = P->K;
+  if (s->g.software)
+    snprintf(st->device, sizeof st->device, "OpenGL %s: %.80s, %d threads", s->g.context,
+             s->g.renderer, st->threads);
+  else
+    snprintf(st->device, sizeof st->device, "OpenGL %s: %.90s", s->g.context, s->g.renderer);
+  if (nl && P->K) st->ns_per_px_slab = 1e6 * st->ms_convolution / ((double)npx * P->K * nl);
+  st->ms_total = 1e3 * (ics_clock_s() - t_start);
+  goto done;
+nomem:
+  status = ICS_ERR_NOMEM;
+  if (msg) snprintf(msg, msg_size, "backend gl: out of host memory for the upload (%zu fragments)",
+                    P->ldi.nfrag);
+done:
+  if (j->tex[0]) GL_.DeleteTextures(2, j->tex);
+  for (int b = 0; b < NBUF; b++)
+    if (j->buf[b]) GL_.DeleteBuffers(1, &j->buf[b]);
+  for (int l = 0; l < nl; l++) {
+    if (j->taps[l]) GL_.DeleteBuffers(1, &j->taps[l]);
+    if (pts) ics_prop_release(&pts[l]);
+    if (scratch) free(scratch[l]);
+  }
+  if (j->queries && j->queries[0]) GL_.DeleteQueries((GLsizei)(3 * P->K), j->queries);
+  free(j->queries), free(j->host_taps);
+  free(pix), free(span), free(sd);
+  free(pts), free(scratch);
+  ics_device_scene_destroy(&ds);
+  return status;
+}
+
+const ics_backend ics_backend_gl = {
+    "gl", "the slab renderer as OpenGL 4.5 compute shaders (EGL or OSMesa; auto picks it on a GPU)",
+    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH,
+    gl_available, gl_auto_pick, gl_create, gl_render, gl_destroy};

@@ -1,0 +1,282 @@
+/* gl_context.c — OpenGL 4.5 core contexts without a window (gl_context.h).
+ *
+ *   egl     the EGL device platform (EGL_EXT_platform_device): the first device that is not
+ *           Mesa's software device, so the same binary renders on a GPU driver; else Mesa's
+ *           surfaceless platform (EGL_MESA_platform_surfaceless, llvmpipe here). Contexts are
+ *           configless (EGL_KHR_no_config_context) and current without a surface
+ *           (EGL_KHR_surfaceless_context).
+ *   osmesa  OSMesaCreateContextAttribs with a 4.5 core profile, current on a 1 x 1 buffer (the
+ *           backend computes into buffers, it draws nothing). Gone from Mesa 25.1: EGL is the
+ *           long-term path.
+ *   auto    egl, then osmesa.
+ * Each is compiled in when CMake found its library (ICS_HAVE_EGL, ICS_HAVE_OSMESA). */
+#include "gl_context.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef ICS_HAVE_EGL
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#endif
+#ifdef ICS_HAVE_OSMESA
+#include <GL/osmesa.h>
+#endif
+
+enum { KIND_NONE, KIND_EGL, KIND_OSMESA };
+
+int ics_gl_kind_known(const char *which) {
+  if (!which || !strcmp(which, "auto")) return 1;
+#ifdef ICS_HAVE_EGL
+  if (!strcmp(which, "egl")) return 1;
+#endif
+#ifdef ICS_HAVE_OSMESA
+  if (!strcmp(which, "osmesa")) return 1;
+#endif
+  return 0;
+}
+
+typedef void (*ics_gl_proc)(void);
+
+/* loads every entry point and checks the version; 0 with why on failure */
+static int load(ics_gl *g, ics_gl_proc (*gpa)(const char *), char *why, size_t why_size) {
+  int missing = 0;
+#define ICS_GL_LOAD(type, name)                                                                \
+  g->gl.name = (type)gpa("gl" #name);                                                          \
+  if (!g->gl.name && !missing) {                                                               \
+    missing = 1;                                                                               \
+    snprintf(why, why_size, "%s: no entry point gl%s", g->context, #name);                     \
+  }
+  ICS_GL_FUNCTIONS(ICS_GL_LOAD)
+#undef ICS_GL_LOAD
+  if (missing) return 0;
+  const char *r = (const char *)g->gl.GetString(GL_RENDERER);
+  const char *v = (const char *)g->gl.GetString(GL_VERSION);
+  snprintf(g->renderer, sizeof g->renderer, "%s", r ? r : "(unknown renderer)");
+  snprintf(g->version, sizeof g->version, "%s", v ? v : "(unknown version)");
+  GLint major = 0, minor = 0;
+  g->gl.GetIntegerv(GL_MAJOR_VERSION, &major);
+  g->gl.GetIntegerv(GL_MINOR_VERSION, &minor);
+  if (major < 4 || (major == 4 && minor < 5)) {
+    snprintf(why, why_size, "%s: the driver gives OpenGL %s (%s), the gl backend needs 4.5",
+             g->context, g->version, g->renderer);
+    return 0;
+  }
+  g->software = strstr(g->renderer, "llvmpipe") || strstr(g->renderer, "softpipe");
+  return 1;
+}
+
+#ifdef ICS_HAVE_EGL
+static const char *egl_err(EGLint e) {
+  switch (e) {
+  case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
+  case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
+  case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
+  case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
+  case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
+  case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
+  case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
+  case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
+  case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+  case EGL_CONTEXT_LOST: return "EGL_CONTEXT_LOST";
+  default: return "EGL error";
+  }
+}
+
+static ics_gl_proc egl_gpa(const char *name) { return (ics_gl_proc)eglGetProcAddress(name); }
+
+/* a 4.5 core context on display dpy (initialised here); 0 with why */
+static int egl_context(ics_gl *g, EGLDisplay dpy, char *why, size_t why_size) {
+  EGLint major, minor;
+  if (dpy == EGL_NO_DISPLAY || !eglInitialize(dpy, &major, &minor)) {
+    snprintf(why, why_size, "%s: eglInitialize: %s", g->context, egl_err(eglGetError()));
+    return 0;
+  }
+  g->display = dpy;
+  const char *ext = eglQueryString(dpy, EGL_EXTENSIONS);
+  if (!ext || !strstr(ext, "EGL_KHR_no_config_context") ||
+      !strstr(ext, "EGL_KHR_surfaceless_context")) {
+    snprintf(why, why_size, "%s: EGL %d.%d lacks EGL_KHR_no_config_context or "
+             "EGL_KHR_surfaceless_context", g->context, major, minor);
+    return 0;
+  }
+  if (!eglBindAPI(EGL_OPENGL_API)) {
+    snprintf(why, why_size, "%s: eglBindAPI(EGL_OPENGL_API): %s", g->context, egl_err(eglGetError()));
+    return 0;
+  }
+  const EGLint attr[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                         EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                         EGL_NONE};
+  EGLContext c = eglCreateContext(dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attr);
+  if (c == EGL_NO_CONTEXT) {
+    snprintf(why, why_size, "%s: no OpenGL 4.5 core context (eglCreateContext: %s)", g->context,
+             egl_err(eglGetError()));
+    return 0;
+  }
+  g->ctx = c;
+  if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, c)) {
+    snprintf(why, why_size, "%s: eglMakeCurrent: %s", g->context, egl_err(eglGetError()));
+    return 0;
+  }
+  g->kind = KIND_EGL;
+  return load(g, egl_gpa, why, why_size);
+}
+
+static void egl_close(ics_gl *g) {
+  if (g->ctx) {
+    eglMakeCurrent(g->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(g->display, g->ctx);
+  }
+  if (g->display) eglTerminate(g->display);
+  g->ctx = g->display = NULL;
+}
+
+/* the device platform's first hardware device, else the surfaceless platform */
+static int egl_open(ics_gl *g, char *why, size_t why_size) {
+  PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
+      (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
+  PFNEGLQUERYDEVICESEXTPROC query_devices =
+      (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
+  PFNEGLQUERYDEVICESTRINGEXTPROC device_string =
+      (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
+  if (!get_display) {
+    snprintf(why, why_size, "egl: no eglGetPlatformDisplayEXT (EGL_EXT_platform_base)");
+    return 0;
+  }
+  char dev_why[512] = "";
+  EGLDeviceEXT devs[16];
+  EGLint ndev = 0;
+  if (query_devices && device_string && query_devices(16, devs, &ndev))
+    for (EGLint i = 0; i < ndev; i++) {
+      const char *ext = device_string(devs[i], EGL_EXTENSIONS);
+      if (ext && strstr(ext, "EGL_MESA_device_software")) continue; /* llvmpipe: surfaceless */
+      snprintf(g->context, sizeof g->context, "egl-device %d", (int)i);
+      if (egl_context(g, get_display(EGL_PLATFORM_DEVICE_EXT, devs[i], NULL), dev_why,
+                      sizeof dev_why))
+        return 1;
+      egl_close(g);
+    }
+  snprintf(g->context, sizeof g->context, "egl-surfaceless");
+  if (egl_context(g, get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL), why,
+                  why_size))
+    return 1;
+  if (dev_why[0]) {
+    size_t n = strlen(why);
+    snprintf(why + n, why_size - n, "; %s", dev_why);
+  }
+  egl_close(g);
+  return 0;
+}
+#endif
+
+#ifdef ICS_HAVE_OSMESA
+static ics_gl_proc osmesa_gpa(const char *name) { return (ics_gl_proc)OSMesaGetProcAddress(name); }
+
+static int osmesa_open(ics_gl *g, char *why, size_t why_size) {
+  snprintf(g->context, sizeof g->context, "osmesa");
+  const int attr[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
+                      OSMESA_CONTEXT_MAJOR_VERSION, 4, OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
+  OSMesaContext c = OSMesaCreateContextAttribs(attr, NULL);
+  if (!c) {
+    snprintf(why, why_size, "osmesa: OSMesaCreateContextAttribs refused a 4.5 core profile");
+    return 0;
+  }
+  g->ctx = c;
+  g->osmesa_buf = calloc(1, 4);
+  if (!g->osmesa_buf || !OSMesaMakeCurrent(c, g->osmesa_buf, GL_UNSIGNED_BYTE, 1, 1)) {
+    snprintf(why, why_size, "osmesa: OSMesaMakeCurrent failed");
+    return 0;
+  }
+  g->kind = KIND_OSMESA;
+  return load(g, osmesa_gpa, why, why_size);
+}
+
+static void osmesa_close(ics_gl *g) {
+  if (g->ctx) {
+    OSMesaMakeCurrent(NULL, NULL, GL_UNSIGNED_BYTE, 0, 0);
+    OSMesaDestroyContext(g->ctx);
+  }
+  free(g->osmesa_buf);
+  g->ctx = g->osmesa_buf = NULL;
+}
+#endif
+
+int ics_gl_hardware_device(char *why, size_t why_size) {
+#ifdef ICS_HAVE_EGL
+  PFNEGLQUERYDEVICESEXTPROC query_devices =
+      (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
+  PFNEGLQUERYDEVICESTRINGEXTPROC device_string =
+      (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
+  EGLDeviceEXT devs[16];
+  EGLint ndev = 0;
+  if (!query_devices || !device_string || !query_devices(16, devs, &ndev)) {
+    if (why) snprintf(why, why_size, "EGL lists no devices (no EGL_EXT_device_enumeration)");
+    return 0;
+  }
+  for (EGLint i = 0; i < ndev; i++) {
+    const char *ext = device_string(devs[i], EGL_EXTENSIONS);
+    if (!ext || !strstr(ext, "EGL_MESA_device_software")) return 1;
+  }
+  if (why) snprintf(why, why_size, "no GPU (EGL lists %d device%s, Mesa's software rasterizer "
+                    "only; --backend gl renders there)", (int)ndev, ndev == 1 ? "" : "s");
+  return 0;
+#else
+  if (why) snprintf(why, why_size, "built without EGL, so no GPU is looked for (--backend gl "
+                    "renders through OSMesa)");
+  return 0;
+#endif
+}
+
+void ics_gl_close(ics_gl *g) {
+  if (!g) return;
+#ifdef ICS_HAVE_EGL
+  if (g->display) egl_close(g);
+#endif
+#ifdef ICS_HAVE_OSMESA
+  if (g->osmesa_buf || (g->ctx && !g->display)) osmesa_close(g);
+#endif
+  memset(g, 0, sizeof *g);
+}
+
+int ics_gl_make_current(ics_gl *g) {
+#ifdef ICS_HAVE_EGL
+  if (g->kind == KIND_EGL) return eglMakeCurrent(g->display, EGL_NO_SURFACE, EGL_NO_SURFACE, g->ctx);
+#endif
+#ifdef ICS_HAVE_OSMESA
+  if (g->kind == KIND_OSMESA) return OSMesaMakeCurrent(g->ctx, g->osmesa_buf, GL_UNSIGNED_BYTE, 1, 1);
+#endif
+  return 0;
+}
+
+ics_status ics_gl_open(ics_gl *g, const char *which, char *why, size_t why_size) {
+  memset(g, 0, sizeof *g);
+  if (!which) which = "auto";
+  int any = !strcmp(which, "auto");
+  char w1[768] = "", w2[768] = "";
+  if (!ics_gl_kind_known(which)) {
+    snprintf(why, why_size, "no OpenGL context kind '%s' in this build (auto"
+#ifdef ICS_HAVE_EGL
+             ", egl"
+#endif
+#ifdef ICS_HAVE_OSMESA
+             ", osmesa"
+#endif
+             ")", which);
+    return ICS_ERR_UNSUPPORTED;
+  }
+#ifdef ICS_HAVE_EGL
+  if (any || !strcmp(which, "egl")) {
+    if (egl_open(g, w1, sizeof w1)) return ICS_OK;
+    ics_gl_close(g);
+  }
+#endif
+#ifdef ICS_HAVE_OSMESA
+  if (any || !strcmp(which, "osmesa")) {
+    if (osmesa_open(g, w2, sizeof w2)) return ICS_OK;
+    ics_gl_close(g);
+  }
+#endif
+  snprintf(why, why_size, "no OpenGL 4.5 context: %s%s%s", w1, w1[0] && w2[0] ? "; " : "", w2);
+  return ICS_ERR_UNSUPPORTED;
+}

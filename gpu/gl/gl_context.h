@@ -1,0 +1,91 @@
+/* gl_context.h — an OpenGL 4.5 core context without a window (gl_context.c): OSMesa, EGL on the
+ * device platform (a GPU driver: NVIDIA's, Mesa's hardware drivers) or EGL surfaceless (Mesa),
+ * and the GL entry points the gl backend calls, loaded through the context's GetProcAddress.
+ * Private to the renderer library. */
+#ifndef ICS_GL_CONTEXT_H
+#define ICS_GL_CONTEXT_H
+
+#include <GL/glcorearb.h>
+#include <stddef.h>
+
+#include "icshadow/status.h"
+
+/* the entry points: X(type, name) for gl##name */
+#define ICS_GL_FUNCTIONS(X)                                                                     \
+  X(PFNGLGETSTRINGPROC, GetString)                                                              \
+  X(PFNGLGETSTRINGIPROC, GetStringi)                                                            \
+  X(PFNGLGETINTEGERVPROC, GetIntegerv)                                                          \
+  X(PFNGLGETINTEGERI_VPROC, GetIntegeri_v)                                                      \
+  X(PFNGLGETINTEGER64VPROC, GetInteger64v)                                                      \
+  X(PFNGLGETERRORPROC, GetError)                                                                \
+  X(PFNGLGETGRAPHICSRESETSTATUSPROC, GetGraphicsResetStatus)                                    \
+  X(PFNGLCREATESHADERPROC, CreateShader)                                                        \
+  X(PFNGLSHADERSOURCEPROC, ShaderSource)                                                        \
+  X(PFNGLCOMPILESHADERPROC, CompileShader)                                                      \
+  X(PFNGLGETSHADERIVPROC, GetShaderiv)                                                          \
+  X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)                                                \
+  X(PFNGLDELETESHADERPROC, DeleteShader)                                                        \
+  X(PFNGLCREATEPROGRAMPROC, CreateProgram)                                                      \
+  X(PFNGLATTACHSHADERPROC, AttachShader)                                                        \
+  X(PFNGLLINKPROGRAMPROC, LinkProgram)                                                          \
+  X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                                                        \
+  X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                                              \
+  X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                                                      \
+  X(PFNGLUSEPROGRAMPROC, UseProgram)                                                            \
+  X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                                            \
+  X(PFNGLPROGRAMUNIFORM1IPROC, ProgramUniform1i)                                                \
+  X(PFNGLPROGRAMUNIFORM1UIPROC, ProgramUniform1ui)                                              \
+  X(PFNGLPROGRAMUNIFORM1DPROC, ProgramUniform1d)                                                \
+  X(PFNGLCREATEBUFFERSPROC, CreateBuffers)                                                      \
+  X(PFNGLNAMEDBUFFERSTORAGEPROC, NamedBufferStorage)                                            \
+  X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                                            \
+  X(PFNGLGETNAMEDBUFFERSUBDATAPROC, GetNamedBufferSubData)                                      \
+  X(PFNGLCLEARNAMEDBUFFERDATAPROC, ClearNamedBufferData)                                        \
+  X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                                      \
+  X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                                                    \
+  X(PFNGLBINDBUFFERRANGEPROC, BindBufferRange)                                                  \
+  X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                                                  \
+  X(PFNGLDISPATCHCOMPUTEINDIRECTPROC, DispatchComputeIndirect)                                  \
+  X(PFNGLBINDBUFFERPROC, BindBuffer)                                                            \
+  X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                                                      \
+  X(PFNGLFINISHPROC, Finish)                                                                    \
+  X(PFNGLGENQUERIESPROC, GenQueries)                                                            \
+  X(PFNGLCREATETEXTURESPROC, CreateTextures)                                                    \
+  X(PFNGLTEXTUREBUFFERPROC, TextureBuffer)                                                      \
+  X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                                                  \
+  X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                                    \
+  X(PFNGLDELETEQUERIESPROC, DeleteQueries)                                                      \
+  X(PFNGLQUERYCOUNTERPROC, QueryCounter)                                                        \
+  X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)
+
+typedef struct ics_gl_fns {
+#define ICS_GL_FIELD(type, name) type name;
+  ICS_GL_FUNCTIONS(ICS_GL_FIELD)
+#undef ICS_GL_FIELD
+} ics_gl_fns;
+
+typedef struct ics_gl {
+  ics_gl_fns gl;
+  char context[64];   /* "osmesa", "egl-device N", "egl-surfaceless" */
+  char renderer[160]; /* GL_RENDERER */
+  char version[96];   /* GL_VERSION */
+  int software;       /* llvmpipe / softpipe: LP_NUM_THREADS applies */
+  int kind;           /* (gl_context.c) */
+  void *display, *ctx, *osmesa_buf;
+} ics_gl;
+
+/* Opens a 4.5 core context of kind `which`: "osmesa", "egl" (the device platform's first
+ * hardware device, else surfaceless) or "auto" (NULL too: egl, then osmesa; docs/backend_gl.md),
+ * makes it current on the calling thread and loads the entry points. ICS_ERR_UNSUPPORTED with
+ * why (each kind tried and its failure) when none opens. */
+ics_status ics_gl_open(ics_gl *g, const char *which, char *why, size_t why_size);
+/* makes g current on the calling thread again (0 on failure) */
+int ics_gl_make_current(ics_gl *g);
+void ics_gl_close(ics_gl *g); /* a zeroed or closed one is fine */
+/* 1 when the EGL device platform lists a device that is not Mesa's software one (a GPU driver),
+ * without opening a context; else 0 with why. */
+int ics_gl_hardware_device(char *why, size_t why_size);
+/* 1 when `which` names a kind this build has ("auto", "osmesa", "egl"), else 0 */
+int ics_gl_kind_known(const char *which);
+
+#endif
