@@ -61,6 +61,7 @@ static void help(FILE *f) {
           "                    run side by side for each member and size (a device backend\n"
           "                    such as cl runs once, threads 0)\n"
           CLI_CL_DEVICE_HELP
+          CLI_GL_CONTEXT_HELP
           "  --cov C,C,C       per-slab covariance in px^2 (default 2,0.5,1)\n"
           "  --mean MX,MY      per-slab mean in px (default 0.3,-0.2)\n"
           "  --reps R          repetitions, median reported (default 3; 1..50)\n"
@@ -123,6 +124,7 @@ int bench_slab(int argc, char **argv) {
       {"--kernels", .kind = CLI_STRING, .dest = &kernels_s},
       {"--backend", .kind = CLI_STRING, .dest = &backend_s},
       {"--cl-device", .kind = CLI_CALL, .parse = cli_parse_cl_device},
+      {"--gl-context", .kind = CLI_CALL, .parse = cli_parse_gl_context},
       {"--cov", .kind = CLI_STRING, .dest = &cov_s},
       {"--mean", .kind = CLI_STRING, .dest = &mean_s},
       {"--reps", .kind = CLI_INT, .dest = &reps, .lo = 1, .hi = 50},

@@ -37,6 +37,7 @@ static void help(FILE *f) {
           "  --backend B         auto (default) or a backend of `icshadow render --backends`\n"
           "  --backends          list the backends built into this binary and exit\n"
           CLI_CL_DEVICE_HELP
+          CLI_GL_CONTEXT_HELP
           "  --spp N             mc: samples per pixel (1..16777216; default 64 when no other stop)\n"
           "  --time S            mc: stop after S seconds\n"
           "  --noise E           mc: stop once the RMS standard error of R, G, B is at most E\n"
@@ -156,7 +157,8 @@ int cmd_render(int argc, char **argv) {
              *diff_png = NULL, *mc_mesh = NULL;
   int force_progress = 0, backends = 0, spp = 0, ref_spp = 0, given_ref = 0;
   double time_s = 0, noise = 0;
-  int given_spp = 0, given_time = 0, given_noise = 0, given_cl_device = 0;
+  int given_spp = 0, given_time = 0, given_noise = 0, given_cl_device = 0,
+      given_gl_context = 0;
   const cli_option mine[] = {
       {"-o", .kind = CLI_FILE, .dest = &exr},
       {"--png", .kind = CLI_FILE, .dest = &png},
@@ -164,6 +166,7 @@ int cmd_render(int argc, char **argv) {
       {"--backend", .kind = CLI_STRING, .dest = &backend},
       {"--backends", .kind = CLI_FLAG, .dest = &backends},
       {"--cl-device", .kind = CLI_CALL, .parse = cli_parse_cl_device, .given = &given_cl_device},
+      {"--gl-context", .kind = CLI_CALL, .parse = cli_parse_gl_context, .given = &given_gl_context},
       {"--progress", .kind = CLI_FLAG, .dest = &force_progress},
       {"--spp", .kind = CLI_INT, .dest = &spp, .lo = 1, .hi = 1 << 24, .given = &given_spp},
       {"--time", .kind = CLI_FINITE, .dest = &time_s, .given = &given_time},
@@ -189,6 +192,9 @@ int cmd_render(int argc, char **argv) {
   int mc = backend && !strcmp(backend, "mc");
   if (given_cl_device && !(backend && !strcmp(backend, "cl")))
     cli_warning(CMD, "--cl-device only chooses the device of --backend cl (the backend is %s)",
+                backend ? backend : "auto");
+  if (given_gl_context && !(backend && !strcmp(backend, "gl")))
+    cli_warning(CMD, "--gl-context only chooses the context of --backend gl (the backend is %s)",
                 backend ? backend : "auto");
   if ((given_spp || given_time || given_noise) && !mc)
     return cli_error(CMD, "%s: only the Monte-Carlo reference takes a stop (give --backend mc)",
@@ -247,6 +253,7 @@ int cmd_render(int argc, char **argv) {
   st = ics_renderer_create(&r, &ro, msg, sizeof msg);
   if (st == ICS_OK) {
     st = ics_renderer_render_aovs(r, plan, aovs, &img, aovs ? &aov : NULL, &stats, msg, sizeof msg);
+    if (*ics_renderer_note(r)) fprintf(stderr, "icshadow render: note: %s\n", ics_renderer_note(r));
     ics_renderer_destroy(r);
   }
   if (sp.p.on) cli_progress_done(&sp.p);

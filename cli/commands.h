@@ -119,6 +119,12 @@ int cli_parse_options(const char *cmd, int argc, char **argv, int first, const c
 int cli_parse_cl_device(const char *cmd, const char *opt, const char *value, void *dest);
 #define CLI_CL_DEVICE_HELP \
   "  --cl-device D       OpenCL device: an index or part of \"platform: device\" (as ICS_CL_DEVICE)\n"
+/* --gl-context K (a CLI_CALL parser): the gl backend's context, auto, egl or osmesa, as
+ * ICS_GL_CONTEXT, which it sets for this process; anything else is refused. */
+int cli_parse_gl_context(const char *cmd, const char *opt, const char *value, void *dest);
+#define CLI_GL_CONTEXT_HELP \
+  "  --gl-context K      gl backend's context: auto (default: egl, then osmesa), egl (a GPU's\n" \
+  "                      EGL device, else Mesa's surfaceless platform) or osmesa (as ICS_GL_CONTEXT)\n"
 
 /* Seconds on the monotonic clock (CLOCK_MONOTONIC), for elapsed times. */
 double cli_now_s(void);

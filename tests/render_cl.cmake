@@ -3,8 +3,8 @@
 # program on first use (about a second, then cached in the build tree's PoCL cache, which
 # tests/CMakeLists.txt gives every test).
 file(GLOB ics_scene_files CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/scenes/*.json)
-ics_add_test(NAME test_render_cl SOURCES test_render_cl.c LABELS medium render
-  LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER OPENCL ARGS ${ics_scene_files})
+ics_add_test(NAME test_render_cl SOURCES test_render_device.c LABELS medium render
+  LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER OPENCL ARGS cl ${ics_scene_files})
 if(TARGET test_render_cl)
   target_include_directories(test_render_cl PRIVATE ${CMAKE_SOURCE_DIR}/gpu/src)
 endif()

@@ -32,17 +32,23 @@
 
 /* the programs: slab.comp's entry points, the steps also with every read clamped (variants,
  * not a uniform branch: llvmpipe would run both sides) */
-enum { P_STENCIL, P_STENCIL_CLAMPED, P_TABLE, P_TABLE_CLAMPED, P_CLASSES, P_ENTRIES_PIXEL,
-       P_ENTRIES_RUN, P_SELECT, P_COUNT, P_SHADE, P_SHADE_SURFACES, P_APRON_SIDES, P_APRON_ENDS,
-       NPROGS };
+/* The steps come in NSTEP forms, each also with its taps in a storage buffer (+ NSTEP: more
+ * taps than a uniform block holds). */
+enum { P_STENCIL, P_STENCIL_CLAMPED, P_TABLE, P_TABLE_CLAMPED, P_CLASSES, NSTEP = 5,
+       P_ENTRIES_PIXEL = 2 * NSTEP, P_ENTRIES_RUN, P_SELECT, P_COUNT, P_SHADE, P_SHADE_SURFACES,
+       P_APRON_SIDES, P_APRON_ENDS, NPROGS };
 static const char *const PROG_NAMES[NPROGS] = {
     "ICS_K_PROP_STENCIL", "ICS_K_PROP_STENCIL", "ICS_K_PROP_TABLE", "ICS_K_PROP_TABLE",
-    "ICS_K_PROP_CLASSES", "ICS_K_ENTRIES_PIXEL", "ICS_K_ENTRIES_RUN", "ICS_K_SHADE_SELECT",
-    "ICS_K_SHADE_COUNT", "ICS_K_SHADE", "ICS_K_SHADE", "ICS_K_APRON_SIDES", "ICS_K_APRON_ENDS"};
-/* the second define of a variant */
-static const char *const PROG_VARIANT[NPROGS] = {[P_STENCIL_CLAMPED] = "ICS_CLAMPED",
-                                                 [P_TABLE_CLAMPED] = "ICS_CLAMPED",
-                                                 [P_SHADE_SURFACES] = "ICS_SURFACES_ONLY"};
+    "ICS_K_PROP_CLASSES", "ICS_K_PROP_STENCIL", "ICS_K_PROP_STENCIL", "ICS_K_PROP_TABLE",
+    "ICS_K_PROP_TABLE", "ICS_K_PROP_CLASSES", "ICS_K_ENTRIES_PIXEL", "ICS_K_ENTRIES_RUN",
+    "ICS_K_SHADE_SELECT", "ICS_K_SHADE_COUNT", "ICS_K_SHADE", "ICS_K_SHADE", "ICS_K_APRON_SIDES",
+    "ICS_K_APRON_ENDS"};
+/* the variants' further defines */
+static const char *const PROG_VARIANT[NPROGS] = {
+    [P_STENCIL_CLAMPED] = "ICS_CLAMPED", [P_TABLE_CLAMPED] = "ICS_CLAMPED",
+    [NSTEP + P_STENCIL] = "ICS_TAPS_STORAGE", [NSTEP + P_STENCIL_CLAMPED] = "ICS_CLAMPED 1\n#define ICS_TAPS_STORAGE",
+    [NSTEP + P_TABLE] = "ICS_TAPS_STORAGE", [NSTEP + P_TABLE_CLAMPED] = "ICS_CLAMPED 1\n#define ICS_TAPS_STORAGE",
+    [NSTEP + P_CLASSES] = "ICS_TAPS_STORAGE", [P_SHADE_SURFACES] = "ICS_SURFACES_ONLY"};
 enum { SSBO_BINDINGS = 15 }; /* slab.comp's bindings 0..14 */
 
 /* slab.comp's tap record (std140: ivec4, vec4) */
@@ -56,7 +62,7 @@ typedef struct gl_state {
   GLuint prog[NPROGS];
   GLint64 max_block; /* GL_MAX_SHADER_STORAGE_BLOCK_SIZE */
   GLint max_texels;  /* GL_MAX_TEXTURE_BUFFER_SIZE */
-  size_t max_taps;   /* taps per light and slab: GL_MAX_UNIFORM_BLOCK_SIZE / 32, at most 4096 */
+  size_t max_taps;   /* taps a uniform block holds: GL_MAX_UNIFORM_BLOCK_SIZE / 32, at most 4096 */
   GLint max_groups[3];
 } gl_state;
 
@@ -213,15 +219,16 @@ typedef struct gl_job {
   gl_state *s;
   const ics_plan *P;
   GLuint buf[NBUF], taps[ICS_SCENE_MAX_LIGHTS];
-  GLuint tex[2]; /* buffer textures over buf[B_SRC] and buf[B_DST], swapped with them */
   size_t taps_cap[ICS_SCENE_MAX_LIGHTS];
+  GLuint tex[2]; /* buffer textures over buf[B_SRC] and buf[B_DST], swapped with them */
   gl_tap *host_taps;
   size_t host_cap;
   int off_window;
   GLuint *queries; /* 3 per slab: start, after the steps, after the shading */
 } gl_job;
 
-/* uploads light l's prepared taps (n records, at most max_taps); 0 when out of host memory */
+/* uploads light l's prepared taps (n records; a uniform block holds max_taps, a storage buffer
+ * more: grown as needed); 0 when out of host memory */
 static int upload_taps(gl_job *j, int l, const ics_prop_taps *pt, size_t n) {
   gl_state *s = j->s;
   if (n > j->host_cap) {
@@ -233,7 +240,11 @@ static int upload_taps(gl_job *j, int l, const ics_prop_taps *pt, size_t n) {
   for (size_t i = 0; i < n; i++)
     j->host_taps[i] = (gl_tap){pt->ix[i], pt->iy[i], pt->off && !pt->classes ? pt->off[i] : 0, 0,
                                pt->w[i], bilinear ? pt->fx[i] : 0, bilinear ? pt->fy[i] : 0, 0};
-  if (!j->taps[l]) j->taps[l] = buffer(s, s->max_taps * sizeof(gl_tap), NULL);
+  if (n > j->taps_cap[l] || !j->taps[l]) {
+    if (j->taps[l]) GL_.DeleteBuffers(1, &j->taps[l]);
+    j->taps_cap[l] = n > s->max_taps ? n : s->max_taps;
+    j->taps[l] = buffer(s, j->taps_cap[l] * sizeof(gl_tap), NULL);
+  }
   GL_.NamedBufferSubData(j->taps[l], 0, (GLsizeiptr)(n * sizeof(gl_tap)), j->host_taps);
   return 1;
 }
@@ -257,9 +268,14 @@ static void run_slab(gl_job *j, int k, const ics_prop_taps *pts) {
     const ics_prop_taps *pt = &pts[l];
     int clamped = pt->s != 1 || pt->reach > P->buf.apron; /* as propagate.c */
     int mode = pt->classes ? P_CLASSES : (pt->stencil ? P_STENCIL : P_TABLE) + clamped;
-    GL_.BindBufferRange(GL_UNIFORM_BUFFER, 0, j->taps[l], 0, (GLsizeiptr)(s->max_taps * sizeof(gl_tap)));
+    size_t ntap = (size_t)pt->ntaps * (size_t)(pt->stencil ? 1 : pt->entries);
+    if (ntap > s->max_taps) mode += NSTEP;
+    if (mode < NSTEP)
+      GL_.BindBufferRange(GL_UNIFORM_BUFFER, 0, j->taps[l], 0, (GLsizeiptr)(s->max_taps * sizeof(gl_tap)));
+    else
+      GL_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, j->taps[l]);
     GL_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, j->buf[B_ENT]);
-    if (mode == P_TABLE || mode == P_TABLE_CLAMPED) {
+    if (mode % NSTEP == P_TABLE || mode % NSTEP == P_TABLE_CLAMPED) {
       int pe = pt->run > 1 ? P_ENTRIES_RUN : P_ENTRIES_PIXEL;
       u_int(s, pe, "entries", pt->entries), u_uint(s, pe, "light", pt->light);
       u_uint(s, pe, "slab", pt->slab), u_int(s, pe, "phase", pt->phase);
@@ -269,7 +285,7 @@ static void run_slab(gl_job *j, int k, const ics_prop_taps *pts) {
       else
         dispatch(s, pe, (((size_t)P->Wb * P->Hb + 63) / 64 * 16 + 63) / 64, 1, 1);
       u_int(s, mode, "entries", pt->entries);
-    } else if (mode == P_CLASSES) {
+    } else if (mode % NSTEP == P_CLASSES) {
       u_int(s, mode, "Q", pt->classes);
       u_dbl(s, mode, "s", pt->s), u_dbl(s, mode, "cx", pt->cx), u_dbl(s, mode, "cy", pt->cy);
     }
@@ -458,12 +474,6 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
       ics_prop_taps *pt = &pts[l];
       status = ics_plan_slab_taps(P, l, k, q, mag, cum[l], scratch[l], pt, msg, msg_size);
       size_t ntap = (size_t)pt->ntaps * (size_t)(pt->stencil ? 1 : pt->entries);
-      if (status == ICS_OK && ntap > s->max_taps) {
-        if (msg) snprintf(msg, msg_size, "backend gl: light %d, slab %d takes %zu taps, over the "
-                          "%zu of a uniform block on %s", l, k, ntap, s->max_taps, s->g.renderer);
-        status = ICS_ERR_SIZE;
-        goto done;
-      }
       if (status == ICS_OK &&
           !upload_taps(j, l, pt, ntap))
         status = ICS_ERR_NOMEM;
@@ -515,13 +525,13 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
     st->ms_shading += 1e-6 * (double)(t[2] - t[1]);
   }
   ics_plan_over_background(P, img);
-  st->threads = s->g.software ? software_threads() : 0;
+  st->threads = 0; /* a device: llvmpipe's threads are in the device string */
   st->slabs = P->K;
   if (s->g.software)
-    snprintf(st->device, sizeof st->device, "OpenGL %s: %.80s, %d threads", s->g.context,
-             s->g.renderer, st->threads);
+    snprintf(st->device, sizeof st->device, "OpenGL %.20s: %.72s, %d threads", s->g.context,
+             s->g.renderer, software_threads());
   else
-    snprintf(st->device, sizeof st->device, "OpenGL %s: %.90s", s->g.context, s->g.renderer);
+    snprintf(st->device, sizeof st->device, "OpenGL %.20s: %.90s", s->g.context, s->g.renderer);
   if (nl && P->K) st->ns_per_px_slab = 1e6 * st->ms_convolution / ((double)npx * P->K * nl);
   st->ms_total = 1e3 * (ics_clock_s() - t_start);
   goto done;

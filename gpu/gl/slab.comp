@@ -3,7 +3,8 @@
  * the same arithmetic as the cpu backend (gpu/src/propagate.c, gpu/src/backend_cpu.c) and the cl
  * backend (gpu/cl/slab.cl). One file, one program per entry point: the host compiles it once per
  * ICS_K_* name, defined on the line after #version (glslangValidator -DICS_K_... checks each), and
- * the steps once more with ICS_CLAMPED (a tap reaches past the apron: every read clamps).
+ * the steps once more with ICS_CLAMPED (a tap reaches past the apron: every read clamps), and
+ * each of those with ICS_TAPS_STORAGE (more taps than a uniform block holds).
  *
  *   ICS_K_PROP_STENCIL / _TABLE / _CLASSES  one light buffer's slab step with the host's
  *        prepared taps: integer taps, a table of bilinear tap sets (each pixel takes the set the
@@ -68,7 +69,11 @@ struct tap { ivec4 i; vec4 f; };
  * fast as shader-storage loads (24 reads per pixel: 25 against 58 ns) */
 layout(binding = 0) uniform samplerBuffer src;
 layout(std430, binding = 1) writeonly buffer Dst { float dst[]; };
+#ifdef ICS_TAPS_STORAGE /* more than a uniform block holds */
+layout(std430, binding = 2) readonly buffer Taps { tap taps[]; };
+#else
 layout(std140, binding = 0) uniform Taps { tap taps[ICS_MAX_TAPS]; };
+#endif
 layout(std430, binding = 3) readonly buffer Ent { uint ent[]; };
 uniform int base, ntaps; /* light l's planes start at base */
 uniform int entries, Q;

@@ -80,7 +80,7 @@ ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, 
         }
       }
       if (!r->b && c->auto_pick && !r->note[0])
-        snprintf(r->note, sizeof r->note, "auto passed over %s: %s", c->name, why);
+        snprintf(r->note, sizeof r->note, "auto passed over %s: %.440s", c->name, why);
     }
   } else {
     char why[1024];

@@ -1,14 +1,18 @@
-/* test_render_cl.c — the cl backend (gpu/cl) renders what the cpu backend renders: the embedded
- * default scene, every scene file given on the command line (scenes/), and variants that reach
- * each path of slab.cl (stencil, table with per-pixel and run-of-16 choices, 1 and 384
+/* test_render_device.c — a device backend (cl: gpu/cl, gl: gpu/gl) renders what the cpu backend
+ * renders: the embedded default scene, every scene file given on the command line (scenes/), and
+ * variants that reach each path of slab.cl and slab.comp (stencil, table with per-pixel and run-of-16 choices, 1 and 384
  * rotations, the perspective classes, integer and signed kernels, coloured transport, translucent
  * surfaces, volumes with and without detail, Perlin / fBm / ridged / grid detail,
- * preintegration, more overlapping volumes than ics_shade keeps, several lights). Per image: the largest absolute difference and the RMS
- * difference over R, G, B, A against the cpu backend's image (and of the AOVs), within the tolerances of docs/backend_cl.md (the same float
- * arithmetic in the same order; double libm calls, exp and pow, may differ in the last bits).
- * Then the refusals: a device that does not exist (ICS_CL_DEVICE), with its message and no
- * image. Exit 77 (skipped) when no OpenCL device with fp64 is at hand.
- * usage: test_render_cl [SCENE.json ...] */
+ * preintegration, more overlapping volumes than the shading keeps, several lights). Per image:
+ * the largest absolute difference and the RMS difference over R, G, B, A against the cpu
+ * backend's image (and of the AOVs), within the tolerances of docs/backend_cl.md and
+ * docs/backend_gl.md (the same float arithmetic in the same order; exp and pow in double on cl
+ * and the CPU may differ in the last bits, GLSL has them in float only). Then the refusals with
+ * their messages and no image: cl, a device that does not exist (ICS_CL_DEVICE); gl, a context
+ * kind that does not exist (ICS_GL_CONTEXT) and light buffers over the driver's limits. Exit 77
+ * (skipped) when the backend cannot run here. The gl backend renders on the context that
+ * ICS_GL_CONTEXT names (the CMake tests run it once per context kind).
+ * usage: test_render_device cl|gl [SCENE.json ...] */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -18,8 +22,11 @@
 #include "render_util.h"
 #include "testutil.h"
 
-#define TOL_MAX 1e-5 /* largest |cl - cpu| over the pixels and channels */
+#define TOL_MAX 1e-5 /* largest |device - cpu| over the pixels and channels */
 #define TOL_RMS 1e-6
+
+static const char *backend; /* argv[1] */
+static char device[128];    /* the device of the last render (its stats) */
 
 /* name, the mode light 0's kernel runs in (the plan's pass detail), scene */
 static const char *const variants[][3] = {
@@ -122,7 +129,7 @@ static void compare(const char *what, const char *mode, const ics_scene *s) {
     CHECK(!strcmp(got, mode), "%s: light 0 runs in mode '%s', the variant is for '%s'", what, got, mode);
   }
   const unsigned aovs = ICS_AOV_VISIBILITY | ICS_AOV_DEPTH;
-  render_result a = render_scene_on("cpu", s, NULL, 0, aovs), b = render_scene_on("cl", s, NULL, 0, aovs);
+  render_result a = render_scene_on("cpu", s, NULL, 0, aovs), b = render_scene_on(backend, s, NULL, 0, aovs);
   double maxd = 0, sum = 0;
   int at = 0;
   size_t n = (size_t)a.img->width * a.img->height * 4;
@@ -145,14 +152,15 @@ static void compare(const char *what, const char *mode, const ics_scene *s) {
   CHECK(maxd <= TOL_MAX, "%s: max difference %.3g > %.3g", what, maxd, TOL_MAX);
   CHECK(rms <= TOL_RMS, "%s: RMS difference %.3g > %.3g", what, rms, TOL_RMS);
   CHECK(amax <= TOL_MAX, "%s: AOVs differ by %.3g > %.3g", what, amax, TOL_MAX);
-  CHECK(!strcmp(b.stats.backend, "cl"), "%s: backend %s", what, b.stats.backend);
+  CHECK(!strcmp(b.stats.backend, backend), "%s: backend %s", what, b.stats.backend);
+  snprintf(device, sizeof device, "%s", b.stats.device);
   ics_image_destroy(a.img);
   ics_image_destroy(b.img);
   ics_exr_channels_destroy(a.aov);
   ics_exr_channels_destroy(b.aov);
 }
 
-/* a render the cl backend refuses: status, message, no image */
+/* a render the backend refuses: status, message, no image */
 static void refused(const char *what, const char *json, ics_status want, const char *needle) {
   ics_scene *s = scene_from_json(json);
   char msg[2048] = "";
@@ -162,7 +170,7 @@ static void refused(const char *what, const char *json, ics_status want, const c
     fprintf(stderr, "plan: %s\n", msg);
     exit(2);
   }
-  ics_render_opts ro = {.backend = "cl"};
+  ics_render_opts ro = {.backend = backend};
   ics_renderer *r = NULL;
   ics_image *img = NULL;
   ics_status st = ics_renderer_create(&r, &ro, msg, sizeof msg);
@@ -178,14 +186,19 @@ static void refused(const char *what, const char *json, ics_status want, const c
 
 int main(int argc, char **argv) {
   char why[1024];
-  if (!ics_backend_available("cl", why, sizeof why)) {
-    printf("SKIPPED: the cl backend cannot run here: %s\n", why);
+  if (argc < 2 || (strcmp(argv[1], "cl") && strcmp(argv[1], "gl"))) {
+    fprintf(stderr, "usage: test_render_device cl|gl [SCENE.json ...]\n");
+    return 2;
+  }
+  backend = argv[1];
+  if (!ics_backend_available(backend, why, sizeof why)) {
+    printf("SKIPPED: the %s backend cannot run here: %s\n", backend, why);
     return 77;
   }
   ics_scene *s = scene_from_json(ics_scene_default_json());
   compare("the embedded default scene", "table", s);
   ics_scene_destroy(s);
-  for (int i = 1; i < argc; i++) {
+  for (int i = 2; i < argc; i++) {
     s = scene_from_file(argv[i]);
     compare(argv[i], NULL, s);
     ics_scene_destroy(s);
@@ -198,7 +211,7 @@ int main(int argc, char **argv) {
   /* grid detail: a 5 x 4 x 3 grid of random values over a box, preintegrated */
   const char *td = getenv("TMPDIR");
   char grid[1024], json[4096];
-  snprintf(grid, sizeof grid, "%s/test_render_cl_grid.raw", td && *td ? td : "/tmp");
+  snprintf(grid, sizeof grid, "%s/test_render_%s_grid.raw", td && *td ? td : "/tmp", backend);
   FILE *f = fopen(grid, "wb");
   float cells[60];
   for (int i = 0; i < 60; i++) cells[i] = (float)((test_rng_u64() >> 11) * 0x1p-53 * 1.5);
@@ -236,11 +249,34 @@ int main(int argc, char **argv) {
   s = scene_from_json(json);
   compare("ten overlapping volumes (five with fBm detail), two lights", "table", s);
   ics_scene_destroy(s);
-  setenv("ICS_CL_DEVICE", "no such device anywhere", 1);
-  refused("ICS_CL_DEVICE naming no device", variants[0][2], ICS_ERR_UNSUPPORTED,
-          "ICS_CL_DEVICE=no such device anywhere matches no device");
-  setenv("ICS_CL_DEVICE", "99", 1);
-  refused("ICS_CL_DEVICE out of range", variants[0][2], ICS_ERR_UNSUPPORTED, "ICS_CL_DEVICE=99");
-  unsetenv("ICS_CL_DEVICE");
-  return test_summary("test_render_cl");
+  if (!strcmp(backend, "cl")) {
+    setenv("ICS_CL_DEVICE", "no such device anywhere", 1);
+    refused("ICS_CL_DEVICE naming no device", variants[0][2], ICS_ERR_UNSUPPORTED,
+            "ICS_CL_DEVICE=no such device anywhere matches no device");
+    setenv("ICS_CL_DEVICE", "99", 1);
+    refused("ICS_CL_DEVICE out of range", variants[0][2], ICS_ERR_UNSUPPORTED, "ICS_CL_DEVICE=99");
+    unsetenv("ICS_CL_DEVICE");
+  } else {
+    /* light buffers of 4000 x 3000 x 3 channels: 150 MB, over llvmpipe's 128 MiB shader storage
+     * blocks (a GPU driver may take them: then the render must agree instead) */
+    const char *big =
+        "{\"camera\": {\"eye\": [0, 0.5, 3], \"target\": [0, 0, 0], \"height\": 2.4, \"resolution\": [4000, 3000]},"
+        " \"render\": {\"slab_spacing\": 0.5, \"d1\": 1, \"max_pad\": 0},"
+        " \"lights\": [{\"mean\": [0, 0], \"var\": [0.01, 0.01], \"color\": [1, 0.5, 0.2]}],"
+        " \"materials\": {\"floor\": {\"transport\": [0.5, 0.2, 0.1], \"opacity\": 0.5}},"
+        " \"objects\": [{\"shape\": \"rect\", \"center\": [0, -0.5, 0], \"normal\": [0, 1, 0], \"size\": [4, 4], \"material\": \"floor\"}]}";
+    const char *ctx = getenv("ICS_GL_CONTEXT");
+    printf("gl device: %s\n", device);
+    if (strstr(device, "llvmpipe")) /* llvmpipe's limits */
+      refused("light buffers over the driver's largest shader storage block", big, ICS_ERR_SIZE,
+              "over the driver's largest");
+    char *saved = ctx ? strdup(ctx) : NULL;
+    setenv("ICS_GL_CONTEXT", "vulkan", 1);
+    refused("ICS_GL_CONTEXT naming no kind", variants[0][2], ICS_ERR_UNSUPPORTED,
+            "no OpenGL context kind 'vulkan'");
+    if (saved) setenv("ICS_GL_CONTEXT", saved, 1);
+    else unsetenv("ICS_GL_CONTEXT");
+    free(saved);
+  }
+  return test_summary(!strcmp(backend, "cl") ? "test_render_device cl" : "test_render_device gl");
 }

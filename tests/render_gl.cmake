@@ -1,0 +1,64 @@
+# The gl backend (gpu/gl: OpenGL 4.5 compute shaders; llvmpipe here) against the cpu backend:
+# the default scene, the scene files and the variants of test_render_device.c, once per context
+# kind (EGL, OSMesa); its refusals; slab.comp's programs through glslangValidator; the command
+# line (--backend gl, --gl-context, the auto notice, bench slab side by side). Medium: llvmpipe
+# compiles the shading program on first use (seconds; Mesa's shader cache in the build tree,
+# tests/CMakeLists.txt, keeps it for later runs).
+file(GLOB ics_scene_files CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/scenes/*.json)
+ics_add_test(NAME test_render_gl SOURCES test_render_device.c LABELS medium render
+  LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER GL ARGS gl ${ics_scene_files})
+if(TARGET test_render_gl)
+  set_tests_properties(test_render_gl PROPERTIES ENVIRONMENT ICS_GL_CONTEXT=egl)
+  add_test(NAME test_render_gl_osmesa COMMAND test_render_gl gl ${ics_scene_files})
+  set_tests_properties(test_render_gl_osmesa PROPERTIES LABELS "medium;render"
+    ENVIRONMENT ICS_GL_CONTEXT=osmesa SKIP_RETURN_CODE 77)
+endif()
+
+# every program of slab.comp (each entry point and variant, as backend_gl.c compiles them)
+# through the reference compiler
+if(ICS_HAVE_GL AND ICS_HAVE_GLSLANG)
+  set(ics_glsl_variants "PROP_STENCIL" "PROP_STENCIL,ICS_CLAMPED" "PROP_TABLE"
+    "PROP_TABLE,ICS_CLAMPED" "PROP_CLASSES" "PROP_STENCIL,ICS_TAPS_STORAGE"
+    "PROP_TABLE,ICS_TAPS_STORAGE" "PROP_CLASSES,ICS_TAPS_STORAGE" "ENTRIES_PIXEL" "ENTRIES_RUN" "SHADE_SELECT"
+    "SHADE_COUNT" "SHADE" "SHADE,ICS_SURFACES_ONLY" "APRON_SIDES" "APRON_ENDS")
+  foreach(v ${ics_glsl_variants})
+    string(REPLACE "," ";" parts ${v})
+    list(GET parts 0 k)
+    set(defs -DICS_K_${k})
+    list(LENGTH parts np)
+    if(np GREATER 1)
+      list(GET parts 1 extra)
+      list(APPEND defs -D${extra})
+    endif()
+    string(REPLACE "," "_" tname ${v})
+    add_test(NAME glsl_slab_${tname} COMMAND ${GLSLANG_VALIDATOR} -l -S comp ${defs}
+      ${CMAKE_SOURCE_DIR}/gpu/gl/slab.comp)
+    set_tests_properties(glsl_slab_${tname} PROPERTIES LABELS "fast;render")
+  endforeach()
+endif()
+
+if(ICS_HAVE_RENDER AND ICS_HAVE_GL)
+  set(rdg ${CMAKE_CURRENT_BINARY_DIR}/tmp/cli_render_gl)
+  file(MAKE_DIRECTORY ${rdg})
+  # the context in the summary, for each kind
+  ics_cli_test(NAME cli_render_gl_egl RC 0 LABELS medium
+    ARGS "render|--backend|gl|--gl-context|egl|--resolution|64x48|-o|${rdg}/egl.exr"
+    OUT "\"backend\": \"gl\", \"device\": \"OpenGL egl-[a-z]+[^\"]*: [^\"]+\".*\"ns_per_px_slab\": [0-9.e+-]+")
+  ics_cli_test(NAME cli_render_gl_osmesa RC 0 LABELS medium
+    ARGS "render|--backend|gl|--gl-context|osmesa|--resolution|64x48|-o|${rdg}/osmesa.exr"
+    OUT "\"backend\": \"gl\", \"device\": \"OpenGL osmesa: [^\"]+\"")
+  # a context kind that does not exist: refused before anything is written
+  ics_cli_test(NAME cli_render_gl_bad_context RC 2 LABELS fast
+    ARGS "render|--backend|gl|--gl-context|vulkan|-o|${rdg}/none.exr"
+    ERR "--gl-context: expected auto, egl or osmesa, got 'vulkan'" NOFILE ${rdg}/none.exr)
+  ics_cli_test(NAME cli_render_gl_context_other_backend RC 0 LABELS fast
+    ARGS "render|--gl-context|egl|--backend|cpu|--resolution|16x12|-o|${rdg}/other.exr"
+    ERR "warning: --gl-context only chooses the context of --backend gl \\(the backend is cpu\\)")
+  # auto on a machine without a GPU: cpu, with the one-line notice
+  ics_cli_test(NAME cli_render_gl_auto_notice RC 0 LABELS fast
+    ARGS "render|--resolution|16x12|-o|${rdg}/auto.exr"
+    OUT "\"backend\": \"cpu\"" ERR "note: auto passed over gl: ")
+  ics_cli_test(NAME cli_bench_slab_gl RC 0 LABELS medium
+    ARGS "bench|slab|--sizes|64|--slabs|4|--threads|1|--reps|1|--kernels|ellipse2,gauss19|--backend|cpu,gl"
+    OUT "cpu,ellipse2,.*\ngl,ellipse2,2,table,64,64,4,0,.*\ncpu,gauss19,.*\ngl,gauss19,19,taps,64,64,4,0,")
+endif()
