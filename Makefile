@@ -141,7 +141,8 @@ bench: deps-bench all
 	$(BUILD)/bin/icshadow bench minmax --scene noise
 	@echo "== icshadow bench minmax --svd-table (error of the N-term SVD integrand)"
 	$(BUILD)/bin/icshadow bench minmax --svd-table
-	@b=cpu; if $(BUILD)/bin/icshadow render --backends | grep '^cl ' | grep -qv 'not available'; then b=cpu,cl; fi; \
+	@b=cpu; for d in cl gl; do \
+	    if $(BUILD)/bin/icshadow render --backends | grep "^$$d " | grep -qv 'not available'; then b=$$b,$$d; fi; done; \
 	  echo "== icshadow bench slab --backend $$b (the slab step per kernel member, backends side by side)"; \
 	  $(BUILD)/bin/icshadow bench slab --backend $$b
 

@@ -13,21 +13,25 @@ core=(build-essential cmake pkg-config)
 render=(libjansson-dev libpng-dev libopenexr-dev)
 python=(python3 python3-numpy python3-matplotlib python3-mpmath python3-scipy)
 opencl=(pocl-opencl-icd ocl-icd-opencl-dev opencl-headers)
+# the gl backend's contexts: EGL (Mesa's surfaceless platform, llvmpipe, without a GPU) and OSMesa;
+# the GL headers (GL/glcorearb.h); glslangValidator for its shader checks
+gl=(libegl-dev libgl-dev libosmesa6-dev libegl-mesa0 glslang-tools)
 declare -A jobs=(
   [core]="${core[*]}"
   [demo]="${core[*]} ${render[*]}"
   # figures and table generators (Debian's python3, not a runtime dependency)
   [figs]="${core[*]} ${render[*]} ${python[*]}"
   [notebooks]="${core[*]} ${render[*]} ${python[*]} jupyter-nbconvert python3-ipykernel python3-nbformat"
-  # benchmarks: Boost.Math as a peer for the elliptic integrals, OpenCL for --backend cl
-  [bench]="${core[*]} ${render[*]} libboost-dev ${opencl[*]}"
+  # benchmarks: Boost.Math as a peer for the elliptic integrals, OpenCL and OpenGL for
+  # --backend cl and gl
+  [bench]="${core[*]} ${render[*]} libboost-dev ${opencl[*]} ${gl[*]}"
   # the stability sweep against MPFR and the scipy comparison
   [analysis]="${core[*]} ${render[*]} libmpfr-dev libgmp-dev ${python[*]}"
   # the libFuzzer harnesses (fuzz/; clang 14 with its runtime libraries)
   [fuzz]="${core[*]} ${render[*]} clang libclang-rt-14-dev"
 )
 packages=(
-  "${core[@]}" "${render[@]}" "${python[@]}" "${opencl[@]}"
+  "${core[@]}" "${render[@]}" "${python[@]}" "${opencl[@]}" "${gl[@]}"
   # tests: MPFR references, GLSL compile checks of the generated LUT headers (OpenCL: above)
   libmpfr-dev libgmp-dev glslang-tools
   # tests: locale sources, so cli_locale_numbers can compile a decimal-comma locale (localedef)
