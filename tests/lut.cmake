@@ -45,7 +45,9 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   vec2 ab = ics_tab_ratio_to_ab(v[i]);
   vec2 r = ics_tab_ellipse_radii(1.0, v[i]);
-  v[i] = ab.x + ab.y + ics_tab_ratio_to_t(v[i]) + ics_tab_vx(v[i]) + ics_tab_vx_ab(ab) + r.x + r.y;
+  vec2 tap = ics_tab_ellipse_tap(1.0, v[i], 30.0, 3, int(i % 3u), v[i] * 0.5);
+  v[i] = ab.x + ab.y + ics_tab_ratio_to_t(v[i]) + ics_tab_vx(v[i]) + ics_tab_vx_ab(ab) + r.x + r.y
+         + tap.x + tap.y;
 }
 ]=])
 file(WRITE ${ics_lut_dir}/epilogue.frag [=[
@@ -54,7 +56,7 @@ out vec4 color;
 void main() {
   vec2 ab = ics_tab_ratio_to_ab(rat);
   color = vec4(ab, ics_tab_vx(ab.y) + ics_tab_ratio_to_t(rat) + ics_tab_vx_ab(ab),
-               ics_tab_ellipse_radii(1.0, rat).x);
+               ics_tab_ellipse_radii(1.0, rat).x + ics_tab_ellipse_tap(1.0, rat, 30.0, 2, 1, 0.25).y);
 }
 ]=])
 file(WRITE ${ics_lut_dir}/glsl_check.sh [=[

@@ -62,3 +62,14 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_GL)
     ARGS "bench|slab|--sizes|64|--slabs|4|--threads|1|--reps|1|--kernels|ellipse2,gauss19|--backend|cpu,gl"
     OUT "cpu,ellipse2,.*\ngl,ellipse2,2,table,64,64,4,0,.*\ncpu,gauss19,.*\ngl,gauss19,19,taps,64,64,4,0,")
 endif()
+
+# the GLSL lookup-table header executed (not only compiled): ics_tab_ellipse_tap and
+# ics_tab_ellipse_radii on the gl backend's context against the library (medium: Mesa's
+# compiler leaks at exit, so it stays out of the ASan run)
+ics_add_test(NAME test_lut_glsl SOURCES test_lut_glsl.c LABELS medium
+  LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER GL
+  ARGS ${CMAKE_SOURCE_DIR}/gpu/gl/icshadow_lut.glsl ${CMAKE_CURRENT_BINARY_DIR}/lut_out/icshadow_lut_64.glsl)
+if(TARGET test_lut_glsl)
+  target_include_directories(test_lut_glsl PRIVATE ${CMAKE_SOURCE_DIR}/gpu/gl)
+  set_tests_properties(test_lut_glsl PROPERTIES FIXTURES_REQUIRED lut_gen_glsl_64 SKIP_RETURN_CODE 77)
+endif()

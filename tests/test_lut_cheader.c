@@ -1,13 +1,17 @@
 /* test_lut_cheader.c — the self-contained C header written by `icshadow lut --size 64 --lang c`
  * (generated at build time into the build folder) compiles, and its ics_tab_* functions return
  * exactly what the library's evaluators return on the same tables (same operations in double),
- * including special values and NaN outside the domain. */
+ * including special values and NaN outside the domain; and its ics_tab_ellipse_tap places the
+ * kernel's taps where ics_ellipse_kernel does (tap_cases.h), to within what the tables' radii
+ * error moves them: at most 2 ICS_TAB_RADII_MAX_REL_ERR of the larger radius (the radii and the
+ * axis ratio that places the arc each carry that error once). */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
 
 #include "icshadow.h"
 #include "icshadow_lut_c64.h"
+#include "tap_cases.h"
 #include "testutil.h"
 
 static int same(double x, double y) { return x == y || (isnan(x) && isnan(y)); }
@@ -39,5 +43,26 @@ int main(void) {
           ics_tab_vx(t), ics_lut_tables_vx(&L, t));
     CHECK(same(ics_tab_vx_ab(1 - t, t), ics_lut_tables_vx_ab(&L, 1 - t, t)), "vx_ab at %g", t);
   }
+  static tap_case tc[TAP_CASES_MAX];
+  int nc = tap_cases(tc), wi = 0;
+  double worst = 0;
+  for (int i = 0; i < nc; i++) {
+    double x, y;
+    ics_tab_ellipse_tap(tc[i].varx, tc[i].vary, tc[i].angle, tc[i].n, tc[i].k, tc[i].u, &x, &y);
+    double e = tap_error(&tc[i], x, y);
+    if (!(e <= worst)) worst = e, wi = i;
+  }
+  printf("ellipse_tap: %d taps, worst %.3g of the larger radius (bound 2 x %.3g) at varx %g, "
+         "vary %g, angle %g, n %d, k %d, u %g\n", nc, worst, ICS_TAB_RADII_MAX_REL_ERR,
+         tc[wi].varx, tc[wi].vary, tc[wi].angle, tc[wi].n, tc[wi].k, tc[wi].u);
+  CHECK(nc > 2000, "only %d tap cases", nc);
+  CHECK(worst <= 2 * ICS_TAB_RADII_MAX_REL_ERR, "ellipse_tap off by %.3g of the radius", worst);
+  double x, y;
+  ics_tab_ellipse_tap(-1, 1, 0, 2, 0, 0, &x, &y);
+  CHECK(isnan(x) && isnan(y), "negative variance: (%g, %g), not NaN", x, y);
+  ics_tab_ellipse_tap(1, 1, 0, 0, 0, 0, &x, &y);
+  CHECK(isnan(x) && isnan(y), "n = 0: (%g, %g), not NaN", x, y);
+  ics_tab_ellipse_tap(0, 0, 30, 2, 1, 0.4, &x, &y);
+  CHECK(x == 0 && y == 0, "point light: (%g, %g)", x, y);
   return test_summary("test_lut_cheader");
 }

@@ -6,7 +6,9 @@
  *       (-cl-fp32-correctly-rounded-divide-sqrt); otherwise within the spec's ulps (below);
  *   (2) with the exact functions: relative error <= the header's stamped table error (double
  *       evaluation) + ICS_LUT_FLOAT_EXTRA (+ the device allowance), and for the checked-in size
- *       <= the documented bounds (icshadow/lut.h) + the same.
+ *       <= the documented bounds (icshadow/lut.h) + the same;
+ *   (3) ics_tab_ellipse_tap against ics_ellipse_kernel (tap_cases.h): within twice the stamped
+ *       float radii error (the radii and the axis ratio) + TAP_FLOAT_ARC of the larger radius.
  * usage: test_lut_opencl HEADER.cl [more headers]. Exit 77 (skipped) when there is no OpenCL
  * platform or device. */
 #define CL_TARGET_OPENCL_VERSION 120
@@ -18,7 +20,13 @@
 #include <string.h>
 
 #include "icshadow.h"
+#include "tap_cases.h"
 #include "testutil.h"
+
+/* what float adds to a tap beyond the radii: the arc by Carlson's R_F and R_D in float and its
+ * Newton inversion to 2^-22, the quadrant fold, sin / cos (OpenCL: 4 ulp) and the rotation; 64
+ * float epsilons of the radius */
+#define TAP_FLOAT_ARC (64 * FLT_EPSILON)
 
 #define NPTS 4096
 
@@ -65,6 +73,11 @@ static const char *kernel_src =
     "  out[6 * i + 4] = r.y;\n"
     "  out[6 * i + 5] = ics_tab_ratio_to_t(rat[i]) - ab.y + ics_tab_vx_ab((float2)(1.0f - t[i], t[i]))\n"
     "                   - ics_tab_vx(t[i]);\n"
+    "}\n"
+    "__kernel void eval_taps(__global const float4 *in, __global const int2 *nk,\n"
+    "                        __global float2 *out) {\n"
+    "  size_t i = get_global_id(0);\n"
+    "  out[i] = ics_tab_ellipse_tap(in[i].x, in[i].y, in[i].z, nk[i].x, nk[i].y, in[i].w);\n"
     "}\n";
 
 static double rel(double x, double ref) {
@@ -201,6 +214,43 @@ static int run_one(cl_context ctx, cl_device_id dev, cl_command_queue q, int exa
             t_radii * 1.01 + allow);
     }
   }
+  /* (3) the taps */
+  static tap_case tc[TAP_CASES_MAX];
+  static cl_float4 tin[TAP_CASES_MAX];
+  static cl_int2 tnk[TAP_CASES_MAX];
+  static cl_float2 tout[TAP_CASES_MAX];
+  int nc = tap_cases(tc);
+  for (int i = 0; i < nc; i++) {
+    tin[i] = (cl_float4){{(float)tc[i].varx, (float)tc[i].vary, (float)tc[i].angle, (float)tc[i].u}};
+    tnk[i] = (cl_int2){{tc[i].n, tc[i].k}};
+  }
+  cl_mem bin = clCreateBuffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof tin, tin, &err);
+  cl_mem bnk = clCreateBuffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof tnk, tnk, &err);
+  cl_mem btap = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, sizeof tout, NULL, &err);
+  cl_kernel kt = clCreateKernel(prog, "eval_taps", &err);
+  CHECK(err == CL_SUCCESS, "clCreateKernel(eval_taps): %d", err);
+  clSetKernelArg(kt, 0, sizeof bin, &bin);
+  clSetKernelArg(kt, 1, sizeof bnk, &bnk);
+  clSetKernelArg(kt, 2, sizeof btap, &btap);
+  size_t gtap = (size_t)nc;
+  err = clEnqueueNDRangeKernel(q, kt, 1, NULL, &gtap, NULL, 0, NULL, NULL);
+  if (err == CL_SUCCESS)
+    err = clEnqueueReadBuffer(q, btap, CL_TRUE, 0, sizeof(cl_float2) * (size_t)nc, tout, 0, NULL, NULL);
+  CHECK(err == CL_SUCCESS, "eval_taps run: %d", err);
+  double worst = 0, tap_bound = 2 * e_radii + TAP_FLOAT_ARC;
+  int wi = 0;
+  for (int i = 0; i < nc && err == CL_SUCCESS; i++) {
+    double e = tap_error(&tc[i], tout[i].s[0], tout[i].s[1]);
+    if (!(e <= worst)) worst = e, wi = i;
+  }
+  printf("%s: ellipse_tap: %d taps, worst %.3g of the larger radius (bound %.3g) at varx %g, "
+         "vary %g, angle %g, n %d, k %d, u %g\n", path, nc, worst, tap_bound, tc[wi].varx,
+         tc[wi].vary, tc[wi].angle, tc[wi].n, tc[wi].k, tc[wi].u);
+  CHECK(worst <= tap_bound, "%s: ellipse_tap off by %.3g of the radius", path, worst);
+  clReleaseKernel(kt);
+  clReleaseMemObject(bin);
+  clReleaseMemObject(bnk);
+  clReleaseMemObject(btap);
   printf("%s: max |kernel - C float mirror| %.3g ulp; max rel error vs exact: ratio %.3g "
          "(stamped %.3g), vx %.3g (stamped %.3g), radii %.3g (stamped %.3g)\n",
          path, max_mirror, max_r, e_ratio, max_v, e_vx, max_k, e_radii);

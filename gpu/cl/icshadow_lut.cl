@@ -25,7 +25,8 @@
 /* OpenCL C 1.2: include in a program source (or concatenate before the kernels).
  * Functions: ics_tab_ratio_to_ab(rat) -> (float2)(a, b) = (1 - t, t);
  * ics_tab_ratio_to_t; ics_tab_vx(t); ics_tab_vx_ab((float2)(1 - t, t));
- * ics_tab_ellipse_radii(varx, vary) -> (float2)(a, b).
+ * ics_tab_ellipse_radii(varx, vary) -> (float2)(a, b);
+ * ics_tab_ellipse_tap(varx, vary, angle_deg, n, k, u) -> (float2) (tap k of n).
  * FP_CONTRACT is off inside these functions so they round like the measured code. */
 #ifndef ICSHADOW_LUT_CL
 #define ICSHADOW_LUT_CL
@@ -219,6 +220,134 @@ static inline float2 ics_tab_ellipse_radii(float varx, float vary) {
   if (varx == 0.0f && vary == 0.0f) return (float2)(0.0f, 0.0f);
   float2 ab = ics_tab_ratio_to_ab(vary / varx);
   return (float2)(sqrt(varx / ics_tab_g_ab(ab)), sqrt(vary / ics_tab_g_ab(ab.yx)));
+}
+
+/* ---- the kernel's taps (ics_ellipse_kernel's conventions, the radii above) ---- */
+
+/* Carlson's R_F and R_D by duplication, stopped where the series' error is below float's. */
+static inline float ics_tab_rf(float x, float y, float z) {
+#pragma OPENCL FP_CONTRACT OFF
+  float A0 = (x + y + z) / 3.0f, A = A0, x0 = x, y0 = y, pw = 1.0f;
+  float Q = 16.0f * fmax(fabs(A0 - x), fmax(fabs(A0 - y), fabs(A0 - z)));
+  for (int n = 0; n < 40 && pw * Q >= fabs(A); n++) {
+    float sx = sqrt(x), sy = sqrt(y), sz = sqrt(z), lam = sx * sy + sx * sz + sy * sz;
+    x = 0.25f * (x + lam);
+    y = 0.25f * (y + lam);
+    z = 0.25f * (z + lam);
+    A = 0.25f * (A + lam);
+    pw *= 0.25f;
+  }
+  float X = pw * (A0 - x0) / A, Y = pw * (A0 - y0) / A, Z = -(X + Y);
+  float E2 = X * Y - Z * Z, E3 = X * Y * Z;
+  return (1.0f - E2 / 10.0f + E3 / 14.0f + E2 * E2 / 24.0f - 3.0f * E2 * E3 / 44.0f) / sqrt(A);
+}
+static inline float ics_tab_rd(float x, float y, float z) {
+#pragma OPENCL FP_CONTRACT OFF
+  float A0 = (x + y + 3.0f * z) / 5.0f, A = A0, x0 = x, y0 = y, pw = 1.0f, sum = 0.0f;
+  float Q = 24.0f * fmax(fabs(A0 - x), fmax(fabs(A0 - y), fabs(A0 - z)));
+  for (int n = 0; n < 40 && pw * Q >= fabs(A); n++) {
+    float sx = sqrt(x), sy = sqrt(y), sz = sqrt(z), lam = sx * sy + sx * sz + sy * sz;
+    sum += pw / (sz * (z + lam));
+    x = 0.25f * (x + lam);
+    y = 0.25f * (y + lam);
+    z = 0.25f * (z + lam);
+    A = 0.25f * (A + lam);
+    pw *= 0.25f;
+  }
+  float X = pw * (A0 - x0) / A, Y = pw * (A0 - y0) / A, Z = -(X + Y) / 3.0f;
+  float XY = X * Y, Z2 = Z * Z;
+  float E2 = XY - 6.0f * Z2, E3 = (3.0f * XY - 8.0f * Z2) * Z, E4 = 3.0f * (XY - Z2) * Z2;
+  float E5 = XY * Z2 * Z;
+  float s = 1.0f - 3.0f * E2 / 14.0f + E3 / 6.0f + 9.0f * E2 * E2 / 88.0f - 3.0f * E4 / 22.0f -
+            9.0f * E2 * E3 / 52.0f + 3.0f * E5 / 26.0f;
+  return pw * s / (A * sqrt(A)) + 3.0f * sum;
+}
+
+/* Arc length from the major-axis end to parameter psi of (cos psi, beta sin psi). */
+static inline float ics_tab_arc(float beta, float psi) {
+#pragma OPENCL FP_CONTRACT OFF
+  float s = sin(psi), c = cos(psi), b2 = beta * beta;
+  float X = b2 * c * c, Y = X + s * s;
+  if (s == 0.0f) return 0.0f;
+  return b2 * (s * ics_tab_rf(X, Y, b2) + (1.0f - b2) / 3.0f * s * s * s * ics_tab_rd(X, Y, b2));
+}
+
+/* psi in [0, pi/2] with ics_tab_arc(beta, psi) = sigma: Newton inside a bracket. */
+static inline float ics_tab_arc_invert(float beta, float sigma, float Q) {
+#pragma OPENCL FP_CONTRACT OFF
+  if (sigma <= 0.0f) return 0.0f;
+  if (sigma >= Q) return 1.57079633f;
+  float psi = 1.57079633f;
+  /* an upper bound from 1 - cos psi <= arc, widened: GLSL's asin may be 1e-4 low (llvmpipe),
+   * and a bound below the root would hold Newton's bracket there */
+  if (sigma < 2.0f) psi = fmin(psi, 1.01f * 2.0f * asin(sqrt(0.5f * sigma)) + 1.0e-3f);
+  psi = fmin(psi, sigma / beta);
+  float lo = 0.0f, hi = psi;
+  for (int it = 0; it < 40; it++) {
+    float f = ics_tab_arc(beta, psi) - sigma;
+    if (f == 0.0f) break;
+    if (f > 0.0f) hi = fmin(hi, psi);
+    else lo = fmax(lo, psi);
+    float sn = sin(psi), cs = cos(psi);
+    float next = psi - f / sqrt(sn * sn + beta * beta * cs * cs);
+    if (!(next > lo && next < hi)) next = 0.5f * (lo + hi);
+    if (fabs(next - psi) <= 2.4e-7f * psi) {
+      psi = next;
+      break;
+    }
+    psi = next;
+  }
+  return psi;
+}
+
+/* Tap k (0 <= k < n) of the n-sample elliptical kernel of covariance
+ * R(angle) diag(varx, vary) R(angle)^T: arc-length fraction u + k / n (mod 1) of the
+ * perimeter, counter-clockwise from the end of the major axis ((a, 0) when varx >= vary, else
+ * (0, b)), then rotated by angle_deg (exact at multiples of 90). Averaged over a uniform
+ * offset u the n taps have the covariance (fixed taps do not): draw u per pixel. The same
+ * conventions as ics_ellipse_kernel and `icshadow kernel ellipse --offset U`, in float, with the
+ * radii of ics_tab_ellipse_radii; (0, 0) for a point light.
+ *
+ *   float u = hash01(pixel, slab);           // per-pixel rotational offset in [0, 1)
+ *   float sum = 0.0;
+ *   for (int k = 0; k < n; k++) {
+ *     float2 d = ics_tab_ellipse_tap(varx, vary, angle_deg, n, k, u);
+ *     sum += fetch(p + d);                     // bilinear read of the light buffer
+ *   }
+ *   light = sum / float(n);
+ */
+static inline float2 ics_tab_ellipse_tap(float varx, float vary, float angle_deg, int n, int k, float u) {
+#pragma OPENCL FP_CONTRACT OFF
+  if (varx == 0.0f && vary == 0.0f) return (float2)(0.0f, 0.0f);
+  float2 ab = ics_tab_ellipse_radii(varx, vary);
+  bool x_major = varx >= vary;
+  float rmaj = x_major ? ab.x : ab.y, beta = (x_major ? ab.y : ab.x) / rmaj;
+  bool segment = beta < 1.0e-18f; /* beta^2 would leave float's normal range */
+  float Q = segment ? 1.0f : ics_tab_arc(beta, 1.57079633f);
+  float w = (u - floor(u)) + (float)(k) / (float)(n);
+  w -= floor(w);
+  float q4 = 4.0f * w;
+  int quad = min((int)(q4), 3);
+  float lam = (q4 - (float)(quad)) * Q, sigma = (quad & 1) != 0 ? Q - lam : lam, pm, pn;
+  if (segment) {
+    pm = 1.0f - sigma;
+    pn = beta * sqrt(sigma * (2.0f - sigma));
+  } else {
+    float psi = ics_tab_arc_invert(beta, sigma, Q);
+    pm = cos(psi);
+    pn = beta * sin(psi);
+  }
+  pm *= rmaj;
+  pn *= rmaj;
+  if (quad == 1 || quad == 2) pm = -pm;
+  if (quad >= 2) pn = -pn;
+  float px = x_major ? pm : -pn, py = x_major ? pn : pm;
+  float r = fmod(angle_deg, 360.0f), q = rint(r / 90.0f);
+  float t = (r - 90.0f * q) * 0.0174532925f, st = sin(t), ct = cos(t);
+  int m = (((int)(q) % 4) + 4) % 4;
+  float sa = m == 0 ? st : m == 1 ? ct : m == 2 ? -st : -ct;
+  float ca = m == 0 ? ct : m == 1 ? -st : m == 2 ? -ct : st;
+  return (float2)(px * ca - py * sa, px * sa + py * ca);
 }
 
 #endif

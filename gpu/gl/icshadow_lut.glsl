@@ -25,7 +25,7 @@
 /* GLSL: include (or concatenate) after #version 330 or later (uintBitsToFloat gives NaN).
  * Functions: ics_tab_ratio_to_ab(rat) -> vec2(a, b) = (1 - t, t); ics_tab_ratio_to_t;
  * ics_tab_vx(t); ics_tab_vx_ab(vec2(1 - t, t)); ics_tab_ellipse_radii(varx, vary)
- * -> vec2(a, b). */
+ * -> vec2(a, b); ics_tab_ellipse_tap(varx, vary, angle_deg, n, k, u) -> vec2 (tap k of n). */
 #ifndef ICSHADOW_LUT_GLSL
 #define ICSHADOW_LUT_GLSL
 
@@ -212,6 +212,129 @@ vec2 ics_tab_ellipse_radii(float varx, float vary) {
   if (varx == 0.0 && vary == 0.0) return vec2(0.0, 0.0);
   vec2 ab = ics_tab_ratio_to_ab(vary / varx);
   return vec2(sqrt(varx / ics_tab_g_ab(ab)), sqrt(vary / ics_tab_g_ab(ab.yx)));
+}
+
+/* ---- the kernel's taps (ics_ellipse_kernel's conventions, the radii above) ---- */
+
+/* Carlson's R_F and R_D by duplication, stopped where the series' error is below float's. */
+float ics_tab_rf(float x, float y, float z) {
+  float A0 = (x + y + z) / 3.0, A = A0, x0 = x, y0 = y, pw = 1.0;
+  float Q = 16.0 * max(abs(A0 - x), max(abs(A0 - y), abs(A0 - z)));
+  for (int n = 0; n < 40 && pw * Q >= abs(A); n++) {
+    float sx = sqrt(x), sy = sqrt(y), sz = sqrt(z), lam = sx * sy + sx * sz + sy * sz;
+    x = 0.25 * (x + lam);
+    y = 0.25 * (y + lam);
+    z = 0.25 * (z + lam);
+    A = 0.25 * (A + lam);
+    pw *= 0.25;
+  }
+  float X = pw * (A0 - x0) / A, Y = pw * (A0 - y0) / A, Z = -(X + Y);
+  float E2 = X * Y - Z * Z, E3 = X * Y * Z;
+  return (1.0 - E2 / 10.0 + E3 / 14.0 + E2 * E2 / 24.0 - 3.0 * E2 * E3 / 44.0) / sqrt(A);
+}
+float ics_tab_rd(float x, float y, float z) {
+  float A0 = (x + y + 3.0 * z) / 5.0, A = A0, x0 = x, y0 = y, pw = 1.0, sum = 0.0;
+  float Q = 24.0 * max(abs(A0 - x), max(abs(A0 - y), abs(A0 - z)));
+  for (int n = 0; n < 40 && pw * Q >= abs(A); n++) {
+    float sx = sqrt(x), sy = sqrt(y), sz = sqrt(z), lam = sx * sy + sx * sz + sy * sz;
+    sum += pw / (sz * (z + lam));
+    x = 0.25 * (x + lam);
+    y = 0.25 * (y + lam);
+    z = 0.25 * (z + lam);
+    A = 0.25 * (A + lam);
+    pw *= 0.25;
+  }
+  float X = pw * (A0 - x0) / A, Y = pw * (A0 - y0) / A, Z = -(X + Y) / 3.0;
+  float XY = X * Y, Z2 = Z * Z;
+  float E2 = XY - 6.0 * Z2, E3 = (3.0 * XY - 8.0 * Z2) * Z, E4 = 3.0 * (XY - Z2) * Z2;
+  float E5 = XY * Z2 * Z;
+  float s = 1.0 - 3.0 * E2 / 14.0 + E3 / 6.0 + 9.0 * E2 * E2 / 88.0 - 3.0 * E4 / 22.0 -
+            9.0 * E2 * E3 / 52.0 + 3.0 * E5 / 26.0;
+  return pw * s / (A * sqrt(A)) + 3.0 * sum;
+}
+
+/* Arc length from the major-axis end to parameter psi of (cos psi, beta sin psi). */
+float ics_tab_arc(float beta, float psi) {
+  float s = sin(psi), c = cos(psi), b2 = beta * beta;
+  float X = b2 * c * c, Y = X + s * s;
+  if (s == 0.0) return 0.0;
+  return b2 * (s * ics_tab_rf(X, Y, b2) + (1.0 - b2) / 3.0 * s * s * s * ics_tab_rd(X, Y, b2));
+}
+
+/* psi in [0, pi/2] with ics_tab_arc(beta, psi) = sigma: Newton inside a bracket. */
+float ics_tab_arc_invert(float beta, float sigma, float Q) {
+  if (sigma <= 0.0) return 0.0;
+  if (sigma >= Q) return 1.57079633;
+  float psi = 1.57079633;
+  /* an upper bound from 1 - cos psi <= arc, widened: GLSL's asin may be 1e-4 low (llvmpipe),
+   * and a bound below the root would hold Newton's bracket there */
+  if (sigma < 2.0) psi = min(psi, 1.01 * 2.0 * asin(sqrt(0.5 * sigma)) + 1.0e-3);
+  psi = min(psi, sigma / beta);
+  float lo = 0.0, hi = psi;
+  for (int it = 0; it < 40; it++) {
+    float f = ics_tab_arc(beta, psi) - sigma;
+    if (f == 0.0) break;
+    if (f > 0.0) hi = min(hi, psi);
+    else lo = max(lo, psi);
+    float sn = sin(psi), cs = cos(psi);
+    float next = psi - f / sqrt(sn * sn + beta * beta * cs * cs);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (abs(next - psi) <= 2.4e-7 * psi) {
+      psi = next;
+      break;
+    }
+    psi = next;
+  }
+  return psi;
+}
+
+/* Tap k (0 <= k < n) of the n-sample elliptical kernel of covariance
+ * R(angle) diag(varx, vary) R(angle)^T: arc-length fraction u + k / n (mod 1) of the
+ * perimeter, counter-clockwise from the end of the major axis ((a, 0) when varx >= vary, else
+ * (0, b)), then rotated by angle_deg (exact at multiples of 90). Averaged over a uniform
+ * offset u the n taps have the covariance (fixed taps do not): draw u per pixel. The same
+ * conventions as ics_ellipse_kernel and `icshadow kernel ellipse --offset U`, in float, with the
+ * radii of ics_tab_ellipse_radii; (0, 0) for a point light.
+ *
+ *   float u = hash01(pixel, slab);           // per-pixel rotational offset in [0, 1)
+ *   float sum = 0.0;
+ *   for (int k = 0; k < n; k++) {
+ *     vec2 d = ics_tab_ellipse_tap(varx, vary, angle_deg, n, k, u);
+ *     sum += fetch(p + d);                     // bilinear read of the light buffer
+ *   }
+ *   light = sum / float(n);
+ */
+vec2 ics_tab_ellipse_tap(float varx, float vary, float angle_deg, int n, int k, float u) {
+  if (varx == 0.0 && vary == 0.0) return vec2(0.0, 0.0);
+  vec2 ab = ics_tab_ellipse_radii(varx, vary);
+  bool x_major = varx >= vary;
+  float rmaj = x_major ? ab.x : ab.y, beta = (x_major ? ab.y : ab.x) / rmaj;
+  bool segment = beta < 1.0e-18; /* beta^2 would leave float's normal range */
+  float Q = segment ? 1.0 : ics_tab_arc(beta, 1.57079633);
+  float w = (u - floor(u)) + float(k) / float(n);
+  w -= floor(w);
+  float q4 = 4.0 * w;
+  int quad = min(int(q4), 3);
+  float lam = (q4 - float(quad)) * Q, sigma = (quad & 1) != 0 ? Q - lam : lam, pm, pn;
+  if (segment) {
+    pm = 1.0 - sigma;
+    pn = beta * sqrt(sigma * (2.0 - sigma));
+  } else {
+    float psi = ics_tab_arc_invert(beta, sigma, Q);
+    pm = cos(psi);
+    pn = beta * sin(psi);
+  }
+  pm *= rmaj;
+  pn *= rmaj;
+  if (quad == 1 || quad == 2) pm = -pm;
+  if (quad >= 2) pn = -pn;
+  float px = x_major ? pm : -pn, py = x_major ? pn : pm;
+  float r = mod(angle_deg, 360.0), q = roundEven(r / 90.0);
+  float t = (r - 90.0 * q) * 0.0174532925, st = sin(t), ct = cos(t);
+  int m = ((int(q) % 4) + 4) % 4;
+  float sa = m == 0 ? st : m == 1 ? ct : m == 2 ? -st : -ct;
+  float ca = m == 0 ? ct : m == 1 ? -st : m == 2 ? -ct : st;
+  return vec2(px * ca - py * sa, px * sa + py * ca);
 }
 
 #endif

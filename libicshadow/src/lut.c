@@ -31,6 +31,7 @@
 
 #include "icshadow/ellipse.h"
 #include "lut_data.h"
+#include "lut_tap_text.h"
 
 #if defined(__clang__)
 #pragma STDC FP_CONTRACT OFF /* the float mirror must round like the GPU code it mirrors */
@@ -482,7 +483,8 @@ static void write_c(FILE *f, const ics_lut_tables *L, const char *command, const
   write_stamp(f, ICS_LUT_LANG_C, "icshadow_lut.h", L, command, ed, ef);
   fprintf(f,
           "/* Self-contained C99 header (double). Functions: ics_tab_ratio_to_ab, ics_tab_ratio_to_t,\n"
-          " * ics_tab_vx, ics_tab_vx_ab, ics_tab_ellipse_radii; NaN outside the domain. */\n"
+          " * ics_tab_vx, ics_tab_vx_ab, ics_tab_ellipse_radii, ics_tab_ellipse_tap (tap k of n);\n"
+          " * NaN outside the domain. */\n"
           "#ifndef ICSHADOW_LUT_GENERATED_H\n#define ICSHADOW_LUT_GENERATED_H\n\n"
           "#include <math.h>\n\n#define ICS_TAB_N %d\n"
           "#define ICS_TAB_RATIO_MAX_REL_ERR %.3g\n#define ICS_TAB_VX_MAX_REL_ERR %.3g\n"
@@ -538,8 +540,10 @@ static void write_c(FILE *f, const ics_lut_tables *L, const char *command, const
           "  ics_tab_ratio_to_ab(vary / varx, &au, &bu);\n"
           "  *a = sqrt(varx / ics_tab_g_ab(au, bu));\n"
           "  *b = sqrt(vary / ics_tab_g_ab(bu, au));\n"
-          "}\n\n#endif\n",
+          "}\n",
           2 * G_EPS, 2 * G_EPS, g_scale(L->n), 2.0 * (L->n - 1));
+  ics_lut_write_tap_c(f);
+  fprintf(f, "\n#endif\n");
 }
 
 static void write_float_array(FILE *f, ics_lut_lang lang, const char *name, const double *y,
@@ -625,9 +629,11 @@ static void write_gpu_functions(FILE *f, ics_lut_lang lang, const ics_lut_tables
           "  if (varx == 0.0%s && vary == 0.0%s) return %s(0.0%s, 0.0%s);\n"
           "  %s ab = ics_tab_ratio_to_ab(vary / varx);\n"
           "  return %s(sqrt(varx / ics_tab_g_ab(ab)), sqrt(vary / ics_tab_g_ab(ab.yx)));\n"
-          "}\n\n#endif\n",
+          "}\n",
           fn, v2, pragma, T("", "f"), T("", "f"), T("vec2", "(float2)"), T("", "f"), T("", "f"),
           v2, T("vec2", "(float2)"));
+  ics_lut_write_tap_gpu(f, gl);
+  fprintf(f, "\n#endif\n");
 #undef T
 }
 
@@ -638,7 +644,7 @@ static void write_glsl(FILE *f, const ics_lut_tables *L, const char *command,
           "/* GLSL: include (or concatenate) after #version 330 or later (uintBitsToFloat gives NaN).\n"
           " * Functions: ics_tab_ratio_to_ab(rat) -> vec2(a, b) = (1 - t, t); ics_tab_ratio_to_t;\n"
           " * ics_tab_vx(t); ics_tab_vx_ab(vec2(1 - t, t)); ics_tab_ellipse_radii(varx, vary)\n"
-          " * -> vec2(a, b). */\n"
+          " * -> vec2(a, b); ics_tab_ellipse_tap(varx, vary, angle_deg, n, k, u) -> vec2 (tap k of n). */\n"
           "#ifndef ICSHADOW_LUT_GLSL\n#define ICSHADOW_LUT_GLSL\n\n"
           "const int ICS_TAB_N = %d;\n",
           L->n);
@@ -654,7 +660,8 @@ static void write_opencl(FILE *f, const ics_lut_tables *L, const char *command,
           "/* OpenCL C 1.2: include in a program source (or concatenate before the kernels).\n"
           " * Functions: ics_tab_ratio_to_ab(rat) -> (float2)(a, b) = (1 - t, t);\n"
           " * ics_tab_ratio_to_t; ics_tab_vx(t); ics_tab_vx_ab((float2)(1 - t, t));\n"
-          " * ics_tab_ellipse_radii(varx, vary) -> (float2)(a, b).\n"
+          " * ics_tab_ellipse_radii(varx, vary) -> (float2)(a, b);\n"
+          " * ics_tab_ellipse_tap(varx, vary, angle_deg, n, k, u) -> (float2) (tap k of n).\n"
           " * FP_CONTRACT is off inside these functions so they round like the measured code. */\n"
           "#ifndef ICSHADOW_LUT_CL\n#define ICSHADOW_LUT_CL\n\n"
           "#define ICS_TAB_N %d\n",
