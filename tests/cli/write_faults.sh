@@ -32,6 +32,7 @@ run "lut -o" "$dir/lut.h" "$cli" lut --size 16 --lang c -o "$dir/lut.h"
 run "make-env -o" "$dir/env.exr" "$cli" make-env --lights '0.2,0.1,0.05,0.05,0,1,1,1,1' --size 32x16 -o "$dir/env.exr"
 run "render -o" "$dir/r.exr" "$cli" render --resolution 16x12 -o "$dir/r.exr"
 run "render --png" "$dir/r.png" "$cli" render --resolution 16x12 --png "$dir/r.png"
+run "plan -o" "$dir/plan.json" "$cli" plan --resolution 16x12 -o "$dir/plan.json"
 "$cli" make-env --lights '0.2,0.1,0.05,0.05,0,1,1,1,1' --size 64x32 -o "$dir/in.exr" > /dev/null 2>&1
 run "fit-light -o" "$dir/l.json" "$cli" fit-light "$dir/in.exr" --lights 1 -o "$dir/l.json"
 exit $fail
