@@ -15,6 +15,7 @@
  * usage: test_render_device cl|gl [SCENE.json ...] */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -184,6 +185,61 @@ static void refused(const char *what, const char *json, ics_status want, const c
   ics_scene_destroy(s);
 }
 
+/* a render of plan p on renderer r; ICS_OK or the status with msg */
+typedef struct lifecycle_job {
+  ics_renderer *r;
+  const ics_plan *p;
+  ics_status st;
+  char msg[1024];
+} lifecycle_job;
+static void *render_job(void *arg) {
+  lifecycle_job *j = arg;
+  ics_image *img = NULL;
+  j->st = ics_renderer_render(j->r, j->p, &img, NULL, j->msg, sizeof j->msg);
+  ics_image_destroy(img);
+  return NULL;
+}
+
+/* Renderers as an application holds them: two at once, the first destroyed before the second
+ * renders; the availability check while one exists; a render on another thread than the one
+ * that created the renderer (each must leave the others' contexts intact). */
+static void lifecycle(const char *json) {
+  ics_scene *s = scene_from_json(json);
+  char msg[1024] = "";
+  ics_plan_opts po = {0};
+  ics_plan *p;
+  if (ics_plan_create(&p, s, &po, msg, sizeof msg) != ICS_OK) {
+    fprintf(stderr, "plan: %s\n", msg);
+    exit(2);
+  }
+  ics_render_opts ro = {.backend = backend};
+  ics_renderer *a = NULL, *b = NULL;
+  CHECK(ics_renderer_create(&a, &ro, msg, sizeof msg) == ICS_OK, "renderer a: %s", msg);
+  CHECK(ics_renderer_create(&b, &ro, msg, sizeof msg) == ICS_OK, "renderer b: %s", msg);
+  lifecycle_job j = {.r = a, .p = p};
+  render_job(&j);
+  CHECK(j.st == ICS_OK, "renderer a with b alive: %s", j.msg);
+  ics_renderer_destroy(a);
+  char why[512];
+  CHECK(ics_backend_available(backend, why, sizeof why), "available while b exists: %s", why);
+  j = (lifecycle_job){.r = b, .p = p};
+  render_job(&j);
+  CHECK(j.st == ICS_OK, "renderer b after a was destroyed and the backend probed: %s", j.msg);
+  pthread_t th;
+  j = (lifecycle_job){.r = b, .p = p};
+  CHECK(pthread_create(&th, NULL, render_job, &j) == 0, "pthread_create");
+  pthread_join(th, NULL);
+  CHECK(j.st == ICS_OK, "renderer b on another thread: %s", j.msg);
+  j = (lifecycle_job){.r = b, .p = p};
+  render_job(&j);
+  CHECK(j.st == ICS_OK, "renderer b back on its first thread: %s", j.msg);
+  printf("lifecycle: two renderers, a probe, a render on another thread: %s\n",
+         test_failures_ ? "FAILED" : "ok");
+  ics_renderer_destroy(b);
+  ics_plan_destroy(p);
+  ics_scene_destroy(s);
+}
+
 int main(int argc, char **argv) {
   char why[1024];
   if (argc < 2 || (strcmp(argv[1], "cl") && strcmp(argv[1], "gl"))) {
@@ -195,6 +251,7 @@ int main(int argc, char **argv) {
     printf("SKIPPED: the %s backend cannot run here: %s\n", backend, why);
     return 77;
   }
+  lifecycle(variants[3][2]);
   ics_scene *s = scene_from_json(ics_scene_default_json());
   compare("the embedded default scene", "table", s);
   ics_scene_destroy(s);

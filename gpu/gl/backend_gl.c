@@ -49,7 +49,7 @@ static const char *const PROG_VARIANT[NPROGS] = {
     [NSTEP + P_STENCIL] = "ICS_TAPS_STORAGE", [NSTEP + P_STENCIL_CLAMPED] = "ICS_CLAMPED 1\n#define ICS_TAPS_STORAGE",
     [NSTEP + P_TABLE] = "ICS_TAPS_STORAGE", [NSTEP + P_TABLE_CLAMPED] = "ICS_CLAMPED 1\n#define ICS_TAPS_STORAGE",
     [NSTEP + P_CLASSES] = "ICS_TAPS_STORAGE", [P_SHADE_SURFACES] = "ICS_SURFACES_ONLY"};
-enum { SSBO_BINDINGS = 15 }; /* slab.comp's bindings 0..14 */
+enum { SSBO_BINDINGS = 15 }; /* slab.comp's bindings 0..14 (the shading uses 14 of them) */
 
 /* slab.comp's tap record (std140: ivec4, vec4) */
 typedef struct gl_tap {
@@ -68,16 +68,20 @@ typedef struct gl_state {
 
 #define GL_ (s->g.gl)
 
+/* the programs (the context current), then the context, which gives the thread back */
+static void state_free(gl_state *s) {
+  for (int i = 0; i < NPROGS; i++)
+    if (s->prog[i]) GL_.DeleteProgram(s->prog[i]);
+  ics_gl_close(&s->g);
+  free(s);
+}
+
 static void gl_destroy(void *state) {
   gl_state *s = state;
   if (!s) return;
-  if (s->g.ctx) {
-    ics_gl_make_current(&s->g);
-    for (int i = 0; i < NPROGS; i++)
-      if (s->prog[i]) GL_.DeleteProgram(s->prog[i]);
-  }
-  ics_gl_close(&s->g);
-  free(s);
+  if (!ics_gl_make_current(&s->g)) /* its programs go with the context */
+    memset(s->prog, 0, sizeof s->prog);
+  state_free(s);
 }
 
 /* the context kind asked for: ICS_GL_CONTEXT (set by --gl-context), else auto */
@@ -141,7 +145,6 @@ static int build(gl_state *s, int i, char *msg, size_t msg_size) {
 }
 
 static ics_status gl_create(void **state, const ics_render_opts *opts, char *msg, size_t msg_size) {
-  (void)opts;
   *state = NULL;
   gl_state *s = calloc(1, sizeof *s);
   if (!s) return ICS_ERR_NOMEM;
@@ -151,25 +154,36 @@ static ics_status gl_create(void **state, const ics_render_opts *opts, char *msg
     free(s);
     return ICS_ERR_UNSUPPORTED;
   }
-  GLint blocks = 0;
+  /* auto took gl for a GPU the EGL device platform lists: refuse the software rasterizer the
+   * context kinds may fall back to, so auto renders on cpu with this as its note */
+  if ((!opts || !opts->backend || !strcmp(opts->backend, "auto")) && s->g.software) {
+    if (msg) snprintf(msg, msg_size, "the %s context is %s, a software rasterizer, not the GPU "
+                      "that EGL lists (--backend gl renders there)", s->g.context, s->g.renderer);
+    state_free(s);
+    return ICS_ERR_UNSUPPORTED;
+  }
+  GLint blocks = 0, bindings = 0;
   GL_.GetIntegerv(GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS, &blocks);
+  GL_.GetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &bindings);
   GL_.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &s->max_block);
   GL_.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &s->max_texels);
   GLint ubo = 0;
   GL_.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &ubo);
   s->max_taps = (size_t)ubo / sizeof(gl_tap) < 4096 ? (size_t)ubo / sizeof(gl_tap) : 4096;
   for (GLuint i = 0; i < 3; i++) GL_.GetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, i, &s->max_groups[i]);
-  if (blocks < SSBO_BINDINGS) {
+  if (blocks < SSBO_BINDINGS - 1 || bindings < SSBO_BINDINGS) {
     if (msg) snprintf(msg, msg_size, "backend gl: %s offers %d shader storage blocks to a compute "
-                      "shader, the shading needs %d", s->g.renderer, (int)blocks, SSBO_BINDINGS);
-    gl_destroy(s);
+                      "shader and %d bindings; the shading needs %d and %d", s->g.renderer,
+                      (int)blocks, (int)bindings, SSBO_BINDINGS - 1, SSBO_BINDINGS);
+    state_free(s);
     return ICS_ERR_UNSUPPORTED;
   }
   for (int i = 0; i < NPROGS; i++)
     if (!build(s, i, msg, msg_size)) {
-      gl_destroy(s);
+      state_free(s);
       return ICS_ERR_UNSUPPORTED;
     }
+  ics_gl_release(&s->g); /* current only while it renders */
   *state = s;
   return ICS_OK;
 }
@@ -207,6 +221,7 @@ static const char *gl_err_name(GLenum e) {
   case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
   case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
   case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+  case GL_CONTEXT_LOST: return "GL_CONTEXT_LOST (the context was lost)";
   default: return "a GL error";
   }
 }
@@ -252,7 +267,9 @@ static int upload_taps(gl_job *j, int l, const ics_prop_taps *pt, size_t n) {
 static void dispatch(gl_state *s, int p, size_t gx, size_t gy, size_t gz) {
   GL_.UseProgram(s->prog[p]);
   GL_.DispatchCompute((GLuint)gx, (GLuint)gy, (GLuint)gz);
-  GL_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  /* storage writes read as storage, and as texels (the next slab's steps read the buffers the
+   * shading and the apron wrote through buffer textures) */
+  GL_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 /* one slab: every light's step, then the shading and the apron */
@@ -311,7 +328,7 @@ static void run_slab(gl_job *j, int k, const ics_prop_taps *pts) {
   for (int i = 0; i < 2; i++) { /* the volume pixels, then the others */
     GL_.UseProgram(s->prog[i ? P_SHADE_SURFACES : P_SHADE]);
     GL_.DispatchComputeIndirect((GLintptr)(i * 5 * sizeof(GLuint)));
-    GL_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    GL_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   }
   int A = P->buf.apron, nplanes = P->nlights * nch;
   if (A > 0 && nplanes > 0) {
@@ -334,16 +351,13 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
                             size_t msg_size) {
   gl_state *s = state;
   double t_start = ics_clock_s();
-  if (!ics_gl_make_current(&s->g)) {
-    if (msg) snprintf(msg, msg_size, "backend gl: the %s context cannot be made current", s->g.context);
-    return ICS_ERR_UNSUPPORTED;
-  }
   int nl = P->nlights, nch = P->nch;
   size_t npx = (size_t)P->Wb * P->Hb, nview = (size_t)P->W * P->H, plane = P->buf.plane;
   size_t lbytes = sizeof(float) * (size_t)(nl ? nl : 1) * (size_t)nch * plane;
   size_t aov_floats = aov ? (size_t)aov->count * nview : 0;
   size_t out_floats = 4 * nview + aov_floats + nview;
   size_t gx = ((size_t)P->Wb + 15) / 16, gy = ((size_t)P->Hb + 7) / 8;
+  size_t nfrag = P->ldi.nfrag ? P->ldi.nfrag : 1;
   if (lbytes / sizeof(float) > INT_MAX || out_floats > INT_MAX || npx + 1 > UINT_MAX) {
     if (msg) snprintf(msg, msg_size, "backend gl: %d lights x %d channels x %dx%d buffer pixels "
                       "exceed the shaders' 32-bit indices", nl, nch, P->Wb, P->Hb);
@@ -355,17 +369,29 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
                       s->max_texels, s->g.renderer);
     return ICS_ERR_SIZE;
   }
-  if (lbytes > (size_t)s->max_block || out_floats * sizeof(float) > (size_t)s->max_block ||
-      sizeof(uint32_t) * 4 * npx > (size_t)s->max_block) {
-    if (msg) snprintf(msg, msg_size, "backend gl: the light buffers take %zu bytes (the per-pixel "
-                      "state %zu), over the driver's largest shader storage block (%lld bytes, %s)",
-                      lbytes, sizeof(uint32_t) * 4 * npx, (long long)s->max_block, s->g.renderer);
-    return ICS_ERR_SIZE;
-  }
+  /* every storage buffer against the driver's largest block (the taps' are checked per slab) */
+  const struct { const char *what; size_t bytes; } sizes[] = {
+      {"the light buffers", lbytes},
+      {"the image and AOVs", sizeof(float) * out_floats},
+      {"the per-pixel state", sizeof(uint32_t) * 4 * npx},
+      {"the shading lists", sizeof(uint32_t) * (10 + 2 * npx)},
+      {"the fragments' depth gradients", 2 * sizeof(float) * nfrag},
+      {"the layered depth image's offsets", sizeof(uint32_t) * (npx + 1)}};
+  for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++)
+    if (sizes[i].bytes > (size_t)s->max_block) {
+      if (msg) snprintf(msg, msg_size, "backend gl: %s take %zu bytes, over the driver's largest "
+                        "shader storage block (%lld bytes, %s)", sizes[i].what, sizes[i].bytes,
+                        (long long)s->max_block, s->g.renderer);
+      return ICS_ERR_SIZE;
+    }
+  size_t gz = (size_t)nl * nch, rows = (size_t)P->Hb, ends = 2 * (size_t)P->buf.apron;
   if (gx > (size_t)s->max_groups[0] || gy > (size_t)s->max_groups[1] ||
-      (size_t)nl * nch > (size_t)s->max_groups[2]) {
-    if (msg) snprintf(msg, msg_size, "backend gl: a %dx%d light buffer needs %zux%zu work groups, "
-                      "over the driver's %dx%d", P->Wb, P->Hb, gx, gy, s->max_groups[0], s->max_groups[1]);
+      rows > (size_t)s->max_groups[1] || ends > (size_t)s->max_groups[1] ||
+      gz > (size_t)s->max_groups[2]) {
+    if (msg) snprintf(msg, msg_size, "backend gl: a %dx%d light buffer of %zu planes needs "
+                      "%zux%zu work groups per step and %zu apron rows, over the driver's %dx%dx%d",
+                      P->Wb, P->Hb, gz, gx, gy, rows, s->max_groups[0], s->max_groups[1],
+                      s->max_groups[2]);
     return ICS_ERR_SIZE;
   }
   ics_device_scene ds;
@@ -373,6 +399,12 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
     if (msg) snprintf(msg, msg_size, "backend gl: out of host memory for the upload (%zu fragments)",
                       P->ldi.nfrag);
     return ICS_ERR_NOMEM;
+  }
+  if (!ics_gl_make_current(&s->g)) {
+    if (msg) snprintf(msg, msg_size, "backend gl: the %s context cannot be made current on this "
+                      "thread", s->g.context);
+    ics_device_scene_destroy(&ds);
+    return ICS_ERR_UNSUPPORTED;
   }
   ics_status status = ICS_OK;
   gl_job job;
@@ -474,6 +506,13 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
       ics_prop_taps *pt = &pts[l];
       status = ics_plan_slab_taps(P, l, k, q, mag, cum[l], scratch[l], pt, msg, msg_size);
       size_t ntap = (size_t)pt->ntaps * (size_t)(pt->stencil ? 1 : pt->entries);
+      if (status == ICS_OK && ntap * sizeof(gl_tap) > (size_t)s->max_block) {
+        if (msg) snprintf(msg, msg_size, "backend gl: light %d, slab %d takes %zu taps, over the "
+                          "driver's largest shader storage block (%lld bytes, %s)", l, k, ntap,
+                          (long long)s->max_block, s->g.renderer);
+        status = ICS_ERR_SIZE;
+        goto done;
+      }
       if (status == ICS_OK &&
           !upload_taps(j, l, pt, ntap))
         status = ICS_ERR_NOMEM;
@@ -499,6 +538,7 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
       o->progress(o->progress_ctx, k + 1, P->K);
     }
   }
+  GL_.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); /* the shaders' writes, then the readback */
   GL_.GetNamedBufferSubData(j->buf[B_OUT], 0, (GLsizeiptr)(sizeof(float) * 4 * nview), img->data);
   if (aov_floats)
     GL_.GetNamedBufferSubData(j->buf[B_OUT], (GLintptr)(sizeof(float) * 4 * nview),
@@ -553,6 +593,7 @@ done:
   free(pix), free(span), free(sd);
   free(pts), free(scratch);
   ics_device_scene_destroy(&ds);
+  ics_gl_release(&s->g); /* the thread's previous context, if any, is current again */
   return status;
 }
 

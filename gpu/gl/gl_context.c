@@ -105,30 +105,41 @@ static int egl_context(ics_gl *g, EGLDisplay dpy, char *why, size_t why_size) {
     snprintf(why, why_size, "%s: eglBindAPI(EGL_OPENGL_API): %s", g->context, egl_err(eglGetError()));
     return 0;
   }
+  /* robust first (a reset is then reported by glGetGraphicsResetStatus), plain if refused */
+  const EGLint robust[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                           EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                           EGL_CONTEXT_OPENGL_ROBUST_ACCESS, EGL_TRUE,
+                           EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY, EGL_LOSE_CONTEXT_ON_RESET,
+                           EGL_NONE};
+  EGLContext c = major > 1 || minor >= 5
+                     ? eglCreateContext(dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, robust)
+                     : EGL_NO_CONTEXT;
+  g->robust = c != EGL_NO_CONTEXT;
   const EGLint attr[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                          EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                          EGL_NONE};
-  EGLContext c = eglCreateContext(dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attr);
+  if (c == EGL_NO_CONTEXT) c = eglCreateContext(dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attr);
   if (c == EGL_NO_CONTEXT) {
     snprintf(why, why_size, "%s: no OpenGL 4.5 core context (eglCreateContext: %s)", g->context,
              egl_err(eglGetError()));
     return 0;
   }
   g->ctx = c;
-  if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, c)) {
+  g->kind = KIND_EGL;
+  if (!ics_gl_make_current(g)) {
     snprintf(why, why_size, "%s: eglMakeCurrent: %s", g->context, egl_err(eglGetError()));
     return 0;
   }
-  g->kind = KIND_EGL;
   return load(g, egl_gpa, why, why_size);
 }
 
+/* The display stays initialised: EGL gives every caller of a platform the same display, so
+ * eglTerminate would end every other context on it, other renderers' and the application's. */
 static void egl_close(ics_gl *g) {
   if (g->ctx) {
-    eglMakeCurrent(g->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (eglGetCurrentContext() == g->ctx) ics_gl_release(g);
     eglDestroyContext(g->display, g->ctx);
   }
-  if (g->display) eglTerminate(g->display);
   g->ctx = g->display = NULL;
 }
 
@@ -184,17 +195,17 @@ static int osmesa_open(ics_gl *g, char *why, size_t why_size) {
   }
   g->ctx = c;
   g->osmesa_buf = calloc(1, 4);
-  if (!g->osmesa_buf || !OSMesaMakeCurrent(c, g->osmesa_buf, GL_UNSIGNED_BYTE, 1, 1)) {
+  g->kind = KIND_OSMESA;
+  if (!g->osmesa_buf || !ics_gl_make_current(g)) {
     snprintf(why, why_size, "osmesa: OSMesaMakeCurrent failed");
     return 0;
   }
-  g->kind = KIND_OSMESA;
   return load(g, osmesa_gpa, why, why_size);
 }
 
 static void osmesa_close(ics_gl *g) {
   if (g->ctx) {
-    OSMesaMakeCurrent(NULL, NULL, GL_UNSIGNED_BYTE, 0, 0);
+    if (OSMesaGetCurrentContext() == g->ctx) ics_gl_release(g);
     OSMesaDestroyContext(g->ctx);
   }
   free(g->osmesa_buf);
@@ -241,12 +252,45 @@ void ics_gl_close(ics_gl *g) {
 
 int ics_gl_make_current(ics_gl *g) {
 #ifdef ICS_HAVE_EGL
-  if (g->kind == KIND_EGL) return eglMakeCurrent(g->display, EGL_NO_SURFACE, EGL_NO_SURFACE, g->ctx);
+  if (g->kind == KIND_EGL) {
+    g->prev_display = eglGetCurrentDisplay(), g->prev_ctx = eglGetCurrentContext();
+    g->prev_draw = eglGetCurrentSurface(EGL_DRAW), g->prev_read = eglGetCurrentSurface(EGL_READ);
+    return eglMakeCurrent(g->display, EGL_NO_SURFACE, EGL_NO_SURFACE, g->ctx);
+  }
 #endif
 #ifdef ICS_HAVE_OSMESA
-  if (g->kind == KIND_OSMESA) return OSMesaMakeCurrent(g->ctx, g->osmesa_buf, GL_UNSIGNED_BYTE, 1, 1);
+  if (g->kind == KIND_OSMESA) {
+    g->prev_ctx = OSMesaGetCurrentContext(), g->prev_display = NULL;
+    if (g->prev_ctx) {
+      GLint w = 0, h = 0, format = 0;
+      void *buf = NULL;
+      OSMesaGetColorBuffer(g->prev_ctx, &w, &h, &format, &buf);
+      g->prev_draw = buf, g->prev_w = w, g->prev_h = h;
+    }
+    return OSMesaMakeCurrent(g->ctx, g->osmesa_buf, GL_UNSIGNED_BYTE, 1, 1);
+  }
 #endif
   return 0;
+}
+
+void ics_gl_release(ics_gl *g) {
+#ifdef ICS_HAVE_EGL
+  if (g->kind == KIND_EGL) {
+    if (g->prev_ctx && g->prev_ctx != g->ctx && g->prev_display)
+      eglMakeCurrent(g->prev_display, g->prev_draw, g->prev_read, g->prev_ctx);
+    else
+      eglMakeCurrent(g->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  }
+#endif
+#ifdef ICS_HAVE_OSMESA
+  if (g->kind == KIND_OSMESA) {
+    if (g->prev_ctx && g->prev_ctx != g->ctx && g->prev_draw)
+      OSMesaMakeCurrent(g->prev_ctx, g->prev_draw, GL_UNSIGNED_BYTE, g->prev_w, g->prev_h);
+    else
+      OSMesaMakeCurrent(NULL, NULL, GL_UNSIGNED_BYTE, 0, 0);
+  }
+#endif
+  g->prev_ctx = g->prev_display = g->prev_draw = g->prev_read = NULL;
 }
 
 ics_status ics_gl_open(ics_gl *g, const char *which, char *why, size_t why_size) {

@@ -70,17 +70,23 @@ typedef struct ics_gl {
   char renderer[160]; /* GL_RENDERER */
   char version[96];   /* GL_VERSION */
   int software;       /* llvmpipe / softpipe: LP_NUM_THREADS applies */
+  int robust;         /* EGL: a robust context that reports resets (lost contexts) */
   int kind;           /* (gl_context.c) */
   void *display, *ctx, *osmesa_buf;
+  /* what was current on the thread before ics_gl_make_current, restored by ics_gl_release */
+  void *prev_display, *prev_ctx, *prev_draw, *prev_read;
+  int prev_w, prev_h;
 } ics_gl;
 
 /* Opens a 4.5 core context of kind `which`: "osmesa", "egl" (the device platform's first
  * hardware device, else surfaceless) or "auto" (NULL too: egl, then osmesa; docs/backend_gl.md),
- * makes it current on the calling thread and loads the entry points. ICS_ERR_UNSUPPORTED with
- * why (each kind tried and its failure) when none opens. */
+ * makes it current on the calling thread (ics_gl_release gives the thread back) and loads the
+ * entry points. ICS_ERR_UNSUPPORTED with why (each kind tried and its failure) when none opens. */
 ics_status ics_gl_open(ics_gl *g, const char *which, char *why, size_t why_size);
-/* makes g current on the calling thread again (0 on failure) */
+/* makes g current on the calling thread, remembering what was current (0 on failure) */
 int ics_gl_make_current(ics_gl *g);
+/* makes current again what was current before ics_gl_make_current (or nothing) */
+void ics_gl_release(ics_gl *g);
 void ics_gl_close(ics_gl *g); /* a zeroed or closed one is fine */
 /* 1 when the EGL device platform lists a device that is not Mesa's software one (a GPU driver),
  * without opening a context; else 0 with why. */

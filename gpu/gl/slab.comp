@@ -140,7 +140,8 @@ void main() {
     float a00 = class_sum(c, k0, k1, nx, ny), a10 = class_sum(c, k0 + 1, k1, nx, ny);
     float a01 = class_sum(c, k0, k1 + 1, nx, ny), a11 = class_sum(c, k0 + 1, k1 + 1, nx, ny);
     precise float top = a00 + r0 * (a10 - a00), bot = a01 + r0 * (a11 - a01);
-    dst[base + c * plane + p] = top + r1 * (bot - top);
+    precise float v = top + r1 * (bot - top);
+    dst[base + c * plane + p] = v;
   }
 #endif
 }
@@ -219,7 +220,8 @@ layout(local_size_x = 1) in;
 void main() {
   for (int i = 0; i < 2; i++) {
     uint n = hdr[5 * i + 4];
-    hdr[5 * i] = (n + 63u) / 64u, hdr[5 * i + 1] = 1u, hdr[5 * i + 2] = 1u, hdr[5 * i + 3] = n;
+    hdr[5 * i] = min((n + 63u) / 64u, 65535u), hdr[5 * i + 1] = 1u, hdr[5 * i + 2] = 1u;
+    hdr[5 * i + 3] = n;
     hdr[5 * i + 4] = 0u;
   }
 }
@@ -591,9 +593,7 @@ void main() {
 #else
 #define LIST 0
 #endif
-void main() {
-  if (gl_GlobalInvocationID.x >= hdr[5 * LIST + 3]) return;
-  uint p = work[uint(LIST * npx) + gl_GlobalInvocationID.x];
+void shade_pixel(uint p) {
   int bi = int(p % uint(bw)), bj = int(p / uint(bw));
   int q = AT(bi, bj);
   uvec4 st = pix[p];
@@ -664,6 +664,13 @@ void main() {
     if (inview) outv[4 * pi] = C.x, outv[4 * pi + 1] = C.y, outv[4 * pi + 2] = C.z, outv[4 * pi + 3] = C.w;
   }
   clamp_signed(q);
+}
+
+/* the list in a grid-stride loop: ICS_K_SHADE_COUNT caps the groups at 65535 (the smallest
+ * GL_MAX_COMPUTE_WORK_GROUP_COUNT) */
+void main() {
+  for (uint w = gl_GlobalInvocationID.x; w < hdr[5 * LIST + 3]; w += gl_NumWorkGroups.x * 64u)
+    shade_pixel(work[uint(LIST * npx) + w]);
 }
 #endif
 #endif

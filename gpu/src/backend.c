@@ -79,8 +79,14 @@ ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, 
           return st;
         }
       }
-      if (!r->b && c->auto_pick && !r->note[0])
-        snprintf(r->note, sizeof r->note, "auto passed over %s: %.440s", c->name, why);
+      if (!r->b && c->auto_pick && !r->note[0]) { /* one line, without a "backend NAME: " */
+        char prefix[32];
+        snprintf(prefix, sizeof prefix, "backend %s: ", c->name);
+        const char *w = strncmp(why, prefix, strlen(prefix)) ? why : why + strlen(prefix);
+        snprintf(r->note, sizeof r->note, "auto passed over %s: %.*s%s", c->name,
+                 (int)strcspn(w, "\n") < 400 ? (int)strcspn(w, "\n") : 400, w,
+                 w[strcspn(w, "\n")] ? " (...)" : "");
+      }
     }
   } else {
     char why[1024];
