@@ -79,3 +79,7 @@ echo "OK: a ${#name}-byte name"
 add_test(NAME cli_lut_long_file_name COMMAND sh ${ics_lut_cli_dir}/long_name.sh ${ics_lut_cli}
   ${ics_lut_cli_dir}/long_name)
 set_tests_properties(cli_lut_long_file_name PROPERTIES LABELS fast)
+# one grid per size: the report's row for a size is the same in any --sizes list and is measured
+# on its header stamp's grid
+add_test(NAME cli_lut_report_grid COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/lut_report_grid.sh $<TARGET_FILE:icshadow_cli>)
+set_tests_properties(cli_lut_report_grid PROPERTIES LABELS fast)
