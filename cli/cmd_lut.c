@@ -119,24 +119,34 @@ enum { NSAMPLES = 4096 };
 static volatile double sink;
 
 /* ns per call of f over the sample, repeated until at least ~20 ms have passed. */
-static double time_fn(double (*f)(const ics_lut_tables *, double), const ics_lut_tables *L,
-                      const double *x) {
-  double best = INFINITY;
-  for (int rep = 0; rep < 5; rep++) {
+/* ns per call of f over the samples: a warm-up pass, then TIME_REPS repetitions of >= 4 ms;
+ * the median, with min and max (t[0], t[2]) */
+#define TIME_REPS 7
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+static void time_fn(double (*f)(const ics_lut_tables *, double), const ics_lut_tables *L,
+                    const double *x, double t[3]) {
+  double ns[TIME_REPS], acc = 0;
+  for (int i = 0; i < NSAMPLES; i++) acc += f(L, x[i]); /* warm-up: caches, branch history */
+  for (int rep = 0; rep < TIME_REPS; rep++) {
     long calls = 0;
     double t0 = cli_now_s(), t1;
-    double acc = 0;
     do {
       for (int i = 0; i < NSAMPLES; i++) acc += f(L, x[i]);
       calls += NSAMPLES;
       t1 = cli_now_s();
     } while (t1 - t0 < 4e-3);
-    sink = acc;
-    double ns = 1e9 * (t1 - t0) / calls;
-    if (ns < best) best = ns;
+    ns[rep] = 1e9 * (t1 - t0) / calls;
   }
-  return best;
+  sink = acc;
+  qsort(ns, TIME_REPS, sizeof *ns, cmp_double);
+  t[0] = ns[0], t[1] = ns[TIME_REPS / 2], t[2] = ns[TIME_REPS - 1];
 }
+
+/* the busy-machine rule of the benchmarks: a spread over 30 % */
+static int spread_busy(const double t[3]) { return t[2] > 1.3 * t[0]; }
 
 static double exact_ratio(const ics_lut_tables *L, double x) {
   (void)L;
@@ -181,9 +191,10 @@ static int report(const int *sizes, int nsizes, int progress) {
   }
   printf("method,size,ratio_max_rel_err,vx_max_rel_err,radii_max_rel_err,"
          "ratio_float_max_rel_err,vx_float_max_rel_err,radii_float_max_rel_err,"
-         "ratio_order,vx_order,ratio_ns_per_call,vx_ns_per_call,grid_points\n");
+         "ratio_order,vx_order,ratio_ns_per_call,vx_ns_per_call,grid_points,ratio_ns_min,"
+         "ratio_ns_max,vx_ns_min,vx_ns_max\n");
   double prev_r = 0, prev_v = 0;
-  int prev_n = 0, status = 0;
+  int prev_n = 0, status = 0, busy = 0;
   for (int k = 0; k < nsizes; k++) {
     int n = sizes[k];
     if (progress) fprintf(stderr, "icshadow lut: size %d (exact values on its grid, then the tables)\n", n);
@@ -201,15 +212,18 @@ static int report(const int *sizes, int nsizes, int progress) {
       status = 1;
       break;
     }
-    double ns_r = time_fn(ics_lut_tables_ratio_to_t, &T.view, xr);
-    double ns_v = time_fn(ics_lut_tables_vx, &T.view, xt);
+    double tr[3], tv[3];
+    time_fn(ics_lut_tables_ratio_to_t, &T.view, xr, tr);
+    time_fn(ics_lut_tables_vx, &T.view, xt, tv);
+    busy |= spread_busy(tr) || spread_busy(tv);
     printf("lut,%d,%.3e,%.3e,%.3e,%.3e,%.3e,%.3e,", n, ed.ratio, ed.vx, ed.radii, ef.ratio,
            ef.vx, ef.radii);
     if (prev_n)
       printf("%.3f,%.3f,", order(prev_r, ed.ratio, prev_n, n), order(prev_v, ed.vx, prev_n, n));
     else
       printf(",,");
-    printf("%.3g,%.3g,%ld\n", ns_r, ns_v, ed.points);
+    printf("%.3g,%.3g,%ld,%.3g,%.3g,%.3g,%.3g\n", tr[1], tv[1], ed.points, tr[0], tr[2], tv[0],
+           tv[2]);
     fflush(stdout);
     prev_r = ed.ratio;
     prev_v = ed.vx;
@@ -217,10 +231,16 @@ static int report(const int *sizes, int nsizes, int progress) {
     tables_free(&T);
   }
   if (!status) {
-    double ns_r = time_fn(exact_ratio, NULL, xr);
-    double ns_v = time_fn(exact_vx, NULL, xt);
-    printf("exact,,,,,,,,,,%.3g,%.3g,\n", ns_r, ns_v);
+    double tr[3], tv[3];
+    time_fn(exact_ratio, NULL, xr, tr);
+    time_fn(exact_vx, NULL, xt, tv);
+    busy |= spread_busy(tr) || spread_busy(tv);
+    printf("exact,,,,,,,,,,%.3g,%.3g,,%.3g,%.3g,%.3g,%.3g\n", tr[1], tv[1], tr[0], tr[2], tv[0],
+           tv[2]);
   }
+  if (busy)
+    cli_warning(CMD, "some timings' repetitions differ by more than 30%% (ns_min vs ns_max): the "
+                "machine was busy; rerun, or compare ratios measured in one run");
   return cli_stdout_failed(CMD) ? 1 : status;
 }
 
