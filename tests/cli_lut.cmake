@@ -52,7 +52,7 @@ set_tests_properties(cli_lut_writes_file PROPERTIES LABELS fast)
 
 # --report: CSV with a header, one row per size and the exact functions' timing.
 ics_cli_test(NAME cli_lut_report RC 0 ARGS "lut|--report|--sizes|8,16"
-  OUT "^method,size,ratio_max_rel_err,vx_max_rel_err,radii_max_rel_err,ratio_float_max_rel_err,vx_float_max_rel_err,radii_float_max_rel_err,ratio_order,vx_order,ratio_ns_per_call,vx_ns_per_call,grid_points\nlut,8,[^\n]+\nlut,16,[^\n]+\nexact,[^\n]+\n$")
+  OUT "^method,size,ratio_max_rel_err,vx_max_rel_err,radii_max_rel_err,ratio_float_max_rel_err,vx_float_max_rel_err,radii_float_max_rel_err,ratio_order,vx_order,ratio_ns_per_call,vx_ns_per_call,grid_points,ratio_ns_min,ratio_ns_max,vx_ns_min,vx_ns_max\nlut,8,[^\n]+\nlut,16,[^\n]+\nexact,[^\n]+\n$")
 
 # The driver's NOFILE check under a path holding glob syntax ('[', '*', '?'): a run that does
 # write the file must be caught ("output left behind"); unescaped, the pattern matched nothing
