@@ -73,6 +73,10 @@ def main():
         futures = {(label, gname): pool.submit(run_cli, args.cli, ["clt", "--cov", args.cov, "--steps",
                                                                   args.steps] + margs + gargs)
                    for label, margs in MEMBERS for gname, gargs in GEOMS}
+        # progress: the runs take minutes together on two cores
+        for done, _ in enumerate(concurrent.futures.as_completed(futures.values()), 1):
+            print("clt_convergence_2d: %d of %d runs done" % (done, len(futures)), file=sys.stderr,
+                  flush=True)
     for label, margs in MEMBERS:
         for gname, gargs in GEOMS:
             out = futures[(label, gname)].result()
@@ -109,25 +113,36 @@ def main():
             cost, secs, k1, k2, kt))
     write_text(os.path.join(args.out, "clt_convergence_2d.md"), "\n".join(lines) + "\n")
 
-    fig, axs = plt.subplots(1, len(GEOMS), figsize=(4.2 * len(GEOMS), 4.2), sharey=True)
-    cmap = plt.get_cmap("tab20")
+    # one panel per occluder (2 x 3, the sixth holds the legend); colour = the member's sample
+    # count, line and marker = the offset schedule, so no two curves share a style
+    fig, axs = plt.subplots(2, 3, figsize=(13, 8), sharey=True)
+    axs = axs.ravel()
+    colours = {"N=2": "tab:blue", "N=3": "tab:orange", "N=8": "tab:green", "poisson": "tab:purple",
+               "gauss": "tab:brown"}
+    styles = {"fixed": ("-", "o"), "golden": ("--", "s"), "random": ("-.", "^")}
     for j, (gname, _) in enumerate(GEOMS):
         ax = axs[j]
-        for i, (label, _) in enumerate(MEMBERS):
+        for label, _ in MEMBERS:
             n, e, er, ok, okr = data[(label, gname)]
-            c = cmap(i % 20)
-            ax.loglog(n, er, "-", color=c, lw=1, label=label)
-            ax.loglog(n[okr], er[okr], "o", color=c, ms=4)
-            ax.loglog(n[~okr], er[~okr], "o", mfc="none", color="0.6", ms=4)
+            words = label.split()
+            c = colours[words[1] if words[0] == "ellipse" else words[0]]
+            ls, mk = styles.get(words[-1], ("-", "D"))
+            ax.loglog(n, er, ls, color=c, lw=1.2, label=label)
+            ax.loglog(n[okr], er[okr], mk, color=c, ms=5)
+            ax.loglog(n[~okr], er[~okr], mk, mfc="none", color="0.6", ms=5)
         n0 = np.array([8.0, 128.0])
-        ax.loglog(n0, 3e-2 * (n0 / 8) ** -0.5, "k:", lw=1)
-        ax.loglog(n0, 3e-3 * (n0 / 8) ** -1.0, "k--", lw=1)
+        ax.loglog(n0, 3e-2 * (n0 / 8) ** -0.5, "k:", lw=1, label=r"$n^{-1/2}$")
+        ax.loglog(n0, 3e-3 * (n0 / 8) ** -1.0, "k", lw=0.8, alpha=0.5, label=r"$n^{-1}$")
         ax.set_title("%s (vs realised moments)" % gname)
         ax.set_xlabel("steps n")
-        if j == 0:
+        ax.grid(True, which="major", alpha=0.3)
+        if j % 3 == 0:
             ax.set_ylabel("sup error")
-    axs[-1].legend(fontsize=6, loc="lower left")
-    fig.suptitle("2D members, class %s: filled = resolved (disc < err/10); dotted n^-1/2, dashed n^-1" % args.cov)
+    handles, labels = axs[0].get_legend_handles_labels()
+    axs[-1].axis("off")
+    axs[-1].legend(handles, labels, loc="center", fontsize=9, frameon=False,
+                   title="filled: resolved (disc < err/10)\ngrey open: unresolved")
+    fig.suptitle("2D members, class (%s) px$^2$, degrees" % args.cov.replace(",", ", "))
     fig.tight_layout()
     save_fig(fig, os.path.join(args.out, "clt_convergence_2d.png"), 120)
 

@@ -148,8 +148,10 @@ def main():
     ax.set_xlabel("K (Gaussian lights)")
     ax.set_ylabel("relative error")
     ax.grid(True, which="both", alpha=0.3)
-    for kk, s_, e_ in zip(k, secs, l1):
-        ax.annotate("%.2fs" % s_, (kk, e_), textcoords="offset points", xytext=(3, 5), fontsize=7)
+    for kk, s_, e_ in zip(k, secs, l1):  # centred above each point, inside the axes
+        ax.annotate("%.2fs" % s_, (kk, e_), textcoords="offset points", xytext=(0, 6), fontsize=7,
+                    ha="center")
+    ax.set_xlim(min(k) - 0.5, max(k) + 0.5)
     ax.legend(fontsize=8)
     ax.set_title("fit error against K (labels: fit time)", fontsize=10)
     fig.tight_layout()

@@ -55,32 +55,40 @@ def main():
     # ---- Fig. 16: light mean 0, variance 1, d1 = 1
     light, var, d1 = "gauss:0,1", 1.0, 1.0
     levels = [round(0.05 * k, 2) for k in range(1, 20)]
-    dists = [k / 8.0 for k in range(1, 33)]
+    # fine steps near the occluder, where every isoline leaves x = 0 (at d = 0 the shadow is the
+    # occluder's own step: the plots start the lines there)
+    dists = [1 / 64, 1 / 32, 1 / 16, 3 / 32] + [k / 8.0 for k in range(1, 33)]
     rows, worst_c, worst_i = [], 0.0, 0.0
     for s in levels:
         for d in dists:
             xc = isoline(args.cli, light, s, d, "correct")
             xi = isoline(args.cli, light, s, d, "iterative", d1, e)
             worst_c = max(worst_c, abs(xc - d * math.sqrt(var) * phi_inv(s)))
-            worst_i = max(worst_i, abs(xi - phi_inv(s) * math.sqrt(d * d1 * var)) / math.sqrt(d * d1 * var))
+            if d >= 1 / 8:  # the CLT form needs steps: 8 or more (one step at d = 1/64)
+                worst_i = max(worst_i, abs(xi - phi_inv(s) * math.sqrt(d * d1 * var)) / math.sqrt(d * d1 * var))
             rows.append((s, d, xc, xi))
-    print("fig16: correct vs closed form: max |dx| = %.3g; iterated vs CLT form: max |dx|/sigma_n = %.3g"
+    print("fig16: correct vs closed form: max |dx| = %.3g; iterated vs CLT form (d >= 1/8): max |dx|/sigma_n = %.3g"
           % (worst_c, worst_i))
     write_csv(os.path.join(args.out, "patel_fig16_isolines.csv"), ["level", "distance", "x_correct", "x_iterative"], rows)
     a = np.array(rows)
     fig, axs = plt.subplots(1, 2, figsize=(10, 4.5), sharey=True)
     for ax, col, title in ((axs[0], 2, "correct shadow (Eq. 16)"), (axs[1], 3, "iterated shadow (tophat, e = 1/64)")):
         # shadow level as a function of (x, d): the isolines sample it densely
-        pts_x = np.concatenate([a[:, col], [-6.0] * len(dists), [6.0] * len(dists)])
-        pts_d = np.concatenate([a[:, 1], dists, dists])
-        pts_s = np.concatenate([a[:, 0], [0.0] * len(dists), [1.0] * len(dists)])
-        ax.tricontourf(pts_x, pts_d, pts_s, levels=np.linspace(0, 1, 21), cmap="gray_r")
+        step = np.linspace(-6.0, 6.0, 241)  # d = 0: the occluder's step, 0 for x < 0, 1 for x > 0
+        step = step[step != 0]
+        pts_x = np.concatenate([a[:, col], [-6.0] * len(dists), [6.0] * len(dists), step])
+        pts_d = np.concatenate([a[:, 1], dists, dists, np.zeros_like(step)])
+        pts_s = np.concatenate([a[:, 0], [0.0] * len(dists), [1.0] * len(dists), (step > 0) * 1.0])
+        # the top level just above 1, so the fully shadowed region (s = 1 exactly) is filled too
+        ax.tricontourf(pts_x, pts_d, pts_s, levels=np.append(np.linspace(0, 1, 21)[:-1], 1 + 1e-9),
+                       cmap="gray_r")
         for s in levels:
             sel = a[:, 0] == s
+            xs, ds = np.concatenate([[0.0], a[sel, col]]), np.concatenate([[0.0], a[sel, 1]])
             if abs(s - 0.5) < 1e-9:
-                ax.plot(a[sel, col], a[sel, 1], color="white", lw=2.0)
+                ax.plot(xs, ds, color="white", lw=2.0)
             elif abs(round(s * 10) - s * 10) < 1e-9:
-                ax.plot(a[sel, col], a[sel, 1], color=plt.cm.rainbow(s), lw=1.0)
+                ax.plot(xs, ds, color=plt.cm.rainbow(s), lw=1.0)
         ax.set_xlim(-5, 5)
         ax.set_ylim(4, 0)
         ax.set_xlabel("x (edge at 0, occluder opaque for x > 0)")
@@ -108,8 +116,11 @@ def main():
     fig, ax = plt.subplots(figsize=(6, 5))
     for s in levels:
         sel = a[:, 0] == s
-        ax.plot(a[sel, 2], a[sel, 1], color="tab:blue", lw=1.2, label="correct" if s == levels[0] else None)
-        ax.plot(a[sel, 3], a[sel, 1], color="tab:red", lw=1.2, label="iterated" if s == levels[0] else None)
+        ds = np.concatenate([[0.0], a[sel, 1]])  # every isoline starts at the edge (d = 0, x = 0)
+        ax.plot(np.concatenate([[0.0], a[sel, 2]]), ds, color="tab:blue", lw=1.2,
+                label="correct" if s == levels[0] else None)
+        ax.plot(np.concatenate([[0.0], a[sel, 3]]), ds, color="tab:red", lw=1.2,
+                label="iterated" if s == levels[0] else None)
     ax.axhline(d1, color="k", ls="--", lw=0.8, label="d1 = %g" % d1)
     ax.set_ylim(4, 0)
     ax.set_xlabel("x")
