@@ -263,7 +263,11 @@ int bench_slab(int argc, char **argv) {
         printf("%s,%s,%d,%s,%d,%d,%d,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.3g,%d\n", backend, m->label,
                m->samples, mode, bw, bh, K, cpu_threads ? threads[ti] : 0, med, t[0], t[reps - 1], fmed,
                fmed / med, err, reps);
-        fflush(stdout);
+        if (cli_stdout_failed(CMD)) { /* stop at the first row that fails, with its cause */
+          free(fa), free(fb);
+          cli_progress_done(&prog);
+          return 1;
+        }
       }
     free(fa), free(fb);
   }
@@ -271,6 +275,6 @@ int bench_slab(int argc, char **argv) {
   if (busy)
     cli_warning(CMD, "some repetitions differ by more than 30%% (ns_min vs ns_max): the machine "
                 "was busy; rerun, or compare ratios measured in one run");
-  return 0;
+  return cli_stdout_failed(CMD);
 #endif
 }

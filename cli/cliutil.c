@@ -178,7 +178,9 @@ void cli_progress_done(const cli_progress *p) {
 int cli_stdout_failed(const char *cmd) {
   errno = 0;
   if (fflush(stdout) == 0 && !ferror(stdout)) return 0;
-  return cli_failure(cmd, "cannot write stdout: %s", strerror(errno ? errno : EIO));
+  if (!errno) /* an earlier write failed, and stdio keeps no cause */
+    return cli_failure(cmd, "cannot write stdout: a write before the last flush failed");
+  return cli_failure(cmd, "cannot write stdout: %s", strerror(errno));
 }
 
 int cli_wants_help(int argc, char **argv) {

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `icshadow bench minmax|occtex` with stdout on a full device (/dev/full): exit status 1 and a
+# `icshadow bench minmax|occtex|slab` with stdout on a full device (/dev/full): exit status 1 and a
 # message naming stdout and the reason (strerror), not a silent failure.
 set -u
 cli=$1
@@ -19,6 +19,7 @@ check() { # name, then the command's arguments
 check minmax bench minmax --samples 32 --rows 2 --rays 2 --reps 1
 check minmax_svd bench minmax --samples 32 --rows 2 --rays 2 --svd-table
 check occtex bench occtex --sizes 8 --slices 1 --scene plates --receivers 2 --light-samples 2 --reps 1
+check slab bench slab --sizes 16 --slabs 1 --reps 1 --threads 1 --kernels ellipse2,gauss19
 rm -f "$errf"
-[ $fail -eq 0 ] && echo "bench_stdout_full: 3 passed"
+[ $fail -eq 0 ] && echo "bench_stdout_full: 4 passed"
 exit $fail
