@@ -12,6 +12,7 @@ Gaussian light (math.erfc bisection here) and the iterated ones with the CLT for
 x = Phi^-1(s) sqrt(d d1) sigma; the worst differences are printed.
 Writes patel_fig16_isolines.csv, patel_fig16.png, patel_fig17_isolines.csv, patel_fig17.png into --out.
 """
+import concurrent.futures
 import math
 import os
 import sys
@@ -34,6 +35,18 @@ def isoline(cli, light, level, dist, model, d1=None, slab=None, kernel="tophat")
     if model == "iterative":
         cmd += ["--slab", "%.17g" % slab, "--kernel", kernel]
     return float(run_cli(cli, cmd))
+
+
+def isolines(cli, queries, what):
+    """isoline(cli, *q) for every q, on every core (each a short process), with progress on stderr."""
+    with concurrent.futures.ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        futures = {q: pool.submit(isoline, cli, *q) for q in queries}
+        step = max(1, len(futures) // 10)
+        for done, _ in enumerate(concurrent.futures.as_completed(futures.values()), 1):
+            if done % step == 0 or done == len(futures):
+                print("patel_fig16_17: %s: %d of %d isoline points" % (what, done, len(futures)),
+                      file=sys.stderr, flush=True)
+        return {q: f.result() for q, f in futures.items()}
 
 
 def phi_inv(p):
@@ -59,10 +72,13 @@ def main():
     # occluder's own step: the plots start the lines there)
     dists = [1 / 64, 1 / 32, 1 / 16, 3 / 32] + [k / 8.0 for k in range(1, 33)]
     rows, worst_c, worst_i = [], 0.0, 0.0
+    x = isolines(args.cli, [q for s in levels for d in dists
+                            for q in ((light, s, d, "correct"), (light, s, d, "iterative", d1, e))],
+                 "Fig. 16")
     for s in levels:
         for d in dists:
-            xc = isoline(args.cli, light, s, d, "correct")
-            xi = isoline(args.cli, light, s, d, "iterative", d1, e)
+            xc = x[(light, s, d, "correct")]
+            xi = x[(light, s, d, "iterative", d1, e)]
             worst_c = max(worst_c, abs(xc - d * math.sqrt(var) * phi_inv(s)))
             if d >= 1 / 8:  # the CLT form needs steps: 8 or more (one step at d = 1/64)
                 worst_i = max(worst_i, abs(xi - phi_inv(s) * math.sqrt(d * d1 * var)) / math.sqrt(d * d1 * var))
@@ -103,11 +119,13 @@ def main():
     light, var, d1 = "gauss:0,1", 1.0, 2.0
     levels = [round(0.1 * k, 1) for k in range(1, 10)]
     rows = []
+    x = isolines(args.cli, [q for s in levels for d in dists
+                            for q in ((light, s, d, "correct"), (light, s, d, "iterative", d1, e),
+                                      (light, s, d, "clt", d1))], "Fig. 17")
     for s in levels:
         for d in dists:
-            rows.append((s, d, isoline(args.cli, light, s, d, "correct"),
-                         isoline(args.cli, light, s, d, "iterative", d1, e),
-                         isoline(args.cli, light, s, d, "clt", d1)))
+            rows.append((s, d, x[(light, s, d, "correct")], x[(light, s, d, "iterative", d1, e)],
+                         x[(light, s, d, "clt", d1)]))
     write_csv(os.path.join(args.out, "patel_fig17_isolines.csv"),
               ["level", "distance", "x_correct", "x_iterative", "x_clt"], rows)
     a = np.array(rows)
