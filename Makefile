@@ -141,8 +141,10 @@ bench: deps-bench all
 	$(BUILD)/bin/icshadow bench minmax --scene noise
 	@echo "== icshadow bench minmax --svd-table (error of the N-term SVD integrand)"
 	$(BUILD)/bin/icshadow bench minmax --svd-table
-	@b=cpu; for d in cl gl; do \
-	    if $(BUILD)/bin/icshadow render --backends | grep "^$$d " | grep -qv 'not available'; then b=$$b,$$d; fi; done; \
+	@# cl when built and available; gl only where auto takes it (a GPU): on llvmpipe it would add
+	@# a quarter of an hour at 50-120 ns/px/slab (docs/backend_gl.md; `--backend cpu,gl` by hand)
+	@b=cpu; if $(BUILD)/bin/icshadow render --backends | grep '^cl ' | grep -qv 'not available'; then b=cpu,cl; fi; \
+	  if $(BUILD)/bin/icshadow render --resolution 8x8 -o $(BUILD)/bench_probe.exr 2>/dev/null | grep -q '"backend": "gl"'; then b=$$b,gl; fi; \
 	  echo "== icshadow bench slab --backend $$b (the slab step per kernel member, backends side by side)"; \
 	  $(BUILD)/bin/icshadow bench slab --backend $$b
 
