@@ -19,17 +19,17 @@ endif()
 if(ICS_HAVE_GL AND ICS_HAVE_GLSLANG)
   set(ics_glsl_variants "PROP_STENCIL" "PROP_STENCIL,ICS_CLAMPED" "PROP_TABLE"
     "PROP_TABLE,ICS_CLAMPED" "PROP_CLASSES" "PROP_STENCIL,ICS_TAPS_STORAGE"
-    "PROP_TABLE,ICS_TAPS_STORAGE" "PROP_CLASSES,ICS_TAPS_STORAGE" "ENTRIES_PIXEL" "ENTRIES_RUN" "SHADE_SELECT"
+    "PROP_STENCIL,ICS_CLAMPED,ICS_TAPS_STORAGE" "PROP_TABLE,ICS_TAPS_STORAGE"
+    "PROP_TABLE,ICS_CLAMPED,ICS_TAPS_STORAGE" "PROP_CLASSES,ICS_TAPS_STORAGE" "ENTRIES_PIXEL" "ENTRIES_RUN" "SHADE_SELECT"
     "SHADE_COUNT" "SHADE" "SHADE,ICS_SURFACES_ONLY" "APRON_SIDES" "APRON_ENDS")
   foreach(v ${ics_glsl_variants})
     string(REPLACE "," ";" parts ${v})
     list(GET parts 0 k)
     set(defs -DICS_K_${k})
-    list(LENGTH parts np)
-    if(np GREATER 1)
-      list(GET parts 1 extra)
+    list(SUBLIST parts 1 -1 extras)
+    foreach(extra ${extras})
       list(APPEND defs -D${extra})
-    endif()
+    endforeach()
     string(REPLACE "," "_" tname ${v})
     add_test(NAME glsl_slab_${tname} COMMAND ${GLSLANG_VALIDATOR} -l -S comp ${defs}
       ${CMAKE_SOURCE_DIR}/gpu/gl/slab.comp)
