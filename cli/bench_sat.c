@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench_stats.h"
 #include "commands.h"
 #include "icshadow.h"
 #ifdef ICS_HAVE_RENDER
@@ -40,7 +41,9 @@ static void help(FILE *f, int dims) {
           "                anywhere in the table, exact sums in double) and the whole table\n"
           "                (when it has at most 2^26 cells)\n"
           "  max_bound_frac  max error / documented bound (icshadow/sat.h), <= 1 expected;\n"
-          "                P = sum of |a - m| over the prefix box, computed exactly (double)\n\n"
+          "                P = sum of |a - m| over the prefix box, computed exactly (double)\n"
+          "  time_median_s, time_max_s  median and max of the R rebuilds (a spread over 30 %%\n"
+          "                prints a busy-machine warning)\n\n"
           "  --size N      %s (default %d)\n"
           "  --modes LIST  comma-separated: float,float-offset,compensated,double (default all)\n"
           "  --reps R      repetitions, 1..100 (default %d)\n"
@@ -443,12 +446,13 @@ static void measure_error(const table_ref *t, const float *data, double *pre, do
  * (device time of the passes) interleaved with the memcpy floor, its error, one CSV row. */
 static int cl_row(const config *c, ics_cl *cl, ics_sat_precision m, float off, const float *data,
                   void *table, float *lo, const char *src, char *dst, size_t copy, size_t bytes,
-                  double *pre) {
+                  double *pre, int *busy) {
   char msg[1024];
   double ms, t0 = cli_now_s();
   ics_status st = ics_cl_sat_build(cl, data, c->n[0], c->n[1], c->n[2], m, off, table, lo, &ms,
                                    msg, sizeof msg);
-  double first = cli_now_s() - t0, best = INFINITY, best_copy = INFINITY;
+  double first = cli_now_s() - t0, best_copy = INFINITY, tb[100];
+  int nb = 0;
   for (int r = 0; r < c->reps && st == ICS_OK; r++) {
     t0 = cli_now_s();
     memcpy(dst, src, copy);
@@ -456,16 +460,20 @@ static int cl_row(const config *c, ics_cl *cl, ics_sat_precision m, float off, c
     if (tc < best_copy) best_copy = tc;
     st = ics_cl_sat_build(cl, data, c->n[0], c->n[1], c->n[2], m, off, table, lo, &ms, msg,
                           sizeof msg);
-    if (1e-3 * ms < best) best = 1e-3 * ms;
+    if (st == ICS_OK) tb[nb++] = 1e-3 * ms;
   }
   if (st != ICS_OK)
     return cli_status_error(sat_cmd(c->dims), st, "--backend cl, %s: %s", ics_sat_precision_name(m), msg);
+  cli_spread sp = cli_spread_of(tb, nb);
+  double best = sp.min;
+  if (cli_spread_busy(sp)) *busy = 1;
   double max_rel, max_frac;
   table_ref tr = {c, NULL, table, lo, m, m == ICS_SAT_FLOAT_OFFSET ? (double)off : 0.0};
   measure_error(&tr, data, pre, &max_rel, &max_frac);
-  printf("sat%dd-cl,%s,%zu,%zu,%zu,%d,%.17g,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n", c->dims,
-         ics_sat_precision_name(m), c->n[0], c->n[1], c->n[2], c->reps, best, first, bytes,
-         best_copy, best_copy / best, (double)bytes / best * 1e-9, max_rel, max_frac, c->boxes);
+  printf("sat%dd-cl,%s,%zu,%zu,%zu,%d,%.17g,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%.17g,%.17g\n",
+         c->dims, ics_sat_precision_name(m), c->n[0], c->n[1], c->n[2], c->reps, best, first, bytes,
+         best_copy, best_copy / best, (double)bytes / best * 1e-9, max_rel, max_frac, c->boxes,
+         sp.median, sp.max);
   return 0;
 }
 #endif
@@ -510,8 +518,8 @@ static int run_bench(const config *c) {
   }
 #endif
   printf("kind,mode,width,height,depth,reps,time_s,first_build_s,bytes,memcpy_s,floor_ratio,"
-         "gbytes_per_s,max_rel_err,max_bound_frac,boxes\n");
-  int header_ok = stdout_ok(c->dims), rc = header_ok ? 0 : 1;
+         "gbytes_per_s,max_rel_err,max_bound_frac,boxes,time_median_s,time_max_s\n");
+  int header_ok = stdout_ok(c->dims), rc = header_ok ? 0 : 1, busy = 0;
   for (int mi = 0; mi < c->nmodes && header_ok; mi++) {
     ics_sat_precision m = (ics_sat_precision)c->modes[mi];
     void *sat = NULL;
@@ -525,7 +533,8 @@ static int run_bench(const config *c) {
     }
     size_t bytes = cells * 4 + cells * ics_sat_cell_bytes(m);
     size_t copy = bytes / 2;
-    double best = INFINITY, best_copy = INFINITY;
+    double best_copy = INFINITY, tb[100];
+    int nb = 0;
     for (int r = 0; r < (c->cpu ? c->reps : 0); r++) {
       t0 = cli_now_s();
       memcpy(dst, src, copy);
@@ -533,9 +542,8 @@ static int run_bench(const config *c) {
       if (tc < best_copy) best_copy = tc;
       t0 = cli_now_s();
       st = rebuild_any(c, data, sat);
-      double tb = cli_now_s() - t0;
       if (st != ICS_OK) break;
-      if (tb < best) best = tb;
+      tb[nb++] = cli_now_s() - t0;
     }
     if (st != ICS_OK) {
       cli_failure(sat_cmd(c->dims), "rebuild: %s", ics_status_str(st));
@@ -548,13 +556,16 @@ static int run_bench(const config *c) {
     if (c->cpu) {
       table_ref tr = {c, sat, NULL, NULL, m, off};
       measure_error(&tr, data, pre, &max_rel, &max_frac);
-      printf("sat%dd,%s,%zu,%zu,%zu,%d,%.17g,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n",
+      cli_spread sp = cli_spread_of(tb, nb);
+      double best = sp.min;
+      if (cli_spread_busy(sp)) busy = 1;
+      printf("sat%dd,%s,%zu,%zu,%zu,%d,%.17g,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%.17g,%.17g\n",
              c->dims, ics_sat_precision_name(m), c->n[0], c->n[1], c->n[2], c->reps, best, first,
              bytes, best_copy, best_copy / best, (double)bytes / best * 1e-9, max_rel, max_frac,
-             c->boxes);
+             c->boxes, sp.median, sp.max);
     }
 #ifdef ICS_HAVE_RENDER
-    if (c->cl && cl_row(c, cl, m, (float)off, data, cltab, cllo, src, dst, copy, bytes, pre)) {
+    if (c->cl && cl_row(c, cl, m, (float)off, data, cltab, cllo, src, dst, copy, bytes, pre, &busy)) {
       free_any(c, sat);
       rc = 1;
       break;
@@ -571,6 +582,7 @@ static int run_bench(const config *c) {
   free(cltab), free(cllo);
 #endif
   free(data), free(src), free(dst), free(pre);
+  if (busy) cli_warn_busy(sat_cmd(c->dims), "time_s vs time_max_s");
   return rc;
 }
 

@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench_stats.h"
 #include "commands.h"
 
 static const char CMD[] = "bench slab";
@@ -99,10 +100,6 @@ static double now_floor_ns(size_t npx, int slabs, float *a, float *b) {
   return 1e9 * (cli_now_s() - t0) / ((double)npx * slabs);
 }
 
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
 #endif
 
 int bench_slab(int argc, char **argv) {
@@ -256,12 +253,11 @@ int bench_slab(int argc, char **argv) {
           free(fa), free(fb);
           return cli_status_error(CMD, st, "%s: %s", m->label, msg);
         }
-        qsort(t, (size_t)reps, sizeof *t, cmp_double);
-        qsort(fl, (size_t)reps, sizeof *fl, cmp_double);
-        double med = t[reps / 2], fmed = fl[reps / 2];
-        if (reps > 1 && t[reps - 1] > 1.3 * t[0]) busy = 1;
+        cli_spread sp = cli_spread_of(t, reps), fsp = cli_spread_of(fl, reps);
+        double med = sp.median, fmed = fsp.median;
+        if (reps > 1 && cli_spread_busy(sp)) busy = 1;
         printf("%s,%s,%d,%s,%d,%d,%d,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.3g,%d\n", backend, m->label,
-               m->samples, mode, bw, bh, K, cpu_threads ? threads[ti] : 0, med, t[0], t[reps - 1], fmed,
+               m->samples, mode, bw, bh, K, cpu_threads ? threads[ti] : 0, med, sp.min, sp.max, fmed,
                fmed / med, err, reps);
         if (cli_stdout_failed(CMD)) { /* stop at the first row that fails, with its cause */
           free(fa), free(fb);
@@ -272,9 +268,7 @@ int bench_slab(int argc, char **argv) {
     free(fa), free(fb);
   }
   cli_progress_done(&prog);
-  if (busy)
-    cli_warning(CMD, "some repetitions differ by more than 30%% (ns_min vs ns_max): the machine "
-                "was busy; rerun, or compare ratios measured in one run");
+  if (busy) cli_warn_busy(CMD, "ns_min vs ns_max");
   return cli_stdout_failed(CMD);
 #endif
 }

@@ -11,6 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "bench_stats.h"
 #include "commands.h"
 #include "icshadow.h"
 
@@ -119,15 +120,10 @@ enum { NSAMPLES = 4096 };
 static volatile double sink;
 
 /* ns per call of f over the sample, repeated until at least ~20 ms have passed. */
-/* ns per call of f over the samples: a warm-up pass, then TIME_REPS repetitions of >= 4 ms;
- * the median, with min and max (t[0], t[2]) */
+/* ns per call of f over the samples: a warm-up pass, then TIME_REPS repetitions of >= 4 ms */
 #define TIME_REPS 7
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-static void time_fn(double (*f)(const ics_lut_tables *, double), const ics_lut_tables *L,
-                    const double *x, double t[3]) {
+static cli_spread time_fn(double (*f)(const ics_lut_tables *, double), const ics_lut_tables *L,
+                          const double *x) {
   double ns[TIME_REPS], acc = 0;
   for (int i = 0; i < NSAMPLES; i++) acc += f(L, x[i]); /* warm-up: caches, branch history */
   for (int rep = 0; rep < TIME_REPS; rep++) {
@@ -141,12 +137,8 @@ static void time_fn(double (*f)(const ics_lut_tables *, double), const ics_lut_t
     ns[rep] = 1e9 * (t1 - t0) / calls;
   }
   sink = acc;
-  qsort(ns, TIME_REPS, sizeof *ns, cmp_double);
-  t[0] = ns[0], t[1] = ns[TIME_REPS / 2], t[2] = ns[TIME_REPS - 1];
+  return cli_spread_of(ns, TIME_REPS);
 }
-
-/* the busy-machine rule of the benchmarks: a spread over 30 % */
-static int spread_busy(const double t[3]) { return t[2] > 1.3 * t[0]; }
 
 static double exact_ratio(const ics_lut_tables *L, double x) {
   (void)L;
@@ -212,18 +204,17 @@ static int report(const int *sizes, int nsizes, int progress) {
       status = 1;
       break;
     }
-    double tr[3], tv[3];
-    time_fn(ics_lut_tables_ratio_to_t, &T.view, xr, tr);
-    time_fn(ics_lut_tables_vx, &T.view, xt, tv);
-    busy |= spread_busy(tr) || spread_busy(tv);
+    cli_spread tr = time_fn(ics_lut_tables_ratio_to_t, &T.view, xr);
+    cli_spread tv = time_fn(ics_lut_tables_vx, &T.view, xt);
+    busy |= cli_spread_busy(tr) || cli_spread_busy(tv);
     printf("lut,%d,%.3e,%.3e,%.3e,%.3e,%.3e,%.3e,", n, ed.ratio, ed.vx, ed.radii, ef.ratio,
            ef.vx, ef.radii);
     if (prev_n)
       printf("%.3f,%.3f,", order(prev_r, ed.ratio, prev_n, n), order(prev_v, ed.vx, prev_n, n));
     else
       printf(",,");
-    printf("%.3g,%.3g,%ld,%.3g,%.3g,%.3g,%.3g\n", tr[1], tv[1], ed.points, tr[0], tr[2], tv[0],
-           tv[2]);
+    printf("%.3g,%.3g,%ld,%.3g,%.3g,%.3g,%.3g\n", tr.median, tv.median, ed.points, tr.min, tr.max,
+           tv.min, tv.max);
     fflush(stdout);
     prev_r = ed.ratio;
     prev_v = ed.vx;
@@ -231,16 +222,12 @@ static int report(const int *sizes, int nsizes, int progress) {
     tables_free(&T);
   }
   if (!status) {
-    double tr[3], tv[3];
-    time_fn(exact_ratio, NULL, xr, tr);
-    time_fn(exact_vx, NULL, xt, tv);
-    busy |= spread_busy(tr) || spread_busy(tv);
-    printf("exact,,,,,,,,,,%.3g,%.3g,,%.3g,%.3g,%.3g,%.3g\n", tr[1], tv[1], tr[0], tr[2], tv[0],
-           tv[2]);
+    cli_spread tr = time_fn(exact_ratio, NULL, xr), tv = time_fn(exact_vx, NULL, xt);
+    busy |= cli_spread_busy(tr) || cli_spread_busy(tv);
+    printf("exact,,,,,,,,,,%.3g,%.3g,,%.3g,%.3g,%.3g,%.3g\n", tr.median, tv.median, tr.min, tr.max,
+           tv.min, tv.max);
   }
-  if (busy)
-    cli_warning(CMD, "some timings' repetitions differ by more than 30%% (ns_min vs ns_max): the "
-                "machine was busy; rerun, or compare ratios measured in one run");
+  if (busy) cli_warn_busy(CMD, "*_ns_min vs *_ns_max");
   return cli_stdout_failed(CMD) ? 1 : status;
 }
 
