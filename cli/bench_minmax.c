@@ -20,6 +20,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "bench_stats.h"
 #include "commands.h"
 #include "icshadow.h"
 #ifdef ICS_HAVE_RENDER
@@ -40,6 +41,7 @@ static cli_progress g_prog; /* set up once the options are parsed */
 static int g_progress;    /* --progress given */
 static int g_cpu = 1;     /* --backend: the CPU rows, */
 static void *g_cl;        /* and the OpenCL context of the cl rows (ics_cl *, NULL: none) */
+static int g_busy;        /* a size's traversal or march times spread over 30 % */
 
 static void help(FILE *f) {
   fprintf(f,
@@ -284,7 +286,8 @@ static int bench_one(const setup *S, int reps) {
     free(pre);
     return cli_failure(CMD, "out of memory");
   }
-  double tb = INFINITY, tp = INFINITY, tt = INFINITY, tm = INFINITY;
+  double tb = INFINITY, tp = INFINITY, tt = INFINITY, tm = INFINITY, tts[100], tms[100];
+  int nrep = 0;
   ics_status st = ICS_OK;
   double runs = 0, visited = 0, lit = 0, marched = 0; /* totals over the rays, for the bytes */
   size_t P = 1;
@@ -330,7 +333,11 @@ static int bench_one(const setup *S, int reps) {
     tp = fmin(tp, t2 - t1);
     tt = fmin(tt, t3 - t2);
     tm = fmin(tm, t4 - t3);
+    if (nrep < 100) tts[nrep] = t3 - t2, tms[nrep] = t4 - t3, nrep++;
   }
+  /* the times are minima; their spread says whether the machine was busy */
+  if (nrep > 1 && (cli_spread_busy(cli_spread_of(tts, nrep)) || cli_spread_busy(cli_spread_of(tms, nrep))))
+    g_busy = 1;
   free(cls);
   free(seg);
   if (st != ICS_OK) {
@@ -649,5 +656,6 @@ int bench_minmax(int argc, char **argv) {
   g_cl = NULL;
 #endif
   cli_progress_done(&g_prog);
+  if (g_busy) cli_warn_busy(CMD, "traverse_s, march_s; the columns are minima");
   return rc;
 }
