@@ -23,22 +23,11 @@ import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
+from fig11_setup import HIGH_VAR, LOW_VAR, scene  # noqa: E402
 from figutil import parse_args, run_cli, save_fig, write_csv  # noqa: E402
 
-VARIANCES = (("low", 0.004), ("high", 0.06))
+VARIANCES = (("low", LOW_VAR), ("high", HIGH_VAR))
 MEMBERS = (("ellipse", 2), ("ellipse", 3), ("poisson", 8), ("gauss", 19), ("tophat", 5))
-
-
-def scene(var):
-    return {
-        "camera": {"projection": "orthographic", "eye": [0, 0, 2], "target": [0, 0, 0], "up": [0, 1, 0],
-                   "height": 3.0, "resolution": [128, 128]},
-        "render": {"slab_spacing": 0.01, "d1": 1.0, "seed": 11},
-        "lights": [{"mean": [0.3, -0.1], "cov": [[var, 0], [0, var]]}],
-        "materials": {"black": {"color": [0, 0, 0]}, "white": {}},
-        "objects": [{"shape": "disk", "center": [0, 0, 0], "normal": [0, 0, 1], "radius": 0.5, "material": "black"},
-                    {"shape": "rect", "center": [0, 0, -1], "normal": [0, 0, 1], "size": [3, 3], "material": "white"}],
-    }
 
 
 def main():

@@ -50,16 +50,9 @@ fi
 # 3. Fig. 11 at 768^2 per kernel, gl and cpu side by side
 python3 - "$tmp/fig11.json" <<'EOF'
 import json, sys
-var = 0.06  # patel_fig11.py's high variance
-json.dump({
-    "camera": {"projection": "orthographic", "eye": [0, 0, 2], "target": [0, 0, 0], "up": [0, 1, 0],
-               "height": 3.0, "resolution": [768, 768]},
-    "render": {"slab_spacing": 0.01, "d1": 1.0, "seed": 11},
-    "lights": [{"mean": [0.3, -0.1], "cov": [[var, 0], [0, var]]}],
-    "materials": {"black": {"color": [0, 0, 0]}, "white": {}},
-    "objects": [{"shape": "disk", "center": [0, 0, 0], "normal": [0, 0, 1], "radius": 0.5, "material": "black"},
-                {"shape": "rect", "center": [0, 0, -1], "normal": [0, 0, 1], "size": [3, 3], "material": "white"}],
-}, open(sys.argv[1], "w"))
+sys.path.insert(0, "paper_figs/lib")
+from fig11_setup import HIGH_VAR, scene  # the setup of paper_figs/patel_fig11.py
+json.dump(scene(HIGH_VAR, 768), open(sys.argv[1], "w"))
 EOF
 echo "kernel,backend,ms_median,ms_min,ms_max,fps,patel_gtx480_fps,max_diff_to_cpu"
 for m in ellipse:2:22.58 ellipse:3:20.34 poisson:8:11.83 poisson:16:6.71 gauss:19:0.48; do

@@ -21,11 +21,10 @@ typedef struct render_result {
 
 /* Renders scene s on `backend` with `threads` threads (0: all) and the settings rs (NULL: the
  * scene's), with the AOVs `aovs` (ICS_AOV_* bits; 0: none). */
-static inline render_result render_scene_on(const char *backend, const ics_scene *s,
-                                            const ics_render_settings *rs, int threads,
-                                            unsigned aovs) {
-  render_result r;
-  memset(&r, 0, sizeof r);
+/* The plan of scene s (rs, threads as ics_plan_opts take them); exits 2 with the message when
+ * it cannot be made. */
+static inline ics_plan *plan_or_exit(const ics_scene *s, const ics_render_settings *rs,
+                                     int threads) {
   char msg[4096];
   ics_plan_opts po;
   memset(&po, 0, sizeof po);
@@ -36,6 +35,16 @@ static inline render_result render_scene_on(const char *backend, const ics_scene
     fprintf(stderr, "render_util: plan: %s\n", msg);
     exit(2);
   }
+  return p;
+}
+
+static inline render_result render_scene_on(const char *backend, const ics_scene *s,
+                                            const ics_render_settings *rs, int threads,
+                                            unsigned aovs) {
+  render_result r;
+  memset(&r, 0, sizeof r);
+  char msg[4096];
+  ics_plan *p = plan_or_exit(s, rs, threads);
   ics_render_opts ro;
   memset(&ro, 0, sizeof ro);
   ro.backend = backend;

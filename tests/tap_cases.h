@@ -5,9 +5,15 @@
 #ifndef ICS_TEST_TAP_CASES_H
 #define ICS_TEST_TAP_CASES_H
 
+#include <float.h>
 #include <math.h>
 
 #include "icshadow.h"
+
+/* what float adds to a header's tap beyond its radii' error: the arc by Carlson's R_F and R_D in
+ * float and its Newton inversion to 2^-22, the quadrant fold, sin / cos (OpenCL: 4 ulp) and the
+ * rotation; 64 float epsilons of the radius (test_lut_opencl.c, test_lut_glsl.c) */
+#define TAP_FLOAT_ARC (64 * FLT_EPSILON)
 
 typedef struct tap_case {
   double varx, vary, angle, u;

@@ -19,25 +19,8 @@
 #include "tap_cases.h"
 #include "testutil.h"
 
-#define TAP_FLOAT_ARC (64 * FLT_EPSILON) /* as test_lut_opencl.c */
 #define GLSL_ULPS (11 * FLT_EPSILON)
 #define NRAD 241
-
-static char *read_text(const char *path) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return NULL;
-  fseek(f, 0, SEEK_END);
-  long n = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *s = malloc((size_t)n + 1);
-  if (s && fread(s, 1, (size_t)n, f) != (size_t)n) {
-    free(s);
-    s = NULL;
-  }
-  if (s) s[n] = 0;
-  fclose(f);
-  return s;
-}
 
 static const char *epilogue =
     "\nlayout(local_size_x = 64) in;\n"
@@ -53,7 +36,7 @@ static const char *epilogue =
 
 static void run_one(ics_gl *g, const char *path) {
   ics_gl_fns *G = &g->gl;
-  char *hdr = read_text(path);
+  char *hdr = test_read_text(path);
   CHECK(hdr != NULL, "cannot read %s", path);
   if (!hdr) return;
   double e_radii = NAN;

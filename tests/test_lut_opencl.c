@@ -23,28 +23,9 @@
 #include "tap_cases.h"
 #include "testutil.h"
 
-/* what float adds to a tap beyond the radii: the arc by Carlson's R_F and R_D in float and its
- * Newton inversion to 2^-22, the quadrant fold, sin / cos (OpenCL: 4 ulp) and the rotation; 64
- * float epsilons of the radius */
-#define TAP_FLOAT_ARC (64 * FLT_EPSILON)
 
 #define NPTS 4096
 
-static char *read_text(const char *path) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return NULL;
-  fseek(f, 0, SEEK_END);
-  long n = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *s = malloc((size_t)n + 1);
-  if (s && fread(s, 1, (size_t)n, f) != (size_t)n) {
-    free(s);
-    s = NULL;
-  }
-  if (s) s[n] = 0;
-  fclose(f);
-  return s;
-}
 
 /* "ratio_to_ab (a = 1 - t and b = t): 2.41e-06" etc. in the stamp */
 static int stamped(const char *src, const char *key, double *v) {
@@ -95,7 +76,7 @@ static double ulps(float x, float ref) {
 
 static int run_one(cl_context ctx, cl_device_id dev, cl_command_queue q, int exact_rounding,
                    const char *path) {
-  char *hdr = read_text(path);
+  char *hdr = test_read_text(path);
   CHECK(hdr != NULL, "cannot read %s", path);
   if (!hdr) return -1;
   int n = stamped_size(hdr);

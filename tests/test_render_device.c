@@ -115,13 +115,8 @@ static const char *const variants[][3] = {
 
 static void compare(const char *what, const char *mode, const ics_scene *s) {
   if (mode) { /* the path this variant is for */
-    char msg[1024], got[64] = "";
-    ics_plan_opts po = {0};
-    ics_plan *p;
-    if (ics_plan_create(&p, s, &po, msg, sizeof msg) != ICS_OK) {
-      fprintf(stderr, "plan: %s\n", msg);
-      exit(2);
-    }
+    char got[64] = "";
+    ics_plan *p = plan_or_exit(s, NULL, 0);
     for (int i = 0; i < ics_plan_pass_count(p); i++) {
       const ics_plan_pass *q = ics_plan_pass_at(p, i);
       if (q->light == 0) sscanf(q->detail, "%*s %*s %63[a-z]", got);
@@ -165,12 +160,7 @@ static void compare(const char *what, const char *mode, const ics_scene *s) {
 static void refused(const char *what, const char *json, ics_status want, const char *needle) {
   ics_scene *s = scene_from_json(json);
   char msg[2048] = "";
-  ics_plan_opts po = {0};
-  ics_plan *p;
-  if (ics_plan_create(&p, s, &po, msg, sizeof msg) != ICS_OK) {
-    fprintf(stderr, "plan: %s\n", msg);
-    exit(2);
-  }
+  ics_plan *p = plan_or_exit(s, NULL, 0);
   ics_render_opts ro = {.backend = backend};
   ics_renderer *r = NULL;
   ics_image *img = NULL;
@@ -206,12 +196,7 @@ static void *render_job(void *arg) {
 static void lifecycle(const char *json) {
   ics_scene *s = scene_from_json(json);
   char msg[1024] = "";
-  ics_plan_opts po = {0};
-  ics_plan *p;
-  if (ics_plan_create(&p, s, &po, msg, sizeof msg) != ICS_OK) {
-    fprintf(stderr, "plan: %s\n", msg);
-    exit(2);
-  }
+  ics_plan *p = plan_or_exit(s, NULL, 0);
   ics_render_opts ro = {.backend = backend};
   ics_renderer *a = NULL, *b = NULL;
   CHECK(ics_renderer_create(&a, &ro, msg, sizeof msg) == ICS_OK, "renderer a: %s", msg);

@@ -42,13 +42,7 @@ static const char *disk_json =
 static render_result mc_render(const char *json, int spp, int threads, unsigned aovs) {
   ics_scene *s = scene_from_json(json);
   char msg[4096];
-  ics_plan *p;
-  ics_plan_opts po = {0};
-  po.threads = threads;
-  if (ics_plan_create(&p, s, &po, msg, sizeof msg) != ICS_OK) {
-    fprintf(stderr, "plan: %s\n", msg);
-    exit(2);
-  }
+  ics_plan *p = plan_or_exit(s, NULL, threads);
   ics_render_opts ro = {.backend = "mc", .threads = threads, .spp = spp};
   ics_renderer *rr;
   render_result r = {0};

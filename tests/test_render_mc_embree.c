@@ -190,13 +190,7 @@ static void test_far(const char *dir, const char *file) {
 
 static ics_image *render_mc(const ics_scene *s, const char *mc_mesh, char *device, size_t dsize) {
   char msg[4096];
-  ics_plan_opts po;
-  memset(&po, 0, sizeof po);
-  ics_plan *p;
-  if (ics_plan_create(&p, s, &po, msg, sizeof msg) != ICS_OK) {
-    fprintf(stderr, "plan: %s\n", msg);
-    exit(2);
-  }
+  ics_plan *p = plan_or_exit(s, NULL, 0);
   ics_render_opts ro;
   memset(&ro, 0, sizeof ro);
   ro.backend = "mc", ro.spp = 24, ro.mc_mesh = mc_mesh;

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 static int test_passes_, test_failures_;
 
@@ -48,6 +49,23 @@ static inline double test_rng_unit(void) { return (double)(test_rng_u64() >> 11)
 static inline int test_summary(const char *name) {
   printf("%s: %d passed, %d failed\n", name, test_passes_, test_failures_);
   return test_failures_ ? 1 : 0;
+}
+
+/* the whole file as a NUL-terminated string (malloc'd), or NULL */
+static inline char *test_read_text(const char *path) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return NULL;
+  fseek(f, 0, SEEK_END);
+  long n = ftell(f);
+  fseek(f, 0, SEEK_SET);
+  char *s = n >= 0 ? malloc((size_t)n + 1) : NULL;
+  if (s && fread(s, 1, (size_t)n, f) != (size_t)n) {
+    free(s);
+    s = NULL;
+  }
+  if (s) s[n] = 0;
+  fclose(f);
+  return s;
 }
 
 #endif

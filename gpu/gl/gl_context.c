@@ -86,6 +86,26 @@ static const char *egl_err(EGLint e) {
 
 static ics_gl_proc egl_gpa(const char *name) { return (ics_gl_proc)eglGetProcAddress(name); }
 
+/* The EGL devices that are not Mesa's software one (a GPU driver's), at most cap, into dev;
+ * *listed: every device EGL lists (-1 when it cannot list them: no EGL_EXT_device_enumeration). */
+static int egl_hardware_devices(EGLDeviceEXT *dev, int cap, int *listed) {
+  PFNEGLQUERYDEVICESEXTPROC query_devices =
+      (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
+  PFNEGLQUERYDEVICESTRINGEXTPROC device_string =
+      (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
+  EGLDeviceEXT all[16];
+  EGLint n = 0;
+  *listed = -1;
+  if (!query_devices || !device_string || !query_devices(16, all, &n)) return 0;
+  *listed = (int)n;
+  int k = 0;
+  for (EGLint i = 0; i < n && k < cap; i++) {
+    const char *ext = device_string(all[i], EGL_EXTENSIONS);
+    if (!ext || !strstr(ext, "EGL_MESA_device_software")) dev[k++] = all[i];
+  }
+  return k;
+}
+
 /* a 4.5 core context on display dpy (initialised here); 0 with why */
 static int egl_context(ics_gl *g, EGLDisplay dpy, char *why, size_t why_size) {
   EGLint major, minor;
@@ -147,27 +167,20 @@ static void egl_close(ics_gl *g) {
 static int egl_open(ics_gl *g, char *why, size_t why_size) {
   PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
       (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
-  PFNEGLQUERYDEVICESEXTPROC query_devices =
-      (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
-  PFNEGLQUERYDEVICESTRINGEXTPROC device_string =
-      (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
   if (!get_display) {
     snprintf(why, why_size, "egl: no eglGetPlatformDisplayEXT (EGL_EXT_platform_base)");
     return 0;
   }
   char dev_why[512] = "";
   EGLDeviceEXT devs[16];
-  EGLint ndev = 0;
-  if (query_devices && device_string && query_devices(16, devs, &ndev))
-    for (EGLint i = 0; i < ndev; i++) {
-      const char *ext = device_string(devs[i], EGL_EXTENSIONS);
-      if (ext && strstr(ext, "EGL_MESA_device_software")) continue; /* llvmpipe: surfaceless */
-      snprintf(g->context, sizeof g->context, "egl-device %d", (int)i);
-      if (egl_context(g, get_display(EGL_PLATFORM_DEVICE_EXT, devs[i], NULL), dev_why,
-                      sizeof dev_why))
-        return 1;
-      egl_close(g);
-    }
+  int listed, ndev = egl_hardware_devices(devs, 16, &listed); /* llvmpipe's: surfaceless below */
+  for (int i = 0; i < ndev; i++) {
+    snprintf(g->context, sizeof g->context, "egl-device %d", i);
+    if (egl_context(g, get_display(EGL_PLATFORM_DEVICE_EXT, devs[i], NULL), dev_why,
+                    sizeof dev_why))
+      return 1;
+    egl_close(g);
+  }
   snprintf(g->context, sizeof g->context, "egl-surfaceless");
   if (egl_context(g, get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL), why,
                   why_size))
@@ -215,22 +228,14 @@ static void osmesa_close(ics_gl *g) {
 
 int ics_gl_hardware_device(char *why, size_t why_size) {
 #ifdef ICS_HAVE_EGL
-  PFNEGLQUERYDEVICESEXTPROC query_devices =
-      (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
-  PFNEGLQUERYDEVICESTRINGEXTPROC device_string =
-      (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
-  EGLDeviceEXT devs[16];
-  EGLint ndev = 0;
-  if (!query_devices || !device_string || !query_devices(16, devs, &ndev)) {
-    if (why) snprintf(why, why_size, "EGL lists no devices (no EGL_EXT_device_enumeration)");
-    return 0;
+  EGLDeviceEXT dev;
+  int listed;
+  if (egl_hardware_devices(&dev, 1, &listed)) return 1;
+  if (why) {
+    if (listed < 0) snprintf(why, why_size, "EGL lists no devices (no EGL_EXT_device_enumeration)");
+    else snprintf(why, why_size, "no GPU (EGL lists %d device%s, Mesa's software rasterizer "
+                  "only; --backend gl renders there)", listed, listed == 1 ? "" : "s");
   }
-  for (EGLint i = 0; i < ndev; i++) {
-    const char *ext = device_string(devs[i], EGL_EXTENSIONS);
-    if (!ext || !strstr(ext, "EGL_MESA_device_software")) return 1;
-  }
-  if (why) snprintf(why, why_size, "no GPU (EGL lists %d device%s, Mesa's software rasterizer "
-                    "only; --backend gl renders there)", (int)ndev, ndev == 1 ? "" : "s");
   return 0;
 #else
   if (why) snprintf(why, why_size, "built without EGL, so no GPU is looked for (--backend gl "
