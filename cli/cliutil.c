@@ -124,6 +124,15 @@ int cli_parse_gl_context(const char *cmd, const char *opt, const char *value, vo
   return 0;
 }
 
+int cli_parse_gl_ldi(const char *cmd, const char *opt, const char *value, void *dest) {
+  (void)dest;
+  if (strcmp(value, "plan") && strcmp(value, "device"))
+    return cli_error(cmd, "%s: expected plan or device, got '%s'", opt, value);
+  if (setenv("ICS_GL_LDI", value, 1))
+    return cli_error(cmd, "%s: cannot set ICS_GL_LDI: %s", opt, strerror(errno));
+  return 0;
+}
+
 double cli_now_s(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);

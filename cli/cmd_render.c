@@ -38,6 +38,7 @@ static void help(FILE *f) {
           "  --backends          list the backends built into this binary and exit\n"
           CLI_CL_DEVICE_HELP
           CLI_GL_CONTEXT_HELP
+          CLI_GL_LDI_HELP
           "  --spp N             mc: samples per pixel (1..16777216; default 64 when no other stop)\n"
           "  --time S            mc: stop after S seconds\n"
           "  --noise E           mc: stop once the RMS standard error of R, G, B is at most E\n"
@@ -158,7 +159,7 @@ int cmd_render(int argc, char **argv) {
   int force_progress = 0, backends = 0, spp = 0, ref_spp = 0, given_ref = 0;
   double time_s = 0, noise = 0;
   int given_spp = 0, given_time = 0, given_noise = 0, given_cl_device = 0,
-      given_gl_context = 0;
+      given_gl_context = 0, given_gl_ldi = 0;
   const cli_option mine[] = {
       {"-o", .kind = CLI_FILE, .dest = &exr},
       {"--png", .kind = CLI_FILE, .dest = &png},
@@ -167,6 +168,7 @@ int cmd_render(int argc, char **argv) {
       {"--backends", .kind = CLI_FLAG, .dest = &backends},
       {"--cl-device", .kind = CLI_CALL, .parse = cli_parse_cl_device, .given = &given_cl_device},
       {"--gl-context", .kind = CLI_CALL, .parse = cli_parse_gl_context, .given = &given_gl_context},
+      {"--gl-ldi", .kind = CLI_CALL, .parse = cli_parse_gl_ldi, .given = &given_gl_ldi},
       {"--progress", .kind = CLI_FLAG, .dest = &force_progress},
       {"--spp", .kind = CLI_INT, .dest = &spp, .lo = 1, .hi = 1 << 24, .given = &given_spp},
       {"--time", .kind = CLI_FINITE, .dest = &time_s, .given = &given_time},
@@ -195,6 +197,9 @@ int cmd_render(int argc, char **argv) {
                 backend ? backend : "auto");
   if (given_gl_context && !(backend && !strcmp(backend, "gl")))
     cli_warning(CMD, "--gl-context only chooses the context of --backend gl (the backend is %s)",
+                backend ? backend : "auto");
+  if (given_gl_ldi && !(backend && !strcmp(backend, "gl")))
+    cli_warning(CMD, "--gl-ldi only applies to --backend gl (the backend is %s)",
                 backend ? backend : "auto");
   if ((given_spp || given_time || given_noise) && !mc)
     return cli_error(CMD, "%s: only the Monte-Carlo reference takes a stop (give --backend mc)",
@@ -297,6 +302,8 @@ int cmd_render(int argc, char **argv) {
       fprintf(sf, ", \"ms_convolution\": %.17g, \"ms_shading\": %.17g, \"ms_detail\": %.17g,"
               " \"ns_per_px_slab\": %.17g, \"memory_bytes\": %zu", stats.ms_convolution,
               stats.ms_shading, stats.ms_detail, stats.ns_per_px_slab, ics_plan_memory_bytes(plan));
+    if (stats.ms_geometry_device > 0)
+      fprintf(sf, ", \"ms_geometry_device\": %.17g", stats.ms_geometry_device);
     if (exr) fprintf(sf, ", \"exr\": "), cli_json_string(sf, exr);
     if (png) fprintf(sf, ", \"png\": "), cli_json_string(sf, png);
     if (diff_png) fprintf(sf, ", \"diff_png\": "), cli_json_string(sf, diff_png);

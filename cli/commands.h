@@ -125,6 +125,12 @@ int cli_parse_gl_context(const char *cmd, const char *opt, const char *value, vo
 #define CLI_GL_CONTEXT_HELP \
   "  --gl-context K      gl backend's context: auto (default: egl, then osmesa), egl (a GPU's\n" \
   "                      EGL device, else Mesa's surfaceless platform) or osmesa (as ICS_GL_CONTEXT)\n"
+/* --gl-ldi plan|device (a CLI_CALL parser): where the gl backend's layered depth image comes
+ * from, as ICS_GL_LDI, which it sets for this process; anything else is refused. */
+int cli_parse_gl_ldi(const char *cmd, const char *opt, const char *value, void *dest);
+#define CLI_GL_LDI_HELP \
+  "  --gl-ldi L          gl backend's layered depth image: plan (default: the plan's, uploaded)\n" \
+  "                      or device (ray cast into per-pixel lists on the device; as ICS_GL_LDI)\n"
 
 /* Seconds on the monotonic clock (CLOCK_MONOTONIC), for elapsed times. */
 double cli_now_s(void);

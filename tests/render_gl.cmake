@@ -58,6 +58,34 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_GL)
   ics_cli_test(NAME cli_render_gl_auto_notice RC 0 LABELS fast
     ARGS "render|--resolution|16x12|-o|${rdg}/auto.exr"
     OUT "\"backend\": \"cpu\"" ERR "note: auto passed over gl: ")
+  # the layered depth image built on the device: its time in the summary; a bad value refused
+  ics_cli_test(NAME cli_render_gl_ldi_device RC 0 LABELS medium
+    ARGS "render|--backend|gl|--gl-ldi|device|--resolution|64x48|-o|${rdg}/ldi.exr"
+    OUT "\"backend\": \"gl\".*\"ms_geometry_device\": [0-9.e+-]+")
+  ics_cli_test(NAME cli_render_gl_ldi_bad RC 2 LABELS fast
+    ARGS "render|--backend|gl|--gl-ldi|gpu|-o|${rdg}/ldi_bad.exr"
+    ERR "--gl-ldi: expected plan or device, got 'gpu'" NOFILE ${rdg}/ldi_bad.exr)
+  ics_cli_test(NAME cli_render_gl_ldi_other_backend RC 0 LABELS fast
+    ARGS "render|--gl-ldi|device|--backend|cpu|--resolution|16x12|-o|${rdg}/ldi_cpu.exr"
+    ERR "warning: --gl-ldi only applies to --backend gl \\(the backend is cpu\\)")
+  # a lost context (glGetGraphicsResetStatus reporting a reset, through tests/fault/fault_shim.c):
+  # named, exit 2, no image; with the plan's LDI (found after the slabs) and the device's (found
+  # after the cast), on each context kind
+  if(TARGET fault_shim)
+    foreach(ctx egl osmesa)
+      foreach(ldi plan device)
+        set(when "the context was lost \\(GL_GUILTY_CONTEXT_RESET\\)")
+        if(ldi STREQUAL "device")
+          set(when "the context was lost casting the rays \\(the layered depth image\\)")
+        endif()
+        ics_cli_test(NAME cli_render_gl_lost_${ctx}_${ldi} RC 2 LABELS medium
+          ARGS "render|--backend|gl|--gl-context|${ctx}|--gl-ldi|${ldi}|--resolution|32x24|-o|${rdg}/lost_${ctx}_${ldi}.exr"
+          ERR "backend gl: ${when}" NOFILE ${rdg}/lost_${ctx}_${ldi}.exr)
+        set_tests_properties(cli_render_gl_lost_${ctx}_${ldi} PROPERTIES
+          ENVIRONMENT "LD_PRELOAD=$<TARGET_FILE:fault_shim>;ICS_FAULT=gl-reset")
+      endforeach()
+    endforeach()
+  endif()
   ics_cli_test(NAME cli_bench_slab_gl RC 0 LABELS medium
     ARGS "bench|slab|--sizes|64|--slabs|4|--threads|1|--reps|1|--kernels|ellipse2,gauss19|--backend|cpu,gl"
     OUT "cpu,ellipse2,.*\ngl,ellipse2,2,table,64,64,4,0,.*\ncpu,gauss19,.*\ngl,gauss19,19,taps,64,64,4,0,")
@@ -73,3 +101,24 @@ if(TARGET test_lut_glsl)
   target_include_directories(test_lut_glsl PRIVATE ${CMAKE_SOURCE_DIR}/gpu/gl)
   set_tests_properties(test_lut_glsl PROPERTIES FIXTURES_REQUIRED lut_gen_glsl_64 SKIP_RETURN_CODE 77)
 endif()
+
+# the layered depth image built on the device (gpu/gl/ldi.comp) against the plan's, fragment by
+# fragment; and the renders of test_render_device.c with it (ICS_GL_LDI=device)
+ics_add_test(NAME test_gl_ldi SOURCES test_gl_ldi.c LABELS medium render
+  LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER GL ARGS ${CMAKE_SOURCE_DIR}/tests/data ${ics_scene_files})
+if(TARGET test_gl_ldi)
+  target_include_directories(test_gl_ldi PRIVATE ${CMAKE_SOURCE_DIR}/gpu/gl ${CMAKE_SOURCE_DIR}/gpu/src)
+  set_tests_properties(test_gl_ldi PROPERTIES SKIP_RETURN_CODE 77)
+endif()
+if(TARGET test_render_gl)
+  add_test(NAME test_render_gl_ldi_device COMMAND test_render_gl gl ${ics_scene_files})
+  set_tests_properties(test_render_gl_ldi_device PROPERTIES LABELS "medium;render"
+    ENVIRONMENT "ICS_GL_CONTEXT=egl;ICS_GL_LDI=device" SKIP_RETURN_CODE 77)
+endif()
+foreach(k LDI_CAST LDI_SCAN LDI_SORT)
+  if(ICS_HAVE_GL AND ICS_HAVE_GLSLANG)
+    add_test(NAME glsl_${k} COMMAND ${GLSLANG_VALIDATOR} -l -S comp -DICS_K_${k}
+      ${CMAKE_SOURCE_DIR}/gpu/gl/ldi.comp)
+    set_tests_properties(glsl_${k} PROPERTIES LABELS "fast;render")
+  endif()
+endforeach()

@@ -46,20 +46,14 @@ static void run_one(ics_gl *g, const char *path) {
   size_t len = strlen(hdr) + strlen(epilogue) + 32;
   char *src = malloc(len);
   snprintf(src, len, "#version 450\n%s%s", hdr, epilogue);
-  GLuint sh = G->CreateShader(GL_COMPUTE_SHADER);
-  const GLchar *csrc = src;
-  G->ShaderSource(sh, 1, &csrc, NULL);
-  G->CompileShader(sh);
-  GLint ok = 0;
-  G->GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+  GLuint prog = 0;
   char log[8192] = "";
-  if (!ok) G->GetShaderInfoLog(sh, sizeof log, NULL, log);
-  CHECK(ok, "%s does not compile on %s:\n%s", path, g->renderer, log);
-  GLuint prog = G->CreateProgram();
-  G->AttachShader(prog, sh);
-  G->LinkProgram(prog);
-  G->GetProgramiv(prog, GL_LINK_STATUS, &ok);
-  CHECK(ok, "%s does not link", path);
+  int ok = ics_gl_compile(g, src, "", path, &prog, log, sizeof log);
+  CHECK(ok, "%s", log);
+  if (!ok) {
+    free(src), free(hdr);
+    return;
+  }
   static tap_case tc[TAP_CASES_MAX];
   int nc = tap_cases(tc), n = nc + NRAD;
   float *in = calloc((size_t)n, 4 * sizeof *in), *out = calloc((size_t)n, 2 * sizeof *out);
@@ -110,7 +104,6 @@ static void run_one(ics_gl *g, const char *path) {
   CHECK(wr <= rad_bound, "%s: ellipse_radii off by %.3g", path, wr);
   G->DeleteBuffers(3, b);
   G->DeleteProgram(prog);
-  G->DeleteShader(sh);
   free(in), free(out), free(nk), free(src), free(hdr);
 }
 

@@ -6,8 +6,9 @@
  * the cpu backend does (ics_plan_slab_taps) and uploads them; per slab the device runs, per
  * light, the tap-set choices and the step (ICS_K_ENTRIES_*, ICS_K_PROP_*), then the shading of
  * every buffer pixel (ICS_K_SHADE) and the apron (ICS_K_APRON_*), with a shader-storage barrier
- * between dispatches. The layered depth image and the scene's records are the plan's
- * (device_scene.c), uploaded once per render into shader storage buffers. Device times come
+ * between dispatches. The scene's records are the plan's (device_scene.c), uploaded once per
+ * render into shader storage buffers; so is the layered depth image, or, with ICS_GL_LDI=device
+ * (--gl-ldi device), it is built on the device each render (ldi_gl.c). Device times come
  * from GL_TIMESTAMP queries read after the last slab.
  *
  * Every failure names what failed: no context (each kind tried), a shader that does not
@@ -26,6 +27,7 @@
 #include "clock.h"
 #include "device_scene.h"
 #include "gl_context.h"
+#include "ldi_gl.h"
 #include "plan_internal.h"
 #include "propagate.h"
 #include "slab_comp_source.h" /* ics_slab_comp_source: gpu/gl/slab.comp (cmake/embed_text.cmake) */
@@ -64,6 +66,8 @@ typedef struct gl_state {
   GLint max_texels;  /* GL_MAX_TEXTURE_BUFFER_SIZE */
   size_t max_taps;   /* taps a uniform block holds: GL_MAX_UNIFORM_BLOCK_SIZE / 32, at most 4096 */
   GLint max_groups[3];
+  int ldi_device;                     /* ICS_GL_LDI=device: the LDI built on the device */
+  GLuint ldi_prog[ICS_GL_LDI_NPROGS]; /* ldi.comp's programs, then */
 } gl_state;
 
 #define GL_ (s->g.gl)
@@ -72,6 +76,8 @@ typedef struct gl_state {
 static void state_free(gl_state *s) {
   for (int i = 0; i < NPROGS; i++)
     if (s->prog[i]) GL_.DeleteProgram(s->prog[i]);
+  for (int i = 0; i < ICS_GL_LDI_NPROGS; i++)
+    if (s->ldi_prog[i]) GL_.DeleteProgram(s->ldi_prog[i]);
   ics_gl_close(&s->g);
   free(s);
 }
@@ -79,8 +85,10 @@ static void state_free(gl_state *s) {
 static void gl_destroy(void *state) {
   gl_state *s = state;
   if (!s) return;
-  if (!ics_gl_make_current(&s->g)) /* its programs go with the context */
+  if (!ics_gl_make_current(&s->g)) { /* its programs go with the context */
     memset(s->prog, 0, sizeof s->prog);
+    memset(s->ldi_prog, 0, sizeof s->ldi_prog);
+  }
   state_free(s);
 }
 
@@ -88,6 +96,14 @@ static void gl_destroy(void *state) {
 static const char *context_kind(void) {
   const char *k = getenv("ICS_GL_CONTEXT");
   return k && *k ? k : "auto";
+}
+
+/* where the layered depth image comes from: ICS_GL_LDI (set by --gl-ldi), "plan" (the plan's,
+ * uploaded; the default) or "device" (ldi_gl.c); -1 for another value */
+static int ldi_on_device(void) {
+  const char *v = getenv("ICS_GL_LDI");
+  if (!v || !*v || !strcmp(v, "plan")) return 0;
+  return !strcmp(v, "device") ? 1 : -1;
 }
 
 static int gl_available(char *why, size_t why_size) {
@@ -109,45 +125,24 @@ static int gl_auto_pick(char *why, size_t why_size) {
 
 /* compiles and links entry point `i`; 0 with the log in msg */
 static int build(gl_state *s, int i, char *msg, size_t msg_size) {
-  const char *src = ics_slab_comp_source, *nl = strchr(src, '\n');
-  char head[160];
+  char head[160], name[64];
   snprintf(head, sizeof head, "#define %s 1\n#define %s 1\n#define ICS_MAX_TAPS %zu\n#line 2\n",
            PROG_NAMES[i], PROG_VARIANT[i] ? PROG_VARIANT[i] : "ICS_DEFAULT_VARIANT", s->max_taps);
-  const GLchar *parts[3] = {src, head, nl + 1};
-  const GLint lens[3] = {(GLint)(nl + 1 - src), -1, -1};
-  GLuint sh = GL_.CreateShader(GL_COMPUTE_SHADER);
-  GL_.ShaderSource(sh, 3, parts, lens);
-  GL_.CompileShader(sh);
-  GLint ok = 0;
-  GL_.GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-  char log[4096] = "";
-  if (!ok) {
-    GL_.GetShaderInfoLog(sh, sizeof log, NULL, log);
-    GL_.DeleteShader(sh);
-    snprintf(msg, msg_size, "backend gl: slab.comp (%s) does not compile on %s:\n%s", PROG_NAMES[i],
-             s->g.renderer, log);
-    return 0;
-  }
-  GLuint p = GL_.CreateProgram();
-  GL_.AttachShader(p, sh);
-  GL_.LinkProgram(p);
-  GL_.DeleteShader(sh);
-  GL_.GetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    GL_.GetProgramInfoLog(p, sizeof log, NULL, log);
-    GL_.DeleteProgram(p);
-    snprintf(msg, msg_size, "backend gl: slab.comp (%s) does not link on %s:\n%s", PROG_NAMES[i],
-             s->g.renderer, log);
-    return 0;
-  }
-  s->prog[i] = p;
-  return 1;
+  snprintf(name, sizeof name, "slab.comp (%s)", PROG_NAMES[i]);
+  return ics_gl_compile(&s->g, ics_slab_comp_source, head, name, &s->prog[i], msg, msg_size);
 }
 
 static ics_status gl_create(void **state, const ics_render_opts *opts, char *msg, size_t msg_size) {
   *state = NULL;
+  int ldi_device = ldi_on_device();
+  if (ldi_device < 0) {
+    if (msg) snprintf(msg, msg_size, "backend gl: ICS_GL_LDI: expected plan or device, got '%s'",
+                      getenv("ICS_GL_LDI"));
+    return ICS_ERR_INVALID_ARG;
+  }
   gl_state *s = calloc(1, sizeof *s);
   if (!s) return ICS_ERR_NOMEM;
+  s->ldi_device = ldi_device;
   char why[1024];
   if (ics_gl_open(&s->g, context_kind(), why, sizeof why) != ICS_OK) {
     if (msg) snprintf(msg, msg_size, "backend gl: %s", why);
@@ -183,47 +178,22 @@ static ics_status gl_create(void **state, const ics_render_opts *opts, char *msg
       state_free(s);
       return ICS_ERR_UNSUPPORTED;
     }
+  if (s->ldi_device && !ics_gl_ldi_programs(&s->g, s->ldi_prog, msg, msg_size)) {
+    state_free(s);
+    return ICS_ERR_UNSUPPORTED;
+  }
   ics_gl_release(&s->g); /* current only while it renders */
   *state = s;
   return ICS_OK;
 }
 
-/* uniforms by name (one the compiler removed is skipped) */
-static void u_int(gl_state *s, int p, const char *name, int v) {
-  GLint loc = GL_.GetUniformLocation(s->prog[p], name);
-  if (loc >= 0) GL_.ProgramUniform1i(s->prog[p], loc, v);
-}
+/* uniforms of program p by name */
+static void u_int(gl_state *s, int p, const char *name, int v) { ics_gl_uniform_i(&s->g, s->prog[p], name, v); }
 static void u_uint(gl_state *s, int p, const char *name, unsigned v) {
-  GLint loc = GL_.GetUniformLocation(s->prog[p], name);
-  if (loc >= 0) GL_.ProgramUniform1ui(s->prog[p], loc, v);
+  ics_gl_uniform_ui(&s->g, s->prog[p], name, v);
 }
 static void u_dbl(gl_state *s, int p, const char *name, double v) {
-  GLint loc = GL_.GetUniformLocation(s->prog[p], name);
-  if (loc >= 0) GL_.ProgramUniform1d(s->prog[p], loc, v);
-}
-
-/* a buffer of `bytes` (data or zeros), updatable from the host */
-static GLuint buffer(gl_state *s, size_t bytes, const void *data) {
-  GLuint b = 0;
-  GL_.CreateBuffers(1, &b);
-  GL_.NamedBufferStorage(b, (GLsizeiptr)(bytes ? bytes : 4), data, GL_DYNAMIC_STORAGE_BIT);
-  if (!data) {
-    const GLuint zero = 0;
-    GL_.ClearNamedBufferData(b, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  }
-  return b;
-}
-
-static const char *gl_err_name(GLenum e) {
-  switch (e) {
-  case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-  case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-  case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-  case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-  case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-  case GL_CONTEXT_LOST: return "GL_CONTEXT_LOST (the context was lost)";
-  default: return "a GL error";
-  }
+  ics_gl_uniform_d(&s->g, s->prog[p], name, v);
 }
 
 /* the device buffers of one render (slab.comp's bindings) */
@@ -258,7 +228,7 @@ static int upload_taps(gl_job *j, int l, const ics_prop_taps *pt, size_t n) {
   if (n > j->taps_cap[l] || !j->taps[l]) {
     if (j->taps[l]) GL_.DeleteBuffers(1, &j->taps[l]);
     j->taps_cap[l] = n > s->max_taps ? n : s->max_taps;
-    j->taps[l] = buffer(s, j->taps_cap[l] * sizeof(gl_tap), NULL);
+    j->taps[l] = ics_gl_buffer(&s->g, j->taps_cap[l] * sizeof(gl_tap), NULL);
   }
   GL_.NamedBufferSubData(j->taps[l], 0, (GLsizeiptr)(n * sizeof(gl_tap)), j->host_taps);
   return 1;
@@ -448,32 +418,42 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
   memcpy(ints + ICS_MAX_VOLUMES, ds.signed_l, sizeof ds.signed_l);
 
   while (GL_.GetError() != GL_NO_ERROR) {} /* what an earlier render left */
-  j->buf[B_SRC] = buffer(s, lbytes, NULL);
-  j->buf[B_DST] = buffer(s, lbytes, NULL);
+  if (s->ldi_device) { /* the fragments and per-pixel state from the device (ldi_gl.c) */
+    ics_gl_ldi ldi;
+    status = ics_gl_ldi_build(&s->g, s->ldi_prog, P, (long long)s->max_block, s->max_groups, &ldi,
+                              msg, msg_size);
+    if (status != ICS_OK) goto done;
+    j->buf[B_OFFSET] = ldi.offset, j->buf[B_FZ] = ldi.fz, j->buf[B_FCODE] = ldi.fcode;
+    j->buf[B_FGRAD] = ldi.fgrad, j->buf[B_FSPAN] = ldi.fspan, j->buf[B_PIX] = ldi.pix;
+    st->ms_geometry_device = ldi.ms;
+  } else {
+    j->buf[B_OFFSET] = ics_gl_buffer(&s->g, sizeof(uint32_t) * (npx + 1), P->ldi.offset);
+    j->buf[B_FZ] = ics_gl_buffer(&s->g, sizeof *ds.fz * ds.nfrag, ds.fz);
+    j->buf[B_FCODE] = ics_gl_buffer(&s->g, sizeof *ds.fcode * ds.nfrag, ds.fcode);
+    j->buf[B_FGRAD] = ics_gl_buffer(&s->g, 2 * sizeof *ds.fgrad * ds.nfrag, ds.fgrad);
+    j->buf[B_FSPAN] = ics_gl_buffer(&s->g, (ds.nfrag + 3) / 4 * 4, span);
+    j->buf[B_PIX] = ics_gl_buffer(&s->g, sizeof *pix * 4 * (npx ? npx : 1), pix);
+  }
+  j->buf[B_SRC] = ics_gl_buffer(&s->g, lbytes, NULL);
+  j->buf[B_DST] = ics_gl_buffer(&s->g, lbytes, NULL);
   const float one = 1;
   GL_.ClearNamedBufferData(j->buf[B_SRC], GL_R32F, GL_RED, GL_FLOAT, &one);
   GL_.CreateTextures(GL_TEXTURE_BUFFER, 2, j->tex);
   GL_.TextureBuffer(j->tex[0], GL_R32F, j->buf[B_SRC]);
   GL_.TextureBuffer(j->tex[1], GL_R32F, j->buf[B_DST]);
-  j->buf[B_OFFSET] = buffer(s, sizeof(uint32_t) * (npx + 1), P->ldi.offset);
-  j->buf[B_FZ] = buffer(s, sizeof *ds.fz * ds.nfrag, ds.fz);
-  j->buf[B_FCODE] = buffer(s, sizeof *ds.fcode * ds.nfrag, ds.fcode);
-  j->buf[B_FGRAD] = buffer(s, 2 * sizeof *ds.fgrad * ds.nfrag, ds.fgrad);
-  j->buf[B_FSPAN] = buffer(s, (ds.nfrag + 3) / 4 * 4, span);
-  j->buf[B_PIX] = buffer(s, sizeof *pix * 4 * (npx ? npx : 1), pix);
-  j->buf[B_OBJ] = buffer(s, sizeof *ds.obj * ds.nobj * ICS_DEV_OBJ_STRIDE, ds.obj);
-  j->buf[B_SD] = buffer(s, sizeof *sd * nsd, sd);
-  j->buf[B_PERM] = buffer(s, 512 * ds.nobj, ds.perm);
-  j->buf[B_GRIDS] = buffer(s, sizeof *ds.grids * ds.ncells, ds.grids);
-  j->buf[B_INTS] = buffer(s, sizeof ints, ints);
-  j->buf[B_OUT] = buffer(s, sizeof(float) * out_floats, NULL);
-  j->buf[B_WORK] = buffer(s, sizeof(uint32_t) * (10 + 2 * npx), NULL);
-  j->buf[B_ENT] = buffer(s, sizeof(uint32_t) * (npx ? npx : 1), NULL);
+  j->buf[B_OBJ] = ics_gl_buffer(&s->g, sizeof *ds.obj * ds.nobj * ICS_DEV_OBJ_STRIDE, ds.obj);
+  j->buf[B_SD] = ics_gl_buffer(&s->g, sizeof *sd * nsd, sd);
+  j->buf[B_PERM] = ics_gl_buffer(&s->g, 512 * ds.nobj, ds.perm);
+  j->buf[B_GRIDS] = ics_gl_buffer(&s->g, sizeof *ds.grids * ds.ncells, ds.grids);
+  j->buf[B_INTS] = ics_gl_buffer(&s->g, sizeof ints, ints);
+  j->buf[B_OUT] = ics_gl_buffer(&s->g, sizeof(float) * out_floats, NULL);
+  j->buf[B_WORK] = ics_gl_buffer(&s->g, sizeof(uint32_t) * (10 + 2 * npx), NULL);
+  j->buf[B_ENT] = ics_gl_buffer(&s->g, sizeof(uint32_t) * (npx ? npx : 1), NULL);
   GL_.GenQueries((GLsizei)(3 * P->K), j->queries);
   GLenum e = GL_.GetError();
   if (e != GL_NO_ERROR) {
     if (msg) snprintf(msg, msg_size, "backend gl: %s while allocating the buffers (%zu bytes of "
-                      "light buffers, %zu fragments) on %s", gl_err_name(e), 2 * lbytes,
+                      "light buffers, %zu fragments) on %s", ics_gl_error_name(e), 2 * lbytes,
                       P->ldi.nfrag, s->g.renderer);
     status = e == GL_OUT_OF_MEMORY ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
     goto done;
@@ -528,7 +508,7 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
     j->buf[B_SRC] = j->buf[B_DST], j->buf[B_DST] = tmp;
     tmp = j->tex[0], j->tex[0] = j->tex[1], j->tex[1] = tmp;
     if ((e = GL_.GetError()) != GL_NO_ERROR) {
-      if (msg) snprintf(msg, msg_size, "backend gl: %s in slab %d on %s", gl_err_name(e), k,
+      if (msg) snprintf(msg, msg_size, "backend gl: %s in slab %d on %s", ics_gl_error_name(e), k,
                         s->g.renderer);
       status = e == GL_OUT_OF_MEMORY ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
       goto done;
@@ -552,7 +532,7 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
                  : reset == GL_INNOCENT_CONTEXT_RESET ? "GL_INNOCENT_CONTEXT_RESET"
                                                       : "GL_UNKNOWN_CONTEXT_RESET", s->g.renderer);
       else
-        snprintf(msg, msg_size, "backend gl: %s reading the image back from %s", gl_err_name(e),
+        snprintf(msg, msg_size, "backend gl: %s reading the image back from %s", ics_gl_error_name(e),
                  s->g.renderer);
     }
     status = reset == GL_NO_ERROR && e == GL_OUT_OF_MEMORY ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;

@@ -329,3 +329,73 @@ ics_status ics_gl_open(ics_gl *g, const char *which, char *why, size_t why_size)
   snprintf(why, why_size, "no OpenGL 4.5 context: %s%s%s", w1, w1[0] && w2[0] ? "; " : "", w2);
   return ICS_ERR_UNSUPPORTED;
 }
+
+int ics_gl_compile(ics_gl *g, const char *source, const char *head, const char *name,
+                   GLuint *prog, char *msg, size_t msg_size) {
+  const char *nl = strchr(source, '\n');
+  const GLchar *parts[3] = {source, head, nl ? nl + 1 : ""};
+  const GLint lens[3] = {nl ? (GLint)(nl + 1 - source) : (GLint)strlen(source), -1, -1};
+  GLuint sh = g->gl.CreateShader(GL_COMPUTE_SHADER);
+  g->gl.ShaderSource(sh, 3, parts, lens);
+  g->gl.CompileShader(sh);
+  GLint ok = 0;
+  g->gl.GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+  char log[4096] = "";
+  if (!ok) {
+    g->gl.GetShaderInfoLog(sh, sizeof log, NULL, log);
+    g->gl.DeleteShader(sh);
+    snprintf(msg, msg_size, "backend gl: %s does not compile on %s:\n%s", name, g->renderer, log);
+    return 0;
+  }
+  GLuint p = g->gl.CreateProgram();
+  g->gl.AttachShader(p, sh);
+  g->gl.LinkProgram(p);
+  g->gl.DeleteShader(sh);
+  g->gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    g->gl.GetProgramInfoLog(p, sizeof log, NULL, log);
+    g->gl.DeleteProgram(p);
+    snprintf(msg, msg_size, "backend gl: %s does not link on %s:\n%s", name, g->renderer, log);
+    return 0;
+  }
+  *prog = p;
+  return 1;
+}
+
+void ics_gl_uniform_i(ics_gl *g, GLuint prog, const char *name, int v) {
+  GLint loc = g->gl.GetUniformLocation(prog, name);
+  if (loc >= 0) g->gl.ProgramUniform1i(prog, loc, v);
+}
+
+void ics_gl_uniform_ui(ics_gl *g, GLuint prog, const char *name, unsigned v) {
+  GLint loc = g->gl.GetUniformLocation(prog, name);
+  if (loc >= 0) g->gl.ProgramUniform1ui(prog, loc, v);
+}
+
+void ics_gl_uniform_d(ics_gl *g, GLuint prog, const char *name, double v) {
+  GLint loc = g->gl.GetUniformLocation(prog, name);
+  if (loc >= 0) g->gl.ProgramUniform1d(prog, loc, v);
+}
+
+GLuint ics_gl_buffer(ics_gl *g, size_t bytes, const void *data) {
+  GLuint b = 0;
+  g->gl.CreateBuffers(1, &b);
+  g->gl.NamedBufferStorage(b, (GLsizeiptr)(bytes > 4 ? bytes : 4), data, GL_DYNAMIC_STORAGE_BIT);
+  if (!data) {
+    const GLuint zero = 0;
+    g->gl.ClearNamedBufferData(b, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  }
+  return b;
+}
+
+const char *ics_gl_error_name(GLenum e) {
+  switch (e) {
+  case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+  case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+  case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+  case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+  case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+  case GL_CONTEXT_LOST: return "GL_CONTEXT_LOST (the context was lost)";
+  default: return "a GL error";
+  }
+}

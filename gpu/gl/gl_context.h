@@ -94,4 +94,18 @@ int ics_gl_hardware_device(char *why, size_t why_size);
 /* 1 when `which` names a kind this build has ("auto", "osmesa", "egl"), else 0 */
 int ics_gl_kind_known(const char *which);
 
+/* With g current: compiles a compute shader from `source` (a file that starts with its #version
+ * line) with `head` inserted after that line (the defines choosing an entry point; `name` for
+ * messages) and links it into *prog. 0 with the compiler's or linker's log in msg. */
+int ics_gl_compile(ics_gl *g, const char *source, const char *head, const char *name,
+                   GLuint *prog, char *msg, size_t msg_size);
+/* Uniforms by name (one the compiler removed is skipped). */
+void ics_gl_uniform_i(ics_gl *g, GLuint prog, const char *name, int v);
+void ics_gl_uniform_ui(ics_gl *g, GLuint prog, const char *name, unsigned v);
+void ics_gl_uniform_d(ics_gl *g, GLuint prog, const char *name, double v);
+/* A buffer of `bytes` (at least 4) holding `data`, or zeros when data is NULL; updatable. */
+GLuint ics_gl_buffer(ics_gl *g, size_t bytes, const void *data);
+/* The name of a glGetError code. */
+const char *ics_gl_error_name(GLenum e);
+
 #endif

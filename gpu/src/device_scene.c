@@ -7,12 +7,24 @@
 #include <string.h>
 
 #include "icshadow/constants.h"
+#include "mesh.h"
 #include "scene_internal.h"
 
 void ics_device_scene_destroy(ics_device_scene *d) {
   free(d->fz), free(d->fcode), free(d->fgrad), free(d->fspan), free(d->obj), free(d->tt);
   free(d->perm), free(d->grids), free(d->inside);
   memset(d, 0, sizeof *d);
+}
+
+void ics_device_camera(const ics_plan *P, double cam[ICS_DEV_CAM]) {
+  const ics_camera *cm = &P->cam;
+  for (int i = 0; i < 3; i++)
+    cam[i] = cm->eye[i], cam[3 + i] = cm->r[i], cam[6 + i] = cm->u[i], cam[9 + i] = cm->f[i];
+  cam[12] = cm->height;
+  cam[13] = cm->height * P->W / P->H; /* as ics_plan_ray computes them */
+  cam[14] = tan(cm->fov_deg * (ICS_PI / 360));
+  cam[15] = (double)P->W / P->H;
+  cam[16] = cm->projection == ICS_PROJ_PERSPECTIVE;
 }
 
 ics_status ics_device_scene_create(ics_device_scene *d, const ics_plan *P) {
@@ -85,21 +97,62 @@ ics_status ics_device_scene_create(ics_device_scene *d, const ics_plan *P) {
     if (P->ldi.inside0) memcpy(d->inside, P->ldi.inside0, sizeof *d->inside * npx);
     else memset(d->inside, 0, sizeof *d->inside * npx);
   }
-  const ics_camera *cm = &P->cam;
-  for (int i = 0; i < 3; i++)
-    d->cam[i] = cm->eye[i], d->cam[3 + i] = cm->r[i], d->cam[6 + i] = cm->u[i],
-    d->cam[9 + i] = cm->f[i];
-  d->cam[12] = cm->height;
-  d->cam[13] = cm->height * P->W / P->H; /* as ics_plan_ray computes them */
-  d->cam[14] = tan(cm->fov_deg * (ICS_PI / 360));
-  d->cam[15] = (double)P->W / P->H;
-  d->cam[16] = cm->projection == ICS_PROJ_PERSPECTIVE;
+  ics_device_camera(P, d->cam);
   for (int l = 0; l < P->nlights; l++) {
     const ics_light *lt = &sc->lights[l];
     for (int c = 0; c < 3; c++) d->lcol[3 * l + c] = lt->color[c] * lt->weight;
     d->lmu[2 * l] = lt->mean[0], d->lmu[2 * l + 1] = lt->mean[1];
     d->signed_l[l] = P->kernels[l].comp == ICS_RC_SIGNED;
     d->blur[l] = ics_plan_light_blur(P, l);
+  }
+  return ICS_OK;
+}
+
+void ics_device_geometry_destroy(ics_device_geometry *g) {
+  free(g->geo), free(g->node_box), free(g->node_link), free(g->tris);
+  memset(g, 0, sizeof *g);
+}
+
+ics_status ics_device_geometry_create(ics_device_geometry *g, const ics_plan *P) {
+  memset(g, 0, sizeof *g);
+  const ics_scene *sc = P->scene;
+  size_t nnodes = 0, ntris = 0;
+  for (int i = 0; i < sc->nobjects; i++)
+    if (sc->objects[i].shape == ICS_SHAPE_MESH) {
+      int nn, nt;
+      ics_mesh_flat_counts(sc->objects[i].mesh, &nn, &nt);
+      nnodes += (size_t)nn, ntris += (size_t)nt;
+    }
+  g->nobj = sc->nobjects ? (size_t)sc->nobjects : 1;
+  g->nnodes = nnodes ? nnodes : 1;
+  g->ntris = ntris ? ntris : 1;
+  g->geo = calloc(g->nobj * ICS_DEV_GEO_STRIDE, sizeof *g->geo);
+  g->node_box = calloc(6 * g->nnodes, sizeof *g->node_box);
+  g->node_link = calloc(4 * g->nnodes, sizeof *g->node_link);
+  g->tris = calloc(9 * g->ntris, sizeof *g->tris);
+  if (!g->geo || !g->node_box || !g->node_link || !g->tris) {
+    ics_device_geometry_destroy(g);
+    return ICS_ERR_NOMEM;
+  }
+  int node_base = 0, tri_base = 0;
+  for (int i = 0; i < sc->nobjects; i++) {
+    const ics_object *o = &sc->objects[i];
+    double *r = g->geo + (size_t)i * ICS_DEV_GEO_STRIDE;
+    r[0] = o->shape;
+    memcpy(r + 1, o->center, sizeof o->center);
+    memcpy(r + 4, o->ax, sizeof o->ax);
+    memcpy(r + 13, o->half, sizeof o->half);
+    r[16] = P->vol_bit[i];
+    r[17] = -1;
+    if (o->shape == ICS_SHAPE_MESH) {
+      int nn, nt;
+      ics_mesh_flat_counts(o->mesh, &nn, &nt);
+      ics_mesh_flatten(o->mesh, node_base, tri_base, g->node_box + 6 * (size_t)node_base,
+                       g->node_link + 4 * (size_t)node_base, g->tris + 9 * (size_t)tri_base);
+      r[17] = node_base;
+      r[18] = ics_mesh_merge_eps(o->mesh);
+      node_base += nn, tri_base += nt;
+    }
   }
   return ICS_OK;
 }

@@ -32,8 +32,26 @@ typedef struct ics_device_scene {
   int32_t vol_obj[ICS_MAX_VOLUMES];      /* the object of each volume bit */
 } ics_device_scene;
 
+/* The objects' geometry for a device's ray caster (gpu/gl/ldi.comp): per object
+ * ICS_DEV_GEO_STRIDE doubles (shape, centre, frame rows, half sizes, volume bit, the root of
+ * its mesh's BVH or -1, the mesh's merge distance), and every mesh's BVH flattened
+ * (ics_mesh_flatten: nodes' boxes and links, triangles in leaf order). */
+#define ICS_DEV_GEO_STRIDE 20
+typedef struct ics_device_geometry {
+  size_t nobj, nnodes, ntris; /* each at least 1 */
+  double *geo;
+  double *node_box;   /* 6 per node */
+  int32_t *node_link; /* 4 per node */
+  double *tris;       /* 9 per triangle */
+} ics_device_geometry;
+
 /* ICS_OK or ICS_ERR_NOMEM (what is made so far released). */
 ics_status ics_device_scene_create(ics_device_scene *d, const ics_plan *p);
 void ics_device_scene_destroy(ics_device_scene *d); /* a zeroed one is fine */
+/* The camera as ics_plan_ray uses it: eye, r, u, f, height, width, tan(fov / 2), aspect,
+ * perspective (1) or orthographic (0). */
+void ics_device_camera(const ics_plan *p, double cam[ICS_DEV_CAM]);
+ics_status ics_device_geometry_create(ics_device_geometry *g, const ics_plan *p);
+void ics_device_geometry_destroy(ics_device_geometry *g); /* a zeroed one is fine */
 
 #endif

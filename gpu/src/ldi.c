@@ -92,7 +92,7 @@ static void surface_depth_gradient(const ics_plan *p, const double n[3], int16_t
 /* How far one slab's kernel reaches laterally (world units), the largest over the lights: the
  * 2-sample ellipse's taps sit at sqrt(2 lambda_max) of the per-slab covariance d1 e Sigma, and
  * the mean moves the buffer by e |mu|. */
-static double kernel_reach(const ics_plan *p) {
+double ics_ldi_kernel_reach(const ics_plan *p) {
   double reach = 0;
   for (int l = 0; l < p->nlights; l++) {
     const double *mu = p->scene->lights[l].mean;
@@ -255,7 +255,7 @@ ics_status ics_ldi_build(ics_plan *p, int threads, char *msg, size_t msg_size) {
     goto done;
   }
   j->fill = 1;
-  j->reach = kernel_reach(p);
+  j->reach = ics_ldi_kernel_reach(p);
   ics_pool_run(pool, ldi_rows, j);
   if (j->failed) {
     if (msg) snprintf(msg, msg_size, "out of memory in the geometry pass");

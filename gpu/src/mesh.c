@@ -337,6 +337,33 @@ void ics_mesh_triangle(const ics_mesh *m, int k, double v[3][3]) {
     v[0][i] = t->v0[i], v[1][i] = t->v0[i] + t->e1[i], v[2][i] = t->v0[i] + t->e2[i];
 }
 
+void ics_mesh_flat_counts(const ics_mesh *m, int *nnodes, int *ntris) {
+  *nnodes = m->nnodes;
+  *ntris = m->ntris;
+}
+
+void ics_mesh_flatten(const ics_mesh *m, int node_base, int tri_base, double *node_box,
+                      int32_t *node_links, double *tris) {
+  for (int i = 0; i < m->nnodes; i++) {
+    const node_t *n = &m->nodes[i];
+    memcpy(node_box + 6 * i, n->lo, sizeof n->lo);
+    memcpy(node_box + 6 * i + 3, n->hi, sizeof n->hi);
+    int32_t *l = node_links + 4 * i;
+    l[0] = n->left >= 0 ? node_base + n->left : -1;
+    l[1] = n->right >= 0 ? node_base + n->right : -1;
+    l[2] = tri_base + n->first;
+    l[3] = n->count;
+  }
+  for (int k = 0; k < m->ntris; k++) {
+    const tri_t *t = &m->tris[m->order[k]];
+    memcpy(tris + 9 * k, t->v0, sizeof t->v0);
+    memcpy(tris + 9 * k + 3, t->e1, sizeof t->e1);
+    memcpy(tris + 9 * k + 6, t->e2, sizeof t->e2);
+  }
+}
+
+double ics_mesh_merge_eps(const ics_mesh *m) { return m->eps; }
+
 int ics_mesh_files_supported(void) {
 #ifdef ICS_HAVE_ASSIMP
   return 1;

@@ -5,6 +5,7 @@
 #define ICS_RENDER_MESH_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "geometry.h"
 #include "icshadow/status.h"
@@ -40,6 +41,16 @@ int ics_mesh_hits(const ics_mesh *m, const double orig[3], const double dir[3], 
 void ics_mesh_triangle(const ics_mesh *m, int k, double v[3][3]);
 int ics_mesh_hits_of(const ics_mesh *m, const int *tris, int ntris, const double orig[3],
                      const double dir[3], ics_hits *h, int *behind);
+/* For a device's ray caster (gpu/gl/ldi.comp): the BVH as flat arrays. ics_mesh_flat_counts
+ * gives the node and triangle counts; ics_mesh_flatten writes per node lo, hi (6 doubles) and
+ * left, right, first, count (4 ints: children offset by node_base, -1 for a leaf; first offset
+ * by tri_base), per triangle v0, e1, e2 (9 doubles) in leaf order, so that a leaf's triangles
+ * are first .. first + count - 1 and a traversal pushes crossings in ics_mesh_hits's order. */
+void ics_mesh_flat_counts(const ics_mesh *m, int *nnodes, int *ntris);
+void ics_mesh_flatten(const ics_mesh *m, int node_base, int tri_base, double *node_box,
+                      int32_t *node_links, double *tris);
+/* The distance below which two crossings merge (1e-9 of the mesh's diagonal). */
+double ics_mesh_merge_eps(const ics_mesh *m);
 /* 1 when the library was built with Assimp. */
 int ics_mesh_files_supported(void);
 

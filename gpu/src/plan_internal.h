@@ -111,5 +111,7 @@ void ics_plan_over_background(const ics_plan *p, ics_image *img);
 /* Builds the LDI over the plan's buffer grid (geometry pass; ldi.c). */
 ics_status ics_ldi_build(ics_plan *p, int threads, char *msg, size_t msg_size);
 void ics_ldi_release(ics_ldi *l);
+/* How far one slab's kernel reaches laterally (world units; the surface bias's scale). */
+double ics_ldi_kernel_reach(const ics_plan *p);
 
 #endif

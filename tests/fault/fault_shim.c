@@ -1,6 +1,9 @@
-/* fault_shim.c — an LD_PRELOAD library for the write-fault tests (tests/cli/write_faults.sh):
- * with ICS_FAULT=fsync or ICS_FAULT=rename, every call of that function fails with EIO (after
- * the first ICS_FAULT_AFTER calls, default 0); without ICS_FAULT it passes every call through.
+/* fault_shim.c — an LD_PRELOAD library for the fault tests (tests/cli/write_faults.sh,
+ * tests/render_gl.cmake): with ICS_FAULT=fsync or ICS_FAULT=rename, every call of that function
+ * fails with EIO; with ICS_FAULT=gl-reset, glGetGraphicsResetStatus (as eglGetProcAddress and
+ * OSMesaGetProcAddress hand it out) reports GL_GUILTY_CONTEXT_RESET, a lost context, which no
+ * driver can be made to produce on demand. Each after the first ICS_FAULT_AFTER calls (default
+ * 0); without ICS_FAULT every call passes through.
  * The disk-full and device cases are made without it (RLIMIT_FSIZE, mknod: write_targets.sh). */
 #define _GNU_SOURCE
 #include <dlfcn.h>
@@ -34,4 +37,27 @@ int rename(const char *from, const char *to) {
     return -1;
   }
   return real(from, to);
+}
+
+/* the lost context: a glGetGraphicsResetStatus that reports a reset */
+typedef void (*gl_proc)(void);
+static unsigned reset_status(void) { return should_fail("gl-reset") ? 0x8253u : 0u; } /* GUILTY */
+
+static gl_proc hand_out(const char *name, gl_proc p) {
+  const char *f = getenv("ICS_FAULT");
+  if (p && f && !strcmp(f, "gl-reset") && !strcmp(name, "glGetGraphicsResetStatus"))
+    return (gl_proc)reset_status;
+  return p;
+}
+
+gl_proc eglGetProcAddress(const char *name) {
+  static gl_proc (*real)(const char *);
+  if (!real) real = (gl_proc(*)(const char *))dlsym(RTLD_NEXT, "eglGetProcAddress");
+  return real ? hand_out(name, real(name)) : NULL;
+}
+
+gl_proc OSMesaGetProcAddress(const char *name) {
+  static gl_proc (*real)(const char *);
+  if (!real) real = (gl_proc(*)(const char *))dlsym(RTLD_NEXT, "OSMesaGetProcAddress");
+  return real ? hand_out(name, real(name)) : NULL;
 }
