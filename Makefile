@@ -64,15 +64,15 @@ test: deps $(TEST_MITSUBA)
 # The libFuzzer harnesses (fuzz/, clang with ASan+UBSan), a few seconds each from their seed
 # corpora; `make fuzz FUZZ_SECONDS=N` runs each for N seconds (default 600) and prints
 # executions, coverage and findings.
-FUZZ_TARGETS = fuzz_exr_read fuzz_lights_spec fuzz_lights_file fuzz_scene_json
+FUZZ_TARGETS = fuzz_exr_read fuzz_lights_spec fuzz_lights_file fuzz_scene_json fuzz_mesh_file
 test-fuzz:
-	CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=Debug -DICS_FUZZ=ON -DICS_ENFORCE_OPENEXR=ON \
+	CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=Debug -DICS_FUZZ=ON -DICS_ENFORCE_OPENEXR=ON -DICS_ENFORCE_ASSIMP=ON \
 	  -DICS_ENFORCE_JANSSON=ON -DICS_MITSUBA_PYTHON= $(CMAKE_ARGS)
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(FUZZ_TARGETS)
 	cd $(FUZZ_BUILD) && ctest --output-on-failure -L fuzz -j $(JOBS)
 
 fuzz: deps-fuzz
-	CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=Debug -DICS_FUZZ=ON -DICS_ENFORCE_OPENEXR=ON \
+	CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=Debug -DICS_FUZZ=ON -DICS_ENFORCE_OPENEXR=ON -DICS_ENFORCE_ASSIMP=ON \
 	  -DICS_ENFORCE_JANSSON=ON -DICS_MITSUBA_PYTHON= $(CMAKE_ARGS)
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(FUZZ_TARGETS)
 	@for h in $(FUZZ_TARGETS); do fuzz/run.sh $(FUZZ_BUILD)/bin/$$h fuzz/corpus/$${h#fuzz_} $(FUZZ_SECONDS) || exit 1; done

@@ -195,12 +195,13 @@ int cmd_render(int argc, char **argv) {
   if (given_cl_device && !(backend && !strcmp(backend, "cl")))
     cli_warning(CMD, "--cl-device only chooses the device of --backend cl (the backend is %s)",
                 backend ? backend : "auto");
-  if (given_gl_context && !(backend && !strcmp(backend, "gl")))
+  /* auto may take gl (on a GPU): warn only for a backend that is never gl */
+  int maybe_gl = !backend || !strcmp(backend, "gl") || !strcmp(backend, "auto");
+  if (given_gl_context && !maybe_gl)
     cli_warning(CMD, "--gl-context only chooses the context of --backend gl (the backend is %s)",
-                backend ? backend : "auto");
-  if (given_gl_ldi && !(backend && !strcmp(backend, "gl")))
-    cli_warning(CMD, "--gl-ldi only applies to --backend gl (the backend is %s)",
-                backend ? backend : "auto");
+                backend);
+  if (given_gl_ldi && !maybe_gl)
+    cli_warning(CMD, "--gl-ldi only applies to --backend gl (the backend is %s)", backend);
   if ((given_spp || given_time || given_noise) && !mc)
     return cli_error(CMD, "%s: only the Monte-Carlo reference takes a stop (give --backend mc)",
                      given_spp ? "--spp" : given_time ? "--time" : "--noise");

@@ -76,7 +76,7 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_GL)
       foreach(ldi plan device)
         set(when "the context was lost \\(GL_GUILTY_CONTEXT_RESET\\)")
         if(ldi STREQUAL "device")
-          set(when "the context was lost casting the rays \\(the layered depth image\\)")
+          set(when "the context was lost \\(GL_GUILTY_CONTEXT_RESET\\) casting the rays \\(the layered depth image\\)")
         endif()
         ics_cli_test(NAME cli_render_gl_lost_${ctx}_${ldi} RC 2 LABELS medium
           ARGS "render|--backend|gl|--gl-context|${ctx}|--gl-ldi|${ldi}|--resolution|32x24|-o|${rdg}/lost_${ctx}_${ldi}.exr"
@@ -85,6 +85,13 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_GL)
           ENVIRONMENT "LD_PRELOAD=$<TARGET_FILE:fault_shim>;ICS_FAULT=gl-reset")
       endforeach()
     endforeach()
+    # the device's LDI: the reset found after the sort (the check after the cast passes)
+    ics_cli_test(NAME cli_render_gl_lost_egl_device_sort RC 2 LABELS medium
+      ARGS "render|--backend|gl|--gl-context|egl|--gl-ldi|device|--resolution|32x24|-o|${rdg}/lost_sort.exr"
+      ERR "backend gl: the context was lost \\(GL_GUILTY_CONTEXT_RESET\\) sorting the fragments"
+      NOFILE ${rdg}/lost_sort.exr)
+    set_tests_properties(cli_render_gl_lost_egl_device_sort PROPERTIES
+      ENVIRONMENT "LD_PRELOAD=$<TARGET_FILE:fault_shim>;ICS_FAULT=gl-reset;ICS_FAULT_AFTER=1")
   endif()
   ics_cli_test(NAME cli_bench_slab_gl RC 0 LABELS medium
     ARGS "bench|slab|--sizes|64|--slabs|4|--threads|1|--reps|1|--kernels|ellipse2,gauss19|--backend|cpu,gl"

@@ -5,7 +5,7 @@
  * the span and the depth gradient. Scenes: the embedded default, the scene files given on the
  * command line (scenes/), and cases for each shape and path of the ray caster: every analytic
  * shape under an orthographic and a perspective camera, a torus seen edge-on and through its
- * hole, an eye inside volumes (box, sphere, torus, a closed mesh: the inside masks), the PLY cube
+ * hole and at scales from 1e-16 to 1e16 (its cubic's float start), an eye inside volumes (box, sphere, torus, a closed mesh: the inside masks), the PLY cube
  * (rays through shared edges: merged crossings) and a generated 7 200-triangle sphere mesh (a
  * deep BVH). Each case prints its counts and the worst difference; the assertion is exact
  * equality (docs/backend_gl.md "The layered depth image on the device" says why it holds). With
@@ -206,6 +206,23 @@ int main(int argc, char **argv) {
                persp ? CAM_PERSP : CAM_ORTHO, LIGHT, MATS, shapes[i][1]);
       case_json(what, json, NULL);
     }
+  /* a torus at scales where its cubic's float start would overflow or underflow unscaled (d1 scaled
+   * too: a slab's blur goes as sqrt(d1 x spacing x variance)) */
+  static const double scales[] = {1e-16, 1e-14, 3e13, 1e14, 1e16};
+  for (size_t i = 0; i < sizeof scales / sizeof *scales; i++) {
+    double k = scales[i];
+    char what[96];
+    snprintf(what, sizeof what, "torus at scale %g, perspective", k);
+    snprintf(json, sizeof json,
+             "{\"camera\": {\"projection\": \"perspective\", \"eye\": [%.17g, %.17g, %.17g], "
+             "\"target\": [0, 0, 0], \"fov_deg\": 45, \"resolution\": [80, 60]}, "
+             "\"render\": {\"slab_spacing\": %.17g, \"d1\": %.17g}, \"lights\": [{\"mean\": [0.4, 0.2], "
+             "\"var\": [0.05, 0.02]}], \"materials\": {\"m\": {}}, \"objects\": [{\"shape\": "
+             "\"torus\", \"center\": [0, 0, 0], \"normal\": [0.3, 1, 0.2], \"major_radius\": %.17g, "
+             "\"minor_radius\": %.17g, \"material\": \"m\"}]}",
+             0.4 * k, 0.7 * k, 2.6 * k, 0.02 * k, k, 0.6 * k, 0.2 * k);
+    case_json(what, json, NULL);
+  }
   /* the eye inside volumes: a box, a sphere and a torus's tube contain it */
   snprintf(json, sizeof json,
            "{\"camera\": {\"projection\": \"perspective\", \"eye\": [0.7, 0, 0.05], \"target\": [0, 0, -2], "

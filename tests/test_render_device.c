@@ -11,7 +11,8 @@
  * their messages and no image: cl, a device that does not exist (ICS_CL_DEVICE); gl, a context
  * kind that does not exist (ICS_GL_CONTEXT) and light buffers over the driver's limits. Exit 77
  * (skipped) when the backend cannot run here. The gl backend renders on the context that
- * ICS_GL_CONTEXT names (the CMake tests run it once per context kind).
+ * ICS_GL_CONTEXT names (the CMake tests run it once per context kind), with the layered depth
+ * image that ICS_GL_LDI names (with "device", each render checks that it was built there).
  * usage: test_render_device cl|gl [SCENE.json ...] */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -149,6 +150,10 @@ static void compare(const char *what, const char *mode, const ics_scene *s) {
   CHECK(rms <= TOL_RMS, "%s: RMS difference %.3g > %.3g", what, rms, TOL_RMS);
   CHECK(amax <= TOL_MAX, "%s: AOVs differ by %.3g > %.3g", what, amax, TOL_MAX);
   CHECK(!strcmp(b.stats.backend, backend), "%s: backend %s", what, b.stats.backend);
+  const char *ldi = getenv("ICS_GL_LDI"); /* the device's layered depth image: it was built */
+  if (!strcmp(backend, "gl") && ldi && !strcmp(ldi, "device"))
+    CHECK(b.stats.ms_geometry_device > 0, "%s: ICS_GL_LDI=device, but no LDI built on the device",
+          what);
   snprintf(device, sizeof device, "%s", b.stats.device);
   ics_image_destroy(a.img);
   ics_image_destroy(b.img);

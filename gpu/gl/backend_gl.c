@@ -400,12 +400,12 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
     scratch[l] = malloc(sizeof **scratch * (size_t)sk->entries * (size_t)sk->cap);
     if (!scratch[l]) goto nomem;
   }
-  for (size_t p = 0; p < npx; p++) {
+  for (size_t p = 0; p < npx && !s->ldi_device; p++) { /* the device makes its own */
     uint64_t m = ds.inside ? ds.inside[p] : 0;
     pix[4 * p] = pix[4 * p + 1] = P->ldi.offset[p];
     pix[4 * p + 2] = (uint32_t)m, pix[4 * p + 3] = (uint32_t)(m >> 32);
   }
-  memcpy(span, ds.fspan, ds.nfrag);
+  if (!s->ldi_device) memcpy(span, ds.fspan, ds.nfrag);
   int off_cam = (int)(5 * ds.ntt), off_lcol = off_cam + ICS_DEV_CAM;
   int off_lmu = off_lcol + 3 * ICS_SCENE_MAX_LIGHTS, off_lpath = off_lmu + 2 * ICS_SCENE_MAX_LIGHTS;
   j->off_window = off_lpath + ICS_SCENE_MAX_LIGHTS;
@@ -528,9 +528,7 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
     if (msg) {
       if (reset != GL_NO_ERROR)
         snprintf(msg, msg_size, "backend gl: the context was lost (%s) on %s",
-                 reset == GL_GUILTY_CONTEXT_RESET ? "GL_GUILTY_CONTEXT_RESET"
-                 : reset == GL_INNOCENT_CONTEXT_RESET ? "GL_INNOCENT_CONTEXT_RESET"
-                                                      : "GL_UNKNOWN_CONTEXT_RESET", s->g.renderer);
+                 ics_gl_reset_name(reset), s->g.renderer);
       else
         snprintf(msg, msg_size, "backend gl: %s reading the image back from %s", ics_gl_error_name(e),
                  s->g.renderer);

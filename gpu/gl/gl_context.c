@@ -399,3 +399,9 @@ const char *ics_gl_error_name(GLenum e) {
   default: return "a GL error";
   }
 }
+
+const char *ics_gl_reset_name(GLenum reset) {
+  return reset == GL_GUILTY_CONTEXT_RESET     ? "GL_GUILTY_CONTEXT_RESET"
+         : reset == GL_INNOCENT_CONTEXT_RESET ? "GL_INNOCENT_CONTEXT_RESET"
+                                              : "GL_UNKNOWN_CONTEXT_RESET";
+}

@@ -105,7 +105,8 @@ void ics_gl_uniform_ui(ics_gl *g, GLuint prog, const char *name, unsigned v);
 void ics_gl_uniform_d(ics_gl *g, GLuint prog, const char *name, double v);
 /* A buffer of `bytes` (at least 4) holding `data`, or zeros when data is NULL; updatable. */
 GLuint ics_gl_buffer(ics_gl *g, size_t bytes, const void *data);
-/* The name of a glGetError code. */
+/* The name of a glGetError code, and of a glGetGraphicsResetStatus one. */
 const char *ics_gl_error_name(GLenum e);
+const char *ics_gl_reset_name(GLenum reset);
 
 #endif

@@ -38,8 +38,9 @@ layout(std430, binding = 5) buffer PoolLink { uvec2 pool_link[]; };
 layout(std430, binding = 6) buffer Head { uint head[]; };
 layout(std430, binding = 7) buffer Count { uint cnt[]; };
 layout(std430, binding = 8) buffer Inside { uvec2 inside[]; };
-/* next node, the largest count */
-layout(std430, binding = 9) buffer Counter { uint next_node; uint max_layers; };
+/* next node, the largest count, the most crossings one pixel pushed (the host's bound on the
+ * 32-bit counter: pushes x pixels < 2^32) */
+layout(std430, binding = 9) buffer Counter { uint next_node; uint max_layers; uint max_pushes; };
 
 uniform int npx, gw, gh, W, H, pad_l, pad_t;
 uniform uint cap;
@@ -82,7 +83,7 @@ layout(std430, binding = 3) readonly buffer NodeLink { ivec4 node_link[]; };
 layout(std430, binding = 10) readonly buffer Tris { double tris[]; };
 uniform int nobj;
 
-uint list_head, live;
+uint list_head, live, pushes;
 
 double g(int k, int i) { return geo[k * GEO_STRIDE + i]; }
 
@@ -94,7 +95,7 @@ dvec3 axis(int k, int i) { return dvec3(g(k, 4 + 3 * i), g(k, 5 + 3 * i), g(k, 6
 
 void push(double t, dvec3 n, uint obj) {
   uint idx = atomicAdd(next_node, 1u);
-  live++;
+  live++, pushes++;
   if (idx >= cap) return; /* counted: the host grows the pool and casts again */
   pool_tn[idx] = dvec4(t, n);
   pool_link[idx] = uvec2(obj, list_head);
@@ -110,6 +111,19 @@ void push_hit(double t, dvec3 n, uint obj, inout int behind) {
 }
 
 /* ---- torus (geometry.c torus_hits) ---- */
+/* cbrt(x) for x >= 0 in double: the exponent split off (x = m 2^(3q + r)), a float start for
+ * the cube root of m 2^r in [0.5, 4), which float holds whatever the torus's size, and Newton */
+double dcbrt(double x) {
+  if (!(x > 0.0LF) || isinf(x)) return x;
+  int e;
+  double m = frexp(x, e);
+  int q = e >= 0 ? e / 3 : -((2 - e) / 3), rem = e - 3 * q;
+  precise double mm = ldexp(m, rem);
+  precise double y = double(pow(float(mm), 1.0 / 3.0));
+  for (int it = 0; it < 3; it++) y = y - (y * y * y - mm) / (3.0LF * y * y);
+  return ldexp(y, q);
+}
+
 int cubic_roots(double a, double b, double c, out double r[3]) {
   precise double Q = (a * a - 3.0LF * b) / 9.0LF;
   precise double R = (2.0LF * a * a * a - 9.0LF * a * b + 27.0LF * c) / 54.0LF;
@@ -117,16 +131,15 @@ int cubic_roots(double a, double b, double c, out double r[3]) {
   int n;
   if (RR < QQQ) {
     precise double sq = -2.0LF * sqrt(Q), a3 = a / 3.0LF;
-    float th = acos(float(R / sqrt(QQQ)));
-    r[0] = sq * double(cos(th / 3.0)) - a3;
-    r[1] = sq * double(cos((th + 2.0 * 3.14159265358979) / 3.0)) - a3;
-    r[2] = sq * double(cos((th - 2.0 * 3.14159265358979) / 3.0)) - a3;
+    float th = acos(float(R / sqrt(QQQ))); /* in [-1, 1]: float holds it */
+    precise double r0 = sq * double(cos(th / 3.0)) - a3;
+    precise double r1 = sq * double(cos((th + 2.0 * 3.14159265358979) / 3.0)) - a3;
+    precise double r2 = sq * double(cos((th - 2.0 * 3.14159265358979) / 3.0)) - a3;
+    r[0] = r0, r[1] = r1, r[2] = r2;
     n = 3;
   } else {
-    precise double x = abs(R) + sqrt(RR - QQQ);
-    precise double y = double(pow(float(x), 1.0 / 3.0)); /* cbrt: float start, Newton */
-    for (int it = 0; it < 3 && y > 0.0LF; it++) y = y - (y * y * y - x) / (3.0LF * y * y);
-    precise double A = R > 0.0LF ? -y : y; /* -copysign(cbrt(|R| + ...), R) */
+    precise double A = dcbrt(abs(R) + sqrt(RR - QQQ));
+    if ((unpackDouble2x32(R).y & 0x80000000u) == 0u) A = -A; /* -copysign(cbrt(...), R) */
     precise double B = A != 0.0LF ? Q / A : 0.0LF;
     r[0] = A + B - a / 3.0LF;
     r[1] = r[2] = 0.0LF;
@@ -266,6 +279,7 @@ void mesh_crossing(int tri, dvec3 o, dvec3 d, uint obj) {
   precise double v = (d.x * q.x + d.y * q.y + d.z * q.z) / det;
   if (v < 0.0LF || u + v > 1.0LF) return;
   precise double tt = (e2.x * q.x + e2.y * q.y + e2.z * q.z) / det;
+  if (isnan(tt)) return; /* overflowing coordinates: no crossing (as mesh.c) */
   precise dvec3 nrm = dvec3(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
                             e1.x * e2.y - e1.y * e2.x);
   push(tt, nrm, obj);
@@ -339,7 +353,7 @@ void main() {
   int px = bj * gw + bi;
   dvec3 o, d;
   plan_ray(bi, bj, o, d);
-  list_head = NIL, live = 0u;
+  list_head = NIL, live = 0u, pushes = 0u;
   uvec2 ins = uvec2(0u);
   for (int k = 0; k < nobj; k++) {
     int shape = int(g(k, 0)), behind = 0;
@@ -417,6 +431,7 @@ void main() {
   cnt[px] = live;
   inside[px] = ins;
   atomicMax(max_layers, live);
+  atomicMax(max_pushes, pushes);
 }
 #endif
 

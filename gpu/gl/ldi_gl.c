@@ -57,8 +57,8 @@ static ics_status gl_failed(ics_gl *g, const char *when, char *msg, size_t msg_s
   GLenum reset = g->gl.GetGraphicsResetStatus(), e = g->gl.GetError();
   if (reset == GL_NO_ERROR && e == GL_NO_ERROR) return ICS_OK;
   if (reset != GL_NO_ERROR)
-    snprintf(msg, msg_size, "backend gl: the context was lost %s (the layered depth image) on %s",
-             when, g->renderer);
+    snprintf(msg, msg_size, "backend gl: the context was lost (%s) %s (the layered depth image) "
+             "on %s", ics_gl_reset_name(reset), when, g->renderer);
   else
     snprintf(msg, msg_size, "backend gl: %s %s (the layered depth image) on %s",
              ics_gl_error_name(e), when, g->renderer);
@@ -84,14 +84,14 @@ ics_status ics_gl_ldi_build(ics_gl *g, const GLuint prog[ICS_GL_LDI_NPROGS], con
   GLuint w[NWORK] = {0};
   ics_status st = ICS_OK;
   const struct { const char *what; size_t bytes; } sizes[] = {
-      {"the objects' geometry", sizeof(double) * ICS_DEV_GEO_STRIDE * geo.nobj},
-      {"the meshes' BVH nodes", sizeof(double) * 6 * geo.nnodes},
-      {"the meshes' triangles", sizeof(double) * 9 * geo.ntris},
-      {"the per-pixel shading state", sizeof(uint32_t) * 4 * npx},
-      {"the crossings' pool", sizeof(double) * 4 * cap}};
+      {"object records", sizeof(double) * ICS_DEV_GEO_STRIDE * geo.nobj},
+      {"mesh BVH nodes", sizeof(double) * 6 * geo.nnodes},
+      {"mesh triangles", sizeof(double) * 9 * geo.ntris},
+      {"per-pixel shading state", sizeof(uint32_t) * 4 * npx},
+      {"pool of crossings", sizeof(double) * 4 * cap}};
   for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++)
     if ((long long)sizes[i].bytes > max_block) {
-      snprintf(msg, msg_size, "backend gl: %s (layered depth image) take %zu bytes, over the "
+      snprintf(msg, msg_size, "backend gl: the layered depth image's %s: %zu bytes, over the "
                "driver's largest shader storage block (%lld bytes, %s)", sizes[i].what,
                sizes[i].bytes, max_block, g->renderer);
       ics_device_geometry_destroy(&geo);
@@ -106,7 +106,7 @@ ics_status ics_gl_ldi_build(ics_gl *g, const GLuint prog[ICS_GL_LDI_NPROGS], con
   w[W_HEAD] = ics_gl_buffer(g, sizeof(uint32_t) * npx, NULL);
   w[W_CNT] = ics_gl_buffer(g, sizeof(uint32_t) * npx, NULL);
   w[W_INSIDE] = ics_gl_buffer(g, sizeof(uint32_t) * 2 * npx, NULL);
-  w[W_CTR] = ics_gl_buffer(g, sizeof(uint32_t) * 2, NULL);
+  w[W_CTR] = ics_gl_buffer(g, sizeof(uint32_t) * 3, NULL);
   ics_device_geometry_destroy(&geo);
 
   GLuint cast = prog[ICS_GL_LDI_CAST], scan = prog[ICS_GL_LDI_SCAN], sort = prog[ICS_GL_LDI_SORT];
@@ -123,7 +123,7 @@ ics_status ics_gl_ldi_build(ics_gl *g, const GLuint prog[ICS_GL_LDI_NPROGS], con
   static const struct { int binding, buf; } cast_b[] = {
       {0, W_GEO}, {1, W_CAM}, {2, W_NBOX}, {3, W_NLINK}, {4, W_TN}, {5, W_LINK},
       {6, W_HEAD}, {7, W_CNT}, {8, W_INSIDE}, {9, W_CTR}, {10, W_TRIS}};
-  uint32_t ctr[2] = {0, 0};
+  uint32_t ctr[3] = {0, 0, 0}; /* pushes, the largest count, the most pushes of one pixel */
   for (out->casts = 1;; out->casts++) {
     w[W_TN] = ics_gl_buffer(g, sizeof(double) * 4 * cap, NULL);
     w[W_LINK] = ics_gl_buffer(g, sizeof(uint32_t) * 2 * cap, NULL);
@@ -135,9 +135,15 @@ ics_status ics_gl_ldi_build(ics_gl *g, const GLuint prog[ICS_GL_LDI_NPROGS], con
     run(g, cast, (GLuint)((P->Wb + 15) / 16), (GLuint)((P->Hb + 7) / 8));
     g->gl.GetNamedBufferSubData(w[W_CTR], 0, sizeof ctr, ctr);
     if ((st = gl_failed(g, "casting the rays", msg, msg_size)) != ICS_OK) goto done;
+    if ((uint64_t)ctr[2] * npx >= UINT32_MAX) { /* the 32-bit counter may have wrapped */
+      snprintf(msg, msg_size, "backend gl: up to %u crossings per pixel over %zu pixels: more "
+               "than the device's 32-bit crossing counter holds (use --gl-ldi plan)", ctr[2], npx);
+      st = ICS_ERR_SIZE;
+      goto done;
+    }
     if (ctr[0] <= cap || out->casts == 2) break;
     cap = ctr[0];
-    if ((long long)(sizeof(double) * 4 * cap) > max_block || cap >= UINT32_MAX) {
+    if ((long long)(sizeof(double) * 4 * cap) > max_block) {
       snprintf(msg, msg_size, "backend gl: %zu crossings need a pool of %zu bytes, over the "
                "driver's largest shader storage block (%lld bytes, %s)", cap,
                sizeof(double) * 4 * cap, max_block, g->renderer);

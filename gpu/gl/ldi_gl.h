@@ -13,7 +13,7 @@ enum { ICS_GL_LDI_CAST, ICS_GL_LDI_SCAN, ICS_GL_LDI_SORT, ICS_GL_LDI_NPROGS };
 
 /* The result: the shading's buffers (owned; ics_gl_ldi_release), the fragment count, the
  * largest number of layers, how often the cast ran (a second time when the first pool was too
- * small) and the device time of the whole build. */
+ * small) and the build's time on the host's clock (uploads and readbacks included). */
 typedef struct ics_gl_ldi {
   GLuint offset, fz, fcode, fgrad, fspan, pix; /* as backend_gl.c's B_OFFSET .. B_PIX */
   size_t nfrag;
@@ -25,7 +25,8 @@ typedef struct ics_gl_ldi {
 int ics_gl_ldi_programs(ics_gl *g, GLuint prog[ICS_GL_LDI_NPROGS], char *msg, size_t msg_size);
 /* With g current: builds P's layered depth image on the device. max_block: the driver's
  * GL_MAX_SHADER_STORAGE_BLOCK_SIZE, max_groups its GL_MAX_COMPUTE_WORK_GROUP_COUNT. ICS_OK;
- * ICS_ERR_SIZE (a buffer over the driver's limits or more than 2^32 - 1 crossings),
+ * ICS_ERR_SIZE (a buffer over the driver's limits, or crossings that may overflow the 32-bit
+ * counter),
  * ICS_ERR_NOMEM (host or GL_OUT_OF_MEMORY) or ICS_ERR_UNSUPPORTED (another GL error, a lost
  * context), each with msg; on failure nothing is left allocated. */
 ics_status ics_gl_ldi_build(ics_gl *g, const GLuint prog[ICS_GL_LDI_NPROGS], const ics_plan *P,

@@ -33,6 +33,7 @@ int ics_hits_push(ics_hits *h, double t, const double n[3]) {
   }
   h->h[h->n].t = t;
   memcpy(h->h[h->n].n, n, sizeof h->h[h->n].n);
+  h->h[h->n].seq = h->n;
   h->n++;
   return 0;
 }

@@ -10,6 +10,7 @@
 typedef struct ics_hit {
   double t;
   double n[3];
+  int seq; /* its position when pushed: the last key of every sort, so orders are total */
 } ics_hit;
 
 /* A growable list of crossings. */

@@ -23,14 +23,17 @@ void ics_ldi_release(ics_ldi *l) {
 
 typedef struct {
   double t;
-  int obj;
+  int obj, seq; /* seq: the order found (objects in order, each object's in its order) */
   double n[3];
 } hit_t;
 
+/* by depth, object, then the order found: a total order (the same with any qsort, and the
+ * device's, gpu/gl/ldi.comp) */
 static int cmp_hit(const void *a, const void *b) {
   const hit_t *x = a, *y = b;
   if (x->t != y->t) return (x->t > y->t) - (x->t < y->t);
-  return (x->obj > y->obj) - (x->obj < y->obj);
+  if (x->obj != y->obj) return (x->obj > y->obj) - (x->obj < y->obj);
+  return (x->seq > y->seq) - (x->seq < y->seq);
 }
 
 typedef struct {
@@ -64,7 +67,8 @@ static int pixel_hits(const ics_plan *p, int bi, int bj, ics_hits *h, hit_t **hv
       *hcap = cap;
     }
     for (int i = 0; i < h->n; i++) {
-      hit_t *x = &(*hv)[n++];
+      hit_t *x = &(*hv)[n];
+      x->seq = n++;
       x->t = h->h[i].t;
       x->obj = k;
       memcpy(x->n, h->h[i].n, sizeof x->n);

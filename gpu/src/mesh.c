@@ -1,4 +1,4 @@
-/* mesh.c — triangle meshes: Assimp loading (when built with it), a BVH (median split on the
+/* mesh.c — triangle meshes (files are read by mesh_import.c): a BVH (median split on the
  * longest centroid axis, leaves of up to 4 triangles), all crossings of a ray (Moller-Trumbore in
  * double precision; crossings closer than 1e-9 of the mesh's diagonal are merged so that a ray
  * through a shared edge counts once), and the closedness test used to decide whether a mesh
@@ -11,11 +11,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifdef ICS_HAVE_ASSIMP
-#include <assimp/cimport.h>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
-#endif
 
 typedef struct {
   double v0[3], e1[3], e2[3];
@@ -243,9 +238,11 @@ static int box_hit(const node_t *n, const double o[3], const double inv[3]) {
   return t0 <= t1;
 }
 
+/* by t, then in the order pushed (a total order: the same with any qsort, and the device's) */
 static int cmp_hit_t(const void *a, const void *b) {
-  double x = ((const ics_hit *)a)->t, y = ((const ics_hit *)b)->t;
-  return (x > y) - (x < y);
+  const ics_hit *x = a, *y = b;
+  if (x->t != y->t) return (x->t > y->t) - (x->t < y->t);
+  return (x->seq > y->seq) - (x->seq < y->seq);
 }
 
 /* The crossing of the line orig + t dir with triangle t (Moller-Trumbore in double precision):
@@ -265,6 +262,7 @@ static int push_crossing(const tri_t *t, const double orig[3], const double dir[
   double v = (dir[0] * q[0] + dir[1] * q[1] + dir[2] * q[2]) / det;
   if (inside_test && (v < 0 || u + v > 1)) return 0;
   double tt = (t->e2[0] * q[0] + t->e2[1] * q[1] + t->e2[2] * q[2]) / det;
+  if (isnan(tt)) return 0; /* overflowing coordinates: no crossing (as gpu/gl/ldi.comp) */
   double nrm[3] = {t->e1[1] * t->e2[2] - t->e1[2] * t->e2[1], t->e1[2] * t->e2[0] - t->e1[0] * t->e2[2],
                    t->e1[0] * t->e2[1] - t->e1[1] * t->e2[0]};
   return ics_hits_push(h, tt, nrm);
@@ -274,6 +272,7 @@ static int push_crossing(const tri_t *t, const double orig[3], const double dir[
  * *behind and drops them. */
 static void finish_hits(const ics_mesh *m, const double dir[3], ics_hits *h, int start, int *behind) {
   int n = h->n - start, nbehind = 0;
+  if (n <= 0) return; /* nothing pushed (h->h may still be NULL) */
   ics_hit *t = h->h + start;
   if (n > 1) qsort(t, (size_t)n, sizeof *t, cmp_hit_t);
   /* a ray through an edge shared by two triangles facing the same way (relative to the ray)
@@ -363,83 +362,3 @@ void ics_mesh_flatten(const ics_mesh *m, int node_base, int tri_base, double *no
 }
 
 double ics_mesh_merge_eps(const ics_mesh *m) { return m->eps; }
-
-int ics_mesh_files_supported(void) {
-#ifdef ICS_HAVE_ASSIMP
-  return 1;
-#else
-  return 0;
-#endif
-}
-
-ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double scale[3],
-                                const double rot_deg[3], const double translate[3], char *msg,
-                                size_t msg_size) {
-  *out = NULL;
-#ifndef ICS_HAVE_ASSIMP
-  (void)scale, (void)rot_deg, (void)translate;
-  if (msg)
-    snprintf(msg, msg_size, "%s: mesh files need Assimp, which was not found when the renderer "
-             "was built (install libassimp-dev and rebuild)", path);
-  return ICS_ERR_UNSUPPORTED;
-#else
-  FILE *probe = fopen(path, "rb");
-  if (!probe) {
-    if (msg) snprintf(msg, msg_size, "%s: cannot open mesh file", path);
-    return ICS_ERR_IO;
-  }
-  fclose(probe);
-  const struct aiScene *sc = aiImportFile(
-      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);
-  if (!sc) {
-    if (msg) snprintf(msg, msg_size, "%s: cannot read mesh: %s", path, aiGetErrorString());
-    return ICS_ERR_PARSE;
-  }
-  size_t nv = 0, nt = 0;
-  for (unsigned i = 0; i < sc->mNumMeshes; i++) {
-    nv += sc->mMeshes[i]->mNumVertices;
-    for (unsigned f = 0; f < sc->mMeshes[i]->mNumFaces; f++)
-      nt += sc->mMeshes[i]->mFaces[f].mNumIndices == 3;
-  }
-  if (nt == 0 || nt > ICS_MESH_MAX_TRIANGLES || nv > (size_t)INT32_MAX / 3) {
-    aiReleaseImport(sc);
-    if (msg)
-      snprintf(msg, msg_size, "%s: %zu triangles (expected 1..%d)", path, nt,
-               ICS_MESH_MAX_TRIANGLES);
-    return ICS_ERR_SIZE;
-  }
-  double *xyz = malloc(sizeof *xyz * 3 * nv);
-  int *tri = malloc(sizeof *tri * 3 * nt);
-  if (!xyz || !tri) {
-    free(xyz);
-    free(tri);
-    aiReleaseImport(sc);
-    return ICS_ERR_NOMEM;
-  }
-  double ax[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  ics_frame_rotate(ax, rot_deg);
-  /* ax's rows are the rotated world axes; a point's rotated image is sum_i p_i ax[i] */
-  size_t vbase = 0, tk = 0;
-  for (unsigned i = 0; i < sc->mNumMeshes; i++) {
-    const struct aiMesh *me = sc->mMeshes[i];
-    for (unsigned v = 0; v < me->mNumVertices; v++) {
-      double p[3] = {me->mVertices[v].x * scale[0], me->mVertices[v].y * scale[1],
-                     me->mVertices[v].z * scale[2]};
-      for (int w = 0; w < 3; w++)
-        xyz[3 * (vbase + v) + w] = p[0] * ax[0][w] + p[1] * ax[1][w] + p[2] * ax[2][w] + translate[w];
-    }
-    for (unsigned f = 0; f < me->mNumFaces; f++) {
-      if (me->mFaces[f].mNumIndices != 3) continue;
-      for (int k = 0; k < 3; k++) tri[3 * tk + k] = (int)(vbase + me->mFaces[f].mIndices[k]);
-      tk++;
-    }
-    vbase += me->mNumVertices;
-  }
-  aiReleaseImport(sc);
-  ics_status st = ics_mesh_create_triangles(out, xyz, (int)nv, tri, (int)nt);
-  free(xyz);
-  free(tri);
-  if (st != ICS_OK && msg) snprintf(msg, msg_size, "%s: %s", path, ics_status_str(st));
-  return st;
-#endif
-}

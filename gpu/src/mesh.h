@@ -1,6 +1,6 @@
 /* mesh.h — triangle meshes for the renderer: loading through Assimp (optional: PLY, OBJ, glTF,
- * ...), a bounding-volume hierarchy, every crossing of a ray, and a closedness test (every edge
- * shared by exactly two triangles), since only closed meshes bound volumes. */
+ * ...; mesh_import.c), a bounding-volume hierarchy, every crossing of a ray, and a closedness
+ * test (every edge shared by exactly two triangles), since only closed meshes bound volumes. */
 #ifndef ICS_RENDER_MESH_H
 #define ICS_RENDER_MESH_H
 
@@ -14,11 +14,14 @@
 
 /* Loads every mesh of the file as one triangle soup (Assimp: triangulated, identical vertices
  * joined), applies v' = R (s * v) + translate (R: rotations about x, then y, then z in degrees).
- * ICS_ERR_UNSUPPORTED without Assimp at build time, ICS_ERR_IO / ICS_ERR_PARSE with Assimp's
- * reason in msg, ICS_ERR_SIZE for no or too many triangles, ICS_ERR_NOMEM. */
+ * Assimp runs in a child process (mesh_import.c), so a reader that crashes or does not finish
+ * within `seconds` (0: 60 s + 2 s per MiB of file) is an error, not a crash or a hang.
+ * ICS_ERR_UNSUPPORTED without Assimp at build time, ICS_ERR_IO (cannot open, cannot start the
+ * reader) / ICS_ERR_PARSE (Assimp's reason, its crash or time-out) in msg, ICS_ERR_SIZE for no or
+ * too many triangles, ICS_ERR_NOMEM. */
 ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double scale[3],
-                                const double rot_deg[3], const double translate[3], char *msg,
-                                size_t msg_size);
+                                const double rot_deg[3], const double translate[3],
+                                double seconds, char *msg, size_t msg_size);
 /* From vertex positions (x, y, z per vertex) and triangles (3 vertex indices each); copied. */
 ics_status ics_mesh_create_triangles(ics_mesh **out, const double *xyz, int nverts,
                                      const int *tri, int ntris);

@@ -709,7 +709,7 @@ static int read_object(rctx *c, int idx, json_t *o) {
   if (!path) return fail(c, ICS_ERR_NOMEM, "out of memory");
   ics_mesh *mesh;
   char mmsg[4096 + 512];
-  ics_status st = ics_mesh_create_file(&mesh, path, sc, rot, tr, mmsg, sizeof mmsg);
+  ics_status st = ics_mesh_create_file(&mesh, path, sc, rot, tr, 0, mmsg, sizeof mmsg);
   free(path);
   if (st != ICS_OK) return fail(c, st, "%s: %s", KEY("file"), mmsg);
   ics_mesh **mp = realloc(c->s->meshes, sizeof *mp * (size_t)(c->s->nmeshes + 1));

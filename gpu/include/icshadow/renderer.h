@@ -48,12 +48,12 @@ typedef struct ics_render_stats {
   int slabs;
   double ms_total;   /* the render call, geometry pass excluded (ics_plan_geometry_seconds) */
   double ms_convolution, ms_shading, ms_detail;
-  double ms_geometry_device; /* the layered depth image built on the device (gl with --gl-ldi
-                                device; within ms_total), 0 where the plan's is used */
   double ns_per_px_slab; /* ms_convolution per (buffer pixel x slab x light) */
   int spp;               /* "mc": samples per pixel taken */
   double noise;          /* "mc": RMS over pixels and R, G, B of the standard error of the mean
                             (NAN after 1 sample) */
+  double ms_geometry_device; /* the layered depth image built on the device (gl with --gl-ldi
+                                device; within ms_total), 0 where the plan's is used */
 } ics_render_stats;
 
 typedef struct ics_renderer ics_renderer;

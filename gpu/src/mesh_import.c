@@ -1,0 +1,263 @@
+/* mesh_import.c — mesh files through Assimp (ics_mesh_create_file, mesh.h), read in a child
+ * process.
+ *
+ * Assimp's readers are not hardened against malformed files. fuzz/fuzz_mesh_file.c found
+ * Debian's Assimp 5.2.5 aborting the process on an assertion (a post-processing step, on a PLY
+ * file with a damaged header) and never returning (a PLY header without end_header: it seeks at
+ * the end of the file forever). So the import runs in a child (fork), which sends the vertex
+ * positions back as Assimp holds them (floats) and the triangles as global vertex indices,
+ * through a pipe. The parent applies scale, rotation and translation in double precision and
+ * builds the mesh (ics_mesh_create_triangles). A child that dies, exits early or is not done
+ * within the time limit becomes the file's error: no crash, no hang. The time limit is 60 s plus
+ * 2 s per MiB of file by default, which leaves Assimp's speed on large legitimate files
+ * (tens of MB/s) far inside it. A PLY header without end_header is refused before Assimp
+ * sees it: a message at once rather than a timeout. fork is called from the thread that reads
+ * the scene; the child only runs Assimp and _exits. */
+#define _POSIX_C_SOURCE 200809L
+#include "mesh.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef ICS_HAVE_ASSIMP
+#include <assimp/cimport.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+#endif
+
+int ics_mesh_files_supported(void) {
+#ifdef ICS_HAVE_ASSIMP
+  return 1;
+#else
+  return 0;
+#endif
+}
+
+#ifdef ICS_HAVE_ASSIMP
+#define PLY_HEADER_MAX 65536
+
+/* 1 when f is not PLY or its header ends (an end_header line) within PLY_HEADER_MAX bytes */
+static int ply_header_ended(FILE *f) {
+  char line[256];
+  if (!fgets(line, sizeof line, f) || strncmp(line, "ply", 3) || (line[3] != '\n' && line[3] != '\r'))
+    return 1;
+  long read = (long)strlen(line);
+  while (read < PLY_HEADER_MAX && fgets(line, sizeof line, f)) {
+    read += (long)strlen(line);
+    if (!strncmp(line, "end_header", 10) && (line[10] == '\n' || line[10] == '\r' || !line[10]))
+      return 1;
+  }
+  return 0;
+}
+
+/* what the child sends first: its status and message, then nv x 3 floats, nt x 3 uint32 */
+typedef struct {
+  int32_t status;
+  int32_t pad;
+  uint64_t nv, nt;
+  char msg[512];
+} child_header;
+
+static int write_all(int fd, const void *p, size_t n) {
+  const char *c = p;
+  while (n) {
+    ssize_t w = write(fd, c, n);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) return -1;
+    c += w, n -= (size_t)w;
+  }
+  return 0;
+}
+
+/* the child: Assimp's import, sent through fd; never returns */
+static void child_import(int fd, const char *path) {
+  child_header h;
+  memset(&h, 0, sizeof h);
+  const struct aiScene *sc = aiImportFile(
+      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);
+  if (!sc) {
+    h.status = ICS_ERR_PARSE;
+    snprintf(h.msg, sizeof h.msg, "cannot read mesh: %s", aiGetErrorString());
+    _exit(write_all(fd, &h, sizeof h) ? 1 : 0);
+  }
+  for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+    h.nv += sc->mMeshes[i]->mNumVertices;
+    for (unsigned f = 0; f < sc->mMeshes[i]->mNumFaces; f++)
+      h.nt += sc->mMeshes[i]->mFaces[f].mNumIndices == 3;
+  }
+  if (h.nt == 0 || h.nt > ICS_MESH_MAX_TRIANGLES || h.nv > (uint64_t)INT32_MAX / 3) {
+    h.status = ICS_ERR_SIZE;
+    snprintf(h.msg, sizeof h.msg, "%llu triangles (expected 1..%d)", (unsigned long long)h.nt,
+             ICS_MESH_MAX_TRIANGLES);
+    h.nv = h.nt = 0;
+    _exit(write_all(fd, &h, sizeof h) ? 1 : 0);
+  }
+  int bad = write_all(fd, &h, sizeof h);
+  float v[3 * 256];
+  uint32_t t[3 * 256];
+  for (unsigned i = 0; i < sc->mNumMeshes && !bad; i++) {
+    const struct aiMesh *me = sc->mMeshes[i];
+    for (unsigned k = 0; k < me->mNumVertices && !bad; k += 256) {
+      unsigned n = me->mNumVertices - k < 256 ? me->mNumVertices - k : 256;
+      for (unsigned j = 0; j < n; j++)
+        v[3 * j] = (float)me->mVertices[k + j].x, v[3 * j + 1] = (float)me->mVertices[k + j].y,
+        v[3 * j + 2] = (float)me->mVertices[k + j].z;
+      bad = write_all(fd, v, sizeof *v * 3 * n);
+    }
+  }
+  uint32_t vbase = 0;
+  unsigned n = 0;
+  for (unsigned i = 0; i < sc->mNumMeshes && !bad; i++) {
+    const struct aiMesh *me = sc->mMeshes[i];
+    for (unsigned f = 0; f < me->mNumFaces && !bad; f++) {
+      if (me->mFaces[f].mNumIndices != 3) continue;
+      for (int k = 0; k < 3; k++) t[3 * n + k] = vbase + me->mFaces[f].mIndices[k];
+      if (++n == 256) bad = write_all(fd, t, sizeof *t * 3 * n), n = 0;
+    }
+    vbase += me->mNumVertices;
+  }
+  if (!bad && n) bad = write_all(fd, t, sizeof *t * 3 * n);
+  _exit(bad ? 1 : 0);
+}
+
+static double now_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* reads n bytes before `deadline`: 0, or 1 the child closed early, 2 time out, 3 a read error */
+static int read_all(int fd, void *p, size_t n, double deadline) {
+  char *c = p;
+  while (n) {
+    double left = deadline - now_s();
+    if (left <= 0) return 2;
+    struct pollfd pf = {fd, POLLIN, 0};
+    int r = poll(&pf, 1, (int)fmin(left * 1000 + 1, 60000));
+    if (r < 0 && errno == EINTR) continue;
+    if (r < 0) return 3;
+    if (r == 0) continue;
+    ssize_t got = read(fd, c, n);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) return 3;
+    if (got == 0) return 1;
+    c += got, n -= (size_t)got;
+  }
+  return 0;
+}
+#endif
+
+ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double scale[3],
+                                const double rot_deg[3], const double translate[3],
+                                double seconds, char *msg, size_t msg_size) {
+  *out = NULL;
+#ifndef ICS_HAVE_ASSIMP
+  (void)scale, (void)rot_deg, (void)translate, (void)seconds;
+  if (msg)
+    snprintf(msg, msg_size, "%s: mesh files need Assimp, which was not found when the renderer "
+             "was built (install libassimp-dev and rebuild)", path);
+  return ICS_ERR_UNSUPPORTED;
+#else
+  FILE *probe = fopen(path, "rb");
+  if (!probe) {
+    if (msg) snprintf(msg, msg_size, "%s: cannot open mesh file", path);
+    return ICS_ERR_IO;
+  }
+  int header_ok = ply_header_ended(probe);
+  fclose(probe);
+  if (!header_ok) {
+    if (msg)
+      snprintf(msg, msg_size, "%s: a PLY header without an end_header line in its first %d bytes",
+               path, PLY_HEADER_MAX);
+    return ICS_ERR_PARSE;
+  }
+  if (!(seconds > 0)) {
+    struct stat sb;
+    seconds = 60 + (stat(path, &sb) ? 0 : 2 * (double)sb.st_size / 1048576.0);
+  }
+  int fds[2];
+  if (pipe(fds)) {
+    if (msg) snprintf(msg, msg_size, "%s: cannot start the mesh reader: %s", path, strerror(errno));
+    return ICS_ERR_IO;
+  }
+  fflush(NULL); /* nothing buffered twice */
+  pid_t pid = fork();
+  if (pid < 0) {
+    if (msg) snprintf(msg, msg_size, "%s: cannot start the mesh reader: %s", path, strerror(errno));
+    close(fds[0]), close(fds[1]);
+    return ICS_ERR_IO;
+  }
+  if (pid == 0) {
+    close(fds[0]);
+    child_import(fds[1], path);
+  }
+  close(fds[1]);
+  double deadline = now_s() + seconds;
+  child_header h;
+  float *v = NULL;
+  uint32_t *t = NULL;
+  double *xyz = NULL;
+  ics_status st = ICS_OK;
+  int r = read_all(fds[0], &h, sizeof h, deadline);
+  if (r == 0) {
+    h.msg[sizeof h.msg - 1] = 0;
+    if (h.status != ICS_OK) {
+      st = h.status == ICS_ERR_SIZE ? ICS_ERR_SIZE : ICS_ERR_PARSE;
+      if (msg) snprintf(msg, msg_size, "%s: %s", path, h.msg);
+    } else if (!(v = malloc(sizeof *v * 3 * (size_t)(h.nv ? h.nv : 1))) ||
+               !(t = malloc(sizeof *t * 3 * (size_t)h.nt)) ||
+               !(xyz = malloc(sizeof *xyz * 3 * (size_t)(h.nv ? h.nv : 1)))) {
+      st = ICS_ERR_NOMEM;
+      if (msg) snprintf(msg, msg_size, "%s: out of memory for %llu vertices", path,
+                        (unsigned long long)h.nv);
+    } else {
+      r = read_all(fds[0], v, sizeof *v * 3 * (size_t)h.nv, deadline);
+      if (r == 0) r = read_all(fds[0], t, sizeof *t * 3 * (size_t)h.nt, deadline);
+    }
+  }
+  if (r == 2) kill(pid, SIGKILL);
+  close(fds[0]);
+  int ws = 0;
+  while (waitpid(pid, &ws, 0) < 0 && errno == EINTR) {}
+  if (r != 0 && st == ICS_OK) {
+    st = ICS_ERR_PARSE;
+    if (msg) {
+      if (r == 2)
+        snprintf(msg, msg_size, "%s: Assimp did not finish reading the mesh within %.0f s", path,
+                 seconds);
+      else if (WIFSIGNALED(ws) && WTERMSIG(ws) != SIGKILL)
+        snprintf(msg, msg_size, "%s: Assimp failed on this file (its reader died of signal %d, "
+                 "%s)", path, WTERMSIG(ws), strsignal(WTERMSIG(ws)));
+      else
+        snprintf(msg, msg_size, "%s: the mesh reader stopped before sending the mesh", path);
+    }
+  }
+  if (st == ICS_OK) {
+    double ax[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    ics_frame_rotate(ax, rot_deg);
+    /* ax's rows are the rotated world axes; a point's rotated image is sum_i p_i ax[i] */
+    for (size_t k = 0; k < h.nv; k++) {
+      double p[3] = {v[3 * k] * scale[0], v[3 * k + 1] * scale[1], v[3 * k + 2] * scale[2]};
+      for (int w = 0; w < 3; w++)
+        xyz[3 * k + w] = p[0] * ax[0][w] + p[1] * ax[1][w] + p[2] * ax[2][w] + translate[w];
+    }
+    int *tri = (int *)t; /* indices past INT32_MAX are refused as out of range */
+    for (size_t k = 0; k < 3 * h.nt; k++) tri[k] = t[k] > INT32_MAX ? -1 : (int)t[k];
+    st = ics_mesh_create_triangles(out, xyz, (int)h.nv, tri, (int)h.nt);
+    if (st != ICS_OK && msg) snprintf(msg, msg_size, "%s: %s", path, ics_status_str(st));
+  }
+  free(v), free(t), free(xyz);
+  return st;
+#endif
+}
