@@ -5,7 +5,9 @@
 # root only, skipped with the reason otherwise) makes make-env, render and lut fail with the
 # cause and exit 1 — and the device node is still there afterwards. A link to nothing gets its
 # file created whole or not at all. A command's outputs are committed together: a full stdout
-# leaves fit-light's and render's files unwritten. SIGTERM while a temporary is open removes it. No temporary
+# leaves fit-light's and render's files unwritten. A full and a read-only file system (tmpfs
+# mounts of our own, root only) leave the previous file and no temporary. SIGTERM while a
+# temporary is open removes it. No temporary
 # is left in TMPDIR (a private one here) or beside the targets.
 set -u
 cli=$1
@@ -35,6 +37,31 @@ if [ "$(id -u)" -eq 0 ]; then
   expect '[ $rc -eq 1 ] && [ -c "$dir/full" ]'
 else
   echo "SKIPPED the device checks: mknod needs root"
+fi
+# a full file system and a read-only one, each a tmpfs of our own (root, and a kernel that lets
+# us mount; skipped with the reason otherwise): the previous file is intact, no temporary is
+# left, and the message names the cause
+if [ "$(id -u)" -eq 0 ] && mkdir "$dir/small" "$dir/ro" &&
+   mount -t tmpfs -o size=64k tmpfs "$dir/small" 2> /dev/null; then
+  trap 'umount "$dir/small" "$dir/ro" 2> /dev/null; rm -rf "$dir"' EXIT
+  "$cli" make-env --lights $L --size 16x8 -o "$dir/small/map.exr" 2> "$dir/err"
+  cp "$dir/small/map.exr" "$dir/map_before.exr"
+  "$cli" make-env --lights $L --size 512x256 -o "$dir/small/map.exr" 2> "$dir/err"; rc=$?
+  expect '[ $rc -eq 1 ] && grep -q "No space left on device" "$dir/err" && cmp -s "$dir/small/map.exr" "$dir/map_before.exr" && [ "$(ls -A "$dir/small")" = map.exr ]'
+  "$cli" lut --size 4096 --lang c -o "$dir/small/big.h" 2> "$dir/err"; rc=$?
+  expect '[ $rc -eq 1 ] && grep -q "cannot write .*big.h: No space left on device" "$dir/err" && [ "$(ls -A "$dir/small")" = map.exr ]'
+  "$cli" render --resolution 320x240 -o "$dir/small/r.exr" > /dev/null 2> "$dir/err"; rc=$?
+  expect '[ $rc -eq 1 ] && grep -q "No space left on device" "$dir/err" && [ "$(ls -A "$dir/small")" = map.exr ]'
+  mount -t tmpfs -o size=1m tmpfs "$dir/ro" && cp "$dir/map_before.exr" "$dir/ro/map.exr" &&
+    mount -o remount,ro "$dir/ro"
+  for c in "make-env --lights $L --size 16x8 -o $dir/ro/map.exr" "lut --size 64 --lang glsl -o $dir/ro/lut.glsl" \
+           "render --resolution 16x12 -o $dir/ro/r.exr"; do
+    $cli $c > /dev/null 2> "$dir/err"; rc=$?
+    expect '[ $rc -eq 1 ] && grep -q "Read-only file system" "$dir/err" && cmp -s "$dir/ro/map.exr" "$dir/map_before.exr" && [ "$(ls -A "$dir/ro")" = map.exr ]'
+  done
+  umount "$dir/small" "$dir/ro"
+else
+  echo "SKIPPED the full and read-only file-system checks: mounting a tmpfs needs root and a kernel that allows it"
 fi
 # a link to nothing: the file it names is created whole, or not at all (a write past the file
 # size limit, as on a full disk, leaves neither a truncated file nor a temporary; the link stays)
