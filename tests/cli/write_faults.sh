@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# write_faults.sh CLI SHIM — every writer of the CLI under a failing fsync and a failing rename
+# write_faults.sh CLI SHIM — every writer of the CLI (lut, make-env, render -o and --png, plan,
+# fit-light -o and --plane-csv, bench sat2d --chirp-csv, bench minmax --fig4-csv) under a
+# failing fsync and a failing rename
 # (tests/fault/fault_shim.c through LD_PRELOAD): exit status 1, a message naming the output and
 # the cause ("Input/output error"), the previous file intact, no temporary left beside it; and
 # with the shim loaded but no fault, the same commands replace the file.
@@ -10,14 +12,14 @@ trap 'rm -rf "$dir"' EXIT
 fail=0
 printf 'previous\n' > "$dir/previous"
 same() { cmp -s "$1" "$dir/previous"; }
-run() { # name, output file, command...
-  local name=$1 out=$2
+run() { # name, output file, command... (RE: the outputs a message may name; default the file's)
+  local name=$1 out=$2 re=${RE:-$(basename "$2")}
   shift 2
   for fault in fsync rename; do
     printf 'previous\n' > "$out"
     err=$(LD_PRELOAD=$shim ICS_FAULT=$fault "$@" 2>&1 > /dev/null); rc=$?
     left=$(ls "$dir" | grep -c "\.tmp")
-    if [ $rc -ne 1 ] || ! printf '%s' "$err" | grep -q "$(basename "$out").*Input/output error" ||
+    if [ $rc -ne 1 ] || ! printf '%s' "$err" | grep -qE "($re).*Input/output error" ||
        ! same "$out" || [ "$left" -ne 0 ]; then
       echo "$name, $fault fails: exit $rc, '$err', file: $(head -c 20 "$out" | tr -dc '[:print:]'), $left temporaries"
       fail=1
@@ -35,4 +37,9 @@ run "render --png" "$dir/r.png" "$cli" render --resolution 16x12 --png "$dir/r.p
 run "plan -o" "$dir/plan.json" "$cli" plan --resolution 16x12 -o "$dir/plan.json"
 "$cli" make-env --lights '0.2,0.1,0.05,0.05,0,1,1,1,1' --size 64x32 -o "$dir/in.exr" > /dev/null 2>&1
 run "fit-light -o" "$dir/l.json" "$cli" fit-light "$dir/in.exr" --lights 1 -o "$dir/l.json"
+# the outputs are committed together, -o's first: its failure is the one named
+RE='l2.json|plane.csv' run "fit-light --plane-csv" "$dir/plane.csv" "$cli" fit-light "$dir/in.exr" --lights 1 -o "$dir/l2.json" --plane-csv "$dir/plane.csv"
+rm -f "$dir/l2.json"
+run "bench sat2d --chirp-csv" "$dir/chirp.csv" "$cli" bench sat2d --size 64 --chirp-csv "$dir/chirp.csv"
+run "bench minmax --fig4-csv" "$dir/fig4.csv" "$cli" bench minmax --samples 16 --fig4-csv "$dir/fig4.csv"
 exit $fail
