@@ -15,14 +15,30 @@
 
 static const char CMD[] = "clt";
 
+/* progress on stderr (a terminal, or --progress): the steps iterated, at most 5 times a second */
+typedef struct {
+  cli_progress p;
+  double last;
+} clt_progress;
+
+static void on_progress(void *ctx, long done, long total) {
+  clt_progress *c = ctx;
+  double now = cli_now_s();
+  if (done < total && now - c->last < 0.2) return;
+  c->last = now;
+  cli_progress_say(&c->p, "%ld/%ld steps (%.0f%%)%s", done, total, 100.0 * done / total,
+                   done < total ? "" : ", measuring");
+}
+
 static void help(FILE *f) {
   fprintf(f,
           "usage: icshadow clt --kernel K --var V --steps N1,N2,... [--mean M] [--samples N]\n"
           "                    [--seed U] [--comp nonneg|signed|none] [--no-refine] [--rate]\n"
+          "                    [--progress]\n"
           "       icshadow clt --kernel K2 --cov VX,VY,ANGLE --steps N1,N2,... [--mean MX,MY]\n"
           "                    [--edge-angle DEG | --corner] [--samples N] [--seed U]\n"
           "                    [--offsets random|fixed|golden] [--offset U]\n"
-          "                    [--comp nonneg|signed|none] [--no-refine] [--rate]\n"
+          "                    [--comp nonneg|signed|none] [--no-refine] [--rate] [--progress]\n"
           "Iterates an edge H (0 for x < 0, 1 for x > 0) n times with the 1D kernel member K of\n"
           "the class (mean M, variance V) in pixels on a unit grid, and prints CSV:\n"
           "  steps,sup_error,disc_error,taps_x_steps,seconds\n"
@@ -43,6 +59,8 @@ static void help(FILE *f) {
           "  --no-refine  skip the 2x finer run (disc_error is then nan)\n"
           "  --rate       print the fitted rate exponent (slope of log error vs log n) on stderr,\n"
           "               over the resolved points only\n"
+          "  --progress   the steps iterated on stderr even when it is not a terminal (on a\n"
+          "               terminal it is always shown; with the 2x finer run 1D counts both runs)\n"
           "\n2D (--cov): the kernel K2 is a 2D member of the class with mean (MX, MY) (default 0,0)\n"
           "and covariance R(ANGLE) diag(VX, VY) R(ANGLE)^T in pixels (VX, VY >= 0, not both 0;\n"
           "ANGLE in degrees ccw from +x); the occluder image (exact pixel area coverage) is\n"
@@ -132,7 +150,7 @@ static int parse_steps(const char *s, int *steps, int *n, int maxv) {
 static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const char *steps_s,
                  const char *samples_s, const char *edge_s, int corner, const char *offsets_s,
                  const char *offset_s, uint64_t seed, int seed_given, const char *comp,
-                 int refine, int rate) {
+                 int refine, int rate, clt_progress *prog) {
   double cv[3], mv[2] = {0, 0}, edge = 0, offset = 0;
   int steps[MAX_STEPS_LIST], nsteps = 0, samples = 0;
   if (cli_parse_numbers(CMD, "--cov", cov_s, cov_s, NULL, 3, cv) != 0) return 2;
@@ -236,7 +254,9 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
                   res[0], res[1], res[2]);
   }
   ics_clt_point pts[MAX_STEPS_LIST];
+  su.progress = on_progress, su.progress_ctx = prog;
   st = ics_clt2d_measure(gen, ctx, &su, steps, nsteps, pts);
+  cli_progress_done(&prog->p);
   if (st != ICS_OK) return cli_status_error(CMD, st, "%s", ics_status_str(st));
   printf("steps,sup_error,sup_error_realized,disc_error,taps_x_steps,seconds\n");
   for (int i = 0; i < nsteps; i++)
@@ -272,7 +292,7 @@ int cmd_clt(int argc, char **argv) {
   double var = NAN, mean = 0;
   uint64_t seed = 0;
   int seed_given = 0;
-  int samples = 0, no_refine = 0, rate = 0, nsteps = 0, corner = 0;
+  int samples = 0, no_refine = 0, rate = 0, nsteps = 0, corner = 0, progress = 0;
   int steps[MAX_STEPS_LIST];
   /* kept as text: their meaning depends on 1D (--var) or 2D (--cov), decided below */
   const char *steps_s = NULL, *mean_s = NULL, *cov_s = NULL, *edge_s = NULL, *offsets_s = NULL,
@@ -292,15 +312,18 @@ int cmd_clt(int argc, char **argv) {
       {"--no-refine", .kind = CLI_FLAG, .dest = &no_refine},
       {"--rate", .kind = CLI_FLAG, .dest = &rate},
       {"--corner", .kind = CLI_FLAG, .dest = &corner},
+      {"--progress", .kind = CLI_FLAG, .dest = &progress},
   };
   int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
   if (rc) return rc;
+  clt_progress prog = {{0}, 0};
+  cli_progress_init(&prog.p, "icshadow clt", progress);
   int refine = !no_refine;
   if (cov_s) { /* 2D: --var and the 1D-only kernels do not apply */
     if (var_s)
       return cli_error(CMD, "give either --var (1D kernel) or --cov (2D kernel), not both");
     return clt2d(kname, cov_s, mean_s, steps_s, samples_s, edge_s, corner, offsets_s, offset_s,
-                 seed, seed_given, comp, refine, rate);
+                 seed, seed_given, comp, refine, rate, &prog);
   }
   {
     const char *only2d = edge_s ? "--edge-angle" : corner ? "--corner" : offsets_s ? "--offsets"
@@ -380,7 +403,10 @@ int cmd_clt(int argc, char **argv) {
     free(td);
   }
   ics_clt_point pts[MAX_STEPS_LIST];
-  if (st == ICS_OK) st = ics_clt1d_measure(gen, ctx, mean, var, steps, nsteps, cm, refine, pts);
+  if (st == ICS_OK)
+    st = ics_clt1d_measure_progress(gen, ctx, mean, var, steps, nsteps, cm, refine, pts,
+                                    on_progress, &prog);
+  cli_progress_done(&prog.p);
   if (st == ICS_ERR_RANGE && gen == ics_clt1d_member_gen && k.member == ICS_KERNEL_TOPHAT) {
     double f = mean - floor(mean);
     return cli_error(CMD, "--var %.17g is below %.17g = f(1 - f), the least variance of an exact "

@@ -103,3 +103,14 @@ ics_cli_test(NAME cli_clt2d_seed_fixed RC 2 ARGS "clt|--kernel|ellipse|--cov|4,2
   OUT "^$" ERR "--seed: the ellipse with --offsets fixed is deterministic")
 ics_cli_test(NAME cli_clt2d_seed_golden RC 2 ARGS "clt|--kernel|ellipse|--cov|4,2,0|--steps|4|--offsets|golden|--seed|3"
   OUT "^$" ERR "--seed: the ellipse with --offsets golden is deterministic")
+# --progress: the steps iterated on stderr (not a terminal here), ending at the last step; the
+# 1D path counts the 2x finer run after the base run (2 x 300 steps)
+ics_cli_test(NAME cli_clt_progress_2d RC 0
+  ARGS "clt|--kernel|poisson|--cov|3,1.5,30|--steps|10,40|--progress"
+  ERR "icshadow clt: 1/40 steps \\(2%\\)\n(.*\n)*icshadow clt: 40/40 steps \\(100%\\), measuring\n")
+ics_cli_test(NAME cli_clt_progress_1d RC 0
+  ARGS "clt|--kernel|gauss|--var|0.5|--steps|100,300|--progress"
+  ERR "icshadow clt: 600/600 steps \\(100%\\), measuring\n")
+ics_cli_test(NAME cli_clt_progress_quiet RC 0
+  ARGS "clt|--kernel|gauss|--var|0.5|--steps|100,300|--no-refine"
+  ERR "^$")

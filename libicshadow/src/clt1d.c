@@ -59,9 +59,15 @@ static int clt_grid(double mean, double var, int nmax, double scale, size_t *il,
 
 /* one run on a grid refined by `scale`; err[k][i] (if errs) gets the error profile at the
  * base grid's nodes i */
+typedef struct {
+  ics_clt_progress fn;
+  void *ctx;
+  long base, total; /* steps done before this run, steps in all runs */
+} clt_progress_t;
+
 static ics_status clt_run(ics_clt1d_gen gen, void *ctx, double mean, double var, const int *steps,
                           int nsteps, ics_comp_mode comp, double scale, size_t nb, double xb0,
-                          double **errs, ics_clt_point *out) {
+                          double **errs, ics_clt_point *out, const clt_progress_t *pr) {
   int nmax = steps[nsteps - 1];
   size_t il, n;
   if (!clt_grid(mean, var, nmax, scale, &il, &n)) return ICS_ERR_SIZE;
@@ -92,6 +98,7 @@ static ics_status clt_run(ics_clt1d_gen gen, void *ctx, double mean, double var,
     buf = tmp;
     tmp = sw;
     cost += nd;
+    if (pr->fn) pr->fn(pr->ctx, pr->base + s, pr->total);
     {
       double ws, tm, tv;
       ics_taps1d_moments(dt, nd, &ws, &tm, &tv);
@@ -188,12 +195,22 @@ ics_status ics_clt1d_cost(ics_clt1d_gen gen, void *ctx, double mean, double var,
 ics_status ics_clt1d_measure(ics_clt1d_gen gen, void *ctx, double mean, double var,
                              const int *steps, int nsteps, ics_comp_mode comp, int refine,
                              ics_clt_point *out) {
+  return ics_clt1d_measure_progress(gen, ctx, mean, var, steps, nsteps, comp, refine, out, NULL,
+                                    NULL);
+}
+
+ics_status ics_clt1d_measure_progress(ics_clt1d_gen gen, void *ctx, double mean, double var,
+                                      const int *steps, int nsteps, ics_comp_mode comp,
+                                      int refine, ics_clt_point *out, ics_clt_progress progress,
+                                      void *progress_ctx) {
   if (!out) return ICS_ERR_INVALID_ARG;
   ics_status cst = clt_check(gen, mean, var, steps, nsteps, refine);
   if (cst != ICS_OK) return cst;
+  long last = steps[nsteps - 1];
+  clt_progress_t pr = {progress, progress_ctx, 0, refine ? 2 * last : last};
   if (!refine) {
     for (int k = 0; k < nsteps; k++) out[k].disc_err = NAN;
-    return clt_run(gen, ctx, mean, var, steps, nsteps, comp, 1.0, 0, 0, NULL, out);
+    return clt_run(gen, ctx, mean, var, steps, nsteps, comp, 1.0, 0, 0, NULL, out, &pr);
   }
   /* base grid nodes used for the comparison: +-14 sd around the path */
   int nmax = steps[nsteps - 1];
@@ -208,8 +225,9 @@ ics_status ics_clt1d_measure(ics_clt1d_gen gen, void *ctx, double mean, double v
     e2[k] = malloc(nb * sizeof **e2);
     if (!e1[k] || !e2[k]) st = ICS_ERR_NOMEM;
   }
-  if (st == ICS_OK) st = clt_run(gen, ctx, mean, var, steps, nsteps, comp, 1.0, nb, xb0, e1, out);
-  if (st == ICS_OK) st = clt_run(gen, ctx, mean, var, steps, nsteps, comp, 2.0, nb, xb0, e2, NULL);
+  if (st == ICS_OK) st = clt_run(gen, ctx, mean, var, steps, nsteps, comp, 1.0, nb, xb0, e1, out, &pr);
+  pr.base = last;
+  if (st == ICS_OK) st = clt_run(gen, ctx, mean, var, steps, nsteps, comp, 2.0, nb, xb0, e2, NULL, &pr);
   for (int k = 0; st == ICS_OK && k < nsteps; k++) {
     double w = 0;
     for (size_t i = 0; i < nb; i++) w = fmax(w, fabs(e1[k][i] - e2[k][i]));

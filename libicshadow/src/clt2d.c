@@ -419,6 +419,7 @@ static ics_status run2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, c
     if (st == ICS_OK && s->refine) st = grid_step(&gf, gen, ctx, s, n, taps, cap, dt, dcap, &ndf);
     if (st != ICS_OK) break;
     cost += nd;
+    if (s->progress) s->progress(s->progress_ctx, n, nmax);
     if (n != steps[k]) continue;
     const double *rm = p->rm + 2 * k, *rc = p->rc + 3 * k;
     double pix = 1.0 / 12.0, pixf = 1.0 / 48.0;

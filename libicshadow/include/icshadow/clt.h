@@ -21,6 +21,10 @@ typedef struct ics_clt_point {
   double seconds;   /* run time of the iteration up to `steps` on the base grid */
 } ics_clt_point;
 
+/* A measurement's progress: called after each step of the iteration with the steps done and
+ * the total (both grids' steps when a finer grid runs after the base grid). */
+typedef void (*ics_clt_progress)(void *ctx, long done, long total);
+
 /* Least-squares slope of log(err) against log(n) (the convergence rate exponent) over the
  * points with steps >= nmin and sup_err > 0; NaN with fewer than 2 points. */
 ICS_API double ics_clt_rate(const ics_clt_point *p, int npoints, int nmin);

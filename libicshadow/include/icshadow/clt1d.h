@@ -48,6 +48,12 @@ ICS_API ics_status ics_clt1d_fixed_gen(void *ctx /* const ics_clt1d_fixed* */, u
 ICS_API ics_status ics_clt1d_measure(ics_clt1d_gen gen, void *ctx, double mean, double var,
                                      const int *steps, int nsteps, ics_comp_mode comp, int refine,
                                      ics_clt_point *out);
+/* The same, calling progress(progress_ctx, done, total) after each step (the finer grid runs
+ * after the base grid: total is twice the last step count when refine is set). */
+ICS_API ics_status ics_clt1d_measure_progress(ics_clt1d_gen gen, void *ctx, double mean,
+                                              double var, const int *steps, int nsteps,
+                                              ics_comp_mode comp, int refine, ics_clt_point *out,
+                                              ics_clt_progress progress, void *progress_ctx);
 
 /* Node count of the base grid and estimated work (tap-updates, see ICS_CONV_WORK_BUDGET of
  * conv.h; the 2x finer run counts too when refine is set: ~5x) of ics_clt1d_measure with the

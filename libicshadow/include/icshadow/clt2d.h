@@ -66,10 +66,12 @@ typedef struct ics_clt2d_setup {
                             line light, is accepted; det >= -1e-12 trace^2), trace > 0 */
   ics_comp_mode comp;    /* NONE, NONNEG or SIGNED (INTEGER: ICS_ERR_UNSUPPORTED, as the engine) */
   int refine;            /* 1: also run a grid twice as fine and report disc_err; 0: NaN */
+  ics_clt_progress progress; /* NULL, or called after each step (both grids step together) */
+  void *progress_ctx;
 } ics_clt2d_setup;
 
 /* Fills *out with the defaults: edge at 0 degrees, mean 0, cov 0 (must be set), NONNEG, refine
- * 1. A zeroed setup is not the defaults: comp's zero is ICS_COMP_NONE and refine's 0 skips the
+ * 1, no progress. A zeroed setup is not the defaults: comp's zero is ICS_COMP_NONE and refine's 0 skips the
  * finer grid, both settings of their own. */
 ICS_API void ics_clt2d_setup_init(ics_clt2d_setup *out);
 
