@@ -53,9 +53,11 @@ static void help(FILE *f) {
           "resolution, on the built-in height-field scene. One CSV line per depth-sample count\n"
           "(numbers printed with %%.17g):\n"
           "  samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,tree_bytes,march_bytes,\n"
-          "  speedup,speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err,backend\n"
-          "(times: seconds, min over --reps; speedup = march_s / traverse_s; speedup_with_build\n"
-          "adds build_s + prefix_s to the tree side; max_rel_err = max |tree - march| / max |march|).\n"
+          "  speedup,speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err,backend,\n"
+          "  traverse_median_s,traverse_max_s,march_median_s,march_max_s\n"
+          "(times: seconds, min over --reps, then the traversal's and the march's median and max;\n"
+          "speedup = march_s / traverse_s; speedup_with_build adds build_s + prefix_s to the tree\n"
+          "side; max_rel_err = max |tree - march| / max |march|).\n"
           "Bytes read + written per repetition, counted from the data structures (float 4, double 8,\n"
           "tree node 8 bytes): tree_bytes = build (rows x (4 d + 16 P + 8 (2P - 2)), P = next power\n"
           "of two >= d) + prefix sums (8 N d read + 8 N (d + 1) written) + traversal (8 per visited\n"
@@ -335,9 +337,11 @@ static int bench_one(const setup *S, int reps) {
     tm = fmin(tm, t4 - t3);
     if (nrep < 100) tts[nrep] = t3 - t2, tms[nrep] = t4 - t3, nrep++;
   }
-  /* the times are minima; their spread says whether the machine was busy */
-  if (nrep > 1 && (cli_spread_busy(cli_spread_of(tts, nrep)) || cli_spread_busy(cli_spread_of(tms, nrep))))
-    g_busy = 1;
+  /* the columns' times are minima, with the traversal's and the march's medians and maxima at
+   * the end of the row; their spread says whether the machine was busy */
+  cli_spread sp_t = {tt, tt, tt}, sp_m = {tm, tm, tm};
+  if (nrep > 0) sp_t = cli_spread_of(tts, nrep), sp_m = cli_spread_of(tms, nrep);
+  if (nrep > 1 && (cli_spread_busy(sp_t) || cli_spread_busy(sp_m))) g_busy = 1;
   free(cls);
   free(seg);
   if (st != ICS_OK) {
@@ -363,14 +367,17 @@ static int bench_one(const setup *S, int reps) {
     maxe = fmax(maxe, fabs(Lt[q] - Lm[q]));
   }
   if (g_cpu)
-    printf("%zu,%zu,%zu,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,cpu\n",
+    printf("%zu,%zu,%zu,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,cpu,"
+           "%.17g,%.17g,%.17g,%.17g\n",
            d, S->rows, S->rays, N, tb, tp, tt, tm, tree_bytes, march_bytes, tm / tt,
-           tm / (tb + tp + tt), runs / (double)nr, maxe, maxL > 0 ? maxe / maxL : 0.0);
+           tm / (tb + tp + tt), runs / (double)nr, maxe, maxL > 0 ? maxe / maxL : 0.0,
+           sp_t.median, sp_t.max, sp_m.median, sp_m.max);
 #ifdef ICS_HAVE_RENDER
   if (g_cl) {
     /* the same trees and rays on the device: build and one batch of all rays, min over reps */
     size_t *rr = malloc(sizeof *rr * nr);
-    double *oc = malloc(sizeof *oc * nr * N), cb = INFINITY, ct = INFINITY;
+    double *oc = malloc(sizeof *oc * nr * N), cb = INFINITY, ct = INFINITY, cts[100];
+    int ncts = 0;
     char msg[1024] = "";
     if (!rr || !oc) st = ICS_ERR_NOMEM;
     for (size_t q = 0; q < nr && rr; q++) rr[q] = q / S->rays;
@@ -383,6 +390,7 @@ static int bench_one(const setup *S, int reps) {
         st = ics_cl_minmax_integrate(tc, rr, S->ray, nr, pre, N, d + 1, oc, NULL, &mt, msg, sizeof msg);
       ics_cl_minmax_destroy(tc);
       cb = fmin(cb, 1e-3 * mb), ct = fmin(ct, 1e-3 * mt);
+      if (st == ICS_OK && ncts < 100) cts[ncts++] = 1e-3 * mt;
     }
     double maxc = 0;
     for (size_t q = 0; q < nr && st == ICS_OK; q++) {
@@ -395,9 +403,13 @@ static int bench_one(const setup *S, int reps) {
       free(Lt), free(Lm), free(pre);
       return cli_status_error(CMD, st, "--backend cl, samples %zu: %s", d, msg[0] ? msg : ics_status_str(st));
     }
-    printf("%zu,%zu,%zu,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,cl\n",
+    cli_spread sp_c = ncts ? cli_spread_of(cts, ncts) : (cli_spread){ct, ct, ct};
+    if (ncts > 1 && cli_spread_busy(sp_c)) g_busy = 1;
+    printf("%zu,%zu,%zu,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,cl,"
+           "%.17g,%.17g,%.17g,%.17g\n",
            d, S->rows, S->rays, N, cb, tp, ct, tm, tree_bytes, march_bytes, tm / ct,
-           tm / (cb + tp + ct), runs / (double)nr, maxc, maxL > 0 ? maxc / maxL : 0.0);
+           tm / (cb + tp + ct), runs / (double)nr, maxc, maxL > 0 ? maxc / maxL : 0.0,
+           sp_c.median, sp_c.max, sp_m.median, sp_m.max);
   }
 #endif
   free(Lt);
@@ -644,7 +656,8 @@ int bench_minmax(int argc, char **argv) {
   if (want_cl) return cli_error(CMD, "--backend cl: built without the renderer library (jansson)");
 #endif
   printf("samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,tree_bytes,march_bytes,speedup,"
-         "speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err,backend\n");
+         "speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err,backend,traverse_median_s,"
+         "traverse_max_s,march_median_s,march_max_s\n");
   for (int k = 0; k < nd; k++) {
     rc = setup_init(&S, (size_t)dlist[k], (size_t)rows, (size_t)rays, (size_t)terms, noise);
     if (rc == 0) rc = bench_one(&S, reps);

@@ -86,10 +86,11 @@ static void help(FILE *f) {
           "visibility (M x M rays to the light per receiver). CSV on stdout, header first, numbers\n"
           "printed with %%.17g:\n"
           "  scene,prefilter,combination,size,slices,build_ms,query_ms,time_ms,build_bytes,\n"
-          "  query_bytes,brute_ms,mean_abs_err,max_abs_err,mean_signed_err,speedup\n"
+          "  query_bytes,brute_ms,mean_abs_err,max_abs_err,mean_signed_err,speedup,\n"
+          "  brute_median_ms,time_median_ms,speedup_median\n"
           "build_ms = slicing + prefilter, query_ms = all receivers, time_ms = both; each the\n"
           "minimum over the repetitions, measured in the same run as brute_ms; speedup =\n"
-          "brute_ms / time_ms. Errors are occlusion (fraction of the light hidden) minus the\n"
+          "brute_ms / time_ms; the last three: the medians over the repetitions instead. Errors are occlusion (fraction of the light hidden) minus the\n"
           "brute force's, over all receivers. Bytes read + written, counted from the data\n"
           "structures (float 4, double 8; S = --supersample, R = --receivers):\n"
           "  build_bytes = K (3 (n S)^2 + 12 n^2) (slicing bitmap, texture, object copy) + the\n"
@@ -374,6 +375,8 @@ int bench_occtex(int argc, char **argv) {
   enum { NPF = ICS_OCC_PREFILTER_COUNT, NC = ICS_OCC_COMBINE_COUNT };
   static double tb[MAX_LIST][MAX_LIST][NPF], tq[MAX_LIST][MAX_LIST][NPF][NC];
   static double emean[MAX_LIST][MAX_LIST][NPF][NC], emax[MAX_LIST][MAX_LIST][NPF][NC], ebias[MAX_LIST][MAX_LIST][NPF][NC];
+  /* every repetition's times (build + query of that repetition; brute force), for the medians */
+  static double trep[MAX_LIST][MAX_LIST][NPF][NC][100], brep[100];
   for (int sc = 0; sc < o.nscenes; sc++) {
     const int nb = scene_boxes(&o, o.scenes[sc]);
     if ((st = ics_occtex_boxes_make(o.scenes[sc], nb, (uint64_t)o.seed, boxes))) {
@@ -398,6 +401,7 @@ int bench_occtex(int argc, char **argv) {
       double t1 = 1e3 * (cli_now_s() - t0);
       brute = t1 < brute ? t1 : brute;
       brute_max = t1 > brute_max ? t1 : brute_max;
+      brep[rep] = t1;
       for (int a = 0; a < o.nsizes; a++)
         for (int b = 0; b < o.nslices; b++)
           for (int p = 0; p < NPF; p++) {
@@ -423,6 +427,7 @@ int bench_occtex(int argc, char **argv) {
                 goto done;
               }
               tq[a][b][p][c] = q < tq[a][b][p][c] ? q : tq[a][b][p][c];
+              trep[a][b][p][c][rep] = ms + q;
               double sa = 0, mx = 0, sb = 0;
               for (size_t i = 0; i < nr; i++) {
                 double e = occ[i] - ref[i];
@@ -438,9 +443,11 @@ int bench_occtex(int argc, char **argv) {
           }
     }
     if (o.reps > 1 && cli_spread_busy((cli_spread){brute, brute, brute_max})) busy = 1;
+    double brute_median = cli_spread_of(brep, o.reps).median;
     if (!header++)
       printf("scene,prefilter,combination,size,slices,build_ms,query_ms,time_ms,build_bytes,query_bytes,"
-             "brute_ms,mean_abs_err,max_abs_err,mean_signed_err,speedup\n");
+             "brute_ms,mean_abs_err,max_abs_err,mean_signed_err,speedup,brute_median_ms,"
+             "time_median_ms,speedup_median\n");
     for (int a = 0; a < o.nsizes; a++)
       for (int b = 0; b < o.nslices; b++)
         for (int p = 0; p < NPF; p++)
@@ -448,11 +455,14 @@ int bench_occtex(int argc, char **argv) {
             double t = tb[a][b][p] + tq[a][b][p][c];
             double bb = bytes_build((ics_occ_prefilter)p, o.sizes[a], o.slices[b], o.ss);
             double bq = bytes_query((ics_occ_prefilter)p, o.slices[b], (double)R);
-            printf("%s,%s,%s,%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+            double tmed = cli_spread_of(trep[a][b][p][c], o.reps).median;
+            printf("%s,%s,%s,%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
+                   "%.17g,%.17g,%.17g\n",
                    scene_names[o.scenes[sc]], ics_occtex_prefilter_name((ics_occ_prefilter)p),
                    ics_occtex_combine_name((ics_occ_combine)c), o.sizes[a], o.slices[b],
                    tb[a][b][p], tq[a][b][p][c], t, bb, bq, brute, emean[a][b][p][c],
-                   emax[a][b][p][c], ebias[a][b][p][c], brute / t);
+                   emax[a][b][p][c], ebias[a][b][p][c], brute / t, brute_median, tmed,
+                   brute_median / tmed);
           }
   }
   if (cli_stdout_failed(CMD)) rc = 1;

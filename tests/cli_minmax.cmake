@@ -9,9 +9,9 @@ ics_cli_test(NAME cli_minmax_help RC 0 ARGS "bench|minmax|--help"
 # tiny run: 64 samples, 8 rows, 4 rays; byte counts are integers (%.17g); the error column must
 # be below 1e-12 (rounding only)
 ics_cli_test(NAME cli_minmax_tiny RC 0 ARGS "bench|minmax|--samples|64|--rows|8|--rays|4|--reps|1"
-  OUT "^samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,tree_bytes,march_bytes,speedup,speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err,backend\n64,8,4,4,${f},${f},${f},${f},[0-9]+,[0-9]+,${f},${f},${f},${f},(0|[0-9.]+e-(1[3-9]|[2-9][0-9]|[0-9][0-9][0-9])),cpu\n$")
+  OUT "^samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,tree_bytes,march_bytes,speedup,speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err,backend,traverse_median_s,traverse_max_s,march_median_s,march_max_s\n64,8,4,4,${f},${f},${f},${f},[0-9]+,[0-9]+,${f},${f},${f},${f},(0|[0-9.]+e-(1[3-9]|[2-9][0-9]|[0-9][0-9][0-9])),cpu,${f},${f},${f},${f}\n$")
 ics_cli_test(NAME cli_minmax_tiny_noise RC 0 ARGS "bench|minmax|--samples|100,33|--rows|4|--rays|8|--reps|1|--scene|noise|--terms|2"
-  OUT "\n100,4,8,2,[^\n]*,cpu\n33,4,8,2,[^\n]*,cpu\n$")
+  OUT "\n100,4,8,2,[^\n]*,cpu,[^\n]*\n33,4,8,2,[^\n]*,cpu,[^\n]*\n$")
 ics_cli_test(NAME cli_minmax_backend_unknown RC 2 ARGS "bench|minmax|--backend|gpu"
   ERR "--backend: expected cpu, cl or cpu,cl, got 'gpu'")
 # SVD table: 10 rows; at N = 1 the relative Frobenius error is well above rounding (the

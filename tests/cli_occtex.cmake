@@ -8,16 +8,16 @@ ics_cli_test(NAME cli_occtex_help RC 0 ARGS "bench|occtex|--help" OUT "usage: ic
 # a small run: the header, then exactly the 9 rows (3 prefilters x 3 combinations) in order;
 # mean and max errors are fractions in [0, 1] (checked on the first row: CMake regexes allow
 # few groups)
-set(occ_rows "plates,mipmap,product,32,2,${num},${num},${num},${int},${int},${num},${frac},${frac},-?${num},${num}\n")
+set(occ_rows "plates,mipmap,product,32,2,${num},${num},${num},${int},${int},${num},${frac},${frac},-?${num},${num},${num},${num},${num}\n")
 foreach(pf mipmap nbuffers sat)
   foreach(c product sum max)
     if(NOT pf STREQUAL "mipmap" OR NOT c STREQUAL "product")
-      string(APPEND occ_rows "plates,${pf},${c},32,2,${num},${num},${num},${int},${int},${num},${num},${num},-?${num},${num}\n")
+      string(APPEND occ_rows "plates,${pf},${c},32,2,${num},${num},${num},${int},${int},${num},${num},${num},-?${num},${num},${num},${num},${num}\n")
     endif()
   endforeach()
 endforeach()
 ics_cli_test(NAME cli_occtex_small RC 0 ARGS "${occ_small}"
-  OUT "^scene,prefilter,combination,size,slices,build_ms,query_ms,time_ms,build_bytes,query_bytes,brute_ms,mean_abs_err,max_abs_err,mean_signed_err,speedup\n${occ_rows}$")
+  OUT "^scene,prefilter,combination,size,slices,build_ms,query_ms,time_ms,build_bytes,query_bytes,brute_ms,mean_abs_err,max_abs_err,mean_signed_err,speedup,brute_median_ms,time_median_ms,speedup_median\n${occ_rows}$")
 ics_cli_test(NAME cli_occtex_fig3 RC 0
   ARGS "bench|occtex|--sizes|32|--slices|2|--receivers|4|--light-samples|4|--fig3-csv|${CMAKE_CURRENT_BINARY_DIR}/occtex_fig3.csv")
 ics_cli_test(NAME cli_occtex_fig3_bad_dir RC 1

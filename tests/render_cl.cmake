@@ -53,5 +53,5 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
   set(f "[0-9.e+-]+")
   ics_cli_test(NAME cli_minmax_cl RC 0 LABELS medium
     ARGS "bench|minmax|--samples|64|--rows|8|--rays|4|--reps|1|--backend|cpu,cl"
-    OUT "\n64,8,4,4,${f},${f},${f},${f},[0-9]+,[0-9]+,${f},${f},${f},${f},${f},cpu\n64,8,4,4,${f},${f},${f},${f},[0-9]+,[0-9]+,${f},${f},${f},${f},${f},cl\n$")
+    OUT "\n64,8,4,4,${f},${f},${f},${f},[0-9]+,[0-9]+,${f},${f},${f},${f},${f},cpu,${f},${f},${f},${f}\n64,8,4,4,${f},${f},${f},${f},[0-9]+,[0-9]+,${f},${f},${f},${f},${f},cl,${f},${f},${f},${f}\n$")
 endif()
