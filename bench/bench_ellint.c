@@ -21,9 +21,11 @@
  * [2^-1019, 2^-1018) (just above the new clamp: the smallest products kept are normal) and subnormal
  * negative m (-2^-1022 < m < 0, exponent uniform, through *_m: 69 ns for K+E before they went
  * to the m >= 0 route).
- * Throughput loop over the array, repeated; the minimum time is reported.  A checksum of the
- * results is printed so that nothing is optimised away.
- * Output: CSV  dataset,function,impl,ns_per_call,ratio_to_ours,checksum */
+ * Throughput loop over the array, once to warm up, then REPEAT times; the median, minimum and maximum time
+ * per call are reported (cli/bench_stats.c, as every benchmark of the CLI), ratios of the
+ * medians, and a warning on stderr when some repetitions spread over 30 % (a busy machine).
+ * A checksum of the results is printed so that nothing is optimised away.
+ * Output: CSV  dataset,function,impl,ns_per_call,ns_min,ns_max,ratio_to_ours,checksum */
 #define _POSIX_C_SOURCE 199309L
 #include <math.h>
 #include <stdint.h>
@@ -31,6 +33,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_stats.h"
 #include "icshadow/ellint.h"
 #include "icshadow/constants.h"
 
@@ -130,37 +133,46 @@ static double now_ns(void) {
 }
 
 static double checksum;
+static double rep_ns[REPEAT];  /* the last measurement's repetitions */
+static cli_spread last;        /* their median, min and max per call */
+static int busy;               /* some measurement spread over 30 % */
+
+/* OUT = the median ns per call over the repetitions in rep_ns; `last` keeps the spread */
+static double per_call(void) {
+  last = cli_spread_of(rep_ns, REPEAT);
+  last.min /= N, last.median /= N, last.max /= N;
+  if (cli_spread_busy(last)) busy = 1;
+  return last.median;
+}
 
 #define TIME1(FN, ARR, OUT)                                              \
   do {                                                                   \
-    double best = 1e300, cs = 0;                                         \
-    for (int rep = 0; rep < REPEAT; rep++) {                             \
+    double cs = 0;                                                       \
+    for (int rep = -1; rep < REPEAT; rep++) { /* -1: the warm-up */      \
       double t0 = now_ns(), s = 0;                                       \
       for (int i = 0; i < N; i++) s += FN((ARR)[i]);                     \
-      double dt = now_ns() - t0;                                         \
-      if (dt < best) best = dt;                                          \
+      if (rep >= 0) rep_ns[rep] = now_ns() - t0;                         \
       cs = s;                                                            \
     }                                                                    \
     checksum = cs;                                                       \
-    OUT = best / N;                                                      \
+    OUT = per_call();                                                    \
   } while (0)
 
 #define TIME2(FN, ARR, OUT)                                              \
   do {                                                                   \
-    double best = 1e300, cs = 0;                                         \
-    for (int rep = 0; rep < REPEAT; rep++) {                             \
+    double cs = 0;                                                       \
+    for (int rep = -1; rep < REPEAT; rep++) { /* -1: the warm-up */      \
       double t0 = now_ns(), s = 0;                                       \
       for (int i = 0; i < N; i++) {                                      \
         double ko_, eo_;                                                 \
         FN((ARR)[i], &ko_, &eo_);                                        \
         s += ko_ + eo_;                                                  \
       }                                                                  \
-      double dt = now_ns() - t0;                                         \
-      if (dt < best) best = dt;                                          \
+      if (rep >= 0) rep_ns[rep] = now_ns() - t0;                         \
       cs = s;                                                            \
     }                                                                    \
     checksum = cs;                                                       \
-    OUT = best / N;                                                      \
+    OUT = per_call();                                                    \
   } while (0)
 
 #ifdef ICS_BENCH_BOOST
@@ -181,7 +193,8 @@ static double unit(void) {
 static double m_[N], m1_[N], k_[N];
 
 static void row(const char *ds, const char *fn, const char *impl, double ns, double ours) {
-  printf("%s,%s,%s,%.2f,%.2f,%.17g\n", ds, fn, impl, ns, ns / ours, checksum);
+  printf("%s,%s,%s,%.2f,%.2f,%.2f,%.2f,%.17g\n", ds, fn, impl, ns, last.min, last.max, ns / ours,
+         checksum);
 }
 
 /* near1: ours through the *_m1 entry points; boost_ok: k = sqrt(m) is meaningful (m in [0,1)
@@ -232,7 +245,7 @@ static void run(const char *ds, int near1, int boost_ok) {
 }
 
 int main(void) {
-  printf("dataset,function,impl,ns_per_call,ratio_to_ours,checksum\n");
+  printf("dataset,function,impl,ns_per_call,ns_min,ns_max,ratio_to_ours,checksum\n");
   for (int i = 0; i < N; i++) {
     m_[i] = unit();
     m1_[i] = 1.0 - m_[i];
@@ -300,5 +313,6 @@ int main(void) {
 #ifndef ICS_BENCH_BOOST
   fprintf(stderr, "bench_ellint: Boost.Math headers not found at configure time; boost rows omitted\n");
 #endif
+  if (busy) cli_warn_busy("bench ellint", "ns_min vs ns_max");
   return 0;
 }
