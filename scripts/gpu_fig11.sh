@@ -9,7 +9,7 @@
 #      Gaussian - REPS times on cpu, gl and gl-ldi (gl with --gl-ldi device: the layered depth
 #      image rebuilt on the device every frame, as Patel's is), and prints a CSV: kernel,
 #      backend, median ms per frame (the render; the plan's geometry pass apart), min, max, fps,
-#      Patel's GTX 480 fps (a different
+#      the device LDI's share (gl-ldi), Patel's GTX 480 fps (a different
 #      scene, renderer and machine: only the ordering compares), the gl image's max difference to
 #      the cpu image.
 # usage: scripts/gpu_fig11.sh [REPS]   (environment: BUILD, JOBS; ICS_FIG11_ANY_DEVICE=1 runs
@@ -58,7 +58,7 @@ sys.path.insert(0, "paper_figs/lib")
 from fig11_setup import HIGH_VAR, scene  # the setup of paper_figs/patel_fig11.py
 json.dump(scene(HIGH_VAR, 768), open(sys.argv[1], "w"))
 EOF
-echo "kernel,backend,ms_median,ms_min,ms_max,fps,patel_gtx480_fps,max_diff_to_cpu"
+echo "kernel,backend,ms_median,ms_min,ms_max,fps,patel_gtx480_fps,max_diff_to_cpu,ldi_device_ms_median"
 for m in ellipse:2:22.58 ellipse:3:20.34 poisson:8:11.83 poisson:16:6.71 gauss:19:0.48; do
   IFS=: read -r kernel samples patel <<<"$m"
   for b in cpu gl gl-ldi; do
@@ -76,9 +76,11 @@ import json, statistics, sys
 tmp, reps, name, patel = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4]
 diff = json.load(open(f"{tmp}/cmp.json"))["compare"]["max_error"]
 for b in ("cpu", "gl", "gl-ldi"):
-    ms = [json.load(open(f"{tmp}/{b}.{r}.json"))["ms_render"] for r in range(1, reps + 1)]
+    runs = [json.load(open(f"{tmp}/{b}.{r}.json")) for r in range(1, reps + 1)]
+    ms = [j["ms_render"] for j in runs]
     med = statistics.median(ms)
+    ldi = statistics.median([j["ms_geometry_device"] for j in runs]) if b == "gl-ldi" else None
     print(f"{name},{b},{med:.2f},{min(ms):.2f},{max(ms):.2f},{1000 / med:.2f},{patel},"
-          + (f"{diff:.3g}" if b == "gl" else ""))
+          + (f"{diff:.3g}" if b == "gl" else "") + "," + (f"{ldi:.2f}" if ldi is not None else ""))
 EOF
 done
