@@ -12,7 +12,8 @@ static int cmp_double(const void *a, const void *b) {
 
 cli_spread cli_spread_of(double *v, int n) {
   qsort(v, (size_t)n, sizeof *v, cmp_double);
-  return (cli_spread){v[0], v[n / 2], v[n - 1]};
+  double median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]); /* even n: the mean of two */
+  return (cli_spread){v[0], median, v[n - 1]};
 }
 
 int cli_spread_busy(cli_spread s) { return s.max > 1.3 * s.min; }

@@ -254,8 +254,7 @@ static int clt2d(const char *kname, const char *cov_s, const char *mean_s, const
                   res[0], res[1], res[2]);
   }
   ics_clt_point pts[MAX_STEPS_LIST];
-  su.progress = on_progress, su.progress_ctx = prog;
-  st = ics_clt2d_measure(gen, ctx, &su, steps, nsteps, pts);
+  st = ics_clt2d_measure_progress(gen, ctx, &su, steps, nsteps, pts, on_progress, prog);
   cli_progress_done(&prog->p);
   if (st != ICS_OK) return cli_status_error(CMD, st, "%s", ics_status_str(st));
   printf("steps,sup_error,sup_error_realized,disc_error,taps_x_steps,seconds\n");

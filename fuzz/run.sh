@@ -7,14 +7,11 @@
 set -u
 [ $# -eq 3 ] || { echo "usage: run.sh HARNESS CORPUS SECONDS" >&2; exit 2; }
 harness=$(cd "$(dirname "$1")" && pwd)/$(basename "$1") corpus=$(cd "$2" && pwd) seconds=$3
-here=$(cd "$(dirname "$0")" && pwd)
 name=$(basename "$harness")
 work=$(mktemp -d "${TMPDIR:-/tmp}/$name.XXXXXX") || exit 2
 keep=${ICS_FUZZ_KEEP:-${TMPDIR:-/tmp}}
 mkdir "$work/corpus" && cp "$corpus"/* "$work/corpus/" 2> /dev/null
 cd "$work" || exit 2
-# leaks inside C++ libraries (Assimp's, on refused files) are not the project's: fuzz/lsan.supp
-LSAN_OPTIONS="suppressions=$here/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}" \
 "$harness" -max_total_time="$seconds" -timeout=20 -rss_limit_mb=4096 -seed=1 -print_final_stats=1 \
   -artifact_prefix="$work/" "$work/corpus" > "$work/log" 2>&1
 rc=$?

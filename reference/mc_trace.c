@@ -99,7 +99,9 @@ void mc_thread_release(mc_thread *th) {
 
 static int cmp_cross(const void *a, const void *b) {
   const mc_cross *x = a, *y = b;
-  return x->t < y->t ? -1 : x->t > y->t ? 1 : x->obj - y->obj;
+  if (x->t != y->t) return x->t < y->t ? -1 : 1;
+  if (x->obj != y->obj) return x->obj - y->obj;
+  return x->seq - y->seq;
 }
 
 int mc_crossings(mc_thread *th, const mc_scene *m, const double orig[3], const double dir[3],
@@ -129,6 +131,7 @@ int mc_crossings(mc_thread *th, const mc_scene *m, const double orig[3], const d
         th->x = x, th->cap = cap;
       }
       th->x[th->nx].t = th->hits.h[i].t;
+      th->x[th->nx].seq = th->nx;
       memcpy(th->x[th->nx].n, th->hits.h[i].n, sizeof th->x[th->nx].n);
       th->x[th->nx++].obj = k;
     }

@@ -36,7 +36,7 @@ typedef struct mc_scene {
 /* One crossing of a ray: parameter and object. */
 typedef struct mc_cross {
   double t;
-  int obj;
+  int obj, seq; /* seq: the order found, the sort's last key (a total order) */
   double n[3]; /* the surface normal there (not normalised, sign arbitrary) */
 } mc_cross;
 

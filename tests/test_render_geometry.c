@@ -3,10 +3,15 @@
  * sampled densely along the ray (a crossing is where the inside state flips); closed shapes cross
  * an even number of times; the torus quartic on grazing and axial rays; the cube mesh (PLY,
  * through Assimp) renders exactly as the analytic box; open meshes are refused as volumes; a
- * malformed mesh file is named. (Sampling at 20000 points per ray cannot see a pair of crossings
+ * malformed mesh file is named, and so are the files Assimp aborts or hangs on, a FIFO, and a
+ * reader past its time limit (mesh_import.c). (Sampling at 20000 points per ray cannot see a pair of crossings
  * closer than 1.5e-4 of the ray; the +-1e-7 test checks every reported one.) Arguments: the folder tests/data. */
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "geometry.h"
 #include "mesh.h"
@@ -226,6 +231,37 @@ static void test_meshes(const char *dir) {
   CHECK(st == ICS_ERR_PARSE && strstr(msg, "no_end_header.ply: a PLY header without an end_header line"),
         "a PLY header without end_header: %s (%s)", msg, ics_status_str(st));
   printf("malformed meshes: %s\n", msg);
+  /* the reader's time limit (a limit already past: deterministic), a FIFO (would block the
+   * reader), and a first line "ply " with a trailing blank and no end_header */
+  static const double one[3] = {1, 1, 1}, zero[3] = {0, 0, 0};
+  char path[1024];
+  ics_mesh *m = NULL;
+  snprintf(path, sizeof path, "%s/cube.ply", dir);
+  st = ics_mesh_create_file(&m, path, one, zero, zero, 1e-9, msg, sizeof msg);
+  CHECK(st == ICS_ERR_PARSE && !m && strstr(msg, "did not finish reading the mesh within"),
+        "time limit: %s (%s)", msg, ics_status_str(st));
+  st = ics_mesh_create_file(&m, path, one, zero, zero, 0, msg, sizeof msg);
+  CHECK(st == ICS_OK && m && ics_mesh_triangle_count(m) == 12, "cube.ply read: %s", msg);
+  ics_mesh_destroy(m), m = NULL;
+  const char *td = getenv("TMPDIR");
+  snprintf(path, sizeof path, "%s/test_render_geometry.fifo", td && *td ? td : "/tmp");
+  remove(path);
+  if (mkfifo(path, 0600) == 0) {
+    st = ics_mesh_create_file(&m, path, one, zero, zero, 0, msg, sizeof msg);
+    CHECK(st == ICS_ERR_IO && strstr(msg, "not a regular file"), "a FIFO: %s (%s)", msg,
+          ics_status_str(st));
+    remove(path);
+  }
+  snprintf(path, sizeof path, "%s/test_render_geometry_blank.ply", td && *td ? td : "/tmp");
+  FILE *f = fopen(path, "w");
+  if (f) {
+    fputs("ply \nformat ascii 1.0\nelement vertex 3\nproperty float x\n", f);
+    fclose(f);
+    st = ics_mesh_create_file(&m, path, one, zero, zero, 5, msg, sizeof msg);
+    CHECK(st == ICS_ERR_PARSE && strstr(msg, "without an end_header line"),
+          "'ply ' without end_header: %s (%s)", msg, ics_status_str(st));
+    remove(path);
+  }
 }
 
 int main(int argc, char **argv) {

@@ -279,7 +279,7 @@ void mesh_crossing(int tri, dvec3 o, dvec3 d, uint obj) {
   precise double v = (d.x * q.x + d.y * q.y + d.z * q.z) / det;
   if (v < 0.0LF || u + v > 1.0LF) return;
   precise double tt = (e2.x * q.x + e2.y * q.y + e2.z * q.z) / det;
-  if (isnan(tt)) return; /* overflowing coordinates: no crossing (as mesh.c) */
+  if (isnan(tt) || isinf(tt)) return; /* overflowing coordinates: no crossing (as mesh.c) */
   precise dvec3 nrm = dvec3(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
                             e1.x * e2.y - e1.y * e2.x);
   push(tt, nrm, obj);

@@ -11,8 +11,12 @@
  * within the time limit becomes the file's error: no crash, no hang. The time limit is 60 s plus
  * 2 s per MiB of file by default, which leaves Assimp's speed on large legitimate files
  * (tens of MB/s) far inside it. A PLY header without end_header is refused before Assimp
- * sees it: a message at once rather than a timeout. fork is called from the thread that reads
- * the scene; the child only runs Assimp and _exits. */
+ * sees it: a message at once rather than a timeout; so is a file that is not a regular file (a
+ * FIFO would block). fork is called from the thread that reads the scene; the child restores the
+ * default crash-signal dispositions (a caller's crash handler is not for Assimp's aborts), runs
+ * Assimp and _exits. A caller must not ignore SIGCHLD or reap children it did not start, and,
+ * since the child runs C++ code after fork, should read scenes before starting threads that may
+ * hold the C or C++ runtime's locks (the CLI does). */
 #define _POSIX_C_SOURCE 200809L
 #include "mesh.h"
 
@@ -27,6 +31,7 @@
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -47,16 +52,25 @@ int ics_mesh_files_supported(void) {
 #ifdef ICS_HAVE_ASSIMP
 #define PLY_HEADER_MAX 65536
 
-/* 1 when f is not PLY or its header ends (an end_header line) within PLY_HEADER_MAX bytes */
+/* s with trailing blanks, tabs and line ends removed: 1 when it is `word` */
+static int is_word(char *s, const char *word) {
+  size_t n = strlen(s);
+  while (n && (s[n - 1] == ' ' || s[n - 1] == '\t' || s[n - 1] == '\r' || s[n - 1] == '\n')) s[--n] = 0;
+  return !strcmp(s, word);
+}
+
+/* 1 when f is not PLY (its first line is not "ply"), or when a line that is "end_header" starts
+ * within its first PLY_HEADER_MAX bytes (positions from ftell: NUL bytes do not shorten them;
+ * only whole lines count, not the tail of a line longer than the buffer) */
 static int ply_header_ended(FILE *f) {
   char line[256];
-  if (!fgets(line, sizeof line, f) || strncmp(line, "ply", 3) || (line[3] != '\n' && line[3] != '\r'))
-    return 1;
-  long read = (long)strlen(line);
-  while (read < PLY_HEADER_MAX && fgets(line, sizeof line, f)) {
-    read += (long)strlen(line);
-    if (!strncmp(line, "end_header", 10) && (line[10] == '\n' || line[10] == '\r' || !line[10]))
-      return 1;
+  if (!fgets(line, sizeof line, f) || !strchr(line, '\n') || !is_word(line, "ply")) return 1;
+  int at_start = 1;
+  for (long pos = ftell(f); pos >= 0 && pos < PLY_HEADER_MAX && fgets(line, sizeof line, f);
+       pos = ftell(f)) {
+    int whole = strchr(line, '\n') != NULL;
+    if (at_start && is_word(line, "end_header")) return 1;
+    at_start = whole;
   }
   return 0;
 }
@@ -82,6 +96,13 @@ static int write_all(int fd, const void *p, size_t n) {
 
 /* the child: Assimp's import, sent through fd; never returns */
 static void child_import(int fd, const char *path) {
+  /* the caller's crash handlers (a fuzzer's, a crash reporter's) are not for Assimp's aborts:
+   * the default dispositions, so that the parent sees the signal */
+  static const int sigs[] = {SIGABRT, SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGPIPE};
+  for (size_t i = 0; i < sizeof sigs / sizeof *sigs; i++) signal(sigs[i], SIG_DFL);
+  sigset_t all;
+  sigemptyset(&all);
+  sigprocmask(SIG_SETMASK, &all, NULL);
   child_header h;
   memset(&h, 0, sizeof h);
   const struct aiScene *sc = aiImportFile(
@@ -98,10 +119,26 @@ static void child_import(int fd, const char *path) {
   }
   if (h.nt == 0 || h.nt > ICS_MESH_MAX_TRIANGLES || h.nv > (uint64_t)INT32_MAX / 3) {
     h.status = ICS_ERR_SIZE;
-    snprintf(h.msg, sizeof h.msg, "%llu triangles (expected 1..%d)", (unsigned long long)h.nt,
-             ICS_MESH_MAX_TRIANGLES);
+    if (h.nv > (uint64_t)INT32_MAX / 3)
+      snprintf(h.msg, sizeof h.msg, "%llu vertices (at most %d)", (unsigned long long)h.nv,
+               INT32_MAX / 3);
+    else
+      snprintf(h.msg, sizeof h.msg, "%llu triangles (expected 1..%d)", (unsigned long long)h.nt,
+               ICS_MESH_MAX_TRIANGLES);
     h.nv = h.nt = 0;
     _exit(write_all(fd, &h, sizeof h) ? 1 : 0);
+  }
+  for (unsigned i = 0; i < sc->mNumMeshes; i++) { /* every index within its mesh's vertices */
+    const struct aiMesh *me = sc->mMeshes[i];
+    for (unsigned f = 0; f < me->mNumFaces; f++)
+      for (unsigned k = 0; me->mFaces[f].mNumIndices == 3 && k < 3; k++)
+        if (me->mFaces[f].mIndices[k] >= me->mNumVertices) {
+          h.status = ICS_ERR_PARSE;
+          snprintf(h.msg, sizeof h.msg, "mesh %u, face %u: vertex index %u of %u vertices", i, f,
+                   me->mFaces[f].mIndices[k], me->mNumVertices);
+          h.nv = h.nt = 0;
+          _exit(write_all(fd, &h, sizeof h) ? 1 : 0);
+        }
   }
   int bad = write_all(fd, &h, sizeof h);
   float v[3 * 256];
@@ -169,8 +206,14 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
              "was built (install libassimp-dev and rebuild)", path);
   return ICS_ERR_UNSUPPORTED;
 #else
+  struct stat sb; /* before opening it: opening a FIFO would block */
+  if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+    if (msg) snprintf(msg, msg_size, "%s: not a regular file", path);
+    return ICS_ERR_IO;
+  }
   FILE *probe = fopen(path, "rb");
-  if (!probe) {
+  if (!probe || fstat(fileno(probe), &sb) || !S_ISREG(sb.st_mode)) {
+    if (probe) fclose(probe);
     if (msg) snprintf(msg, msg_size, "%s: cannot open mesh file", path);
     return ICS_ERR_IO;
   }
@@ -182,12 +225,9 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
                path, PLY_HEADER_MAX);
     return ICS_ERR_PARSE;
   }
-  if (!(seconds > 0)) {
-    struct stat sb;
-    seconds = 60 + (stat(path, &sb) ? 0 : 2 * (double)sb.st_size / 1048576.0);
-  }
+  if (!(seconds > 0)) seconds = 60 + 2 * (double)sb.st_size / 1048576.0;
   int fds[2];
-  if (pipe(fds)) {
+  if (pipe(fds) || fcntl(fds[0], F_SETFD, FD_CLOEXEC) || fcntl(fds[1], F_SETFD, FD_CLOEXEC)) {
     if (msg) snprintf(msg, msg_size, "%s: cannot start the mesh reader: %s", path, strerror(errno));
     return ICS_ERR_IO;
   }
@@ -215,6 +255,10 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
     if (h.status != ICS_OK) {
       st = h.status == ICS_ERR_SIZE ? ICS_ERR_SIZE : ICS_ERR_PARSE;
       if (msg) snprintf(msg, msg_size, "%s: %s", path, h.msg);
+    } else if (h.nt == 0 || h.nt > ICS_MESH_MAX_TRIANGLES || h.nv > (uint64_t)INT32_MAX / 3) {
+      st = ICS_ERR_PARSE; /* the child's own checks: a header it cannot have sent */
+      if (msg) snprintf(msg, msg_size, "%s: the mesh reader sent %llu vertices and %llu triangles",
+                        path, (unsigned long long)h.nv, (unsigned long long)h.nt);
     } else if (!(v = malloc(sizeof *v * 3 * (size_t)(h.nv ? h.nv : 1))) ||
                !(t = malloc(sizeof *t * 3 * (size_t)h.nt)) ||
                !(xyz = malloc(sizeof *xyz * 3 * (size_t)(h.nv ? h.nv : 1)))) {
@@ -226,15 +270,17 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
       if (r == 0) r = read_all(fds[0], t, sizeof *t * 3 * (size_t)h.nt, deadline);
     }
   }
-  if (r == 2) kill(pid, SIGKILL);
+  if (r != 0 || st != ICS_OK) kill(pid, SIGKILL); /* it may be stuck; not reaped yet: still ours */
   close(fds[0]);
   int ws = 0;
-  while (waitpid(pid, &ws, 0) < 0 && errno == EINTR) {}
+  pid_t got;
+  while ((got = waitpid(pid, &ws, 0)) < 0 && errno == EINTR) {}
+  if (got != pid) ws = 0; /* SIGCHLD ignored or reaped elsewhere: the cause is unknown */
   if (r != 0 && st == ICS_OK) {
     st = ICS_ERR_PARSE;
     if (msg) {
       if (r == 2)
-        snprintf(msg, msg_size, "%s: Assimp did not finish reading the mesh within %.0f s", path,
+        snprintf(msg, msg_size, "%s: Assimp did not finish reading the mesh within %.3g s", path,
                  seconds);
       else if (WIFSIGNALED(ws) && WTERMSIG(ws) != SIGKILL)
         snprintf(msg, msg_size, "%s: Assimp failed on this file (its reader died of signal %d, "

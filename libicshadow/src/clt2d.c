@@ -401,7 +401,8 @@ static double grid_at(const grid2 *g, long i, long j) {
  * buffers only. At requested step k: class and realised errors on the base grid, the class
  * error on the fine grid at the base nodes (only its change is needed: disc_err). */
 static ics_status run2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, const plan2 *p,
-                       const int *steps, int nsteps, ics_clt_point *out) {
+                       const int *steps, int nsteps, ics_clt_point *out, ics_clt_progress progress,
+                       void *progress_ctx) {
   grid2 gb = {0}, gf = {0};
   int cap = ICS_KERNEL_MAX_TAPS, dcap = 4 * ICS_KERNEL_MAX_TAPS + 9;
   ics_tap2d *taps = malloc((size_t)cap * sizeof *taps);
@@ -419,7 +420,7 @@ static ics_status run2(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s, c
     if (st == ICS_OK && s->refine) st = grid_step(&gf, gen, ctx, s, n, taps, cap, dt, dcap, &ndf);
     if (st != ICS_OK) break;
     cost += nd;
-    if (s->progress) s->progress(s->progress_ctx, n, nmax);
+    if (progress) progress(progress_ctx, n, nmax);
     if (n != steps[k]) continue;
     const double *rm = p->rm + 2 * k, *rc = p->rc + 3 * k;
     double pix = 1.0 / 12.0, pixf = 1.0 / 48.0;
@@ -522,11 +523,17 @@ ics_status ics_clt2d_cost(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s
 
 ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
                              const int *steps, int nsteps, ics_clt_point *out) {
+  return ics_clt2d_measure_progress(gen, ctx, s, steps, nsteps, out, NULL, NULL);
+}
+
+ics_status ics_clt2d_measure_progress(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
+                                      const int *steps, int nsteps, ics_clt_point *out,
+                                      ics_clt_progress progress, void *progress_ctx) {
   if (!out) return ICS_ERR_INVALID_ARG;
   plan2 p;
   ics_status st = check2(gen, ctx, s, steps, nsteps, &p, 1);
   if (st != ICS_OK) return st;
-  st = run2(gen, ctx, s, &p, steps, nsteps, out);
+  st = run2(gen, ctx, s, &p, steps, nsteps, out, progress, progress_ctx);
   plan2_free(&p);
   return st;
 }

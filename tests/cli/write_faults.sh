@@ -40,6 +40,24 @@ run "fit-light -o" "$dir/l.json" "$cli" fit-light "$dir/in.exr" --lights 1 -o "$
 # the outputs are committed together, -o's first: its failure is the one named
 RE='l2.json|plane.csv' run "fit-light --plane-csv" "$dir/plane.csv" "$cli" fit-light "$dir/in.exr" --lights 1 -o "$dir/l2.json" --plane-csv "$dir/plane.csv"
 rm -f "$dir/l2.json"
+# the second output's own faults (ICS_FAULT_AFTER=1: -o's fsync or rename passes): an fsync
+# fault commits neither; a rename fault leaves -o's file renamed (POSIX renames one file at a
+# time) and the CSV's previous contents
+for fault in fsync rename; do
+  printf 'previous\n' > "$dir/plane.csv"
+  err=$(LD_PRELOAD=$shim ICS_FAULT=$fault ICS_FAULT_AFTER=1 "$cli" fit-light "$dir/in.exr" --lights 1 \
+        -o "$dir/l3.json" --plane-csv "$dir/plane.csv" 2>&1 > /dev/null); rc=$?
+  want_l3=$([ $fault = rename ] && echo yes || echo no)
+  have_l3=$([ -e "$dir/l3.json" ] && echo yes || echo no)
+  if [ $rc -ne 1 ] || ! printf '%s' "$err" | grep -q "plane.csv: Input/output error" ||
+     ! same "$dir/plane.csv" || [ "$have_l3" != "$want_l3" ] || [ "$(ls "$dir" | grep -c "\.tmp")" -ne 0 ]; then
+    echo "fit-light --plane-csv, its own $fault fails: exit $rc, '$err', l3.json: $have_l3 (expected $want_l3)"
+    fail=1
+  else
+    echo "fit-light --plane-csv, its own $fault fails: exit 1, the CSV intact, -o's file committed: $have_l3"
+  fi
+  rm -f "$dir/l3.json"
+done
 run "bench sat2d --chirp-csv" "$dir/chirp.csv" "$cli" bench sat2d --size 64 --chirp-csv "$dir/chirp.csv"
 run "bench minmax --fig4-csv" "$dir/fig4.csv" "$cli" bench minmax --samples 16 --fig4-csv "$dir/fig4.csv"
 exit $fail

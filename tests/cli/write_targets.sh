@@ -41,9 +41,15 @@ fi
 # a full file system and a read-only one, each a tmpfs of our own (root, and a kernel that lets
 # us mount; skipped with the reason otherwise): the previous file is intact, no temporary is
 # left, and the message names the cause
-if [ "$(id -u)" -eq 0 ] && mkdir "$dir/small" "$dir/ro" &&
-   mount -t tmpfs -o size=64k tmpfs "$dir/small" 2> /dev/null; then
-  trap 'umount "$dir/small" "$dir/ro" 2> /dev/null; rm -rf "$dir"' EXIT
+mount_why=
+if [ "$(id -u)" -ne 0 ]; then
+  mount_why="not root"
+elif ! { mkdir "$dir/small" "$dir/ro" && trap 'umount "$dir/small" "$dir/ro" 2> /dev/null; rm -rf "$dir"' EXIT &&
+         mount -t tmpfs -o size=64k tmpfs "$dir/small" 2> "$dir/mount_err" &&
+         mount -t tmpfs -o size=1m tmpfs "$dir/ro" 2>> "$dir/mount_err"; }; then
+  mount_why="mount: $(head -1 "$dir/mount_err")"
+fi
+if [ -z "$mount_why" ]; then
   "$cli" make-env --lights $L --size 16x8 -o "$dir/small/map.exr" 2> "$dir/err"
   cp "$dir/small/map.exr" "$dir/map_before.exr"
   "$cli" make-env --lights $L --size 512x256 -o "$dir/small/map.exr" 2> "$dir/err"; rc=$?
@@ -52,16 +58,19 @@ if [ "$(id -u)" -eq 0 ] && mkdir "$dir/small" "$dir/ro" &&
   expect '[ $rc -eq 1 ] && grep -q "cannot write .*big.h: No space left on device" "$dir/err" && [ "$(ls -A "$dir/small")" = map.exr ]'
   "$cli" render --resolution 320x240 -o "$dir/small/r.exr" > /dev/null 2> "$dir/err"; rc=$?
   expect '[ $rc -eq 1 ] && grep -q "No space left on device" "$dir/err" && [ "$(ls -A "$dir/small")" = map.exr ]'
-  mount -t tmpfs -o size=1m tmpfs "$dir/ro" && cp "$dir/map_before.exr" "$dir/ro/map.exr" &&
-    mount -o remount,ro "$dir/ro"
+  cp "$dir/map_before.exr" "$dir/ro/map.exr"
+  if ! mount -o remount,ro "$dir/ro" 2> "$dir/mount_err"; then
+    echo "SKIPPED the read-only checks: mount -o remount,ro: $(head -1 "$dir/mount_err")"
+  else
   for c in "make-env --lights $L --size 16x8 -o $dir/ro/map.exr" "lut --size 64 --lang glsl -o $dir/ro/lut.glsl" \
            "render --resolution 16x12 -o $dir/ro/r.exr"; do
     $cli $c > /dev/null 2> "$dir/err"; rc=$?
     expect '[ $rc -eq 1 ] && grep -q "Read-only file system" "$dir/err" && cmp -s "$dir/ro/map.exr" "$dir/map_before.exr" && [ "$(ls -A "$dir/ro")" = map.exr ]'
   done
+  fi
   umount "$dir/small" "$dir/ro"
 else
-  echo "SKIPPED the full and read-only file-system checks: mounting a tmpfs needs root and a kernel that allows it"
+  echo "SKIPPED the full and read-only file-system checks: $mount_why"
 fi
 # a link to nothing: the file it names is created whole, or not at all (a write past the file
 # size limit, as on a full disk, leaves neither a truncated file nor a temporary; the link stays)

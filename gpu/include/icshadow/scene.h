@@ -142,7 +142,10 @@ typedef struct ics_scene ics_scene;
 ICS_API ics_status ics_scene_create_file(ics_scene **out, const char *path, char *msg,
                                          size_t msg_size);
 /* The same from a JSON text; `name` stands for the file in messages, `dir` (may be NULL: the
- * working directory) resolves relative paths (lights_file, mesh and grid files). */
+ * working directory) resolves relative paths (lights_file, mesh and grid files). Mesh files are
+ * read by Assimp in a child process (fork): the caller must not ignore SIGCHLD or reap children
+ * it did not start, and should read scenes before starting threads that may hold the C or C++
+ * runtime's locks. */
 ICS_API ics_status ics_scene_create_json(ics_scene **out, const char *json, const char *name,
                                          const char *dir, char *msg, size_t msg_size);
 /* The embedded default scene (docs/scene-format.md "The default scene"), and its text. */

@@ -66,12 +66,10 @@ typedef struct ics_clt2d_setup {
                             line light, is accepted; det >= -1e-12 trace^2), trace > 0 */
   ics_comp_mode comp;    /* NONE, NONNEG or SIGNED (INTEGER: ICS_ERR_UNSUPPORTED, as the engine) */
   int refine;            /* 1: also run a grid twice as fine and report disc_err; 0: NaN */
-  ics_clt_progress progress; /* NULL, or called after each step (both grids step together) */
-  void *progress_ctx;
 } ics_clt2d_setup;
 
 /* Fills *out with the defaults: edge at 0 degrees, mean 0, cov 0 (must be set), NONNEG, refine
- * 1, no progress. A zeroed setup is not the defaults: comp's zero is ICS_COMP_NONE and refine's 0 skips the
+ * 1. A zeroed setup is not the defaults: comp's zero is ICS_COMP_NONE and refine's 0 skips the
  * finer grid, both settings of their own. */
 ICS_API void ics_clt2d_setup_init(ics_clt2d_setup *out);
 
@@ -107,6 +105,12 @@ ICS_API void ics_clt2d_setup_init(ics_clt2d_setup *out);
  * ICS_CLT2D_MAX_PIXELS), generator/engine errors passed through, ICS_ERR_NOMEM. */
 ICS_API ics_status ics_clt2d_measure(ics_clt2d_gen gen, void *ctx, const ics_clt2d_setup *s,
                                      const int *steps, int nsteps, ics_clt_point *out);
+/* The same, calling progress(progress_ctx, n, steps[nsteps - 1]) after each step n (the finer
+ * grid steps together with the base grid). */
+ICS_API ics_status ics_clt2d_measure_progress(ics_clt2d_gen gen, void *ctx,
+                                              const ics_clt2d_setup *s, const int *steps,
+                                              int nsteps, ics_clt_point *out,
+                                              ics_clt_progress progress, void *progress_ctx);
 
 /* Base-grid pixel count and estimated work (tap-updates as ICS_CONV_WORK_BUDGET of conv.h: steps x
  * pixels x applied taps + ICS_CONV_WORK_COMP_PASSES x generated taps, per grid, plus the limits at
