@@ -20,7 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl_context.h"
+#include "gl_testutil.h"
 #include "icshadow.h"
 #include "ldi_gl.h"
 #include "plan_internal.h"
@@ -167,13 +167,7 @@ int main(int argc, char **argv) {
     fprintf(stderr, "usage: test_gl_ldi DATA_DIR [SCENE.json ...]\n");
     return 2;
   }
-  char why[1024];
-  const char *kind = getenv("ICS_GL_CONTEXT");
-  if (ics_gl_open(&g, kind && *kind ? kind : "auto", why, sizeof why) != ICS_OK) {
-    printf("SKIPPED: %s\n", why);
-    return 77;
-  }
-  printf("OpenGL context: %s, %s, %s\n", g.context, g.renderer, g.version);
+  gl_open_or_skip(&g);
   g.gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
   for (GLuint i = 0; i < 3; i++) g.gl.GetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, i, &max_groups[i]);
   char msg[4096];

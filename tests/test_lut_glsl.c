@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl_context.h"
+#include "gl_testutil.h"
 #include "icshadow.h"
 #include "tap_cases.h"
 #include "testutil.h"
@@ -113,13 +113,7 @@ int main(int argc, char **argv) {
     return 2;
   }
   ics_gl g;
-  char why[1024];
-  const char *kind = getenv("ICS_GL_CONTEXT");
-  if (ics_gl_open(&g, kind && *kind ? kind : "auto", why, sizeof why) != ICS_OK) {
-    printf("SKIPPED: %s\n", why);
-    return 77;
-  }
-  printf("OpenGL context: %s, %s, %s\n", g.context, g.renderer, g.version);
+  gl_open_or_skip(&g);
   for (int i = 1; i < argc; i++) run_one(&g, argv[i]);
   ics_gl_close(&g);
   return test_summary("test_lut_glsl");

@@ -290,7 +290,7 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
   double window[ICS_SCENE_MAX_LIGHTS], cum[ICS_SCENE_MAX_LIGHTS][2];
   ics_prop_taps *pts = calloc((size_t)(nl ? nl : 1), sizeof *pts);
   ics_tap2d **scratch = calloc((size_t)(nl ? nl : 1), sizeof *scratch);
-  if (ics_device_scene_create(&ds, P) != ICS_OK) {
+  if (ics_device_scene_create(&ds, P, 1) != ICS_OK) {
     free(pts), free(scratch);
     if (msg) snprintf(msg, msg_size, "backend cl: out of host memory for the upload (%zu fragments)", nfrag);
     return ICS_ERR_NOMEM;

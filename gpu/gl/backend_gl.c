@@ -92,12 +92,6 @@ static void gl_destroy(void *state) {
   state_free(s);
 }
 
-/* the context kind asked for: ICS_GL_CONTEXT (set by --gl-context), else auto */
-static const char *context_kind(void) {
-  const char *k = getenv("ICS_GL_CONTEXT");
-  return k && *k ? k : "auto";
-}
-
 /* where the layered depth image comes from: ICS_GL_LDI (set by --gl-ldi), "plan" (the plan's,
  * uploaded; the default) or "device" (ldi_gl.c); -1 for another value */
 static int ldi_on_device(void) {
@@ -109,7 +103,7 @@ static int ldi_on_device(void) {
 static int gl_available(char *why, size_t why_size) {
   ics_gl g;
   char w[1024];
-  if (ics_gl_open(&g, context_kind(), w, sizeof w) != ICS_OK) {
+  if (ics_gl_open(&g, ics_gl_context_kind(), w, sizeof w) != ICS_OK) {
     if (why) snprintf(why, why_size, "%s", w);
     return 0;
   }
@@ -144,7 +138,7 @@ static ics_status gl_create(void **state, const ics_render_opts *opts, char *msg
   if (!s) return ICS_ERR_NOMEM;
   s->ldi_device = ldi_device;
   char why[1024];
-  if (ics_gl_open(&s->g, context_kind(), why, sizeof why) != ICS_OK) {
+  if (ics_gl_open(&s->g, ics_gl_context_kind(), why, sizeof why) != ICS_OK) {
     if (msg) snprintf(msg, msg_size, "backend gl: %s", why);
     free(s);
     return ICS_ERR_UNSUPPORTED;
@@ -365,7 +359,7 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
     return ICS_ERR_SIZE;
   }
   ics_device_scene ds;
-  if (ics_device_scene_create(&ds, P) != ICS_OK) {
+  if (ics_device_scene_create(&ds, P, !s->ldi_device) != ICS_OK) {
     if (msg) snprintf(msg, msg_size, "backend gl: out of host memory for the upload (%zu fragments)",
                       P->ldi.nfrag);
     return ICS_ERR_NOMEM;
@@ -389,23 +383,24 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
    * and ints (volume objects, signed lights) */
   size_t nsd = 5 * ds.ntt + ICS_DEV_CAM + 3 * ICS_SCENE_MAX_LIGHTS + 2 * ICS_SCENE_MAX_LIGHTS +
                2 * (size_t)ICS_SCENE_MAX_LIGHTS;
-  uint32_t *pix = malloc(sizeof *pix * 4 * (npx ? npx : 1));
-  uint8_t *span = calloc((ds.nfrag + 3) / 4, 4);
+  /* the plan's per-pixel state and spans (the device LDI makes its own) */
+  uint32_t *pix = s->ldi_device ? NULL : malloc(sizeof *pix * 4 * (npx ? npx : 1));
+  uint8_t *span = s->ldi_device ? NULL : calloc((ds.nfrag + 3) / 4, 4);
   double *sd = calloc(nsd, sizeof *sd);
   int32_t ints[ICS_MAX_VOLUMES + ICS_SCENE_MAX_LIGHTS];
   j->queries = calloc(3 * (size_t)(P->K ? P->K : 1), sizeof *j->queries);
-  if (!pts || !scratch || !pix || !span || !sd || !j->queries) goto nomem;
+  if (!pts || !scratch || (!s->ldi_device && (!pix || !span)) || !sd || !j->queries) goto nomem;
   for (int l = 0; l < nl; l++) {
     const ics_slab_kernel *sk = &P->kernels[l];
     scratch[l] = malloc(sizeof **scratch * (size_t)sk->entries * (size_t)sk->cap);
     if (!scratch[l]) goto nomem;
   }
-  for (size_t p = 0; p < npx && !s->ldi_device; p++) { /* the device makes its own */
+  for (size_t p = 0; pix && p < npx; p++) {
     uint64_t m = ds.inside ? ds.inside[p] : 0;
     pix[4 * p] = pix[4 * p + 1] = P->ldi.offset[p];
     pix[4 * p + 2] = (uint32_t)m, pix[4 * p + 3] = (uint32_t)(m >> 32);
   }
-  if (!s->ldi_device) memcpy(span, ds.fspan, ds.nfrag);
+  if (span) memcpy(span, ds.fspan, ds.nfrag);
   int off_cam = (int)(5 * ds.ntt), off_lcol = off_cam + ICS_DEV_CAM;
   int off_lmu = off_lcol + 3 * ICS_SCENE_MAX_LIGHTS, off_lpath = off_lmu + 2 * ICS_SCENE_MAX_LIGHTS;
   j->off_window = off_lpath + ICS_SCENE_MAX_LIGHTS;

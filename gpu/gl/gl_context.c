@@ -405,3 +405,8 @@ const char *ics_gl_reset_name(GLenum reset) {
          : reset == GL_INNOCENT_CONTEXT_RESET ? "GL_INNOCENT_CONTEXT_RESET"
                                               : "GL_UNKNOWN_CONTEXT_RESET";
 }
+
+const char *ics_gl_context_kind(void) {
+  const char *k = getenv("ICS_GL_CONTEXT");
+  return k && *k ? k : "auto";
+}

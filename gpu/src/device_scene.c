@@ -27,10 +27,11 @@ void ics_device_camera(const ics_plan *P, double cam[ICS_DEV_CAM]) {
   cam[16] = cm->projection == ICS_PROJ_PERSPECTIVE;
 }
 
-ics_status ics_device_scene_create(ics_device_scene *d, const ics_plan *P) {
+ics_status ics_device_scene_create(ics_device_scene *d, const ics_plan *P, int fragments) {
   memset(d, 0, sizeof *d);
   const ics_scene *sc = P->scene;
-  size_t npx = (size_t)P->Wb * P->Hb, nfrag = P->ldi.nfrag, ntt = 0, ncells = 0;
+  size_t npx = (size_t)P->Wb * P->Hb, nfrag = fragments ? P->ldi.nfrag : 0, ntt = 0, ncells = 0;
+  int inside = fragments && P->nvol;
   for (int i = 0; i < sc->nobjects; i++) {
     const ics_material *m = &sc->materials[sc->objects[i].material];
     ntt += (size_t)m->ntransfer;
@@ -49,9 +50,9 @@ ics_status ics_device_scene_create(ics_device_scene *d, const ics_plan *P) {
   d->tt = calloc(5 * d->ntt, sizeof *d->tt);
   d->perm = calloc(d->nobj, 512);
   d->grids = malloc(sizeof *d->grids * d->ncells);
-  d->inside = P->nvol ? malloc(sizeof *d->inside * npx) : NULL;
+  d->inside = inside ? malloc(sizeof *d->inside * npx) : NULL;
   if (!d->fz || !d->fcode || !d->fgrad || !d->fspan || !d->obj || !d->tt || !d->perm ||
-      !d->grids || (P->nvol && !d->inside)) {
+      !d->grids || (inside && !d->inside)) {
     ics_device_scene_destroy(d);
     return ICS_ERR_NOMEM;
   }

@@ -45,8 +45,10 @@ typedef struct ics_device_geometry {
   double *tris;       /* 9 per triangle */
 } ics_device_geometry;
 
-/* ICS_OK or ICS_ERR_NOMEM (what is made so far released). */
-ics_status ics_device_scene_create(ics_device_scene *d, const ics_plan *p);
+/* ICS_OK or ICS_ERR_NOMEM (what is made so far released). fragments 0: the layered depth
+ * image's arrays (fz .. fspan, inside) are left at one zeroed entry, for a device that builds
+ * its own (gpu/gl/ldi_gl.c). */
+ics_status ics_device_scene_create(ics_device_scene *d, const ics_plan *p, int fragments);
 void ics_device_scene_destroy(ics_device_scene *d); /* a zeroed one is fine */
 /* The camera as ics_plan_ray uses it: eye, r, u, f, height, width, tan(fov / 2), aspect,
  * perspective (1) or orthographic (0). */
