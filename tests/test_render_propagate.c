@@ -46,7 +46,7 @@ static void step(const ics_prop_taps *pt, const float *src, float *dst, const ic
   if (path == AVX512)
     ics_prop_rows_avx512(pt, src, dst, L, nch, 0, H, scratch);
   else
-    ics_prop_rows(pt, src, dst, L, nch, 0, H, scratch);
+    ics_prop_rows(pt, src, dst, L, nch, 0, H, scratch, ICS_SIMD_SCALAR);
 }
 
 static const char *path_name(path_t p, const ics_buf_layout *L) {

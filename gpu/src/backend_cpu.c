@@ -33,6 +33,7 @@ typedef struct {
   uint64_t *mask;        /* NULL without volumes */
   int vol_obj[ICS_MAX_VOLUMES];
   uint32_t *scratch;     /* per thread: Wb words (table entries of a row) */
+  ics_simd_path simd;    /* the propagation loops' vector path */
   int *row_next;         /* per row: the first slab at which some pixel of it has work */
   ics_aov_buf *aov;      /* NULL: no AOVs */
   uint8_t *aov_seen;     /* per view pixel: its first surface recorded */
@@ -259,7 +260,7 @@ static void slab_job(void *ctx, int t, int n) {
   double t0 = ics_clock_s();
   for (int l = 0; l < P->nlights; l++)
     ics_prop_rows(&j->pt[l], j->src[l], j->dst[l], &P->buf, P->nch, y0, y1,
-                  j->scratch + (size_t)t * P->Wb);
+                  j->scratch + (size_t)t * P->Wb, j->simd);
   double t1 = ics_clock_s();
   shade_rows(j, y0, y1, t);
   for (int l = 0; l < P->nlights; l++) {
@@ -290,6 +291,8 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   double(*cum)[2] = calloc((size_t)(nl ? nl : 1), sizeof *cum);
   ics_status status = ICS_OK;
   if (!j || !bufs || !scratch || !cum) goto nomem;
+  status = ics_simd_choose(&j->simd, msg, msg_size);
+  if (status != ICS_OK) goto done;
   j->p = P;
   j->img = img;
   j->src = bufs;
@@ -347,7 +350,8 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   ics_plan_over_background(P, img);
   st->threads = nt;
   st->slabs = P->K;
-  snprintf(st->device, sizeof st->device, "CPU, %d thread%s", nt, nt == 1 ? "" : "s");
+  snprintf(st->device, sizeof st->device, "CPU, %d thread%s, %s", nt, nt == 1 ? "" : "s",
+           ics_simd_name(j->simd));
   for (int t = 0; t < nt; t++) {
     st->ms_convolution += 1e3 * j->prop_s[t] / nt;
     st->ms_shading += 1e3 * j->shade_s[t] / nt;

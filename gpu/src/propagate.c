@@ -296,13 +296,13 @@ static void rows_portable(const ics_prop_taps *pt, const float *src, float *dst,
 }
 
 void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
-                   int nch, int y0, int y1, uint32_t *scratch) {
+                   int nch, int y0, int y1, uint32_t *scratch, ics_simd_path simd) {
   if (pt->classes) {
     for (int y = y0; y < y1; y++)
       for (int x = 0; x < L->w; x++) pixel_classes(pt, src, dst, L, nch, x, y);
     return;
   }
-  if (pt->s == 1 && pt->reach <= L->apron && ics_prop_avx512_available()) {
+  if (pt->s == 1 && pt->reach <= L->apron && simd == ICS_SIMD_AVX512) {
     ics_prop_rows_avx512(pt, src, dst, L, nch, y0, y1, scratch);
     return;
   }

@@ -18,6 +18,7 @@
 #include <stdint.h>
 
 #include "icshadow/kernel.h"
+#include "simd_path.h"
 
 /* The storage of a w x h buffer with an apron of A pixels. */
 typedef struct ics_buf_layout {
@@ -73,9 +74,10 @@ void ics_prop_release(ics_prop_taps *pt);
 int ics_prop_prepare_perspective(ics_prop_taps *pt, const ics_tap2d *taps, int ntaps, double s,
                                  double cx, double cy, const ics_buf_layout *L);
 
-/* Rows [y0, y1) of dst from src; scratch holds L->w words (the row's entries). */
+/* Rows [y0, y1) of dst from src; scratch holds L->w words (the row's entries). simd: the loops
+ * to take where they apply (ics_simd_choose; the portable ones elsewhere). */
 void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
-                   int nch, int y0, int y1, uint32_t *scratch);
+                   int nch, int y0, int y1, uint32_t *scratch, ics_simd_path simd);
 
 /* Pieces shared with the vectorised loops: one pixel with clamped reads from tap set e, and the
  * entries of row y (pixels y w .. y w + w - 1 of the w x h buffer). */
