@@ -198,10 +198,8 @@ int cli_wants_help(int argc, char **argv) {
   return 0;
 }
 
-/* The name a chain of symbolic links ending nowhere leads to (each relative link resolved
- * against its own folder), malloc'd; NULL for a loop (40 levels, the kernel's limit) or a read
- * error. */
-static char *link_destination(const char *path) {
+/* (commands.h) a loop: 40 levels, the kernel's limit */
+char *cli_link_destination(const char *path) {
   char *cur = strdup(path);
   for (int depth = 0; cur && depth < 40; depth++) {
     struct stat st;
@@ -237,7 +235,7 @@ int cli_output_open(cli_output *out, const char *cmd, const char *path) {
   if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode)) {
     out->target = realpath(path, NULL);
     /* a link to nothing yet: the file it names is created (through a temporary, as any) */
-    if (!out->target && !(out->target = link_destination(path))) {
+    if (!out->target && !(out->target = cli_link_destination(path))) {
       cli_failure(cmd, "cannot write %s: a symbolic link that cannot be followed", path);
       return -1;
     }

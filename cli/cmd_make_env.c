@@ -113,6 +113,10 @@ int cmd_make_env(int argc, char **argv) {
     return cli_error(CMD, "nothing to draw: give --lights and/or --sky");
   if (!ics_exr_available())
     return cli_failure(CMD, "cannot write OpenEXR: OpenEXR was not found when icshadow was built");
+  /* --lights is a file when one of that name exists (lights_load) */
+  const cli_path in = {"--lights file", lights_arg}, o = {"-o", outp};
+  rc = cli_check_outputs(CMD, &in, 1, &o, 1);
+  if (rc) return rc;
   ics_light *lights = NULL;
   int n = 0;
   char err[CLI_MSG_MAX];

@@ -57,10 +57,16 @@ int cmd_plan(int argc, char **argv) {
     fputs(ics_scene_default_json(), out.fp);
     return cli_output_commit(&out) ? 1 : 0;
   }
+  const cli_path in = {"scene file", a.scene}, o = {"-o", outp};
+  if ((rc = cli_check_outputs(CMD, &in, 1, &o, 1))) return rc;
   ics_scene *s;
   ics_render_settings rs;
   ics_plan_opts po;
   if ((rc = scene_args_load(CMD, &a, &s, &rs, &po))) return rc;
+  if ((rc = scene_args_check_outputs(CMD, s, NULL, 0, &o, 1))) {
+    ics_scene_destroy(s);
+    return rc;
+  }
   char msg[CLI_MSG_MAX] = "";
   ics_plan *p;
   ics_status st = ics_plan_create(&p, s, &po, msg, sizeof msg);

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "commands.h"
 #include "render_compare.h"
@@ -55,6 +56,9 @@ static void help(FILE *f) {
           "  --diff-png FILE     with --compare / --reference: render minus reference, x4, as a\n"
           "                      picture (red: brighter, blue: darker than the reference)\n"
           "  --progress          show progress on stderr even when it is not a terminal\n"
+          "  --verbose           say on stderr why --backend auto passed over a backend (also\n"
+          "                      shown on a terminal, or when a --gl-* option was given)\n"
+          "With only --compare or --reference and no output, the summary alone is printed.\n"
           "Output files are written to a temporary name and renamed once all are complete.\n"
           "Exit status: 0 ok, 1 cannot write or out of memory, 2 bad input.\n");
 }
@@ -156,7 +160,7 @@ int cmd_render(int argc, char **argv) {
   memset(&a, 0, sizeof a);
   const char *exr = NULL, *png = NULL, *backend = NULL, *aov_list = NULL, *compare = NULL,
              *diff_png = NULL, *mc_mesh = NULL;
-  int force_progress = 0, backends = 0, spp = 0, ref_spp = 0, given_ref = 0;
+  int force_progress = 0, verbose = 0, backends = 0, spp = 0, ref_spp = 0, given_ref = 0;
   double time_s = 0, noise = 0;
   int given_spp = 0, given_time = 0, given_noise = 0, given_cl_device = 0,
       given_gl_context = 0, given_gl_ldi = 0;
@@ -170,6 +174,7 @@ int cmd_render(int argc, char **argv) {
       {"--gl-context", .kind = CLI_CALL, .parse = cli_parse_gl_context, .given = &given_gl_context},
       {"--gl-ldi", .kind = CLI_CALL, .parse = cli_parse_gl_ldi, .given = &given_gl_ldi},
       {"--progress", .kind = CLI_FLAG, .dest = &force_progress},
+      {"--verbose", .kind = CLI_FLAG, .dest = &verbose},
       {"--spp", .kind = CLI_INT, .dest = &spp, .lo = 1, .hi = 1 << 24, .given = &given_spp},
       {"--time", .kind = CLI_FINITE, .dest = &time_s, .given = &given_time},
       {"--noise", .kind = CLI_FINITE, .dest = &noise, .given = &given_noise},
@@ -184,8 +189,9 @@ int cmd_render(int argc, char **argv) {
   int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
   if (rc) return rc;
   if (backends) return list_backends();
-  if (!exr && !png && !diff_png)
-    return cli_error(CMD, "nothing to write: give -o OUT.exr and/or --png OUT.png");
+  if (!exr && !png && !diff_png && !compare && !given_ref)
+    return cli_error(CMD, "nothing to write: give -o OUT.exr and/or --png OUT.png (or only "
+                     "measure: --compare REF.exr or --reference N)");
   size_t ne = exr ? strlen(exr) : 0;
   if (ne >= 4 && !strcmp(exr + ne - 4, ".png"))
     return cli_error(CMD, "-o %s: -o writes OpenEXR; give the PNG preview with --png", exr);
@@ -233,10 +239,17 @@ int cmd_render(int argc, char **argv) {
     char why[256];
     if (!ics_backend_available(backend, why, sizeof why)) return cli_error(CMD, "--backend: %s", why);
   }
+  const cli_path ins[] = {{"scene file", a.scene}, {"--compare reference", compare}};
+  const cli_path outs[] = {{"-o", exr}, {"--png", png}, {"--diff-png", diff_png}};
+  if ((rc = cli_check_outputs(CMD, ins, 2, outs, 3))) return rc;
   ics_scene *s;
   ics_render_settings rs;
   ics_plan_opts po;
   if ((rc = scene_args_load(CMD, &a, &s, &rs, &po))) return rc;
+  if ((rc = scene_args_check_outputs(CMD, s, ins + 1, 1, outs, 3))) {
+    ics_scene_destroy(s);
+    return rc;
+  }
   char msg[CLI_MSG_MAX] = "";
   double t0 = cli_now_s();
   ics_plan *plan;
@@ -259,7 +272,9 @@ int cmd_render(int argc, char **argv) {
   st = ics_renderer_create(&r, &ro, msg, sizeof msg);
   if (st == ICS_OK) {
     st = ics_renderer_render_aovs(r, plan, aovs, &img, aovs ? &aov : NULL, &stats, msg, sizeof msg);
-    if (*ics_renderer_note(r)) fprintf(stderr, "icshadow render: note: %s\n", ics_renderer_note(r));
+    /* quiet by default: the note is for a user who may care (a terminal, --verbose, gl options) */
+    if (*ics_renderer_note(r) && (verbose || given_gl_context || given_gl_ldi || isatty(2)))
+      fprintf(stderr, "icshadow render: note: %s\n", ics_renderer_note(r));
     ics_renderer_destroy(r);
   }
   if (sp.p.on) cli_progress_done(&sp.p);

@@ -178,6 +178,18 @@ typedef struct cli_output {
   const char *write_path; /* where the bytes go now: tmp_path, or the target itself */
 } cli_output;
 int cli_output_open(cli_output *out, const char *cmd, const char *path);
+/* The name a chain of symbolic links ending nowhere leads to (each relative link resolved
+ * against its own folder), malloc'd; NULL for a loop or a read error; path itself (a copy) when
+ * nothing is there. */
+char *cli_link_destination(const char *path);
+/* A command's inputs and outputs by what they are ("the scene file", "-o") and path (NULL or
+ * "-": none, or stdout). cli_check_outputs refuses (exit status 2, a message naming both) an
+ * output that is the same file as an input (hard and symbolic links, other spellings) or as
+ * another output; call it before any work (cli/distinct_paths.c). */
+typedef struct cli_path {
+  const char *what, *path;
+} cli_path;
+int cli_check_outputs(const char *cmd, const cli_path *in, int nin, const cli_path *out, int nout);
 /* A by-name writer's message (it starts with the path it was given, out->write_path: the
  * output's temporary file) without that prefix, for a message that names out->path instead. */
 const char *cli_output_reason(const cli_output *out, const char *msg);

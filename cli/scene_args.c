@@ -4,6 +4,7 @@
 
 #ifdef ICS_HAVE_RENDER
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* --resolution WxH, W and H in 1..ICS_SCENE_MAX_RES */
@@ -117,5 +118,19 @@ int scene_args_load(const char *cmd, const scene_args *a, ics_scene **s, ics_ren
   po->height = a->res[1];
   po->threads = a->threads;
   return 0;
+}
+int scene_args_check_outputs(const char *cmd, const ics_scene *s, const cli_path *extra,
+                             int nextra, const cli_path *out, int nout) {
+  int nf = ics_scene_file_count(s);
+  cli_path *in = malloc(sizeof *in * (size_t)(nf + nextra ? nf + nextra : 1));
+  if (!in) return cli_failure(cmd, "out of memory");
+  for (int k = 0; k < nf; k++)
+    in[k] = (cli_path){k == 0 && !strcmp(ics_scene_file(s, 0), ics_scene_name(s)) ? "scene file"
+                                                                                 : "scene's input",
+                       ics_scene_file(s, k)};
+  for (int k = 0; k < nextra; k++) in[nf + k] = extra[k];
+  int rc = cli_check_outputs(cmd, in, nf + nextra, out, nout);
+  free(in);
+  return rc;
 }
 #endif

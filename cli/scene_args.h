@@ -32,6 +32,11 @@ void scene_args_options(scene_args *a, cli_option *opts);
 int scene_args_load(const char *cmd, const scene_args *a, ics_scene **s, ics_render_settings *rs,
                     ics_plan_opts *po);
 
+/* cli_check_outputs over the scene's files (ics_scene_file: the scene file, its lights_file,
+ * grids and meshes) and `extra` inputs of the command's own. */
+int scene_args_check_outputs(const char *cmd, const ics_scene *s, const cli_path *extra,
+                             int nextra, const cli_path *out, int nout);
+
 /* The shared lines of --help. */
 void scene_args_help(FILE *f);
 #endif

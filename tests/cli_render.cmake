@@ -26,7 +26,7 @@ ics_cli_test(NAME cli_plan_print_scene RC 0 ARGS "plan|--print-scene" OUT "\"cam
 # bad input: exit 2, the problem named, no output file left
 ics_cli_test(NAME cli_render_missing_scene RC 2 ARGS "render|/nonexistent/scene.json|-o|${rd}/m.exr"
   ERR "icshadow render: /nonexistent/scene.json: cannot open scene file" NOFILE ${rd}/m.exr)
-ics_cli_test(NAME cli_render_nothing RC 2 ARGS "render|${disk}" ERR "nothing to write")
+ics_cli_test(NAME cli_render_nothing RC 2 ARGS "render|${disk}" ERR "nothing to write: give -o OUT.exr and/or --png OUT.png [(]or only measure: --compare REF.exr or --reference N[)]")
 ics_cli_test(NAME cli_render_unknown_option RC 2 ARGS "render|--bogus" ERR "icshadow render: unknown option '--bogus'")
 ics_cli_test(NAME cli_render_bad_kernel RC 2 ARGS "render|${disk}|--kernel|box|-o|${rd}/k.exr"
   ERR "--kernel: unknown value 'box' \\(expected ellipse, poisson, gauss, tophat\\)" NOFILE ${rd}/k.exr)
@@ -58,7 +58,7 @@ ics_cli_test(NAME cli_bench_slab_bad_size RC 2 ARGS "bench|slab|--sizes|8" ERR "
 endif()
 if(ICS_HAVE_RENDER)
 ics_cli_test(NAME cli_render_two_scenes RC 2 ARGS "render|${disk}|${disk}|-o|${rd}/t.exr" ERR "give one SCENE \\(got 2\\)" NOFILE ${rd}/t.exr)
-ics_cli_test(NAME cli_render_directory RC 2 ARGS "render|${rd}|-o|${rd}/dir.exr" ERR "is a directory, not a scene file" NOFILE ${rd}/dir.exr)
+ics_cli_test(NAME cli_render_directory RC 2 ARGS "render|${rd}|-o|${rd}/dir.exr" ERR "cannot open scene file: not a regular file [(]a directory[)]" NOFILE ${rd}/dir.exr)
 ics_cli_test(NAME cli_render_png_as_exr RC 2 ARGS "render|-o|${rd}/p.png" ERR "-o writes OpenEXR; give the PNG preview with --png" NOFILE ${rd}/p.png)
 ics_cli_test(NAME cli_render_kernel_out_of_proportion RC 2 ARGS "render|${disk}|--slab-spacing|1e5|-o|${rd}/k2.exr"
   ERR "light 0: its per-slab kernel is .* out of proportion" NOFILE ${rd}/k2.exr)
@@ -125,5 +125,26 @@ foreach(bad "nan;channel G is NaN" "rg;wrong channel set: missing B|has no R, G,
   ics_cli_test(NAME cli_render_compare_${name} RC 2 ARGS "render|${disk}|--compare|${rd}/${name}.exr|-o|${rd}/cmp_${name}.exr"
     ERR "--compare: .*(${err})" NOFILE ${rd}/cmp_${name}.exr)
   set_tests_properties(cli_render_compare_${name} PROPERTIES FIXTURES_REQUIRED render_bad_refs)
+endforeach()
+# outputs that are inputs (every spelling of the same file) or each other, and FIFOs as every
+# kind of input: refused at once; the mesh reader dies with a killed parent
+add_test(NAME cli_input_output_paths COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/input_output_paths.sh
+  $<TARGET_FILE:icshadow_cli>)
+set_tests_properties(cli_input_output_paths PROPERTIES LABELS fast)
+# ICS_SIMD forces the CPU backend's vector path: a name it lacks is refused with the paths it
+# has; scalar runs anywhere and the summary says which path ran
+foreach(simd "bogus;2;no such path [(]this processor has: auto, scalar" "scalar;0;\"device\": \"CPU, [0-9]+ threads?, scalar\"")
+  list(GET simd 0 name)
+  list(GET simd 1 rc)
+  list(GET simd 2 re)
+  if(rc EQUAL 0)
+    set(stream OUT)
+  else()
+    set(stream ERR)
+  endif()
+  add_test(NAME cli_render_simd_${name} COMMAND ${CMAKE_COMMAND} -E env ICS_SIMD=${name}
+    ${CMAKE_COMMAND} -DCLI=$<TARGET_FILE:icshadow_cli> "-DARGS=render|--resolution|16x12|-o|${rd}/simd_${name}.exr"
+    -DRC=${rc} "-D${stream}=${re}" -P ${CMAKE_SOURCE_DIR}/tests/cli/expect.cmake)
+  set_tests_properties(cli_render_simd_${name} PROPERTIES LABELS fast)
 endforeach()
 endif()

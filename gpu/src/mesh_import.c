@@ -20,6 +20,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "mesh.h"
 
+#include "icshadow/input_file.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdint.h>
@@ -36,6 +38,9 @@
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#ifdef __linux__
+#include <sys/prctl.h>
+#endif
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -59,12 +64,16 @@ static int is_word(char *s, const char *word) {
   return !strcmp(s, word);
 }
 
-/* 1 when f is not PLY (its first line is not "ply"), or when a line that is "end_header" starts
- * within its first PLY_HEADER_MAX bytes (positions from ftell: NUL bytes do not shorten them;
- * only whole lines count, not the tail of a line longer than the buffer) */
+/* 1 when Assimp would not take f for PLY, or when a line that is "end_header" starts within its
+ * first PLY_HEADER_MAX bytes (positions from ftell: NUL bytes do not shorten them; only whole
+ * lines count, not the tail of a line longer than the buffer). Both as Assimp 5.2.5 reads them:
+ * its magic test takes "ply" in any case ("PLY" too) with anything after it, its header parser
+ * only an exact, lower-case end_header. */
 static int ply_header_ended(FILE *f) {
   char line[256];
-  if (!fgets(line, sizeof line, f) || !strchr(line, '\n') || !is_word(line, "ply")) return 1;
+  if (!fgets(line, sizeof line, f)) return 1;
+  for (int i = 0; i < 3; i++)
+    if (line[i] != "ply"[i] && line[i] != "PLY"[i]) return 1;
   int at_start = 1;
   for (long pos = ftell(f); pos >= 0 && pos < PLY_HEADER_MAX && fgets(line, sizeof line, f);
        pos = ftell(f)) {
@@ -95,7 +104,13 @@ static int write_all(int fd, const void *p, size_t n) {
 }
 
 /* the child: Assimp's import, sent through fd; never returns */
-static void child_import(int fd, const char *path) {
+static void child_import(int fd, const char *path, pid_t parent) {
+#ifdef __linux__
+  /* dies with the parent (killed while Assimp spins or blocks, it would be orphaned for good);
+   * a parent already gone before the request took effect is caught by getppid */
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
+#endif
+  if (getppid() != parent) _exit(1);
   /* the caller's crash handlers (a fuzzer's, a crash reporter's) are not for Assimp's aborts:
    * the default dispositions, so that the parent sees the signal */
   static const int sigs[] = {SIGABRT, SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGPIPE};
@@ -206,15 +221,12 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
              "was built (install libassimp-dev and rebuild)", path);
   return ICS_ERR_UNSUPPORTED;
 #else
-  struct stat sb; /* before opening it: opening a FIFO would block */
-  if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
-    if (msg) snprintf(msg, msg_size, "%s: not a regular file", path);
-    return ICS_ERR_IO;
-  }
-  FILE *probe = fopen(path, "rb");
-  if (!probe || fstat(fileno(probe), &sb) || !S_ISREG(sb.st_mode)) {
+  struct stat sb;
+  char why[256];
+  FILE *probe = ics_input_open(path, 0, NULL, why, sizeof why);
+  if (!probe || fstat(fileno(probe), &sb)) {
     if (probe) fclose(probe);
-    if (msg) snprintf(msg, msg_size, "%s: cannot open mesh file", path);
+    if (msg) snprintf(msg, msg_size, "%s: cannot open mesh file: %s", path, probe ? strerror(errno) : why);
     return ICS_ERR_IO;
   }
   int header_ok = ply_header_ended(probe);
@@ -232,7 +244,7 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
     return ICS_ERR_IO;
   }
   fflush(NULL); /* nothing buffered twice */
-  pid_t pid = fork();
+  pid_t parent = getpid(), pid = fork();
   if (pid < 0) {
     if (msg) snprintf(msg, msg_size, "%s: cannot start the mesh reader: %s", path, strerror(errno));
     close(fds[0]), close(fds[1]);
@@ -240,7 +252,7 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
   }
   if (pid == 0) {
     close(fds[0]);
-    child_import(fds[1], path);
+    child_import(fds[1], path, parent);
   }
   close(fds[1]);
   double deadline = now_s() + seconds;

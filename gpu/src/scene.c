@@ -77,6 +77,10 @@ void ics_scene_free_parts(ics_scene *s) {
   free(s->objects);
   for (int i = 0; i < s->nmeshes; i++) ics_mesh_destroy(s->meshes[i]);
   free(s->meshes);
+  for (int i = 0; i < s->nfiles; i++) free(s->files[i]);
+  free(s->files);
+  s->files = NULL;
+  s->nfiles = 0;
   s->materials = NULL;
   s->objects = NULL;
   s->meshes = NULL;
@@ -104,6 +108,21 @@ const ics_object *ics_scene_object(const ics_scene *s, int k) {
   return k >= 0 && k < s->nobjects ? &s->objects[k] : NULL;
 }
 const char *ics_scene_name(const ics_scene *s) { return s->name; }
+
+ics_status ics_scene_note_file(ics_scene *s, const char *path) {
+  char **f = realloc(s->files, sizeof *f * (size_t)(s->nfiles + 1));
+  if (!f) return ICS_ERR_NOMEM;
+  s->files = f;
+  size_t n = strlen(path) + 1;
+  if (!(f[s->nfiles] = malloc(n))) return ICS_ERR_NOMEM;
+  memcpy(f[s->nfiles], path, n);
+  s->nfiles++;
+  return ICS_OK;
+}
+int ics_scene_file_count(const ics_scene *s) { return s->nfiles; }
+const char *ics_scene_file(const ics_scene *s, int k) {
+  return k >= 0 && k < s->nfiles ? s->files[k] : NULL;
+}
 
 /* The embedded default scene as a scene file, so that it goes through the one reader and
  * `icshadow plan` / docs can show it verbatim (ics_scene_default_json). An object with

@@ -17,7 +17,12 @@ struct ics_scene {
   ics_object *objects;     /* nobjects */
   int nmeshes;
   ics_mesh **meshes;       /* owned */
+  int nfiles;
+  char **files;            /* owned: every file read (ics_scene_file) */
 };
+
+/* Adds path to the scene's files (ics_scene_file); ICS_ERR_NOMEM when it cannot. */
+ics_status ics_scene_note_file(ics_scene *s, const char *path);
 
 /* Fills the derived camera frame (r, u, f) from eye, target, up. ICS_ERR_RANGE when eye ==
  * target or up is parallel to the view direction (msg names which). */

@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 
 #include "geometry.h"
+#include "icshadow/input_file.h"
 #include "icshadow/lightsfile.h"
 #include "json_util.h"
 #include "lights_json.h"
@@ -252,6 +253,11 @@ static int read_lights(rctx *c, json_t *arr, json_t *file) {
     ics_light *l;
     int n;
     ics_status st = ics_lightsfile_read(path, &l, &n, c->j.msg, c->j.msg_size);
+    if (st == ICS_OK && ics_scene_note_file(s, path) != ICS_OK) {
+      free(l);
+      free(path);
+      return fail(c, ICS_ERR_NOMEM, "out of memory");
+    }
     free(path);
     if (st != ICS_OK) {
       /* the lights reader's message names the lights file; say which scene asked for it */
@@ -312,10 +318,13 @@ static int read_grid(rctx *c, const char *where, json_t *o, ics_detail *d) {
     return fail(c, ICS_ERR_SIZE, "%s.size: %zu cells (at most 2^28)", where, cells);
   char *path = join_path(c->dir, json_string_value(f));
   if (!path) return fail(c, ICS_ERR_NOMEM, "out of memory");
-  FILE *fp = fopen(path, "rb");
-  if (!fp) {
-    int e = errno;
-    fail(c, ICS_ERR_IO, "%s.file: cannot open '%s': %s", where, path, strerror(e));
+  char why[256];
+  ics_status ost;
+  FILE *fp = ics_input_open(path, 0, &ost, why, sizeof why);
+  if (!fp || ics_scene_note_file(c->s, path) != ICS_OK) {
+    if (fp) fclose(fp);
+    if (fp) fail(c, ICS_ERR_NOMEM, "out of memory");
+    else fail(c, ost, "%s.file: cannot open '%s': %s", where, path, why);
     free(path);
     return -1;
   }
@@ -710,6 +719,11 @@ static int read_object(rctx *c, int idx, json_t *o) {
   ics_mesh *mesh;
   char mmsg[4096 + 512];
   ics_status st = ics_mesh_create_file(&mesh, path, sc, rot, tr, 0, mmsg, sizeof mmsg);
+  if (st == ICS_OK && ics_scene_note_file(c->s, path) != ICS_OK) {
+    ics_mesh_destroy(mesh);
+    st = ICS_ERR_NOMEM;
+    snprintf(mmsg, sizeof mmsg, "out of memory");
+  }
   free(path);
   if (st != ICS_OK) return fail(c, st, "%s: %s", KEY("file"), mmsg);
   ics_mesh **mp = realloc(c->s->meshes, sizeof *mp * (size_t)(c->s->nmeshes + 1));
@@ -765,8 +779,9 @@ static ics_status read_root(rctx *c, json_t *root) {
   return ICS_OK;
 }
 
+/* file: the scene file (the first of the scene's files), or NULL */
 static ics_status create(ics_scene **out, json_t *root, const char *name, const char *dir,
-                         char *msg, size_t msg_size) {
+                         const char *file, char *msg, size_t msg_size) {
   rctx c = {{msg, msg_size}, name, dir, ICS_ERR_PARSE, NULL, strlen(name) + 256, NULL, 0};
   c.where = malloc(c.where_size);
   c.s = calloc(1, sizeof *c.s);
@@ -779,7 +794,12 @@ static ics_status create(ics_scene **out, json_t *root, const char *name, const 
   }
   snprintf(c.s->name, sizeof c.s->name, "%s", name);
   ics_render_settings_defaults(&c.s->settings);
-  ics_status st = read_root(&c, root);
+  ics_status st = file ? ics_scene_note_file(c.s, file) : ICS_OK;
+  if (st != ICS_OK) {
+    if (msg) snprintf(msg, msg_size, "out of memory");
+  } else {
+    st = read_root(&c, root);
+  }
   json_decref(root);
   free(c.where);
   if (st != ICS_OK) {
@@ -800,22 +820,20 @@ ics_status ics_scene_create_json(ics_scene **out, const char *json, const char *
     if (msg) snprintf(msg, msg_size, "%s:%d:%d: %s", name, je.line, je.column, je.text);
     return ICS_ERR_PARSE;
   }
-  return create(out, root, name, dir, msg, msg_size);
+  return create(out, root, name, dir, NULL, msg, msg_size);
 }
 
 ics_status ics_scene_create_file(ics_scene **out, const char *path, char *msg, size_t msg_size) {
   *out = NULL;
   if (msg && msg_size) msg[0] = 0;
-  struct stat sb;
-  if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
-    if (msg) snprintf(msg, msg_size, "%s: is a directory, not a scene file", path);
-    return ICS_ERR_IO;
-  }
-  FILE *f = fopen(path, "rb");
+  char why[256];
+  ics_status ost;
+  FILE *f = ics_input_open(path, ICS_SCENE_FILE_MAX, &ost, why, sizeof why);
   if (!f) {
-    int e = errno;
-    if (msg) snprintf(msg, msg_size, "%s: cannot open scene file: %s", path, strerror(e));
-    return ICS_ERR_IO;
+    if (msg)
+      snprintf(msg, msg_size, "%s: %s scene file: %s", path,
+               ost == ICS_ERR_SIZE ? "refusing a too large" : "cannot open", why);
+    return ost;
   }
   json_error_t je;
   json_t *root = json_loadf(f, JSON_REJECT_DUPLICATES, &je);
@@ -836,7 +854,7 @@ ics_status ics_scene_create_file(ics_scene **out, const char *path, char *msg, s
   else
     strcpy(dir, ".");
   if (slash == dir) strcpy(dir, "/");
-  ics_status st = create(out, root, path, dir, msg, msg_size);
+  ics_status st = create(out, root, path, dir, path, msg, msg_size);
   free(dir);
   return st;
 }

@@ -46,6 +46,7 @@
 
 /* ---- images and lights ---- */
 #include "icshadow/image.h"    /* float RGB(A) images, row 0 at the top */
+#include "icshadow/input_file.h" /* inputs: regular files only, with a size bound */
 #include "icshadow/exr.h"      /* OpenEXR I/O (optional: ICS_ERR_UNSUPPORTED without it) */
 #include "icshadow/envmap.h"   /* latitude-longitude maps on the light plane, synthetic maps */
 #include "icshadow/lightfit.h" /* environment map -> Gaussian lights on the light plane */

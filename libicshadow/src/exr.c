@@ -13,6 +13,7 @@
  * (custom error_handler_fn) instead of printed. */
 #define _XOPEN_SOURCE 700
 #include "icshadow/exr.h"
+#include "icshadow/input_file.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -120,10 +121,12 @@ static int slot_of(const char *name, int rgba, char *const *names, int n) {
  * negative R, G, B when rgba) with their position. */
 static ics_status read_file(const char *path, int rgba, exr_pixels *px, char *msg, size_t msg_size) {
   memset(px, 0, sizeof *px);
-  FILE *probe = fopen(path, "rb");
+  char why[256];
+  ics_status ost;
+  FILE *probe = ics_input_open(path, 0, &ost, why, sizeof why); /* OpenEXR would block on a FIFO */
   if (!probe) {
-    set_msg(msg, msg_size, "%s: cannot open: %s", path, strerror(errno));
-    return ICS_ERR_IO;
+    set_msg(msg, msg_size, "%s: cannot open: %s", path, why);
+    return ost;
   }
   fclose(probe);
 
@@ -433,8 +436,7 @@ static ics_status write_target(const char *path, char target[PATH_MAX + 1], char
     if (!S_ISREG(st.st_mode)) {
       set_msg(msg, msg_size, "%s: not a regular file (%s): an OpenEXR file is written to a "
               "temporary file and renamed into place; write to a file instead", path,
-              S_ISDIR(st.st_mode) ? "a directory" : S_ISFIFO(st.st_mode) ? "a FIFO"
-              : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device" : "a socket");
+              ics_input_kind((unsigned)st.st_mode));
       return ICS_ERR_IO;
     }
   } else if (is_link) {

@@ -21,10 +21,12 @@ extern "C" {
 #endif
 
 #define ICS_LIGHTSFILE_MAX 4096 /* lights in one file */
+#define ICS_LIGHTSFILE_MAX_BYTES (16u << 20) /* bytes of one file (4096 lights take under 2 MiB) */
 
 /* Reads a lights file. On success *out is malloc'ed (free() it) with *n lights. On failure *out
  * is NULL and msg holds "PATH:LINE:COLUMN: reason" (JSON syntax) or "PATH: lights[i].field:
- * reason": ICS_ERR_IO (cannot open), ICS_ERR_PARSE (syntax, shape, unknown or conflicting keys,
+ * reason": ICS_ERR_IO (cannot open, or not a regular file), ICS_ERR_SIZE (more than
+ * ICS_LIGHTSFILE_MAX_BYTES), ICS_ERR_PARSE (syntax, shape, unknown or conflicting keys,
  * values out of range), ICS_ERR_NOMEM. */
 ICS_API ics_status ics_lightsfile_read(const char *path, ics_light **out, int *n, char *msg,
                                        size_t msg_size);

@@ -26,6 +26,9 @@ extern "C" {
 #define ICS_SCENE_MAX_OBJECTS 4096   /* after fences are expanded into boxes */
 #define ICS_SCENE_MAX_MATERIALS 256
 #define ICS_SCENE_MAX_TRANSFER 256   /* transfer-function nodes */
+/* bytes of a scene file: the largest scene within the limits above (256 materials of 256
+ * transfer nodes, 4096 objects) is a few MiB; parsing holds about 80 bytes per byte of JSON */
+#define ICS_SCENE_FILE_MAX (16u << 20)
 
 typedef enum ics_projection { ICS_PROJ_ORTHOGRAPHIC = 0, ICS_PROJ_PERSPECTIVE = 1 } ics_projection;
 
@@ -163,6 +166,12 @@ ICS_API int ics_scene_object_count(const ics_scene *s);
 ICS_API const ics_object *ics_scene_object(const ics_scene *s, int k);
 /* The file name given at creation ("default" for the embedded scene). */
 ICS_API const char *ics_scene_name(const ics_scene *s);
+/* The files the scene was read from, k = 0 .. count - 1: the scene file itself (when created
+ * from one), then its lights_file, grid and mesh files in the order read, as the paths that were
+ * opened (relative ones joined to the scene's folder). A caller writing outputs checks them
+ * against these, so that no output replaces an input. */
+ICS_API int ics_scene_file_count(const ics_scene *s);
+ICS_API const char *ics_scene_file(const ics_scene *s, int k);
 
 /* Names used in scene files and plans: "ellipse", "poisson", "gauss", "tophat";
  * "expected", "integer", "nonneg", "signed", "none"; "rect", "disk", ... NULL out of range. */
