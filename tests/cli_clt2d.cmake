@@ -19,7 +19,8 @@ ics_cli_test(NAME cli_clt2d_edgeworth RC 0
   ARGS "clt|--kernel|poisson|--cov|9,4.5,30|--steps|16,32|--edge-angle|30|--no-refine"
   OUT "\n32,0\\.000(8[5-7][0-9]|88[0-4])[0-9]*,")
 # a resolved run: both rates printed, over all 3 points (Edgeworth slope here: -1.00 .. -1.01)
-ics_cli_test(NAME cli_clt2d_rate RC 0
+# (medium by cost: 9 s under ASan)
+ics_cli_test(NAME cli_clt2d_rate RC 0 LABELS medium
   ARGS "clt|--kernel|poisson|--cov|9,4.5,30|--steps|16,32,64|--edge-angle|30|--rate"
   ERR "^rate exponent: -(0\\.9[5-9]|1\\.0)[0-9]* \\(3 of 3 points\\)\nrate exponent \\(realised moments\\): -(0\\.9[5-9]|1\\.0)[0-9]* \\(3 of 3 points\\)\n$")
 # the fixed-offset 2-sample ellipse: rank-one taps, the compensation cannot be exact (warning),
@@ -93,7 +94,8 @@ ics_cli_test(NAME cli_clt2d_work_budget RC 2 ARGS "clt|--kernel|ellipse|--cov|4,
 # the applied taps' projected cumulants (tests/test_clt_convergence.c's formula, run once on
 # these taps), 2.4523e-4 (asserted within 5 %: 2.33e-4..2.57e-4; measured 2.4997e-4); a window
 # that followed n mu only reported 6.0e-6.
-ics_cli_test(NAME cli_clt2d_realised_drift RC 0
+# (medium by cost: 30 s under ASan, 2048 steps)
+ics_cli_test(NAME cli_clt2d_realised_drift RC 0 LABELS medium
   ARGS "clt|--kernel|ellipse|--samples|3|--offsets|fixed|--cov|0.25,0.01,0|--steps|2048|--no-refine"
   OUT "\n2048,0\\.9999[0-9]*,0\\.000(2[3-4][0-9]|25[0-6])[0-9]*,nan,")
 # --seed only where a seed is used (poisson, random-offset ellipse): refused, not ignored

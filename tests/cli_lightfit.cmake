@@ -117,7 +117,7 @@ set_tests_properties(cli_lightfit_files PROPERTIES LABELS fast)
 # outputs to a FIFO and to a full device made by the test (never removed, the cause named)
 if(ICS_HAVE_RENDER)
   add_test(NAME cli_write_targets COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/write_targets.sh $<TARGET_FILE:icshadow_cli>)
-  set_tests_properties(cli_write_targets PROPERTIES LABELS "fast" TIMEOUT 60)
+  set_tests_properties(cli_write_targets PROPERTIES LABELS "fast")
 endif()
 
 # bad maps: missing, not an EXR, NaN pixel, wrong channels, truncated (made by test_exr)

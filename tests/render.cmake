@@ -13,7 +13,8 @@ ics_add_render_test(test_render_scene fast)
 ics_add_test(NAME test_render_disk SOURCES test_render_disk.c LABELS medium render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/scenes/disk.json)
 ics_add_render_test(test_render_volume fast)
-ics_add_test(NAME test_render_repro SOURCES test_render_repro.c LABELS fast render
+# medium by cost (docs/testing.md): 15 s under ASan on the scalar path, 1.6 s Release
+ics_add_test(NAME test_render_repro SOURCES test_render_repro.c LABELS medium render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/scenes/disk.json)
 ics_add_render_test(test_render_plan medium)
 ics_add_render_test(test_render_propagate fast)
@@ -25,6 +26,6 @@ endif()
 ics_add_render_test(test_render_perspective medium)
 ics_add_render_test(test_render_detail fast)
 ics_add_render_test(test_render_aov fast)
-ics_add_render_test(test_render_bias fast)
+ics_add_render_test(test_render_bias medium) # 8.4 s under ASan (scalar path), 1 s Release
 ics_add_render_test(test_render_mc medium)
 ics_add_render_test(test_render_mc_embree fast ASSIMP EMBREE)

@@ -54,10 +54,16 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_GL)
   ics_cli_test(NAME cli_render_gl_context_other_backend RC 0 LABELS fast
     ARGS "render|--gl-context|egl|--backend|cpu|--resolution|16x12|-o|${rdg}/other.exr"
     ERR "warning: --gl-context only chooses the context of --backend gl \\(the backend is cpu\\)")
-  # auto on a machine without a GPU: cpu, with the one-line notice
+  # auto on a machine without a GPU: cpu, with the one-line notice when asked (--verbose, a
+  # --gl-* option); quiet otherwise (stderr is not a terminal here)
   ics_cli_test(NAME cli_render_gl_auto_notice RC 0 LABELS fast
-    ARGS "render|--resolution|16x12|-o|${rdg}/auto.exr"
+    ARGS "render|--verbose|--resolution|16x12|-o|${rdg}/auto.exr"
     OUT "\"backend\": \"cpu\"" ERR "note: auto passed over gl: ")
+  ics_cli_test(NAME cli_render_gl_auto_notice_gl_option RC 0 LABELS fast
+    ARGS "render|--gl-ldi|device|--resolution|16x12|-o|${rdg}/auto2.exr"
+    OUT "\"backend\": \"cpu\"" ERR "note: auto passed over gl: ")
+  ics_cli_test(NAME cli_render_gl_auto_quiet RC 0 LABELS fast
+    ARGS "render|--resolution|16x12|-o|${rdg}/auto3.exr" OUT "\"backend\": \"cpu\"" ERR "^$")
   # the layered depth image built on the device: its time in the summary; a bad value refused
   ics_cli_test(NAME cli_render_gl_ldi_device RC 0 LABELS medium
     ARGS "render|--backend|gl|--gl-ldi|device|--resolution|64x48|-o|${rdg}/ldi.exr"

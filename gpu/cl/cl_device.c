@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 const char *ics_cl_err_name(cl_int e) {
   switch (e) {
@@ -192,6 +193,34 @@ void ics_cl_dev_close(ics_cl_dev *d) {
   memset(d, 0, sizeof *d);
 }
 
+/* The compiler's own output on stderr (PoCL runs clang in the process, which prints "N warnings
+ * generated." for a first build) is kept out of the user's stderr: fd 2 goes to a private
+ * temporary file while the program builds, and what was written there is returned to be shown
+ * only when the build fails. -1 when stderr could not be redirected (then nothing is kept). */
+static int quiet_stderr_begin(void) {
+  fflush(stderr);
+  FILE *t = tmpfile();
+  int saved = t ? dup(2) : -1;
+  if (saved >= 0 && dup2(fileno(t), 2) < 0) {
+    close(saved);
+    saved = -1;
+  }
+  if (t) fclose(t); /* fd 2 keeps the (unlinked, read-write) file open */
+  return saved;
+}
+
+static void quiet_stderr_end(int saved, char *said, size_t said_size) {
+  if (saved < 0) return;
+  fflush(stderr);
+  off_t n = lseek(2, 0, SEEK_CUR);
+  if (n > 0 && lseek(2, 0, SEEK_SET) == 0) {
+    ssize_t got = read(2, said, said_size - 1);
+    said[got > 0 ? got : 0] = 0;
+  }
+  dup2(saved, 2);
+  close(saved);
+}
+
 ics_status ics_cl_build(const ics_cl_dev *d, const char *src, const char *what, int nkernels,
                         const char *const *names, cl_program *prog, cl_kernel *kernels,
                         char *msg, size_t msg_size) {
@@ -201,12 +230,15 @@ ics_status ics_cl_build(const ics_cl_dev *d, const char *src, const char *what, 
     if (msg) snprintf(msg, msg_size, "clCreateProgramWithSource(%s): %s", what, ics_cl_err_name(e));
     return ICS_ERR_UNSUPPORTED;
   }
+  char said[1024] = ""; /* what the compiler printed on stderr itself (PoCL's clang) */
+  int saved = quiet_stderr_begin();
   e = clBuildProgram(*prog, 1, &d->device, "-cl-std=CL1.2", NULL, NULL);
+  quiet_stderr_end(saved, said, sizeof said);
   if (e != CL_SUCCESS) {
     char log[2048] = "";
     clGetProgramBuildInfo(*prog, d->device, CL_PROGRAM_BUILD_LOG, sizeof log - 1, log, NULL);
-    if (msg) snprintf(msg, msg_size, "building %s for %s failed (%s): %s", what, d->name,
-                      ics_cl_err_name(e), log);
+    if (msg) snprintf(msg, msg_size, "building %s for %s failed (%s): %s%s%s", what, d->name,
+                      ics_cl_err_name(e), log, *said ? "\n" : "", said);
     return ICS_ERR_UNSUPPORTED;
   }
   for (int i = 0; i < nkernels; i++) {
