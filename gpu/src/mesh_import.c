@@ -12,9 +12,11 @@
  * 2 s per MiB of file by default, which leaves Assimp's speed on large legitimate files
  * (tens of MB/s) far inside it. A PLY header without end_header is refused before Assimp
  * sees it: a message at once rather than a timeout; so is a file that is not a regular file (a
- * FIFO would block). fork is called from the thread that reads the scene; the child restores the
- * default crash-signal dispositions (a caller's crash handler is not for Assimp's aborts), runs
- * Assimp and _exits. A caller must not ignore SIGCHLD or reap children it did not start, and,
+ * FIFO would block). fork is called from the thread that reads the scene, which waits for the
+ * child; the child asks to be killed when that thread ends (PR_SET_PDEATHSIG), i.e. when the
+ * process is killed meanwhile (while Assimp spins or blocks it would otherwise be orphaned for
+ * good), restores the default crash-signal dispositions (a
+ * caller's crash handler is not for Assimp's aborts), runs Assimp and _exits. A caller must not ignore SIGCHLD or reap children it did not start, and,
  * since the child runs C++ code after fork, should read scenes before starting threads that may
  * hold the C or C++ runtime's locks (the CLI does). */
 #define _POSIX_C_SOURCE 200809L

@@ -56,7 +56,7 @@ if [ -z "$mount_why" ]; then
   expect '[ $rc -eq 1 ] && grep -q "No space left on device" "$dir/err" && cmp -s "$dir/small/map.exr" "$dir/map_before.exr" && [ "$(ls -A "$dir/small")" = map.exr ]'
   "$cli" lut --size 4096 --lang c -o "$dir/small/big.h" 2> "$dir/err"; rc=$?
   expect '[ $rc -eq 1 ] && grep -q "cannot write .*big.h: No space left on device" "$dir/err" && [ "$(ls -A "$dir/small")" = map.exr ]'
-  "$cli" render --resolution 320x240 -o "$dir/small/r.exr" > /dev/null 2> "$dir/err"; rc=$?
+  "$cli" render --resolution 128x96 --aov all --slab-spacing 0.5 -o "$dir/small/r.exr" > /dev/null 2> "$dir/err"; rc=$?
   expect '[ $rc -eq 1 ] && grep -q "No space left on device" "$dir/err" && [ "$(ls -A "$dir/small")" = map.exr ]'
   cp "$dir/map_before.exr" "$dir/ro/map.exr"
   if ! mount -o remount,ro "$dir/ro" 2> "$dir/mount_err"; then
