@@ -1,5 +1,5 @@
 /* fuzz_lights_file.c — libFuzzer harness for the lights-file reader (ics_lightsfile_read,
- * gpu/src/lights_json.c): the input is written to a scratch file and read. Invariants: a file
+ * gpu/core/lights_json.c): the input is written to a scratch file and read. Invariants: a file
  * that is read gives 1..ICS_LIGHTSFILE_MAX lights with finite means, positive-semidefinite
  * covariances, finite non-negative colours and weights; a refused file gives no lights and a
  * message that names the file. */

@@ -1,4 +1,4 @@
-/* fuzz_mesh_file.c — libFuzzer harness for mesh files (ics_mesh_create_file, gpu/src/mesh.c, and
+/* fuzz_mesh_file.c — libFuzzer harness for mesh files (ics_mesh_create_file, gpu/core/mesh.c, and
  * Assimp behind it): the input's first byte picks the format (even: OBJ, odd: PLY, as the
  * scratch file's extension), the rest is the file, read with a 5 s limit (mesh_import.c runs
  * Assimp in a child process: its crashes and hangs become refusals). Invariants: a refused file

@@ -1,4 +1,4 @@
-/* fuzz_scene_json.c — libFuzzer harness for the scene reader (gpu/src/scene_json.c) and what a
+/* fuzz_scene_json.c — libFuzzer harness for the scene reader (gpu/core/scene_json.c) and what a
  * scene it accepts goes through: the plan at 16 x 16 pixels (padding capped at 4) and, for an
  * orthographic camera and at most 256 slabs, a render on the cpu backend with one thread (a
  * perspective step compensates 256 classes of taps per slab whatever the image size: 13 s per

@@ -38,7 +38,7 @@ while read -r size lang file; do
   fi
 done <<LIST
 256 c-data libicshadow/src/lut_data.c
-256 glsl gpu/gl/icshadow_lut.glsl
-256 opencl gpu/cl/icshadow_lut.cl
+256 glsl gpu/backends/gl/icshadow_lut.glsl
+256 opencl gpu/backends/cl/icshadow_lut.cl
 LIST
 exit $status

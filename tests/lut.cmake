@@ -1,5 +1,5 @@
 # Lookup tables for ratioToab / abToVarx (libicshadow/src/lut.c, lut_data.c) and the headers
-# generated from them (gpu/gl/icshadow_lut.glsl, gpu/cl/icshadow_lut.cl). See docs/lut.md.
+# generated from them (gpu/backends/gl/icshadow_lut.glsl, gpu/backends/cl/icshadow_lut.cl). See docs/lut.md.
 
 # Error bounds, stamps, special values, 1/n^2 convergence (against ellipse.c).
 ics_add_test(NAME test_lut SOURCES test_lut.c LABELS fast)
@@ -76,8 +76,8 @@ function(ics_lut_glsl_test name version header stage)
   endif()
   set_tests_properties(${name} PROPERTIES LABELS fast)
 endfunction()
-ics_lut_glsl_test(lut_glsl_450 450 ${CMAKE_SOURCE_DIR}/gpu/gl/icshadow_lut.glsl comp)
-ics_lut_glsl_test(lut_glsl_330 330 ${CMAKE_SOURCE_DIR}/gpu/gl/icshadow_lut.glsl frag)
+ics_lut_glsl_test(lut_glsl_450 450 ${CMAKE_SOURCE_DIR}/gpu/backends/gl/icshadow_lut.glsl comp)
+ics_lut_glsl_test(lut_glsl_330 330 ${CMAKE_SOURCE_DIR}/gpu/backends/gl/icshadow_lut.glsl frag)
 ics_lut_glsl_test(lut_glsl_450_size64 450 ${ics_lut_dir}/icshadow_lut_64.glsl comp)
 set_tests_properties(lut_glsl_450_size64 PROPERTIES FIXTURES_REQUIRED lut_gen_glsl_64)
 
@@ -85,7 +85,7 @@ set_tests_properties(lut_glsl_450_size64 PROPERTIES FIXTURES_REQUIRED lut_gen_gl
 # (bit for bit with correctly rounded divide/sqrt) and with the exact functions.
 ics_add_test(NAME test_lut_opencl SOURCES test_lut_opencl.c LABELS fast
   LIBS OpenCL::OpenCL m NEEDS OPENCL
-  ARGS ${CMAKE_SOURCE_DIR}/gpu/cl/icshadow_lut.cl ${ics_lut_dir}/icshadow_lut_64.cl)
+  ARGS ${CMAKE_SOURCE_DIR}/gpu/backends/cl/icshadow_lut.cl ${ics_lut_dir}/icshadow_lut_64.cl)
 # PoCL's kernel cache is in the build tree, not in ~/.cache/pocl (nothing written to HOME), and
 # is filled first by the same program with LeakSanitizer off: a cold compile leaks inside PoCL /
 # LLVM, so under ICS_SANITIZE the test passed only when an earlier run (make test's Release leg)
@@ -104,7 +104,7 @@ set_tests_properties(test_lut_opencl PROPERTIES FIXTURES_REQUIRED "lut_gen_openc
   ENVIRONMENT POCL_CACHE_DIR=${ics_pocl_cache})
 if(TARGET test_lut_opencl)
   add_test(NAME test_lut_opencl_compile COMMAND test_lut_opencl
-    ${CMAKE_SOURCE_DIR}/gpu/cl/icshadow_lut.cl ${ics_lut_dir}/icshadow_lut_64.cl)
+    ${CMAKE_SOURCE_DIR}/gpu/backends/cl/icshadow_lut.cl ${ics_lut_dir}/icshadow_lut_64.cl)
   set_tests_properties(test_lut_opencl_compile PROPERTIES LABELS fast SKIP_RETURN_CODE 77
     FIXTURES_REQUIRED lut_gen_opencl_64 FIXTURES_SETUP lut_opencl_cache
     ENVIRONMENT "POCL_CACHE_DIR=${ics_pocl_cache};ASAN_OPTIONS=detect_leaks=0")

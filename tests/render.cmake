@@ -5,8 +5,7 @@ function(ics_add_render_test name label)
   ics_add_test(NAME ${name} SOURCES ${name}.c LABELS ${label} render
     LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ${ARGN})
   if(TARGET ${name})
-    target_include_directories(${name} PRIVATE ${CMAKE_SOURCE_DIR}/gpu/src
-      ${CMAKE_SOURCE_DIR}/reference)
+    target_include_directories(${name} PRIVATE ${ICS_RENDER_PRIVATE_INCLUDES})
   endif()
 endfunction()
 ics_add_render_test(test_render_scene fast)
@@ -21,7 +20,7 @@ ics_add_render_test(test_render_propagate fast)
 ics_add_test(NAME test_render_geometry SOURCES test_render_geometry.c LABELS fast render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/tests/data)
 if(TARGET test_render_geometry)
-  target_include_directories(test_render_geometry PRIVATE ${CMAKE_SOURCE_DIR}/gpu/src)
+  target_include_directories(test_render_geometry PRIVATE ${ICS_RENDER_PRIVATE_INCLUDES})
 endif()
 ics_add_render_test(test_render_perspective medium)
 ics_add_render_test(test_render_detail fast)

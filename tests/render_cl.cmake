@@ -1,4 +1,4 @@
-# The cl backend (gpu/cl, OpenCL on PoCL here) against the cpu backend: the default scene, the
+# The cl backend (gpu/backends/cl, OpenCL on PoCL here) against the cpu backend: the default scene, the
 # scene files and variants reaching every kernel path; its refusals. Medium: PoCL builds the
 # program on first use (about a second, then cached in the build tree's PoCL cache, which
 # tests/CMakeLists.txt gives every test).
@@ -6,7 +6,7 @@ file(GLOB ics_scene_files CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/scenes/*.json)
 ics_add_test(NAME test_render_cl SOURCES test_render_device.c LABELS medium render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER OPENCL ARGS cl ${ics_scene_files})
 if(TARGET test_render_cl)
-  target_include_directories(test_render_cl PRIVATE ${CMAKE_SOURCE_DIR}/gpu/src)
+  target_include_directories(test_render_cl PRIVATE ${ICS_RENDER_PRIVATE_INCLUDES})
 endif()
 
 # on the command line: the default scene through --backend cl, its device in the summary; a

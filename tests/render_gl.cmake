@@ -1,4 +1,4 @@
-# The gl backend (gpu/gl: OpenGL 4.5 compute shaders; llvmpipe here) against the cpu backend:
+# The gl backend (gpu/backends/gl: OpenGL 4.5 compute shaders; llvmpipe here) against the cpu backend:
 # the default scene, the scene files and the variants of test_render_device.c, once per context
 # kind (EGL, OSMesa); its refusals; slab.comp's programs through glslangValidator; the command
 # line (--backend gl, --gl-context, the auto notice, bench slab side by side). Medium: llvmpipe
@@ -32,7 +32,7 @@ if(ICS_HAVE_GL AND ICS_HAVE_GLSLANG)
     endforeach()
     string(REPLACE "," "_" tname ${v})
     add_test(NAME glsl_slab_${tname} COMMAND ${GLSLANG_VALIDATOR} -l -S comp ${defs}
-      ${CMAKE_SOURCE_DIR}/gpu/gl/slab.comp)
+      ${CMAKE_SOURCE_DIR}/gpu/backends/gl/slab.comp)
     set_tests_properties(glsl_slab_${tname} PROPERTIES LABELS "fast;render")
   endforeach()
 endif()
@@ -109,18 +109,18 @@ endif()
 # compiler leaks at exit, so it stays out of the ASan run)
 ics_add_test(NAME test_lut_glsl SOURCES test_lut_glsl.c LABELS medium
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER GL
-  ARGS ${CMAKE_SOURCE_DIR}/gpu/gl/icshadow_lut.glsl ${CMAKE_CURRENT_BINARY_DIR}/lut_out/icshadow_lut_64.glsl)
+  ARGS ${CMAKE_SOURCE_DIR}/gpu/backends/gl/icshadow_lut.glsl ${CMAKE_CURRENT_BINARY_DIR}/lut_out/icshadow_lut_64.glsl)
 if(TARGET test_lut_glsl)
-  target_include_directories(test_lut_glsl PRIVATE ${CMAKE_SOURCE_DIR}/gpu/gl)
+  target_include_directories(test_lut_glsl PRIVATE ${CMAKE_SOURCE_DIR}/gpu/backends/gl)
   set_tests_properties(test_lut_glsl PROPERTIES FIXTURES_REQUIRED lut_gen_glsl_64 SKIP_RETURN_CODE 77)
 endif()
 
-# the layered depth image built on the device (gpu/gl/ldi.comp) against the plan's, fragment by
+# the layered depth image built on the device (gpu/backends/gl/ldi.comp) against the plan's, fragment by
 # fragment; and the renders of test_render_device.c with it (ICS_GL_LDI=device)
 ics_add_test(NAME test_gl_ldi SOURCES test_gl_ldi.c LABELS medium render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER GL ARGS ${CMAKE_SOURCE_DIR}/tests/data ${ics_scene_files})
 if(TARGET test_gl_ldi)
-  target_include_directories(test_gl_ldi PRIVATE ${CMAKE_SOURCE_DIR}/gpu/gl ${CMAKE_SOURCE_DIR}/gpu/src)
+  target_include_directories(test_gl_ldi PRIVATE ${CMAKE_SOURCE_DIR}/gpu/backends/gl ${ICS_RENDER_PRIVATE_INCLUDES})
   set_tests_properties(test_gl_ldi PROPERTIES SKIP_RETURN_CODE 77)
 endif()
 if(TARGET test_render_gl)
@@ -131,7 +131,7 @@ endif()
 foreach(k LDI_CAST LDI_SCAN LDI_SORT)
   if(ICS_HAVE_GL AND ICS_HAVE_GLSLANG)
     add_test(NAME glsl_${k} COMMAND ${GLSLANG_VALIDATOR} -l -S comp -DICS_K_${k}
-      ${CMAKE_SOURCE_DIR}/gpu/gl/ldi.comp)
+      ${CMAKE_SOURCE_DIR}/gpu/backends/gl/ldi.comp)
     set_tests_properties(glsl_${k} PROPERTIES LABELS "fast;render")
   endif()
 endforeach()

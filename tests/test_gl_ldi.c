@@ -1,5 +1,5 @@
-/* test_gl_ldi.c — the layered depth image built on the gl backend's device (gpu/gl/ldi.comp,
- * ldi_gl.c) against the plan's, built on the host (gpu/src/ldi.c), fragment by fragment: per
+/* test_gl_ldi.c — the layered depth image built on the gl backend's device (gpu/backends/gl/ldi.comp,
+ * ldi_gl.c) against the plan's, built on the host (gpu/core/ldi.c), fragment by fragment: per
  * pixel the number of fragments, the per-pixel state (layer cursors at the pixel's offset, the
  * inside mask), and per fragment the depth (as a float), the code (object, surface bias, slab),
  * the span and the depth gradient. Scenes: the embedded default, the scene files given on the

@@ -1,4 +1,4 @@
-/* test_render_detail.c — volumetric detail and transfer functions (gpu/src/detail.c):
+/* test_render_detail.c — volumetric detail and transfer functions (gpu/core/detail.c):
  * improved noise is 0 on the integer lattice, bounded by 1, continuous, and a seed names a field;
  * fBm with one octave is the noise itself, and its octaves add; a 3D grid file is sampled
  * trilinearly over the object's box (values checked at corners and midpoints by hand) and a file

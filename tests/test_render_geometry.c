@@ -1,4 +1,4 @@
-/* test_render_geometry.c — ray crossings of the analytic shapes and meshes (gpu/src/geometry.c,
+/* test_render_geometry.c — ray crossings of the analytic shapes and meshes (gpu/core/geometry.c,
  * mesh.c): every crossing found, none invented, checked against an independent inside test
  * sampled densely along the ray (a crossing is where the inside state flips); closed shapes cross
  * an even number of times; the torus quartic on grazing and axial rays; the cube mesh (PLY,

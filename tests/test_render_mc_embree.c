@@ -1,5 +1,5 @@
 /* test_render_mc_embree.c — the Monte-Carlo reference's mesh crossings through Embree 3
- * (reference/mc_embree.c) against the renderer's own BVH (gpu/src/mesh.c), on a closed bumpy
+ * (gpu/backends/mc/mc_embree.c) against the renderer's own BVH (gpu/core/mesh.c), on a closed bumpy
  * sphere of 9024 triangles written as OBJ and read through Assimp:
  * - 20000 random lines (origins around the mesh, some inside, isotropic directions): the same
  *   crossings, t and normal equal bit for bit (both compute them with the same double-precision

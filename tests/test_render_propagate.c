@@ -1,4 +1,4 @@
-/* test_render_propagate.c — the CPU slab step (gpu/src/propagate*.c) against the core engine
+/* test_render_propagate.c — the CPU slab step (gpu/backends/cpu/propagate*.c) against the core engine
  * (ics_conv2d_step, double sums per pixel, clamp-to-edge): one tap set with fractional offsets
  * (discretised into a stencil), 4 tap sets (the default per-pixel rotations: blended vector
  * loads) and 384 (a per-pixel table: gathers), where each pixel's set is the one its RNG word

@@ -5,6 +5,7 @@
 #define ICS_RENDER_BACKEND_H
 
 #include "icshadow/renderer.h"
+#include "list.h"
 
 /* The AOV channels a backend fills beside the image (docs/renderer.md "AOVs"): W x H pixels of
  * `count` floats, zero-initialised; -1 marks a channel set not asked for. */
@@ -40,13 +41,9 @@ ics_status ics_backend_pool_create(void **state, const ics_render_opts *opts, ch
 void ics_backend_pool_destroy(void *state);
 int ics_backend_always_available(char *why, size_t why_size);
 
-extern const ics_backend ics_backend_cpu;
-extern const ics_backend ics_backend_mc;
-#ifdef ICS_HAVE_OPENCL
-extern const ics_backend ics_backend_cl; /* gpu/cl/backend_cl.c */
-#endif
-#ifdef ICS_HAVE_GL
-extern const ics_backend ics_backend_gl; /* gpu/gl/backend_gl.c */
-#endif
+/* every backend of gpu/backends/list.h: ics_backend_cpu, ics_backend_mc, ... */
+#define ICS_BACKEND_DECLARE_(name) extern const ics_backend ics_backend_##name;
+ICS_BACKEND_LIST(ICS_BACKEND_DECLARE_)
+#undef ICS_BACKEND_DECLARE_
 
 #endif

@@ -1,7 +1,7 @@
 #version 450
 /* slab.comp — the slab renderer's steps per slab as GLSL 4.50 compute shaders (docs/backend_gl.md),
- * the same arithmetic as the cpu backend (gpu/src/propagate.c, gpu/src/backend_cpu.c) and the cl
- * backend (gpu/cl/slab.cl). One file, one program per entry point: the host compiles it once per
+ * the same arithmetic as the cpu backend (gpu/backends/cpu/propagate.c, gpu/backends/cpu/backend_cpu.c) and the cl
+ * backend (gpu/backends/cl/slab.cl). One file, one program per entry point: the host compiles it once per
  * ICS_K_* name, defined on the line after #version (glslangValidator -DICS_K_... checks each), and
  * the steps once more with ICS_CLAMPED (a tap reaches past the apron: every read clamps), and
  * each of those with ICS_TAPS_STORAGE (more taps than a uniform block holds).
@@ -252,7 +252,7 @@ uniform int aov_count, aov_vis, aov_z, off_aov, off_seen;
 uniform int off_cam, off_lcol, off_lmu, off_lpath, off_window, off_signed;
 uniform double zf, zb, window_max;
 
-/* Objects: ICS_DEV_OBJ_STRIDE doubles each (gpu/src/device_scene.c) */
+/* Objects: ICS_DEV_OBJ_STRIDE doubles each (gpu/core/device_scene.c) */
 #define OBJ_STRIDE 32
 #define O_OPACITY 0
 #define O_COLOR 1

@@ -1,6 +1,6 @@
 /* device_scene.h — the plan flattened for a device (the cl and gl backends): the layered depth
  * image as arrays, the objects as records of ICS_DEV_OBJ_STRIDE doubles (the O_* offsets of
- * gpu/cl/slab.cl and gpu/gl/slab.comp), their transfer rows, noise permutations and grid cells,
+ * gpu/backends/cl/slab.cl and gpu/backends/gl/slab.comp), their transfer rows, noise permutations and grid cells,
  * the camera and the lights. Built on the host once per render (device_scene.c). */
 #ifndef ICS_RENDER_DEVICE_SCENE_H
 #define ICS_RENDER_DEVICE_SCENE_H
@@ -32,7 +32,7 @@ typedef struct ics_device_scene {
   int32_t vol_obj[ICS_MAX_VOLUMES];      /* the object of each volume bit */
 } ics_device_scene;
 
-/* The objects' geometry for a device's ray caster (gpu/gl/ldi.comp): per object
+/* The objects' geometry for a device's ray caster (gpu/backends/gl/ldi.comp): per object
  * ICS_DEV_GEO_STRIDE doubles (shape, centre, frame rows, half sizes, volume bit, the root of
  * its mesh's BVH or -1, the mesh's merge distance), and every mesh's BVH flattened
  * (ics_mesh_flatten: nodes' boxes and links, triangles in leaf order). */
@@ -47,7 +47,7 @@ typedef struct ics_device_geometry {
 
 /* ICS_OK or ICS_ERR_NOMEM (what is made so far released). fragments 0: the layered depth
  * image's arrays (fz .. fspan, inside) are left at one zeroed entry, for a device that builds
- * its own (gpu/gl/ldi_gl.c). */
+ * its own (gpu/backends/gl/ldi_gl.c). */
 ics_status ics_device_scene_create(ics_device_scene *d, const ics_plan *p, int fragments);
 void ics_device_scene_destroy(ics_device_scene *d); /* a zeroed one is fine */
 /* The camera as ics_plan_ray uses it: eye, r, u, f, height, width, tan(fov / 2), aspect,

@@ -1,6 +1,6 @@
 #version 450
 /* ldi.comp — the layered depth image built on the device (docs/backend_gl.md "The layered depth
- * image on the device"): the same fragments as the plan's geometry pass (gpu/src/ldi.c,
+ * image on the device"): the same fragments as the plan's geometry pass (gpu/core/ldi.c,
  * geometry.c, mesh.c), ray cast in double precision into per-pixel linked lists, then sorted
  * front to back into the offsets-and-arrays layout the shading reads. One program per entry
  * point, defined on the line after #version (glslangValidator -DICS_K_... checks each):

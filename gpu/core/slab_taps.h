@@ -1,24 +1,23 @@
-/* propagate.h — one slab step of a light buffer on the CPU (docs/renderer.md "One step"):
- * dst(p) = sum_j w_j src(c + s (p - c) - x_j), bilinear, with the engine's clamp-to-edge
- * boundary (icshadow/conv.h). Tap offsets are split into integer and fractional parts once per
- * tap (s = 1), so no read position carries an absolute float coordinate.
+/* slab_taps.h — one slab's taps prepared for the inner loops of every backend, and the layout
+ * of the light buffers they step (docs/renderer.md "One step"): dst(p) = sum_j w_j src(c + s (p
+ * - c) - x_j), bilinear, with the engine's clamp-to-edge boundary (icshadow/conv.h). Tap offsets
+ * are split into integer and fractional parts once per tap (s = 1), so no read position carries
+ * an absolute float coordinate.
  *
  * Buffers carry an apron: a w x h buffer is stored in rows of stride w + 2A with A replicated
- * edge pixels on every side (ics_prop_apron refreshes it), so reads within the apron need no
- * clamping; taps that reach farther take the clamped path. Light buffers are nch planes of that
- * layout, float.
+ * edge pixels on every side, so reads within the apron need no clamping; taps that reach farther
+ * take the clamped path. Light buffers are nch planes of that layout, float.
  *
  * Tap sets: one per slab (a stencil of integer taps with merged bilinear weights), or several
  * ("entries") of which each pixel uses the one chosen by the counter RNG: entry
  * floor(word * entries / 2^32), word = ics_slab_entry_block's word of the pixel. */
-#ifndef ICS_RENDER_PROPAGATE_H
-#define ICS_RENDER_PROPAGATE_H
+#ifndef ICS_RENDER_SLAB_TAPS_H
+#define ICS_RENDER_SLAB_TAPS_H
 
 #include <stddef.h>
 #include <stdint.h>
 
 #include "icshadow/kernel.h"
-#include "simd_path.h"
 
 /* The storage of a w x h buffer with an apron of A pixels. */
 typedef struct ics_buf_layout {
@@ -31,10 +30,6 @@ void ics_buf_layout_init(ics_buf_layout *L, int w, int h, int apron);
 static inline size_t ics_buf_index(const ics_buf_layout *L, int x, int y) {
   return L->origin + (size_t)y * L->stride + (size_t)x;
 }
-/* Refreshes the apron of rows [y0, y1) (left and right) of every plane; with top_bottom, also
- * the A rows above row 0 and below row h - 1 (after all rows are final). */
-void ics_prop_apron(const ics_buf_layout *L, float *buf, int nch, int y0, int y1, int top_bottom);
-
 /* One slab's taps, prepared for the inner loops. */
 typedef struct ics_prop_taps {
   int entries, ntaps; /* entries tap sets of ntaps taps (stencil: 1 set of integer taps) */
@@ -73,19 +68,5 @@ void ics_prop_release(ics_prop_taps *pt);
 #define ICS_PROP_CLASSES 16
 int ics_prop_prepare_perspective(ics_prop_taps *pt, const ics_tap2d *taps, int ntaps, double s,
                                  double cx, double cy, const ics_buf_layout *L);
-
-/* Rows [y0, y1) of dst from src; scratch holds L->w words (the row's entries). simd: the loops
- * to take where they apply (ics_simd_choose; the portable ones elsewhere). */
-void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
-                   int nch, int y0, int y1, uint32_t *scratch, ics_simd_path simd);
-
-/* Pieces shared with the vectorised loops: one pixel with clamped reads from tap set e, and the
- * entries of row y (pixels y w .. y w + w - 1 of the w x h buffer). */
-void ics_prop_pixel(const ics_prop_taps *pt, int e, const float *src, float *dst,
-                    const ics_buf_layout *L, int nch, int x, int y);
-void ics_prop_entries_row(const ics_prop_taps *pt, int w, int y, uint32_t *ent);
-/* The choice of the run holding pixel (x, y) of a w-wide buffer (pt->run = 16): the choice
- * (ics_slab_choice) of the counter y (w + 32) + 16 floor((x + 16 - phase) / 16). */
-uint32_t ics_prop_run_choice(const ics_prop_taps *pt, int w, int x, int y);
 
 #endif

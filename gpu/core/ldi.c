@@ -28,7 +28,7 @@ typedef struct {
 } hit_t;
 
 /* by depth, object, then the order found: a total order (the same with any qsort, and the
- * device's, gpu/gl/ldi.comp) */
+ * device's, gpu/backends/gl/ldi.comp) */
 static int cmp_hit(const void *a, const void *b) {
   const hit_t *x = a, *y = b;
   if (x->t != y->t) return (x->t > y->t) - (x->t < y->t);

@@ -1,5 +1,5 @@
 /* slab.cl — the slab renderer's two steps per slab in OpenCL C 1.2 (docs/backend_cl.md), the
- * same arithmetic as the CPU backend (gpu/src/propagate.c, gpu/src/backend_cpu.c):
+ * same arithmetic as the CPU backend (gpu/backends/cpu/propagate.c, gpu/backends/cpu/backend_cpu.c):
  *
  *   ics_prop_* one light buffer's slab step, dst(p) = sum_j w_j src(read_j(p)), with the host's
  *              prepared taps (ics_prop_prepare / _perspective): a stencil of integer taps

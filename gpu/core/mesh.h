@@ -35,7 +35,7 @@ void ics_mesh_bounds(const ics_mesh *m, double lo[3], double hi[3]);
  * triangles) are reported once. */
 int ics_mesh_hits(const ics_mesh *m, const double orig[3], const double dir[3], ics_hits *h,
                   int *behind);
-/* For another accelerator (the Monte-Carlo reference's Embree path, reference/mc_embree.c):
+/* For another accelerator (the Monte-Carlo reference's Embree path, gpu/backends/mc/mc_embree.c):
  * triangle k's vertices (k in 0..count-1, the order of ics_mesh_create_triangles), and the
  * crossings of the line orig + t dir with the listed triangles, which the accelerator found the
  * line to pass through: t and normal computed as ics_mesh_hits computes them (double precision,
@@ -44,7 +44,7 @@ int ics_mesh_hits(const ics_mesh *m, const double orig[3], const double dir[3], 
 void ics_mesh_triangle(const ics_mesh *m, int k, double v[3][3]);
 int ics_mesh_hits_of(const ics_mesh *m, const int *tris, int ntris, const double orig[3],
                      const double dir[3], ics_hits *h, int *behind);
-/* For a device's ray caster (gpu/gl/ldi.comp): the BVH as flat arrays. ics_mesh_flat_counts
+/* For a device's ray caster (gpu/backends/gl/ldi.comp): the BVH as flat arrays. ics_mesh_flat_counts
  * gives the node and triangle counts; ics_mesh_flatten writes per node lo, hi (6 doubles) and
  * left, right, first, count (4 ints: children offset by node_base, -1 for a leaf; first offset
  * by tri_base), per triangle v0, e1, e2 (9 doubles) in leaf order, so that a leaf's triangles

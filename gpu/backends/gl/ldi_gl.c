@@ -1,5 +1,5 @@
 /* ldi_gl.c — the layered depth image built on the device (ldi_gl.h; the programs are
- * gpu/gl/ldi.comp). The host uploads the objects' geometry (device_scene.c) and the camera, then:
+ * gpu/backends/gl/ldi.comp). The host uploads the objects' geometry (device_scene.c) and the camera, then:
  *   1. the cast appends every crossing to its pixel's linked list in a pool sized from the
  *      plan's fragment count; the pool's counter counts on past its end, so when the pool was
  *      too small the host grows it to the count and casts once more;
@@ -17,7 +17,7 @@
 #include "clock.h"
 #include "device_scene.h"
 #include "ldi_comp_source.h"
-#include "scene_internal.h" /* ics_ldi_comp_source: gpu/gl/ldi.comp (cmake/embed_text.cmake) */
+#include "scene_internal.h" /* ics_ldi_comp_source: gpu/backends/gl/ldi.comp (cmake/embed_text.cmake) */
 
 static const char *const LDI_NAMES[ICS_GL_LDI_NPROGS] = {"ICS_K_LDI_CAST", "ICS_K_LDI_SCAN",
                                                          "ICS_K_LDI_SORT"};

@@ -8,7 +8,7 @@
 #include <stdint.h>
 
 #include "detail.h"
-#include "propagate.h"
+#include "slab_taps.h"
 #include "icshadow/image.h"
 #include "icshadow/plan.h"
 #include "slab_kernel.h"

@@ -12,15 +12,9 @@
 #include "plan_internal.h"
 #include "pool.h"
 
-static const ics_backend *const table[] = {
-#ifdef ICS_HAVE_GL
-                                           &ics_backend_gl,
-#endif
-                                           &ics_backend_cpu,
-#ifdef ICS_HAVE_OPENCL
-                                           &ics_backend_cl,
-#endif
-                                           &ics_backend_mc};
+#define ICS_BACKEND_ENTRY_(name) &ics_backend_##name,
+static const ics_backend *const table[] = {ICS_BACKEND_LIST(ICS_BACKEND_ENTRY_)};
+#undef ICS_BACKEND_ENTRY_
 #define NBACKENDS ((int)(sizeof table / sizeof *table))
 
 int ics_backend_count(void) { return NBACKENDS; }

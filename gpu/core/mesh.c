@@ -262,7 +262,7 @@ static int push_crossing(const tri_t *t, const double orig[3], const double dir[
   double v = (dir[0] * q[0] + dir[1] * q[1] + dir[2] * q[2]) / det;
   if (inside_test && (v < 0 || u + v > 1)) return 0;
   double tt = (t->e2[0] * q[0] + t->e2[1] * q[1] + t->e2[2] * q[2]) / det;
-  if (!isfinite(tt)) return 0; /* overflowing coordinates: no crossing (as gpu/gl/ldi.comp) */
+  if (!isfinite(tt)) return 0; /* overflowing coordinates: no crossing (as gpu/backends/gl/ldi.comp) */
   double nrm[3] = {t->e1[1] * t->e2[2] - t->e1[2] * t->e2[1], t->e1[2] * t->e2[0] - t->e1[0] * t->e2[2],
                    t->e1[0] * t->e2[1] - t->e1[1] * t->e2[0]};
   return ics_hits_push(h, tt, nrm);

@@ -1,6 +1,6 @@
-/* ldi_gl.h — the layered depth image built on the gl backend's device (gpu/gl/ldi.comp): ray
+/* ldi_gl.h — the layered depth image built on the gl backend's device (gpu/backends/gl/ldi.comp): ray
  * cast into per-pixel linked lists, sorted into the buffers the shading reads, with the same
- * fragments as the plan's geometry pass (gpu/src/ldi.c). docs/backend_gl.md. */
+ * fragments as the plan's geometry pass (gpu/core/ldi.c). docs/backend_gl.md. */
 #ifndef ICS_GL_LDI_H
 #define ICS_GL_LDI_H
 

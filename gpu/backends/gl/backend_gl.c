@@ -1,4 +1,4 @@
-/* backend_gl.c — the "gl" backend: the slab renderer as OpenGL 4.5 compute shaders (gpu/gl/slab.comp)
+/* backend_gl.c — the "gl" backend: the slab renderer as OpenGL 4.5 compute shaders (gpu/backends/gl/slab.comp)
  * on a windowless context (gl_context.c: EGL's device or surfaceless platform, or OSMesa).
  * Method and tolerances: docs/backend_gl.md.
  *
@@ -29,8 +29,8 @@
 #include "gl_context.h"
 #include "ldi_gl.h"
 #include "plan_internal.h"
-#include "propagate.h"
-#include "slab_comp_source.h" /* ics_slab_comp_source: gpu/gl/slab.comp (cmake/embed_text.cmake) */
+#include "slab_taps.h"
+#include "slab_comp_source.h" /* ics_slab_comp_source: gpu/backends/gl/slab.comp (cmake/embed_text.cmake) */
 
 /* the programs: slab.comp's entry points, the steps also with every read clamped (variants,
  * not a uniform branch: llvmpipe would run both sides) */

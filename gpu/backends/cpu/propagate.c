@@ -1,9 +1,9 @@
 /* propagate.c — the CPU slab step (see propagate.h), portable C; propagate_avx512.c has the
- * vectorised loops and is used when the processor has AVX-512.
+ * vectorised loops and is used when the processor has AVX-512 (simd_path.h).
  *
- * A single tap set at s = 1 is discretised once per slab into integer taps with merged bilinear
- * weights (the engine's ics_taps2d_discretize) and applied as a stencil. Several tap sets keep
- * each tap's integer and fractional read offset and read bilinearly. Reads within the apron need
+ * A single tap set at s = 1 (core/slab_taps.c discretised it into integer taps with merged
+ * bilinear weights) is applied as a stencil. Several tap sets keep each tap's integer and
+ * fractional read offset and read bilinearly. Reads within the apron need
  * no clamping; a step whose taps reach beyond it, and every perspective step (s != 1), clamps
  * each index to the buffer: the engine's ICS_BOUNDARY_CLAMP either way. */
 #include "propagate.h"
@@ -12,18 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "icshadow/conv.h"
 #include "propagate_simd.h"
 #include "slab_kernel.h"
-
-void ics_buf_layout_init(ics_buf_layout *L, int w, int h, int apron) {
-  L->w = w;
-  L->h = h;
-  L->apron = apron;
-  L->stride = w + 2 * apron;
-  L->plane = (size_t)L->stride * (size_t)(h + 2 * apron);
-  L->origin = (size_t)apron * L->stride + (size_t)apron;
-}
 
 void ics_prop_apron(const ics_buf_layout *L, float *buf, int nch, int y0, int y1, int top_bottom) {
   int A = L->apron;
@@ -42,130 +32,6 @@ void ics_prop_apron(const ics_buf_layout *L, float *buf, int nch, int y0, int y1
       }
     }
   }
-}
-
-void ics_prop_release(ics_prop_taps *pt) {
-  free(pt->ix);
-  free(pt->iy);
-  free(pt->off);
-  free(pt->fx);
-  free(pt->fy);
-  free(pt->w);
-  free(pt->ox);
-  free(pt->oy);
-  free(pt->disc);
-  memset(pt, 0, sizeof *pt);
-}
-
-int ics_prop_prepare(ics_prop_taps *pt, const ics_tap2d *taps, int entries, int ntaps, int cap,
-                     double s, double cx, double cy, const ics_buf_layout *L) {
-  size_t n = (size_t)entries * (size_t)ntaps, c = (size_t)entries * (size_t)cap;
-  if (pt->ix && (pt->classes_cap || !pt->fx)) ics_prop_release(pt); /* held a perspective set */
-  if (!pt->ix) {
-    pt->ix = malloc(sizeof *pt->ix * 4 * c);
-    pt->iy = malloc(sizeof *pt->iy * 4 * c);
-    pt->off = malloc(sizeof *pt->off * 4 * c);
-    pt->fx = malloc(sizeof *pt->fx * c);
-    pt->fy = malloc(sizeof *pt->fy * c);
-    pt->w = malloc(sizeof *pt->w * 4 * c);
-    pt->ox = malloc(sizeof *pt->ox * c);
-    pt->oy = malloc(sizeof *pt->oy * c);
-    pt->disc = malloc(sizeof *pt->disc * 4 * c);
-    if (!pt->ix || !pt->iy || !pt->off || !pt->fx || !pt->fy || !pt->w || !pt->ox || !pt->oy ||
-        !pt->disc)
-      return -1;
-  }
-  pt->classes = 0;
-  pt->entries = entries;
-  pt->ntaps = ntaps;
-  pt->s = s;
-  pt->cx = cx;
-  pt->cy = cy;
-  pt->stencil = 0;
-  int reach = 0;
-  if (entries == 1 && s == 1) {
-    /* one tap set: integer taps with merged bilinear weights, applied as a stencil */
-    int nd;
-    if (ics_taps2d_discretize(taps, ntaps, pt->disc, 4 * cap, &nd) != ICS_OK) return -1;
-    pt->stencil = 1;
-    pt->ntaps = nd;
-    for (int j = 0; j < nd; j++) {
-      pt->ix[j] = (int32_t)-pt->disc[j].x; /* the read is at p - x_j */
-      pt->iy[j] = (int32_t)-pt->disc[j].y;
-      pt->off[j] = pt->iy[j] * L->stride + pt->ix[j];
-      pt->w[j] = (float)pt->disc[j].w;
-      int r = abs(pt->ix[j]) > abs(pt->iy[j]) ? abs(pt->ix[j]) : abs(pt->iy[j]);
-      if (r > reach) reach = r;
-    }
-    pt->reach = reach;
-    return 0;
-  }
-  for (size_t j = 0; j < n; j++) {
-    double ox = -taps[j].x * s, oy = -taps[j].y * s;
-    if (!(fabs(ox) < 1e9 && fabs(oy) < 1e9)) return -1;
-    double fx = floor(ox), fy = floor(oy);
-    pt->ox[j] = ox;
-    pt->oy[j] = oy;
-    pt->ix[j] = (int32_t)fx;
-    pt->iy[j] = (int32_t)fy;
-    pt->off[j] = pt->iy[j] * L->stride + pt->ix[j];
-    pt->fx[j] = (float)(ox - fx);
-    pt->fy[j] = (float)(oy - fy);
-    pt->w[j] = (float)taps[j].w;
-    /* the bilinear read touches ix .. ix + 1, iy .. iy + 1 */
-    int r = abs(pt->ix[j]) > abs(pt->ix[j] + 1) ? abs(pt->ix[j]) : abs(pt->ix[j] + 1);
-    int ry = abs(pt->iy[j]) > abs(pt->iy[j] + 1) ? abs(pt->iy[j]) : abs(pt->iy[j] + 1);
-    if (ry > r) r = ry;
-    if (r > reach) reach = r;
-  }
-  pt->reach = reach;
-  return 0;
-}
-
-int ics_prop_prepare_perspective(ics_prop_taps *pt, const ics_tap2d *taps, int ntaps, double s,
-                                 double cx, double cy, const ics_buf_layout *L) {
-  const int Q = ICS_PROP_CLASSES, cap = 4 * ntaps + 9, ncls = Q * Q;
-  size_t c = (size_t)ncls * (size_t)cap;
-  if (!pt->ix || pt->classes_cap < c) {
-    ics_prop_release(pt);
-    pt->ix = malloc(sizeof *pt->ix * c);
-    pt->iy = malloc(sizeof *pt->iy * c);
-    pt->w = malloc(sizeof *pt->w * c);
-    pt->disc = malloc(sizeof *pt->disc * (c + (size_t)ntaps));
-    pt->off = malloc(sizeof *pt->off * (size_t)ncls); /* each class's tap count */
-    if (!pt->ix || !pt->iy || !pt->w || !pt->disc || !pt->off) return -1;
-    pt->classes_cap = c;
-  }
-  (void)L;
-  pt->entries = ncls;
-  pt->s = s, pt->cx = cx, pt->cy = cy;
-  pt->stencil = 0;
-  pt->classes = Q;
-  ics_tap2d *in = pt->disc + c, *out = pt->disc;
-  int maxn = 1;
-  /* the taps as engine taps (read at p - x): x = s x_j - d for the class's fraction d */
-  for (int cl = 0; cl < ncls; cl++) {
-    double dx = (double)(cl % Q) / Q, dy = (double)(cl / Q) / Q;
-    for (int j = 0; j < ntaps; j++) in[j] = (ics_tap2d){taps[j].x * s - dx, taps[j].y * s - dy, taps[j].w};
-    int nout;
-    if (ics_taps2d_compensate(in, ntaps, ICS_COMP_NONNEG, out + (size_t)cl * cap, cap, &nout, NULL) !=
-        ICS_OK)
-      return -1;
-    pt->off[cl] = nout;
-    if (nout > maxn) maxn = nout;
-  }
-  for (int cl = 0; cl < ncls; cl++) {
-    const ics_tap2d *o = out + (size_t)cl * cap;
-    size_t base = (size_t)cl * (size_t)maxn;
-    for (int m = 0; m < maxn; m++) {
-      int in_set = m < pt->off[cl];
-      pt->ix[base + m] = in_set ? (int32_t)-o[m].x : 0;
-      pt->iy[base + m] = in_set ? (int32_t)-o[m].y : 0;
-      pt->w[base + m] = in_set ? (float)o[m].w : 0.0f;
-    }
-  }
-  pt->ntaps = maxn;
-  return 0;
 }
 
 static inline int clampi(int v, int hi) { return v < 0 ? 0 : v > hi ? hi : v; }

@@ -25,8 +25,8 @@
 #include "clock.h"
 #include "device_scene.h"
 #include "plan_internal.h"
-#include "propagate.h"
-#include "slab_cl_source.h" /* ics_slab_cl_source: gpu/cl/slab.cl (cmake/embed_text.cmake) */
+#include "slab_taps.h"
+#include "slab_cl_source.h" /* ics_slab_cl_source: gpu/backends/cl/slab.cl (cmake/embed_text.cmake) */
 
 static int cl_available(char *why, size_t why_size) { return ics_cl_available(why, why_size); }
 

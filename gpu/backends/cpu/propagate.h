@@ -1,0 +1,31 @@
+/* propagate.h — one slab step of a light buffer on the CPU (docs/renderer.md "One step") over
+ * the taps and layout of core/slab_taps.h: the portable loops, with the vectorised ones of
+ * propagate_avx512.c where the processor has them (simd_path.h). */
+#ifndef ICS_RENDER_PROPAGATE_H
+#define ICS_RENDER_PROPAGATE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "simd_path.h"
+#include "slab_taps.h"
+
+/* Refreshes the apron of rows [y0, y1) (left and right) of every plane; with top_bottom, also
+ * the A rows above row 0 and below row h - 1 (after all rows are final). */
+void ics_prop_apron(const ics_buf_layout *L, float *buf, int nch, int y0, int y1, int top_bottom);
+
+/* Rows [y0, y1) of dst from src; scratch holds L->w words (the row's entries). simd: the loops
+ * to take where they apply (ics_simd_choose; the portable ones elsewhere). */
+void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
+                   int nch, int y0, int y1, uint32_t *scratch, ics_simd_path simd);
+
+/* Pieces shared with the vectorised loops: one pixel with clamped reads from tap set e, and the
+ * entries of row y (pixels y w .. y w + w - 1 of the w x h buffer). */
+void ics_prop_pixel(const ics_prop_taps *pt, int e, const float *src, float *dst,
+                    const ics_buf_layout *L, int nch, int x, int y);
+void ics_prop_entries_row(const ics_prop_taps *pt, int w, int y, uint32_t *ent);
+/* The choice of the run holding pixel (x, y) of a w-wide buffer (pt->run = 16): the choice
+ * (ics_slab_choice) of the counter y (w + 32) + 16 floor((x + 16 - phase) / 16). */
+uint32_t ics_prop_run_choice(const ics_prop_taps *pt, int w, int x, int y);
+
+#endif
