@@ -49,7 +49,7 @@ static void help(FILE *f) {
           "Light-buffer propagation through K slabs per kernel member, side by side with the\n"
           "memcpy floor measured between the repetitions, as CSV:\n"
           "  backend,kernel,samples,mode,width,height,slabs,threads,ns_per_px_slab,ns_min,ns_max,\n"
-          "  floor_ns_per_px,floor_ratio,error,reps\n"
+          "  floor_ns_per_px,floor_ratio,error,reps,simd\n"
           "(floor_ratio = floor / ns: 1 would be memory speed; error: max deviation of the\n"
           "propagated edge from the class's exact limit).\n\n"
           "options:\n"
@@ -172,7 +172,7 @@ int bench_slab(int argc, char **argv) {
   cli_progress prog;
   cli_progress_init(&prog, "bench slab", force);
   printf("backend,kernel,samples,mode,width,height,slabs,threads,ns_per_px_slab,ns_min,ns_max,"
-         "floor_ns_per_px,floor_ratio,error,reps\n");
+         "floor_ns_per_px,floor_ratio,error,reps,simd\n");
   int busy = 0;
   for (int si = 0; si < ns; si++) {
     int n = sizes[si];
@@ -217,6 +217,7 @@ int bench_slab(int argc, char **argv) {
         ics_renderer *r = NULL;
         st = ics_renderer_create(&r, &ro, msg, sizeof msg);
         double t[50], fl[50], err = 0;
+        char simd[16] = "";
         int K = ics_plan_slabs(p) - 1, bw, bh;
         ics_plan_sizes(p, NULL, NULL, &bw, &bh);
         for (int rep = 0; rep <= reps && st == ICS_OK; rep++) { /* rep 0: warm-up */
@@ -225,6 +226,7 @@ int bench_slab(int argc, char **argv) {
           st = ics_renderer_render(r, p, &img, &stats, msg, sizeof msg);
           if (st != ICS_OK) break;
           cpu_threads = stats.threads > 0; /* a device backend: one row, threads 0 */
+          snprintf(simd, sizeof simd, "%s", stats.simd);
           double floor_ns = now_floor_ns(npx, K, fa, fb);
           if (rep > 0) t[rep - 1] = stats.ns_per_px_slab, fl[rep - 1] = floor_ns;
           if (rep == reps) {
@@ -256,9 +258,9 @@ int bench_slab(int argc, char **argv) {
         cli_spread sp = cli_spread_of(t, reps), fsp = cli_spread_of(fl, reps);
         double med = sp.median, fmed = fsp.median;
         if (reps > 1 && cli_spread_busy(sp)) busy = 1;
-        printf("%s,%s,%d,%s,%d,%d,%d,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.3g,%d\n", backend, m->label,
+        printf("%s,%s,%d,%s,%d,%d,%d,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.3g,%d,%s\n", backend, m->label,
                m->samples, mode, bw, bh, K, cpu_threads ? threads[ti] : 0, med, sp.min, sp.max, fmed,
-               fmed / med, err, reps);
+               fmed / med, err, reps, *simd ? simd : "-");
         if (cli_stdout_failed(CMD)) { /* stop at the first row that fails, with its cause */
           free(fa), free(fb);
           cli_progress_done(&prog);

@@ -51,7 +51,7 @@ ics_cli_test(NAME cli_plan_print_scene_with_scene RC 2 ARGS "plan|${disk}|--prin
 endif()
 if(ICS_HAVE_RENDER)
 ics_cli_test(NAME cli_bench_slab RC 0 ARGS "bench|slab|--sizes|32|--slabs|8|--threads|1|--reps|1|--kernels|ellipse2,gauss19"
-  OUT "^backend,kernel,samples,mode,width,height,slabs,threads,ns_per_px_slab,ns_min,ns_max,floor_ns_per_px,floor_ratio,error,reps\ncpu,ellipse2,2,[a-z]+,32,32,8,1,[0-9.e+-]+,.*\ncpu,gauss19,19,")
+  OUT "^backend,kernel,samples,mode,width,height,slabs,threads,ns_per_px_slab,ns_min,ns_max,floor_ns_per_px,floor_ratio,error,reps,simd\ncpu,ellipse2,2,[a-z]+,32,32,8,1,[0-9.e+-]+,.*,(scalar|sse2|neon|avx2|avx512)\ncpu,gauss19,19,")
 ics_cli_test(NAME cli_bench_slab_help RC 0 ARGS "bench|slab|--help" OUT "memcpy floor")
 ics_cli_test(NAME cli_bench_slab_bad_kernel RC 2 ARGS "bench|slab|--kernels|box" ERR "--kernels: unknown member 'box'")
 ics_cli_test(NAME cli_bench_slab_bad_size RC 2 ARGS "bench|slab|--sizes|8" ERR "--sizes: expected integers in 16..4096")

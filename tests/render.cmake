@@ -17,6 +17,7 @@ ics_add_test(NAME test_render_repro SOURCES test_render_repro.c LABELS medium re
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/scenes/disk.json)
 ics_add_render_test(test_render_plan medium)
 ics_add_render_test(test_render_propagate fast)
+ics_add_render_test(test_render_simd fast)
 ics_add_test(NAME test_render_geometry SOURCES test_render_geometry.c LABELS fast render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/tests/data)
 if(TARGET test_render_geometry)

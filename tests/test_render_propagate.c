@@ -38,19 +38,18 @@ static float *pack(const float *plain, int nch, const ics_buf_layout *L) {
   return b;
 }
 
-typedef enum { PORTABLE, AVX512 } path_t;
+typedef ics_simd_path path_t;
+#define PORTABLE ICS_SIMD_SCALAR
 
+/* the rows through ics_prop_rows on the given path (the portable loops where it does not apply) */
 static void step(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
                 int nch, path_t path) {
   uint32_t scratch[W];
-  if (path == AVX512)
-    ics_prop_rows_avx512(pt, src, dst, L, nch, 0, H, scratch);
-  else
-    ics_prop_rows(pt, src, dst, L, nch, 0, H, scratch, ICS_SIMD_SCALAR);
+  ics_prop_rows(pt, src, dst, L, nch, 0, H, scratch, path);
 }
 
 static const char *path_name(path_t p, const ics_buf_layout *L) {
-  return p == AVX512 ? "AVX-512" : L->apron ? "portable" : "clamped";
+  return p != PORTABLE ? ics_simd_name(p) : L->apron ? "portable" : "clamped";
 }
 
 static void test_stencil(path_t path, int apron) {
@@ -186,13 +185,18 @@ int main(void) {
     test_sets(ICS_SLAB_TABLE_M, PORTABLE, apron);
   }
   test_sets_run(4, PORTABLE, 8, 16);
-  if (ics_prop_avx512_available()) {
-    test_sets_run(4, AVX512, 8, 16);
-    test_stencil(AVX512, 8);
-    test_sets(4, AVX512, 8);
-    test_sets(ICS_SLAB_TABLE_M, AVX512, 8);
-  } else {
-    printf("AVX-512 loops: skipped (this processor has no AVX-512)\n");
+  /* every vector path this processor has, each against the engine as the portable loops are */
+  for (int p = ICS_SIMD_SCALAR + 1; p < ICS_SIMD_PATHS_; p++) {
+    if (!ics_simd_has((path_t)p)) {
+      printf("%s loops: skipped (not built for this architecture, or this processor lacks them)\n",
+             ics_simd_name((path_t)p));
+      continue;
+    }
+    test_sets_run(4, (path_t)p, 8, 16);
+    test_stencil((path_t)p, 8);
+    test_sets(4, (path_t)p, 8);
+    test_sets(8, (path_t)p, 8);
+    test_sets(ICS_SLAB_TABLE_M, (path_t)p, 8);
   }
   test_entries();
   test_table_moments(ICS_RK_ELLIPSE, 2);

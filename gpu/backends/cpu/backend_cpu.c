@@ -352,6 +352,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   st->slabs = P->K;
   snprintf(st->device, sizeof st->device, "CPU, %d thread%s, %s", nt, nt == 1 ? "" : "s",
            ics_simd_name(j->simd));
+  snprintf(st->simd, sizeof st->simd, "%s", ics_simd_name(j->simd));
   for (int t = 0; t < nt; t++) {
     st->ms_convolution += 1e3 * j->prop_s[t] / nt;
     st->ms_shading += 1e3 * j->shade_s[t] / nt;

@@ -1,5 +1,5 @@
-/* propagate.c — the CPU slab step (see propagate.h), portable C; propagate_avx512.c has the
- * vectorised loops and is used when the processor has AVX-512 (simd_path.h).
+/* propagate.c — the CPU slab step (see propagate.h), portable C; propagate_vec.h has the vector
+ * loops, one build per instruction set, taken where the processor has it (simd_path.h).
  *
  * A single tap set at s = 1 (core/slab_taps.c discretised it into integer taps with merged
  * bilinear weights) is applied as a stencil. Several tap sets keep each tap's integer and
@@ -168,9 +168,14 @@ void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, const 
       for (int x = 0; x < L->w; x++) pixel_classes(pt, src, dst, L, nch, x, y);
     return;
   }
-  if (pt->s == 1 && pt->reach <= L->apron && simd == ICS_SIMD_AVX512) {
-    ics_prop_rows_avx512(pt, src, dst, L, nch, y0, y1, scratch);
-    return;
+  if (pt->s == 1 && pt->reach <= L->apron) {
+    switch (simd) {
+    case ICS_SIMD_SSE2: ics_prop_rows_sse2(pt, src, dst, L, nch, y0, y1, scratch); return;
+    case ICS_SIMD_NEON: ics_prop_rows_neon(pt, src, dst, L, nch, y0, y1, scratch); return;
+    case ICS_SIMD_AVX2: ics_prop_rows_avx2(pt, src, dst, L, nch, y0, y1, scratch); return;
+    case ICS_SIMD_AVX512: ics_prop_rows_avx512(pt, src, dst, L, nch, y0, y1, scratch); return;
+    default: break;
+    }
   }
   rows_portable(pt, src, dst, L, nch, y0, y1, scratch);
 }

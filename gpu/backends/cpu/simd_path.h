@@ -1,6 +1,8 @@
 /* simd_path.h — which vector loops the CPU backend runs: the widest this processor has, or the
- * one ICS_SIMD names (auto | scalar | avx512), so every path can be run and compared on one
- * machine (a test, a benchmark, or a processor without AVX-512 imitated on one that has it). */
+ * one ICS_SIMD names (auto | scalar | sse2 | avx2 | avx512 | neon), so every path can be run and
+ * compared on one machine (a test, a benchmark, or a processor without AVX-512 imitated on one
+ * that has it). Paths in order of preference: scalar (the portable loops) < sse2 < neon < avx2 <
+ * avx512; auto takes the last this processor has. */
 #ifndef ICS_RENDER_SIMD_PATH_H
 #define ICS_RENDER_SIMD_PATH_H
 
@@ -8,9 +10,16 @@
 
 #include "icshadow/status.h"
 
-typedef enum ics_simd_path { ICS_SIMD_SCALAR, ICS_SIMD_AVX512, ICS_SIMD_PATHS_ } ics_simd_path;
+typedef enum ics_simd_path {
+  ICS_SIMD_SCALAR,
+  ICS_SIMD_SSE2,
+  ICS_SIMD_NEON,
+  ICS_SIMD_AVX2,
+  ICS_SIMD_AVX512,
+  ICS_SIMD_PATHS_
+} ics_simd_path;
 
-/* "scalar", "avx512" */
+/* "scalar", "sse2", "neon", "avx2", "avx512" */
 const char *ics_simd_name(ics_simd_path p);
 /* 1 when this processor (and this build) can run path p */
 int ics_simd_has(ics_simd_path p);

@@ -43,7 +43,7 @@ typedef struct ics_render_opts {
 /* Time per pass and what ran. */
 typedef struct ics_render_stats {
   char backend[16];
-  char device[128];  /* e.g. "CPU, 2 threads" */
+  char device[128];  /* e.g. "CPU, 2 threads, avx2" */
   int threads;
   int slabs;
   double ms_total;   /* the render call, geometry pass excluded (ics_plan_geometry_seconds) */
@@ -54,6 +54,8 @@ typedef struct ics_render_stats {
                             (NAN after 1 sample) */
   double ms_geometry_device; /* the layered depth image built on the device (gl with --gl-ldi
                                 device; within ms_total), 0 where the plan's is used */
+  char simd[16]; /* "cpu": the propagation loops' vector path (scalar, sse2, neon, avx2, avx512;
+                    ICS_SIMD); "" for the other backends */
 } ics_render_stats;
 
 typedef struct ics_renderer ics_renderer;

@@ -1,0 +1,18 @@
+/* propagate_sse2.c — the vector loops of the CPU slab step (propagate_vec.h) for SSE2 (the x86-64 baseline): 4 lanes, a multiply and an add (no FMA).
+ * gpu/CMakeLists.txt compiles this file with the instruction set's flags where the compiler
+ * targets it; elsewhere it only records that the path was not built. Nothing here runs before
+ * simd_path.c has found the instructions on the processor. */
+#include "propagate_simd.h"
+
+#if defined(__x86_64__) && defined(__SSE2__)
+#define ICS_VEC_W 4
+#define ICS_VEC_FN ics_prop_rows_sse2
+#include "propagate_vec.h"
+const int ics_prop_built_sse2 = 1;
+#else
+const int ics_prop_built_sse2 = 0;
+void ics_prop_rows_sse2(const ics_prop_taps *pt, const float *src, float *dst,
+                        const ics_buf_layout *L, int nch, int y0, int y1, uint32_t *scratch) {
+  (void)pt, (void)src, (void)dst, (void)L, (void)nch, (void)y0, (void)y1, (void)scratch;
+}
+#endif

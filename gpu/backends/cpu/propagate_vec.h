@@ -1,0 +1,332 @@
+/* propagate_vec.h — the vector loops of the CPU slab step, written once over GCC/Clang vector
+ * extensions and compiled once per instruction set (propagate_sse2.c, propagate_avx2.c,
+ * propagate_avx512.c, propagate_neon.c: each defines ICS_VEC_W, the lanes of a float vector,
+ * and ICS_VEC_FN, the name of its entry point, and is compiled with its target's flags; the
+ * processor's paths are chosen at run time, simd_path.h). Preconditions: s = 1 and the taps'
+ * reach within the buffers' apron (no read is clamped).
+ *
+ * Stencils (one tap set): W pixels per vector, one unaligned load and one multiply-add per tap,
+ * four independent sums added in a fixed order. Few tap sets (entries <= ICS_PROP_CANDIDATES_MAX,
+ * e.g. the default 4 rotations per slab): every set evaluated for two vectors of pixels with
+ * unaligned loads, each pixel keeping its own set's result (a masked blend). Runs of 16 pixels
+ * sharing a set: each run as vectors of its own set, the partial runs at the row's ends
+ * evaluated over the row's first or last 16 pixels. Many tap sets (a per-pixel table): per lane loads of the taps and corners. Tap-set
+ * choices come from a W-lane Philox-4x32-10 (the same words as ics_slab_entry_block).
+ *
+ * Arithmetic: a * b + c written once; these files are compiled with -ffp-contract=fast, so
+ * where the target has FMA (AVX2 + FMA, AVX-512, NEON) it is one fused operation, as in
+ * pixel_fma for the row ends; on SSE2 it is a multiply and an add. So the last bits depend on the
+ * path (and can differ from the portable loops'), never on the thread count. */
+#include <stdint.h>
+#include <string.h>
+
+#include "propagate_simd.h"
+#include "slab_kernel.h"
+
+#if !defined(ICS_VEC_W) || !defined(ICS_VEC_FN)
+#error "define ICS_VEC_W and ICS_VEC_FN before including propagate_vec.h"
+#endif
+
+#define W ICS_VEC_W
+typedef float vf __attribute__((vector_size(4 * W)));
+typedef int32_t vi __attribute__((vector_size(4 * W)));
+typedef uint32_t vu __attribute__((vector_size(4 * W)));
+typedef uint64_t vh __attribute__((vector_size(4 * W))); /* the same bytes as W / 2 lanes */
+
+static inline vf loadf(const float *p) {
+  vf v;
+  memcpy(&v, p, sizeof v);
+  return v;
+}
+static inline vu loadu(const uint32_t *p) {
+  vu v;
+  memcpy(&v, p, sizeof v);
+  return v;
+}
+static inline void storef(float *p, vf v) { memcpy(p, &v, sizeof v); }
+static inline void storeu(uint32_t *p, vu v) { memcpy(p, &v, sizeof v); }
+static inline vf splatf(float x) { return (vf){0} + x; }
+static inline vu splatu(uint32_t x) { return (vu){0} + x; }
+static inline vu iota(void) {
+  vu v;
+  for (int i = 0; i < W; i++) v[i] = (uint32_t)i;
+  return v;
+}
+/* a * b + c: fused where the target has FMA (-ffp-contract=fast) */
+static inline vf madd(vf a, vf b, vf c) { return a * b + c; }
+/* lanes of `a` where mask (all ones or zero per lane) is set, else `b` */
+static inline vf blend(vi mask, vf a, vf b) { return (vf)(((vi)a & mask) | ((vi)b & ~mask)); }
+
+/* 32 x 32 -> 64 bit products of W lanes: the high and low halves. The one place the source
+ * names an instruction set: vector extensions have no widening multiply, and written as a
+ * 64-bit product the compilers emit a full 64 x 64 multiply (three multiplies and the shifts
+ * and adds, or vpmullq) where one pmuludq per pair of lanes does. */
+#if defined(__x86_64__)
+#include <immintrin.h>
+/* the products of the even 32-bit lanes (the low halves of each 64-bit pair) with m */
+static inline vh mul_even(vh a, uint32_t m) {
+#if W == 16
+  return (vh)_mm512_mul_epu32((__m512i)a, _mm512_set1_epi64((long long)m));
+#elif W == 8
+  return (vh)_mm256_mul_epu32((__m256i)a, _mm256_set1_epi64x((long long)m));
+#else
+  return (vh)_mm_mul_epu32((__m128i)a, _mm_set1_epi64x((long long)m));
+#endif
+}
+static inline void mul32(vu a, uint32_t m, vu *lo, vu *hi) {
+  const vh low = (vh){0} + 0xffffffffu;
+  vh ev = mul_even((vh)a, m), od = mul_even((vh)a >> 32, m);
+  *lo = (vu)((ev & low) | (od << 32));
+  *hi = (vu)((ev >> 32) | (od & ~low));
+}
+#elif defined(__ARM_NEON) && W == 4
+#include <arm_neon.h>
+static inline void mul32(vu a, uint32_t m, vu *lo, vu *hi) {
+  uint32x4_t va = (uint32x4_t)a;
+  uint32x2_t vm = vdup_n_u32(m);
+  uint64x2_t p0 = vmull_u32(vget_low_u32(va), vm), p1 = vmull_u32(vget_high_u32(va), vm);
+  uint32x4x2_t z = vuzpq_u32(vreinterpretq_u32_u64(p0), vreinterpretq_u32_u64(p1));
+  *lo = (vu)z.val[0];
+  *hi = (vu)z.val[1];
+}
+#else
+typedef uint64_t vu64 __attribute__((vector_size(8 * W)));
+static inline void mul32(vu a, uint32_t m, vu *lo, vu *hi) {
+  vu64 p = __builtin_convertvector(a, vu64) * (uint64_t)m;
+  *lo = __builtin_convertvector(p, vu);
+  *hi = __builtin_convertvector(p >> 32, vu);
+}
+#endif
+
+/* Philox-4x32-10 on W counters (rng.c's rounds, lane by lane) */
+static void philox(vu c[4], uint64_t seed) {
+  uint32_t k0 = (uint32_t)seed, k1 = (uint32_t)(seed >> 32);
+  for (int r = 0; r < 10; r++) {
+    if (r > 0) k0 += 0x9E3779B9u, k1 += 0xBB67AE85u;
+    vu lo0, hi0, lo1, hi1;
+    mul32(c[0], 0xD2511F53u, &lo0, &hi0);
+    mul32(c[2], 0xCD9E8D57u, &lo1, &hi1);
+    vu n0 = hi1 ^ c[1] ^ k0, n2 = hi0 ^ c[3] ^ k1;
+    c[0] = n0, c[1] = lo1, c[2] = n2, c[3] = lo0;
+  }
+}
+
+/* the four words of the W blocks `blocks` (ics_slab_entry_block), each scaled to a choice in
+ * 0 .. entries - 1: out[k] lane i is word k of block i */
+static void choices(const ics_prop_taps *pt, vu blocks, vu out[4]) {
+  vu c[4] = {blocks, splatu(pt->slab), splatu(pt->light), splatu(0x736c6162u)};
+  philox(c, pt->seed);
+  for (int k = 0; k < 4; k++) {
+    vu lo;
+    mul32(c[k], (uint32_t)pt->entries, &lo, &out[k]);
+  }
+}
+
+/* the entries of row y: block 16 q + i holds the pixels 64 q + i + 16 k (k = 0..3) */
+static void entries_row(const ics_prop_taps *pt, int w, int y, uint32_t *ent) {
+  uint32_t first = (uint32_t)((size_t)y * w), last = first + (uint32_t)w - 1;
+  uint32_t tmp[64];
+  for (uint32_t q = first / 64; q <= last / 64; q++) {
+    uint32_t p0 = 64 * q;
+    uint32_t *dst = p0 >= first && p0 + 63 <= last ? ent + (p0 - first) : tmp;
+    for (int h = 0; h < 16; h += W) {
+      vu out[4];
+      choices(pt, splatu(16 * q + (uint32_t)h) + iota(), out);
+      for (int k = 0; k < 4; k++) storeu(dst + 16 * k + h, out[k]);
+    }
+    if (dst == tmp)
+      for (uint32_t i = 0; i < 64; i++)
+        if (p0 + i >= first && p0 + i <= last) ent[p0 + i - first] = tmp[i];
+  }
+}
+
+/* the choices of runs 0 .. nruns-1 of row y (run m starts at x = phase - 16 + 16 m): run m is
+ * the counter Y + 16 m, Y = y (w + 32) (ics_prop_run_choice), whose word is word G % 4 of block
+ * (G / 4) 16 + Y % 16 with G = Y / 16 + m: W consecutive blocks give 4 W runs */
+static void run_choices(const ics_prop_taps *pt, int w, int y, int nruns, uint32_t *out) {
+  uint32_t Y = (uint32_t)((size_t)y * (size_t)(w + 32)), c0 = Y % 16, G0 = Y / 16;
+  for (uint32_t q0 = G0 / 4; q0 <= (G0 + (uint32_t)nruns - 1) / 4; q0 += W) {
+    vu words[4];
+    choices(pt, splatu(16 * q0 + c0) + 16 * iota(), words);
+    for (uint32_t i = 0; i < W; i++)
+      for (uint32_t k = 0; k < 4; k++) {
+        uint32_t G = 4 * (q0 + i) + k;
+        if (G >= G0 && G < G0 + (uint32_t)nruns) out[G - G0] = words[k][i];
+      }
+  }
+}
+
+/* one pixel, unclamped, the vector loops' formula */
+static inline float pixel_fma(const ics_prop_taps *pt, int e, const float *S, int stride) {
+  float acc = 0;
+  for (int j = e * pt->ntaps; j < (e + 1) * pt->ntaps; j++) {
+    const float *r0 = S + pt->off[j];
+    if (pt->stencil) {
+      acc = pt->w[j] * r0[0] + acc;
+      continue;
+    }
+    float fx = pt->fx[j], fy = pt->fy[j];
+    float top = fx * (r0[1] - r0[0]) + r0[0];
+    float bot = fx * (r0[stride + 1] - r0[stride]) + r0[stride];
+    acc = pt->w[j] * (fy * (bot - top) + top) + acc;
+  }
+  return acc;
+}
+
+static inline vf bilinear(const float *p, int stride, vf fx, vf fy) {
+  vf a = loadf(p), b = loadf(p + 1), c = loadf(p + stride), d = loadf(p + stride + 1);
+  vf top = madd(fx, b - a, a), bot = madd(fx, d - c, c);
+  return madd(fy, bot - top, top);
+}
+
+static void stencil_row(const ics_prop_taps *pt, const float *src, float *dst,
+                        const ics_buf_layout *L, int nch, int y) {
+  int w = L->w, n = pt->ntaps;
+  for (int c = 0; c < nch; c++) {
+    const float *S = src + (size_t)c * L->plane + ics_buf_index(L, 0, y);
+    float *D = dst + (size_t)c * L->plane + ics_buf_index(L, 0, y);
+    int x = 0;
+    for (; x + W <= w; x += W) {
+      /* four independent sums (the multiply-add latency), added in a fixed order */
+      vf a0 = splatf(0), a1 = a0, a2 = a0, a3 = a0;
+      int j = 0;
+      for (; j + 4 <= n; j += 4) {
+        a0 = madd(splatf(pt->w[j]), loadf(S + x + pt->off[j]), a0);
+        a1 = madd(splatf(pt->w[j + 1]), loadf(S + x + pt->off[j + 1]), a1);
+        a2 = madd(splatf(pt->w[j + 2]), loadf(S + x + pt->off[j + 2]), a2);
+        a3 = madd(splatf(pt->w[j + 3]), loadf(S + x + pt->off[j + 3]), a3);
+      }
+      for (; j < n; j++) a0 = madd(splatf(pt->w[j]), loadf(S + x + pt->off[j]), a0);
+      storef(D + x, (a0 + a1) + (a2 + a3));
+    }
+    for (; x < w; x++) D[x] = pixel_fma(pt, 0, S + x, L->stride);
+  }
+}
+
+/* two vectors of pixels per step: independent chains hide the latency; every candidate is
+ * evaluated for both (with 4 rotations per slab almost every vector needs all of them) */
+static void candidates_row(const ics_prop_taps *pt, const float *src, float *dst,
+                           const ics_buf_layout *L, int nch, int y, const uint32_t *ent) {
+  int w = L->w, n = pt->ntaps, K = pt->entries, stride = L->stride;
+  for (int c = 0; c < nch; c++) {
+    const float *S = src + (size_t)c * L->plane + ics_buf_index(L, 0, y);
+    float *D = dst + (size_t)c * L->plane + ics_buf_index(L, 0, y);
+    int x = 0;
+    for (; x + 2 * W <= w; x += 2 * W) {
+      vi e0 = (vi)loadu(ent + x), e1 = (vi)loadu(ent + x + W);
+      vf out0 = splatf(0), out1 = out0;
+      for (int k = 0; k < K; k++) {
+        vf acc0 = splatf(0), acc1 = acc0;
+        for (int j = k * n; j < (k + 1) * n; j++) {
+          vf fx = splatf(pt->fx[j]), fy = splatf(pt->fy[j]), wt = splatf(pt->w[j]);
+          const float *p = S + x + pt->off[j];
+          acc0 = madd(wt, bilinear(p, stride, fx, fy), acc0);
+          acc1 = madd(wt, bilinear(p + W, stride, fx, fy), acc1);
+        }
+        out0 = blend(e0 == k, acc0, out0);
+        out1 = blend(e1 == k, acc1, out1);
+      }
+      storef(D + x, out0);
+      storef(D + x + W, out1);
+    }
+    for (; x < w; x++) D[x] = pixel_fma(pt, (int)ent[x], S + x, stride);
+  }
+}
+
+/* one run's set e over the 16 pixels from x on (16 / W vectors) into out */
+static inline void run_vectors(const ics_prop_taps *pt, int e, const float *S, int x, int stride,
+                               float *out) {
+  for (int h = 0; h < 16; h += W) {
+    vf acc = splatf(0);
+    for (int j = e * pt->ntaps; j < (e + 1) * pt->ntaps; j++)
+      acc = madd(splatf(pt->w[j]),
+                 bilinear(S + x + h + pt->off[j], stride, splatf(pt->fx[j]), splatf(pt->fy[j])),
+                 acc);
+    storef(out + h, acc);
+  }
+}
+
+/* runs of 16 pixels sharing one tap set (their starts moved by the slab's phase), each as 16 / W
+ * vectors evaluating only its own set. The partial run at the row's start is evaluated over
+ * pixels 0..15 (the next run overwrites the pixels past its end), the one at its end over the
+ * last 16 pixels and only its own kept; rows narrower than 16 pixel by pixel. Every lane is
+ * pixel_fma's formula, so where a pixel is computed does not change it. */
+static void runs_row(const ics_prop_taps *pt, const float *src, float *dst,
+                     const ics_buf_layout *L, int nch, int y, uint32_t *scratch) {
+  int w = L->w, stride = L->stride;
+  int nruns = (w - pt->phase + 16 + 15) / 16;
+  run_choices(pt, w, y, nruns, scratch);
+  for (int c = 0; c < nch; c++) {
+    const float *S = src + (size_t)c * L->plane + ics_buf_index(L, 0, y);
+    float *D = dst + (size_t)c * L->plane + ics_buf_index(L, 0, y);
+    int m = 0;
+    for (int x = pt->phase - 16; x < w; x += 16, m++) {
+      int e = (int)scratch[m];
+      if (w < 16) {
+        for (int i = x < 0 ? 0 : x; i < w && i < x + 16; i++) D[i] = pixel_fma(pt, e, S + i, stride);
+      } else if (x < 0) {
+        run_vectors(pt, e, S, 0, stride, D);
+      } else if (x + 16 > w) {
+        float tail[16];
+        run_vectors(pt, e, S, w - 16, stride, tail);
+        memcpy(D + x, tail + (x - (w - 16)), sizeof(float) * (size_t)(w - x));
+      } else {
+        run_vectors(pt, e, S, x, stride, D + x);
+      }
+    }
+  }
+}
+
+/* a tap set per pixel from a large table: the taps and corners gathered lane by lane */
+static void table_row(const ics_prop_taps *pt, const float *src, float *dst,
+                      const ics_buf_layout *L, int nch, int y, const uint32_t *ent) {
+  int w = L->w, n = pt->ntaps, stride = L->stride;
+  const size_t row0 = ics_buf_index(L, 0, y);
+  int x = 0;
+  for (; x + W <= w; x += W) {
+    vf acc[3] = {splatf(0), splatf(0), splatf(0)};
+    for (int j = 0; j < n; j++) {
+      vf fx, fy, wt;
+      int32_t off[W];
+      for (int i = 0; i < W; i++) {
+        int t = (int)ent[x + i] * n + j;
+        fx[i] = pt->fx[t], fy[i] = pt->fy[t], wt[i] = pt->w[t];
+        off[i] = pt->off[t];
+      }
+      for (int c = 0; c < nch; c++) {
+        const float *S = src + (size_t)c * L->plane + row0 + x;
+        vf va, vb, vc, vd;
+        for (int i = 0; i < W; i++) {
+          const float *r = S + i + off[i];
+          va[i] = r[0], vb[i] = r[1], vc[i] = r[stride], vd[i] = r[stride + 1];
+        }
+        vf top = madd(fx, vb - va, va), bot = madd(fx, vd - vc, vc);
+        acc[c] = madd(wt, madd(fy, bot - top, top), acc[c]);
+      }
+    }
+    for (int c = 0; c < nch; c++) storef(dst + (size_t)c * L->plane + row0 + x, acc[c]);
+  }
+  for (; x < w; x++)
+    for (int c = 0; c < nch; c++)
+      dst[(size_t)c * L->plane + row0 + x] =
+          pixel_fma(pt, (int)ent[x], src + (size_t)c * L->plane + row0 + x, stride);
+}
+
+void ICS_VEC_FN(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
+                int nch, int y0, int y1, uint32_t *scratch) {
+  for (int y = y0; y < y1; y++) {
+    if (pt->entries > 1 && pt->run > 1) {
+      runs_row(pt, src, dst, L, nch, y, scratch);
+      continue;
+    }
+    if (pt->entries > 1) entries_row(pt, L->w, y, scratch);
+    if (pt->stencil)
+      stencil_row(pt, src, dst, L, nch, y);
+    else if (pt->entries <= ICS_PROP_CANDIDATES_MAX)
+      candidates_row(pt, src, dst, L, nch, y, scratch);
+    else
+      table_row(pt, src, dst, L, nch, y, scratch);
+  }
+}
+
+#undef W
