@@ -38,6 +38,8 @@ packages=(
   locales
   # tests: the libFuzzer harnesses
   clang libclang-rt-14-dev
+  # tests: the NEON loops built for AArch64 and run under qemu-user (tests/cross/neon.sh)
+  gcc-aarch64-linux-gnu qemu-user
   # benchmarks: Boost.Math
   libboost-dev
   # optional components of the renderer: Assimp for mesh files in scenes, Embree 3 for the

@@ -17,7 +17,21 @@ ics_add_test(NAME test_render_repro SOURCES test_render_repro.c LABELS medium re
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/scenes/disk.json)
 ics_add_render_test(test_render_plan medium)
 ics_add_render_test(test_render_propagate fast)
-ics_add_render_test(test_render_simd fast)
+ics_add_render_test(test_render_simd medium) # 42 renders: 5 s Release
+ics_add_render_test(test_render_slab_kernel fast)
+# the NEON loops: test_render_propagate built by Debian's AArch64 cross compiler and run under
+# qemu-user (scripts/deps.sh installs both); skipped with the reason where either is missing
+find_program(ICS_AARCH64_CC aarch64-linux-gnu-gcc)
+find_program(ICS_QEMU_AARCH64 qemu-aarch64)
+if(ICS_AARCH64_CC AND ICS_QEMU_AARCH64)
+  add_test(NAME test_render_propagate_neon COMMAND ${CMAKE_SOURCE_DIR}/tests/cross/neon.sh
+    ${CMAKE_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/cross_neon ${ICS_AARCH64_CC} ${ICS_QEMU_AARCH64})
+else()
+  add_test(NAME test_render_propagate_neon COMMAND ${CMAKE_COMMAND} -E echo
+    "SKIPPED: test_render_propagate_neon needs aarch64-linux-gnu-gcc and qemu-aarch64 (scripts/deps.sh: gcc-aarch64-linux-gnu qemu-user)")
+  set_tests_properties(test_render_propagate_neon PROPERTIES SKIP_REGULAR_EXPRESSION "SKIPPED:")
+endif()
+set_tests_properties(test_render_propagate_neon PROPERTIES LABELS "medium;render")
 ics_add_test(NAME test_render_geometry SOURCES test_render_geometry.c LABELS fast render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/tests/data)
 if(TARGET test_render_geometry)

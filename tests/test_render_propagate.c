@@ -3,12 +3,11 @@
  * (discretised into a stencil), 4 tap sets (the default per-pixel rotations: blended vector
  * loads) and 384 (a per-pixel table: gathers), where each pixel's set is the one its RNG word
  * chooses and the reference applies that set to that pixel alone; in the apron layout (unclamped
- * reads) and without an apron (the clamped path). The AVX-512 and the portable loops are both
- * compared (the AVX-512 ones only where the processor has them). Agreement to
- * 4 float ulps of the values (the engine sums in double and rounds once). Also: the vectorised
- * Philox gives exactly ics_slab_entry's words, and the slab kernels' tables have the target
- * covariance averaged over their entries (the trapezoid rule on the ellipse, exact rotations for
- * Poisson). */
+ * reads) and without an apron (the clamped path). The portable loops and every vector path the
+ * processor has (simd_path.h) are compared. Agreement to 4 float ulps of the values (the engine
+ * sums in double and rounds once); since each pixel's set is checked, the vector paths' Philox
+ * gives exactly ics_slab_choice's words. It needs only the propagation sources and the core
+ * library, so tests/cross/neon.sh also builds it for AArch64 and runs it under qemu-user. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,8 +15,7 @@
 #include "icshadow.h"
 #include "propagate.h"
 #include "propagate_simd.h"
-#include "render_util.h"
-#include "slab_kernel.h"
+#include "slab_choice.h"
 #include "testutil.h"
 
 enum { W = 77, H = 45 };
@@ -144,39 +142,6 @@ static void test_entries(void) {
   CHECK(fabs(chi - 383) < 5 * 27.7, "entries not uniform: chi^2 = %.1f (383 +- 27.7)", chi);
 }
 
-/* the slab kernel's table averaged over its entries has the class covariance */
-static void test_table_moments(ics_render_kernel member, int samples) {
-  char json[1024];
-  snprintf(json, sizeof json,
-           "{\"camera\": {\"eye\": [0, 0, 2], \"target\": [0, 0, 0], \"height\": 1, \"resolution\": [100, 100]},"
-           " \"render\": {\"slab_spacing\": 0.01, \"d1\": 1, \"kernel\": \"%s\", \"samples\": %d, \"compensate\": \"none\", \"pixel_rotations\": 384},"
-           " \"lights\": [{\"mean\": [0.1, 0.2], \"var\": [0.3, 0.05], \"angle_deg\": 35}],"
-           " \"materials\": {\"m\": {}}, \"objects\": [{\"shape\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0.3, \"material\": \"m\"}]}",
-           ics_render_kernel_name(member), samples);
-  ics_scene *s = scene_from_json(json);
-  ics_slab_kernel sk;
-  char msg[256];
-  double q = 0.01;
-  CHECK(ics_slab_kernel_init(&sk, s, 0, q, msg, sizeof msg) == ICS_OK && sk.mode == ICS_SLAB_TABLE,
-        "kernel init: %s", msg);
-  ics_tap2d *t = malloc(sizeof *t * (size_t)sk.entries * (size_t)sk.cap);
-  double cum[2] = {0, 0};
-  int n;
-  ics_slab_kernel_taps(&sk, 0, q, cum, t, &n);
-  double w, m[2], c[3];
-  ics_taps2d_moments(t, n, &w, m, c);
-  double tr = sk.cov_px[0] + sk.cov_px[2];
-  double err = fmax(fabs(c[0] - sk.cov_px[0]), fmax(fabs(c[1] - sk.cov_px[1]), fabs(c[2] - sk.cov_px[2]))) / tr;
-  double merr = fmax(fabs(m[0] - sk.mean_px[0]), fabs(m[1] - sk.mean_px[1]));
-  CHECK(err < 1e-12 && merr < 1e-12, "%s %d: table covariance off by %.3g of the trace, mean by %.3g",
-        ics_render_kernel_name(member), samples, err, merr);
-  printf("%s %d table (%d entries): covariance off by %.2g of the trace, mean by %.2g px\n",
-         ics_render_kernel_name(member), samples, sk.entries, err, merr);
-  free(t);
-  ics_slab_kernel_release(&sk);
-  ics_scene_destroy(s);
-}
-
 int main(void) {
   /* apron 8 covers every read (unclamped loops); apron 0 takes the clamped path */
   for (int apron = 8; apron >= 0; apron -= 8) {
@@ -199,8 +164,5 @@ int main(void) {
     test_sets(ICS_SLAB_TABLE_M, (path_t)p, 8);
   }
   test_entries();
-  test_table_moments(ICS_RK_ELLIPSE, 2);
-  test_table_moments(ICS_RK_ELLIPSE, 3);
-  test_table_moments(ICS_RK_POISSON, 8);
   return test_summary("test_render_propagate");
 }

@@ -495,20 +495,3 @@ int ics_slab_candidate_step(const ics_slab_kernel *sk) {
   int step = M / (K * (sk->run_member == ICS_RK_ELLIPSE ? N : 1));
   return step > 0 ? step : 1;
 }
-
-void ics_slab_entry_block(uint64_t seed, uint32_t light, uint32_t slab, uint32_t block,
-                          uint32_t out[4]) {
-  const uint32_t key[2] = {(uint32_t)seed, (uint32_t)(seed >> 32)};
-  const uint32_t ctr[4] = {block, slab, light, 0x736c6162u /* "slab" */};
-  ics_rng_philox4x32_10(ctr, key, out);
-}
-
-uint32_t ics_slab_entry(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel) {
-  return ics_slab_choice(seed, light, slab, pixel, ICS_SLAB_TABLE_M);
-}
-
-uint32_t ics_slab_choice(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel, uint32_t k) {
-  uint32_t w[4];
-  ics_slab_entry_block(seed, light, slab, ics_slab_word_block(pixel), w);
-  return (uint32_t)(((uint64_t)w[ics_slab_word_index(pixel)] * k) >> 32);
-}

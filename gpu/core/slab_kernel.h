@@ -11,8 +11,8 @@
 
 #include "icshadow/kernel.h"
 #include "icshadow/scene.h"
+#include "slab_choice.h"
 
-#define ICS_SLAB_TABLE_M 384 /* offsets / rotations of the per-pixel random members */
 
 typedef enum ics_slab_mode {
   ICS_SLAB_SHIFT = 0, /* zero variance: one integer tap per slab (integer-shift schedule) */
@@ -74,22 +74,5 @@ double ics_taps_amplification(const ics_tap2d *t, int n);
 /* Entries between a slab's candidates: M / (K N) for the ellipse (its N taps are M / N apart, so
  * K candidates M / (K N) apart are K distinct tap sets), M / K for Poisson, 1 when K = M. */
 int ics_slab_candidate_step(const ics_slab_kernel *sk);
-
-/* The per-pixel table index of buffer pixel `pixel` (row-major index in the Wb x Hb buffer) at
- * slab `slab` for light `light`: Philox-4x32-10 under key (seed low, seed high), counter
- * (block, slab, light, 0x736c6162), word `index` of the block's four, scaled to [0, M):
- * floor(word * M / 2^32), with block = (pixel / 64) 16 + pixel % 16 and index = (pixel / 16) % 4
- * (so one 16-lane Philox call gives 64 consecutive pixels in order). One definition for every
- * backend. */
-uint32_t ics_slab_entry(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel);
-static inline uint32_t ics_slab_word_block(uint32_t pixel) { return (pixel / 64) * 16 + pixel % 16; }
-static inline int ics_slab_word_index(uint32_t pixel) { return (int)((pixel / 16) % 4); }
-
-/* The same word scaled to [0, k): the choice among k candidates (ics_slab_entry is k = M). */
-uint32_t ics_slab_choice(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel, uint32_t k);
-
-/* The four 32-bit words of block b (the pixels 64 (b / 16) + b % 16 + 16 i, i = 0..3). */
-void ics_slab_entry_block(uint64_t seed, uint32_t light, uint32_t slab, uint32_t block,
-                          uint32_t out[4]);
 
 #endif

@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "icshadow/conv.h"
-#include "slab_kernel.h"
+#include "slab_choice.h"
 
 void ics_buf_layout_init(ics_buf_layout *L, int w, int h, int apron) {
   L->w = w;

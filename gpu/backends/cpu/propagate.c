@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "propagate_simd.h"
-#include "slab_kernel.h"
+#include "slab_choice.h"
 
 void ics_prop_apron(const ics_buf_layout *L, float *buf, int nch, int y0, int y1, int top_bottom) {
   int A = L->apron;

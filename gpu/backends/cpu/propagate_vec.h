@@ -21,7 +21,7 @@
 #include <string.h>
 
 #include "propagate_simd.h"
-#include "slab_kernel.h"
+#include "slab_choice.h"
 
 #if !defined(ICS_VEC_W) || !defined(ICS_VEC_FN)
 #error "define ICS_VEC_W and ICS_VEC_FN before including propagate_vec.h"

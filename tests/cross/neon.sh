@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# neon.sh SRC OUT CC QEMU — the cpu backend's NEON loops (gpu/backends/cpu/propagate_neon.c)
+# built with Debian's AArch64 cross compiler and run under qemu-user: test_render_propagate,
+# which needs only the propagation sources and the core library, compiled for AArch64 with the
+# flags gpu/CMakeLists.txt gives those files, must find the neon path, run it, and pass (every
+# path against the engine, to 4 float ulps). The vector source is one file for every
+# instruction set, so this is how a change to it is checked on the architecture the machine
+# running the suite lacks.
+set -u
+src=$1 out=$2 cc=$3 qemu=$4
+mkdir -p "$out" || exit 1
+inc=(-I"$src/gpu/backends/cpu" -I"$src/gpu/core" -I"$src/gpu/include" -I"$src/libicshadow/include"
+     -I"$src/libicshadow/src" -I"$src/tests")
+objs=()
+for f in "$src"/libicshadow/src/*.c "$src"/gpu/backends/cpu/propagate.c \
+         "$src"/gpu/backends/cpu/propagate_{sse2,avx2,avx512}.c "$src"/gpu/backends/cpu/simd_path.c \
+         "$src"/gpu/core/slab_taps.c "$src"/gpu/core/slab_choice.c "$src"/tests/test_render_propagate.c; do
+  o=$out/$(basename "$f" .c).o
+  "$cc" -std=c11 -O2 -ffp-contract=off "${inc[@]}" -c "$f" -o "$o" || { echo "FAILED: $cc on $f"; exit 1; }
+  objs+=("$o")
+done
+"$cc" -std=c11 -O2 -ffp-contract=fast "${inc[@]}" -c "$src/gpu/backends/cpu/propagate_neon.c" \
+  -o "$out/propagate_neon.o" || { echo "FAILED: $cc on propagate_neon.c"; exit 1; }
+"$cc" -o "$out/test_render_propagate" "${objs[@]}" "$out/propagate_neon.o" -lm -lpthread ||
+  { echo "FAILED: linking for AArch64"; exit 1; }
+sysroot=$(dirname "$(dirname "$("$cc" -print-file-name=libc.so.6)")")
+"$qemu" -L "$sysroot" "$out/test_render_propagate" > "$out/run.log" 2>&1; rc=$?
+cat "$out/run.log"
+grep -q "(neon, apron 8" "$out/run.log" || { echo "FAILED: the neon path did not run"; exit 1; }
+exit $rc
