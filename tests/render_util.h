@@ -83,6 +83,23 @@ static inline ics_scene *scene_from_json(const char *json) {
   return s;
 }
 
+/* The embedded default scene at 96 x 72 (its text with the resolution replaced; exits 2 when
+ * that text has changed shape). */
+static inline ics_scene *default_scene_96x72(void) {
+  const char *txt = ics_scene_default_json();
+  char *small = malloc(strlen(txt) + 1);
+  strcpy(small, txt);
+  char *res = strstr(small, "[320, 240]");
+  if (!res) {
+    fprintf(stderr, "render_util: the default scene's resolution [320, 240] not found\n");
+    exit(2);
+  }
+  memcpy(res, "[ 96,  72]", 10);
+  ics_scene *s = scene_from_json(small);
+  free(small);
+  return s;
+}
+
 static inline ics_scene *scene_from_file(const char *path) {
   char msg[4096];
   ics_scene *s;

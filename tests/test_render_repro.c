@@ -40,17 +40,9 @@ static void check_scene(const char *name, ics_scene *s, const ics_render_setting
 }
 
 int main(int argc, char **argv) {
-  /* the default scene's text at 96 x 72 */
-  const char *txt = ics_scene_default_json();
-  char *small = malloc(strlen(txt) + 1);
-  strcpy(small, txt);
-  char *res = strstr(small, "[320, 240]");
-  CHECK(res != NULL, "default scene resolution not found");
-  if (res) memcpy(res, "[ 96,  72]", 10);
-  ics_scene *s = scene_from_json(small);
+  ics_scene *s = default_scene_96x72();
   check_scene("default scene 96x72", s, NULL);
   ics_scene_destroy(s);
-  free(small);
   if (argc > 1) {
     ics_scene *d = scene_from_file(argv[1]);
     ics_render_settings rs = *ics_scene_settings(d);

@@ -6,6 +6,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "icshadow/input_file.h"
+
 int ics_jerr(const ics_jctx *c, const char *fmt, ...) {
   if (c->msg && c->msg_size) {
     va_list ap;
@@ -80,4 +82,23 @@ int ics_jenum(const ics_jctx *c, const char *where, json_t *v, const char *const
       return 0;
     }
   return ics_jerr(c, "%s: unknown value \"%s\" (expected one of %s)", where, s, list);
+}
+
+json_t *ics_jload_file(const ics_jctx *c, const char *path, uint64_t max_bytes, const char *kind,
+                       ics_status *st) {
+  char why[256];
+  FILE *f = ics_input_open(path, max_bytes, st, why, sizeof why);
+  if (!f) {
+    ics_jerr(c, "%s: %s %s file: %s", path,
+             *st == ICS_ERR_SIZE ? "refusing a too large" : "cannot open", kind, why);
+    return NULL;
+  }
+  json_error_t je;
+  json_t *root = json_loadf(f, JSON_REJECT_DUPLICATES, &je);
+  fclose(f);
+  if (!root) {
+    ics_jerr(c, "%s:%d:%d: %s", path, je.line, je.column, je.text);
+    *st = ICS_ERR_PARSE;
+  }
+  return root;
 }

@@ -6,11 +6,20 @@
 
 #include <jansson.h>
 #include <stddef.h>
+#include <stdint.h>
+
+#include "icshadow/status.h"
 
 typedef struct ics_jctx {
   char *msg;       /* the message buffer (may be NULL) */
   size_t msg_size;
 } ics_jctx;
+
+/* A JSON file read whole: a regular file of at most max_bytes (ics_input_open), duplicate keys
+ * refused. NULL with *st and the message "PATH: cannot open KIND file: reason" (or "refusing a
+ * too large KIND file"), or "PATH:LINE:COLUMN: reason" for the syntax. */
+json_t *ics_jload_file(const ics_jctx *c, const char *path, uint64_t max_bytes, const char *kind,
+                       ics_status *st);
 
 /* printf into the message buffer; returns -1 so that `return ics_jerr(...)` reads well */
 int ics_jerr(const ics_jctx *c, const char *fmt, ...)

@@ -4,11 +4,9 @@
 #include "lights_json.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "icshadow/input_file.h"
 #include "icshadow/lightsfile.h"
 
 /* a JSON array of exactly `len` numbers */
@@ -109,21 +107,9 @@ ics_status ics_lightsfile_read(const char *path, ics_light **out, int *n, char *
   ics_jctx c = {msg, msg_size};
   *out = NULL;
   *n = 0;
-  char why[256];
   ics_status ost;
-  FILE *f = ics_input_open(path, ICS_LIGHTSFILE_MAX_BYTES, &ost, why, sizeof why);
-  if (!f) {
-    ics_jerr(&c, "%s: %s lights file: %s", path,
-             ost == ICS_ERR_SIZE ? "refusing a too large" : "cannot open", why);
-    return ost;
-  }
-  json_error_t je;
-  json_t *root = json_loadf(f, JSON_REJECT_DUPLICATES, &je);
-  fclose(f);
-  if (!root) {
-    ics_jerr(&c, "%s:%d:%d: %s", path, je.line, je.column, je.text);
-    return ICS_ERR_PARSE;
-  }
+  json_t *root = ics_jload_file(&c, path, ICS_LIGHTSFILE_MAX_BYTES, "lights", &ost);
+  if (!root) return ost;
   ics_status st = ICS_ERR_PARSE;
   ics_light *l = NULL;
   json_t *arr = json_is_object(root) ? json_object_get(root, "lights") : NULL;

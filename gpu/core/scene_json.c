@@ -826,22 +826,10 @@ ics_status ics_scene_create_json(ics_scene **out, const char *json, const char *
 ics_status ics_scene_create_file(ics_scene **out, const char *path, char *msg, size_t msg_size) {
   *out = NULL;
   if (msg && msg_size) msg[0] = 0;
-  char why[256];
+  ics_jctx jc = {msg, msg_size};
   ics_status ost;
-  FILE *f = ics_input_open(path, ICS_SCENE_FILE_MAX, &ost, why, sizeof why);
-  if (!f) {
-    if (msg)
-      snprintf(msg, msg_size, "%s: %s scene file: %s", path,
-               ost == ICS_ERR_SIZE ? "refusing a too large" : "cannot open", why);
-    return ost;
-  }
-  json_error_t je;
-  json_t *root = json_loadf(f, JSON_REJECT_DUPLICATES, &je);
-  fclose(f);
-  if (!root) {
-    if (msg) snprintf(msg, msg_size, "%s:%d:%d: %s", path, je.line, je.column, je.text);
-    return ICS_ERR_PARSE;
-  }
+  json_t *root = ics_jload_file(&jc, path, ICS_SCENE_FILE_MAX, "scene", &ost);
+  if (!root) return ost;
   /* the scene's folder resolves relative paths */
   char *dir = strdup(path);
   if (!dir) {

@@ -13,9 +13,5 @@
 #include "propagate_vec.h"
 const int ics_prop_built_avx512 = 1;
 #else
-const int ics_prop_built_avx512 = 0;
-void ics_prop_rows_avx512(const ics_prop_taps *pt, const float *src, float *dst,
-                        const ics_buf_layout *L, int nch, int y0, int y1, uint32_t *scratch) {
-  (void)pt, (void)src, (void)dst, (void)L, (void)nch, (void)y0, (void)y1, (void)scratch;
-}
+ICS_PROP_NOT_BUILT(avx512)
 #endif

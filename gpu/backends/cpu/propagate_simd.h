@@ -25,4 +25,13 @@ ICS_PROP_ROWS_DECLARE_(avx512)
 ICS_PROP_ROWS_DECLARE_(neon)
 #undef ICS_PROP_ROWS_DECLARE_
 
+/* What a file builds where the compiler does not target its instruction set: the path recorded
+ * as not built, and an entry point that nothing calls. */
+#define ICS_PROP_NOT_BUILT(isa)                                                                    \
+  const int ics_prop_built_##isa = 0;                                                              \
+  void ics_prop_rows_##isa(const ics_prop_taps *pt, const float *src, float *dst,                  \
+                           const ics_buf_layout *L, int nch, int y0, int y1, uint32_t *scratch) {  \
+    (void)pt, (void)src, (void)dst, (void)L, (void)nch, (void)y0, (void)y1, (void)scratch;         \
+  }
+
 #endif
