@@ -131,6 +131,21 @@ endforeach()
 add_test(NAME cli_input_output_paths COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/input_output_paths.sh
   $<TARGET_FILE:icshadow_cli>)
 set_tests_properties(cli_input_output_paths PROPERTIES LABELS fast)
+# a light buffer one pixel wide with runs of 16 (two run choices for a 1-pixel row: the per-thread
+# scratch once held one word; ASan caught the overflow in the vector loops)
+file(WRITE ${rd}/narrow.json [=[
+{"camera": {"eye": [0, 0, 2], "target": [0, 0, 0], "height": 3, "resolution": [1, 72]},
+ "render": {"slab_spacing": 0.05, "d1": 1, "max_pad": 0, "rotation_run": 16},
+ "lights": [{"mean": [0.3, -0.1], "var": [0.02, 0.01]}],
+ "materials": {"black": {"color": [0, 0, 0]}, "white": {}},
+ "objects": [{"shape": "disk", "center": [0, 0, 0], "normal": [0, 0, 1], "radius": 0.5, "material": "black"},
+             {"shape": "rect", "center": [0, 0, -1], "normal": [0, 0, 1], "size": [3, 3], "material": "white"}]}
+]=])
+ics_cli_test(NAME cli_render_narrow_runs RC 0 ARGS "render|${rd}/narrow.json|--threads|2|-o|${rd}/narrow.exr"
+  OUT "\"light_buffer\": \\[1, 72\\]")
+# the Monte-Carlo reference's work bounded before it starts, --time a hard stop
+add_test(NAME cli_mc_bounded COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/mc_bounded.sh $<TARGET_FILE:icshadow_cli>)
+set_tests_properties(cli_mc_bounded PROPERTIES LABELS fast)
 # ICS_SIMD forces the CPU backend's vector path: a name it lacks is refused with the paths it
 # has; scalar runs anywhere and the summary says which path ran
 foreach(simd "bogus;2;no such path [(]this processor has: auto, scalar" "scalar;0;\"device\": \"CPU, [0-9]+ threads?, scalar\"")

@@ -42,7 +42,7 @@ typedef ics_simd_path path_t;
 /* the rows through ics_prop_rows on the given path (the portable loops where it does not apply) */
 static void step(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
                 int nch, path_t path) {
-  uint32_t scratch[W];
+  uint32_t scratch[ICS_PROP_SCRATCH(W)];
   ics_prop_rows(pt, src, dst, L, nch, 0, H, scratch, path);
 }
 
@@ -120,6 +120,93 @@ static void test_sets_run(int M, path_t path, int apron, int run) {
   free(plain), free(src), free(dst), free(t);
 }
 
+/* buffers narrower than a run or a vector (1 .. 17 pixels, runs of 16 at phases 0 and 5, and
+ * per-pixel choice), each path against the portable loops, with scratch of exactly
+ * ICS_PROP_SCRATCH(w) words on the heap (the runs' choices of a 1-pixel row are 2: ASan sees an
+ * overflow) */
+static void test_narrow(path_t path) {
+  double worst = 0;
+  for (int w = 1; w <= 17; w++)
+    for (int variant = 0; variant < 3; variant++) {
+      ics_buf_layout L;
+      ics_buf_layout_init(&L, w, 3, 8);
+      float *src = calloc(L.plane, sizeof *src), *a = calloc(L.plane, sizeof *a),
+            *b = calloc(L.plane, sizeof *b);
+      for (size_t i = 0; i < L.plane; i++) src[i] = (float)test_rng_unit();
+      ics_tap2d t[8];
+      for (int e = 0; e < 4; e++)
+        t[2 * e] = (ics_tap2d){0.3 + 0.4 * e, -0.2, 0.5}, t[2 * e + 1] = (ics_tap2d){-0.5, 0.7 - 0.3 * e, 0.5};
+      ics_prop_taps pt = {0};
+      CHECK(ics_prop_prepare(&pt, t, 4, 2, 2, 1, 0, 0, &L) == 0, "prepare narrow");
+      pt.seed = 99, pt.light = 0, pt.slab = 3, pt.run = variant ? 16 : 1, pt.phase = variant == 2 ? 5 : 0;
+      uint32_t *scratch = malloc(sizeof *scratch * ICS_PROP_SCRATCH(w));
+      ics_prop_rows(&pt, src, a, &L, 1, 0, 3, scratch, PORTABLE);
+      ics_prop_rows(&pt, src, b, &L, 1, 0, 3, scratch, path);
+      for (int y = 0; y < 3; y++)
+        for (int x = 0; x < w; x++) {
+          size_t i = ics_buf_index(&L, x, y);
+          worst = fmax(worst, fabs(a[i] - b[i]) / 0x1p-24);
+        }
+      free(scratch), free(src), free(a), free(b);
+      ics_prop_release(&pt);
+    }
+  CHECK(worst <= 4, "%s, buffers 1..17 wide: %.2f ulps of 1 from the portable loops",
+        ics_simd_name(path), worst);
+  printf("buffers 1..17 pixels wide (%s, runs of 1 and 16): max %.2f float ulps from portable\n",
+         ics_simd_name(path), worst);
+}
+
+/* the paths with fused multiply-adds (avx2, avx512, neon) give the same bits for every row
+ * width 1..40 (whole vectors, a row end overlapping the last vector, rows narrower than a
+ * vector) and every loop: stencil, 4 and 8 blended sets, the 384-entry table, runs of 16 */
+static void test_fused_equal(void) {
+  int have[ICS_SIMD_PATHS_], nf = 0, bad = 0, cases = 0;
+  for (int p = 0; p < ICS_SIMD_PATHS_; p++) {
+    have[p] = (p == ICS_SIMD_AVX2 || p == ICS_SIMD_AVX512 || p == ICS_SIMD_NEON) &&
+              ics_simd_has((path_t)p);
+    nf += have[p];
+  }
+  if (nf < 2) {
+    printf("fused paths bit for bit: skipped (%d of them here)\n", nf);
+    return;
+  }
+  ics_tap2d t[2 * ICS_SLAB_TABLE_M];
+  for (int e = 0; e < ICS_SLAB_TABLE_M; e++) {
+    double a = 2 * ICS_PI * e / ICS_SLAB_TABLE_M;
+    t[2 * e] = (ics_tap2d){0.31 + 1.3 * cos(a), -0.17 + 0.8 * sin(a), 0.5};
+    t[2 * e + 1] = (ics_tap2d){0.31 - 1.3 * cos(a), -0.17 - 0.8 * sin(a), 0.5};
+  }
+  const int sets[] = {1, 4, 8, ICS_SLAB_TABLE_M, 4};
+  for (int w = 1; w <= 40; w++)
+    for (int v = 0; v < 5; v++) {
+      ics_buf_layout L;
+      ics_buf_layout_init(&L, w, 2, 8);
+      float *src = calloc(L.plane, sizeof *src), *ref = NULL;
+      for (size_t i = 0; i < L.plane; i++) src[i] = (float)test_rng_unit();
+      ics_prop_taps pt = {0};
+      CHECK(ics_prop_prepare(&pt, t, sets[v], 2, 2, 1, 0, 0, &L) == 0, "prepare");
+      pt.seed = 3, pt.slab = 11, pt.run = v == 4 ? 16 : 1, pt.phase = w % 16;
+      uint32_t *scratch = malloc(sizeof *scratch * ICS_PROP_SCRATCH(w));
+      for (int p = 0; p < ICS_SIMD_PATHS_; p++) {
+        if (!have[p]) continue;
+        float *d = calloc(L.plane, sizeof *d);
+        ics_prop_rows(&pt, src, d, &L, 1, 0, 2, scratch, (path_t)p);
+        if (!ref) {
+          ref = d;
+          continue;
+        }
+        for (int y = 0; y < 2; y++)
+          for (int x = 0; x < w; x++) bad += d[ics_buf_index(&L, x, y)] != ref[ics_buf_index(&L, x, y)];
+        cases++;
+        free(d);
+      }
+      free(ref), free(src), free(scratch);
+      ics_prop_release(&pt);
+    }
+  CHECK(bad == 0, "the fused paths differ in %d pixels", bad);
+  printf("fused paths bit for bit: %d comparisons of rows 1..40 wide, %d pixels differ\n", cases, bad);
+}
+
 static void test_entries(void) {
   /* the entries of rows through both loops equal ics_slab_entry */
   ics_prop_taps pt = {0};
@@ -170,7 +257,9 @@ int main(void) {
     test_sets(4, (path_t)p, 8);
     test_sets(8, (path_t)p, 8);
     test_sets(ICS_SLAB_TABLE_M, (path_t)p, 8);
+    test_narrow((path_t)p);
   }
+  test_fused_equal();
   test_entries();
   return test_summary("test_render_propagate");
 }

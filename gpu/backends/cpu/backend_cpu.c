@@ -32,7 +32,7 @@ typedef struct {
   uint32_t *acursor;     /* per pixel: first fragment whose occlusion may still be due */
   uint64_t *mask;        /* NULL without volumes */
   int vol_obj[ICS_MAX_VOLUMES];
-  uint32_t *scratch;     /* per thread: Wb words (table entries of a row) */
+  uint32_t *scratch;     /* per thread: ICS_PROP_SCRATCH(Wb) words (a row's entries or run choices) */
   ics_simd_path simd;    /* the propagation loops' vector path */
   int *row_next;         /* per row: the first slab at which some pixel of it has work */
   ics_aov_buf *aov;      /* NULL: no AOVs */
@@ -260,7 +260,7 @@ static void slab_job(void *ctx, int t, int n) {
   double t0 = ics_clock_s();
   for (int l = 0; l < P->nlights; l++)
     ics_prop_rows(&j->pt[l], j->src[l], j->dst[l], &P->buf, P->nch, y0, y1,
-                  j->scratch + (size_t)t * P->Wb, j->simd);
+                  j->scratch + (size_t)t * ICS_PROP_SCRATCH(P->Wb), j->simd);
   double t1 = ics_clock_s();
   shade_rows(j, y0, y1, t);
   for (int l = 0; l < P->nlights; l++) {
@@ -300,7 +300,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->pt = calloc((size_t)(nl ? nl : 1), sizeof *j->pt);
   j->cursor = malloc(sizeof *j->cursor * npx);
   j->acursor = malloc(sizeof *j->acursor * npx);
-  j->scratch = malloc(sizeof *j->scratch * (size_t)P->Wb * (size_t)nt);
+  j->scratch = malloc(sizeof *j->scratch * ICS_PROP_SCRATCH(P->Wb) * (size_t)nt);
   j->row_next = calloc((size_t)P->Hb, sizeof *j->row_next); /* 0: look at every row first */
   j->mask = P->nvol ? malloc(sizeof *j->mask * npx) : NULL;
   j->aov = aov;

@@ -1,6 +1,6 @@
 /* propagate.h — one slab step of a light buffer on the CPU (docs/renderer.md "One step") over
- * the taps and layout of core/slab_taps.h: the portable loops, with the vectorised ones of
- * propagate_avx512.c where the processor has them (simd_path.h). */
+ * the taps and layout of core/slab_taps.h: the portable loops, with the vector loops of
+ * propagate_vec.h where the processor has their instruction set (simd_path.h). */
 #ifndef ICS_RENDER_PROPAGATE_H
 #define ICS_RENDER_PROPAGATE_H
 
@@ -14,8 +14,10 @@
  * the A rows above row 0 and below row h - 1 (after all rows are final). */
 void ics_prop_apron(const ics_buf_layout *L, float *buf, int nch, int y0, int y1, int top_bottom);
 
-/* Rows [y0, y1) of dst from src; scratch holds L->w words (the row's entries). simd: the loops
+/* Rows [y0, y1) of dst from src; scratch holds ICS_PROP_SCRATCH(L->w) words (the row's entries,
+ * or the choices of its runs of 16: up to (w + 31) / 16 of them, 2 for w = 1). simd: the loops
  * to take where they apply (ics_simd_choose; the portable ones elsewhere). */
+#define ICS_PROP_SCRATCH(w) ((size_t)(w) + 2)
 void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
                    int nch, int y0, int y1, uint32_t *scratch, ics_simd_path simd);
 

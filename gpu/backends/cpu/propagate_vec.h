@@ -156,15 +156,20 @@ static void run_choices(const ics_prop_taps *pt, int w, int y, int nruns, uint32
   }
 }
 
-/* one pixel, unclamped, the vector loops' formula */
+/* one pixel, unclamped, the vector loops' formula (a stencil's four partial sums included), for
+ * rows narrower than a vector */
 static inline float pixel_fma(const ics_prop_taps *pt, int e, const float *S, int stride) {
+  if (pt->stencil) {
+    float a[4] = {0, 0, 0, 0};
+    int n = pt->ntaps, j = 0;
+    for (; j + 4 <= n; j += 4)
+      for (int k = 0; k < 4; k++) a[k] = pt->w[j + k] * S[pt->off[j + k]] + a[k];
+    for (; j < n; j++) a[0] = pt->w[j] * S[pt->off[j]] + a[0];
+    return (a[0] + a[1]) + (a[2] + a[3]);
+  }
   float acc = 0;
   for (int j = e * pt->ntaps; j < (e + 1) * pt->ntaps; j++) {
     const float *r0 = S + pt->off[j];
-    if (pt->stencil) {
-      acc = pt->w[j] * r0[0] + acc;
-      continue;
-    }
     float fx = pt->fx[j], fy = pt->fy[j];
     float top = fx * (r0[1] - r0[0]) + r0[0];
     float bot = fx * (r0[stride + 1] - r0[stride]) + r0[stride];
@@ -179,57 +184,82 @@ static inline vf bilinear(const float *p, int stride, vf fx, vf fy) {
   return madd(fy, bot - top, top);
 }
 
+/* W pixels of a stencil from x on: four independent sums (the multiply-add latency), added in a
+ * fixed order */
+static inline vf stencil_vector(const ics_prop_taps *pt, const float *S, int x) {
+  vf a0 = splatf(0), a1 = a0, a2 = a0, a3 = a0;
+  int n = pt->ntaps, j = 0;
+  for (; j + 4 <= n; j += 4) {
+    a0 = madd(splatf(pt->w[j]), loadf(S + x + pt->off[j]), a0);
+    a1 = madd(splatf(pt->w[j + 1]), loadf(S + x + pt->off[j + 1]), a1);
+    a2 = madd(splatf(pt->w[j + 2]), loadf(S + x + pt->off[j + 2]), a2);
+    a3 = madd(splatf(pt->w[j + 3]), loadf(S + x + pt->off[j + 3]), a3);
+  }
+  for (; j < n; j++) a0 = madd(splatf(pt->w[j]), loadf(S + x + pt->off[j]), a0);
+  return (a0 + a1) + (a2 + a3);
+}
+
+/* The rows' ends: a row that is not a whole number of vectors ends with one more vector over its
+ * last W pixels (overlapping the previous one, with the same values there), so every pixel of a
+ * row at least W wide comes out of a vector, and the paths with fused multiply-adds agree bit for
+ * bit whatever W; only rows narrower than W are evaluated pixel by pixel (pixel_fma). */
 static void stencil_row(const ics_prop_taps *pt, const float *src, float *dst,
                         const ics_buf_layout *L, int nch, int y) {
-  int w = L->w, n = pt->ntaps;
+  int w = L->w;
   for (int c = 0; c < nch; c++) {
     const float *S = src + (size_t)c * L->plane + ics_buf_index(L, 0, y);
     float *D = dst + (size_t)c * L->plane + ics_buf_index(L, 0, y);
-    int x = 0;
-    for (; x + W <= w; x += W) {
-      /* four independent sums (the multiply-add latency), added in a fixed order */
-      vf a0 = splatf(0), a1 = a0, a2 = a0, a3 = a0;
-      int j = 0;
-      for (; j + 4 <= n; j += 4) {
-        a0 = madd(splatf(pt->w[j]), loadf(S + x + pt->off[j]), a0);
-        a1 = madd(splatf(pt->w[j + 1]), loadf(S + x + pt->off[j + 1]), a1);
-        a2 = madd(splatf(pt->w[j + 2]), loadf(S + x + pt->off[j + 2]), a2);
-        a3 = madd(splatf(pt->w[j + 3]), loadf(S + x + pt->off[j + 3]), a3);
-      }
-      for (; j < n; j++) a0 = madd(splatf(pt->w[j]), loadf(S + x + pt->off[j]), a0);
-      storef(D + x, (a0 + a1) + (a2 + a3));
+    if (w < W) {
+      for (int x = 0; x < w; x++) D[x] = pixel_fma(pt, 0, S + x, L->stride);
+      continue;
     }
-    for (; x < w; x++) D[x] = pixel_fma(pt, 0, S + x, L->stride);
+    for (int x = 0;; x += W) {
+      if (x + W > w) x = w - W;
+      storef(D + x, stencil_vector(pt, S, x));
+      if (x + W == w) break;
+    }
   }
 }
 
-/* two vectors of pixels per step: independent chains hide the latency; every candidate is
- * evaluated for both (with 4 rotations per slab almost every vector needs all of them) */
+/* the pixels x .. x + W - 1 and x1 .. x1 + W - 1 (two independent chains hide the latency;
+ * x1 = x for a single vector): every candidate evaluated, each pixel keeping its own set's */
+static inline void candidates_vectors(const ics_prop_taps *pt, const float *S, int stride,
+                                      const uint32_t *ent, int x, int x1, float *D) {
+  int n = pt->ntaps, K = pt->entries;
+  vi e0 = (vi)loadu(ent + x), e1 = (vi)loadu(ent + x1);
+  vf out0 = splatf(0), out1 = out0;
+  for (int k = 0; k < K; k++) {
+    vf acc0 = splatf(0), acc1 = acc0;
+    for (int j = k * n; j < (k + 1) * n; j++) {
+      vf fx = splatf(pt->fx[j]), fy = splatf(pt->fy[j]), wt = splatf(pt->w[j]);
+      acc0 = madd(wt, bilinear(S + x + pt->off[j], stride, fx, fy), acc0);
+      acc1 = madd(wt, bilinear(S + x1 + pt->off[j], stride, fx, fy), acc1);
+    }
+    out0 = blend(e0 == k, acc0, out0);
+    out1 = blend(e1 == k, acc1, out1);
+  }
+  storef(D + x, out0);
+  storef(D + x1, out1);
+}
+
+/* every candidate set is evaluated for each vector (with 4 rotations per slab almost every
+ * vector needs all of them); the row's end as in stencil_row */
 static void candidates_row(const ics_prop_taps *pt, const float *src, float *dst,
                            const ics_buf_layout *L, int nch, int y, const uint32_t *ent) {
-  int w = L->w, n = pt->ntaps, K = pt->entries, stride = L->stride;
+  int w = L->w, stride = L->stride;
   for (int c = 0; c < nch; c++) {
     const float *S = src + (size_t)c * L->plane + ics_buf_index(L, 0, y);
     float *D = dst + (size_t)c * L->plane + ics_buf_index(L, 0, y);
-    int x = 0;
-    for (; x + 2 * W <= w; x += 2 * W) {
-      vi e0 = (vi)loadu(ent + x), e1 = (vi)loadu(ent + x + W);
-      vf out0 = splatf(0), out1 = out0;
-      for (int k = 0; k < K; k++) {
-        vf acc0 = splatf(0), acc1 = acc0;
-        for (int j = k * n; j < (k + 1) * n; j++) {
-          vf fx = splatf(pt->fx[j]), fy = splatf(pt->fy[j]), wt = splatf(pt->w[j]);
-          const float *p = S + x + pt->off[j];
-          acc0 = madd(wt, bilinear(p, stride, fx, fy), acc0);
-          acc1 = madd(wt, bilinear(p + W, stride, fx, fy), acc1);
-        }
-        out0 = blend(e0 == k, acc0, out0);
-        out1 = blend(e1 == k, acc1, out1);
-      }
-      storef(D + x, out0);
-      storef(D + x + W, out1);
+    if (w < W) {
+      for (int x = 0; x < w; x++) D[x] = pixel_fma(pt, (int)ent[x], S + x, stride);
+      continue;
     }
-    for (; x < w; x++) D[x] = pixel_fma(pt, (int)ent[x], S + x, stride);
+    int x = 0;
+    for (; x + 2 * W <= w; x += 2 * W) candidates_vectors(pt, S, stride, ent, x, x + W, D);
+    if (x < w) { /* one or two vectors more, the last ending at the row's end */
+      int x1 = w - W;
+      candidates_vectors(pt, S, stride, ent, x < x1 ? x : x1, x1, D);
+    }
   }
 }
 
@@ -282,8 +312,8 @@ static void table_row(const ics_prop_taps *pt, const float *src, float *dst,
                       const ics_buf_layout *L, int nch, int y, const uint32_t *ent) {
   int w = L->w, n = pt->ntaps, stride = L->stride;
   const size_t row0 = ics_buf_index(L, 0, y);
-  int x = 0;
-  for (; x + W <= w; x += W) {
+  for (int x = 0; w >= W; x += W) {
+    if (x + W > w) x = w - W; /* the row's end as in stencil_row */
     vf acc[3] = {splatf(0), splatf(0), splatf(0)};
     for (int j = 0; j < n; j++) {
       vf fx, fy, wt;
@@ -305,8 +335,9 @@ static void table_row(const ics_prop_taps *pt, const float *src, float *dst,
       }
     }
     for (int c = 0; c < nch; c++) storef(dst + (size_t)c * L->plane + row0 + x, acc[c]);
+    if (x + W == w) break;
   }
-  for (; x < w; x++)
+  for (int x = 0; x < w && w < W; x++)
     for (int c = 0; c < nch; c++)
       dst[(size_t)c * L->plane + row0 + x] =
           pixel_fma(pt, (int)ent[x], src + (size_t)c * L->plane + row0 + x, stride);

@@ -1,10 +1,13 @@
 /* mc_trace.c — the Monte-Carlo reference's estimators (see mc_trace.h, docs/reference.md). */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include "mc_trace.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "clock.h"
+#include "geometry.h"
 #include "icshadow/light.h"
 #include "scene_internal.h"
 
@@ -164,6 +167,25 @@ static double volume_at(const mc_scene *m, uint64_t inside, const double p[3], d
   return sum;
 }
 
+/* Only volumes with detail are tracked step by step (the others are integrated in closed form,
+ * and a camera walk through them ends at its first step); over a chord a walk takes about
+ * majorant x length steps at most, and no chord inside a volume is longer than its bounding
+ * box's diagonal. A bound, not an expectation: dense volumes end walks sooner (a camera walk at
+ * its first real collision, a light ray once its transmittance has underflowed to 0). */
+double mc_steps_per_ray(const mc_scene *m) {
+  const ics_scene *s = m->s;
+  double sum = 0;
+  for (int i = 0; i < s->nobjects; i++) {
+    if (!(m->majorant[i] > 0) || s->materials[s->objects[i].material].detail.fn == ICS_DETAIL_NONE)
+      continue;
+    double lo[3], hi[3];
+    ics_object_bounds(&s->objects[i], lo, hi);
+    sum += m->majorant[i] * sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                 (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  }
+  return sum;
+}
+
 static double majorant_of(const mc_scene *m, uint64_t inside, int *any_detail) {
   double sum = 0;
   *any_detail = 0;
@@ -176,6 +198,13 @@ static double majorant_of(const mc_scene *m, uint64_t inside, int *any_detail) {
 }
 
 static double exp_step(ics_rng *r, double rate) { return -log(1 - ics_rng_uniform(r)) / rate; }
+
+/* 1 (and th->late) once th->deadline has passed; the clock is read every 1024 steps */
+static int past_deadline(mc_thread *th) {
+  if (!(th->deadline > 0) || (++th->steps & 1023u)) return 0;
+  return th->late = ics_clock_s() > th->deadline;
+}
+
 
 static double dot3(const double a[3], const double b[3]) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -218,6 +247,7 @@ int mc_light_transmittance(mc_thread *th, const mc_scene *m, int l, const double
         for (int c = 0; c < 3; c++) T[c] *= exp(-sc[c] * (tb - ta) * wl);
       } else if (maj > 0) { /* ratio tracking */
         for (double t = ta + exp_step(r, maj * wl); t < tb; t += exp_step(r, maj * wl)) {
+          if (past_deadline(th)) return -1;
           double q[3], sc[3] = {0, 0, 0};
           for (int k = 0; k < 3; k++) q[k] = p[k] + t * w[k];
           volume_at(m, mask, q, sig, NULL);
@@ -227,6 +257,7 @@ int mc_light_transmittance(mc_thread *th, const mc_scene *m, int l, const double
             for (int c = 0; c < 3; c++) sc[c] += sig[n] * (1 - tr[c]);
           }
           for (int c = 0; c < 3; c++) T[c] *= 1 - sc[c] / maj;
+          if (T[0] == 0 && T[1] == 0 && T[2] == 0) break; /* stays 0 */
         }
       }
     }
@@ -264,6 +295,7 @@ int mc_pixel_sample(mc_thread *th, const mc_scene *m, int i, int j, int want_vis
   const ics_plan *P = m->P;
   const ics_scene *s = m->s;
   memset(out, 0, sizeof *out);
+  if (th->deadline > 0 && (th->late = ics_clock_s() > th->deadline)) return -1;
   double o[3], d[3];
   ics_plan_ray(P, i + P->pad[0], j + P->pad[2], o, d);
   double dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]); /* path per unit depth */
@@ -293,6 +325,7 @@ int mc_pixel_sample(mc_thread *th, const mc_scene *m, int i, int j, int want_vis
       double maj = majorant_of(m, mask, &detail), sig[ICS_MAX_VOLUMES], col[3];
       for (double t = maj > 0 ? ta + exp_step(r, maj * dl) : INFINITY; t < tb;
            t += exp_step(r, maj * dl)) {
+        if (past_deadline(th)) return -1;
         double q[3];
         for (int c = 0; c < 3; c++) q[c] = o[c] + t * d[c];
         double sg = volume_at(m, mask, q, sig, col);

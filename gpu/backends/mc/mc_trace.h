@@ -48,6 +48,9 @@ typedef struct mc_thread {
   mc_cross *cam;   /* the camera ray's, while light rays use x */
   int camcap;
   mc_embree_scratch esc;
+  double deadline; /* ics_clock_s() past which a sample gives up (0: none) */
+  unsigned steps;  /* tracking steps taken (the clock is read every 1024) */
+  int late;        /* the last failure was the deadline, not memory */
 } mc_thread;
 
 /* One sample of one pixel. */
@@ -71,6 +74,10 @@ void mc_thread_release(mc_thread *th);
 double mc_detail_bound(const ics_detail *d);
 /* A bound of material m's extinction over every detail value its detail can take. */
 double mc_extinction_majorant(const ics_material *m);
+/* A bound of the tracking steps of one ray through the volumes with detail: the sum of majorant
+ * x the diagonal of each one's bounding box (no chord inside it is longer); the work estimate of
+ * a sample (infinite or huge for extinctions no render can finish). */
+double mc_steps_per_ray(const mc_scene *m);
 
 /* The crossings of orig + t dir with t > tmin, sorted by t, in th->x (th->nx); *inside gets the
  * volumes (bits of P->vol_bit) containing orig + tmin dir by parity. -1 when out of memory. */
@@ -85,13 +92,14 @@ typedef struct mc_surface {
 
 /* One sample of the transmittance toward light l from p, per channel (the volumes around p from
  * the ray's own crossings); own: the surface p lies on (NULL for a point in a volume). -1 when out
- * of memory. */
+ * of memory, or past th->deadline (th->late set). */
 int mc_light_transmittance(mc_thread *th, const mc_scene *m, int l, const double p[3],
                            const mc_surface *own, ics_rng *r, double T[3]);
 
 /* One sample of view pixel (i, j): the first surface (opacity > 0) and its depth always;
  * want_vis: also its transmittances (even where the walk ended in a volume in front of it).
- * -1 when out of memory. */
+ * -1 when out of memory, or past th->deadline (th->late set: checked at the start and every 1024
+ * tracking steps, so a deadline stops a sample within microseconds, however dense the volume). */
 int mc_pixel_sample(mc_thread *th, const mc_scene *m, int i, int j, int want_vis, ics_rng *r,
                     mc_sample *out);
 
