@@ -184,8 +184,11 @@ int cmd_fit_light(int argc, char **argv) {
   if (!inp) return cli_error(CMD, "missing input map ENV.exr");
   if (!K) return cli_error(CMD, "--lights K is required");
   if (!outp) return cli_error(CMD, "-o LIGHTS.json is required");
-  const cli_path in = {"input map", inp}, outs[] = {{"-o", outp}, {"--plane-csv", planep}};
-  if ((rc = cli_check_outputs(CMD, &in, 1, outs, 2))) return rc;
+  /* the table goes to stdout unless the lights file does */
+  const cli_path in = {"input map", inp},
+                 outs[] = {{"-o", outp}, {"--plane-csv", planep},
+                           {"the summary table", strcmp(outp, "-") ? "-" : NULL}};
+  if ((rc = cli_check_outputs(CMD, &in, 1, outs, 3))) return rc;
   ics_image *env = NULL;
   char msg[CLI_MSG_MAX];
   ics_status st = ics_exr_read(inp, &env, msg, sizeof msg);

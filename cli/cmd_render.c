@@ -41,10 +41,12 @@ static void help(FILE *f) {
           CLI_GL_CONTEXT_HELP
           CLI_GL_LDI_HELP
           "  --spp N             mc: samples per pixel (1..16777216; default 64 when no other stop)\n"
-          "  --time S            mc: stop after S seconds\n"
+          "  --time S            mc: stop after S seconds (checked inside the paths too: the samples\n"
+          "                      every pixel finished by then)\n"
           "  --noise E           mc: stop once the RMS standard error of R, G, B is at most E\n"
           "                      (the first of --spp, --time, --noise that is reached stops; a time\n"
-          "                      or noise stop takes 2 samples at least; bound --noise with --time)\n"
+          "                      or noise stop takes 2 samples at least where the time allows;\n"
+          "                      bound --noise with --time)\n"
           "  --mc-mesh M         mc (and --reference): mesh crossings through embree (Embree 3)\n"
           "                      or bvh (the renderer's own BVH); auto (default): Embree when\n"
           "                      built in. The summary's device (with --reference: its\n"

@@ -185,7 +185,8 @@ char *cli_link_destination(const char *path);
 /* A command's inputs and outputs by what they are ("the scene file", "-o") and path (NULL or
  * "-": none, or stdout). cli_check_outputs refuses (exit status 2, a message naming both) an
  * output that is the same file as an input (hard and symbolic links, other spellings) or as
- * another output; call it before any work (cli/distinct_paths.c). */
+ * another output, and two outputs on stdout (list what a command prints there as "-"); call it
+ * before any work (cli/distinct_paths.c). */
 typedef struct cli_path {
   const char *what, *path;
 } cli_path;

@@ -3,7 +3,8 @@
  * device and inode (hard links, symbolic links, "./" and "../" forms) or, for an output that
  * does not exist yet, when they resolve to the same name (its folder through realpath, a link to
  * nothing followed to the name it would create). Writing to an input would replace it (outputs
- * are renamed into place); two outputs on one path would keep only the last. A device such as
+ * are renamed into place); two outputs on one path would keep only the last, and two on stdout
+ * ("-") would be interleaved. A device such as
  * /dev/null may take several outputs: nothing is renamed over it and nothing is lost. */
 #define _XOPEN_SOURCE 700
 #include <limits.h>
@@ -57,6 +58,7 @@ static int same(const file_id *a, const file_id *b) {
 }
 
 static int named(const cli_path *p) { return p->path && strcmp(p->path, "-"); }
+static int is_stdout(const cli_path *p) { return p->path && !strcmp(p->path, "-"); }
 
 int cli_check_outputs(const char *cmd, const cli_path *in, int nin, const cli_path *out, int nout) {
   int rc = 0;
@@ -65,6 +67,10 @@ int cli_check_outputs(const char *cmd, const cli_path *in, int nin, const cli_pa
   for (int i = 0; i < nin; i++)
     if (named(&in[i])) identify(in[i].path, &ids[i]);
   for (int k = 0; k < nout && !rc; k++) {
+    for (int j = 0; j < k && !rc && is_stdout(&out[k]); j++)
+      if (is_stdout(&out[j]))
+        rc = cli_error(cmd, "%s and %s both write to stdout: give one of them a file", out[j].what,
+                       out[k].what);
     if (!named(&out[k])) continue;
     file_id *o = &ids[nin + k];
     identify(out[k].path, o);

@@ -58,7 +58,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   static const double one[3] = {1, 1, 1}, zero[3] = {0, 0, 0};
   ics_mesh *m = NULL;
   char msg[2048] = "";
-  ics_status st = ics_mesh_create_file(&m, path[fmt], one, zero, zero, 5, msg, sizeof msg);
+  ics_status st = ics_mesh_create_file(&m, path[fmt], one, zero, zero, 5, NULL, msg, sizeof msg);
   if (st != ICS_OK) {
     REQUIRE(m == NULL && (st == ICS_ERR_NOMEM || strstr(msg, path[fmt]) != NULL));
     return 0;

@@ -1,4 +1,4 @@
-/* test_render_device.c — a device backend (cl: gpu/cl, gl: gpu/gl) renders what the cpu backend
+/* test_render_device.c — a device backend (cl: gpu/backends/cl, gl: gpu/backends/gl) renders what the cpu backend
  * renders: the embedded default scene, every scene file given on the command line (scenes/), and
  * variants that reach each path of slab.cl and slab.comp (stencil, table with per-pixel and run-of-16 choices, 1 and 384
  * rotations, the perspective classes, integer and signed kernels, coloured transport, translucent

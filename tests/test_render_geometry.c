@@ -237,17 +237,17 @@ static void test_meshes(const char *dir) {
   char path[1024];
   ics_mesh *m = NULL;
   snprintf(path, sizeof path, "%s/cube.ply", dir);
-  st = ics_mesh_create_file(&m, path, one, zero, zero, 1e-9, msg, sizeof msg);
+  st = ics_mesh_create_file(&m, path, one, zero, zero, 1e-9, NULL, msg, sizeof msg);
   CHECK(st == ICS_ERR_PARSE && !m && strstr(msg, "did not finish reading the mesh within"),
         "time limit: %s (%s)", msg, ics_status_str(st));
-  st = ics_mesh_create_file(&m, path, one, zero, zero, 0, msg, sizeof msg);
+  st = ics_mesh_create_file(&m, path, one, zero, zero, 0, NULL, msg, sizeof msg);
   CHECK(st == ICS_OK && m && ics_mesh_triangle_count(m) == 12, "cube.ply read: %s", msg);
   ics_mesh_destroy(m), m = NULL;
   const char *td = getenv("TMPDIR");
   snprintf(path, sizeof path, "%s/test_render_geometry.fifo", td && *td ? td : "/tmp");
   remove(path);
   if (mkfifo(path, 0600) == 0) {
-    st = ics_mesh_create_file(&m, path, one, zero, zero, 0, msg, sizeof msg);
+    st = ics_mesh_create_file(&m, path, one, zero, zero, 0, NULL, msg, sizeof msg);
     CHECK(st == ICS_ERR_IO && strstr(msg, "not a regular file"), "a FIFO: %s (%s)", msg,
           ics_status_str(st));
     remove(path);
@@ -257,7 +257,7 @@ static void test_meshes(const char *dir) {
   if (f) {
     fputs("ply \nformat ascii 1.0\nelement vertex 3\nproperty float x\n", f);
     fclose(f);
-    st = ics_mesh_create_file(&m, path, one, zero, zero, 5, msg, sizeof msg);
+    st = ics_mesh_create_file(&m, path, one, zero, zero, 5, NULL, msg, sizeof msg);
     CHECK(st == ICS_ERR_PARSE && strstr(msg, "without an end_header line"),
           "'ply ' without end_header: %s (%s)", msg, ics_status_str(st));
     remove(path);

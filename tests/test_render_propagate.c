@@ -5,8 +5,9 @@
  * chooses and the reference applies that set to that pixel alone; in the apron layout (unclamped
  * reads) and without an apron (the clamped path). The portable loops and every vector path the
  * processor has (simd_path.h) are compared. Agreement to 4 float ulps of the values (the engine
- * sums in double and rounds once); since each pixel's set is checked, the vector paths' Philox
- * gives exactly ics_slab_choice's words. It needs only the propagation sources and the core
+ * sums in double and rounds once); since the set of each pixel of every third row is checked,
+ * the vector paths' Philox gives exactly ics_slab_choice's words. Also rows 1..17 pixels wide
+ * on every path, and the fused paths against each other bit for bit. It needs only the propagation sources and the core
  * library, so tests/cross/neon.sh also builds it for AArch64 and runs it under qemu-user. */
 #include <math.h>
 #include <stdlib.h>
@@ -208,7 +209,8 @@ static void test_fused_equal(void) {
 }
 
 static void test_entries(void) {
-  /* the entries of rows through both loops equal ics_slab_entry */
+  /* the portable loops' row entries equal ics_slab_entry (the vector paths' choices are checked
+   * pixel by pixel in test_sets_run) */
   ics_prop_taps pt = {0};
   pt.seed = 0xfeedface12345678ull, pt.light = 3, pt.slab = 99, pt.entries = ICS_SLAB_TABLE_M;
   uint32_t ent[W];

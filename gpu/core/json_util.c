@@ -1,10 +1,13 @@
 /* json_util.c — strict JSON value readers shared by the scene and lights readers. */
+#define _POSIX_C_SOURCE 200809L /* fileno */
 #include "json_util.h"
 
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "icshadow/input_file.h"
 
@@ -84,18 +87,63 @@ int ics_jenum(const ics_jctx *c, const char *where, json_t *v, const char *const
   return ics_jerr(c, "%s: unknown value \"%s\" (expected one of %s)", where, s, list);
 }
 
-json_t *ics_jload_file(const ics_jctx *c, const char *path, uint64_t max_bytes, const char *kind,
-                       ics_status *st) {
+/* a stream (a pipe) read whole, at most max_bytes: NULL past that (*st ICS_ERR_SIZE) or out of
+ * memory */
+static char *read_stream(FILE *f, uint64_t max_bytes, size_t *len, ics_status *st) {
+  size_t cap = 65536, n = 0;
+  char *buf = malloc(cap);
+  while (buf) {
+    n += fread(buf + n, 1, cap - n, f);
+    if (n < cap) break;
+    if (max_bytes && n > max_bytes) {
+      free(buf);
+      *st = ICS_ERR_SIZE;
+      return NULL;
+    }
+    char *grown = realloc(buf, cap *= 2);
+    if (!grown) free(buf);
+    buf = grown;
+  }
+  if (buf && max_bytes && n > max_bytes) {
+    free(buf);
+    *st = ICS_ERR_SIZE;
+    return NULL;
+  }
+  if (!buf) *st = ICS_ERR_NOMEM;
+  *len = n;
+  return buf;
+}
+
+json_t *ics_jload_file(const ics_jctx *c, const char *path, uint64_t max_bytes, unsigned flags,
+                       const char *kind, ics_status *st) {
   char why[256];
-  FILE *f = ics_input_open(path, max_bytes, st, why, sizeof why);
+  FILE *f = ics_input_open(path, max_bytes, flags, st, why, sizeof why);
   if (!f) {
     ics_jerr(c, "%s: %s %s file: %s", path,
              *st == ICS_ERR_SIZE ? "refusing a too large" : "cannot open", kind, why);
     return NULL;
   }
   json_error_t je;
-  json_t *root = json_loadf(f, JSON_REJECT_DUPLICATES, &je);
-  fclose(f);
+  json_t *root;
+  struct stat sb;
+  if (fstat(fileno(f), &sb) == 0 && !S_ISREG(sb.st_mode)) { /* a stream: bounded as read */
+    size_t len;
+    char *text = read_stream(f, max_bytes, &len, st);
+    fclose(f);
+    if (!text) {
+      if (*st == ICS_ERR_SIZE)
+        ics_jerr(c, "%s: refusing a too large %s file: more than the %.4g MiB this reader takes",
+                 path, kind, (double)max_bytes / 1048576.0);
+      else
+        ics_jerr(c, "%s: out of memory", path);
+      return NULL;
+    }
+    root = json_loadb(text, len, JSON_REJECT_DUPLICATES, &je);
+    free(text);
+  } else {
+    root = json_loadf(f, JSON_REJECT_DUPLICATES, &je);
+    fclose(f);
+  }
   if (!root) {
     ics_jerr(c, "%s:%d:%d: %s", path, je.line, je.column, je.text);
     *st = ICS_ERR_PARSE;

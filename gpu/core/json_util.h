@@ -15,11 +15,12 @@ typedef struct ics_jctx {
   size_t msg_size;
 } ics_jctx;
 
-/* A JSON file read whole: a regular file of at most max_bytes (ics_input_open), duplicate keys
- * refused. NULL with *st and the message "PATH: cannot open KIND file: reason" (or "refusing a
- * too large KIND file"), or "PATH:LINE:COLUMN: reason" for the syntax. */
-json_t *ics_jload_file(const ics_jctx *c, const char *path, uint64_t max_bytes, const char *kind,
-                       ics_status *st);
+/* A JSON file read whole: a regular file of at most max_bytes (ics_input_open; with
+ * ICS_INPUT_STREAM in flags also a pipe, read up to max_bytes), duplicate keys refused. NULL
+ * with *st and the message "PATH: cannot open KIND file: reason" (or "refusing a too large KIND
+ * file"), or "PATH:LINE:COLUMN: reason" for the syntax. */
+json_t *ics_jload_file(const ics_jctx *c, const char *path, uint64_t max_bytes, unsigned flags,
+                       const char *kind, ics_status *st);
 
 /* printf into the message buffer; returns -1 so that `return ics_jerr(...)` reads well */
 int ics_jerr(const ics_jctx *c, const char *fmt, ...)

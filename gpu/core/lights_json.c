@@ -108,7 +108,7 @@ ics_status ics_lightsfile_read(const char *path, ics_light **out, int *n, char *
   *out = NULL;
   *n = 0;
   ics_status ost;
-  json_t *root = ics_jload_file(&c, path, ICS_LIGHTSFILE_MAX_BYTES, "lights", &ost);
+  json_t *root = ics_jload_file(&c, path, ICS_LIGHTSFILE_MAX_BYTES, 0, "lights", &ost);
   if (!root) return ost;
   ics_status st = ICS_ERR_PARSE;
   ics_light *l = NULL;

@@ -16,12 +16,15 @@
  * joined), applies v' = R (s * v) + translate (R: rotations about x, then y, then z in degrees).
  * Assimp runs in a child process (mesh_import.c), so a reader that crashes or does not finish
  * within `seconds` (0: 60 s + 2 s per MiB of file) is an error, not a crash or a hang.
- * ICS_ERR_UNSUPPORTED without Assimp at build time, ICS_ERR_IO (cannot open, cannot start the
- * reader) / ICS_ERR_PARSE (Assimp's reason, its crash or time-out) in msg, ICS_ERR_SIZE for no or
- * too many triangles, ICS_ERR_NOMEM. */
+ * Every file Assimp opens (the mesh, a glTF's buffers, an OBJ's materials) must be a regular
+ * file; with files non-NULL, *files receives the others' names (malloc'd, each NUL-terminated,
+ * the list ended by an empty name; free() it), for the scene's inputs.
+ * ICS_ERR_UNSUPPORTED without Assimp at build time, ICS_ERR_IO (cannot open, a file that is not a
+ * regular file, cannot start the reader) / ICS_ERR_PARSE (Assimp's reason, its crash or time-out)
+ * in msg, ICS_ERR_SIZE for no or too many triangles, ICS_ERR_NOMEM. */
 ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double scale[3],
                                 const double rot_deg[3], const double translate[3],
-                                double seconds, char *msg, size_t msg_size);
+                                double seconds, char **files, char *msg, size_t msg_size);
 /* From vertex positions (x, y, z per vertex) and triangles (3 vertex indices each); copied. */
 ics_status ics_mesh_create_triangles(ics_mesh **out, const double *xyz, int nverts,
                                      const int *tri, int ntris);

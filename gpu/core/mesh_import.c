@@ -32,6 +32,7 @@
 #include <string.h>
 
 #ifdef ICS_HAVE_ASSIMP
+#include <assimp/cfileio.h>
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -89,10 +90,73 @@ static int ply_header_ended(FILE *f) {
 /* what the child sends first: its status and message, then nv x 3 floats, nt x 3 uint32 */
 typedef struct {
   int32_t status;
-  int32_t pad;
+  uint32_t files_bytes; /* the other files Assimp opened: their names, each ending in a NUL */
   uint64_t nv, nt;
   char msg[512];
 } child_header;
+
+/* ---- the child's file system for Assimp: every file it opens (the mesh, a glTF's buffers, an
+ * OBJ's materials) through ics_input_open, so no FIFO or device blocks it, and their names kept
+ * for the parent, which adds them to the scene's inputs (no output may replace them) ---- */
+#define CHILD_FILES_MAX (1u << 20)
+static char *child_files;           /* the names opened besides the mesh itself, NUL-terminated */
+static uint32_t child_files_bytes;
+static const char *child_mesh_path;
+static char child_refused[400];     /* the first file refused, with the reason */
+
+static size_t io_read(struct aiFile *f, char *buf, size_t size, size_t count) {
+  return fread(buf, size, count, (FILE *)f->UserData);
+}
+static size_t io_write(struct aiFile *f, const char *buf, size_t size, size_t count) {
+  (void)f, (void)buf, (void)size, (void)count;
+  return 0; /* the reader never writes */
+}
+static size_t io_tell(struct aiFile *f) {
+  long p = ftell((FILE *)f->UserData);
+  return p < 0 ? 0 : (size_t)p;
+}
+static size_t io_size(struct aiFile *f) {
+  struct stat sb;
+  return fstat(fileno((FILE *)f->UserData), &sb) ? 0 : (size_t)sb.st_size;
+}
+static enum aiReturn io_seek(struct aiFile *f, size_t off, enum aiOrigin origin) {
+  int whence = origin == aiOrigin_CUR ? SEEK_CUR : origin == aiOrigin_END ? SEEK_END : SEEK_SET;
+  return fseek((FILE *)f->UserData, (long)off, whence) ? aiReturn_FAILURE : aiReturn_SUCCESS;
+}
+static void io_flush(struct aiFile *f) { (void)f; }
+
+static void note_file(const char *name) {
+  size_t n = strlen(name) + 1;
+  if (!strcmp(name, child_mesh_path)) return;
+  for (uint32_t at = 0; at < child_files_bytes; at += (uint32_t)strlen(child_files + at) + 1)
+    if (!strcmp(child_files + at, name)) return;
+  char *grown = child_files_bytes + n <= CHILD_FILES_MAX ? realloc(child_files, child_files_bytes + n) : NULL;
+  if (!grown) _exit(3); /* the parent reports a reader that stopped early */
+  child_files = grown;
+  memcpy(child_files + child_files_bytes, name, n);
+  child_files_bytes += (uint32_t)n;
+}
+
+static struct aiFile *io_open(struct aiFileIO *io, const char *name, const char *mode) {
+  (void)io;
+  if (strpbrk(mode, "wa+")) return NULL;
+  char why[256];
+  FILE *fp = ics_input_open(name, 0, 0, NULL, why, sizeof why);
+  if (!fp) {
+    if (!child_refused[0]) snprintf(child_refused, sizeof child_refused, "%s: %s", name, why);
+    return NULL;
+  }
+  struct aiFile *f = calloc(1, sizeof *f);
+  if (!f) _exit(3);
+  *f = (struct aiFile){io_read, io_write, io_tell, io_size, io_seek, io_flush, (aiUserData)fp};
+  note_file(name);
+  return f;
+}
+static void io_close(struct aiFileIO *io, struct aiFile *f) {
+  (void)io;
+  if (f) fclose((FILE *)f->UserData);
+  free(f);
+}
 
 static int write_all(int fd, const void *p, size_t n) {
   const char *c = p;
@@ -122,11 +186,17 @@ static void child_import(int fd, const char *path, pid_t parent) {
   sigprocmask(SIG_SETMASK, &all, NULL);
   child_header h;
   memset(&h, 0, sizeof h);
-  const struct aiScene *sc = aiImportFile(
-      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);
+  child_mesh_path = path;
+  struct aiFileIO io = {io_open, io_close, NULL};
+  const struct aiScene *sc = aiImportFileEx(
+      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices,
+      &io);
   if (!sc) {
-    h.status = ICS_ERR_PARSE;
-    snprintf(h.msg, sizeof h.msg, "cannot read mesh: %s", aiGetErrorString());
+    h.status = child_refused[0] ? ICS_ERR_IO : ICS_ERR_PARSE;
+    if (child_refused[0])
+      snprintf(h.msg, sizeof h.msg, "cannot read mesh: it needs %s", child_refused);
+    else
+      snprintf(h.msg, sizeof h.msg, "cannot read mesh: %s", aiGetErrorString());
     _exit(write_all(fd, &h, sizeof h) ? 1 : 0);
   }
   for (unsigned i = 0; i < sc->mNumMeshes; i++) {
@@ -157,7 +227,8 @@ static void child_import(int fd, const char *path, pid_t parent) {
           _exit(write_all(fd, &h, sizeof h) ? 1 : 0);
         }
   }
-  int bad = write_all(fd, &h, sizeof h);
+  h.files_bytes = child_files_bytes;
+  int bad = write_all(fd, &h, sizeof h) || (child_files_bytes && write_all(fd, child_files, child_files_bytes));
   float v[3 * 256];
   uint32_t t[3 * 256];
   for (unsigned i = 0; i < sc->mNumMeshes && !bad; i++) {
@@ -214,10 +285,11 @@ static int read_all(int fd, void *p, size_t n, double deadline) {
 
 ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double scale[3],
                                 const double rot_deg[3], const double translate[3],
-                                double seconds, char *msg, size_t msg_size) {
+                                double seconds, char **files, char *msg, size_t msg_size) {
   *out = NULL;
+  if (files) *files = NULL;
 #ifndef ICS_HAVE_ASSIMP
-  (void)scale, (void)rot_deg, (void)translate, (void)seconds;
+  (void)scale, (void)rot_deg, (void)translate, (void)seconds, (void)files;
   if (msg)
     snprintf(msg, msg_size, "%s: mesh files need Assimp, which was not found when the renderer "
              "was built (install libassimp-dev and rebuild)", path);
@@ -225,7 +297,7 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
 #else
   struct stat sb;
   char why[256];
-  FILE *probe = ics_input_open(path, 0, NULL, why, sizeof why);
+  FILE *probe = ics_input_open(path, 0, 0, NULL, why, sizeof why);
   if (!probe || fstat(fileno(probe), &sb)) {
     if (probe) fclose(probe);
     if (msg) snprintf(msg, msg_size, "%s: cannot open mesh file: %s", path, probe ? strerror(errno) : why);
@@ -259,6 +331,7 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
   close(fds[1]);
   double deadline = now_s() + seconds;
   child_header h;
+  char *names = NULL;
   float *v = NULL;
   uint32_t *t = NULL;
   double *xyz = NULL;
@@ -267,20 +340,25 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
   if (r == 0) {
     h.msg[sizeof h.msg - 1] = 0;
     if (h.status != ICS_OK) {
-      st = h.status == ICS_ERR_SIZE ? ICS_ERR_SIZE : ICS_ERR_PARSE;
+      st = h.status == ICS_ERR_SIZE || h.status == ICS_ERR_IO ? (ics_status)h.status : ICS_ERR_PARSE;
       if (msg) snprintf(msg, msg_size, "%s: %s", path, h.msg);
-    } else if (h.nt == 0 || h.nt > ICS_MESH_MAX_TRIANGLES || h.nv > (uint64_t)INT32_MAX / 3) {
+    } else if (h.nt == 0 || h.nt > ICS_MESH_MAX_TRIANGLES || h.nv > (uint64_t)INT32_MAX / 3 ||
+               h.files_bytes > CHILD_FILES_MAX) {
       st = ICS_ERR_PARSE; /* the child's own checks: a header it cannot have sent */
       if (msg) snprintf(msg, msg_size, "%s: the mesh reader sent %llu vertices and %llu triangles",
                         path, (unsigned long long)h.nv, (unsigned long long)h.nt);
-    } else if (!(v = malloc(sizeof *v * 3 * (size_t)(h.nv ? h.nv : 1))) ||
+    } else if (!(names = malloc((size_t)h.files_bytes + 1)) ||
+               !(v = malloc(sizeof *v * 3 * (size_t)(h.nv ? h.nv : 1))) ||
                !(t = malloc(sizeof *t * 3 * (size_t)h.nt)) ||
                !(xyz = malloc(sizeof *xyz * 3 * (size_t)(h.nv ? h.nv : 1)))) {
       st = ICS_ERR_NOMEM;
       if (msg) snprintf(msg, msg_size, "%s: out of memory for %llu vertices", path,
                         (unsigned long long)h.nv);
     } else {
-      r = read_all(fds[0], v, sizeof *v * 3 * (size_t)h.nv, deadline);
+      r = read_all(fds[0], names, h.files_bytes, deadline);
+      names[h.files_bytes] = 0; /* the list ends with an empty name */
+      if (r == 0 && h.files_bytes && names[h.files_bytes - 1]) r = 1;
+      if (r == 0) r = read_all(fds[0], v, sizeof *v * 3 * (size_t)h.nv, deadline);
       if (r == 0) r = read_all(fds[0], t, sizeof *t * 3 * (size_t)h.nt, deadline);
     }
   }
@@ -317,6 +395,11 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
     st = ics_mesh_create_triangles(out, xyz, (int)h.nv, tri, (int)h.nt);
     if (st != ICS_OK && msg) snprintf(msg, msg_size, "%s: %s", path, ics_status_str(st));
   }
+  if (st == ICS_OK && files) {
+    *files = names;
+    names = NULL;
+  }
+  free(names);
   free(v), free(t), free(xyz);
   return st;
 #endif

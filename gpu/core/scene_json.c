@@ -320,7 +320,7 @@ static int read_grid(rctx *c, const char *where, json_t *o, ics_detail *d) {
   if (!path) return fail(c, ICS_ERR_NOMEM, "out of memory");
   char why[256];
   ics_status ost;
-  FILE *fp = ics_input_open(path, 0, &ost, why, sizeof why);
+  FILE *fp = ics_input_open(path, 0, 0, &ost, why, sizeof why);
   if (!fp || ics_scene_note_file(c->s, path) != ICS_OK) {
     if (fp) fclose(fp);
     if (fp) fail(c, ICS_ERR_NOMEM, "out of memory");
@@ -718,12 +718,17 @@ static int read_object(rctx *c, int idx, json_t *o) {
   if (!path) return fail(c, ICS_ERR_NOMEM, "out of memory");
   ics_mesh *mesh;
   char mmsg[4096 + 512];
-  ics_status st = ics_mesh_create_file(&mesh, path, sc, rot, tr, 0, mmsg, sizeof mmsg);
-  if (st == ICS_OK && ics_scene_note_file(c->s, path) != ICS_OK) {
+  char *also = NULL; /* the other files Assimp read for it */
+  ics_status st = ics_mesh_create_file(&mesh, path, sc, rot, tr, 0, &also, mmsg, sizeof mmsg);
+  int noted = st == ICS_OK && ics_scene_note_file(c->s, path) == ICS_OK;
+  for (const char *f = also; noted && f && *f; f += strlen(f) + 1)
+    noted = ics_scene_note_file(c->s, f) == ICS_OK;
+  if (st == ICS_OK && !noted) {
     ics_mesh_destroy(mesh);
     st = ICS_ERR_NOMEM;
     snprintf(mmsg, sizeof mmsg, "out of memory");
   }
+  free(also);
   free(path);
   if (st != ICS_OK) return fail(c, st, "%s: %s", KEY("file"), mmsg);
   ics_mesh **mp = realloc(c->s->meshes, sizeof *mp * (size_t)(c->s->nmeshes + 1));
@@ -828,7 +833,7 @@ ics_status ics_scene_create_file(ics_scene **out, const char *path, char *msg, s
   if (msg && msg_size) msg[0] = 0;
   ics_jctx jc = {msg, msg_size};
   ics_status ost;
-  json_t *root = ics_jload_file(&jc, path, ICS_SCENE_FILE_MAX, "scene", &ost);
+  json_t *root = ics_jload_file(&jc, path, ICS_SCENE_FILE_MAX, ICS_INPUT_STREAM, "scene", &ost);
   if (!root) return ost;
   /* the scene's folder resolves relative paths */
   char *dir = strdup(path);

@@ -123,7 +123,7 @@ static ics_status read_file(const char *path, int rgba, exr_pixels *px, char *ms
   memset(px, 0, sizeof *px);
   char why[256];
   ics_status ost;
-  FILE *probe = ics_input_open(path, 0, &ost, why, sizeof why); /* OpenEXR would block on a FIFO */
+  FILE *probe = ics_input_open(path, 0, 0, &ost, why, sizeof why); /* OpenEXR would block on a FIFO */
   if (!probe) {
     set_msg(msg, msg_size, "%s: cannot open: %s", path, why);
     return ost;

@@ -25,8 +25,8 @@ static FILE *refuse(ics_status st, ics_status *status, int fd) {
   return NULL;
 }
 
-FILE *ics_input_open(const char *path, uint64_t max_bytes, ics_status *status, char *why,
-                     size_t why_size) {
+FILE *ics_input_open(const char *path, uint64_t max_bytes, unsigned flags, ics_status *status,
+                     char *why, size_t why_size) {
   if (why && why_size) why[0] = 0;
   if (status) *status = ICS_OK;
   int fd = path ? open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY) : -1;
@@ -40,11 +40,12 @@ FILE *ics_input_open(const char *path, uint64_t max_bytes, ics_status *status, c
     return refuse(ICS_ERR_IO, status, fd);
   }
   const char *kind = ics_input_kind((unsigned)sb.st_mode);
+  if (kind && (flags & ICS_INPUT_STREAM) && (S_ISFIFO(sb.st_mode) || S_ISCHR(sb.st_mode))) kind = NULL;
   if (kind) {
     if (why) snprintf(why, why_size, "not a regular file (%s)", kind);
     return refuse(ICS_ERR_IO, status, fd);
   }
-  if (max_bytes && (uint64_t)sb.st_size > max_bytes) {
+  if (max_bytes && S_ISREG(sb.st_mode) && (uint64_t)sb.st_size > max_bytes) {
     if (why)
       snprintf(why, why_size, "%.4g bytes, more than the %.4g MiB this reader takes",
                (double)sb.st_size, (double)max_bytes / 1048576.0);

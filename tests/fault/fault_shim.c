@@ -2,14 +2,17 @@
  * tests/render_gl.cmake): with ICS_FAULT=fsync or ICS_FAULT=rename, every call of that function
  * fails with EIO; with ICS_FAULT=gl-reset, glGetGraphicsResetStatus (as eglGetProcAddress and
  * OSMesaGetProcAddress hand it out) reports GL_GUILTY_CONTEXT_RESET, a lost context, which no
- * driver can be made to produce on demand. Each after the first ICS_FAULT_AFTER calls (default
- * 0); without ICS_FAULT every call passes through.
+ * driver can be made to produce on demand; with ICS_FAULT=assimp-hang, Assimp's import
+ * (aiImportFileEx, in the mesh reader's child) never returns, as a reader stuck on a malformed
+ * file would. Each after the first ICS_FAULT_AFTER calls (default 0); without ICS_FAULT every
+ * call passes through.
  * The disk-full and device cases are made without it (RLIMIT_FSIZE, mknod: write_targets.sh). */
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 static int should_fail(const char *fn) {
   static int calls;
@@ -60,4 +63,17 @@ gl_proc OSMesaGetProcAddress(const char *name) {
   static gl_proc (*real)(const char *);
   if (!real) real = (gl_proc(*)(const char *))dlsym(RTLD_NEXT, "OSMesaGetProcAddress");
   return real ? hand_out(name, real(name)) : NULL;
+}
+
+/* a mesh reader that never returns (the parent's time limit or death must end it) */
+struct aiScene;
+struct aiFileIO;
+const struct aiScene *aiImportFileEx(const char *file, unsigned flags, struct aiFileIO *io) {
+  static const struct aiScene *(*real)(const char *, unsigned, struct aiFileIO *);
+  if (!real)
+    real = (const struct aiScene *(*)(const char *, unsigned, struct aiFileIO *))dlsym(
+        RTLD_NEXT, "aiImportFileEx");
+  if (should_fail("assimp-hang"))
+    for (;;) pause();
+  return real(file, flags, io);
 }

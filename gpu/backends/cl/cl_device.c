@@ -13,6 +13,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
+#include <pthread.h>
 #include <unistd.h>
 
 const char *ics_cl_err_name(cl_int e) {
@@ -195,9 +197,16 @@ void ics_cl_dev_close(ics_cl_dev *d) {
 
 /* The compiler's own output on stderr (PoCL runs clang in the process, which prints "N warnings
  * generated." for a first build) is kept out of the user's stderr: fd 2 goes to a private
- * temporary file while the program builds, and what was written there is returned to be shown
- * only when the build fails. -1 when stderr could not be redirected (then nothing is kept). */
+ * temporary file while the program builds, and the end of what was written there is returned,
+ * to be shown only when the build fails. Builds take a process-wide lock for that time, so two
+ * threads building at once cannot leave fd 2 on the other's file; whatever else the process
+ * writes to stderr during a build (about a second, once per program with PoCL's cache) goes into
+ * that record too. -1 (and no lock held) when fd 2 is closed or cannot be redirected. */
+static pthread_mutex_t quiet_lock = PTHREAD_MUTEX_INITIALIZER;
+
 static int quiet_stderr_begin(void) {
+  if (fcntl(2, F_GETFD) < 0) return -1; /* no stderr: tmpfile would take fd 2 itself */
+  pthread_mutex_lock(&quiet_lock);
   fflush(stderr);
   FILE *t = tmpfile();
   int saved = t ? dup(2) : -1;
@@ -206,19 +215,19 @@ static int quiet_stderr_begin(void) {
     saved = -1;
   }
   if (t) fclose(t); /* fd 2 keeps the (unlinked, read-write) file open */
+  if (saved < 0) pthread_mutex_unlock(&quiet_lock);
   return saved;
 }
 
 static void quiet_stderr_end(int saved, char *said, size_t said_size) {
   if (saved < 0) return;
   fflush(stderr);
-  off_t n = lseek(2, 0, SEEK_CUR);
-  if (n > 0 && lseek(2, 0, SEEK_SET) == 0) {
-    ssize_t got = read(2, said, said_size - 1);
-    said[got > 0 ? got : 0] = 0;
-  }
+  off_t n = lseek(2, 0, SEEK_CUR), keep = (off_t)said_size - 1;
+  ssize_t got = n > 0 ? pread(2, said, (size_t)(n < keep ? n : keep), n < keep ? 0 : n - keep) : 0;
+  said[got > 0 ? got : 0] = 0;
   dup2(saved, 2);
   close(saved);
+  pthread_mutex_unlock(&quiet_lock);
 }
 
 ics_status ics_cl_build(const ics_cl_dev *d, const char *src, const char *what, int nkernels,
