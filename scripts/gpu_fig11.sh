@@ -13,25 +13,31 @@
 #      scene, renderer and machine: only the ordering compares), the gl image's max difference to
 #      the cpu image.
 # usage: scripts/gpu_fig11.sh [REPS]   (environment: BUILD, JOBS; ICS_FIG11_ANY_DEVICE=1 runs
-# steps 2 and 3 on whatever device the gl backend gets, llvmpipe too, to try the script itself)
+# steps 2 and 3 on whatever device the gl backend gets, llvmpipe too, to try the script itself;
+# ICS_FIG11_PREBUILT=DIR skips step 1 and takes icshadow, test_render_gl and test_gl_ldi from DIR,
+# for a GPU machine without the build's packages: build them elsewhere, carry them with their
+# shared libraries, and set LD_LIBRARY_PATH)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 reps=${1:-5}
 build=${BUILD:-build-gpu}
 jobs=${JOBS:-$(nproc)}
-for tool in cmake cc python3; do
-  command -v "$tool" >/dev/null || { echo "gpu_fig11: $tool is missing (scripts/deps.sh installs it)" >&2; exit 2; }
-done
-mkdir -p "$build"
-log="$build/gpu_fig11_configure.log"
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DICS_ENFORCE_JANSSON=ON -DICS_ENABLE_GL=ON \
-  -DICS_ENFORCE_MITSUBA=OFF \
-  -DICS_MITSUBA_PYTHON= >"$log" 2>&1 ||
-  { tail -20 "$log" >&2; echo "gpu_fig11: configuration failed (log: $log)" >&2; exit 2; }
-grep -q "gl backend: ON" "$log" ||
-  { echo "gpu_fig11: the gl backend is not built (needs libegl-dev and libgl-dev, or libosmesa6-dev)" >&2; exit 2; }
-cmake --build "$build" -j "$jobs" --target icshadow_cli test_render_gl test_gl_ldi >/dev/null
-cli="$build/bin/icshadow"
+bin=${ICS_FIG11_PREBUILT:-$build/bin}
+if [ -z "${ICS_FIG11_PREBUILT:-}" ]; then
+  for tool in cmake cc python3; do
+    command -v "$tool" >/dev/null || { echo "gpu_fig11: $tool is missing (scripts/deps.sh installs it)" >&2; exit 2; }
+  done
+  mkdir -p "$build"
+  log="$build/gpu_fig11_configure.log"
+  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DICS_ENFORCE_JANSSON=ON -DICS_ENABLE_GL=ON \
+    -DICS_ENFORCE_MITSUBA=OFF \
+    -DICS_MITSUBA_PYTHON= >"$log" 2>&1 ||
+    { tail -20 "$log" >&2; echo "gpu_fig11: configuration failed (log: $log)" >&2; exit 2; }
+  grep -q "gl backend: ON" "$log" ||
+    { echo "gpu_fig11: the gl backend is not built (needs libegl-dev and libgl-dev, or libosmesa6-dev)" >&2; exit 2; }
+  cmake --build "$build" -j "$jobs" --target icshadow_cli test_render_gl test_gl_ldi >/dev/null
+fi
+cli="$bin/icshadow"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 export ICS_GL_CONTEXT=egl MESA_SHADER_CACHE_DIR="$tmp/mesa_cache"
@@ -48,8 +54,8 @@ if [[ "$device" != *egl-device* ]]; then
     exit 3
   fi
 fi
-"$build/bin/test_render_gl" gl scenes/*.json >&2
-"$build/bin/test_gl_ldi" tests/data scenes/*.json >&2
+"$bin/test_render_gl" gl scenes/*.json >&2
+"$bin/test_gl_ldi" tests/data scenes/*.json >&2
 
 # 3. Fig. 11 at 768^2 per kernel, gl and cpu side by side
 python3 - "$tmp/fig11.json" <<'EOF'
