@@ -61,6 +61,8 @@ static void help(FILE *f) {
           "  --verbose           say on stderr why --backend auto passed over a backend (also\n"
           "                      shown on a terminal, or when a --gl-* option was given)\n"
           "With only --compare or --reference and no output, the summary alone is printed.\n"
+          "ICS_SIMD=auto|scalar|sse2|avx2|avx512|neon in the environment forces the cpu backend's\n"
+          "vector path (default auto: the widest this processor has); the summary's device names it.\n"
           "Output files are written to a temporary name and renamed once all are complete.\n"
           "Exit status: 0 ok, 1 cannot write or out of memory, 2 bad input.\n");
 }
