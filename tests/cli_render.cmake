@@ -143,6 +143,10 @@ file(WRITE ${rd}/narrow.json [=[
 ]=])
 ics_cli_test(NAME cli_render_narrow_runs RC 0 ARGS "render|${rd}/narrow.json|--threads|2|-o|${rd}/narrow.exr"
   OUT "\"light_buffer\": \\[1, 72\\]")
+# a scene's grids read only where an object uses them, grids and meshes held to the memory limit
+add_test(NAME cli_scene_memory COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/scene_memory.sh
+  $<TARGET_FILE:icshadow_cli> ${CMAKE_SOURCE_DIR}/tests/data)
+set_tests_properties(cli_scene_memory PROPERTIES LABELS fast)
 # the Monte-Carlo reference's work bounded before it starts, --time a hard stop
 add_test(NAME cli_mc_bounded COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/mc_bounded.sh $<TARGET_FILE:icshadow_cli>)
 set_tests_properties(cli_mc_bounded PROPERTIES LABELS fast)

@@ -25,6 +25,22 @@
 ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double scale[3],
                                 const double rot_deg[3], const double translate[3],
                                 double seconds, char **files, char *msg, size_t msg_size);
+/* The same in two steps, so a file referenced by several objects is read once: the file as
+ * Assimp gives it (vertices as floats, triangles as vertex indices, -1 for one out of range; the
+ * other files read, as for `files` above; errors as above), then a mesh from it under a
+ * transform. */
+typedef struct ics_mesh_raw {
+  float *v;
+  int *tri;
+  uint64_t nv, nt;
+  char *files;
+} ics_mesh_raw;
+ics_status ics_mesh_read_file(ics_mesh_raw *raw, const char *path, double seconds, char *msg,
+                              size_t msg_size);
+ics_status ics_mesh_create_raw(ics_mesh **out, const ics_mesh_raw *raw, const double scale[3],
+                               const double rot_deg[3], const double translate[3],
+                               const char *path, char *msg, size_t msg_size);
+void ics_mesh_raw_release(ics_mesh_raw *raw);
 /* From vertex positions (x, y, z per vertex) and triangles (3 vertex indices each); copied. */
 ics_status ics_mesh_create_triangles(ics_mesh **out, const double *xyz, int nverts,
                                      const int *tri, int ntris);

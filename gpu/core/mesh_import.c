@@ -283,13 +283,11 @@ static int read_all(int fd, void *p, size_t n, double deadline) {
 }
 #endif
 
-ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double scale[3],
-                                const double rot_deg[3], const double translate[3],
-                                double seconds, char **files, char *msg, size_t msg_size) {
-  *out = NULL;
-  if (files) *files = NULL;
+ics_status ics_mesh_read_file(ics_mesh_raw *raw, const char *path, double seconds, char *msg,
+                              size_t msg_size) {
+  memset(raw, 0, sizeof *raw);
 #ifndef ICS_HAVE_ASSIMP
-  (void)scale, (void)rot_deg, (void)translate, (void)seconds, (void)files;
+  (void)seconds;
   if (msg)
     snprintf(msg, msg_size, "%s: mesh files need Assimp, which was not found when the renderer "
              "was built (install libassimp-dev and rebuild)", path);
@@ -334,7 +332,6 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
   char *names = NULL;
   float *v = NULL;
   uint32_t *t = NULL;
-  double *xyz = NULL;
   ics_status st = ICS_OK;
   int r = read_all(fds[0], &h, sizeof h, deadline);
   if (r == 0) {
@@ -349,8 +346,7 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
                         path, (unsigned long long)h.nv, (unsigned long long)h.nt);
     } else if (!(names = malloc((size_t)h.files_bytes + 1)) ||
                !(v = malloc(sizeof *v * 3 * (size_t)(h.nv ? h.nv : 1))) ||
-               !(t = malloc(sizeof *t * 3 * (size_t)h.nt)) ||
-               !(xyz = malloc(sizeof *xyz * 3 * (size_t)(h.nv ? h.nv : 1)))) {
+               !(t = malloc(sizeof *t * 3 * (size_t)h.nt))) {
       st = ICS_ERR_NOMEM;
       if (msg) snprintf(msg, msg_size, "%s: out of memory for %llu vertices", path,
                         (unsigned long long)h.nv);
@@ -382,25 +378,55 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
     }
   }
   if (st == ICS_OK) {
-    double ax[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    ics_frame_rotate(ax, rot_deg);
-    /* ax's rows are the rotated world axes; a point's rotated image is sum_i p_i ax[i] */
-    for (size_t k = 0; k < h.nv; k++) {
-      double p[3] = {v[3 * k] * scale[0], v[3 * k + 1] * scale[1], v[3 * k + 2] * scale[2]};
-      for (int w = 0; w < 3; w++)
-        xyz[3 * k + w] = p[0] * ax[0][w] + p[1] * ax[1][w] + p[2] * ax[2][w] + translate[w];
-    }
     int *tri = (int *)t; /* indices past INT32_MAX are refused as out of range */
     for (size_t k = 0; k < 3 * h.nt; k++) tri[k] = t[k] > INT32_MAX ? -1 : (int)t[k];
-    st = ics_mesh_create_triangles(out, xyz, (int)h.nv, tri, (int)h.nt);
-    if (st != ICS_OK && msg) snprintf(msg, msg_size, "%s: %s", path, ics_status_str(st));
+    *raw = (ics_mesh_raw){v, tri, h.nv, h.nt, names};
+    return ICS_OK;
   }
-  if (st == ICS_OK && files) {
-    *files = names;
-    names = NULL;
-  }
-  free(names);
-  free(v), free(t), free(xyz);
+  free(names), free(v), free(t);
   return st;
 #endif
+}
+
+void ics_mesh_raw_release(ics_mesh_raw *raw) {
+  free(raw->v), free(raw->tri), free(raw->files);
+  memset(raw, 0, sizeof *raw);
+}
+
+ics_status ics_mesh_create_raw(ics_mesh **out, const ics_mesh_raw *raw, const double scale[3],
+                               const double rot_deg[3], const double translate[3],
+                               const char *path, char *msg, size_t msg_size) {
+  *out = NULL;
+  double *xyz = malloc(sizeof *xyz * 3 * (size_t)(raw->nv ? raw->nv : 1));
+  if (!xyz) {
+    if (msg) snprintf(msg, msg_size, "%s: out of memory for %llu vertices", path,
+                      (unsigned long long)raw->nv);
+    return ICS_ERR_NOMEM;
+  }
+  double ax[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  ics_frame_rotate(ax, rot_deg);
+  /* ax's rows are the rotated world axes; a point's rotated image is sum_i p_i ax[i] */
+  for (size_t k = 0; k < raw->nv; k++) {
+    const float *v = raw->v + 3 * k;
+    double p[3] = {v[0] * scale[0], v[1] * scale[1], v[2] * scale[2]};
+    for (int w = 0; w < 3; w++)
+      xyz[3 * k + w] = p[0] * ax[0][w] + p[1] * ax[1][w] + p[2] * ax[2][w] + translate[w];
+  }
+  ics_status st = ics_mesh_create_triangles(out, xyz, (int)raw->nv, raw->tri, (int)raw->nt);
+  if (st != ICS_OK && msg) snprintf(msg, msg_size, "%s: %s", path, ics_status_str(st));
+  free(xyz);
+  return st;
+}
+
+ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double scale[3],
+                                const double rot_deg[3], const double translate[3],
+                                double seconds, char **files, char *msg, size_t msg_size) {
+  *out = NULL;
+  if (files) *files = NULL;
+  ics_mesh_raw raw;
+  ics_status st = ics_mesh_read_file(&raw, path, seconds, msg, msg_size);
+  if (st == ICS_OK) st = ics_mesh_create_raw(out, &raw, scale, rot_deg, translate, path, msg, msg_size);
+  if (st == ICS_OK && files) *files = raw.files, raw.files = NULL;
+  ics_mesh_raw_release(&raw);
+  return st;
 }

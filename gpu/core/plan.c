@@ -369,8 +369,8 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   size_t offset_bytes = (npx + 1) * sizeof(uint32_t);
   size_t mesh_bytes = 0, grid_bytes = 0;
   for (int i = 0; i < s->nmeshes; i++) mesh_bytes += ics_mesh_bytes(s->meshes[i]);
-  for (int i = 0; i < s->nmaterials; i++)
-    if (s->materials[i].detail.fn == ICS_DETAIL_GRID)
+  for (int i = 0; i < s->nmaterials; i++) /* the grids read: those some object uses */
+    if (s->materials[i].detail.fn == ICS_DETAIL_GRID && s->materials[i].detail.grid)
       grid_bytes += (size_t)s->materials[i].detail.size[0] * s->materials[i].detail.size[1] *
                     s->materials[i].detail.size[2] * sizeof(float);
   p->memory_bytes = p->backend_bytes + offset_bytes + mesh_bytes + grid_bytes;

@@ -28,7 +28,56 @@ typedef struct {
   size_t where_size;
   ics_scene *s;
   int obj_cap;
+  char *grid_path[ICS_SCENE_MAX_MATERIALS]; /* per material: its grid file, read once an object
+                                               uses it (NULL: none, or read) */
+  double loaded;    /* bytes of grids and meshes read so far (render.memory_limit_mib) */
+  int nread;        /* mesh files read so far, each once however often objects name it */
+  struct read_mesh {
+    char *path;
+    ics_mesh_raw raw;
+  } *read;
 } rctx;
+
+/* the mesh file at path as Assimp gave it, read on its first use; NULL with the message */
+static const ics_mesh_raw *mesh_file(rctx *c, const char *path, char *msg, size_t msg_size,
+                                     ics_status *st) {
+  for (int i = 0; i < c->nread; i++)
+    if (!strcmp(c->read[i].path, path)) return &c->read[i].raw;
+  struct read_mesh *r = realloc(c->read, sizeof *r * (size_t)(c->nread + 1));
+  if (!r) {
+    *st = ICS_ERR_NOMEM;
+    snprintf(msg, msg_size, "out of memory");
+    return NULL;
+  }
+  c->read = r;
+  r += c->nread;
+  if ((*st = ics_mesh_read_file(&r->raw, path, 0, msg, msg_size)) != ICS_OK) return NULL;
+  if (!(r->path = malloc(strlen(path) + 1))) {
+    ics_mesh_raw_release(&r->raw);
+    *st = ICS_ERR_NOMEM;
+    snprintf(msg, msg_size, "out of memory");
+    return NULL;
+  }
+  strcpy(r->path, path);
+  c->nread++;
+  return &r->raw;
+}
+
+/* -1 (with the message) when `bytes` more would take what the scene's files hold in memory over
+ * render.memory_limit_mib; checked before a grid is read (its size is declared) and after each
+ * mesh (its size is known once read) */
+static int account(rctx *c, const char *where, double bytes) {
+  double limit = c->s->settings.memory_limit_mib * 1048576.0;
+  if (c->loaded + bytes > limit) {
+    c->st = ICS_ERR_SIZE;
+    ics_jerr(&c->j, "%s: %.4g MiB, with the grids and meshes before it %.4g MiB, over "
+             "render.memory_limit_mib = %g", where, bytes / 1048576.0, (c->loaded + bytes) / 1048576.0,
+             c->s->settings.memory_limit_mib);
+    return -1;
+  }
+  c->loaded += bytes;
+  return 0;
+}
 
 /* "NAME: " + printf(path) in the context's buffer (valid until the next call) */
 static const char *W(rctx *c, const char *fmt, ...) {
@@ -300,7 +349,8 @@ static int read_lights(rctx *c, json_t *arr, json_t *file) {
 }
 
 /* ---- materials ----------------------------------------------------------------------------- */
-static int read_grid(rctx *c, const char *where, json_t *o, ics_detail *d) {
+/* a grid's "file" and "size" (the cells are read later, by load_grid, if an object uses it) */
+static int read_grid(rctx *c, const char *where, json_t *o, ics_detail *d, int mi) {
   json_t *f = json_object_get(o, "file"), *sz = json_object_get(o, "size");
   if (!f || !sz) return fail(c, ICS_ERR_PARSE, "%s: a grid needs \"file\" and \"size\"", where);
   if (!json_is_string(f)) return fail(c, ICS_ERR_PARSE, "%s.file: expected a file name", where);
@@ -316,8 +366,23 @@ static int read_grid(rctx *c, const char *where, json_t *o, ics_detail *d) {
   }
   if (cells > ((size_t)1 << 28))
     return fail(c, ICS_ERR_SIZE, "%s.size: %zu cells (at most 2^28)", where, cells);
-  char *path = join_path(c->dir, json_string_value(f));
-  if (!path) return fail(c, ICS_ERR_NOMEM, "out of memory");
+  if (!(c->grid_path[mi] = join_path(c->dir, json_string_value(f))))
+    return fail(c, ICS_ERR_NOMEM, "out of memory");
+  return 0;
+}
+
+/* the cells of material mi's grid (read_grid), within the memory limit */
+static int load_grid(rctx *c, int mi) {
+  ics_material *m = &c->s->materials[mi];
+  ics_detail *d = &m->detail;
+  char *path = c->grid_path[mi];
+  c->grid_path[mi] = NULL;
+  const char *where = W(c, "materials.%s.detail", m->name);
+  size_t cells = (size_t)d->size[0] * (size_t)d->size[1] * (size_t)d->size[2];
+  if (account(c, where, (double)cells * sizeof *d->grid)) {
+    free(path);
+    return -1;
+  }
   char why[256];
   ics_status ost;
   FILE *fp = ics_input_open(path, 0, 0, &ost, why, sizeof why);
@@ -351,7 +416,18 @@ static int read_grid(rctx *c, const char *where, json_t *o, ics_detail *d) {
   return 0;
 }
 
-static int read_detail(rctx *c, const char *mwhere, json_t *o, ics_detail *d) {
+/* the grids of the materials some object uses; the others are never read */
+static int load_used_grids(rctx *c) {
+  for (int mi = 0; mi < c->s->nmaterials; mi++) {
+    if (!c->grid_path[mi]) continue;
+    int used = 0;
+    for (int k = 0; k < c->s->nobjects && !used; k++) used = c->s->objects[k].material == mi;
+    if (used && load_grid(c, mi)) return -1;
+  }
+  return 0;
+}
+
+static int read_detail(rctx *c, const char *mwhere, json_t *o, ics_detail *d, int mi) {
   static const char *const known[] = {"function", "frequency", "octaves", "lacunarity", "gain",
                                       "offset", "time", "seed", "scale", "bias", "file", "size"};
   char where[4096 + 320];
@@ -405,7 +481,7 @@ static int read_detail(rctx *c, const char *mwhere, json_t *o, ics_detail *d) {
     if (J(ics_jint(&c->j, w2, x, 0, INT64_MAX, &iv))) return -1;
     d->seed = (uint64_t)iv;
   }
-  if (d->fn == ICS_DETAIL_GRID) return read_grid(c, where, o, d);
+  if (d->fn == ICS_DETAIL_GRID) return read_grid(c, where, o, d, mi);
   return 0;
 }
 
@@ -455,7 +531,7 @@ static int read_material(rctx *c, const char *name, json_t *o, ics_material *m) 
                 where);
   if (tf && !det)
     return fail(c, ICS_ERR_PARSE, "%s: \"transfer\" maps detail values: it needs \"detail\"", where);
-  if (det && read_detail(c, where, det, &m->detail)) return -1;
+  if (det && read_detail(c, where, det, &m->detail, (int)(m - c->s->materials))) return -1;
   if (tf) {
     snprintf(w2, sizeof w2, "%s.transfer", where);
     if (!json_is_array(tf) || json_array_size(tf) < 2 || json_array_size(tf) > ICS_SCENE_MAX_TRANSFER)
@@ -718,19 +794,25 @@ static int read_object(rctx *c, int idx, json_t *o) {
   if (!path) return fail(c, ICS_ERR_NOMEM, "out of memory");
   ics_mesh *mesh;
   char mmsg[4096 + 512];
-  char *also = NULL; /* the other files Assimp read for it */
-  ics_status st = ics_mesh_create_file(&mesh, path, sc, rot, tr, 0, &also, mmsg, sizeof mmsg);
-  int noted = st == ICS_OK && ics_scene_note_file(c->s, path) == ICS_OK;
-  for (const char *f = also; noted && f && *f; f += strlen(f) + 1)
+  ics_status st;
+  int first = 1; /* the file's first use: its files become the scene's inputs */
+  for (int i = 0; i < c->nread && first; i++) first = strcmp(c->read[i].path, path) != 0;
+  const ics_mesh_raw *raw = mesh_file(c, path, mmsg, sizeof mmsg, &st);
+  if (raw) st = ics_mesh_create_raw(&mesh, raw, sc, rot, tr, path, mmsg, sizeof mmsg);
+  int noted = st == ICS_OK && (!first || ics_scene_note_file(c->s, path) == ICS_OK);
+  for (const char *f = raw ? raw->files : NULL; noted && first && f && *f; f += strlen(f) + 1)
     noted = ics_scene_note_file(c->s, f) == ICS_OK;
   if (st == ICS_OK && !noted) {
     ics_mesh_destroy(mesh);
     st = ICS_ERR_NOMEM;
     snprintf(mmsg, sizeof mmsg, "out of memory");
   }
-  free(also);
   free(path);
   if (st != ICS_OK) return fail(c, st, "%s: %s", KEY("file"), mmsg);
+  if (account(c, KEY("file"), (double)ics_mesh_bytes(mesh))) {
+    ics_mesh_destroy(mesh);
+    return -1;
+  }
   ics_mesh **mp = realloc(c->s->meshes, sizeof *mp * (size_t)(c->s->nmeshes + 1));
   if (!mp) {
     ics_mesh_destroy(mesh);
@@ -779,7 +861,7 @@ static ics_status read_root(rctx *c, json_t *root) {
   if (read_camera(c, cam) || read_render(c, ren) ||
       read_lights(c, json_object_get(root, "lights"), json_object_get(root, "lights_file")) ||
       read_materials(c, json_object_get(root, "materials")) ||
-      read_objects(c, json_object_get(root, "objects")))
+      read_objects(c, json_object_get(root, "objects")) || load_used_grids(c))
     return c->st;
   return ICS_OK;
 }
@@ -787,7 +869,8 @@ static ics_status read_root(rctx *c, json_t *root) {
 /* file: the scene file (the first of the scene's files), or NULL */
 static ics_status create(ics_scene **out, json_t *root, const char *name, const char *dir,
                          const char *file, char *msg, size_t msg_size) {
-  rctx c = {{msg, msg_size}, name, dir, ICS_ERR_PARSE, NULL, strlen(name) + 256, NULL, 0};
+  rctx c = {.j = {msg, msg_size}, .name = name, .dir = dir, .st = ICS_ERR_PARSE,
+            .where_size = strlen(name) + 256};
   c.where = malloc(c.where_size);
   c.s = calloc(1, sizeof *c.s);
   if (!c.where || !c.s) {
@@ -805,6 +888,9 @@ static ics_status create(ics_scene **out, json_t *root, const char *name, const 
   } else {
     st = read_root(&c, root);
   }
+  for (int i = 0; i < ICS_SCENE_MAX_MATERIALS; i++) free(c.grid_path[i]);
+  for (int i = 0; i < c.nread; i++) free(c.read[i].path), ics_mesh_raw_release(&c.read[i].raw);
+  free(c.read);
   json_decref(root);
   free(c.where);
   if (st != ICS_OK) {

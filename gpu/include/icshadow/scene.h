@@ -94,7 +94,7 @@ typedef struct ics_detail {
   uint64_t seed;
   /* grid: nx * ny * nz floats, x fastest, mapped onto the object's bounding box */
   int size[3];
-  float *grid; /* owned by the scene */
+  float *grid; /* owned by the scene; NULL where no object uses the material (never read) */
 } ics_detail;
 
 typedef struct ics_material {
