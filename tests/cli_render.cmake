@@ -143,6 +143,17 @@ file(WRITE ${rd}/narrow.json [=[
 ]=])
 ics_cli_test(NAME cli_render_narrow_runs RC 0 ARGS "render|${rd}/narrow.json|--threads|2|-o|${rd}/narrow.exr"
   OUT "\"light_buffer\": \\[1, 72\\]")
+# a colour of 1e30 under a light of 1e30 (each within its own bound): refused at parse time,
+# naming the material, where it used to render fully and then fail at the write (non-finite)
+file(WRITE ${rd}/overflow.json [=[
+{"camera": {"eye": [0, 0, 2], "target": [0, 0, 0], "height": 3, "resolution": [16, 16]},
+ "render": {"slab_spacing": 0.05, "d1": 1},
+ "lights": [{"mean": [0.3, -0.1], "var": [0.02, 0.01], "weight": 1e30}],
+ "materials": {"bright": {"color": [1e30, 1e30, 1e30]}},
+ "objects": [{"shape": "rect", "center": [0, 0, -1], "normal": [0, 0, 1], "size": [3, 3], "material": "bright"}]}
+]=])
+ics_cli_test(NAME cli_render_overflow RC 2 ARGS "render|${rd}/overflow.json|-o|${rd}/overflow.exr"
+  ERR "materials.bright: a colour of 1e[+]30 under lights of 1e[+]30 .* the image would overflow" NOFILE ${rd}/overflow.exr)
 # a scene's grids read only where an object uses them, grids and meshes held to the memory limit
 add_test(NAME cli_scene_memory COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/scene_memory.sh
   $<TARGET_FILE:icshadow_cli> ${CMAKE_SOURCE_DIR}/tests/data)

@@ -416,6 +416,30 @@ static int load_grid(rctx *c, int mi) {
   return 0;
 }
 
+/* The largest value an image can take stays finite: every material's colour (its transfer
+ * rows' too) times the lights' weight x colour summed over lights is at most ICS_SCENE_MAX_RADIANCE
+ * (the per-light bound already holds each light: 64 of them at that bound stay far below FLT_MAX,
+ * but a colour of 1e30 on top overflowed float in the render and failed only at the write). */
+static int check_radiance(rctx *c) {
+  double lights = 0;
+  for (int l = 0; l < c->s->nlights; l++) {
+    const ics_light *L = &c->s->lights[l];
+    lights += L->weight * fmax(L->color[0], fmax(L->color[1], L->color[2]));
+  }
+  for (int i = 0; i < c->s->nmaterials; i++) {
+    const ics_material *m = &c->s->materials[i];
+    double col = fmax(m->color[0], fmax(m->color[1], m->color[2]));
+    for (int k = 0; k < m->ntransfer; k++)
+      col = fmax(col, fmax(m->transfer[k][1], fmax(m->transfer[k][2], m->transfer[k][3])));
+    if (col * lights > ICS_SCENE_MAX_RADIANCE)
+      return fail(c, ICS_ERR_RANGE, "%s: a colour of %g under lights of %g in all (weight x colour, "
+                  "summed) gives %g, over %g: the image would overflow; lower the colours or the "
+                  "weights", W(c, "materials.%s", m->name), col, lights, col * lights,
+                  ICS_SCENE_MAX_RADIANCE);
+  }
+  return 0;
+}
+
 /* the grids of the materials some object uses; the others are never read */
 static int load_used_grids(rctx *c) {
   for (int mi = 0; mi < c->s->nmaterials; mi++) {
@@ -860,7 +884,7 @@ static ics_status read_root(rctx *c, json_t *root) {
   if (!ren) return fail(c, ICS_ERR_PARSE, "%s: missing \"render\"", c->name), c->st;
   if (read_camera(c, cam) || read_render(c, ren) ||
       read_lights(c, json_object_get(root, "lights"), json_object_get(root, "lights_file")) ||
-      read_materials(c, json_object_get(root, "materials")) ||
+      read_materials(c, json_object_get(root, "materials")) || check_radiance(c) ||
       read_objects(c, json_object_get(root, "objects")) || load_used_grids(c))
     return c->st;
   return ICS_OK;

@@ -26,6 +26,9 @@ extern "C" {
 #define ICS_SCENE_MAX_OBJECTS 4096   /* after fences are expanded into boxes */
 #define ICS_SCENE_MAX_MATERIALS 256
 #define ICS_SCENE_MAX_TRANSFER 256   /* transfer-function nodes */
+/* a material's colour (or transfer colour) x the lights' weight x colour summed: the largest
+ * value an image can take, kept far below float's 3.4e38 */
+#define ICS_SCENE_MAX_RADIANCE 1e30
 /* bytes of a scene file: the largest scene within the limits above (256 materials of 256
  * transfer nodes, 4096 objects) is a few MiB; parsing holds about 80 bytes per byte of JSON */
 #define ICS_SCENE_FILE_MAX (16u << 20)
