@@ -154,6 +154,20 @@ file(WRITE ${rd}/overflow.json [=[
 ]=])
 ics_cli_test(NAME cli_render_overflow RC 2 ARGS "render|${rd}/overflow.json|-o|${rd}/overflow.exr"
   ERR "materials.bright: a colour of 1e[+]30 under lights of 1e[+]30 .* the image would overflow" NOFILE ${rd}/overflow.exr)
+# messages that name the key: d1 and slab_spacing past 1e100 (1e308 overflowed in the plan,
+# "argument out of range"), fov_deg below 1e-6 ("variance is negative"), and a UTF-8 byte-order
+# mark, which is skipped (it was refused with the raw glyph)
+file(READ ${disk} ics_disk_text)
+string(REPLACE "\"d1\": 1.0" "\"d1\": 1e308" ics_text "${ics_disk_text}")
+file(WRITE ${rd}/d1_huge.json "${ics_text}")
+ics_cli_test(NAME cli_render_d1_huge RC 2 ARGS "plan|${rd}/d1_huge.json" ERR "render.d1: 1e[+]308 is over 1e100")
+string(REPLACE "\"projection\": \"orthographic\"" "\"projection\": \"perspective\", \"fov_deg\": 1e-300" ics_text "${ics_disk_text}")
+string(REPLACE "\"height\": 3.0, " "" ics_text "${ics_text}")
+file(WRITE ${rd}/fov_tiny.json "${ics_text}")
+ics_cli_test(NAME cli_render_fov_tiny RC 2 ARGS "plan|${rd}/fov_tiny.json" ERR "camera.fov_deg: 1e-300 is out of range \\[1e-6, 170\\)")
+string(ASCII 239 187 191 ics_bom)
+file(WRITE ${rd}/bom.json "${ics_bom}${ics_disk_text}")
+ics_cli_test(NAME cli_render_bom RC 0 ARGS "plan|${rd}/bom.json" OUT "\"scene\": \"[^\"]*bom.json\"")
 # a scene's grids read only where an object uses them, grids and meshes held to the memory limit
 add_test(NAME cli_scene_memory COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/scene_memory.sh
   $<TARGET_FILE:icshadow_cli> ${CMAKE_SOURCE_DIR}/tests/data)

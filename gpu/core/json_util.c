@@ -1,5 +1,4 @@
 /* json_util.c — strict JSON value readers shared by the scene and lights readers. */
-#define _POSIX_C_SOURCE 200809L /* fileno */
 #include "json_util.h"
 
 #include <math.h>
@@ -7,7 +6,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "icshadow/input_file.h"
 
@@ -87,8 +85,8 @@ int ics_jenum(const ics_jctx *c, const char *where, json_t *v, const char *const
   return ics_jerr(c, "%s: unknown value \"%s\" (expected one of %s)", where, s, list);
 }
 
-/* a stream (a pipe) read whole, at most max_bytes: NULL past that (*st ICS_ERR_SIZE) or out of
- * memory */
+/* a file or stream read whole, at most max_bytes (0: any): NULL past that (*st ICS_ERR_SIZE) or
+ * out of memory */
 static char *read_stream(FILE *f, uint64_t max_bytes, size_t *len, ics_status *st) {
   size_t cap = 65536, n = 0;
   char *buf = malloc(cap);
@@ -123,27 +121,24 @@ json_t *ics_jload_file(const ics_jctx *c, const char *path, uint64_t max_bytes, 
              *st == ICS_ERR_SIZE ? "refusing a too large" : "cannot open", kind, why);
     return NULL;
   }
-  json_error_t je;
-  json_t *root;
-  struct stat sb;
-  if (fstat(fileno(f), &sb) == 0 && !S_ISREG(sb.st_mode)) { /* a stream: bounded as read */
-    size_t len;
-    char *text = read_stream(f, max_bytes, &len, st);
-    fclose(f);
-    if (!text) {
-      if (*st == ICS_ERR_SIZE)
-        ics_jerr(c, "%s: refusing a too large %s file: more than the %.4g MiB this reader takes",
-                 path, kind, (double)max_bytes / 1048576.0);
-      else
-        ics_jerr(c, "%s: out of memory", path);
-      return NULL;
-    }
-    root = json_loadb(text, len, JSON_REJECT_DUPLICATES, &je);
-    free(text);
-  } else {
-    root = json_loadf(f, JSON_REJECT_DUPLICATES, &je);
-    fclose(f);
+  /* read whole (a regular file's size is already within the bound; a stream is bounded as it
+   * is read), a UTF-8 byte-order mark skipped (RFC 8259 lets a parser ignore it; jansson
+   * refused it with the raw glyph) */
+  size_t len;
+  char *text = read_stream(f, max_bytes, &len, st);
+  fclose(f);
+  if (!text) {
+    if (*st == ICS_ERR_SIZE)
+      ics_jerr(c, "%s: refusing a too large %s file: more than the %.4g MiB this reader takes",
+               path, kind, (double)max_bytes / 1048576.0);
+    else
+      ics_jerr(c, "%s: out of memory", path);
+    return NULL;
   }
+  size_t skip = len >= 3 && !memcmp(text, "\xEF\xBB\xBF", 3) ? 3 : 0;
+  json_error_t je;
+  json_t *root = json_loadb(text + skip, len - skip, JSON_REJECT_DUPLICATES, &je);
+  free(text);
   if (!root) {
     ics_jerr(c, "%s:%d:%d: %s", path, je.line, je.column, je.text);
     *st = ICS_ERR_PARSE;

@@ -186,8 +186,10 @@ static int read_camera(rctx *c, json_t *o) {
                   "ones take \"fov_deg\")", W(c, "camera"));
     if (!fov) return fail(c, ICS_ERR_PARSE, "%s: a perspective camera needs \"fov_deg\"", W(c, "camera"));
     if (J(ics_jnum(&c->j, W(c, "camera.fov_deg"), fov, &cam->fov_deg))) return -1;
-    if (!(cam->fov_deg > 0 && cam->fov_deg < 170))
-      return fail(c, ICS_ERR_RANGE, "%s: %.17g is out of range (0, 170)", W(c, "camera.fov_deg"),
+    /* from 1e-6 degrees: a view 1.7e-8 of the distance high, as the orthographic height's
+     * 1e-9 (1e-300 gave "variance is negative" from the plan) */
+    if (!(cam->fov_deg >= 1e-6 && cam->fov_deg < 170))
+      return fail(c, ICS_ERR_RANGE, "%s: %.17g is out of range [1e-6, 170)", W(c, "camera.fov_deg"),
                   cam->fov_deg);
   }
   char msg[256];
@@ -212,6 +214,12 @@ static int read_render(rctx *c, json_t *o) {
   if (positive(c, W(c, "render.slab_spacing"), json_object_get(o, "slab_spacing"), &r->slab_spacing) ||
       positive(c, W(c, "render.d1"), json_object_get(o, "d1"), &r->d1))
     return -1;
+  /* far beyond any scene, and short of where the kernels' arithmetic overflows (1e308 gave
+   * "argument out of range" with no key) */
+  if (r->slab_spacing > 1e100 || r->d1 > 1e100)
+    return fail(c, ICS_ERR_RANGE, "%s: %g is over 1e100 (world units)",
+                W(c, r->slab_spacing > 1e100 ? "render.slab_spacing" : "render.d1"),
+                r->slab_spacing > 1e100 ? r->slab_spacing : r->d1);
   static const char *const kn[] = {"ellipse", "poisson", "gauss", "tophat"};
   int k = 0;
   if ((x = json_object_get(o, "kernel")) && J(ics_jenum(&c->j, W(c, "render.kernel"), x, kn, 4, &k)))
