@@ -1,9 +1,11 @@
-/* cmd_fit_light.c — `icshadow fit-light ENV.exr --lights K [--max-angle DEG] [--seed S]
- * [--max-samples N] [--max-iter N] [--sweep] [--progress] -o LIGHTS.json`: fits K Gaussian
+/* cmd_fit_light.c — `icshadow fit-light ENV.exr --lights K|auto[:KMAX] [--max-angle DEG]
+ * [--seed S] [--max-samples N] [--max-iter N] [--sweep] [--progress] -o LIGHTS.json`: fits K Gaussian
  * lights on the virtual light plane to an environment map (ics_lightfit) and writes the lights
  * file (docs/lights_format.md) atomically. stdout: a CSV summary table, one row per fit
- * (k = K, or k = 1..K with --sweep): k, lights fitted, L1, L2, edge-shadow error, seconds,
- * EM iterations, samples, cut-off loss. stderr: the energy report, and progress when stderr is
+ * (k = K, or k = 1..K with --sweep or --lights auto): k, lights fitted, L1, L2, edge-shadow
+ * error, seconds, EM iterations, samples, cut-off loss. --lights auto[:KMAX] fits k = 1..KMAX
+ * (default 8) and keeps the fewest lights whose L1 is within AUTO_L1_FLOOR or AUTO_L1_RATIO x
+ * the best of them (docs/lightfit.md "How many lights"). stderr: the energy report, and progress when stderr is
  * a terminal or --progress is given. */
 #include <stdio.h>
 #include <string.h>
@@ -14,7 +16,7 @@
 
 static void help(FILE *f) {
   fprintf(f,
-          "usage: icshadow fit-light ENV.exr --lights K [--max-angle DEG] [--seed S]\n"
+          "usage: icshadow fit-light ENV.exr --lights K|auto[:KMAX] [--max-angle DEG] [--seed S]\n"
           "                          [--max-samples N] [--max-iter N] [--sweep] [--plane-csv FILE]\n"
           "                          [--progress]\n"
           "                          -o LIGHTS.json\n"
@@ -27,7 +29,9 @@ static void help(FILE *f) {
           "shadow behind a straight edge at the optimal distance d1 (any d1), worst of 4\n"
           "orientations; cutoff_loss: fraction of the energy behind the viewer beyond DEG.\n\n"
           "options:\n"
-          "  --lights K         number of Gaussians, 1..%d (required)\n"
+          "  --lights K         number of Gaussians, 1..%d (required); auto[:KMAX]: fit 1..KMAX\n"
+          "                     (default 8) and keep the fewest whose L1 is within 1%% or 1.25 x\n"
+          "                     the best of them (said on stderr; every fit in the table)\n"
           "  --max-angle DEG    cut-off angle from the view axis, in (0, 90) (default 80)\n"
           "  --seed S           seed of the EM sample selection, 0..2^64-1 (default 1)\n"
           "  --max-samples N    EM on N pixels resampled by energy (0: all; default 32768)\n"
@@ -43,6 +47,38 @@ static void help(FILE *f) {
 }
 
 static const char CMD[] = "fit-light";
+
+/* --lights auto: the fewest lights whose L1 is at most the larger of these (measured on maps of
+ * known lights: docs/lightfit.md "How many lights") */
+#define AUTO_L1_FLOOR 0.01
+#define AUTO_L1_RATIO 1.25
+#define AUTO_KMAX 8
+
+/* --lights: K, or auto (a negative K: -KMAX) */
+static int parse_lights(const char *cmd, const char *opt, const char *s, void *dest) {
+  int *K = dest;
+  if (!strncmp(s, "auto", 4)) {
+    int kmax = AUTO_KMAX;
+    if (s[4] == ':' ? cli_parse_int(s + 5, 1, ICS_LIGHTFIT_MAX_K, &kmax) : s[4] != 0)
+      return cli_error(cmd, "%s: expected auto or auto:KMAX with KMAX in 1..%d, got '%s'", opt,
+                       ICS_LIGHTFIT_MAX_K, s);
+    *K = -kmax;
+    return 0;
+  }
+  if (cli_parse_int(s, 1, ICS_LIGHTFIT_MAX_K, K))
+    return cli_error(cmd, "%s: expected 1..%d or auto[:KMAX], got '%s'", opt, ICS_LIGHTFIT_MAX_K, s);
+  return 0;
+}
+
+/* the auto choice among the fits k = 1..K: its k */
+static int auto_choice(const ics_lightfit_report *rep, int K) {
+  double best = rep[0].l1;
+  for (int k = 1; k < K; k++) best = rep[k].l1 < best ? rep[k].l1 : best;
+  double limit = best * AUTO_L1_RATIO > AUTO_L1_FLOOR ? best * AUTO_L1_RATIO : AUTO_L1_FLOOR;
+  for (int k = 0; k < K; k++)
+    if (rep[k].l1 <= limit) return k + 1;
+  return K;
+}
 
 /* EM progress: every iteration on a terminal, every 25th (and the first) otherwise */
 typedef struct em_progress {
@@ -89,15 +125,17 @@ static void write_plane_csv(FILE *f, const ics_image *env, double max_angle) {
 /* the fits and the outputs once the map is read; env is the caller's */
 static int fit_and_write(const ics_image *env, const char *inp, const char *outp,
                          const char *planep, int K, int sweep, ics_lightfit_params *p) {
-  ics_light lights[ICS_LIGHTFIT_MAX_K];
+  static ics_light fits[ICS_LIGHTFIT_MAX_K][ICS_LIGHTFIT_MAX_K]; /* per k: its lights */
   ics_lightfit_report rep[ICS_LIGHTFIT_MAX_K];
   double secs[ICS_LIGHTFIT_MAX_K];
   em_progress *ep = p->progress_ctx;
+  int autopick = K < 0;
+  if (autopick) K = -K, sweep = 1;
   int k0 = sweep ? 1 : K;
   for (int k = k0; k <= K; k++) {
     p->k = ep->k = k;
     double t0 = cli_now_s();
-    ics_status st = ics_lightfit(env, p, lights, &rep[k - 1]);
+    ics_status st = ics_lightfit(env, p, fits[k - 1], &rep[k - 1]);
     secs[k - 1] = cli_now_s() - t0;
     if (p->progress) cli_progress_done(&ep->p);
     /* the options are checked above and ics_exr_read refuses bad pixels, so INVALID_ARG can
@@ -110,20 +148,28 @@ static int fit_and_write(const ics_image *env, const char *inp, const char *outp
                        env->width, env->height);
     if (st != ICS_OK)
       return cli_status_error(CMD, st, "%s: fit failed: %s", inp, ics_status_str(st));
-    if (!rep[k - 1].converged)
-      cli_warning(CMD, "K=%d: EM stopped at --max-iter %d before converging (log-likelihood "
-                  "change still above 1e-9)", k, p->max_iter);
   }
-  const ics_lightfit_report *r = &rep[K - 1];
+  int kc = autopick ? auto_choice(rep, K) : K; /* the fit written */
+  for (int k = k0; k <= K; k++)
+    if (!rep[k - 1].converged && (!autopick || k == kc)) /* auto: only the one kept */
+      cli_warning(CMD, "K=%d: EM stopped at --max-iter %d before converging (log-likelihood "
+                  "change still above 1e-9): raise --max-iter (e.g. %d), or try other numbers "
+                  "of lights (--lights auto)", k, p->max_iter, 4 * p->max_iter);
+  if (autopick)
+    fprintf(stderr, "fit-light: --lights auto: K = %d, the fewest lights whose L1 (%.3g) is within "
+            "max(%g, %g x the best of K = 1..%d)\n", kc, rep[kc - 1].l1, AUTO_L1_FLOOR,
+            AUTO_L1_RATIO, K);
+  const ics_light *lights = fits[kc - 1];
+  const ics_lightfit_report *r = &rep[kc - 1];
   double behind = r->energy_kept + r->energy_cutoff;
   fprintf(stderr,
           "fit-light: %s: energy %.6g; in front of the viewer (ignored) %.3g%%; behind: %.6g, of "
           "which %.3g%% beyond %g degrees (lost at the cut-off)\n",
           inp, r->energy_total, r->energy_total > 0 ? 100 * r->energy_front / r->energy_total : 0.0,
           behind, 100 * r->cutoff_loss, p->max_angle_deg);
-  if (r->k_fit < K)
+  if (r->k_fit < kc)
     fprintf(stderr, "fit-light: the map is explained by %d light%s; %d requested\n", r->k_fit,
-            r->k_fit == 1 ? "" : "s", K);
+            r->k_fit == 1 ? "" : "s", kc);
 
   /* -o first: when it cannot be opened, no plane CSV is written either. The table on stdout,
    * the lights file and the plane CSV are committed together, stdout first: when one cannot be
@@ -169,7 +215,7 @@ int cmd_fit_light(int argc, char **argv) {
   uint64_t seed = 1;
   const cli_option opts[] = {
       {NULL, .kind = CLI_CALL, .dest = &inp, .parse = take_map},
-      {"--lights", .kind = CLI_INT, .dest = &K, .lo = 1, .hi = ICS_LIGHTFIT_MAX_K},
+      {"--lights", .kind = CLI_CALL, .dest = &K, .parse = parse_lights},
       {"--max-angle", .kind = CLI_CALL, .dest = &max_angle, .parse = parse_max_angle},
       {"--seed", .kind = CLI_SEED, .dest = &seed},
       {"--max-samples", .kind = CLI_INT, .dest = &max_samples, .lo = 0, .hi = 1 << 30},

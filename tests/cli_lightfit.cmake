@@ -113,6 +113,9 @@ set_tests_properties(cli_fit_light_black PROPERTIES FIXTURES_REQUIRED lf_black)
 # seed a different one
 add_test(NAME cli_lightfit_files COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/lightfit_files.sh $<TARGET_FILE:icshadow_cli>)
 set_tests_properties(cli_lightfit_files PROPERTIES LABELS fast)
+# --lights auto: three known lights give K = 3
+add_test(NAME cli_lightfit_auto COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/lightfit_auto.sh $<TARGET_FILE:icshadow_cli>)
+set_tests_properties(cli_lightfit_auto PROPERTIES LABELS fast)
 
 # outputs to a FIFO and to a full device made by the test (never removed, the cause named)
 if(ICS_HAVE_RENDER)
@@ -185,7 +188,7 @@ ics_cli_test(NAME cli_make_env_nothing RC 2 ARGS "make-env|--size|64x32|-o|${D}/
 ics_cli_test(NAME cli_make_env_no_dir RC 1 ARGS "make-env|--sky|1,1,1|--size|64x32|-o|${D}/lf_no_such_dir/x.exr"
   ERR "cannot create")
 ics_cli_test(NAME cli_fit_light_k0 RC 2 ARGS "fit-light|${D}/lf_m3.exr|--lights|0|-o|${D}/lf_bad_fit_light_k0.json"
-  ERR "--lights: expected an integer in 1\\.\\.32" NOFILE ${D}/lf_bad_fit_light_k0.json)
+  ERR "--lights: expected 1\\.\\.32 or auto\\[:KMAX\\], got '0'" NOFILE ${D}/lf_bad_fit_light_k0.json)
 ics_cli_test(NAME cli_fit_light_angle RC 2 ARGS "fit-light|${D}/lf_m3.exr|--lights|2|--max-angle|90|-o|${D}/lf_bad_fit_light_angle.json"
   ERR "--max-angle: expected degrees in \\(0, 90\\)" NOFILE ${D}/lf_bad_fit_light_angle.json)
 ics_cli_test(NAME cli_fit_light_no_k RC 2 ARGS "fit-light|${D}/lf_m3.exr|-o|${D}/lf_bad_fit_light_no_k.json"
