@@ -172,6 +172,9 @@ ics_cli_test(NAME cli_render_bom RC 0 ARGS "plan|${rd}/bom.json" OUT "\"scene\":
 add_test(NAME cli_scene_memory COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/scene_memory.sh
   $<TARGET_FILE:icshadow_cli> ${CMAKE_SOURCE_DIR}/tests/data)
 set_tests_properties(cli_scene_memory PROPERTIES LABELS fast)
+# the plan's work: the detail's octaves, the perspective classes and the geometry pass too
+add_test(NAME cli_plan_work COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/plan_work.sh $<TARGET_FILE:icshadow_cli>)
+set_tests_properties(cli_plan_work PROPERTIES LABELS fast)
 # the Monte-Carlo reference's work bounded before it starts, --time a hard stop
 add_test(NAME cli_mc_bounded COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/mc_bounded.sh $<TARGET_FILE:icshadow_cli>)
 set_tests_properties(cli_mc_bounded PROPERTIES LABELS fast)

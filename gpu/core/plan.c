@@ -163,6 +163,39 @@ static void estimate_depth(const ics_plan *p, double *zlo, double *zhi) {
 
 static int grey(const double t[3]) { return t[0] == t[1] && t[1] == t[2]; }
 
+/* The work of a render in pixel-slab-light updates, every term that grows counted: the steps
+ * (slabs x pixels x lights); volume detail, an update per octave of every volume with detail at
+ * every pixel and slab (the worst case: every pixel inside every such volume); with perspective
+ * kernels, the per-slab compensation of Q^2 classes per light, about 8000 updates a class and
+ * 100 per tap of it (measured here at one update a nanosecond: 8.3 us a class of a 2-tap ellipse,
+ * 0.18 ms one of 1609 taps). kernels_done: the kernels are built (the classes term needs their
+ * taps). */
+static double plan_work(const ics_plan *p, double slabs, double pixels, int kernels_done) {
+  const ics_scene *s = p->scene;
+  double per = p->nlights ? p->nlights : 1;
+  for (int i = 0; i < s->nobjects; i++) {
+    const ics_material *m = &s->materials[s->objects[i].material];
+    if (!m->volumetric || m->detail.fn == ICS_DETAIL_NONE) continue;
+    int oct = m->detail.fn == ICS_DETAIL_FBM || m->detail.fn == ICS_DETAIL_RIDGED ? m->detail.octaves : 1;
+    per += oct > 1 ? oct : 1;
+  }
+  double work = slabs * pixels * per;
+  if (kernels_done && p->cam.projection == ICS_PROJ_PERSPECTIVE)
+    for (int k = 0; k < p->nlights; k++)
+      work += slabs * ICS_PROP_CLASSES * ICS_PROP_CLASSES * (8000 + 100 * (4.0 * p->kernels[k].cap + 9));
+  return work;
+}
+
+/* the geometry pass's ray-object tests: every buffer pixel's ray against every analytic object,
+ * and down the BVH of every mesh (about 2 log2 triangles + 1 nodes) */
+static double geometry_work(const ics_plan *p, double rays) {
+  const ics_scene *s = p->scene;
+  double per = 0;
+  for (int i = 0; i < s->nobjects; i++) per += 1;
+  for (int i = 0; i < s->nmeshes; i++) per += 2 * log2(1.0 + ics_mesh_triangle_count(s->meshes[i]));
+  return rays * per;
+}
+
 ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_opts *opts,
                            char *msg, size_t msg_size) {
   ics_plan_opts o = {0};
@@ -209,12 +242,14 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
     return ICS_ERR_SIZE;
   }
   {
-    /* the work, estimated from the unpadded image (the padding only adds to it) */
-    double work = k_est * (double)p->W * p->H * (p->nlights ? p->nlights : 1);
+    /* the steps' work, from the unpadded image (the padding only adds to it), before anything
+     * is allocated; the detail and perspective terms once the kernels are built, below */
+    double work = plan_work(p, k_est, (double)p->W * p->H, 0);
     if (work > ICS_PLAN_MAX_WORK) {
       if (msg)
-        snprintf(msg, msg_size, "about %.3g slabs x %d x %d pixels x %d light(s) = %.3g updates "
-                 "exceed the work limit %.3g: increase render.slab_spacing or lower the resolution",
+        snprintf(msg, msg_size, "about %.3g slabs x %d x %d pixels x (%d light(s) and the volume "
+                 "detail's octaves) = %.3g updates exceed the work limit %.3g: increase "
+                 "render.slab_spacing, lower the resolution or the detail's octaves",
                  k_est, p->W, p->H, p->nlights, work, ICS_PLAN_MAX_WORK);
       free(p);
       return ICS_ERR_SIZE;
@@ -248,6 +283,19 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
         st = ICS_ERR_RANGE;
         goto fail;
       }
+    }
+  }
+  if (p->cam.projection == ICS_PROJ_PERSPECTIVE) { /* the classes' compensation per slab */
+    double work = plan_work(p, k_est, (double)p->W * p->H, 1);
+    if (work > ICS_PLAN_MAX_WORK) {
+      if (msg)
+        snprintf(msg, msg_size, "about %.3g slabs with %d light(s), each compensating %d classes of "
+                 "its perspective kernel per slab (and %d x %d pixels) = %.3g updates exceed the "
+                 "work limit %.3g: increase render.slab_spacing, or give fewer lights or samples",
+                 k_est, p->nlights, ICS_PROP_CLASSES * ICS_PROP_CLASSES, p->W, p->H, work,
+                 ICS_PLAN_MAX_WORK);
+      st = ICS_ERR_SIZE;
+      goto fail;
     }
   }
 
@@ -392,6 +440,16 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
     goto fail;
   }
 
+  double gwork = geometry_work(p, (double)npx);
+  if (gwork > ICS_PLAN_MAX_GEOMETRY) {
+    if (msg)
+      snprintf(msg, msg_size, "the geometry pass: %d x %d buffer rays x %d object(s) (meshes by "
+               "their BVH depth) = %.3g ray-object tests exceed the limit %.3g: lower the "
+               "resolution, render.max_pad or the number of objects", p->Wb, p->Hb,
+               s->nobjects, gwork, ICS_PLAN_MAX_GEOMETRY);
+    st = ICS_ERR_SIZE;
+    goto fail;
+  }
   double t0 = ics_clock_s();
   st = ics_ldi_build(p, o.threads, msg, msg_size);
   p->geometry_s = ics_clock_s() - t0;
@@ -399,11 +457,12 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   size_t ldi_bytes = offset_bytes + p->ldi.nfrag * sizeof(ics_fragment) +
                      (p->ldi.inside0 ? npx * sizeof(uint64_t) : 0);
   p->memory_bytes = p->backend_bytes + ldi_bytes + mesh_bytes + grid_bytes;
-  double work = (double)p->K * (double)npx * (p->nlights ? p->nlights : 1);
+  double work = plan_work(p, p->K, (double)npx, 1);
   if (work > ICS_PLAN_MAX_WORK) {
     if (msg)
-      snprintf(msg, msg_size, "%d slabs x %d x %d buffer pixels x %d light(s) = %.3g updates "
-               "exceed the work limit %.3g: increase render.slab_spacing or lower the resolution",
+      snprintf(msg, msg_size, "%d slabs x %d x %d buffer pixels x (%d light(s) and the volume "
+               "detail's octaves, with the perspective classes) = %.3g updates exceed the work "
+               "limit %.3g: increase render.slab_spacing or lower the resolution",
                p->K, p->Wb, p->Hb, p->nlights, work, ICS_PLAN_MAX_WORK);
     st = ICS_ERR_SIZE;
     goto fail;

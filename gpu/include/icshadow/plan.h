@@ -43,10 +43,13 @@ typedef struct ics_plan_omitted {
 } ics_plan_omitted;
 
 /* Builds the plan (and its layered depth image). Refused before allocating, with the estimate
- * in msg: ICS_ERR_SIZE when the plan's memory exceeds render.memory_limit_mib or its work
- * exceeds ICS_PLAN_MAX_WORK pixel-slab-light updates. Other errors: ICS_ERR_NOMEM,
- * ICS_ERR_RANGE (a kernel that cannot be built), ICS_ERR_INVALID_ARG. */
+ * in msg: ICS_ERR_SIZE when the plan's memory exceeds render.memory_limit_mib, its work exceeds
+ * ICS_PLAN_MAX_WORK pixel-slab-light updates (the steps, an update per octave of volume detail
+ * per pixel and slab, the perspective kernels' per-slab class compensation), or its geometry
+ * pass ICS_PLAN_MAX_GEOMETRY ray-object tests. Other errors: ICS_ERR_NOMEM, ICS_ERR_RANGE (a
+ * kernel that cannot be built), ICS_ERR_INVALID_ARG. */
 #define ICS_PLAN_MAX_WORK 2e11
+#define ICS_PLAN_MAX_GEOMETRY 1e10
 ICS_API ics_status ics_plan_create(ics_plan **out, const ics_scene *scene,
                                    const ics_plan_opts *opts, char *msg, size_t msg_size);
 ICS_API void ics_plan_destroy(ics_plan *p); /* NULL is allowed */
