@@ -87,7 +87,7 @@ int ics_jenum(const ics_jctx *c, const char *where, json_t *v, const char *const
 
 /* a file or stream read whole, at most max_bytes (0: any): NULL past that (*st ICS_ERR_SIZE) or
  * out of memory */
-static char *read_stream(FILE *f, uint64_t max_bytes, size_t *len, ics_status *st) {
+static char *read_bounded(FILE *f, uint64_t max_bytes, size_t *len, ics_status *st) {
   size_t cap = 65536, n = 0;
   char *buf = malloc(cap);
   while (buf) {
@@ -125,7 +125,7 @@ json_t *ics_jload_file(const ics_jctx *c, const char *path, uint64_t max_bytes, 
    * is read), a UTF-8 byte-order mark skipped (RFC 8259 lets a parser ignore it; jansson
    * refused it with the raw glyph) */
   size_t len;
-  char *text = read_stream(f, max_bytes, &len, st);
+  char *text = read_bounded(f, max_bytes, &len, st);
   fclose(f);
   if (!text) {
     if (*st == ICS_ERR_SIZE)

@@ -190,8 +190,7 @@ static double plan_work(const ics_plan *p, double slabs, double pixels, int kern
  * and down the BVH of every mesh (about 2 log2 triangles + 1 nodes) */
 static double geometry_work(const ics_plan *p, double rays) {
   const ics_scene *s = p->scene;
-  double per = 0;
-  for (int i = 0; i < s->nobjects; i++) per += 1;
+  double per = s->nobjects;
   for (int i = 0; i < s->nmeshes; i++) per += 2 * log2(1.0 + ics_mesh_triangle_count(s->meshes[i]));
   return rays * per;
 }

@@ -38,7 +38,8 @@ typedef struct {
   } *read;
 } rctx;
 
-/* the mesh file at path as Assimp gave it, read on its first use; NULL with the message */
+/* the mesh file at path as Assimp gave it, read on its first use, when it and the other files
+ * Assimp read for it become the scene's inputs; NULL with the message */
 static const ics_mesh_raw *mesh_file(rctx *c, const char *path, char *msg, size_t msg_size,
                                      ics_status *st) {
   for (int i = 0; i < c->nread; i++)
@@ -60,6 +61,14 @@ static const ics_mesh_raw *mesh_file(rctx *c, const char *path, char *msg, size_
   }
   strcpy(r->path, path);
   c->nread++;
+  int noted = ics_scene_note_file(c->s, path) == ICS_OK;
+  for (const char *f = r->raw.files; noted && f && *f; f += strlen(f) + 1)
+    noted = ics_scene_note_file(c->s, f) == ICS_OK;
+  if (!noted) {
+    *st = ICS_ERR_NOMEM;
+    snprintf(msg, msg_size, "out of memory");
+    return NULL;
+  }
   return &r->raw;
 }
 
@@ -827,18 +836,8 @@ static int read_object(rctx *c, int idx, json_t *o) {
   ics_mesh *mesh;
   char mmsg[4096 + 512];
   ics_status st;
-  int first = 1; /* the file's first use: its files become the scene's inputs */
-  for (int i = 0; i < c->nread && first; i++) first = strcmp(c->read[i].path, path) != 0;
   const ics_mesh_raw *raw = mesh_file(c, path, mmsg, sizeof mmsg, &st);
   if (raw) st = ics_mesh_create_raw(&mesh, raw, sc, rot, tr, path, mmsg, sizeof mmsg);
-  int noted = st == ICS_OK && (!first || ics_scene_note_file(c->s, path) == ICS_OK);
-  for (const char *f = raw ? raw->files : NULL; noted && first && f && *f; f += strlen(f) + 1)
-    noted = ics_scene_note_file(c->s, f) == ICS_OK;
-  if (st == ICS_OK && !noted) {
-    ics_mesh_destroy(mesh);
-    st = ICS_ERR_NOMEM;
-    snprintf(mmsg, sizeof mmsg, "out of memory");
-  }
   free(path);
   if (st != ICS_OK) return fail(c, st, "%s: %s", KEY("file"), mmsg);
   if (account(c, KEY("file"), (double)ics_mesh_bytes(mesh))) {
