@@ -39,7 +39,7 @@ packages=(
   # tests: the libFuzzer harnesses
   clang libclang-rt-14-dev
   # tests: the NEON loops built for AArch64 and run under qemu-user (tests/cross/neon.sh)
-  gcc-aarch64-linux-gnu qemu-user
+  gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user
   # benchmarks: Boost.Math
   libboost-dev
   # optional components of the renderer: Assimp for mesh files in scenes, Embree 3 for the
