@@ -322,6 +322,9 @@ int cmd_render(int argc, char **argv) {
       fprintf(sf, ", \"ms_convolution\": %.17g, \"ms_shading\": %.17g, \"ms_detail\": %.17g,"
               " \"ns_per_px_slab\": %.17g, \"memory_bytes\": %zu", stats.ms_convolution,
               stats.ms_shading, stats.ms_detail, stats.ns_per_px_slab, ics_plan_memory_bytes(plan));
+    if (stats.updates_dense > 0)
+      fprintf(sf, ", \"updates_dense\": %.17g, \"updates_active\": %.17g", stats.updates_dense,
+              stats.updates_active);
     if (stats.ms_geometry_device > 0)
       fprintf(sf, ", \"ms_geometry_device\": %.17g", stats.ms_geometry_device);
     if (exr) fprintf(sf, ", \"exr\": "), cli_json_string(sf, exr);

@@ -31,6 +31,7 @@ void scene_args_options(scene_args *a, cli_option *o) {
       {"--d1", .kind = CLI_FINITE, .dest = &a->d1, .given = &a->have_d1},
       {"--seed", .kind = CLI_SEED, .dest = &a->seed, .given = &a->have_seed},
       {"--threads", .kind = CLI_INT, .dest = &a->threads, .lo = 0, .hi = 256},
+      {"--dense", .kind = CLI_FLAG, .dest = &a->dense},
   };
   memcpy(o, opts, sizeof opts);
 }
@@ -47,7 +48,9 @@ void scene_args_help(FILE *f) {
           "  --slab-spacing E    slab spacing in world units (> 0)\n"
           "  --d1 D              Patel's optimal distance (> 0)\n"
           "  --seed S            counter-RNG seed (same seed: same image)\n"
-          "  --threads N         threads (0, the default: all cores)\n");
+          "  --threads N         threads (0, the default: all cores)\n"
+          "  --dense             propagate every light-buffer pixel at every slab (render.dense:\n"
+          "                      no skipping of inactive regions and constant tiles)\n");
 }
 
 static int pick(const char *cmd, const char *opt, const char *v, const char *(*name)(int), int lo,
@@ -107,6 +110,7 @@ int scene_args_load(const char *cmd, const scene_args *a, ics_scene **s, ics_ren
     rs->d1 = a->d1;
   }
   if (a->have_seed) rs->seed = a->seed;
+  if (a->dense) rs->dense = 1;
   if (rc) {
     ics_scene_destroy(*s);
     *s = NULL;

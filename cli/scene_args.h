@@ -19,11 +19,12 @@ typedef struct scene_args {
   double slab_spacing, d1;
   uint64_t seed;
   int have_seed, have_slab, have_d1, have_samples;
+  int dense;         /* --dense: render.dense */
   int threads;       /* --threads (0: all cores) */
   int scenes;        /* SCENE arguments given */
 } scene_args;
 
-#define SCENE_ARGS_NOPTS 10
+#define SCENE_ARGS_NOPTS 11
 /* Writes the shared option entries into opts[0 .. SCENE_ARGS_NOPTS - 1]. */
 void scene_args_options(scene_args *a, cli_option *opts);
 

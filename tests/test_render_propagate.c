@@ -208,6 +208,53 @@ static void test_fused_equal(void) {
   printf("fused paths bit for bit: %d comparisons of rows 1..40 wide, %d pixels differ\n", cases, bad);
 }
 
+/* a span [x0, x1) x [y0, y1) gives bit for bit the whole rows' values there and writes nothing
+ * else (the cpu backend steps tiles and runs of tiles): every path, every loop (stencil, 4 and 8
+ * blended sets, the 384-entry table, runs of 16 at two phases), spans of every width 1..w at
+ * every start of a 70-pixel row (vectors, their overlapping ends, runs cut by the span) */
+static void test_spans(path_t path) {
+  ics_tap2d t[2 * ICS_SLAB_TABLE_M];
+  for (int e = 0; e < ICS_SLAB_TABLE_M; e++) {
+    double a = 2 * ICS_PI * e / ICS_SLAB_TABLE_M;
+    t[2 * e] = (ics_tap2d){0.31 + 1.3 * cos(a), -0.17 + 0.8 * sin(a), 0.5};
+    t[2 * e + 1] = (ics_tap2d){0.31 - 1.3 * cos(a), -0.17 - 0.8 * sin(a), 0.5};
+  }
+  const int sets[] = {1, 4, 8, ICS_SLAB_TABLE_M, 4, 4};
+  const int w = 70, h = 3;
+  int bad = 0, outside = 0, spans = 0;
+  for (int v = 0; v < 6; v++) {
+    ics_buf_layout L;
+    ics_buf_layout_init(&L, w, h, 8);
+    float *src = calloc(L.plane, sizeof *src), *full = calloc(L.plane, sizeof *full),
+          *d = calloc(L.plane, sizeof *d);
+    for (size_t i = 0; i < L.plane; i++) src[i] = (float)test_rng_unit();
+    ics_prop_taps pt = {0};
+    CHECK(ics_prop_prepare(&pt, t, sets[v], 2, 2, 1, 0, 0, &L) == 0, "prepare spans");
+    pt.seed = 5, pt.slab = 2, pt.run = v >= 4 ? 16 : 1, pt.phase = v == 5 ? 11 : 0;
+    uint32_t *scratch = malloc(sizeof *scratch * ICS_PROP_SCRATCH(w));
+    ics_prop_rows(&pt, src, full, &L, 1, 0, h, scratch, path);
+    for (int x0 = 0; x0 < w; x0++)
+      for (int x1 = x0 + 1; x1 <= w; x1 += 1 + (x1 - x0) / 8) {
+        for (size_t i = 0; i < L.plane; i++) d[i] = -1;
+        ics_prop_span(&pt, src, d, &L, 1, 1, 2, x0, x1, scratch, path);
+        for (int y = 0; y < h; y++)
+          for (int x = 0; x < w; x++) {
+            size_t i = ics_buf_index(&L, x, y);
+            int in = y == 1 && x >= x0 && x < x1;
+            if (in) bad += d[i] != full[i];
+            else outside += d[i] != -1;
+          }
+        spans++;
+      }
+    free(scratch), free(src), free(full), free(d);
+    ics_prop_release(&pt);
+  }
+  CHECK(bad == 0 && outside == 0, "%s, spans: %d pixels differ from whole rows, %d written outside",
+        ics_simd_name(path), bad, outside);
+  printf("spans (%s): %d spans of a 70-pixel row, %d pixels differ from whole rows, %d written "
+         "outside\n", ics_simd_name(path), spans, bad, outside);
+}
+
 static void test_entries(void) {
   /* the portable loops' row entries equal ics_slab_entry (the vector paths' choices are checked
    * pixel by pixel in test_sets_run) */
@@ -216,7 +263,7 @@ static void test_entries(void) {
   uint32_t ent[W];
   int bad = 0;
   for (int y = 0; y < 9; y++) {
-    ics_prop_entries_row(&pt, W, y, ent);
+    ics_prop_entries_row(&pt, W, y, 0, W, ent);
     for (int x = 0; x < W; x++)
       bad += ent[x] != ics_slab_entry(pt.seed, 3, 99, (uint32_t)(y * W + x)) || ent[x] >= ICS_SLAB_TABLE_M;
   }
@@ -224,7 +271,7 @@ static void test_entries(void) {
   pt.entries = 4;
   bad = 0;
   for (int y = 0; y < 9; y++) {
-    ics_prop_entries_row(&pt, W, y, ent);
+    ics_prop_entries_row(&pt, W, y, 0, W, ent);
     for (int x = 0; x < W; x++)
       bad += ent[x] != ics_slab_choice(pt.seed, 3, 99, (uint32_t)(y * W + x), 4) || ent[x] >= 4;
   }
@@ -247,6 +294,7 @@ int main(void) {
     test_sets(ICS_SLAB_TABLE_M, PORTABLE, apron);
   }
   test_sets_run(4, PORTABLE, 8, 16);
+  test_spans(PORTABLE);
   /* every vector path this processor has, each against the engine as the portable loops are */
   for (int p = ICS_SIMD_SCALAR + 1; p < ICS_SIMD_PATHS_; p++) {
     if (!ics_simd_has((path_t)p)) {
@@ -260,6 +308,7 @@ int main(void) {
     test_sets(8, (path_t)p, 8);
     test_sets(ICS_SLAB_TABLE_M, (path_t)p, 8);
     test_narrow((path_t)p);
+    test_spans((path_t)p);
   }
   test_fused_equal();
   test_entries();

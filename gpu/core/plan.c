@@ -455,7 +455,8 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   if (st != ICS_OK) goto fail;
   size_t ldi_bytes = offset_bytes + p->ldi.nfrag * sizeof(ics_fragment) +
                      (p->ldi.inside0 ? npx * sizeof(uint64_t) : 0);
-  p->memory_bytes = p->backend_bytes + ldi_bytes + mesh_bytes + grid_bytes;
+  size_t region_bytes = (size_t)p->K * (size_t)p->nlights * sizeof(ics_rect);
+  p->memory_bytes = p->backend_bytes + ldi_bytes + mesh_bytes + grid_bytes + region_bytes;
   double work = plan_work(p, p->K, (double)npx, 1);
   if (work > ICS_PLAN_MAX_WORK) {
     if (msg)
@@ -466,6 +467,9 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
     st = ICS_ERR_SIZE;
     goto fail;
   }
+
+  st = ics_active_regions_build(p, msg, msg_size);
+  if (st != ICS_OK) goto fail;
 
   /* passes and omissions */
   {
@@ -519,6 +523,7 @@ void ics_plan_destroy(ics_plan *p) {
   free(p->vol_bit);
   free(p->detail);
   ics_ldi_release(&p->ldi);
+  free(p->active);
   free(p);
 }
 
@@ -576,11 +581,12 @@ ics_status ics_plan_write_json(const ics_plan *p, FILE *f) {
       static const char *const modes[] = {"shift", "integer", "taps", "table"};
       fprintf(f, ", \"light\": %d, \"taps\": %d, \"kernel\": \"%s\", \"samples\": %d, "
               "\"runs\": \"%s\", \"run_samples\": %d, \"mode\": \"%s\", \"compensate\": \"%s\", "
-              "\"mean_px\": [%.17g, %.17g], \"cov_px\": [%.17g, %.17g, %.17g]",
+              "\"mean_px\": [%.17g, %.17g], \"cov_px\": [%.17g, %.17g, %.17g], "
+              "\"active_fraction\": %.6f",
               q->light, q->taps, ics_render_kernel_name(sk->member), sk->samples,
               ics_render_kernel_name(sk->run_member), sk->run_samples, modes[sk->mode],
               ics_render_comp_name(sk->comp), sk->mean_px[0], sk->mean_px[1], sk->cov_px[0],
-              sk->cov_px[1], sk->cov_px[2]);
+              sk->cov_px[1], sk->cov_px[2], p->active_fraction[q->light]);
     }
     fprintf(f, ", \"detail\": ");
     json_string(f, q->detail);

@@ -7,6 +7,7 @@
 
 #include <stdint.h>
 
+#include "active_region.h"
 #include "detail.h"
 #include "slab_taps.h"
 #include "icshadow/image.h"
@@ -75,6 +76,9 @@ struct ics_plan {
   ics_detail_eval *detail; /* per object with a detail material (NULL otherwise) */
   double light_path[ICS_SCENE_MAX_LIGHTS]; /* sqrt(1 + |mu_k|^2): light path per unit depth */
   ics_ldi ldi;
+  ics_rect *active;       /* K x nlights: the part of each light buffer a slab propagates
+                             (active_region.h), slab-major */
+  double active_fraction[ICS_SCENE_MAX_LIGHTS]; /* per light: the regions' area over K buffers */
   double geometry_s;
   int npasses, nomitted;
   ics_plan_pass passes[ICS_SCENE_MAX_LIGHTS + 8];

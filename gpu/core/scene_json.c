@@ -212,10 +212,10 @@ static int read_render(rctx *c, json_t *o) {
   static const char *const known[] = {"slab_spacing", "d1", "kernel", "samples", "compensate",
                                       "radii", "seed", "background", "max_pad",
                                       "memory_limit_mib", "pixel_rotations", "preintegrate",
-                                      "rotation_run"};
+                                      "rotation_run", "dense"};
   ics_render_settings *r = &c->s->settings;
   if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", W(c, "render"));
-  if (J(ics_jkeys(&c->j, W(c, "render"), o, known, 13))) return -1;
+  if (J(ics_jkeys(&c->j, W(c, "render"), o, known, 14))) return -1;
   json_t *x;
   if (!json_object_get(o, "slab_spacing"))
     return fail(c, ICS_ERR_PARSE, "%s: missing \"slab_spacing\"", W(c, "render"));
@@ -283,6 +283,10 @@ static int read_render(rctx *c, json_t *o) {
   if ((x = json_object_get(o, "preintegrate"))) {
     if (!json_is_boolean(x)) return fail(c, ICS_ERR_PARSE, "%s: expected true or false", W(c, "render.preintegrate"));
     r->preintegrate = json_is_true(x);
+  }
+  if ((x = json_object_get(o, "dense"))) {
+    if (!json_is_boolean(x)) return fail(c, ICS_ERR_PARSE, "%s: expected true or false", W(c, "render.dense"));
+    r->dense = json_is_true(x);
   }
   if ((x = json_object_get(o, "memory_limit_mib")) &&
       positive(c, W(c, "render.memory_limit_mib"), x, &r->memory_limit_mib))

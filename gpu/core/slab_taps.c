@@ -6,6 +6,7 @@
 #include "slab_taps.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -32,6 +33,34 @@ void ics_prop_release(ics_prop_taps *pt) {
   free(pt->oy);
   free(pt->disc);
   memset(pt, 0, sizeof *pt);
+}
+
+/* the range of the read offsets (ix, iy) of n taps, widened by `wide` for the bilinear neighbour */
+static void read_bounds(ics_prop_taps *pt, size_t n, int wide) {
+  pt->lo[0] = pt->lo[1] = n ? INT32_MAX : 0;
+  pt->hi[0] = pt->hi[1] = n ? INT32_MIN : 0;
+  for (size_t j = 0; j < n; j++) {
+    const int32_t v[2] = {pt->ix[j], pt->iy[j]};
+    for (int a = 0; a < 2; a++) {
+      if (v[a] < pt->lo[a]) pt->lo[a] = v[a];
+      if (v[a] + wide > pt->hi[a]) pt->hi[a] = v[a] + wide;
+    }
+  }
+}
+
+void ics_prop_footprint(const ics_prop_taps *pt, int axis, int a, int b, int *first, int *last) {
+  int lo = pt->lo[axis], hi = pt->hi[axis], x0 = a, x1 = b - 1;
+  if (pt->s != 1) { /* the magnification's whole-pixel offset floor((s - 1)(p - c)), monotone in p */
+    double c = axis ? pt->cy : pt->cx;
+    x0 += (int)floor((pt->s - 1) * (a - c));
+    x1 += (int)floor((pt->s - 1) * (b - 1 - c));
+    if (x0 > x1) {
+      int t = x0;
+      x0 = x1, x1 = t;
+    }
+  }
+  *first = x0 + lo;
+  *last = x1 + hi;
 }
 
 int ics_prop_prepare(ics_prop_taps *pt, const ics_tap2d *taps, int entries, int ntaps, int cap,
@@ -75,6 +104,7 @@ int ics_prop_prepare(ics_prop_taps *pt, const ics_tap2d *taps, int entries, int 
       if (r > reach) reach = r;
     }
     pt->reach = reach;
+    read_bounds(pt, (size_t)nd, 0);
     return 0;
   }
   for (size_t j = 0; j < n; j++) {
@@ -96,6 +126,20 @@ int ics_prop_prepare(ics_prop_taps *pt, const ics_tap2d *taps, int entries, int 
     if (r > reach) reach = r;
   }
   pt->reach = reach;
+  if (s == 1) {
+    read_bounds(pt, n, 1);
+  } else { /* read at floor(c + s (p - c) + o): p + floor((s - 1)(p - c)) + floor(o) + {0, 1, 2} */
+    pt->lo[0] = pt->lo[1] = INT32_MAX;
+    pt->hi[0] = pt->hi[1] = INT32_MIN;
+    for (size_t j = 0; j < n; j++) {
+      const double o[2] = {pt->ox[j], pt->oy[j]};
+      for (int a = 0; a < 2; a++) {
+        int f = (int)floor(o[a]);
+        if (f < pt->lo[a]) pt->lo[a] = f;
+        if (f + 2 > pt->hi[a]) pt->hi[a] = f + 2;
+      }
+    }
+  }
   return 0;
 }
 
@@ -142,6 +186,8 @@ int ics_prop_prepare_perspective(ics_prop_taps *pt, const ics_tap2d *taps, int n
     }
   }
   pt->ntaps = maxn;
+  /* class Q is class 0 one pixel on (pixel_classes): the reads reach one more */
+  read_bounds(pt, (size_t)ncls * (size_t)maxn, 1);
   return 0;
 }
 

@@ -41,6 +41,9 @@ typedef struct ics_prop_taps {
   double *ox, *oy;    /* the read offsets -s x_j themselves (perspective) */
   ics_tap2d *disc;    /* scratch for the discretisation */
   int reach;          /* max |integer offset| (+1 for the bilinear neighbour) */
+  int lo[2], hi[2];   /* the read offsets' range per axis (x, y), bilinear neighbours included:
+                         s = 1: pixel p reads within p + [lo, hi]; perspective: within
+                         p + floor((s - 1)(p - c)) + [lo, hi] (ics_prop_footprint) */
   int classes;        /* perspective: Q x Q classes of the magnification's fraction (0: none) */
   size_t classes_cap; /* capacity of the perspective arrays */
   uint64_t seed;      /* entry selection: ics_slab_entry_block(seed, light, slab, ...) */
@@ -48,6 +51,10 @@ typedef struct ics_prop_taps {
   int phase;          /* runs start at x = phase (mod 16) this slab */
   uint32_t light, slab;
 } ics_prop_taps;
+
+/* The source pixels that destination pixels [a, b) (b > a) read along axis 0 (x) or 1 (y):
+ * [*first, *last], not clamped to the buffer (reads beyond it take its edge). */
+void ics_prop_footprint(const ics_prop_taps *pt, int axis, int a, int b, int *first, int *last);
 
 /* Prepares taps for the layout L (allocating once for capacity cap per entry; call again per
  * slab). 0, or -1 when out of memory or a tap is out of range. */

@@ -1,13 +1,16 @@
 /* backend_cpu.c — the CPU backend: Patel Sec. 4.2 per slab and pixel (docs/renderer.md),
- * threads over row bands with one barrier per slab. Per slab, each band first propagates every
- * light buffer over its rows (propagate.c), then shades its pixels: the fragments of the LDI in
- * this slab and the volume pieces between them are composited front to back with the light
- * arriving at the slab, and filtered into the outgoing light by their transport colours. Every
+ * threads taking rows of tiles (tiles.h) in turn, one barrier per slab. Per slab and row of
+ * tiles, every light buffer is first propagated (propagate.c) over the tiles of its active region
+ * (active_region.h) that a constant does not fill (tiles.h), then the pixels are shaded: the
+ * fragments of the LDI in this slab and the volume pieces between them are composited front to
+ * back with the light arriving at the slab, and filtered into the outgoing light by their
+ * transport colours; the tiles shading wrote into are scanned for constants again. Every
  * per-pixel quantity depends only on (seed, slab, pixel), so the image does not depend on the
- * thread count. */
+ * thread count or on which thread took which row. */
 #define _POSIX_C_SOURCE 200809L
 #include <limits.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,8 +22,10 @@
 #include "pool.h"
 #include "propagate.h"
 #include "scene_internal.h"
+#include "tiles.h"
 
 #define JITTER_STREAM 0x6a69747400000000ULL /* "jitt": the sample depth inside a slab piece */
+#define DETAIL_SAMPLE 16                     /* one volume piece in 16 timed (ms_detail) */
 
 typedef struct {
   const ics_plan *p;
@@ -34,6 +39,14 @@ typedef struct {
   int vol_obj[ICS_MAX_VOLUMES];
   uint32_t *scratch;     /* per thread: ICS_PROP_SCRATCH(Wb) words (a row's entries or run choices) */
   ics_simd_path simd;    /* the propagation loops' vector path */
+  ics_tile_grid grid;    /* the light buffers' tiles */
+  ics_tile **tsrc, **tdst; /* per light: what each tile of src and dst holds */
+  uint8_t *marks;        /* per thread: (1 + nlights) x grid.nx flags for the row it works on:
+                            the tiles shading wrote into, then per light those filled (1) or
+                            stepped (2) */
+  ics_rect shade;        /* this slab: the pixels to shade (the lights' active regions joined) */
+  atomic_int next_row;   /* the next row of tiles to take this slab */
+  double active[256];    /* per thread: channel-pixel updates propagated */
   int *row_next;         /* per row: the first slab at which some pixel of it has work */
   ics_aov_buf *aov;      /* NULL: no AOVs */
   uint8_t *aov_seen;     /* per view pixel: its first surface recorded */
@@ -52,6 +65,9 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
   int objs[ICS_MAX_VOLUMES], nv = 0;
   double o[3], d[3], pt[3], pt2[3];
   int have_ray = 0;
+  /* the detail's time, from one piece in DETAIL_SAMPLE timed (a clock read per piece cost more
+   * than a tenth of the detail itself) */
+  int timed = (p + (size_t)j->k) % DETAIL_SAMPLE == 0;
   double t0 = 0;
   double sum = 0;
   for (uint64_t m = mask; m; m &= m - 1) {
@@ -60,7 +76,7 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
     double scale = 1, c[3] = {mat->color[0], mat->color[1], mat->color[2]};
     if (mat->detail.fn != ICS_DETAIL_NONE) {
       if (!have_ray) {
-        t0 = ics_clock_s();
+        if (timed) t0 = ics_clock_s();
         ics_plan_ray(P, bi, bj, o, d);
         if (P->rs.preintegrate) {
           /* the piece's two ends (its detail varies linearly between them) */
@@ -84,7 +100,7 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
     objs[nv++] = obj;
     sum += sig[nv - 1];
   }
-  if (have_ray) j->detail_s[t] += ics_clock_s() - t0;
+  if (have_ray && timed) j->detail_s[t] += DETAIL_SAMPLE * (ics_clock_s() - t0);
   if (!(sum > 0)) return;
   if (inview && C[3] < 1) {
     double dl = 1; /* camera path per unit depth */
@@ -171,17 +187,20 @@ static void record_aov(job_t *j, int ii, int jj, const float *V, double z) {
   if (a->z >= 0) o[a->z] = (float)z;
 }
 
-static void shade_rows(job_t *j, int y0, int y1, int t) {
+/* rows [y0, y1) within this slab's shading rectangle; the tiles written into flagged in touched */
+static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
   const ics_plan *P = j->p;
   const ics_scene *s = P->scene;
   const ics_ldi *ldi = &P->ldi;
   int k = j->k;
   size_t plane = P->buf.plane;
   double zf = P->z0 + k * P->e, zb = zf + P->e;
+  if (y0 < j->shade.y0) y0 = j->shade.y0;
+  if (y1 > j->shade.y1) y1 = j->shade.y1;
   for (int bj = y0; bj < y1; bj++) {
     if (j->row_next[bj] > k) continue; /* nothing in this row before slab row_next */
     int next = INT_MAX;
-    for (int bi = 0; bi < P->Wb; bi++) {
+    for (int bi = j->shade.x0; bi < j->shade.x1; bi++) {
       size_t p = (size_t)bj * P->Wb + bi;
       uint32_t cur = j->cursor[p], end = ldi->offset[p + 1], acur = j->acursor[p];
       uint64_t mask = j->mask ? j->mask[p] : 0;
@@ -208,6 +227,7 @@ static void shade_rows(job_t *j, int y0, int y1, int t) {
           for (int c = 0; c < P->nch; c++) V[l * P->nch + c] = j->dst[l][(size_t)c * plane + q];
       /* surface occlusions due at this slab (fragment slab + bias == k), after the light
        * arriving here was read: a surface never shadows its own slab */
+      touched[ics_tile_col(&j->grid, bi)] = 1;
       for (uint32_t f = acur; f < end && ics_frag_slab(&ldi->frag[f]) <= k; f++) {
         const ics_fragment *fr = &ldi->frag[f];
         int obj = ics_frag_obj(fr), first = ics_frag_slab(fr) + ics_frag_bias(fr);
@@ -252,30 +272,117 @@ static void shade_rows(job_t *j, int y0, int y1, int t) {
   }
 }
 
-static void slab_job(void *ctx, int t, int n) {
-  job_t *j = ctx;
+/* tiles [tx0, tx1] of row ty of light l's dst stepped from src: one span, kind ICS_TILE_GREY
+ * (one channel stepped and copied) or ICS_TILE_ANY (every channel); flagged 2 in written */
+static void step_tiles(job_t *j, int l, int ty, int tx0, int tx1, int kind, int t,
+                       uint8_t *written) {
   const ics_plan *P = j->p;
-  int y0, y1;
-  ics_pool_band(P->Hb, t, n, &y0, &y1);
-  double t0 = ics_clock_s();
-  for (int l = 0; l < P->nlights; l++)
-    ics_prop_rows(&j->pt[l], j->src[l], j->dst[l], &P->buf, P->nch, y0, y1,
-                  j->scratch + (size_t)t * ICS_PROP_SCRATCH(P->Wb), j->simd);
-  double t1 = ics_clock_s();
-  shade_rows(j, y0, y1, t);
+  int x0 = ics_tile_x0(&j->grid, tx0), x1 = ics_tile_x1(&j->grid, tx1);
+  int y0 = ics_tile_y0(&j->grid, ty), y1 = ics_tile_y1(&j->grid, ty);
+  int planes = kind == ICS_TILE_GREY ? 1 : P->nch;
+  ics_prop_span(&j->pt[l], j->src[l], j->dst[l], &P->buf, planes, y0, y1, x0, x1,
+                j->scratch + (size_t)t * ICS_PROP_SCRATCH(P->Wb), j->simd);
+  if (planes < P->nch) ics_tile_copy_grey(&P->buf, j->dst[l], P->nch, x0, x1, y0, y1);
+  j->active[t] += (double)(x1 - x0) * (y1 - y0) * planes;
+  memset(written + tx0, 2, (size_t)(tx1 - tx0 + 1));
+}
+
+/* Row ty of tiles of light l's buffer at this slab: within the light's active region, each tile
+ * whose reads all lie in tiles of one constant gets that constant (written only where the
+ * buffer does not hold it already: flagged 1 in written), the others are stepped, consecutive
+ * ones of a kind as one span; render.dense steps every tile. */
+static void propagate_row(job_t *j, int l, int ty, int t, uint8_t *written) {
+  const ics_plan *P = j->p;
+  const ics_tile_grid *g = &j->grid;
+  const ics_rect *R = ics_active_region(P, l, j->k);
+  if (ty < ics_tile_row(g, R->y0) || ty > ics_tile_row(g, R->y1 - 1)) return;
+  int y0 = ics_tile_y0(g, ty), y1 = ics_tile_y1(g, ty), fy0, fy1;
+  ics_prop_footprint(&j->pt[l], 1, y0, y1, &fy0, &fy1);
+  fy0 = ics_tile_row(g, fy0), fy1 = ics_tile_row(g, fy1);
+  int run = -1, run_kind = ICS_TILE_ANY, tx1 = ics_tile_col(g, R->x1 - 1);
+  for (int tx = ics_tile_col(g, R->x0); tx <= tx1; tx++) {
+    ics_tile *d = &j->tdst[l][(size_t)ty * g->nx + tx], want = {ICS_TILE_ANY, {0, 0, 0}};
+    if (!P->rs.dense) {
+      int fx0, fx1;
+      ics_prop_footprint(&j->pt[l], 0, ics_tile_x0(g, tx), ics_tile_x1(g, tx), &fx0, &fx1);
+      want = ics_tile_classify(g, j->tsrc[l], P->nch, ics_tile_col(g, fx0), ics_tile_col(g, fx1),
+                               fy0, fy1);
+    }
+    if (run >= 0 && (want.kind == ICS_TILE_CONST || want.kind != run_kind)) {
+      step_tiles(j, l, ty, run, tx - 1, run_kind, t, written);
+      run = -1;
+    }
+    if (want.kind == ICS_TILE_CONST) {
+      if (!ics_tile_same_const(d, &want, P->nch)) {
+        ics_tile_fill(&P->buf, j->dst[l], P->nch, ics_tile_x0(g, tx), ics_tile_x1(g, tx), y0, y1, &want);
+        written[tx] = 1;
+      }
+    } else if (run < 0) {
+      run = tx, run_kind = want.kind;
+    }
+    *d = want;
+  }
+  if (run >= 0) step_tiles(j, l, ty, run, tx1, run_kind, t, written);
+}
+
+/* after shading: signed weights can ring (values outside [0, 1] that the slabs amplify), so
+ * those lights' buffers are clamped; the tiles stepped or shaded into are scanned for what they
+ * hold (a stepped tile is often still constant: so the constants do not erode a tile a slab);
+ * the apron is refreshed where an edge tile was written (elsewhere it holds its edge already) */
+static void settle_row(job_t *j, int ty, const uint8_t *marks) {
+  const ics_plan *P = j->p;
+  const ics_tile_grid *g = &j->grid;
+  int y0 = ics_tile_y0(g, ty), y1 = ics_tile_y1(g, ty);
   for (int l = 0; l < P->nlights; l++) {
-    /* signed weights can ring (values outside [0, 1] that the slabs amplify): clamp them */
     if (P->kernels[l].comp == ICS_RC_SIGNED)
       for (int c = 0; c < P->nch; c++)
         for (int y = y0; y < y1; y++) {
           float *row = j->dst[l] + (size_t)c * P->buf.plane + ics_buf_index(&P->buf, 0, y);
           for (int x = 0; x < P->Wb; x++) row[x] = row[x] < 0 ? 0 : row[x] > 1 ? 1 : row[x];
         }
-    ics_prop_apron(&P->buf, j->dst[l], P->nch, y0, y1, 0);
+    const uint8_t *shaded = marks, *written = marks + (size_t)(1 + l) * g->nx;
+    int signed_ = P->kernels[l].comp == ICS_RC_SIGNED;
+    for (int tx = 0; tx < g->nx; tx++)
+      if (shaded[tx] || written[tx] == 2 || signed_)
+        j->tdst[l][(size_t)ty * g->nx + tx] = ics_tile_scan(&P->buf, j->dst[l], P->nch,
+            ics_tile_x0(g, tx), ics_tile_x1(g, tx), y0, y1);
+    int last = g->nx - 1;
+    if (shaded[0] || written[0] || shaded[last] || written[last] || signed_)
+      ics_prop_apron(&P->buf, j->dst[l], P->nch, y0, y1, 0);
   }
-  double t2 = ics_clock_s();
-  j->prop_s[t] += t1 - t0;
-  j->shade_s[t] += t2 - t1;
+}
+
+static void slab_job(void *ctx, int t, int n) {
+  job_t *j = ctx;
+  const ics_plan *P = j->p;
+  size_t nx = (size_t)j->grid.nx;
+  uint8_t *marks = j->marks + (size_t)t * (1 + (size_t)P->nlights) * nx;
+  (void)n;
+  for (int ty; (ty = atomic_fetch_add(&j->next_row, 1)) < j->grid.ny;) {
+    double t0 = ics_clock_s();
+    memset(marks, 0, (1 + (size_t)P->nlights) * nx);
+    for (int l = 0; l < P->nlights; l++) propagate_row(j, l, ty, t, marks + (1 + (size_t)l) * nx);
+    double t1 = ics_clock_s();
+    shade_rows(j, ics_tile_y0(&j->grid, ty), ics_tile_y1(&j->grid, ty), t, marks);
+    settle_row(j, ty, marks);
+    j->prop_s[t] += t1 - t0;
+    j->shade_s[t] += ics_clock_s() - t1;
+  }
+}
+
+/* this slab's shading rectangle: the lights' active regions joined (a pixel outside it is never
+ * needed again: the regions only shrink) */
+static ics_rect shade_rect(const ics_plan *P, int k) {
+  ics_rect u = {P->Wb, P->Hb, 0, 0};
+  for (int l = 0; l < P->nlights; l++) {
+    const ics_rect *r = ics_active_region(P, l, k);
+    if (r->x0 < u.x0) u.x0 = r->x0;
+    if (r->y0 < u.y0) u.y0 = r->y0;
+    if (r->x1 > u.x1) u.x1 = r->x1;
+    if (r->y1 > u.y1) u.y1 = r->y1;
+  }
+  if (!P->nlights) u = (ics_rect){0, 0, P->Wb, P->Hb};
+  return u;
 }
 
 static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_opts *o,
@@ -287,16 +394,22 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   size_t plane = (size_t)P->Wb * P->Hb, npx = plane;
   job_t *j = calloc(1, sizeof *j);
   float **bufs = calloc(2 * (size_t)(nl ? nl : 1), sizeof *bufs);
+  ics_tile **tiles = calloc(2 * (size_t)(nl ? nl : 1), sizeof *tiles);
   ics_tap2d **scratch = calloc((size_t)(nl ? nl : 1), sizeof *scratch);
   double(*cum)[2] = calloc((size_t)(nl ? nl : 1), sizeof *cum);
   ics_status status = ICS_OK;
-  if (!j || !bufs || !scratch || !cum) goto nomem;
+  if (!j || !bufs || !tiles || !scratch || !cum) goto nomem;
   status = ics_simd_choose(&j->simd, msg, msg_size);
   if (status != ICS_OK) goto done;
   j->p = P;
   j->img = img;
   j->src = bufs;
   j->dst = bufs + nl;
+  j->tsrc = tiles;
+  j->tdst = tiles + nl;
+  ics_tile_grid_init(&j->grid, P->Wb, P->Hb);
+  size_t ntiles = (size_t)j->grid.nx * (size_t)j->grid.ny;
+  j->marks = malloc((size_t)j->grid.nx * (1 + (size_t)nl) * (size_t)nt);
   j->pt = calloc((size_t)(nl ? nl : 1), sizeof *j->pt);
   j->cursor = malloc(sizeof *j->cursor * npx);
   j->acursor = malloc(sizeof *j->acursor * npx);
@@ -309,15 +422,21 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   for (int l = 0; l < nl; l++) j->blur_world[l] = ics_plan_light_blur(P, l);
   j->window_max = ics_plan_window_max(P);
   if (!j->pt || !j->cursor || !j->acursor || !j->scratch || !j->row_next || (P->nvol && !j->mask) ||
-      (aov && !j->aov_seen))
+      (aov && !j->aov_seen) || !j->marks)
     goto nomem;
   for (int l = 0; l < nl; l++) {
-    j->src[l] = malloc(sizeof(float) * (size_t)P->nch * P->buf.plane);
-    j->dst[l] = malloc(sizeof(float) * (size_t)P->nch * P->buf.plane);
+    /* both buffers start lit (1) and say so: a pixel outside the active regions keeps a value */
+    const ics_tile lit = {ICS_TILE_CONST, {1, 1, 1}};
+    for (int b = 0; b < 2; b++) {
+      bufs[b * nl + l] = malloc(sizeof(float) * (size_t)P->nch * P->buf.plane);
+      tiles[b * nl + l] = malloc(sizeof(ics_tile) * ntiles);
+      if (!bufs[b * nl + l] || !tiles[b * nl + l]) goto nomem;
+      for (size_t i = 0; i < (size_t)P->nch * P->buf.plane; i++) bufs[b * nl + l][i] = 1;
+      for (size_t i = 0; i < ntiles; i++) tiles[b * nl + l][i] = lit;
+    }
     const ics_slab_kernel *sk = &P->kernels[l];
     scratch[l] = malloc(sizeof **scratch * (size_t)sk->entries * (size_t)sk->cap);
-    if (!j->src[l] || !j->dst[l] || !scratch[l]) goto nomem;
-    for (size_t i = 0; i < (size_t)P->nch * P->buf.plane; i++) j->src[l][i] = 1;
+    if (!scratch[l]) goto nomem;
   }
   memcpy(j->cursor, P->ldi.offset, sizeof *j->cursor * npx);
   memcpy(j->acursor, P->ldi.offset, sizeof *j->acursor * npx);
@@ -338,12 +457,17 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
       if (status == ICS_ERR_NOMEM) goto nomem;
       if (status != ICS_OK) goto done;
     }
+    j->shade = shade_rect(P, k);
+    atomic_store(&j->next_row, 0);
     ics_pool_run(pool, slab_job, j);
     for (int l = 0; l < nl; l++) ics_prop_apron(&P->buf, j->dst[l], P->nch, 0, 0, 1);
     for (int l = 0; l < nl; l++) {
       float *tmp = j->src[l];
       j->src[l] = j->dst[l];
       j->dst[l] = tmp;
+      ics_tile *tt = j->tsrc[l];
+      j->tsrc[l] = j->tdst[l];
+      j->tdst[l] = tt;
     }
     if (o->progress) o->progress(o->progress_ctx, k + 1, P->K);
   }
@@ -357,7 +481,9 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
     st->ms_convolution += 1e3 * j->prop_s[t] / nt;
     st->ms_shading += 1e3 * j->shade_s[t] / nt;
     st->ms_detail += 1e3 * j->detail_s[t] / nt;
+    st->updates_active += j->active[t];
   }
+  st->updates_dense = (double)npx * P->K * nl * P->nch;
   if (nl && P->K)
     st->ns_per_px_slab = 1e6 * st->ms_convolution / ((double)npx * P->K * nl);
   st->ms_total = 1e3 * (ics_clock_s() - t_start);
@@ -370,6 +496,8 @@ done:
     for (int l = 0; l < nl; l++) ics_prop_release(&j->pt[l]);
   if (bufs)
     for (int l = 0; l < 2 * nl; l++) free(bufs[l]);
+  if (tiles)
+    for (int l = 0; l < 2 * nl; l++) free(tiles[l]);
   if (scratch)
     for (int l = 0; l < nl; l++) free(scratch[l]);
   if (j) {
@@ -380,8 +508,10 @@ done:
     free(j->row_next);
     free(j->mask);
     free(j->aov_seen);
+    free(j->marks);
   }
   free(bufs);
+  free(tiles);
   free(scratch);
   free(cum);
   free(j);

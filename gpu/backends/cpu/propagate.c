@@ -113,14 +113,14 @@ uint32_t ics_prop_run_choice(const ics_prop_taps *pt, int w, int x, int y) {
   return ics_slab_choice(pt->seed, pt->light, pt->slab, id, (uint32_t)pt->entries);
 }
 
-void ics_prop_entries_row(const ics_prop_taps *pt, int w, int y, uint32_t *ent) {
+void ics_prop_entries_row(const ics_prop_taps *pt, int w, int y, int x0, int x1, uint32_t *ent) {
   if (pt->run > 1) {
-    for (int x = 0; x < w; x++) ent[x] = ics_prop_run_choice(pt, w, x, y);
+    for (int x = x0; x < x1; x++) ent[x] = ics_prop_run_choice(pt, w, x, y);
     return;
   }
   uint32_t first = (uint32_t)((size_t)y * w);
   uint32_t words[4], block = UINT32_MAX;
-  for (int x = 0; x < w; x++) {
+  for (int x = x0; x < x1; x++) {
     uint32_t px = first + (uint32_t)x, b = ics_slab_word_block(px);
     if (b != block) ics_slab_entry_block(pt->seed, pt->light, pt->slab, b, words), block = b;
     ent[x] = (uint32_t)(((uint64_t)words[ics_slab_word_index(px)] * (uint32_t)pt->entries) >> 32);
@@ -128,12 +128,13 @@ void ics_prop_entries_row(const ics_prop_taps *pt, int w, int y, uint32_t *ent) 
 }
 
 /* portable loops: unclamped reads within the apron */
-static void rows_portable(const ics_prop_taps *pt, const float *src, float *dst,
-                          const ics_buf_layout *L, int nch, int y0, int y1, uint32_t *ent) {
+static void span_portable(const ics_prop_taps *pt, const float *src, float *dst,
+                          const ics_buf_layout *L, int nch, int y0, int y1, int x0, int x1,
+                          uint32_t *ent) {
   int w = L->w, clamped = pt->s != 1 || pt->reach > L->apron;
   for (int y = y0; y < y1; y++) {
-    if (pt->entries > 1) ics_prop_entries_row(pt, w, y, ent);
-    for (int x = 0; x < w; x++) {
+    if (pt->entries > 1) ics_prop_entries_row(pt, w, y, x0, x1, ent);
+    for (int x = x0; x < x1; x++) {
       int e = pt->entries > 1 ? (int)ent[x] : 0;
       if (clamped) {
         ics_prop_pixel(pt, e, src, dst, L, nch, x, y);
@@ -161,21 +162,27 @@ static void rows_portable(const ics_prop_taps *pt, const float *src, float *dst,
   }
 }
 
-void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
-                   int nch, int y0, int y1, uint32_t *scratch, ics_simd_path simd) {
+void ics_prop_span(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
+                   int nch, int y0, int y1, int x0, int x1, uint32_t *scratch, ics_simd_path simd) {
+  if (x1 <= x0 || y1 <= y0) return;
   if (pt->classes) {
     for (int y = y0; y < y1; y++)
-      for (int x = 0; x < L->w; x++) pixel_classes(pt, src, dst, L, nch, x, y);
+      for (int x = x0; x < x1; x++) pixel_classes(pt, src, dst, L, nch, x, y);
     return;
   }
   if (pt->s == 1 && pt->reach <= L->apron) {
     switch (simd) {
-    case ICS_SIMD_SSE2: ics_prop_rows_sse2(pt, src, dst, L, nch, y0, y1, scratch); return;
-    case ICS_SIMD_NEON: ics_prop_rows_neon(pt, src, dst, L, nch, y0, y1, scratch); return;
-    case ICS_SIMD_AVX2: ics_prop_rows_avx2(pt, src, dst, L, nch, y0, y1, scratch); return;
-    case ICS_SIMD_AVX512: ics_prop_rows_avx512(pt, src, dst, L, nch, y0, y1, scratch); return;
+    case ICS_SIMD_SSE2: ics_prop_rows_sse2(pt, src, dst, L, nch, y0, y1, x0, x1, scratch); return;
+    case ICS_SIMD_NEON: ics_prop_rows_neon(pt, src, dst, L, nch, y0, y1, x0, x1, scratch); return;
+    case ICS_SIMD_AVX2: ics_prop_rows_avx2(pt, src, dst, L, nch, y0, y1, x0, x1, scratch); return;
+    case ICS_SIMD_AVX512: ics_prop_rows_avx512(pt, src, dst, L, nch, y0, y1, x0, x1, scratch); return;
     default: break;
     }
   }
-  rows_portable(pt, src, dst, L, nch, y0, y1, scratch);
+  span_portable(pt, src, dst, L, nch, y0, y1, x0, x1, scratch);
+}
+
+void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
+                   int nch, int y0, int y1, uint32_t *scratch, ics_simd_path simd) {
+  ics_prop_span(pt, src, dst, L, nch, y0, y1, 0, L->w, scratch, simd);
 }

@@ -14,18 +14,23 @@
  * the A rows above row 0 and below row h - 1 (after all rows are final). */
 void ics_prop_apron(const ics_buf_layout *L, float *buf, int nch, int y0, int y1, int top_bottom);
 
-/* Rows [y0, y1) of dst from src; scratch holds ICS_PROP_SCRATCH(L->w) words (the row's entries,
- * or the choices of its runs of 16: up to (w + 31) / 16 of them, 2 for w = 1). simd: the loops
- * to take where they apply (ics_simd_choose; the portable ones elsewhere). */
+/* Pixels [x0, x1) x [y0, y1) of the first nch planes of dst from src, nothing else written;
+ * scratch holds ICS_PROP_SCRATCH(L->w) words (a row's entries, or the choices of its runs of 16:
+ * up to (w + 31) / 16 of them, 2 for w = 1). simd: the loops to take where they apply
+ * (ics_simd_choose; the portable ones elsewhere). A pixel's value does not depend on the span it
+ * is computed in. */
 #define ICS_PROP_SCRATCH(w) ((size_t)(w) + 2)
+void ics_prop_span(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
+                   int nch, int y0, int y1, int x0, int x1, uint32_t *scratch, ics_simd_path simd);
+/* Whole rows [y0, y1): ics_prop_span over [0, L->w). */
 void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
                    int nch, int y0, int y1, uint32_t *scratch, ics_simd_path simd);
 
 /* Pieces shared with the vectorised loops: one pixel with clamped reads from tap set e, and the
- * entries of row y (pixels y w .. y w + w - 1 of the w x h buffer). */
+ * entries of pixels [x0, x1) of row y (ent[x] for pixel y w + x of the w x h buffer). */
 void ics_prop_pixel(const ics_prop_taps *pt, int e, const float *src, float *dst,
                     const ics_buf_layout *L, int nch, int x, int y);
-void ics_prop_entries_row(const ics_prop_taps *pt, int w, int y, uint32_t *ent);
+void ics_prop_entries_row(const ics_prop_taps *pt, int w, int y, int x0, int x1, uint32_t *ent);
 /* The choice of the run holding pixel (x, y) of a w-wide buffer (pt->run = 16): the choice
  * (ics_slab_choice) of the counter y (w + 32) + 16 floor((x + 16 - phase) / 16). */
 uint32_t ics_prop_run_choice(const ics_prop_taps *pt, int w, int x, int y);

@@ -14,11 +14,12 @@
 extern const int ics_prop_built_sse2, ics_prop_built_avx2, ics_prop_built_avx512,
     ics_prop_built_neon;
 
-/* As ics_prop_rows for s = 1 and taps within the apron; call only where ics_simd_has says the
+/* As ics_prop_span for s = 1 and taps within the apron; call only where ics_simd_has says the
  * processor has the instructions. */
 #define ICS_PROP_ROWS_DECLARE_(isa)                                                                \
   void ics_prop_rows_##isa(const ics_prop_taps *pt, const float *src, float *dst,                  \
-                           const ics_buf_layout *L, int nch, int y0, int y1, uint32_t *scratch);
+                           const ics_buf_layout *L, int nch, int y0, int y1, int x0, int x1,       \
+                           uint32_t *scratch);
 ICS_PROP_ROWS_DECLARE_(sse2)
 ICS_PROP_ROWS_DECLARE_(avx2)
 ICS_PROP_ROWS_DECLARE_(avx512)
@@ -30,8 +31,10 @@ ICS_PROP_ROWS_DECLARE_(neon)
 #define ICS_PROP_NOT_BUILT(isa)                                                                    \
   const int ics_prop_built_##isa = 0;                                                              \
   void ics_prop_rows_##isa(const ics_prop_taps *pt, const float *src, float *dst,                  \
-                           const ics_buf_layout *L, int nch, int y0, int y1, uint32_t *scratch) {  \
-    (void)pt, (void)src, (void)dst, (void)L, (void)nch, (void)y0, (void)y1, (void)scratch;         \
+                           const ics_buf_layout *L, int nch, int y0, int y1, int x0, int x1,       \
+                           uint32_t *scratch) {                                                    \
+    (void)pt, (void)src, (void)dst, (void)L, (void)nch, (void)y0, (void)y1, (void)x0, (void)x1;    \
+    (void)scratch;                                                                                 \
   }
 
 #endif

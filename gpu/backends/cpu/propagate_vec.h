@@ -122,13 +122,14 @@ static void choices(const ics_prop_taps *pt, vu blocks, vu out[4]) {
   }
 }
 
-/* the entries of row y: block 16 q + i holds the pixels 64 q + i + 16 k (k = 0..3) */
-static void entries_row(const ics_prop_taps *pt, int w, int y, uint32_t *ent) {
-  uint32_t first = (uint32_t)((size_t)y * w), last = first + (uint32_t)w - 1;
+/* the entries of pixels [x0, x1) of row y (ent[x]; a few around them too): block 16 q + i holds
+ * the pixels 64 q + i + 16 k (k = 0..3) */
+static void entries_row(const ics_prop_taps *pt, int w, int y, int x0, int x1, uint32_t *ent) {
+  uint32_t row = (uint32_t)((size_t)y * w), first = row + (uint32_t)x0, last = row + (uint32_t)x1 - 1;
   uint32_t tmp[64];
   for (uint32_t q = first / 64; q <= last / 64; q++) {
     uint32_t p0 = 64 * q;
-    uint32_t *dst = p0 >= first && p0 + 63 <= last ? ent + (p0 - first) : tmp;
+    uint32_t *dst = p0 >= first && p0 + 63 <= last ? ent + (p0 - row) : tmp;
     for (int h = 0; h < 16; h += W) {
       vu out[4];
       choices(pt, splatu(16 * q + (uint32_t)h) + iota(), out);
@@ -136,15 +137,15 @@ static void entries_row(const ics_prop_taps *pt, int w, int y, uint32_t *ent) {
     }
     if (dst == tmp)
       for (uint32_t i = 0; i < 64; i++)
-        if (p0 + i >= first && p0 + i <= last) ent[p0 + i - first] = tmp[i];
+        if (p0 + i >= first && p0 + i <= last) ent[p0 + i - row] = tmp[i];
   }
 }
 
-/* the choices of runs 0 .. nruns-1 of row y (run m starts at x = phase - 16 + 16 m): run m is
- * the counter Y + 16 m, Y = y (w + 32) (ics_prop_run_choice), whose word is word G % 4 of block
- * (G / 4) 16 + Y % 16 with G = Y / 16 + m: W consecutive blocks give 4 W runs */
-static void run_choices(const ics_prop_taps *pt, int w, int y, int nruns, uint32_t *out) {
-  uint32_t Y = (uint32_t)((size_t)y * (size_t)(w + 32)), c0 = Y % 16, G0 = Y / 16;
+/* the choices of runs m0 .. m0 + nruns - 1 of row y (run m starts at x = phase - 16 + 16 m) into
+ * out[0 ..]: run m is the counter Y + 16 m, Y = y (w + 32) (ics_prop_run_choice), whose word is
+ * word G % 4 of block (G / 4) 16 + Y % 16 with G = Y / 16 + m: W consecutive blocks give 4 W runs */
+static void run_choices(const ics_prop_taps *pt, int w, int y, int m0, int nruns, uint32_t *out) {
+  uint32_t Y = (uint32_t)((size_t)y * (size_t)(w + 32)), c0 = Y % 16, G0 = Y / 16 + (uint32_t)m0;
   for (uint32_t q0 = G0 / 4; q0 <= (G0 + (uint32_t)nruns - 1) / 4; q0 += W) {
     vu words[4];
     choices(pt, splatu(16 * q0 + c0) + 16 * iota(), words);
@@ -157,7 +158,7 @@ static void run_choices(const ics_prop_taps *pt, int w, int y, int nruns, uint32
 }
 
 /* one pixel, unclamped, the vector loops' formula (a stencil's four partial sums included), for
- * rows narrower than a vector */
+ * spans narrower than a vector */
 static inline float pixel_fma(const ics_prop_taps *pt, int e, const float *S, int stride) {
   if (pt->stencil) {
     float a[4] = {0, 0, 0, 0};
@@ -199,24 +200,25 @@ static inline vf stencil_vector(const ics_prop_taps *pt, const float *S, int x) 
   return (a0 + a1) + (a2 + a3);
 }
 
-/* The rows' ends: a row that is not a whole number of vectors ends with one more vector over its
- * last W pixels (overlapping the previous one, with the same values there), so every pixel of a
- * row at least W wide comes out of a vector, and the paths with fused multiply-adds agree bit for
- * bit whatever W; only rows narrower than W are evaluated pixel by pixel (pixel_fma). */
+/* The spans' ends: a span [x0, x1) that is not a whole number of vectors ends with one more
+ * vector over its last W pixels (overlapping the previous one, with the same values there), so
+ * every pixel of a span at least W wide comes out of a vector and nothing outside the span is
+ * written; spans narrower than W are evaluated pixel by pixel (pixel_fma). Every lane is
+ * pixel_fma's formula, so where a pixel is computed does not change it: the paths with fused
+ * multiply-adds agree bit for bit whatever W and wherever a span starts. */
 static void stencil_row(const ics_prop_taps *pt, const float *src, float *dst,
-                        const ics_buf_layout *L, int nch, int y) {
-  int w = L->w;
+                        const ics_buf_layout *L, int nch, int y, int x0, int x1) {
   for (int c = 0; c < nch; c++) {
     const float *S = src + (size_t)c * L->plane + ics_buf_index(L, 0, y);
     float *D = dst + (size_t)c * L->plane + ics_buf_index(L, 0, y);
-    if (w < W) {
-      for (int x = 0; x < w; x++) D[x] = pixel_fma(pt, 0, S + x, L->stride);
+    if (x1 - x0 < W) {
+      for (int x = x0; x < x1; x++) D[x] = pixel_fma(pt, 0, S + x, L->stride);
       continue;
     }
-    for (int x = 0;; x += W) {
-      if (x + W > w) x = w - W;
+    for (int x = x0;; x += W) {
+      if (x + W > x1) x = x1 - W;
       storef(D + x, stencil_vector(pt, S, x));
-      if (x + W == w) break;
+      if (x + W == x1) break;
     }
   }
 }
@@ -243,22 +245,23 @@ static inline void candidates_vectors(const ics_prop_taps *pt, const float *S, i
 }
 
 /* every candidate set is evaluated for each vector (with 4 rotations per slab almost every
- * vector needs all of them); the row's end as in stencil_row */
+ * vector needs all of them); the span's end as in stencil_row */
 static void candidates_row(const ics_prop_taps *pt, const float *src, float *dst,
-                           const ics_buf_layout *L, int nch, int y, const uint32_t *ent) {
-  int w = L->w, stride = L->stride;
+                           const ics_buf_layout *L, int nch, int y, int x0, int x1,
+                           const uint32_t *ent) {
+  int stride = L->stride;
   for (int c = 0; c < nch; c++) {
     const float *S = src + (size_t)c * L->plane + ics_buf_index(L, 0, y);
     float *D = dst + (size_t)c * L->plane + ics_buf_index(L, 0, y);
-    if (w < W) {
-      for (int x = 0; x < w; x++) D[x] = pixel_fma(pt, (int)ent[x], S + x, stride);
+    if (x1 - x0 < W) {
+      for (int x = x0; x < x1; x++) D[x] = pixel_fma(pt, (int)ent[x], S + x, stride);
       continue;
     }
-    int x = 0;
-    for (; x + 2 * W <= w; x += 2 * W) candidates_vectors(pt, S, stride, ent, x, x + W, D);
-    if (x < w) { /* one or two vectors more, the last ending at the row's end */
-      int x1 = w - W;
-      candidates_vectors(pt, S, stride, ent, x < x1 ? x : x1, x1, D);
+    int x = x0;
+    for (; x + 2 * W <= x1; x += 2 * W) candidates_vectors(pt, S, stride, ent, x, x + W, D);
+    if (x < x1) { /* one or two vectors more, the last ending at the span's end */
+      int xl = x1 - W;
+      candidates_vectors(pt, S, stride, ent, x < xl ? x : xl, xl, D);
     }
   }
 }
@@ -277,43 +280,43 @@ static inline void run_vectors(const ics_prop_taps *pt, int e, const float *S, i
 }
 
 /* runs of 16 pixels sharing one tap set (their starts moved by the slab's phase), each as 16 / W
- * vectors evaluating only its own set. The partial run at the row's start is evaluated over
- * pixels 0..15 (the next run overwrites the pixels past its end), the one at its end over the
- * last 16 pixels and only its own kept; rows narrower than 16 pixel by pixel. Every lane is
- * pixel_fma's formula, so where a pixel is computed does not change it. */
+ * vectors evaluating only its own set. A run that the span [x0, x1) or the row cuts is evaluated
+ * over 16 pixels within the row (from its start, or from the row's last 16) and only its pixels in
+ * the span kept; rows narrower than 16 pixel by pixel. Every lane is pixel_fma's formula, so
+ * where a pixel is computed does not change it. */
 static void runs_row(const ics_prop_taps *pt, const float *src, float *dst,
-                     const ics_buf_layout *L, int nch, int y, uint32_t *scratch) {
-  int w = L->w, stride = L->stride;
-  int nruns = (w - pt->phase + 16 + 15) / 16;
-  run_choices(pt, w, y, nruns, scratch);
+                     const ics_buf_layout *L, int nch, int y, int x0, int x1, uint32_t *scratch) {
+  int w = L->w, stride = L->stride, first = pt->phase - 16;
+  int m0 = (x0 - first) / 16, m1 = (x1 - 1 - first) / 16;
+  run_choices(pt, w, y, m0, m1 - m0 + 1, scratch);
   for (int c = 0; c < nch; c++) {
     const float *S = src + (size_t)c * L->plane + ics_buf_index(L, 0, y);
     float *D = dst + (size_t)c * L->plane + ics_buf_index(L, 0, y);
-    int m = 0;
-    for (int x = pt->phase - 16; x < w; x += 16, m++) {
-      int e = (int)scratch[m];
+    for (int m = m0; m <= m1; m++) {
+      int e = (int)scratch[m - m0], xs = first + 16 * m;
+      int a = xs > x0 ? xs : x0, b = xs + 16 < x1 ? xs + 16 : x1;
       if (w < 16) {
-        for (int i = x < 0 ? 0 : x; i < w && i < x + 16; i++) D[i] = pixel_fma(pt, e, S + i, stride);
-      } else if (x < 0) {
-        run_vectors(pt, e, S, 0, stride, D);
-      } else if (x + 16 > w) {
-        float tail[16];
-        run_vectors(pt, e, S, w - 16, stride, tail);
-        memcpy(D + x, tail + (x - (w - 16)), sizeof(float) * (size_t)(w - x));
+        for (int i = a; i < b; i++) D[i] = pixel_fma(pt, e, S + i, stride);
+      } else if (a == xs && b == xs + 16) {
+        run_vectors(pt, e, S, xs, stride, D + xs);
       } else {
-        run_vectors(pt, e, S, x, stride, D + x);
+        float part[16];
+        int base = xs < 0 ? 0 : xs + 16 > w ? w - 16 : xs;
+        run_vectors(pt, e, S, base, stride, part);
+        memcpy(D + a, part + (a - base), sizeof(float) * (size_t)(b - a));
       }
     }
   }
 }
 
-/* a tap set per pixel from a large table: the taps and corners gathered lane by lane */
+/* a tap set per pixel from a large table: the taps and corners gathered lane by lane; the span's
+ * end as in stencil_row */
 static void table_row(const ics_prop_taps *pt, const float *src, float *dst,
-                      const ics_buf_layout *L, int nch, int y, const uint32_t *ent) {
-  int w = L->w, n = pt->ntaps, stride = L->stride;
+                      const ics_buf_layout *L, int nch, int y, int x0, int x1, const uint32_t *ent) {
+  int n = pt->ntaps, stride = L->stride;
   const size_t row0 = ics_buf_index(L, 0, y);
-  for (int x = 0; w >= W; x += W) {
-    if (x + W > w) x = w - W; /* the row's end as in stencil_row */
+  for (int x = x0; x1 - x0 >= W; x += W) {
+    if (x + W > x1) x = x1 - W;
     vf acc[3] = {splatf(0), splatf(0), splatf(0)};
     for (int j = 0; j < n; j++) {
       vf fx, fy, wt;
@@ -335,28 +338,28 @@ static void table_row(const ics_prop_taps *pt, const float *src, float *dst,
       }
     }
     for (int c = 0; c < nch; c++) storef(dst + (size_t)c * L->plane + row0 + x, acc[c]);
-    if (x + W == w) break;
+    if (x + W == x1) break;
   }
-  for (int x = 0; x < w && w < W; x++)
+  for (int x = x0; x < x1 && x1 - x0 < W; x++)
     for (int c = 0; c < nch; c++)
       dst[(size_t)c * L->plane + row0 + x] =
           pixel_fma(pt, (int)ent[x], src + (size_t)c * L->plane + row0 + x, stride);
 }
 
 void ICS_VEC_FN(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
-                int nch, int y0, int y1, uint32_t *scratch) {
+                int nch, int y0, int y1, int x0, int x1, uint32_t *scratch) {
   for (int y = y0; y < y1; y++) {
     if (pt->entries > 1 && pt->run > 1) {
-      runs_row(pt, src, dst, L, nch, y, scratch);
+      runs_row(pt, src, dst, L, nch, y, x0, x1, scratch);
       continue;
     }
-    if (pt->entries > 1) entries_row(pt, L->w, y, scratch);
+    if (pt->entries > 1) entries_row(pt, L->w, y, x0, x1, scratch);
     if (pt->stencil)
-      stencil_row(pt, src, dst, L, nch, y);
+      stencil_row(pt, src, dst, L, nch, y, x0, x1);
     else if (pt->entries <= ICS_PROP_CANDIDATES_MAX)
-      candidates_row(pt, src, dst, L, nch, y, scratch);
+      candidates_row(pt, src, dst, L, nch, y, x0, x1, scratch);
     else
-      table_row(pt, src, dst, L, nch, y, scratch);
+      table_row(pt, src, dst, L, nch, y, x0, x1, scratch);
   }
 }
 

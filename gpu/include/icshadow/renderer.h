@@ -56,6 +56,10 @@ typedef struct ics_render_stats {
                                 device; within ms_total), 0 where the plan's is used */
   char simd[16]; /* "cpu": the propagation loops' vector path (scalar, sse2, neon, avx2, avx512;
                     ICS_SIMD); "" for the other backends */
+  /* "cpu": the light buffers' channel-pixel updates of a dense render (buffer pixels x slabs x
+   * lights x channels) and those propagated (the rest skipped: outside the active regions,
+   * constant tiles, grey tiles' copies; docs/renderer.md); 0 for the other backends */
+  double updates_dense, updates_active;
 } ics_render_stats;
 
 typedef struct ics_renderer ics_renderer;

@@ -76,6 +76,9 @@ typedef struct ics_render_settings {
                           or 384; default 4) */
   int rotation_run;    /* 1: every pixel chooses; 16: runs of 16 pixels of a row share a choice
                           (their start moved by a random phase each slab) */
+  int dense;           /* 1: every light-buffer pixel propagated at every slab (the reference the
+                          skipping is tested against); 0 (default): only the active regions, and
+                          no constant tiles (docs/renderer.md "Work a frame does not need") */
   uint64_t seed;
   double background[3];
   int max_pad;         /* < 0: default (larger image side) */
