@@ -455,7 +455,8 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   if (st != ICS_OK) goto fail;
   size_t ldi_bytes = offset_bytes + p->ldi.nfrag * sizeof(ics_fragment) +
                      (p->ldi.inside0 ? npx * sizeof(uint64_t) : 0);
-  size_t region_bytes = (size_t)p->K * (size_t)p->nlights * sizeof(ics_rect);
+  size_t region_bytes = (size_t)p->K * (size_t)p->nlights * sizeof(ics_rect) +
+                        (size_t)(p->nlights + 1) * (npx / (ICS_TILE_W * ICS_TILE_H) + 1) * sizeof(int32_t);
   p->memory_bytes = p->backend_bytes + ldi_bytes + mesh_bytes + grid_bytes + region_bytes;
   double work = plan_work(p, p->K, (double)npx, 1);
   if (work > ICS_PLAN_MAX_WORK) {
@@ -524,6 +525,8 @@ void ics_plan_destroy(ics_plan *p) {
   free(p->detail);
   ics_ldi_release(&p->ldi);
   free(p->active);
+  free(p->tile_last);
+  free(p->tile_shade);
   free(p);
 }
 

@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "active_region.h"
+#include "tile_grid.h"
 #include "detail.h"
 #include "slab_taps.h"
 #include "icshadow/image.h"
@@ -78,6 +79,9 @@ struct ics_plan {
   ics_ldi ldi;
   ics_rect *active;       /* K x nlights: the part of each light buffer a slab propagates
                              (active_region.h), slab-major */
+  ics_tile_grid tiles;    /* the light buffers' tiles */
+  int32_t *tile_last;     /* nlights x tiles: the last slab at which light l needs a tile */
+  int32_t *tile_shade;    /* tiles: the last slab at which a tile is shaded */
   double active_fraction[ICS_SCENE_MAX_LIGHTS]; /* per light: the regions' area over K buffers */
   double geometry_s;
   int npasses, nomitted;

@@ -197,10 +197,15 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
   double zf = P->z0 + k * P->e, zb = zf + P->e;
   if (y0 < j->shade.y0) y0 = j->shade.y0;
   if (y1 > j->shade.y1) y1 = j->shade.y1;
+  const int32_t *need = y0 < y1 ? P->tile_shade + (size_t)ics_tile_row(&j->grid, y0) * j->grid.nx : NULL;
   for (int bj = y0; bj < y1; bj++) {
     if (j->row_next[bj] > k) continue; /* nothing in this row before slab row_next */
     int next = INT_MAX;
     for (int bi = j->shade.x0; bi < j->shade.x1; bi++) {
+      if (need[ics_tile_col(&j->grid, bi)] < k) { /* a tile no longer needed: to its end */
+        bi = ics_tile_x1(&j->grid, ics_tile_col(&j->grid, bi)) - 1;
+        continue;
+      }
       size_t p = (size_t)bj * P->Wb + bi;
       uint32_t cur = j->cursor[p], end = ldi->offset[p + 1], acur = j->acursor[p];
       uint64_t mask = j->mask ? j->mask[p] : 0;
@@ -287,10 +292,11 @@ static void step_tiles(job_t *j, int l, int ty, int tx0, int tx1, int kind, int 
   memset(written + tx0, 2, (size_t)(tx1 - tx0 + 1));
 }
 
-/* Row ty of tiles of light l's buffer at this slab: within the light's active region, each tile
- * whose reads all lie in tiles of one constant gets that constant (written only where the
- * buffer does not hold it already: flagged 1 in written), the others are stepped, consecutive
- * ones of a kind as one span; render.dense steps every tile. */
+/* Row ty of tiles of light l's buffer at this slab: within the light's active region and its
+ * needed tiles (active_region.h), each tile whose reads all lie in tiles of one constant gets
+ * that constant (written only where the buffer does not hold it already: flagged 1 in written),
+ * the others are stepped, consecutive ones of a kind as one span; render.dense steps every
+ * tile. */
 static void propagate_row(job_t *j, int l, int ty, int t, uint8_t *written) {
   const ics_plan *P = j->p;
   const ics_tile_grid *g = &j->grid;
@@ -300,8 +306,14 @@ static void propagate_row(job_t *j, int l, int ty, int t, uint8_t *written) {
   ics_prop_footprint(&j->pt[l], 1, y0, y1, &fy0, &fy1);
   fy0 = ics_tile_row(g, fy0), fy1 = ics_tile_row(g, fy1);
   int run = -1, run_kind = ICS_TILE_ANY, tx1 = ics_tile_col(g, R->x1 - 1);
+  const int32_t *last = P->tile_last + (size_t)l * g->nx * g->ny + (size_t)ty * g->nx;
   for (int tx = ics_tile_col(g, R->x0); tx <= tx1; tx++) {
     ics_tile *d = &j->tdst[l][(size_t)ty * g->nx + tx], want = {ICS_TILE_ANY, {0, 0, 0}};
+    if (last[tx] < j->k) { /* not needed any more: left as it is */
+      if (run >= 0) step_tiles(j, l, ty, run, tx - 1, run_kind, t, written);
+      run = -1;
+      continue;
+    }
     if (!P->rs.dense) {
       int fx0, fx1;
       ics_prop_footprint(&j->pt[l], 0, ics_tile_x0(g, tx), ics_tile_x1(g, tx), &fx0, &fx1);

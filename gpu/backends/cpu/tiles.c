@@ -5,23 +5,6 @@
 
 #include <string.h>
 
-void ics_tile_grid_init(ics_tile_grid *g, int w, int h) {
-  g->w = w;
-  g->h = h;
-  g->nx = w / ICS_TILE_W > 0 ? w / ICS_TILE_W : 1;
-  g->ny = h / ICS_TILE_H > 0 ? h / ICS_TILE_H : 1;
-}
-
-int ics_tile_col(const ics_tile_grid *g, int x) {
-  int t = x < 0 ? 0 : x / ICS_TILE_W;
-  return t < g->nx ? t : g->nx - 1;
-}
-
-int ics_tile_row(const ics_tile_grid *g, int y) {
-  int t = y < 0 ? 0 : y / ICS_TILE_H;
-  return t < g->ny ? t : g->ny - 1;
-}
-
 static uint32_t bits(float v) {
   uint32_t u;
   memcpy(&u, &v, sizeof u);

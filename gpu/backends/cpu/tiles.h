@@ -1,4 +1,4 @@
-/* tiles.h — the CPU backend's light buffers cut into tiles, and what each tile holds
+/* tiles.h — what each tile of the CPU backend's light buffers holds (tile_grid.h)
  * (docs/renderer.md "Work a frame does not need"): a constant (every pixel of each channel the
  * same value, bit for bit), grey (the channels equal bit for bit, pixel by pixel) or anything.
  * A slab step leaves a constant constant: a destination tile whose every read lies in source
@@ -12,9 +12,7 @@
 #include <stdint.h>
 
 #include "slab_taps.h"
-
-#define ICS_TILE_W 64 /* columns: a multiple of every vector width (16 floats at most) */
-#define ICS_TILE_H 16 /* rows */
+#include "tile_grid.h"
 
 typedef enum ics_tile_kind { ICS_TILE_ANY = 0, ICS_TILE_GREY, ICS_TILE_CONST } ics_tile_kind;
 
@@ -23,27 +21,6 @@ typedef struct ics_tile {
   uint8_t kind;
   float c[3]; /* ICS_TILE_CONST: each channel's value */
 } ics_tile;
-
-/* A w x h buffer cut into nx x ny tiles of ICS_TILE_W x ICS_TILE_H pixels, the last column and
- * row of tiles taking the remainder (so every tile is at least a tile wide, or the whole row). */
-typedef struct ics_tile_grid {
-  int w, h, nx, ny;
-} ics_tile_grid;
-
-void ics_tile_grid_init(ics_tile_grid *g, int w, int h);
-/* Tile column tx covers pixels [ics_tile_x0, ics_tile_x1); rows likewise. */
-static inline int ics_tile_x0(const ics_tile_grid *g, int tx) { (void)g; return tx * ICS_TILE_W; }
-static inline int ics_tile_x1(const ics_tile_grid *g, int tx) {
-  return tx == g->nx - 1 ? g->w : (tx + 1) * ICS_TILE_W;
-}
-static inline int ics_tile_y0(const ics_tile_grid *g, int ty) { (void)g; return ty * ICS_TILE_H; }
-static inline int ics_tile_y1(const ics_tile_grid *g, int ty) {
-  return ty == g->ny - 1 ? g->h : (ty + 1) * ICS_TILE_H;
-}
-/* The tile column (row) holding pixel column x (row y), clamped to the buffer: a read beyond its
- * edge takes the edge pixel. */
-int ics_tile_col(const ics_tile_grid *g, int x);
-int ics_tile_row(const ics_tile_grid *g, int y);
 
 /* What a destination tile holds after a step whose reads lie in source tiles [tx0, tx1] x
  * [ty0, ty1] (inclusive) of `src` (nch channels): CONST when they all hold one constant, GREY when
