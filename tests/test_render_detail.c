@@ -3,12 +3,17 @@
  * fBm with one octave is the noise itself, and its octaves add; a 3D grid file is sampled
  * trilinearly over the object's box (values checked at corners and midpoints by hand) and a file
  * of the wrong length is refused; the transfer function interpolates its nodes and clamps at the
- * ends; preintegration equals a fine midpoint quadrature of the transfer function over the ramp. */
+ * ends; preintegration equals a fine midpoint quadrature of the transfer function over the ramp;
+ * the cpu backend's batches of detail values (detail_batch.h) equal ics_detail_value bit for bit
+ * on every vector path this processor has, for noise, fBm and ridged multifractal (its weight
+ * clamped at both ends), at points near and far from the origin, on lattice points, and for
+ * counts that are not whole vectors. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "detail.h"
+#include "detail_batch.h"
 #include "render_util.h"
 #include "testutil.h"
 
@@ -159,10 +164,48 @@ static void test_transfer(void) {
   ics_scene_destroy(s);
 }
 
+static void test_batch(void) {
+  static const char *const details[] = {
+      "{\"function\": \"perlin\", \"seed\": 5, \"frequency\": 1.7}",
+      "{\"function\": \"fbm\", \"octaves\": 6, \"gain\": 0.6, \"lacunarity\": 2.1, \"time\": 0.7, \"scale\": 1.3, \"bias\": 0.2}",
+      "{\"function\": \"ridged\", \"octaves\": 5, \"gain\": 3, \"offset\": 1.1, \"frequency\": 2.3}",
+      "{\"function\": \"ridged\", \"octaves\": 4, \"gain\": 0.2, \"offset\": 0.4}"};
+  enum { N = 1003 };
+  static double x[N], y[N], z[N], want[N], got[N];
+  for (int i = 0; i < N; i++) {
+    double far = i % 7 == 0 ? 1e6 : i % 5 == 0 ? 300 : 4;
+    x[i] = far * (2 * test_rng_unit() - 1), y[i] = far * (2 * test_rng_unit() - 1);
+    z[i] = far * (2 * test_rng_unit() - 1);
+    if (i % 11 == 0) x[i] = floor(x[i]), y[i] = floor(y[i]), z[i] = -3; /* on the lattice */
+  }
+  int paths = 0;
+  for (size_t d = 0; d < sizeof details / sizeof *details; d++) {
+    ics_scene *s = volume_scene(details[d], NULL, NULL);
+    ics_detail_eval e;
+    prepare(&e, s);
+    for (int i = 0; i < N; i++) want[i] = ics_detail_value(&e, (const double[3]){x[i], y[i], z[i]});
+    for (int p = 0; p < ICS_SIMD_PATHS_; p++) {
+      if (!ics_simd_has((ics_simd_path)p)) continue;
+      for (int n = N - 8; n <= N; n++) {
+        memset(got, 0, sizeof got);
+        ics_detail_batch(&e, x, y, z, n, got, (ics_simd_path)p);
+        int bad = 0;
+        for (int i = 0; i < n; i++) bad += memcmp(&got[i], &want[i], sizeof got[i]) != 0;
+        CHECK(bad == 0, "detail %zu, %s, %d points: %d values differ from ics_detail_value", d,
+              ics_simd_name((ics_simd_path)p), n, bad);
+      }
+      paths += d == 0;
+    }
+    ics_scene_destroy(s);
+  }
+  printf("detail batches: noise, fBm, ridged on %d path(s), %d points, bit for bit\n", paths, N);
+}
+
 int main(void) {
   const char *dir = getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp";
   test_noise();
   test_grid(dir);
   test_transfer();
+  test_batch();
   return test_summary("test_render_detail");
 }

@@ -16,9 +16,13 @@
  * the dense path's channel-pixels (measured 45-50 %; 22 % at 320 x 240; the dense path reports
  * 100 %, the control), the perspective scene fewer than all (constant tiles only); a caster
  * outside the view shadows it; and the result does not depend on the thread count (1, 2 and 3
- * threads bit for bit). */
+ * threads bit for bit). Behind the tile needs lies a fact checked here for every float: an opaque
+ * surface (opacity 1) composited over any alpha below 1 leaves alpha exactly 1, as the cpu
+ * backend composites it, so nothing behind it changes the pixel. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "render_util.h"
 #include "testutil.h"
@@ -109,7 +113,22 @@ static const char *narrow =
     " \"objects\": [{\"shape\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0.3, \"material\": \"black\"},"
     "  {\"shape\": \"rect\", \"center\": [0, 0, -1], \"normal\": [0, 0, 1], \"size\": [8, 8], \"material\": \"white\"}]}";
 
+/* backend_cpu.c's surface_colour: wgt = (1 - A) opacity in double, A += (float)wgt */
+static void test_opaque_alpha(void) {
+  long bad = 0;
+  for (uint32_t u = 0; u < 0x3f800000u; u++) { /* every float in [0, 1) */
+    float a;
+    memcpy(&a, &u, sizeof a);
+    double wgt = (1 - a) * 1.0;
+    a += (float)wgt;
+    bad += a != 1.0f;
+  }
+  CHECK(bad == 0, "opacity 1 over %ld alphas below 1 does not give 1", bad);
+  printf("opacity 1 over every float alpha in [0, 1): alpha exactly 1 (%ld exceptions)\n", bad);
+}
+
 int main(int argc, char **argv) {
+  test_opaque_alpha();
   ics_scene *s = default_scene_96x72();
   ics_render_settings rs = *ics_scene_settings(s), v;
   double f = check("default scene", s, &rs);

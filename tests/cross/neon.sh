@@ -5,7 +5,8 @@
 # flags gpu/CMakeLists.txt gives those files, must find the neon path, run it, and pass (every
 # path against the engine, to 4 float ulps). The vector source is one file for every
 # instruction set, so this is how a change to it is checked on the architecture the machine
-# running the suite lacks.
+# running the suite lacks. The detail functions' NEON build (detail_neon.c) is compiled too (its
+# values are checked against the scalar ones by test_render_detail on every path it runs on).
 set -u
 src=$1 out=$2 cc=$3 qemu=$4
 mkdir -p "$out" || exit 1
@@ -21,6 +22,11 @@ for f in "$src"/libicshadow/src/*.c "$src"/gpu/backends/cpu/propagate.c \
 done
 "$cc" -std=c11 -O2 -ffp-contract=fast "${inc[@]}" -c "$src/gpu/backends/cpu/propagate_neon.c" \
   -o "$out/propagate_neon.o" || { echo "FAILED: $cc on propagate_neon.c"; exit 1; }
+"$cc" -std=c11 -O2 -ffp-contract=off -Wall -Werror "${inc[@]}" -c "$src/gpu/backends/cpu/detail_neon.c" \
+  -o "$out/detail_neon.o" || { echo "FAILED: $cc on detail_neon.c"; exit 1; }
+# the vector build, not the stand-in a file makes where its instruction set is not targeted
+"${cc%gcc}nm" "$out/detail_neon.o" | grep -q " t noise$" ||
+  { echo "FAILED: detail_neon.c did not build its NEON loops"; exit 1; }
 "$cc" -o "$out/test_render_propagate" "${objs[@]}" "$out/propagate_neon.o" -lm -lpthread ||
   { echo "FAILED: linking for AArch64"; exit 1; }
 sysroot=$(dirname "$(dirname "$("$cc" -print-file-name=libc.so.6)")")

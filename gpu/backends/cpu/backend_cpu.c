@@ -17,6 +17,7 @@
 
 #include "backend.h"
 #include "clock.h"
+#include "detail_batch.h"
 #include "icshadow/rng.h"
 #include "plan_internal.h"
 #include "pool.h"
@@ -54,11 +55,31 @@ typedef struct {
   double window[ICS_SCENE_MAX_LIGHTS]; /* this slab, per light: 1 - its blur sigma in pixels, >= 0 */
   double window_max;                   /* the largest over lights and slabs (the cursor's reach) */
   double blur_world[ICS_SCENE_MAX_LIGHTS]; /* per light: the per-slab blur's sigma, world units */
+  double *dpts;          /* per thread: 8 x Wb doubles, a row's detail points (x, y, z of the
+                            first and second ends) and their values (first, second) */
+  int32_t *dslot;        /* per thread: Wb, each pixel's slot in them, or -1 */
 } job_t;
 
-/* one volume piece of depth extent dz ending the events at (pixel p, depth za..za+dz) */
+/* where a piece's detail is sampled: its two ends (preintegrate: the detail varies linearly
+ * between them) or one jittered point (Patel: the volume is constant within the slab), on the
+ * camera ray o + z d of buffer pixel (bi, bj) = p */
+static void piece_points(const job_t *j, size_t p, int bi, int bj, double za, double dz,
+                         double o[3], double d[3], double pt[3], double pt2[3]) {
+  const ics_plan *P = j->p;
+  ics_plan_ray(P, bi, bj, o, d);
+  if (P->rs.preintegrate) {
+    for (int i = 0; i < 3; i++) pt[i] = o[i] + za * d[i], pt2[i] = o[i] + (za + dz) * d[i];
+  } else {
+    double xi = ics_rng_uniform_at(P->rs.seed, JITTER_STREAM | (uint64_t)j->k, p);
+    double zs = za + xi * dz;
+    for (int i = 0; i < 3; i++) pt[i] = o[i] + zs * d[i];
+  }
+}
+
+/* one volume piece of depth extent dz ending the events at (pixel p, depth za..za+dz); pre: its
+ * one volume's detail values (first and second end) evaluated already, or NULL */
 static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, double za, double dz,
-                         const double L[3], float *C, int inview, int t) {
+                         const double L[3], float *C, int inview, int t, const double *pre) {
   const ics_plan *P = j->p;
   const ics_scene *s = P->scene;
   double sig[ICS_MAX_VOLUMES], col[ICS_MAX_VOLUMES][3];
@@ -74,19 +95,15 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
     int bit = __builtin_ctzll(m), obj = j->vol_obj[bit];
     const ics_material *mat = &s->materials[s->objects[obj].material];
     double scale = 1, c[3] = {mat->color[0], mat->color[1], mat->color[2]};
-    if (mat->detail.fn != ICS_DETAIL_NONE) {
+    if (mat->detail.fn != ICS_DETAIL_NONE && pre) {
+      if (P->rs.preintegrate)
+        ics_material_preintegrate(mat, pre[0], pre[1], c, &scale);
+      else
+        ics_material_transfer(mat, pre[0], c, &scale);
+    } else if (mat->detail.fn != ICS_DETAIL_NONE) {
       if (!have_ray) {
         if (timed) t0 = ics_clock_s();
-        ics_plan_ray(P, bi, bj, o, d);
-        if (P->rs.preintegrate) {
-          /* the piece's two ends (its detail varies linearly between them) */
-          for (int i = 0; i < 3; i++) pt[i] = o[i] + za * d[i], pt2[i] = o[i] + (za + dz) * d[i];
-        } else {
-          /* one jittered point (Patel: the volume is constant within the slab) */
-          double xi = ics_rng_uniform_at(P->rs.seed, JITTER_STREAM | (uint64_t)j->k, p);
-          double zs = za + xi * dz;
-          for (int i = 0; i < 3; i++) pt[i] = o[i] + zs * d[i];
-        }
+        piece_points(j, p, bi, bj, za, dz, o, d, pt, pt2);
         have_ray = 1;
       }
       double v = ics_detail_value(&P->detail[obj], pt);
@@ -187,6 +204,45 @@ static void record_aov(job_t *j, int ii, int jj, const float *V, double z) {
   if (a->z >= 0) o[a->z] = (float)z;
 }
 
+/* The detail values of row bj's volume pieces at this slab, evaluated in one batch on the vector
+ * path (detail_batch.h; bit for bit one by one): the pixels inside exactly one volume with noise
+ * detail (the row's first such volume) and no fragment in the slab, so that the slab is one piece
+ * [zf, zb]. Each gets its slot in j->dslot (else -1); the pieces shade_rows meets otherwise
+ * (fragments, overlapping volumes, grids) evaluate their own. */
+static void row_details(job_t *j, int bj, double zf, double zb, const int32_t *need, int t) {
+  const ics_plan *P = j->p;
+  const ics_scene *s = P->scene;
+  const ics_ldi *ldi = &P->ldi;
+  size_t w = (size_t)P->Wb;
+  double *X = j->dpts + (size_t)t * 8 * w, *Y = X + w, *Z = Y + w, *X2 = Z + w, *Y2 = X2 + w,
+         *Z2 = Y2 + w, *V = Z2 + w, *V2 = V + w;
+  int32_t *slot = j->dslot + (size_t)t * w;
+  int n = 0, obj0 = -1;
+  for (int bi = j->shade.x0; bi < j->shade.x1; bi++) {
+    size_t p = (size_t)bj * w + bi;
+    uint64_t mask = j->mask[p];
+    slot[bi] = -1;
+    if (!mask || (mask & (mask - 1)) || need[ics_tile_col(&j->grid, bi)] < j->k) continue;
+    int obj = j->vol_obj[__builtin_ctzll(mask)];
+    ics_detail_fn fn = s->materials[s->objects[obj].material].detail.fn;
+    uint32_t cur = j->cursor[p];
+    if (fn == ICS_DETAIL_NONE || fn == ICS_DETAIL_GRID || (obj0 >= 0 && obj != obj0) ||
+        (cur < ldi->offset[p + 1] && ics_frag_slab(&ldi->frag[cur]) == j->k))
+      continue;
+    obj0 = obj;
+    double o[3], d[3], a[3], b[3];
+    piece_points(j, p, bi, bj, zf, zb - zf, o, d, a, b);
+    X[n] = a[0], Y[n] = a[1], Z[n] = a[2];
+    X2[n] = b[0], Y2[n] = b[1], Z2[n] = b[2];
+    slot[bi] = n++;
+  }
+  if (!n) return;
+  double t0 = ics_clock_s();
+  ics_detail_batch(&P->detail[obj0], X, Y, Z, n, V, j->simd);
+  if (P->rs.preintegrate) ics_detail_batch(&P->detail[obj0], X2, Y2, Z2, n, V2, j->simd);
+  j->detail_s[t] += ics_clock_s() - t0;
+}
+
 /* rows [y0, y1) within this slab's shading rectangle; the tiles written into flagged in touched */
 static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
   const ics_plan *P = j->p;
@@ -200,7 +256,10 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
   const int32_t *need = y0 < y1 ? P->tile_shade + (size_t)ics_tile_row(&j->grid, y0) * j->grid.nx : NULL;
   for (int bj = y0; bj < y1; bj++) {
     if (j->row_next[bj] > k) continue; /* nothing in this row before slab row_next */
-    int next = INT_MAX;
+    int next = INT_MAX, batch = j->mask && P->any_detail;
+    if (batch) row_details(j, bj, zf, zb, need, t);
+    const int32_t *slot = j->dslot + (size_t)t * P->Wb;
+    const double *values = j->dpts + (size_t)t * 8 * P->Wb + 6 * (size_t)P->Wb;
     for (int bi = j->shade.x0; bi < j->shade.x1; bi++) {
       if (need[ics_tile_col(&j->grid, bi)] < k) { /* a tile no longer needed: to its end */
         bi = ics_tile_x1(&j->grid, ics_tile_col(&j->grid, bi)) - 1;
@@ -249,7 +308,10 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
         double zn = has ? ldi->frag[cur].z : zb;
         if (zn < za) zn = za;
         if (zn > zb) zn = zb;
-        if (mask && zn > za) volume_piece(j, p, bi, bj, mask, za, zn - za, L, C, inview, t);
+        double pre[2];
+        int s0 = batch && za == zf && !has ? slot[bi] : -1;
+        if (s0 >= 0) pre[0] = values[s0], pre[1] = values[P->Wb + s0];
+        if (mask && zn > za) volume_piece(j, p, bi, bj, mask, za, zn - za, L, C, inview, t, s0 >= 0 ? pre : NULL);
         if (!has) break;
         int obj = ics_frag_obj(&ldi->frag[cur]);
         if (P->vol_bit[obj] >= 0)
@@ -422,6 +484,8 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   ics_tile_grid_init(&j->grid, P->Wb, P->Hb);
   size_t ntiles = (size_t)j->grid.nx * (size_t)j->grid.ny;
   j->marks = malloc((size_t)j->grid.nx * (1 + (size_t)nl) * (size_t)nt);
+  j->dpts = P->any_detail ? malloc(sizeof *j->dpts * 8 * (size_t)P->Wb * (size_t)nt) : NULL;
+  j->dslot = P->any_detail ? malloc(sizeof *j->dslot * (size_t)P->Wb * (size_t)nt) : NULL;
   j->pt = calloc((size_t)(nl ? nl : 1), sizeof *j->pt);
   j->cursor = malloc(sizeof *j->cursor * npx);
   j->acursor = malloc(sizeof *j->acursor * npx);
@@ -434,7 +498,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   for (int l = 0; l < nl; l++) j->blur_world[l] = ics_plan_light_blur(P, l);
   j->window_max = ics_plan_window_max(P);
   if (!j->pt || !j->cursor || !j->acursor || !j->scratch || !j->row_next || (P->nvol && !j->mask) ||
-      (aov && !j->aov_seen) || !j->marks)
+      (aov && !j->aov_seen) || !j->marks || (P->any_detail && (!j->dpts || !j->dslot)))
     goto nomem;
   for (int l = 0; l < nl; l++) {
     /* both buffers start lit (1) and say so: a pixel outside the active regions keeps a value */
@@ -521,6 +585,8 @@ done:
     free(j->mask);
     free(j->aov_seen);
     free(j->marks);
+    free(j->dpts);
+    free(j->dslot);
   }
   free(bufs);
   free(tiles);

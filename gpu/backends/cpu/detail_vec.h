@@ -1,0 +1,128 @@
+/* detail_vec.h — the volume detail functions over W points at once (detail_batch.h), written
+ * once over GCC/Clang vector extensions of doubles and compiled per instruction set
+ * (detail_sse2.c, detail_avx2.c, detail_avx512.c, detail_neon.c define ICS_DVEC_W, the lanes of
+ * a double vector, and ICS_DVEC_FN, the entry point). Each lane repeats core/detail.c's double
+ * arithmetic in its order (these files are compiled without contraction into fused
+ * multiply-adds), so every value is bit for bit ics_detail_value's; the permutation lookups are
+ * per lane. */
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "detail_batch.h"
+
+#if !defined(ICS_DVEC_W) || !defined(ICS_DVEC_FN)
+#error "define ICS_DVEC_W and ICS_DVEC_FN before including detail_vec.h"
+#endif
+
+#define W ICS_DVEC_W
+typedef double vd __attribute__((vector_size(8 * W)));
+typedef int64_t vl __attribute__((vector_size(8 * W)));
+
+static inline vd splat(double v) { return (vd){0} + v; }
+static inline vd blend(vl mask, vd a, vd b) { return (vd)(((vl)a & mask) | ((vl)b & ~mask)); }
+static inline vd vfloor(vd x) {
+  for (int i = 0; i < W; i++) x[i] = floor(x[i]);
+  return x;
+}
+static inline vd vfabs(vd x) { return (vd)((vl)x & ((vl){0} + INT64_MAX)); }
+
+static inline vd fade(vd t) { return t * t * t * (t * (t * 6 - 15) + 10); }
+static inline vd lerp(vd t, vd a, vd b) { return a + t * (b - a); }
+/* the gradient of hash h (its low 4 bits) dotted with (x, y, z) */
+static inline vd grad(vl h, vd x, vd y, vd z) {
+  h &= 15;
+  vd u = blend(h < 8, x, y), v = blend(h < 4, y, blend((h == 12) | (h == 14), x, z));
+  return blend((h & 1) != 0, -u, u) + blend((h & 2) != 0, -v, v);
+}
+/* p[i] for each lane */
+static inline vl gather(const uint8_t *p, vl i) {
+  vl r;
+  for (int k = 0; k < W; k++) r[k] = p[i[k]];
+  return r;
+}
+/* the lattice cell modulo 256, in floating point as detail.c computes it */
+static inline vl cell(vd f) {
+  vd m = f - 256 * vfloor(f / 256);
+  vl r;
+  for (int k = 0; k < W; k++) r[k] = (int64_t)m[k] & 255;
+  return r;
+}
+
+static vd noise(const uint8_t p[512], vd x, vd y, vd z) {
+  vd fx = vfloor(x), fy = vfloor(y), fz = vfloor(z);
+  vl X = cell(fx), Y = cell(fy), Z = cell(fz);
+  x -= fx, y -= fy, z -= fz;
+  vd u = fade(x), v = fade(y), w = fade(z);
+  vl A = gather(p, X) + Y, AA = gather(p, A) + Z, AB = gather(p, A + 1) + Z;
+  vl B = gather(p, X + 1) + Y, BA = gather(p, B) + Z, BB = gather(p, B + 1) + Z;
+  vd x1 = x - 1, y1 = y - 1, z1 = z - 1;
+  return lerp(w,
+              lerp(v, lerp(u, grad(gather(p, AA), x, y, z), grad(gather(p, BA), x1, y, z)),
+                   lerp(u, grad(gather(p, AB), x, y1, z), grad(gather(p, BB), x1, y1, z))),
+              lerp(v, lerp(u, grad(gather(p, AA + 1), x, y, z1), grad(gather(p, BA + 1), x1, y, z1)),
+                   lerp(u, grad(gather(p, AB + 1), x, y1, z1), grad(gather(p, BB + 1), x1, y1, z1))));
+}
+
+/* detail.c's ics_detail_value for W points */
+static vd value(const ics_detail_eval *e, vd px, vd py, vd pz) {
+  const ics_detail *d = e->d;
+  static const double drift[3] = {0.3713, 0.5129, 0.7731};
+  vd x = d->frequency * px + d->time * drift[0];
+  vd y = d->frequency * py + d->time * drift[1];
+  vd z = d->frequency * pz + d->time * drift[2];
+  vd f;
+  if (d->fn == ICS_DETAIL_PERLIN) {
+    f = noise(e->perm, x, y, z);
+  } else if (d->fn == ICS_DETAIL_FBM) {
+    f = splat(0);
+    double amp = 1;
+    for (int o = 0; o < d->octaves; o++) {
+      f += amp * noise(e->perm, x, y, z);
+      amp *= d->gain;
+      x *= d->lacunarity, y *= d->lacunarity, z *= d->lacunarity;
+    }
+  } else { /* ridged */
+    vd signal = d->offset - vfabs(noise(e->perm, x, y, z));
+    signal *= signal;
+    f = signal;
+    double expo = 1;
+    for (int o = 1; o < d->octaves; o++) {
+      x *= d->lacunarity, y *= d->lacunarity, z *= d->lacunarity;
+      expo /= d->lacunarity;
+      vd weight = signal * d->gain;
+      weight = blend(weight < 0, splat(0), blend(weight > 1, splat(1), weight));
+      signal = d->offset - vfabs(noise(e->perm, x, y, z));
+      signal *= signal * weight;
+      f += signal * expo;
+    }
+  }
+  return d->bias + d->scale * f;
+}
+
+static inline vd load(const double *p) {
+  vd v;
+  memcpy(&v, p, sizeof v);
+  return v;
+}
+
+void ICS_DVEC_FN(const ics_detail_eval *e, const double *x, const double *y, const double *z,
+                 int n, double *out) {
+  int i = 0;
+  for (; i + W <= n; i += W) {
+    vd v = value(e, load(x + i), load(y + i), load(z + i));
+    memcpy(out + i, &v, sizeof v);
+  }
+  if (i < n) { /* the last points in lanes of their own, the rest of the vector repeating one */
+    double bx[W], by[W], bz[W], bo[W];
+    for (int k = 0; k < W; k++) {
+      int s = i + k < n ? i + k : n - 1;
+      bx[k] = x[s], by[k] = y[s], bz[k] = z[s];
+    }
+    vd v = value(e, load(bx), load(by), load(bz));
+    memcpy(bo, &v, sizeof v);
+    for (int k = 0; i + k < n; k++) out[i + k] = bo[k];
+  }
+}
+
+#undef W
