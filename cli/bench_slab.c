@@ -46,13 +46,18 @@ static void help(FILE *f) {
   fprintf(f,
           "usage: icshadow bench slab [--sizes N,N,...] [--slabs K] [--threads T,T,...]\n"
           "       [--kernels K,K,...] [--backend B,...] [--cov CXX,CXY,CYY] [--mean MX,MY] [--reps R]\n"
+          "       [--work dense|skip|dense,skip] [--occluder edge|stripes]\n"
           "Light-buffer propagation through K slabs per kernel member, side by side with the\n"
           "memcpy floor measured between the repetitions, as CSV:\n"
           "  backend,kernel,samples,mode,width,height,slabs,threads,ns_per_px_slab,ns_min,ns_max,\n"
-          "  floor_ns_per_px,floor_ratio,error,reps,simd\n"
-          "(floor_ratio = floor / ns: 1 would be memory speed; error: max deviation of the\n"
-          "propagated edge from the class's exact limit; simd: the cpu backend's vector path,\n"
-          "chosen by ICS_SIMD=auto|scalar|sse2|avx2|avx512|neon, - for other backends).\n\n"
+          "  floor_ns_per_px,floor_ratio,error,reps,simd,work,occluder,active,ms_render,\n"
+          "  ms_render_min,ms_render_max\n"
+          "(ns_per_px_slab: the convolution time over buffer pixels x slabs, skipped or not;\n"
+          "floor_ratio = floor / ns: 1 would be memory speed; error: max deviation of the\n"
+          "propagated edge from the class's exact limit (- for stripes); simd: the cpu backend's\n"
+          "vector path, chosen by ICS_SIMD=auto|scalar|sse2|avx2|avx512|neon, - for other\n"
+          "backends; work: dense (render.dense) or skip (active regions, constant tiles); active:\n"
+          "the channel-pixel updates made over the dense count; ms_render: the whole render).\n\n"
           "options:\n"
           "  --sizes N,...     square buffer sides (default 512,768; 16..4096)\n"
           "  --slabs K         slabs (default 256; 1..4096)\n"
@@ -67,6 +72,10 @@ static void help(FILE *f) {
           "  --cov C,C,C       per-slab covariance in px^2 (default 2,0.5,1)\n"
           "  --mean MX,MY      per-slab mean in px (default 0.3,-0.2)\n"
           "  --reps R          repetitions, median reported (default 3; 1..50)\n"
+          "  --work W          dense (default), skip, or dense,skip: both, their repetitions\n"
+          "                    interleaved\n"
+          "  --occluder O      edge (default: a half-plane in the first slab) or stripes (4 px\n"
+          "                    bars every 8 px over the whole buffer: nothing to skip)\n"
           "  --progress        progress on stderr even when it is not a terminal\n");
 }
 
@@ -103,6 +112,116 @@ static double now_floor_ns(size_t npx, int slabs, float *a, float *b) {
 
 #endif
 
+/* One member, size, backend and thread count: the scene (an edge or stripes occluder in the first
+ * slab, a receiver after `slabs`), planned dense and with skipping as asked, rendered reps
+ * times with the works interleaved (after a warm-up each) and the memcpy floor between them. */
+typedef struct {
+  const member_t *m;
+  const char *backend;
+  int n, threads, slabs, reps;
+  double mean[2], cov[3];
+  int stripes, dense, skip;
+} config_t;
+
+static int bench_config(const config_t *c, cli_progress *prog, int *busy, int *cpu_threads) {
+  const member_t *m = c->m;
+  int n = c->n, nw = 0, works[2];
+  if (c->dense) works[nw++] = 1;
+  if (c->skip) works[nw++] = 0;
+  size_t npx = (size_t)n * n;
+  float *fa = malloc(npx * sizeof *fa), *fb = malloc(npx * sizeof *fb);
+  ics_scene *s[2] = {NULL, NULL};
+  ics_plan *p[2] = {NULL, NULL};
+  ics_renderer *r = NULL;
+  char msg[CLI_MSG_MAX] = "";
+  ics_status st = fa && fb ? ICS_OK : ICS_ERR_NOMEM;
+  for (size_t i = 0; fa && i < npx; i++) fa[i] = (float)(i % 7);
+  for (int w = 0; w < nw && st == ICS_OK; w++) {
+    /* world units = pixels: height n, slab spacing 1, d1 1; light mean -mean (Eq. 7), the row
+     * axis pointing down (y components change sign). The occluder: a half-plane (its edge at
+     * x = 0), or vertical stripes 4 px wide every 8 px over the whole buffer, which no tile
+     * ever sees constant */
+    char occ[512], json[2048];
+    if (c->stripes)
+      snprintf(occ, sizeof occ, "{\"shape\": \"fence\", \"center\": [0, %d, 0], \"poles\": %d, "
+               "\"pole_size\": [4, %d, 0.5], \"spacing\": 8, \"bar_size\": [1, 0.5], \"material\": \"black\"}", -n, n / 8 + 1, 2 * n);
+    else
+      snprintf(occ, sizeof occ, "{\"shape\": \"rect\", \"center\": [%.17g, 0, 0], \"normal\": [0, 0, 1], "
+               "\"size\": [%d, %d], \"material\": \"black\"}", -0.25 * n, n / 2, 2 * n);
+    snprintf(json, sizeof json,
+             "{\"camera\": {\"eye\": [0, 0, 1], \"target\": [0, 0, 0], \"height\": %d, \"resolution\": [%d, %d]},"
+             " \"render\": {\"slab_spacing\": 1, \"d1\": 1, \"kernel\": \"%s\", \"samples\": %d,"
+             " \"compensate\": \"%s\", \"max_pad\": 0, \"seed\": 1, \"rotation_run\": %d, \"dense\": %s},"
+             " \"lights\": [{\"mean\": [%.17g, %.17g], \"cov\": [[%.17g, %.17g], [%.17g, %.17g]]}],"
+             " \"materials\": {\"black\": {\"color\": [0, 0, 0]}, \"white\": {}},"
+             " \"objects\": [%s,"
+             "  {\"shape\": \"rect\", \"center\": [0, 0, %d], \"normal\": [0, 0, 1], \"size\": [%d, %d], \"material\": \"white\"}]}",
+             n, n, n, m->kernel, m->samples, m->comp, m->run, works[w] ? "true" : "false",
+             -c->mean[0], c->mean[1], c->cov[0], -c->cov[1], -c->cov[1], c->cov[2], occ, -c->slabs,
+             2 * n, 2 * n);
+    ics_plan_opts po = {.threads = c->threads};
+    st = ics_scene_create_json(&s[w], json, "bench", NULL, msg, sizeof msg);
+    if (st == ICS_OK) st = ics_plan_create(&p[w], s[w], &po, msg, sizeof msg);
+  }
+  ics_render_opts ro = {.backend = c->backend, .threads = c->threads};
+  if (st == ICS_OK) st = ics_renderer_create(&r, &ro, msg, sizeof msg);
+  double t[2][50], ms[2][50], fl[2][50], err[2] = {0, 0}, active[2] = {1, 1};
+  char simd[16] = "";
+  int K = p[0] ? ics_plan_slabs(p[0]) - 1 : 0;
+  for (int rep = 0; rep <= c->reps && st == ICS_OK; rep++) /* rep 0: warm-up */
+    for (int w = 0; w < nw && st == ICS_OK; w++) {
+      ics_image *img;
+      ics_render_stats stats;
+      st = ics_renderer_render(r, p[w], &img, &stats, msg, sizeof msg);
+      if (st != ICS_OK) break;
+      *cpu_threads = stats.threads > 0; /* a device backend: one row, threads 0 */
+      snprintf(simd, sizeof simd, "%s", stats.simd);
+      double floor_ns = now_floor_ns(npx, K, fa, fb);
+      if (rep > 0) t[w][rep - 1] = stats.ns_per_px_slab, fl[w][rep - 1] = floor_ns, ms[w][rep - 1] = stats.ms_total;
+      if (stats.updates_dense > 0) active[w] = stats.updates_active / stats.updates_dense;
+      if (rep == c->reps && !c->stripes) {
+        /* the receiver against Phi((x - K m_x) / sqrt(K C_xx + 1/12)), edge at x = 0 */
+        double sd = sqrt(K * c->cov[0] + 1.0 / 12);
+        for (int j = 0; j < n; j++)
+          for (int i = n / 2; i < n; i++) { /* x < 0 shows the occluder itself */
+            double x = i + 0.5 - n / 2.0;
+            double ref = ics_normal_cdf((x - K * c->mean[0]) / sd);
+            err[w] = fmax(err[w], fabs(img->data[((size_t)j * n + i) * 4] - ref));
+          }
+      }
+      ics_image_destroy(img);
+      cli_progress_say(prog, "%s %dx%d %d thread(s): rep %d/%d", m->label, n, n, c->threads, rep, c->reps);
+    }
+  char mode[64] = "";
+  for (int i = 0; p[0] && i < ics_plan_pass_count(p[0]); i++) {
+    const ics_plan_pass *q = ics_plan_pass_at(p[0], i);
+    if (q->light == 0) sscanf(q->detail, "%*s %*s %63[a-z]", mode);
+  }
+  int bw = 0, bh = 0;
+  if (p[0]) ics_plan_sizes(p[0], NULL, NULL, &bw, &bh);
+  for (int w = 0; w < nw && st == ICS_OK; w++) {
+    cli_spread sp = cli_spread_of(t[w], c->reps), fsp = cli_spread_of(fl[w], c->reps);
+    cli_spread msp = cli_spread_of(ms[w], c->reps);
+    if (c->reps > 1 && cli_spread_busy(sp)) *busy = 1;
+    printf("%s,%s,%d,%s,%d,%d,%d,%d,%.4g,%.4g,%.4g,%.4g,%.4g,", c->backend, m->label, m->samples, mode,
+           bw, bh, K, *cpu_threads ? c->threads : 0, sp.median, sp.min, sp.max, fsp.median,
+           fsp.median / sp.median);
+    if (c->stripes)
+      printf("-,");
+    else
+      printf("%.3g,", err[w]);
+    printf("%d,%s,%s,%s,%.4g,%.4g,%.4g,%.4g\n", c->reps, *simd ? simd : "-", works[w] ? "dense" : "skip",
+           c->stripes ? "stripes" : "edge", active[w], msp.median, msp.min, msp.max);
+  }
+  if (r) ics_renderer_destroy(r);
+  for (int w = 0; w < 2; w++) ics_plan_destroy(p[w]), ics_scene_destroy(s[w]);
+  free(fa), free(fb);
+  if (st != ICS_OK)
+    return st == ICS_ERR_NOMEM && !msg[0] ? cli_failure(CMD, "out of memory for %dx%d buffers", n, n)
+                                          : cli_status_error(CMD, st, "%s %dx%d: %s", m->label, n, n, msg);
+  return cli_stdout_failed(CMD); /* stop at the first row that fails, with its cause */
+}
+
 int bench_slab(int argc, char **argv) {
   if (cli_wants_help(argc, argv)) {
     help(stdout);
@@ -114,6 +233,7 @@ int bench_slab(int argc, char **argv) {
 #else
   const char *sizes_s = "512,768", *threads_s = "1,2", *kernels_s = NULL, *backend_s = "cpu";
   const char *cov_s = "2,0.5,1", *mean_s = "0.3,-0.2";
+  const char *work_s = "dense", *occluder_s = "edge";
   int slabs = 256, reps = 3, force = 0;
   const cli_option opts[] = {
       {"--sizes", .kind = CLI_STRING, .dest = &sizes_s},
@@ -127,6 +247,8 @@ int bench_slab(int argc, char **argv) {
       {"--mean", .kind = CLI_STRING, .dest = &mean_s},
       {"--reps", .kind = CLI_INT, .dest = &reps, .lo = 1, .hi = 50},
       {"--progress", .kind = CLI_FLAG, .dest = &force},
+      {"--work", .kind = CLI_STRING, .dest = &work_s},
+      {"--occluder", .kind = CLI_STRING, .dest = &occluder_s},
   };
   int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
   if (rc) return rc;
@@ -139,6 +261,12 @@ int bench_slab(int argc, char **argv) {
     return 2;
   if (cov[0] < 0 || cov[2] < 0 || cov[0] * cov[2] < cov[1] * cov[1])
     return cli_error(CMD, "--cov: not positive semidefinite: %s", cov_s);
+  int dense = !strcmp(work_s, "dense") || !strcmp(work_s, "dense,skip") || !strcmp(work_s, "skip,dense");
+  int skip = !strcmp(work_s, "skip") || !strcmp(work_s, "dense,skip") || !strcmp(work_s, "skip,dense");
+  if (!dense && !skip) return cli_error(CMD, "--work: expected dense, skip or dense,skip, got '%s'", work_s);
+  int stripes = !strcmp(occluder_s, "stripes");
+  if (!stripes && strcmp(occluder_s, "edge"))
+    return cli_error(CMD, "--occluder: expected edge or stripes, got '%s'", occluder_s);
   int use[NMEMBERS], nuse = 0;
   if (kernels_s) {
     const char *p = kernels_s;
@@ -173,103 +301,21 @@ int bench_slab(int argc, char **argv) {
   cli_progress prog;
   cli_progress_init(&prog, "bench slab", force);
   printf("backend,kernel,samples,mode,width,height,slabs,threads,ns_per_px_slab,ns_min,ns_max,"
-         "floor_ns_per_px,floor_ratio,error,reps,simd\n");
+         "floor_ns_per_px,floor_ratio,error,reps,simd,work,occluder,active,ms_render,"
+         "ms_render_min,ms_render_max\n");
   int busy = 0;
-  for (int si = 0; si < ns; si++) {
-    int n = sizes[si];
-    size_t npx = (size_t)n * n;
-    float *fa = malloc(npx * sizeof *fa), *fb = malloc(npx * sizeof *fb);
-    if (!fa || !fb) {
-      free(fa), free(fb);
-      return cli_failure(CMD, "out of memory for %dx%d buffers", n, n);
-    }
-    for (size_t i = 0; i < npx; i++) fa[i] = (float)(i % 7);
+  for (int si = 0; si < ns; si++)
     for (int ki = 0; ki < nuse; ki++)
       for (int bi = 0; bi < nb; bi++)
-      for (int ti = 0, cpu_threads = 1; ti < nt && cpu_threads; ti++) {
-        const member_t *m = &members[use[ki]];
-        const char *backend = backends[bi];
-        /* world units = pixels: height n, slab spacing 1, d1 1; light mean -mean (Eq. 7), the
-         * row axis pointing down (y components change sign) */
-        char json[2048];
-        snprintf(json, sizeof json,
-                 "{\"camera\": {\"eye\": [0, 0, 1], \"target\": [0, 0, 0], \"height\": %d, \"resolution\": [%d, %d]},"
-                 " \"render\": {\"slab_spacing\": 1, \"d1\": 1, \"kernel\": \"%s\", \"samples\": %d,"
-                 " \"compensate\": \"%s\", \"max_pad\": 0, \"seed\": 1, \"rotation_run\": %d},"
-                 " \"lights\": [{\"mean\": [%.17g, %.17g], \"cov\": [[%.17g, %.17g], [%.17g, %.17g]]}],"
-                 " \"materials\": {\"black\": {\"color\": [0, 0, 0]}, \"white\": {}},"
-                 " \"objects\": [{\"shape\": \"rect\", \"center\": [%.17g, 0, 0], \"normal\": [0, 0, 1],"
-                 "  \"size\": [%d, %d], \"material\": \"black\"},"
-                 "  {\"shape\": \"rect\", \"center\": [0, 0, %d], \"normal\": [0, 0, 1], \"size\": [%d, %d], \"material\": \"white\"}]}",
-                 n, n, n, m->kernel, m->samples, m->comp, m->run, -mean[0], mean[1], cov[0], -cov[1],
-                 -cov[1], cov[2], -0.25 * n, n / 2, 2 * n, -slabs, 2 * n, 2 * n);
-        char msg[CLI_MSG_MAX] = "";
-        ics_scene *s = NULL;
-        ics_plan *p = NULL;
-        ics_status st = ics_scene_create_json(&s, json, "bench", NULL, msg, sizeof msg);
-        ics_plan_opts po = {.threads = threads[ti]};
-        if (st == ICS_OK) st = ics_plan_create(&p, s, &po, msg, sizeof msg);
-        if (st != ICS_OK) {
-          free(fa), free(fb);
-          ics_scene_destroy(s);
-          return cli_status_error(CMD, st, "%s %dx%d: %s", m->label, n, n, msg);
-        }
-        ics_render_opts ro = {.backend = backend, .threads = threads[ti]};
-        ics_renderer *r = NULL;
-        st = ics_renderer_create(&r, &ro, msg, sizeof msg);
-        double t[50], fl[50], err = 0;
-        char simd[16] = "";
-        int K = ics_plan_slabs(p) - 1, bw, bh;
-        ics_plan_sizes(p, NULL, NULL, &bw, &bh);
-        for (int rep = 0; rep <= reps && st == ICS_OK; rep++) { /* rep 0: warm-up */
-          ics_image *img;
-          ics_render_stats stats;
-          st = ics_renderer_render(r, p, &img, &stats, msg, sizeof msg);
-          if (st != ICS_OK) break;
-          cpu_threads = stats.threads > 0; /* a device backend: one row, threads 0 */
-          snprintf(simd, sizeof simd, "%s", stats.simd);
-          double floor_ns = now_floor_ns(npx, K, fa, fb);
-          if (rep > 0) t[rep - 1] = stats.ns_per_px_slab, fl[rep - 1] = floor_ns;
-          if (rep == reps) {
-            /* the receiver against Phi((x - K m_x) / sqrt(K C_xx + 1/12)), edge at x = 0 */
-            double sd = sqrt(K * cov[0] + 1.0 / 12);
-            for (int j = 0; j < n; j++)
-              for (int i = n / 2; i < n; i++) { /* x < 0 shows the occluder itself */
-                double x = i + 0.5 - n / 2.0;
-                double ref = ics_normal_cdf((x - K * mean[0]) / sd);
-                err = fmax(err, fabs(img->data[((size_t)j * n + i) * 4] - ref));
-              }
+        for (int ti = 0, cpu_threads = 1; ti < nt && cpu_threads; ti++) {
+          config_t c = {&members[use[ki]], backends[bi], sizes[si], threads[ti], slabs, reps,
+                        {mean[0], mean[1]}, {cov[0], cov[1], cov[2]}, stripes, dense, skip};
+          rc = bench_config(&c, &prog, &busy, &cpu_threads);
+          if (rc) {
+            cli_progress_done(&prog);
+            return rc;
           }
-          ics_image_destroy(img);
-          cli_progress_say(&prog, "%s %dx%d %d thread(s): rep %d/%d", m->label, n, n, threads[ti],
-                           rep, reps);
         }
-        char mode[64] = "";
-        for (int i = 0; i < ics_plan_pass_count(p); i++) {
-          const ics_plan_pass *q = ics_plan_pass_at(p, i);
-          if (q->light == 0) sscanf(q->detail, "%*s %*s %63[a-z]", mode);
-        }
-        if (r) ics_renderer_destroy(r);
-        ics_plan_destroy(p);
-        ics_scene_destroy(s);
-        if (st != ICS_OK) {
-          free(fa), free(fb);
-          return cli_status_error(CMD, st, "%s: %s", m->label, msg);
-        }
-        cli_spread sp = cli_spread_of(t, reps), fsp = cli_spread_of(fl, reps);
-        double med = sp.median, fmed = fsp.median;
-        if (reps > 1 && cli_spread_busy(sp)) busy = 1;
-        printf("%s,%s,%d,%s,%d,%d,%d,%d,%.4g,%.4g,%.4g,%.4g,%.4g,%.3g,%d,%s\n", backend, m->label,
-               m->samples, mode, bw, bh, K, cpu_threads ? threads[ti] : 0, med, sp.min, sp.max, fmed,
-               fmed / med, err, reps, *simd ? simd : "-");
-        if (cli_stdout_failed(CMD)) { /* stop at the first row that fails, with its cause */
-          free(fa), free(fb);
-          cli_progress_done(&prog);
-          return 1;
-        }
-      }
-    free(fa), free(fb);
-  }
   cli_progress_done(&prog);
   if (busy) cli_warn_busy(CMD, "ns_min vs ns_max");
   return cli_stdout_failed(CMD);

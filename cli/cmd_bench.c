@@ -1,5 +1,5 @@
 /* cmd_bench.c — `icshadow bench KIND [options]`: dispatches to the benchmark of one peer
- * primitive or of the slab renderer's propagation (bench_<kind>.c). Each prints one CSV line per configuration. */
+ * primitive, of the slab renderer's propagation or of whole frames (bench_<kind>.c). Each prints one CSV line per configuration. */
 #include <stdio.h>
 #include <string.h>
 
@@ -15,6 +15,7 @@ static const struct {
     {"minmax", bench_minmax, "1D min-max mipmap traversal vs brute-force ray marching"},
     {"occtex", bench_occtex, "occlusion textures: prefilters and combinations vs brute force"},
     {"slab", bench_slab, "light-buffer propagation per kernel member and backend vs the memcpy floor"},
+    {"frame", bench_frame, "whole frames of a scene: skipping, dense and Monte Carlo side by side"},
 };
 
 static void help(FILE *f) {

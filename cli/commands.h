@@ -28,6 +28,7 @@ int bench_sat3d(int argc, char **argv);
 int bench_minmax(int argc, char **argv);
 int bench_occtex(int argc, char **argv);
 int bench_slab(int argc, char **argv);
+int bench_frame(int argc, char **argv);
 
 /* Reports on stderr, one line each: "icshadow CMD: message" (cmd: the subcommand as typed after
  * "icshadow", e.g. "make-env" or "bench sat2d"; NULL for the tool itself: "icshadow: message").

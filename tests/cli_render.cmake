@@ -51,7 +51,20 @@ ics_cli_test(NAME cli_plan_print_scene_with_scene RC 2 ARGS "plan|${disk}|--prin
 endif()
 if(ICS_HAVE_RENDER)
 ics_cli_test(NAME cli_bench_slab RC 0 ARGS "bench|slab|--sizes|32|--slabs|8|--threads|1|--reps|1|--kernels|ellipse2,gauss19"
-  OUT "^backend,kernel,samples,mode,width,height,slabs,threads,ns_per_px_slab,ns_min,ns_max,floor_ns_per_px,floor_ratio,error,reps,simd\ncpu,ellipse2,2,[a-z]+,32,32,8,1,[0-9.e+-]+,.*,(scalar|sse2|neon|avx2|avx512)\ncpu,gauss19,19,")
+  OUT "^backend,kernel,samples,mode,width,height,slabs,threads,ns_per_px_slab,ns_min,ns_max,floor_ns_per_px,floor_ratio,error,reps,simd,work,occluder,active,ms_render,ms_render_min,ms_render_max\ncpu,ellipse2,2,[a-z]+,32,32,8,1,[0-9.e+-]+,.*,(scalar|sse2|neon|avx2|avx512),dense,edge,1,[0-9.e+-]+,[0-9.e+-]+,[0-9.e+-]+\ncpu,gauss19,19,")
+# both works side by side on the stripes that leave nothing to skip (the skip row counts fewer or
+# as many updates), and bad values of the two options
+ics_cli_test(NAME cli_bench_slab_work RC 0 ARGS "bench|slab|--sizes|64|--slabs|8|--threads|1|--reps|1|--kernels|ellipse2|--work|dense,skip|--occluder|stripes"
+  OUT "\ncpu,ellipse2,2,[a-z]+,64,64,8,1,[^\n]*,-,1,[a-z0-9]+,dense,stripes,1,[^\n]*\ncpu,ellipse2,2,[a-z]+,64,64,8,1,[^\n]*,-,1,[a-z0-9]+,skip,stripes,(1|0[.][0-9]+),")
+# whole frames, the three works side by side (a small resolution, one repetition)
+ics_cli_test(NAME cli_bench_frame RC 0 ARGS "bench|frame|--resolution|32x24|--reps|1|--spp|1|--threads|1"
+  OUT "^scene,width,height,work,threads,simd,cpu,ms_frame,ms_min,ms_max,ms_plan,ms_render,ms_convolution,ms_shading,ms_detail,active,vs_mc\ndefault,32,24,skip,1,(scalar|sse2|neon|avx2|avx512),[^,]*,[^\n]*,0[.][0-9]+,[0-9.e+-]+\ndefault,32,24,dense,1,[a-z0-9]+,[^\n]*,1,[0-9.e+-]+\ndefault,32,24,mc,1,-,[^\n]*,1\n$")
+ics_cli_test(NAME cli_bench_frame_help RC 0 ARGS "bench|frame|--help" OUT "Monte-Carlo reference")
+ics_cli_test(NAME cli_bench_frame_bad_work RC 2 ARGS "bench|frame|--work|skip,skip" ERR "--work: expected some of skip, dense, mc")
+ics_cli_test(NAME cli_bench_frame_bad_res RC 2 ARGS "bench|frame|--resolution|32x" ERR "--resolution: expected WxH")
+ics_cli_test(NAME cli_bench_frame_no_scene RC 2 ARGS "bench|frame|${CMAKE_CURRENT_BINARY_DIR}/no_such_scene.json" ERR "no_such_scene.json")
+ics_cli_test(NAME cli_bench_slab_bad_work RC 2 ARGS "bench|slab|--work|sparse" ERR "--work: expected dense, skip or dense,skip, got 'sparse'")
+ics_cli_test(NAME cli_bench_slab_bad_occluder RC 2 ARGS "bench|slab|--occluder|disk" ERR "--occluder: expected edge or stripes, got 'disk'")
 ics_cli_test(NAME cli_bench_slab_help RC 0 ARGS "bench|slab|--help" OUT "memcpy floor")
 ics_cli_test(NAME cli_bench_slab_bad_kernel RC 2 ARGS "bench|slab|--kernels|box" ERR "--kernels: unknown member 'box'")
 ics_cli_test(NAME cli_bench_slab_bad_size RC 2 ARGS "bench|slab|--sizes|8" ERR "--sizes: expected integers in 16..4096")

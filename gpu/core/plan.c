@@ -391,7 +391,7 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   /* memory before the geometry pass */
   size_t npx = (size_t)p->Wb * p->Hb, nimg = (size_t)p->W * p->H;
   size_t buf_bytes = 2 * (size_t)p->nch * p->buf.plane * sizeof(float);
-  size_t state_bytes = npx * (2 * sizeof(uint32_t) + (p->nvol ? sizeof(uint64_t) : 0));
+  size_t state_bytes = npx * (3 * sizeof(uint32_t) + (p->nvol ? sizeof(uint64_t) : 0));
   size_t image_bytes = nimg * 4 * sizeof(float);
   size_t tap_bytes = 0;
   for (int k = 0; k < p->nlights; k++) {

@@ -49,6 +49,8 @@ typedef struct {
   atomic_int next_row;   /* the next row of tiles to take this slab */
   double active[256];    /* per thread: channel-pixel updates propagated */
   int *row_next;         /* per row: the first slab at which some pixel of it has work */
+  int32_t *pnext;        /* per pixel: the slab of its fragment acursor (INT_MAX: none), before
+                            which it has nothing to do outside volumes */
   ics_aov_buf *aov;      /* NULL: no AOVs */
   uint8_t *aov_seen;     /* per view pixel: its first surface recorded */
   double prop_s[256], shade_s[256], detail_s[256];
@@ -221,8 +223,9 @@ static void row_details(job_t *j, int bj, double zf, double zb, const int32_t *n
   for (int bi = j->shade.x0; bi < j->shade.x1; bi++) {
     size_t p = (size_t)bj * w + bi;
     uint64_t mask = j->mask[p];
+    if (!mask) continue; /* (shade_rows reads a slot only inside a volume) */
     slot[bi] = -1;
-    if (!mask || (mask & (mask - 1)) || need[ics_tile_col(&j->grid, bi)] < j->k) continue;
+    if ((mask & (mask - 1)) || need[ics_tile_col(&j->grid, bi)] < j->k) continue;
     int obj = j->vol_obj[__builtin_ctzll(mask)];
     ics_detail_fn fn = s->materials[s->objects[obj].material].detail.fn;
     uint32_t cur = j->cursor[p];
@@ -266,14 +269,13 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
         continue;
       }
       size_t p = (size_t)bj * P->Wb + bi;
-      uint32_t cur = j->cursor[p], end = ldi->offset[p + 1], acur = j->acursor[p];
       uint64_t mask = j->mask ? j->mask[p] : 0;
-      int has = cur < end && ics_frag_slab(&ldi->frag[cur]) == k;
-      int occl = acur < end && ics_frag_slab(&ldi->frag[acur]) <= k;
-      if (!has && !mask && !occl) {
-        if (acur < end && ics_frag_slab(&ldi->frag[acur]) < next) next = ics_frag_slab(&ldi->frag[acur]);
+      if (!mask && j->pnext[p] > k) { /* nothing here yet (no fragment memory read) */
+        if (j->pnext[p] < next) next = j->pnext[p];
         continue;
       }
+      uint32_t cur = j->cursor[p], end = ldi->offset[p + 1], acur = j->acursor[p];
+      int has = cur < end && ics_frag_slab(&ldi->frag[cur]) == k;
       int ii = bi - P->pad[0], jj = bj - P->pad[2];
       int inview = ii >= 0 && ii < P->W && jj >= 0 && jj < P->H;
       float dummy[4] = {0, 0, 0, 1};
@@ -302,15 +304,17 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
                                ldi->frag[acur].span * j->window_max <= k)
         acur++;
       j->acursor[p] = acur;
+      j->pnext[p] = acur < end ? ics_frag_slab(&ldi->frag[acur]) : INT_MAX;
       if (!has && !mask) goto next_pixel;
+      /* without a fragment in the slab the one piece is the whole slab: its detail batched */
+      int s0 = batch && mask && !has ? slot[bi] : -1;
+      double pre[2] = {0, 0};
+      if (s0 >= 0) pre[0] = values[s0], pre[1] = values[P->Wb + s0];
       double za = zf;
       for (;;) {
         double zn = has ? ldi->frag[cur].z : zb;
         if (zn < za) zn = za;
         if (zn > zb) zn = zb;
-        double pre[2];
-        int s0 = batch && za == zf && !has ? slot[bi] : -1;
-        if (s0 >= 0) pre[0] = values[s0], pre[1] = values[P->Wb + s0];
         if (mask && zn > za) volume_piece(j, p, bi, bj, mask, za, zn - za, L, C, inview, t, s0 >= 0 ? pre : NULL);
         if (!has) break;
         int obj = ics_frag_obj(&ldi->frag[cur]);
@@ -416,7 +420,7 @@ static void settle_row(job_t *j, int ty, const uint8_t *marks) {
         }
     const uint8_t *shaded = marks, *written = marks + (size_t)(1 + l) * g->nx;
     int signed_ = P->kernels[l].comp == ICS_RC_SIGNED;
-    for (int tx = 0; tx < g->nx; tx++)
+    for (int tx = 0; tx < g->nx && !P->rs.dense; tx++) /* (dense: nothing reads the states) */
       if (shaded[tx] || written[tx] == 2 || signed_)
         j->tdst[l][(size_t)ty * g->nx + tx] = ics_tile_scan(&P->buf, j->dst[l], P->nch,
             ics_tile_x0(g, tx), ics_tile_x1(g, tx), y0, y1);
@@ -489,6 +493,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->pt = calloc((size_t)(nl ? nl : 1), sizeof *j->pt);
   j->cursor = malloc(sizeof *j->cursor * npx);
   j->acursor = malloc(sizeof *j->acursor * npx);
+  j->pnext = malloc(sizeof *j->pnext * npx);
   j->scratch = malloc(sizeof *j->scratch * ICS_PROP_SCRATCH(P->Wb) * (size_t)nt);
   j->row_next = calloc((size_t)P->Hb, sizeof *j->row_next); /* 0: look at every row first */
   j->mask = P->nvol ? malloc(sizeof *j->mask * npx) : NULL;
@@ -497,7 +502,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   /* the largest pixel is the deepest slab's (perspective) */
   for (int l = 0; l < nl; l++) j->blur_world[l] = ics_plan_light_blur(P, l);
   j->window_max = ics_plan_window_max(P);
-  if (!j->pt || !j->cursor || !j->acursor || !j->scratch || !j->row_next || (P->nvol && !j->mask) ||
+  if (!j->pt || !j->cursor || !j->acursor || !j->pnext || !j->scratch || !j->row_next || (P->nvol && !j->mask) ||
       (aov && !j->aov_seen) || !j->marks || (P->any_detail && (!j->dpts || !j->dslot)))
     goto nomem;
   for (int l = 0; l < nl; l++) {
@@ -516,6 +521,8 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   }
   memcpy(j->cursor, P->ldi.offset, sizeof *j->cursor * npx);
   memcpy(j->acursor, P->ldi.offset, sizeof *j->acursor * npx);
+  for (size_t i = 0; i < npx; i++)
+    j->pnext[i] = P->ldi.offset[i] < P->ldi.offset[i + 1] ? ics_frag_slab(&P->ldi.frag[P->ldi.offset[i]]) : INT_MAX;
   if (j->mask) {
     if (P->ldi.inside0)
       memcpy(j->mask, P->ldi.inside0, sizeof *j->mask * npx);
@@ -580,6 +587,7 @@ done:
     free(j->pt);
     free(j->cursor);
     free(j->acursor);
+    free(j->pnext);
     free(j->scratch);
     free(j->row_next);
     free(j->mask);
