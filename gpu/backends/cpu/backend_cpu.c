@@ -48,9 +48,10 @@ typedef struct {
   ics_rect shade;        /* this slab: the pixels to shade (the lights' active regions joined) */
   atomic_int next_row;   /* the next row of tiles to take this slab */
   double active[256];    /* per thread: channel-pixel updates propagated */
-  int *row_next;         /* per row: the first slab at which some pixel of it has work */
-  int32_t *pnext;        /* per pixel: the slab of its fragment acursor (INT_MAX: none), before
-                            which it has nothing to do outside volumes */
+  int *seg_next;         /* per row and tile column: the first slab at which a pixel of that
+                            row segment has work */
+  int32_t *pnext;        /* per pixel: the first slab at which it has work: 0 inside a volume
+                            (every slab), else the slab of its fragment acursor (INT_MAX: none) */
   ics_aov_buf *aov;      /* NULL: no AOVs */
   uint8_t *aov_seen;     /* per view pixel: its first surface recorded */
   double prop_s[256], shade_s[256], detail_s[256];
@@ -258,22 +259,27 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
   if (y1 > j->shade.y1) y1 = j->shade.y1;
   const int32_t *need = y0 < y1 ? P->tile_shade + (size_t)ics_tile_row(&j->grid, y0) * j->grid.nx : NULL;
   for (int bj = y0; bj < y1; bj++) {
-    if (j->row_next[bj] > k) continue; /* nothing in this row before slab row_next */
-    int next = INT_MAX, batch = j->mask && P->any_detail;
+    int *seg = j->seg_next + (size_t)bj * j->grid.nx, busy = 0;
+    int tx0 = ics_tile_col(&j->grid, j->shade.x0), tx1 = ics_tile_col(&j->grid, j->shade.x1 - 1);
+    for (int tx = tx0; tx <= tx1; tx++) busy |= seg[tx] <= k && need[tx] >= k;
+    if (!busy) continue; /* nothing in this row before its segments' next slab */
+    int batch = j->mask && P->any_detail;
     if (batch) row_details(j, bj, zf, zb, need, t);
     const int32_t *slot = j->dslot + (size_t)t * P->Wb;
     const double *values = j->dpts + (size_t)t * 8 * P->Wb + 6 * (size_t)P->Wb;
-    for (int bi = j->shade.x0; bi < j->shade.x1; bi++) {
-      if (need[ics_tile_col(&j->grid, bi)] < k) { /* a tile no longer needed: to its end */
-        bi = ics_tile_x1(&j->grid, ics_tile_col(&j->grid, bi)) - 1;
-        continue;
-      }
+    for (int tx = tx0; tx <= tx1; tx++) {
+    /* a segment no longer needed, or with nothing to do before its next slab, is passed over */
+    if (need[tx] < k || seg[tx] > k) continue;
+    int next = INT_MAX, x0 = ics_tile_x0(&j->grid, tx), x1 = ics_tile_x1(&j->grid, tx);
+    if (x0 < j->shade.x0) x0 = j->shade.x0;
+    if (x1 > j->shade.x1) x1 = j->shade.x1;
+    for (int bi = x0; bi < x1; bi++) {
       size_t p = (size_t)bj * P->Wb + bi;
-      uint64_t mask = j->mask ? j->mask[p] : 0;
-      if (!mask && j->pnext[p] > k) { /* nothing here yet (no fragment memory read) */
+      if (j->pnext[p] > k) { /* nothing here yet (no fragment or volume mask read) */
         if (j->pnext[p] < next) next = j->pnext[p];
         continue;
       }
+      uint64_t mask = j->mask ? j->mask[p] : 0;
       uint32_t cur = j->cursor[p], end = ldi->offset[p + 1], acur = j->acursor[p];
       int has = cur < end && ics_frag_slab(&ldi->frag[cur]) == k;
       int ii = bi - P->pad[0], jj = bj - P->pad[2];
@@ -304,7 +310,6 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
                                ldi->frag[acur].span * j->window_max <= k)
         acur++;
       j->acursor[p] = acur;
-      j->pnext[p] = acur < end ? ics_frag_slab(&ldi->frag[acur]) : INT_MAX;
       if (!has && !mask) goto next_pixel;
       /* without a fragment in the slab the one piece is the whole slab: its detail batched */
       int s0 = batch && mask && !has ? slot[bi] : -1;
@@ -333,13 +338,15 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       j->cursor[p] = cur;
       if (j->mask) j->mask[p] = mask;
     next_pixel:
+      j->pnext[p] = mask ? 0 : acur < end ? ics_frag_slab(&ldi->frag[acur]) : INT_MAX;
       /* the next slab this pixel needs: a volume it is inside of, a pending occlusion (at or
        * after its fragment's slab), its next fragment */
       if (mask) next = k + 1;
       if (acur < end && ics_frag_slab(&ldi->frag[acur]) < next) next = ics_frag_slab(&ldi->frag[acur]);
       if (acur < end && ics_frag_slab(&ldi->frag[acur]) <= k) next = k + 1;
     }
-    j->row_next[bj] = next;
+    seg[tx] = next;
+    }
   }
 }
 
@@ -495,14 +502,15 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->acursor = malloc(sizeof *j->acursor * npx);
   j->pnext = malloc(sizeof *j->pnext * npx);
   j->scratch = malloc(sizeof *j->scratch * ICS_PROP_SCRATCH(P->Wb) * (size_t)nt);
-  j->row_next = calloc((size_t)P->Hb, sizeof *j->row_next); /* 0: look at every row first */
+  /* 0: look at every segment first */
+  j->seg_next = calloc((size_t)P->Hb * (size_t)j->grid.nx, sizeof *j->seg_next);
   j->mask = P->nvol ? malloc(sizeof *j->mask * npx) : NULL;
   j->aov = aov;
   j->aov_seen = aov ? calloc((size_t)P->W * P->H, 1) : NULL;
   /* the largest pixel is the deepest slab's (perspective) */
   for (int l = 0; l < nl; l++) j->blur_world[l] = ics_plan_light_blur(P, l);
   j->window_max = ics_plan_window_max(P);
-  if (!j->pt || !j->cursor || !j->acursor || !j->pnext || !j->scratch || !j->row_next || (P->nvol && !j->mask) ||
+  if (!j->pt || !j->cursor || !j->acursor || !j->pnext || !j->scratch || !j->seg_next || (P->nvol && !j->mask) ||
       (aov && !j->aov_seen) || !j->marks || (P->any_detail && (!j->dpts || !j->dslot)))
     goto nomem;
   for (int l = 0; l < nl; l++) {
@@ -521,14 +529,16 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   }
   memcpy(j->cursor, P->ldi.offset, sizeof *j->cursor * npx);
   memcpy(j->acursor, P->ldi.offset, sizeof *j->acursor * npx);
-  for (size_t i = 0; i < npx; i++)
-    j->pnext[i] = P->ldi.offset[i] < P->ldi.offset[i + 1] ? ics_frag_slab(&P->ldi.frag[P->ldi.offset[i]]) : INT_MAX;
   if (j->mask) {
     if (P->ldi.inside0)
       memcpy(j->mask, P->ldi.inside0, sizeof *j->mask * npx);
     else
       memset(j->mask, 0, sizeof *j->mask * npx);
   }
+  for (size_t i = 0; i < npx; i++)
+    j->pnext[i] = j->mask && j->mask[i] ? 0
+                  : P->ldi.offset[i] < P->ldi.offset[i + 1] ? ics_frag_slab(&P->ldi.frag[P->ldi.offset[i]])
+                                                           : INT_MAX;
   for (int i = 0; i < P->scene->nobjects; i++)
     if (P->vol_bit[i] >= 0) j->vol_obj[P->vol_bit[i]] = i;
   for (int k = 0; k < P->K; k++) {
@@ -589,7 +599,7 @@ done:
     free(j->acursor);
     free(j->pnext);
     free(j->scratch);
-    free(j->row_next);
+    free(j->seg_next);
     free(j->mask);
     free(j->aov_seen);
     free(j->marks);
