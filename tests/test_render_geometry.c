@@ -5,7 +5,13 @@
  * through Assimp) renders exactly as the analytic box; open meshes are refused as volumes; a
  * malformed mesh file is named, and so are the files Assimp aborts or hangs on, a FIFO, and a
  * reader past its time limit (mesh_import.c). (Sampling at 20000 points per ray cannot see a pair of crossings
- * closer than 1.5e-4 of the ray; the +-1e-7 test checks every reported one.) Arguments: the folder tests/data. */
+ * closer than 1.5e-4 of the ray; the +-1e-7 test checks every reported one.) The layered depth
+ * image (ldi.c), which tests a ray only against the objects whose projected bounding box it
+ * meets, holds at every buffer pixel exactly the crossings of all objects (depths, objects) and
+ * the volumes containing the ray's origin, on scenes built to catch a wrong cull: objects
+ * straddling and behind an orthographic eye, a perspective eye inside a volume, an object
+ * straddling a perspective eye's plane, shapes at the buffer's edges, a mesh. Arguments: the
+ * folder tests/data. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -15,6 +21,7 @@
 
 #include "geometry.h"
 #include "mesh.h"
+#include "plan_internal.h"
 #include "render_util.h"
 #include "testutil.h"
 
@@ -264,8 +271,81 @@ static void test_meshes(const char *dir) {
   }
 }
 
+/* every buffer pixel of the plan's LDI against all objects' crossings of its ray, unculled */
+static void check_ldi(const char *name, const char *json, const char *dir) {
+  char msg[4096];
+  ics_scene *s;
+  if (ics_scene_create_json(&s, json, name, dir, msg, sizeof msg) != ICS_OK) {
+    CHECK(0, "%s: %s", name, msg);
+    return;
+  }
+  ics_plan *p = plan_or_exit(s, NULL, 2);
+  const ics_ldi *l = &p->ldi;
+  ics_hits h = {0};
+  long bad = 0, frags = 0;
+  for (int bj = 0; bj < l->h; bj++)
+    for (int bi = 0; bi < l->w; bi++) {
+      size_t px = (size_t)bj * l->w + bi;
+      double o[3], d[3], z[64];
+      int obj[64], n = 0;
+      uint64_t inside = 0;
+      ics_plan_ray(p, bi, bj, o, d);
+      for (int k = 0; k < ics_scene_object_count(s); k++) {
+        int behind = 0;
+        h.n = 0;
+        ics_object_hits(ics_scene_object(s, k), o, d, &h, &behind);
+        if (p->vol_bit[k] >= 0 && (behind & 1)) inside |= 1ull << p->vol_bit[k];
+        for (int i = 0; i < h.n && n < 64; i++) z[n] = h.h[i].t, obj[n++] = k;
+      }
+      uint32_t f0 = l->offset[px], f1 = l->offset[px + 1];
+      if ((int)(f1 - f0) != n || (l->inside0 ? l->inside0[px] : 0) != inside) {
+        bad++;
+        continue;
+      }
+      for (uint32_t f = f0; f < f1; f++) { /* each fragment is one crossing (sorted by depth) */
+        int found = 0;
+        for (int i = 0; i < n && !found; i++)
+          found = (float)z[i] == l->frag[f].z && obj[i] == ics_frag_obj(&l->frag[f]);
+        bad += !found;
+      }
+      frags += n;
+    }
+  ics_hits_free(&h);
+  CHECK(bad == 0 && frags > 0, "%s: %ld pixels or fragments of the LDI differ from the rays' crossings "
+        "(%ld crossings)", name, bad, frags);
+  printf("LDI, %s: %d x %d pixels, %ld crossings, %ld differ\n", name, l->w, l->h, frags, bad);
+  ics_plan_destroy(p);
+  ics_scene_destroy(s);
+}
+
+static void test_ldi_cull(const char *dir) {
+  const char *head = "\"render\": {\"slab_spacing\": 0.05, \"d1\": 1}, \"lights\": [{\"mean\": [0.4, 0.3], \"var\": [0.04, 0.02]}],"
+                     " \"materials\": {\"m\": {}, \"fog\": {\"extinction\": 2}},";
+  char j[4096];
+  snprintf(j, sizeof j, "{\"camera\": {\"eye\": [0, 0, 3], \"target\": [0, 0, 0], \"height\": 2, \"resolution\": [40, 30]}, %s"
+           " \"objects\": [{\"shape\": \"box\", \"center\": [0.5, 0, 3], \"size\": [0.6, 0.6, 1], \"material\": \"fog\"},"
+           "  {\"shape\": \"sphere\", \"center\": [-0.5, 0.3, 4], \"radius\": 0.3, \"material\": \"fog\"},"
+           "  {\"shape\": \"torus\", \"center\": [1.05, -0.7, 0], \"normal\": [0.3, 1, 0.2], \"major_radius\": 0.3, \"minor_radius\": 0.1, \"material\": \"m\"},"
+           "  {\"shape\": \"disk\", \"center\": [-1.3, 0.9, 0.5], \"normal\": [0, 0, 1], \"radius\": 0.4, \"material\": \"m\"},"
+           "  {\"shape\": \"rect\", \"center\": [0, 0, -1], \"normal\": [0, 0, 1], \"size\": [3, 2], \"material\": \"m\"}]}", head);
+  check_ldi("orthographic: a volume straddling the eye, one behind it, shapes at the edges", j, dir);
+  snprintf(j, sizeof j, "{\"camera\": {\"projection\": \"perspective\", \"eye\": [0, 0, 3], \"target\": [0, 0, 0], \"fov_deg\": 50, \"resolution\": [40, 30]}, %s"
+           " \"objects\": [{\"shape\": \"sphere\", \"center\": [0, 0, 2.5], \"radius\": 1, \"material\": \"fog\"},"
+           "  {\"shape\": \"box\", \"center\": [0.8, 0, 3], \"size\": [0.4, 0.4, 1], \"material\": \"m\"},"
+           "  {\"shape\": \"torus\", \"center\": [1.2, 0.7, 0], \"normal\": [0, 1, 0], \"major_radius\": 0.3, \"minor_radius\": 0.1, \"material\": \"m\"},"
+           "  {\"shape\": \"rect\", \"center\": [0, 0, -1], \"normal\": [0, 0, 1], \"size\": [3, 2], \"material\": \"m\"}]}", head);
+  check_ldi("perspective: the eye inside a volume, a box straddling its plane", j, dir);
+  if (ics_mesh_files_supported()) {
+    snprintf(j, sizeof j, "{\"camera\": {\"eye\": [0.3, 0.5, 3], \"target\": [0, 0, 0], \"height\": 2, \"resolution\": [40, 30]}, %s"
+             " \"objects\": [{\"shape\": \"mesh\", \"file\": \"cube.ply\", \"scale\": 0.5, \"translate\": [0.9, 0.6, 0], \"material\": \"m\"},"
+             "  {\"shape\": \"rect\", \"center\": [0, 0, -1], \"normal\": [0, 0, 1], \"size\": [3, 2], \"material\": \"m\"}]}", head);
+    check_ldi("a mesh at the view's corner", j, dir);
+  }
+}
+
 int main(int argc, char **argv) {
   test_shapes();
+  test_ldi_cull(argc > 1 ? argv[1] : "tests/data");
   test_meshes(argc > 1 ? argv[1] : "tests/data");
   return test_summary("test_render_geometry");
 }

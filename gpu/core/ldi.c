@@ -3,13 +3,18 @@
  * front to back, in a CSR layout sized exactly by a counting pass (so no layer beyond the
  * scene's depth complexity is allocated). The counting pass also finds the depth range, which
  * fixes the slabs; the fill pass stores each fragment's slab index with its object. Rows are
- * split over threads; every pixel's list depends on that pixel alone. */
+ * split over threads; every pixel's list depends on that pixel alone. A ray is tested only
+ * against the objects whose bounding box it can meet: the box's projection onto the buffer,
+ * widened by 2 pixels (a ray outside it crosses neither the box nor the object, before or
+ * behind its origin; test_render_geometry checks the LDI against every object's crossings). */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "geometry.h"
+#include "icshadow/constants.h"
 #include "plan_internal.h"
 #include "pool.h"
 #include "scene_internal.h"
@@ -44,17 +49,48 @@ typedef struct {
   int layers[256];
   int any_inside[256];
   double reach;    /* kernel_reach, for the surface bias */
+  int (*cull)[4];  /* per object: the buffer pixels [x0, x1] x [y0, y1] whose rays can meet it */
 } job_t;
 
-/* all crossings of pixel (bi, bj), sorted, into *hv (grown as needed); returns the count or -1 */
+/* the buffer pixels whose rays can meet object o: its bounding box's corners projected with the
+ * inverse of ics_plan_ray, widened by 2 pixels; every pixel when a corner is not in front of a
+ * perspective eye */
+static void cull_rect(const ics_plan *p, const ics_object *o, int r[4]) {
+  const ics_camera *c = &p->cam;
+  double lo[3], hi[3], x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  ics_object_bounds(o, lo, hi);
+  r[0] = r[1] = INT32_MIN, r[2] = r[3] = INT32_MAX;
+  double th = tan(c->fov_deg * (ICS_PI / 360)), asp = (double)p->W / p->H;
+  for (int m = 0; m < 8; m++) {
+    double v[3] = {(m & 1 ? hi[0] : lo[0]) - c->eye[0], (m & 2 ? hi[1] : lo[1]) - c->eye[1],
+                   (m & 4 ? hi[2] : lo[2]) - c->eye[2]};
+    double a = 0, b = 0, z = 0, s, t;
+    for (int i = 0; i < 3; i++) a += v[i] * c->r[i], b += v[i] * c->u[i], z += v[i] * c->f[i];
+    if (c->projection == ICS_PROJ_ORTHOGRAPHIC) {
+      s = a / (c->height * p->W / p->H) + 0.5, t = 0.5 - b / c->height;
+    } else {
+      if (!(z > 1e-9 * (fabs(a) + fabs(b) + fabs(z)))) return;
+      s = 0.5 * (a / (z * th * asp) + 1), t = 0.5 * (1 - b / (z * th));
+    }
+    double bx = s * p->W + p->pad[0] - 0.5, by = t * p->H + p->pad[2] - 0.5;
+    if (!isfinite(bx) || !isfinite(by)) return;
+    x0 = fmin(x0, bx), x1 = fmax(x1, bx), y0 = fmin(y0, by), y1 = fmax(y1, by);
+  }
+  r[0] = (int)fmax(floor(x0) - 2, -1), r[1] = (int)fmax(floor(y0) - 2, -1);
+  r[2] = (int)fmin(ceil(x1) + 2, p->Wb), r[3] = (int)fmin(ceil(y1) + 2, p->Hb);
+}
+
+/* all crossings of pixel (bi, bj) into *hv (grown as needed), sorted when `sorted` (the counting
+ * pass needs only their number and depth range); returns the count or -1 */
 static int pixel_hits(const ics_plan *p, int bi, int bj, ics_hits *h, hit_t **hv, int *hcap,
-                      uint64_t *inside) {
+                      uint64_t *inside, int sorted, int (*cull)[4]) {
   const ics_scene *s = p->scene;
   double o[3], d[3];
   ics_plan_ray(p, bi, bj, o, d);
   int n = 0;
   *inside = 0;
   for (int k = 0; k < s->nobjects; k++) {
+    if (bi < cull[k][0] || bj < cull[k][1] || bi > cull[k][2] || bj > cull[k][3]) continue;
     h->n = 0;
     int behind = 0;
     if (ics_object_hits(&s->objects[k], o, d, h, &behind)) return -1;
@@ -74,7 +110,7 @@ static int pixel_hits(const ics_plan *p, int bi, int bj, ics_hits *h, hit_t **hv
       memcpy(x->n, h->h[i].n, sizeof x->n);
     }
   }
-  if (n > 1) qsort(*hv, (size_t)n, sizeof **hv, cmp_hit);
+  if (n > 1 && sorted) qsort(*hv, (size_t)n, sizeof **hv, cmp_hit);
   return n;
 }
 
@@ -131,7 +167,7 @@ static void ldi_rows(void *ctx, int t, int nt) {
     for (int bi = 0; bi < l->w; bi++) {
       size_t px = (size_t)bj * l->w + bi;
       uint64_t inside;
-      int n = pixel_hits(p, bi, bj, &h, &hv, &hcap, &inside);
+      int n = pixel_hits(p, bi, bj, &h, &hv, &hcap, &inside, j->fill, j->cull);
       if (n < 0) {
         j->failed = 1;
         break;
@@ -139,10 +175,7 @@ static void ldi_rows(void *ctx, int t, int nt) {
       if (!j->fill) {
         l->offset[px + 1] = (uint32_t)n; /* counts; prefix-summed afterwards */
         if (n > layers) layers = n;
-        if (n) {
-          zmin = fmin(zmin, hv[0].t);
-          zmax = fmax(zmax, hv[n - 1].t);
-        }
+        for (int i = 0; i < n; i++) zmin = fmin(zmin, hv[i].t), zmax = fmax(zmax, hv[i].t);
         if (inside) any_inside = 1;
         continue;
       }
@@ -197,6 +230,13 @@ ics_status ics_ldi_build(ics_plan *p, int threads, char *msg, size_t msg_size) {
     return ICS_ERR_NOMEM;
   }
   j->p = p;
+  j->cull = malloc(sizeof *j->cull * (size_t)(p->scene->nobjects ? p->scene->nobjects : 1));
+  if (!j->cull) {
+    free(j);
+    ics_pool_destroy(pool);
+    return ICS_ERR_NOMEM;
+  }
+  for (int k = 0; k < p->scene->nobjects; k++) cull_rect(p, &p->scene->objects[k], j->cull[k]);
   ics_pool_run(pool, ldi_rows, j);
   int nt = ics_pool_size(pool);
   double zmin = INFINITY, zmax = -INFINITY;
@@ -266,6 +306,7 @@ ics_status ics_ldi_build(ics_plan *p, int threads, char *msg, size_t msg_size) {
     st = ICS_ERR_NOMEM;
   }
 done:
+  free(j->cull);
   free(j);
   ics_pool_destroy(pool);
   return st;
