@@ -264,9 +264,13 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
     for (int tx = tx0; tx <= tx1; tx++) busy |= seg[tx] <= k && need[tx] >= k;
     if (!busy) continue; /* nothing in this row before its segments' next slab */
     int batch = j->mask && P->any_detail;
-    if (batch) row_details(j, bj, zf, zb, need, t);
-    const int32_t *slot = j->dslot + (size_t)t * P->Wb;
-    const double *values = j->dpts + (size_t)t * 8 * P->Wb + 6 * (size_t)P->Wb;
+    const int32_t *slot = NULL;
+    const double *values = NULL;
+    if (batch) {
+      row_details(j, bj, zf, zb, need, t);
+      slot = j->dslot + (size_t)t * P->Wb;
+      values = j->dpts + (size_t)t * 8 * P->Wb + 6 * (size_t)P->Wb;
+    }
     for (int tx = tx0; tx <= tx1; tx++) {
     /* a segment no longer needed, or with nothing to do before its next slab, is passed over */
     if (need[tx] < k || seg[tx] > k) continue;
