@@ -313,8 +313,9 @@ int cmd_render(int argc, char **argv) {
     cli_json_string(sf, stats.device);
     fprintf(sf, ", \"threads\": %d, \"resolution\": [%d, %d]", stats.threads, W, H);
     if (!mc)
-      fprintf(sf, ", \"light_buffer\": [%d, %d], \"slabs\": %d, \"kernel\": \"%s\", \"samples\": %d",
-              bw, bh, stats.slabs, ics_render_kernel_name(rs.kernel), rs.samples);
+      fprintf(sf, ", \"light_buffer\": [%d, %d], \"slabs\": %d, \"kernel\": \"%s\", \"samples\": %d, "
+              "\"model\": \"%s\"", bw, bh, stats.slabs, ics_render_kernel_name(rs.kernel), rs.samples,
+              ics_render_model_name(rs.model));
     fprintf(sf, ", \"seed\": %llu, \"ms_plan\": %.17g, \"ms_geometry\": %.17g, \"ms_render\": %.17g",
             (unsigned long long)rs.seed, 1e3 * t_plan, 1e3 * ics_plan_geometry_seconds(plan),
             stats.ms_total);

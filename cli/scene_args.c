@@ -32,6 +32,7 @@ void scene_args_options(scene_args *a, cli_option *o) {
       {"--seed", .kind = CLI_SEED, .dest = &a->seed, .given = &a->have_seed},
       {"--threads", .kind = CLI_INT, .dest = &a->threads, .lo = 0, .hi = 256},
       {"--dense", .kind = CLI_FLAG, .dest = &a->dense},
+      {"--model", .kind = CLI_STRING, .dest = &a->model},
   };
   memcpy(o, opts, sizeof opts);
 }
@@ -50,7 +51,10 @@ void scene_args_help(FILE *f) {
           "  --seed S            counter-RNG seed (same seed: same image)\n"
           "  --threads N         threads (0, the default: all cores)\n"
           "  --dense             propagate every light-buffer pixel at every slab (render.dense:\n"
-          "                      no skipping of inactive regions and constant tiles)\n");
+          "                      no skipping of inactive regions and constant tiles)\n"
+          "  --model M           patel (Patel's slicing, the default), solid (+ closed opaque\n"
+          "                      objects solid) or surface (+ each surface's own light term in\n"
+          "                      closed form); override render.model (docs/renderer.md)\n");
 }
 
 static int pick(const char *cmd, const char *opt, const char *v, const char *(*name)(int), int lo,
@@ -70,6 +74,7 @@ static int pick(const char *cmd, const char *opt, const char *v, const char *(*n
 static const char *kernel_name(int i) { return ics_render_kernel_name((ics_render_kernel)i); }
 static const char *comp_name(int i) { return ics_render_comp_name((ics_render_comp)i); }
 static const char *radii_name(int i) { return i == 0 ? "exact" : i == 1 ? "lut" : NULL; }
+static const char *model_name(int i) { return ics_render_model_name((ics_render_model)i); }
 
 int scene_args_load(const char *cmd, const scene_args *a, ics_scene **s, ics_render_settings *rs,
                     ics_plan_opts *po) {
@@ -101,6 +106,8 @@ int scene_args_load(const char *cmd, const scene_args *a, ics_scene **s, ics_ren
     rs->compensate = (ics_render_comp)v;
   if (!rc && a->radii && !(rc = pick(cmd, "--radii", a->radii, radii_name, 0, 2, &v)))
     rs->lut_radii = v;
+  if (!rc && a->model && !(rc = pick(cmd, "--model", a->model, model_name, 0, ICS_MODEL_COUNT_, &v)))
+    rs->model = (ics_render_model)v;
   if (!rc && a->have_slab) {
     if (!(a->slab_spacing > 0)) rc = cli_error(cmd, "--slab-spacing: must be > 0, got %g", a->slab_spacing);
     rs->slab_spacing = a->slab_spacing;

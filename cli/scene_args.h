@@ -14,7 +14,7 @@
 typedef struct scene_args {
   const char *scene; /* NULL: the default scene */
   int res[2];        /* --resolution WxH (0: the scene's) */
-  const char *kernel, *compensate, *radii;
+  const char *kernel, *compensate, *radii, *model;
   int samples;
   double slab_spacing, d1;
   uint64_t seed;
@@ -24,7 +24,7 @@ typedef struct scene_args {
   int scenes;        /* SCENE arguments given */
 } scene_args;
 
-#define SCENE_ARGS_NOPTS 11
+#define SCENE_ARGS_NOPTS 12
 /* Writes the shared option entries into opts[0 .. SCENE_ARGS_NOPTS - 1]. */
 void scene_args_options(scene_args *a, cli_option *opts);
 

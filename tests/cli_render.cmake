@@ -48,6 +48,12 @@ ics_cli_test(NAME cli_render_over_budget RC 2 ARGS "render|${rd}/huge.json|-o|${
   ERR "the plan needs at least [0-9.]+ MiB .* over render.memory_limit_mib = 100" NOFILE ${rd}/h.exr)
 ics_cli_test(NAME cli_plan_over_budget RC 2 ARGS "plan|${rd}/huge.json" ERR "over render.memory_limit_mib")
 ics_cli_test(NAME cli_plan_print_scene_with_scene RC 2 ARGS "plan|${disk}|--print-scene" ERR "give no SCENE")
+# render.model: --model overrides it, the plan and the summary name it, a bad one is refused
+ics_cli_test(NAME cli_plan_model RC 0 ARGS "plan|--model|surface|--resolution|32x24" OUT "\"model\": \"surface\"")
+ics_cli_test(NAME cli_render_model RC 0 ARGS "render|--model|solid|--resolution|32x24|-o|${rd}/model.exr"
+  OUT "\"model\": \"solid\"")
+ics_cli_test(NAME cli_render_model_bad RC 2 ARGS "render|--model|exact|--resolution|8x6|-o|${rd}/mb.exr"
+  ERR "--model: unknown value 'exact' \\(expected patel, solid, surface\\)" NOFILE ${rd}/mb.exr)
 endif()
 if(ICS_HAVE_RENDER)
 ics_cli_test(NAME cli_bench_slab RC 0 ARGS "bench|slab|--sizes|32|--slabs|8|--threads|1|--reps|1|--kernels|ellipse2,gauss19"

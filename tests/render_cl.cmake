@@ -17,6 +17,10 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
   ics_cli_test(NAME cli_render_cl RC 0 LABELS medium
     ARGS "render|--backend|cl|--resolution|64x48|-o|${rdc}/default.exr"
     OUT "\"backend\": \"cl\", \"device\": \"OpenCL, [^\"]+\".*\"ns_per_px_slab\": [0-9.e+-]+")
+  # a model with solid objects is the cpu backend's so far: refused on cl, before any output
+  ics_cli_test(NAME cli_render_cl_model RC 2 LABELS medium
+    ARGS "render|--backend|cl|--model|surface|--resolution|32x24|-o|${rdc}/model.exr"
+    ERR "backend cl renders render.model patel only, not surface" NOFILE ${rdc}/model.exr)
   ics_cli_test(NAME cli_render_cl_no_device RC 2 LABELS medium
     ARGS "render|--backend|cl|-o|${rdc}/none.exr"
     ERR "icshadow render: --backend: ICS_CL_DEVICE=no-such-device matches no device \\(0: " NOFILE ${rdc}/none.exr)

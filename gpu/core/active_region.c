@@ -70,18 +70,21 @@ static ics_status light_regions(ics_plan *p, int l, ics_rect *fp, ics_rect *all,
 /* per tile: the last slab at which a view pixel in it is still open, its colour still able to
  * change: the slab of its first fragment of an opaque surface (opacity 1 makes the pixel's alpha
  * exactly 1, checked over every float alpha below 1, and nothing after it changes the pixel),
- * else the last slab; -1 for tiles without view pixels */
-static void open_until(const ics_plan *p, int32_t *open) {
+ * else the last slab; -1 for tiles without view pixels. For the second buffer set (solids, 1),
+ * which lights only the solid objects' surfaces: that slab where that first opaque surface is a
+ * solid's, -1 elsewhere. */
+static void open_until(const ics_plan *p, int solids, int32_t *open) {
   const ics_tile_grid *g = &p->tiles;
   for (int i = 0; i < g->nx * g->ny; i++) open[i] = -1;
   for (int bj = p->pad[2]; bj < p->pad[2] + p->H; bj++)
     for (int bi = p->pad[0]; bi < p->pad[0] + p->W; bi++) {
       size_t px = (size_t)bj * p->Wb + bi;
-      int32_t until = p->K - 1;
+      int32_t until = solids ? -1 : p->K - 1;
       for (uint32_t f = p->ldi.offset[px]; f < p->ldi.offset[px + 1]; f++) {
-        int obj = ics_frag_obj(&p->ldi.frag[f]);
-        if (p->vol_bit[obj] < 0 && p->scene->materials[p->scene->objects[obj].material].opacity == 1) {
-          until = ics_frag_slab(&p->ldi.frag[f]);
+        int obj = ics_frag_obj(&p->ldi.frag[f]), ib = p->inside_bit[obj];
+        const ics_material *m = &p->scene->materials[p->scene->objects[obj].material];
+        if (!m->volumetric && m->opacity == 1) {
+          if (!solids || (ib >= 0 && (p->solid_bits >> ib & 1))) until = ics_frag_slab(&p->ldi.frag[f]);
           break;
         }
       }
@@ -156,9 +159,10 @@ ics_status ics_active_regions_build(struct ics_plan *p, char *msg, size_t msg_si
   size_t n = (size_t)p->K * (size_t)p->nlights;
   ics_tile_grid_init(&p->tiles, p->Wb, p->Hb);
   size_t nt = (size_t)p->tiles.nx * p->tiles.ny;
+  int sets = ics_plan_light_sets(p);
   free(p->active), free(p->tile_last), free(p->tile_shade);
   p->active = malloc(sizeof *p->active * (n ? n : 1));
-  p->tile_last = malloc(sizeof *p->tile_last * nt * (size_t)(p->nlights ? p->nlights : 1));
+  p->tile_last = malloc(sizeof *p->tile_last * nt * (size_t)(p->nlights ? p->nlights : 1) * sets);
   p->tile_shade = malloc(sizeof *p->tile_shade * nt);
   int32_t *open = malloc(sizeof *open * nt);
   ics_rect *fp = malloc(sizeof *fp * (size_t)(p->K ? p->K : 1));
@@ -166,24 +170,27 @@ ics_status ics_active_regions_build(struct ics_plan *p, char *msg, size_t msg_si
   const ics_rect whole = {0, 0, p->Wb, p->Hb};
   int full = p->rs.dense || p->cam.projection == ICS_PROJ_PERSPECTIVE;
   /* the tile needs cost tiles^2 per light: beyond ICS_REGION_MAX_PAIRS every tile is needed */
-  int by_tiles = !full && (double)nt * nt * p->nlights <= ICS_REGION_MAX_PAIRS;
-  if (st == ICS_OK) open_until(p, open);
+  int by_tiles = !full && (double)nt * nt * p->nlights * sets <= ICS_REGION_MAX_PAIRS;
+  if (st == ICS_OK) open_until(p, 0, open);
   for (size_t i = 0; st == ICS_OK && i < nt; i++) p->tile_shade[i] = by_tiles ? open[i] : p->K - 1;
-  for (int l = 0; l < p->nlights && st == ICS_OK; l++) {
-    int32_t *last = p->tile_last + (size_t)l * nt;
-    ics_rect all = {0, 0, 0, 0};
-    if (full) {
-      for (int k = 0; k < p->K; k++) p->active[(size_t)k * p->nlights + l] = whole;
-    } else {
-      st = light_regions(p, l, fp, &all, msg, msg_size);
+  for (int set = 0; set < sets && st == ICS_OK; set++) {
+    if (set) open_until(p, set, open);
+    for (int l = 0; l < p->nlights && st == ICS_OK; l++) {
+      int32_t *last = p->tile_last + (size_t)(set * p->nlights + l) * nt;
+      ics_rect all = {0, 0, 0, 0};
+      if (full) {
+        for (int k = 0; k < p->K; k++) p->active[(size_t)k * p->nlights + l] = whole;
+      } else {
+        st = light_regions(p, l, fp, &all, msg, msg_size);
+      }
+      if (st == ICS_OK && by_tiles) st = tile_needs(p, &all, open, last);
+      if (st != ICS_OK) break;
+      for (size_t i = 0; i < nt; i++) {
+        if (!by_tiles) last[i] = p->K - 1;
+        if (last[i] > p->tile_shade[i]) p->tile_shade[i] = last[i];
+      }
+      if (!set) p->active_fraction[l] = p->K ? active_area(p, l) / (ics_rect_area(&whole) * p->K) : 1;
     }
-    if (st == ICS_OK && by_tiles) st = tile_needs(p, &all, open, last);
-    if (st != ICS_OK) break;
-    for (size_t i = 0; i < nt; i++) {
-      if (!by_tiles) last[i] = p->K - 1;
-      if (last[i] > p->tile_shade[i]) p->tile_shade[i] = last[i];
-    }
-    p->active_fraction[l] = p->K ? active_area(p, l) / (ics_rect_area(&whole) * p->K) : 1;
   }
   free(open), free(fp);
   return st;

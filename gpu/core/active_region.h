@@ -30,8 +30,10 @@ static inline double ics_rect_area(const ics_rect *r) {
   return (double)(r->x1 - r->x0) * (double)(r->y1 - r->y0);
 }
 
-/* Fills p->tiles, p->active (K x nlights rectangles, slab-major), p->tile_last (nlights x tiles:
- * the last slab at which light l needs tile T; -1: never), p->tile_shade (per tile: the last slab
+/* Fills p->tiles, p->active (K x nlights rectangles, slab-major), p->tile_last (light sets x
+ * nlights x tiles, ics_plan_light_sets: the last slab at which light l's buffer of that set
+ * needs tile T; -1: never; the second set's from the view pixels whose first opaque surface is a
+ * solid object's, the only ones it lights), p->tile_shade (per tile: the last slab
  * at which some light or an open view pixel needs it: shading) and p->active_fraction (per
  * light: the needed pixels over K buffers). Orthographic cameras: the bounds above, from every
  * slab's taps (ics_plan_slab_taps); perspective cameras and render.dense: the whole buffer at

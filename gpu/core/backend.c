@@ -175,6 +175,14 @@ ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsig
                (missing & ICS_AOV_STDERR) ? " (only mc estimates a standard error)" : "");
     return ICS_ERR_UNSUPPORTED;
   }
+  /* a scene without solid objects renders alike under every model */
+  if (!(r->b->models >> plan->rs.model & 1) && plan->solid_bits) {
+    if (msg)
+      snprintf(msg, msg_size, "backend %s renders render.model patel only, not %s, which this "
+               "scene's closed opaque objects need (the cpu backend renders every model)",
+               r->b->name, ics_render_model_name(plan->rs.model));
+    return ICS_ERR_UNSUPPORTED;
+  }
   ics_render_stats local;
   if (!stats) stats = &local;
   memset(stats, 0, sizeof *stats);

@@ -18,10 +18,13 @@ typedef struct ics_aov_buf {
   float *data; /* pixel (i, j) at (j W + i) count */
 } ics_aov_buf;
 
+#define ICS_MODELS_ALL ((1u << ICS_MODEL_COUNT_) - 1)
+
 typedef struct ics_backend {
   const char *name;
   const char *description;
   unsigned aovs; /* the ICS_AOV_* bits it makes */
+  unsigned models; /* 1 << ics_render_model: the render.model values it renders (ICS_MODELS_ALL) */
   int (*available)(char *why, size_t why_size);
   /* NULL: "auto" takes it when available; else whether auto takes it (0 with why: the notice) */
   int (*auto_pick)(char *why, size_t why_size);

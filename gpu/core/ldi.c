@@ -94,7 +94,7 @@ static int pixel_hits(const ics_plan *p, int bi, int bj, ics_hits *h, hit_t **hv
     h->n = 0;
     int behind = 0;
     if (ics_object_hits(&s->objects[k], o, d, h, &behind)) return -1;
-    if (p->vol_bit[k] >= 0 && (behind & 1)) *inside |= 1ull << p->vol_bit[k];
+    if (p->inside_bit[k] >= 0 && (behind & 1)) *inside |= 1ull << p->inside_bit[k];
     if (n + h->n > *hcap) {
       int cap = 2 * (n + h->n) + 16;
       hit_t *nv = realloc(*hv, sizeof *nv * (size_t)cap);
@@ -198,7 +198,7 @@ static void ldi_rows(void *ctx, int t, int nt) {
         int bias = (int)fmin(fmax(ko - k, 0), ICS_FRAG_MAX_BIAS);
         f[i].z = (float)hv[i].t;
         f[i].code = ics_frag_code(hv[i].obj, bias, (int)k);
-        f[i].span = p->vol_bit[hv[i].obj] >= 0 ? 0 : (uint8_t)fmax(span, 0); /* surfaces only */
+        f[i].span = p->vol_bit[hv[i].obj] >= 0 ? 0 : (uint8_t)fmax(span, 0); /* surfaces */
         surface_depth_gradient(p, hv[i].n, f[i].grad);
       }
       if (l->inside0) l->inside0[px] = inside;

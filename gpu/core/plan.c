@@ -63,6 +63,10 @@ double ics_plan_slab_pixel(const ics_plan *p, int k, double *mag) {
   return ics_plan_pixel_size(p, zk);
 }
 
+int ics_plan_light_sets(const ics_plan *p) {
+  return p->rs.model >= ICS_MODEL_SURFACE && p->solid_bits ? 2 : 1;
+}
+
 double ics_plan_window_max(const ics_plan *p) {
   double q_max = p->cam.projection == ICS_PROJ_PERSPECTIVE
                      ? ics_plan_pixel_size(p, ics_plan_slab_depth(p, p->K - 1)) : p->q_ref;
@@ -258,8 +262,9 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   /* kernels */
   p->kernels = calloc((size_t)p->nlights, sizeof *p->kernels);
   p->vol_bit = malloc(sizeof *p->vol_bit * (size_t)(s->nobjects ? s->nobjects : 1));
+  p->inside_bit = malloc(sizeof *p->inside_bit * (size_t)(s->nobjects ? s->nobjects : 1));
   p->detail = calloc((size_t)(s->nobjects ? s->nobjects : 1), sizeof *p->detail);
-  if (!p->kernels || !p->vol_bit || !p->detail) {
+  if (!p->kernels || !p->vol_bit || !p->inside_bit || !p->detail) {
     st = ICS_ERR_NOMEM;
     goto fail;
   }
@@ -376,6 +381,25 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
     }
     p->nvol = nvol;
     p->nch = coloured ? 3 : 1;
+    /* the inside mask: the volumes, then (render.model solid and after) the solid objects, a
+     * closed shape of an opaque (opacity 1) surface material */
+    int nin = nvol;
+    for (int k = 0; k < s->nobjects; k++) {
+      const ics_material *m = &s->materials[s->objects[k].material];
+      p->inside_bit[k] = p->vol_bit[k];
+      if (p->rs.model < ICS_MODEL_SOLID || m->volumetric || m->opacity != 1 || !s->objects[k].closed)
+        continue;
+      if (nin == ICS_MAX_VOLUMES) {
+        if (msg)
+          snprintf(msg, msg_size, "more than %d volumetric and solid objects (render.model %s)",
+                   ICS_MAX_VOLUMES, ics_render_model_name(p->rs.model));
+        st = ICS_ERR_SIZE;
+        goto fail;
+      }
+      p->solid_bits |= 1ull << nin;
+      p->inside_bit[k] = nin++;
+    }
+    p->ninside = nin;
   }
 
   /* the light buffers' apron: the farthest read of any light at the reference depth (beyond
@@ -391,7 +415,7 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   /* memory before the geometry pass */
   size_t npx = (size_t)p->Wb * p->Hb, nimg = (size_t)p->W * p->H;
   size_t buf_bytes = 2 * (size_t)p->nch * p->buf.plane * sizeof(float);
-  size_t state_bytes = npx * (3 * sizeof(uint32_t) + (p->nvol ? sizeof(uint64_t) : 0));
+  size_t state_bytes = npx * (3 * sizeof(uint32_t) + (p->ninside ? sizeof(uint64_t) : 0));
   size_t image_bytes = nimg * 4 * sizeof(float);
   size_t tap_bytes = 0;
   for (int k = 0; k < p->nlights; k++) {
@@ -412,7 +436,8 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
       tap_bytes += cls * (4 * n + 9) * 36;
     }
   }
-  p->backend_bytes = (size_t)p->nlights * buf_bytes + state_bytes + image_bytes + tap_bytes;
+  p->backend_bytes = (size_t)p->nlights * ics_plan_light_sets(p) * buf_bytes + state_bytes +
+                     image_bytes + tap_bytes;
   size_t offset_bytes = (npx + 1) * sizeof(uint32_t);
   size_t mesh_bytes = 0, grid_bytes = 0;
   for (int i = 0; i < s->nmeshes; i++) mesh_bytes += ics_mesh_bytes(s->meshes[i]);
@@ -456,7 +481,7 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   size_t ldi_bytes = offset_bytes + p->ldi.nfrag * sizeof(ics_fragment) +
                      (p->ldi.inside0 ? npx * sizeof(uint64_t) : 0);
   size_t region_bytes = (size_t)p->K * (size_t)p->nlights * sizeof(ics_rect) +
-                        (size_t)(p->nlights + 1) * (npx / (ICS_TILE_W * ICS_TILE_H) + 1) * sizeof(int32_t);
+                        (size_t)(p->nlights * ics_plan_light_sets(p) + 1) * (npx / (ICS_TILE_W * ICS_TILE_H) + 1) * sizeof(int32_t);
   p->memory_bytes = p->backend_bytes + ldi_bytes + mesh_bytes + grid_bytes + region_bytes;
   double work = plan_work(p, p->K, (double)npx, 1);
   if (work > ICS_PLAN_MAX_WORK) {
@@ -504,7 +529,10 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
     } else {
       add_omitted(p, "detail", "no material has volumetric detail");
     }
-    if (!p->nvol) add_omitted(p, "volume tracking", "no volumetric objects (surfaces only)");
+    if (!p->ninside)
+      add_omitted(p, "volume tracking", p->rs.model >= ICS_MODEL_SOLID
+                                            ? "no volumetric or solid objects (surfaces only)"
+                                            : "no volumetric objects (surfaces only)");
     snprintf(d, sizeof d, "front-to-back compositing into the RGBA image, per-pixel layer cursors");
     add_pass(p, "shading", state_bytes + image_bytes, -1, 0, d);
   }
@@ -522,6 +550,7 @@ void ics_plan_destroy(ics_plan *p) {
     for (int k = 0; k < p->nlights; k++) ics_slab_kernel_release(&p->kernels[k]);
   free(p->kernels);
   free(p->vol_bit);
+  free(p->inside_bit);
   free(p->detail);
   ics_ldi_release(&p->ldi);
   free(p->active);
@@ -572,6 +601,7 @@ ics_status ics_plan_write_json(const ics_plan *p, FILE *f) {
           p->pad[0], p->pad[1], p->pad[2], p->pad[3]);
   fprintf(f, "  \"slabs\": %d,\n  \"slab_spacing\": %.17g,\n  \"depth_range\": [%.17g, %.17g],\n",
           p->K, p->e, p->z0, p->z0 + p->K * p->e);
+  fprintf(f, "  \"model\": \"%s\",\n", ics_render_model_name(p->rs.model));
   fprintf(f, "  \"channels_per_light\": %d,\n  \"memory_bytes\": %zu,\n  \"passes\": [", p->nch,
           p->memory_bytes);
   for (int i = 0; i < p->npasses; i++) {

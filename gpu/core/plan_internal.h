@@ -15,7 +15,7 @@
 #include "icshadow/plan.h"
 #include "slab_kernel.h"
 
-#define ICS_MAX_VOLUMES 64 /* volumetric objects: one bit each in a per-pixel inside mask */
+#define ICS_MAX_VOLUMES 64 /* volumetric and solid objects: one bit each in a per-pixel inside mask */
 #define ICS_FRAG_OBJ_BITS 12  /* object index */
 #define ICS_FRAG_BIAS_BITS 4  /* surface bias in slabs */
 #define ICS_FRAG_MAX_BIAS 15
@@ -72,7 +72,12 @@ struct ics_plan {
   int nlights;
   ics_slab_kernel *kernels; /* nlights */
   int nvol;               /* volumetric objects */
-  int *vol_bit;           /* per object: its bit in the inside mask, or -1 */
+  int *vol_bit;           /* per object: its bit among the volumes, or -1 (what the Monte-Carlo
+                             reference tracks) */
+  int ninside;            /* objects the slab renderer's per-pixel inside mask tracks */
+  int *inside_bit;        /* per object: its bit in that mask, or -1: the volumes' bits, then,
+                             with render.model solid or surface, the solid objects' */
+  uint64_t solid_bits;    /* the bits of solid objects (closed, opaque surfaces) */
   int any_detail;
   ics_detail_eval *detail; /* per object with a detail material (NULL otherwise) */
   double light_path[ICS_SCENE_MAX_LIGHTS]; /* sqrt(1 + |mu_k|^2): light path per unit depth */
@@ -80,7 +85,8 @@ struct ics_plan {
   ics_rect *active;       /* K x nlights: the part of each light buffer a slab propagates
                              (active_region.h), slab-major */
   ics_tile_grid tiles;    /* the light buffers' tiles */
-  int32_t *tile_last;     /* nlights x tiles: the last slab at which light l needs a tile */
+  int32_t *tile_last;     /* sets x nlights x tiles: the last slab at which buffered light
+                             b = set nlights + l needs a tile */
   int32_t *tile_shade;    /* tiles: the last slab at which a tile is shaded */
   double active_fraction[ICS_SCENE_MAX_LIGHTS]; /* per light: the regions' area over K buffers */
   double geometry_s;
@@ -110,6 +116,9 @@ double ics_plan_slab_depth(const ics_plan *p, int k);
  * light's integer-shift schedule state, scratch: sk->entries * sk->cap taps); and the image's
  * RGB over the background by its accumulated alpha. */
 double ics_plan_slab_pixel(const ics_plan *p, int k, double *mag);
+/* Light-buffer sets a slab renderer keeps per light: 2 with render.model surface and solid
+ * objects (the second Patel's, which lights the solids' own surfaces), else 1. */
+int ics_plan_light_sets(const ics_plan *p);
 double ics_plan_window_max(const ics_plan *p);
 ics_status ics_plan_slab_taps(const ics_plan *p, int l, int k, double q, double mag,
                               double cum[2], ics_tap2d *scratch, ics_prop_taps *pt, char *msg,

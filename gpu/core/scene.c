@@ -13,6 +13,7 @@
 static const char *const kernel_names[ICS_RK_COUNT_] = {"ellipse", "poisson", "gauss", "tophat"};
 static const char *const comp_names[ICS_RC_COUNT_] = {"default", "expected", "integer",
                                                       "nonneg",  "signed",   "none"};
+static const char *const model_names[ICS_MODEL_COUNT_] = {"patel", "solid", "surface"};
 static const char *const shape_names[ICS_SHAPE_COUNT_] = {"rect",   "disk",  "box",
                                                           "sphere", "torus", "mesh"};
 
@@ -21,6 +22,9 @@ const char *ics_render_kernel_name(ics_render_kernel k) {
 }
 const char *ics_render_comp_name(ics_render_comp c) {
   return (unsigned)c < ICS_RC_COUNT_ ? comp_names[c] : NULL;
+}
+const char *ics_render_model_name(ics_render_model m) {
+  return (unsigned)m < ICS_MODEL_COUNT_ ? model_names[m] : NULL;
 }
 const char *ics_shape_name(ics_shape s) {
   return (unsigned)s < ICS_SHAPE_COUNT_ ? shape_names[s] : NULL;

@@ -212,10 +212,10 @@ static int read_render(rctx *c, json_t *o) {
   static const char *const known[] = {"slab_spacing", "d1", "kernel", "samples", "compensate",
                                       "radii", "seed", "background", "max_pad",
                                       "memory_limit_mib", "pixel_rotations", "preintegrate",
-                                      "rotation_run", "dense"};
+                                      "rotation_run", "dense", "model"};
   ics_render_settings *r = &c->s->settings;
   if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", W(c, "render"));
-  if (J(ics_jkeys(&c->j, W(c, "render"), o, known, 14))) return -1;
+  if (J(ics_jkeys(&c->j, W(c, "render"), o, known, 15))) return -1;
   json_t *x;
   if (!json_object_get(o, "slab_spacing"))
     return fail(c, ICS_ERR_PARSE, "%s: missing \"slab_spacing\"", W(c, "render"));
@@ -284,6 +284,11 @@ static int read_render(rctx *c, json_t *o) {
     if (!json_is_boolean(x)) return fail(c, ICS_ERR_PARSE, "%s: expected true or false", W(c, "render.preintegrate"));
     r->preintegrate = json_is_true(x);
   }
+  static const char *const mn[] = {"patel", "solid", "surface"};
+  int model = 0;
+  if ((x = json_object_get(o, "model")) && J(ics_jenum(&c->j, W(c, "render.model"), x, mn, 3, &model)))
+    return -1;
+  r->model = (ics_render_model)model;
   if ((x = json_object_get(o, "dense"))) {
     if (!json_is_boolean(x)) return fail(c, ICS_ERR_PARSE, "%s: expected true or false", W(c, "render.dense"));
     r->dense = json_is_true(x);

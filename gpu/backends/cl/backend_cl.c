@@ -412,5 +412,5 @@ done:;
 
 const ics_backend ics_backend_cl = {
     "cl", "the slab renderer on an OpenCL device (PoCL or any OpenCL 1.2 platform with fp64; not picked by auto)",
-    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH,
+    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, 1u << ICS_MODEL_PATEL,
     cl_available, NULL, cl_create, cl_render, cl_destroy};

@@ -17,7 +17,9 @@
 
 #include "backend.h"
 #include "clock.h"
+#include "geometry.h"
 #include "detail_batch.h"
+#include "icshadow/normal.h"
 #include "icshadow/rng.h"
 #include "plan_internal.h"
 #include "pool.h"
@@ -32,19 +34,23 @@ typedef struct {
   const ics_plan *p;
   ics_image *img;
   int k;                 /* current slab */
-  float **src, **dst;    /* per light: nch planes */
+  int nb;                /* buffered lights: nlights x sets (render.model surface with solid
+                            objects: 2, the second set Patel's, shading the solids' surfaces) */
+  float **src, **dst;    /* per buffered light b (light b % nlights, set b / nlights): nch planes */
   ics_prop_taps *pt;     /* per light */
   uint32_t *cursor;      /* per pixel: first fragment not yet reached (colour, volumes) */
   uint32_t *acursor;     /* per pixel: first fragment whose occlusion may still be due */
   uint64_t *mask;        /* NULL without volumes */
-  int vol_obj[ICS_MAX_VOLUMES];
+  int vol_obj[ICS_MAX_VOLUMES]; /* per inside-mask bit: its object */
   uint32_t *scratch;     /* per thread: ICS_PROP_SCRATCH(Wb) words (a row's entries or run choices) */
   ics_simd_path simd;    /* the propagation loops' vector path */
   ics_tile_grid grid;    /* the light buffers' tiles */
-  ics_tile **tsrc, **tdst; /* per light: what each tile of src and dst holds */
-  uint8_t *marks;        /* per thread: (1 + nlights) x grid.nx flags for the row it works on:
-                            the tiles shading wrote into, then per light those filled (1) or
-                            stepped (2) */
+  ics_tile **tsrc, **tdst; /* per buffered light: what each tile of src and dst holds */
+  uint8_t **ssrc, **sdst;  /* per buffered light of the second set: each tile of src and dst equal
+                              to the first set's bit for bit (then it is copied, not stepped) */
+  uint8_t *marks;        /* per thread: (1 + nb) x grid.nx flags for the row it works on: the
+                            tiles shading wrote into, then per buffered light those filled (1),
+                            stepped (2) or copied from the first set (3) */
   ics_rect shade;        /* this slab: the pixels to shade (the lights' active regions joined) */
   atomic_int next_row;   /* the next row of tiles to take this slab */
   double active[256];    /* per thread: channel-pixel updates propagated */
@@ -61,6 +67,7 @@ typedef struct {
   double *dpts;          /* per thread: 8 x Wb doubles, a row's detail points (x, y, z of the
                             first and second ends) and their values (first, second) */
   int32_t *dslot;        /* per thread: Wb, each pixel's slot in them, or -1 */
+  ics_hits hits[256];    /* per thread: a ray's crossings (the own term's normals) */
 } job_t;
 
 /* where a piece's detail is sampled: its two ends (preintegrate: the detail varies linearly
@@ -92,6 +99,14 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
   /* the detail's time, from one piece in DETAIL_SAMPLE timed (a clock read per piece cost more
    * than a tenth of the detail itself) */
   int timed = (p + (size_t)j->k) % DETAIL_SAMPLE == 0;
+  if (mask & P->solid_bits) { /* inside a solid object: no light in the first set (render.model
+                                 solid and surface; the second set is Patel's) */
+    size_t q = ics_buf_index(&P->buf, bi, bj);
+    for (int l = 0; l < P->nlights; l++)
+      for (int c = 0; c < P->nch; c++) j->dst[l][(size_t)c * P->buf.plane + q] = 0;
+    mask &= ~P->solid_bits;
+    if (!mask) return;
+  }
   double t0 = 0;
   double sum = 0;
   for (uint64_t m = mask; m; m &= m - 1) {
@@ -145,11 +160,50 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
       const double *T = s->materials[s->objects[objs[i]].material].transport;
       for (int c = 0; c < P->nch; c++) pass[c] *= exp(-sig[i] * dz * P->light_path[l] * (1 - T[c]));
     }
-    for (int c = 0; c < P->nch; c++) j->dst[l][(size_t)c * plane + q] *= (float)pass[c];
+    for (int b = l; b < j->nb; b += P->nlights)
+      for (int c = 0; c < P->nch; c++) j->dst[b][(size_t)c * plane + q] *= (float)pass[c];
   }
 }
 
 /* a surface seen at this slab: its colour, lit by the light arriving here */
+/* render.model surface: the light on a solid's surface fragment by its own lit side, per light
+ * the buffer's V (set `set`) times the fraction of the Gaussian light above the surface's
+ * tangent plane (docs/renderer.md "A surface's own term"): a direction X on the light plane,
+ * toward w = X_x r + X_y u - f, lights the surface iff w . n > 0, n its normal turned toward the
+ * camera ray d, a half-plane of the light plane, so the fraction is
+ * Phi((a . mu + b) / sqrt(a' Sigma a)), a = (r . n, u . n), b = -f . n (a step where
+ * a' Sigma a = 0). The normal is the object's own at the fragment (its crossing of the pixel's
+ * ray nearest the fragment's depth z), not the layered depth image's quantised depth gradient.
+ * arrive: the buffers' values arriving at this slab (before its occlusions), per buffered light
+ * and channel. Into L the light (sum over lights of colour x weight x V Phi), into V the AOVs'
+ * V Phi per light and channel. */
+static void own_light(job_t *j, int obj, double z, int bi, int bj, const float *arrive, int set,
+                      double L[3], float *V, int t) {
+  const ics_plan *P = j->p;
+  const ics_camera *c = &P->cam;
+  double o[3], d[3], n[3] = {0, 0, 0}, best = INFINITY;
+  int behind = 0;
+  ics_plan_ray(P, bi, bj, o, d);
+  ics_hits *h = &j->hits[t];
+  h->n = 0;
+  ics_object_hits(&P->scene->objects[obj], o, d, h, &behind);
+  for (int i = 0; i < h->n; i++)
+    if (fabs(h->h[i].t - z) < best) best = fabs(h->h[i].t - z), memcpy(n, h->h[i].n, sizeof n);
+  double nd = n[0] * d[0] + n[1] * d[1] + n[2] * d[2], sgn = nd > 0 ? -1 : 1;
+  double ar = 0, au = 0, b = 0;
+  for (int i = 0; i < 3; i++) ar += sgn * n[i] * c->r[i], au += sgn * n[i] * c->u[i], b -= sgn * n[i] * c->f[i];
+  L[0] = L[1] = L[2] = 0;
+  for (int l = 0; l < P->nlights; l++) {
+    const ics_light *lt = &P->scene->lights[l];
+    double m = ar * lt->mean[0] + au * lt->mean[1] + b;
+    double v = ar * ar * lt->cov[0] + 2 * ar * au * lt->cov[1] + au * au * lt->cov[2];
+    double phi = v > 0 ? ics_normal_cdf(m / sqrt(v)) : m > 0 ? 1 : m < 0 ? 0 : 0.5;
+    const float *B = arrive + (size_t)(set * P->nlights + l) * P->nch;
+    for (int k = 0; k < 3; k++) L[k] += lt->color[k] * lt->weight * phi * B[P->nch == 3 ? k : 0];
+    for (int k = 0; k < P->nch; k++) V[l * P->nch + k] = (float)(phi * B[k]);
+  }
+}
+
 static void surface_colour(const job_t *j, int obj, const double L[3], float *C) {
   const ics_plan *P = j->p;
   const ics_material *m = &P->scene->materials[P->scene->objects[obj].material];
@@ -170,8 +224,9 @@ static void surface_colour(const job_t *j, int obj, const double L[3], float *C)
  * its own depth grows by one: it stays (window + 1) / |1 - rho| slabs within the windows of the
  * surface (clamped to [1, 8 (window + 1)]), and each of those slabs passes that root's share of
  * 1 - a (1 - T): the parcel is filtered once in all (docs/renderer.md "Surface bias"). Without a
- * window the fragment filters at its one slab, as it always did. */
-static void surface_occlusion(job_t *j, size_t q, const ics_fragment *fr, int after) {
+ * window the fragment filters at its one slab, as it always did. The buffer sets from b0 on take
+ * it (a solid object's surface occludes only in Patel's set). */
+static void surface_occlusion(job_t *j, size_t q, const ics_fragment *fr, int after, int b0) {
   const ics_plan *P = j->p;
   const ics_material *m = &P->scene->materials[P->scene->objects[ics_frag_obj(fr)].material];
   double a = m->opacity;
@@ -187,7 +242,8 @@ static void surface_occlusion(job_t *j, size_t q, const ics_fragment *fr, int af
       meets = rel > 0 ? fmin(fmax((window + 1) / rel, 1), 8 * (window + 1)) : 8 * (window + 1);
     for (int c = 0; c < P->nch; c++) {
       double pass = 1 - a * (1 - m->transport[c]);
-      j->dst[l][(size_t)c * plane + q] *= (float)(meets > 1 ? pow(pass, 1 / meets) : pass);
+      float f = (float)(meets > 1 ? pow(pass, 1 / meets) : pass);
+      for (int b = b0 + l; b < j->nb; b += P->nlights) j->dst[b][(size_t)c * plane + q] *= f;
     }
   }
 }
@@ -301,14 +357,20 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       if (j->aov && inview)
         for (int l = 0; l < P->nlights; l++)
           for (int c = 0; c < P->nch; c++) V[l * P->nch + c] = j->dst[l][(size_t)c * plane + q];
+      float arrive[2 * ICS_SCENE_MAX_LIGHTS * 3]; /* render.model surface: every set's arriving light */
+      if (P->rs.model >= ICS_MODEL_SURFACE && inview)
+        for (int b = 0; b < j->nb; b++)
+          for (int c = 0; c < P->nch; c++) arrive[b * P->nch + c] = j->dst[b][(size_t)c * plane + q];
       /* surface occlusions due at this slab (fragment slab + bias == k), after the light
        * arriving here was read: a surface never shadows its own slab */
       touched[ics_tile_col(&j->grid, bi)] = 1;
       for (uint32_t f = acur; f < end && ics_frag_slab(&ldi->frag[f]) <= k; f++) {
         const ics_fragment *fr = &ldi->frag[f];
-        int obj = ics_frag_obj(fr), first = ics_frag_slab(fr) + ics_frag_bias(fr);
-        if (P->vol_bit[obj] < 0 && first <= k && k <= first + fr->span * j->window_max)
-          surface_occlusion(j, q, fr, k - first);
+        int obj = ics_frag_obj(fr), first = ics_frag_slab(fr) + ics_frag_bias(fr), ib = P->inside_bit[obj];
+        /* open surfaces occlude in every set; a solid's surface in Patel's set only */
+        int b0 = ib < 0 ? 0 : (P->solid_bits >> ib & 1) ? P->nlights : j->nb;
+        if (b0 < j->nb && first <= k && k <= first + fr->span * j->window_max)
+          surface_occlusion(j, q, fr, k - first, b0);
       }
       while (acur < end && ics_frag_slab(&ldi->frag[acur]) + ics_frag_bias(&ldi->frag[acur]) +
                                ldi->frag[acur].span * j->window_max <= k)
@@ -326,11 +388,15 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
         if (zn > zb) zn = zb;
         if (mask && zn > za) volume_piece(j, p, bi, bj, mask, za, zn - za, L, C, inview, t, s0 >= 0 ? pre : NULL);
         if (!has) break;
-        int obj = ics_frag_obj(&ldi->frag[cur]);
-        if (P->vol_bit[obj] >= 0)
-          mask ^= 1ull << P->vol_bit[obj];
-        else if (inview) {
-          surface_colour(j, obj, L, C);
+        int obj = ics_frag_obj(&ldi->frag[cur]), ib = P->inside_bit[obj];
+        if (ib >= 0) mask ^= 1ull << ib; /* a volume's or a solid's boundary */
+        int solid = ib >= 0 && (P->solid_bits >> ib & 1);
+        if ((ib < 0 || solid) && inview) { /* a surface */
+          double Lo[3];
+          int own = P->rs.model >= ICS_MODEL_SURFACE && solid;
+          if (own) /* a solid's surface: its own term, the rest from Patel's set */
+            own_light(j, obj, ldi->frag[cur].z, bi, bj, arrive, j->nb > P->nlights, Lo, V, t);
+          surface_colour(j, obj, own ? Lo : L, C);
           if (j->aov && !j->aov_seen[(size_t)jj * P->W + ii] &&
               s->materials[s->objects[obj].material].opacity > 0)
             record_aov(j, ii, jj, V, ldi->frag[cur].z);
@@ -354,56 +420,79 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
   }
 }
 
-/* tiles [tx0, tx1] of row ty of light l's dst stepped from src: one span, kind ICS_TILE_GREY
- * (one channel stepped and copied) or ICS_TILE_ANY (every channel); flagged 2 in written */
-static void step_tiles(job_t *j, int l, int ty, int tx0, int tx1, int kind, int t,
+/* tiles [tx0, tx1] of row ty of buffered light b's dst stepped from src: one span, kind
+ * ICS_TILE_GREY (one channel stepped and copied) or ICS_TILE_ANY (every channel); flagged 2 in
+ * written */
+static void step_tiles(job_t *j, int b, int ty, int tx0, int tx1, int kind, int t,
                        uint8_t *written) {
   const ics_plan *P = j->p;
   int x0 = ics_tile_x0(&j->grid, tx0), x1 = ics_tile_x1(&j->grid, tx1);
   int y0 = ics_tile_y0(&j->grid, ty), y1 = ics_tile_y1(&j->grid, ty);
   int planes = kind == ICS_TILE_GREY ? 1 : P->nch;
-  ics_prop_span(&j->pt[l], j->src[l], j->dst[l], &P->buf, planes, y0, y1, x0, x1,
+  ics_prop_span(&j->pt[b % P->nlights], j->src[b], j->dst[b], &P->buf, planes, y0, y1, x0, x1,
                 j->scratch + (size_t)t * ICS_PROP_SCRATCH(P->Wb), j->simd);
-  if (planes < P->nch) ics_tile_copy_grey(&P->buf, j->dst[l], P->nch, x0, x1, y0, y1);
+  if (planes < P->nch) ics_tile_copy_grey(&P->buf, j->dst[b], P->nch, x0, x1, y0, y1);
   j->active[t] += (double)(x1 - x0) * (y1 - y0) * planes;
   memset(written + tx0, 2, (size_t)(tx1 - tx0 + 1));
 }
 
-/* Row ty of tiles of light l's buffer at this slab: within the light's active region and its
- * needed tiles (active_region.h), each tile whose reads all lie in tiles of one constant gets
- * that constant (written only where the buffer does not hold it already: flagged 1 in written),
- * the others are stepped, consecutive ones of a kind as one span; render.dense steps every
- * tile. */
-static void propagate_row(job_t *j, int l, int ty, int t, uint8_t *written) {
+/* Row ty of tiles of buffered light b's buffer at this slab: within the light's active region
+ * and its needed tiles (active_region.h), each tile whose reads all lie in tiles of one constant
+ * gets that constant (written only where the buffer does not hold it already: flagged 1 in
+ * written), the others are stepped, consecutive ones of a kind as one span; render.dense steps
+ * every tile. */
+/* 1 when source tiles [tx0, tx1] x [ty0, ty1] of second-set buffer b all equal the first set's */
+static int mirrors(const job_t *j, int b, int tx0, int tx1, int ty0, int ty1) {
+  for (int ty = ty0; ty <= ty1; ty++)
+    for (int tx = tx0; tx <= tx1; tx++)
+      if (!j->ssrc[b][(size_t)ty * j->grid.nx + tx]) return 0;
+  return 1;
+}
+
+static void propagate_row(job_t *j, int b, int ty, int t, uint8_t *written) {
   const ics_plan *P = j->p;
   const ics_tile_grid *g = &j->grid;
+  int l = b % P->nlights;
   const ics_rect *R = ics_active_region(P, l, j->k);
   if (ty < ics_tile_row(g, R->y0) || ty > ics_tile_row(g, R->y1 - 1)) return;
   int y0 = ics_tile_y0(g, ty), y1 = ics_tile_y1(g, ty), fy0, fy1;
   ics_prop_footprint(&j->pt[l], 1, y0, y1, &fy0, &fy1);
   fy0 = ics_tile_row(g, fy0), fy1 = ics_tile_row(g, fy1);
   int run = -1, run_kind = ICS_TILE_ANY, tx1 = ics_tile_col(g, R->x1 - 1);
-  const int32_t *last = P->tile_last + (size_t)l * g->nx * g->ny + (size_t)ty * g->nx;
+  const int32_t *last = P->tile_last + (size_t)b * g->nx * g->ny + (size_t)ty * g->nx;
   for (int tx = ics_tile_col(g, R->x0); tx <= tx1; tx++) {
-    ics_tile *d = &j->tdst[l][(size_t)ty * g->nx + tx], want = {ICS_TILE_ANY, {0, 0, 0}};
+    ics_tile *d = &j->tdst[b][(size_t)ty * g->nx + tx], want = {ICS_TILE_ANY, {0, 0, 0}};
     if (last[tx] < j->k) { /* not needed any more: left as it is */
-      if (run >= 0) step_tiles(j, l, ty, run, tx - 1, run_kind, t, written);
+      if (run >= 0) step_tiles(j, b, ty, run, tx - 1, run_kind, t, written);
       run = -1;
       continue;
     }
     if (!P->rs.dense) {
       int fx0, fx1;
       ics_prop_footprint(&j->pt[l], 0, ics_tile_x0(g, tx), ics_tile_x1(g, tx), &fx0, &fx1);
-      want = ics_tile_classify(g, j->tsrc[l], P->nch, ics_tile_col(g, fx0), ics_tile_col(g, fx1),
-                               fy0, fy1);
+      fx0 = ics_tile_col(g, fx0), fx1 = ics_tile_col(g, fx1);
+      if (b >= P->nlights && mirrors(j, b, fx0, fx1, fy0, fy1)) {
+        /* every read equals the first set's: the step's result is the first set's (this row's
+         * first-set tiles are stepped already), copied */
+        if (run >= 0) step_tiles(j, b, ty, run, tx - 1, run_kind, t, written);
+        run = -1;
+        const ics_tile *first = &j->tdst[b - P->nlights][(size_t)ty * g->nx + tx];
+        if (!ics_tile_same_const(d, first, P->nch)) /* (a constant it holds already: no copy) */
+          ics_tile_copy(&P->buf, j->dst[b - P->nlights], j->dst[b], P->nch, ics_tile_x0(g, tx),
+                        ics_tile_x1(g, tx), y0, y1);
+        *d = *first;
+        written[tx] = 3;
+        continue;
+      }
+      want = ics_tile_classify(g, j->tsrc[b], P->nch, fx0, fx1, fy0, fy1);
     }
     if (run >= 0 && (want.kind == ICS_TILE_CONST || want.kind != run_kind)) {
-      step_tiles(j, l, ty, run, tx - 1, run_kind, t, written);
+      step_tiles(j, b, ty, run, tx - 1, run_kind, t, written);
       run = -1;
     }
     if (want.kind == ICS_TILE_CONST) {
       if (!ics_tile_same_const(d, &want, P->nch)) {
-        ics_tile_fill(&P->buf, j->dst[l], P->nch, ics_tile_x0(g, tx), ics_tile_x1(g, tx), y0, y1, &want);
+        ics_tile_fill(&P->buf, j->dst[b], P->nch, ics_tile_x0(g, tx), ics_tile_x1(g, tx), y0, y1, &want);
         written[tx] = 1;
       }
     } else if (run < 0) {
@@ -411,7 +500,7 @@ static void propagate_row(job_t *j, int l, int ty, int t, uint8_t *written) {
     }
     *d = want;
   }
-  if (run >= 0) step_tiles(j, l, ty, run, tx1, run_kind, t, written);
+  if (run >= 0) step_tiles(j, b, ty, run, tx1, run_kind, t, written);
 }
 
 /* after shading: signed weights can ring (values outside [0, 1] that the slabs amplify), so
@@ -422,22 +511,35 @@ static void settle_row(job_t *j, int ty, const uint8_t *marks) {
   const ics_plan *P = j->p;
   const ics_tile_grid *g = &j->grid;
   int y0 = ics_tile_y0(g, ty), y1 = ics_tile_y1(g, ty);
-  for (int l = 0; l < P->nlights; l++) {
-    if (P->kernels[l].comp == ICS_RC_SIGNED)
+  for (int b = 0; b < j->nb; b++) {
+    int signed_ = P->kernels[b % P->nlights].comp == ICS_RC_SIGNED;
+    if (signed_)
       for (int c = 0; c < P->nch; c++)
         for (int y = y0; y < y1; y++) {
-          float *row = j->dst[l] + (size_t)c * P->buf.plane + ics_buf_index(&P->buf, 0, y);
+          float *row = j->dst[b] + (size_t)c * P->buf.plane + ics_buf_index(&P->buf, 0, y);
           for (int x = 0; x < P->Wb; x++) row[x] = row[x] < 0 ? 0 : row[x] > 1 ? 1 : row[x];
         }
-    const uint8_t *shaded = marks, *written = marks + (size_t)(1 + l) * g->nx;
-    int signed_ = P->kernels[l].comp == ICS_RC_SIGNED;
-    for (int tx = 0; tx < g->nx && !P->rs.dense; tx++) /* (dense: nothing reads the states) */
+    const uint8_t *shaded = marks, *written = marks + (size_t)(1 + b) * g->nx;
+    for (int tx = 0; tx < g->nx && !P->rs.dense; tx++) { /* (dense: nothing reads the states) */
+      size_t i = (size_t)ty * g->nx + tx;
+      int x0 = ics_tile_x0(g, tx), x1 = ics_tile_x1(g, tx);
       if (shaded[tx] || written[tx] == 2 || signed_)
-        j->tdst[l][(size_t)ty * g->nx + tx] = ics_tile_scan(&P->buf, j->dst[l], P->nch,
-            ics_tile_x0(g, tx), ics_tile_x1(g, tx), y0, y1);
+        j->tdst[b][i] = ics_tile_scan(&P->buf, j->dst[b], P->nch, x0, x1, y0, y1);
+      if (b < P->nlights) continue;
+      /* the second set: a copied tile shading left alone still equals the first set's (and
+       * holds what it holds, scanned there); a tile either set wrote is compared */
+      const uint8_t *written0 = marks + (size_t)(1 + b - P->nlights) * g->nx;
+      if (written[tx] == 3 && !shaded[tx] && !signed_) {
+        j->tdst[b][i] = j->tdst[b - P->nlights][i];
+        j->sdst[b][i] = 1;
+      } else if (written[tx] || shaded[tx] || written0[tx] || signed_) {
+        j->sdst[b][i] = (uint8_t)ics_tile_equal(&P->buf, j->dst[b], j->dst[b - P->nlights],
+                                                 P->nch, x0, x1, y0, y1);
+      }
+    }
     int last = g->nx - 1;
     if (shaded[0] || written[0] || shaded[last] || written[last] || signed_)
-      ics_prop_apron(&P->buf, j->dst[l], P->nch, y0, y1, 0);
+      ics_prop_apron(&P->buf, j->dst[b], P->nch, y0, y1, 0);
   }
 }
 
@@ -445,12 +547,12 @@ static void slab_job(void *ctx, int t, int n) {
   job_t *j = ctx;
   const ics_plan *P = j->p;
   size_t nx = (size_t)j->grid.nx;
-  uint8_t *marks = j->marks + (size_t)t * (1 + (size_t)P->nlights) * nx;
-  (void)n;
+  uint8_t *marks = j->marks + (size_t)t * (1 + (size_t)j->nb) * nx;
+  (void)n, (void)P;
   for (int ty; (ty = atomic_fetch_add(&j->next_row, 1)) < j->grid.ny;) {
     double t0 = ics_clock_s();
-    memset(marks, 0, (1 + (size_t)P->nlights) * nx);
-    for (int l = 0; l < P->nlights; l++) propagate_row(j, l, ty, t, marks + (1 + (size_t)l) * nx);
+    memset(marks, 0, (1 + (size_t)j->nb) * nx);
+    for (int b = 0; b < j->nb; b++) propagate_row(j, b, ty, t, marks + (1 + (size_t)b) * nx);
     double t1 = ics_clock_s();
     shade_rows(j, ics_tile_y0(&j->grid, ty), ics_tile_y1(&j->grid, ty), t, marks);
     settle_row(j, ty, marks);
@@ -479,26 +581,30 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
                              size_t msg_size) {
   ics_pool *pool = state;
   double t_start = ics_clock_s();
-  int nl = P->nlights, nt = ics_pool_size(pool);
+  int nl = P->nlights, nt = ics_pool_size(pool), nb = nl * ics_plan_light_sets(P);
   size_t plane = (size_t)P->Wb * P->Hb, npx = plane;
   job_t *j = calloc(1, sizeof *j);
-  float **bufs = calloc(2 * (size_t)(nl ? nl : 1), sizeof *bufs);
-  ics_tile **tiles = calloc(2 * (size_t)(nl ? nl : 1), sizeof *tiles);
+  float **bufs = calloc(2 * (size_t)(nb ? nb : 1), sizeof *bufs);
+  ics_tile **tiles = calloc(2 * (size_t)(nb ? nb : 1), sizeof *tiles);
+  uint8_t **sames = calloc(2 * (size_t)(nb ? nb : 1), sizeof *sames);
   ics_tap2d **scratch = calloc((size_t)(nl ? nl : 1), sizeof *scratch);
   double(*cum)[2] = calloc((size_t)(nl ? nl : 1), sizeof *cum);
   ics_status status = ICS_OK;
-  if (!j || !bufs || !tiles || !scratch || !cum) goto nomem;
+  if (!j || !bufs || !tiles || !sames || !scratch || !cum) goto nomem;
   status = ics_simd_choose(&j->simd, msg, msg_size);
   if (status != ICS_OK) goto done;
   j->p = P;
   j->img = img;
+  j->nb = nb;
   j->src = bufs;
-  j->dst = bufs + nl;
+  j->dst = bufs + nb;
   j->tsrc = tiles;
-  j->tdst = tiles + nl;
+  j->tdst = tiles + nb;
+  j->ssrc = sames;
+  j->sdst = sames + nb;
   ics_tile_grid_init(&j->grid, P->Wb, P->Hb);
   size_t ntiles = (size_t)j->grid.nx * (size_t)j->grid.ny;
-  j->marks = malloc((size_t)j->grid.nx * (1 + (size_t)nl) * (size_t)nt);
+  j->marks = malloc((size_t)j->grid.nx * (1 + (size_t)nb) * (size_t)nt);
   j->dpts = P->any_detail ? malloc(sizeof *j->dpts * 8 * (size_t)P->Wb * (size_t)nt) : NULL;
   j->dslot = P->any_detail ? malloc(sizeof *j->dslot * (size_t)P->Wb * (size_t)nt) : NULL;
   j->pt = calloc((size_t)(nl ? nl : 1), sizeof *j->pt);
@@ -508,25 +614,27 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->scratch = malloc(sizeof *j->scratch * ICS_PROP_SCRATCH(P->Wb) * (size_t)nt);
   /* 0: look at every segment first */
   j->seg_next = calloc((size_t)P->Hb * (size_t)j->grid.nx, sizeof *j->seg_next);
-  j->mask = P->nvol ? malloc(sizeof *j->mask * npx) : NULL;
+  j->mask = P->ninside ? malloc(sizeof *j->mask * npx) : NULL;
   j->aov = aov;
   j->aov_seen = aov ? calloc((size_t)P->W * P->H, 1) : NULL;
   /* the largest pixel is the deepest slab's (perspective) */
   for (int l = 0; l < nl; l++) j->blur_world[l] = ics_plan_light_blur(P, l);
   j->window_max = ics_plan_window_max(P);
-  if (!j->pt || !j->cursor || !j->acursor || !j->pnext || !j->scratch || !j->seg_next || (P->nvol && !j->mask) ||
+  if (!j->pt || !j->cursor || !j->acursor || !j->pnext || !j->scratch || !j->seg_next || (P->ninside && !j->mask) ||
       (aov && !j->aov_seen) || !j->marks || (P->any_detail && (!j->dpts || !j->dslot)))
     goto nomem;
-  for (int l = 0; l < nl; l++) {
+  for (int i = 0; i < 2 * nb; i++) {
     /* both buffers start lit (1) and say so: a pixel outside the active regions keeps a value */
     const ics_tile lit = {ICS_TILE_CONST, {1, 1, 1}};
-    for (int b = 0; b < 2; b++) {
-      bufs[b * nl + l] = malloc(sizeof(float) * (size_t)P->nch * P->buf.plane);
-      tiles[b * nl + l] = malloc(sizeof(ics_tile) * ntiles);
-      if (!bufs[b * nl + l] || !tiles[b * nl + l]) goto nomem;
-      for (size_t i = 0; i < (size_t)P->nch * P->buf.plane; i++) bufs[b * nl + l][i] = 1;
-      for (size_t i = 0; i < ntiles; i++) tiles[b * nl + l][i] = lit;
-    }
+    bufs[i] = malloc(sizeof(float) * (size_t)P->nch * P->buf.plane);
+    tiles[i] = malloc(sizeof(ics_tile) * ntiles);
+    sames[i] = malloc(ntiles); /* the sets start equal */
+    if (!bufs[i] || !tiles[i] || !sames[i]) goto nomem;
+    memset(sames[i], 1, ntiles);
+    for (size_t x = 0; x < (size_t)P->nch * P->buf.plane; x++) bufs[i][x] = 1;
+    for (size_t x = 0; x < ntiles; x++) tiles[i][x] = lit;
+  }
+  for (int l = 0; l < nl; l++) {
     const ics_slab_kernel *sk = &P->kernels[l];
     scratch[l] = malloc(sizeof **scratch * (size_t)sk->entries * (size_t)sk->cap);
     if (!scratch[l]) goto nomem;
@@ -544,7 +652,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
                   : P->ldi.offset[i] < P->ldi.offset[i + 1] ? ics_frag_slab(&P->ldi.frag[P->ldi.offset[i]])
                                                            : INT_MAX;
   for (int i = 0; i < P->scene->nobjects; i++)
-    if (P->vol_bit[i] >= 0) j->vol_obj[P->vol_bit[i]] = i;
+    if (P->inside_bit[i] >= 0) j->vol_obj[P->inside_bit[i]] = i;
   for (int k = 0; k < P->K; k++) {
     j->k = k;
     double s, q = ics_plan_slab_pixel(P, k, &s);
@@ -557,14 +665,17 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
     j->shade = shade_rect(P, k);
     atomic_store(&j->next_row, 0);
     ics_pool_run(pool, slab_job, j);
-    for (int l = 0; l < nl; l++) ics_prop_apron(&P->buf, j->dst[l], P->nch, 0, 0, 1);
-    for (int l = 0; l < nl; l++) {
-      float *tmp = j->src[l];
-      j->src[l] = j->dst[l];
-      j->dst[l] = tmp;
-      ics_tile *tt = j->tsrc[l];
-      j->tsrc[l] = j->tdst[l];
-      j->tdst[l] = tt;
+    for (int b = 0; b < nb; b++) ics_prop_apron(&P->buf, j->dst[b], P->nch, 0, 0, 1);
+    for (int b = 0; b < nb; b++) {
+      float *tmp = j->src[b];
+      j->src[b] = j->dst[b];
+      j->dst[b] = tmp;
+      ics_tile *tt = j->tsrc[b];
+      j->tsrc[b] = j->tdst[b];
+      j->tdst[b] = tt;
+      uint8_t *ts = j->ssrc[b];
+      j->ssrc[b] = j->sdst[b];
+      j->sdst[b] = ts;
     }
     if (o->progress) o->progress(o->progress_ctx, k + 1, P->K);
   }
@@ -580,9 +691,9 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
     st->ms_detail += 1e3 * j->detail_s[t] / nt;
     st->updates_active += j->active[t];
   }
-  st->updates_dense = (double)npx * P->K * nl * P->nch;
-  if (nl && P->K)
-    st->ns_per_px_slab = 1e6 * st->ms_convolution / ((double)npx * P->K * nl);
+  st->updates_dense = (double)npx * P->K * nb * P->nch;
+  if (nb && P->K)
+    st->ns_per_px_slab = 1e6 * st->ms_convolution / ((double)npx * P->K * nb);
   st->ms_total = 1e3 * (ics_clock_s() - t_start);
   goto done;
 nomem:
@@ -592,9 +703,11 @@ done:
   if (j && j->pt)
     for (int l = 0; l < nl; l++) ics_prop_release(&j->pt[l]);
   if (bufs)
-    for (int l = 0; l < 2 * nl; l++) free(bufs[l]);
+    for (int b = 0; b < 2 * nb; b++) free(bufs[b]);
   if (tiles)
-    for (int l = 0; l < 2 * nl; l++) free(tiles[l]);
+    for (int b = 0; b < 2 * nb; b++) free(tiles[b]);
+  if (sames)
+    for (int b = 0; b < 2 * nb; b++) free(sames[b]);
   if (scratch)
     for (int l = 0; l < nl; l++) free(scratch[l]);
   if (j) {
@@ -609,9 +722,11 @@ done:
     free(j->marks);
     free(j->dpts);
     free(j->dslot);
+    for (int t = 0; t < 256; t++) ics_hits_free(&j->hits[t]);
   }
   free(bufs);
   free(tiles);
+  free(sames);
   free(scratch);
   free(cum);
   free(j);
@@ -620,5 +735,5 @@ done:
 
 const ics_backend ics_backend_cpu = {
     "cpu", "the slab renderer on the CPU (threads; always built)",
-    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, ics_backend_always_available, NULL,
+    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, ICS_MODELS_ALL, ics_backend_always_available, NULL,
     ics_backend_pool_create, cpu_render, ics_backend_pool_destroy};

@@ -71,6 +71,25 @@ static uint32_t differ(const float *a, const float *b, int n) {
   return d;
 }
 
+void ics_tile_copy(const ics_buf_layout *L, const float *src, float *dst, int nch, int x0, int x1,
+                   int y0, int y1) {
+  for (int c = 0; c < nch; c++)
+    for (int y = y0; y < y1; y++) {
+      size_t i = (size_t)c * L->plane + ics_buf_index(L, x0, y);
+      memcpy(dst + i, src + i, sizeof *dst * (size_t)(x1 - x0));
+    }
+}
+
+int ics_tile_equal(const ics_buf_layout *L, const float *a, const float *b, int nch, int x0,
+                   int x1, int y0, int y1) {
+  for (int c = 0; c < nch; c++)
+    for (int y = y0; y < y1; y++) {
+      size_t i = (size_t)c * L->plane + ics_buf_index(L, x0, y);
+      if (differ(a + i, b + i, x1 - x0)) return 0;
+    }
+  return 1;
+}
+
 ics_tile ics_tile_scan(const ics_buf_layout *L, const float *buf, int nch, int x0, int x1, int y0,
                        int y1) {
   ics_tile t = {ICS_TILE_CONST, {0, 0, 0}};

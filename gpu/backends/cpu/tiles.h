@@ -36,6 +36,12 @@ void ics_tile_fill(const ics_buf_layout *L, float *buf, int nch, int x0, int x1,
 /* Planes 1 .. nch - 1 of pixels [x0, x1) x [y0, y1) copied from plane 0. */
 void ics_tile_copy_grey(const ics_buf_layout *L, float *buf, int nch, int x0, int x1, int y0,
                         int y1);
+/* Pixels [x0, x1) x [y0, y1) of every plane of src copied into dst (two buffers of layout L). */
+void ics_tile_copy(const ics_buf_layout *L, const float *src, float *dst, int nch, int x0, int x1,
+                   int y0, int y1);
+/* 1 when pixels [x0, x1) x [y0, y1) of every plane of a and b are equal bit for bit. */
+int ics_tile_equal(const ics_buf_layout *L, const float *a, const float *b, int nch, int x0,
+                   int x1, int y0, int y1);
 /* What pixels [x0, x1) x [y0, y1) of buf hold (a scan: after shading wrote into them). */
 ics_tile ics_tile_scan(const ics_buf_layout *L, const float *buf, int nch, int x0, int x1, int y0,
                        int y1);

@@ -572,5 +572,5 @@ done:
 
 const ics_backend ics_backend_gl = {
     "gl", "the slab renderer as OpenGL 4.5 compute shaders (EGL or OSMesa; auto picks it on a GPU)",
-    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH,
+    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, 1u << ICS_MODEL_PATEL,
     gl_available, gl_auto_pick, gl_create, gl_render, gl_destroy};

@@ -63,6 +63,15 @@ typedef enum ics_render_comp {
   ICS_RC_COUNT_
 } ics_render_comp;
 
+/* The slab renderer's model of light transport (docs/renderer.md "Models"): each model adds one
+ * step to the previous; "patel" is Patel et al.'s slicing exactly as before this option. */
+typedef enum ics_render_model {
+  ICS_MODEL_PATEL = 0, /* surfaces occlude at their fragments (slicing) */
+  ICS_MODEL_SOLID,     /* + closed opaque objects are solid: no light inside them */
+  ICS_MODEL_SURFACE,   /* + a surface's own term in closed form (the light on its lit side) */
+  ICS_MODEL_COUNT_
+} ics_render_model;
+
 typedef struct ics_render_settings {
   double slab_spacing; /* e > 0 */
   double d1;           /* optimal distance > 0 */
@@ -76,6 +85,7 @@ typedef struct ics_render_settings {
                           or 384; default 4) */
   int rotation_run;    /* 1: every pixel chooses; 16: runs of 16 pixels of a row share a choice
                           (their start moved by a random phase each slab) */
+  ics_render_model model; /* default ICS_MODEL_PATEL */
   int dense;           /* 1: every light-buffer pixel propagated at every slab (the reference the
                           skipping is tested against); 0 (default): only the active regions, and
                           no constant tiles (docs/renderer.md "Work a frame does not need") */
@@ -183,6 +193,7 @@ ICS_API const char *ics_scene_file(const ics_scene *s, int k);
  * "expected", "integer", "nonneg", "signed", "none"; "rect", "disk", ... NULL out of range. */
 ICS_API const char *ics_render_kernel_name(ics_render_kernel k);
 ICS_API const char *ics_render_comp_name(ics_render_comp c);
+ICS_API const char *ics_render_model_name(ics_render_model m); /* "patel", "solid", "surface" */
 ICS_API const char *ics_shape_name(ics_shape s);
 
 #ifdef __cplusplus

@@ -1,0 +1,247 @@
+/* test_render_model.c — the slab renderer's models (render.model; docs/renderer.md "Models"),
+ * each step against a closed form with a control that must fail:
+ * - patel, dense, renders the default scene (96 x 72) bit for bit as the release before the
+ *   models and the skipping (commit 9b34856; FNV-1a 64 of the RGBA floats, recorded per vector
+ *   path with that commit's icshadow: scalar, sse2, and the paths with fused multiply-adds);
+ * - solid: an opaque sphere over a white floor under a narrow light; the floor points whose
+ *   light directions within 4.5 standard deviations all meet the sphere (its umbra, by ray
+ *   against sphere) are dark: visibility at most 0.01 (measured 0.0029 at worst, 0.0001 on
+ *   average); patel, the control, lets light slip through the sphere there (its mean umbra
+ *   visibility must exceed 0.05; measured 0.069, at worst 0.33);
+ * - surface: the sphere's own surface lit by its own term, the fraction of the Gaussian light
+ *   above its tangent plane, Phi((g . mu + 1) / sqrt(g' Sigma g)), which on a sphere nothing
+ *   else shadows is its exact visibility: the AOV within 0.03 of Phi at every sphere pixel away
+ *   from the limb (measured 0.0096 at worst, where Patel's set, which lights the sphere, is a
+ *   little below 1); the controls, patel (no attached shadow) and solid (slicing rings), must be
+ *   off by more than 0.1 (measured 0.99 and 1.0);
+ * - a scene without closed opaque objects (the contract's disk) renders alike, bit for bit, under
+ *   every model. */
+#define _POSIX_C_SOURCE 200809L /* setenv */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render_util.h"
+#include "simd_path.h"
+#include "testutil.h"
+
+static uint64_t fnv1a(const void *data, size_t n) {
+  const unsigned char *b = data;
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (size_t i = 0; i < n; i++) h = (h ^ b[i]) * 0x100000001b3ull;
+  return h;
+}
+
+static void test_patel_unchanged(void) {
+  /* icshadow render --resolution 96x72 -o X.exr at 9b34856, ICS_SIMD=scalar | sse2 | avx2 (avx512
+   * the same), the EXR's RGBA floats hashed */
+  static const struct {
+    ics_simd_path path;
+    uint64_t hash;
+  } before[] = {{ICS_SIMD_SCALAR, 0xad79d5d0581afd2eull},
+                {ICS_SIMD_SSE2, 0x15246ebc191f55afull},
+                {ICS_SIMD_AVX2, 0x9b4849416c0f4e9bull},
+                {ICS_SIMD_AVX512, 0x9b4849416c0f4e9bull}};
+  ics_scene *s = default_scene_96x72();
+  ics_render_settings rs = *ics_scene_settings(s);
+  rs.model = ICS_MODEL_PATEL;
+  rs.dense = 1;
+  for (size_t i = 0; i < sizeof before / sizeof *before; i++) {
+    if (!ics_simd_has(before[i].path)) {
+      printf("patel, %s: skipped (not on this processor)\n", ics_simd_name(before[i].path));
+      continue;
+    }
+    setenv("ICS_SIMD", ics_simd_name(before[i].path), 1);
+    render_result r = render_scene(s, &rs, 2);
+    uint64_t h = fnv1a(r.img->data, sizeof(float) * 4 * (size_t)r.img->width * r.img->height);
+    CHECK(h == before[i].hash, "patel, dense, %s: image hash %016llx, before %016llx",
+          ics_simd_name(before[i].path), (unsigned long long)h, (unsigned long long)before[i].hash);
+    printf("patel, dense, %s: the image of 9b34856 bit for bit (%016llx)\n",
+           ics_simd_name(before[i].path), (unsigned long long)h);
+    ics_image_destroy(r.img);
+  }
+  unsetenv("ICS_SIMD");
+  ics_scene_destroy(s);
+}
+
+/* the sphere scene: camera, sphere, floor, light (docs/results.md "Error by effect") */
+#define EYE_Y 1.2
+#define EYE_Z 3.0
+#define HEIGHT 3.0
+#define RES_W 160
+#define RES_H 120
+static const double sphere_c[3] = {0, 0.1, 0}, sphere_r = 0.5, floor_y = -0.4;
+static const double light_mu[2] = {0.6, 0.55}, light_var = 0.004;
+
+static ics_scene *sphere_scene(void) {
+  char j[2048];
+  snprintf(j, sizeof j,
+           "{\"camera\": {\"eye\": [0, %g, %g], \"target\": [0, 0, 0], \"height\": %g, \"resolution\": [%d, %d]},"
+           " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"seed\": 1},"
+           " \"lights\": [{\"mean\": [%g, %g], \"var\": [%g, %g]}],"
+           " \"materials\": {\"white\": {}, \"grey\": {\"color\": [0.8, 0.8, 0.8]}},"
+           " \"objects\": [{\"shape\": \"sphere\", \"center\": [%g, %g, %g], \"radius\": %g, \"material\": \"grey\"},"
+           "  {\"shape\": \"rect\", \"center\": [0, %g, 0], \"normal\": [0, 1, 0], \"size\": [6, 6], \"material\": \"white\"}]}",
+           EYE_Y, EYE_Z, HEIGHT, RES_W, RES_H, light_mu[0], light_mu[1], light_var, light_var,
+           sphere_c[0], sphere_c[1], sphere_c[2], sphere_r, floor_y);
+  return scene_from_json(j);
+}
+
+typedef struct {
+  double r[3], u[3], f[3], eye[3];
+} frame_t;
+
+static double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static frame_t camera_frame(const ics_scene *s) {
+  const ics_camera *c = ics_scene_camera(s);
+  frame_t F;
+  memcpy(F.r, c->r, sizeof F.r), memcpy(F.u, c->u, sizeof F.u), memcpy(F.f, c->f, sizeof F.f);
+  memcpy(F.eye, c->eye, sizeof F.eye);
+  return F;
+}
+
+/* the orthographic ray of pixel (i, j): origin o, direction f */
+static void pixel_origin(const frame_t *F, int i, int j, double o[3]) {
+  double w = HEIGHT * RES_W / RES_H, s = (i + 0.5) / RES_W, t = (j + 0.5) / RES_H;
+  for (int k = 0; k < 3; k++) o[k] = F->eye[k] + (s - 0.5) * w * F->r[k] + (0.5 - t) * HEIGHT * F->u[k];
+}
+
+/* the nearest crossing t > 0 of the ray o + t d with the sphere, or -1 */
+static double hit_sphere(const double o[3], const double d[3]) {
+  double q[3] = {o[0] - sphere_c[0], o[1] - sphere_c[1], o[2] - sphere_c[2]};
+  double a = dot(d, d), b = dot(q, d), c = dot(q, q) - sphere_r * sphere_r, disc = b * b - a * c;
+  if (disc <= 0) return -1;
+  double t0 = (-b - sqrt(disc)) / a, t1 = (-b + sqrt(disc)) / a;
+  return t0 > 0 ? t0 : t1 > 0 ? t1 : -1;
+}
+
+/* the direction toward light-plane point X: X_x r + X_y u - f */
+static void light_dir(const frame_t *F, double x, double y, double d[3]) {
+  for (int k = 0; k < 3; k++) d[k] = x * F->r[k] + y * F->u[k] - F->f[k];
+}
+
+static double aov_v(const render_result *r, int i, int j) {
+  int c = ics_exr_channel_index(r->aov, "light0.V");
+  return r->aov->data[((size_t)j * RES_W + i) * r->aov->count + c];
+}
+
+/* the floor's umbra: visibility of every floor pixel whose light directions within 4.5 sd all
+ * meet the sphere (a ring of 16 directions and the mean) */
+static double umbra_mean(ics_render_model m, double *worst, int *n) {
+  ics_scene *s = sphere_scene();
+  ics_render_settings rs = *ics_scene_settings(s);
+  rs.model = m;
+  render_result r = render_scene_aovs(s, &rs, 2, ICS_AOV_VISIBILITY);
+  frame_t F = camera_frame(s);
+  double sum = 0, sd = sqrt(light_var);
+  *worst = 0, *n = 0;
+  for (int j = 0; j < RES_H; j++)
+    for (int i = 0; i < RES_W; i++) {
+      double o[3], d[3];
+      pixel_origin(&F, i, j, o);
+      if (hit_sphere(o, F.f) > 0) continue;
+      double t = (floor_y - o[1]) / F.f[1], p[3];
+      for (int k = 0; k < 3; k++) p[k] = o[k] + t * F.f[k];
+      int blocked = 1;
+      for (int a = -1; a < 16 && blocked; a++) {
+        double ang = 2 * ICS_PI * a / 16, rad = a < 0 ? 0 : 4.5 * sd;
+        light_dir(&F, light_mu[0] + rad * cos(ang), light_mu[1] + rad * sin(ang), d);
+        blocked = hit_sphere(p, d) > 0;
+      }
+      if (!blocked) continue;
+      double v = aov_v(&r, i, j);
+      sum += v, (*n)++;
+      *worst = fmax(*worst, v);
+    }
+  ics_image_destroy(r.img);
+  ics_exr_channels_destroy(r.aov);
+  ics_scene_destroy(s);
+  return *n ? sum / *n : NAN;
+}
+
+static void test_solid(void) {
+  for (int m = ICS_MODEL_PATEL; m <= ICS_MODEL_SURFACE; m++) {
+    double worst;
+    int n;
+    double mean = umbra_mean((ics_render_model)m, &worst, &n);
+    printf("umbra of an opaque sphere, %s: %d floor pixels, visibility mean %.4f, max %.4f\n",
+           ics_render_model_name((ics_render_model)m), n, mean, worst);
+    CHECK(n > 100, "the umbra holds %d pixels", n);
+    if (m == ICS_MODEL_PATEL)
+      CHECK(mean > 0.05, "the control (patel) should let light through the sphere: mean %.4f", mean);
+    else
+      CHECK(worst <= 0.01, "%s: the umbra is lit, max visibility %.4f (at most 0.01)",
+            ics_render_model_name((ics_render_model)m), worst);
+  }
+}
+
+/* the sphere's own term against the closed form at its pixels away from the limb */
+static double own_term_error(ics_render_model m, int *n) {
+  ics_scene *s = sphere_scene();
+  ics_render_settings rs = *ics_scene_settings(s);
+  rs.model = m;
+  render_result r = render_scene_aovs(s, &rs, 2, ICS_AOV_VISIBILITY);
+  frame_t F = camera_frame(s);
+  double worst = 0;
+  *n = 0;
+  for (int j = 0; j < RES_H; j++)
+    for (int i = 0; i < RES_W; i++) {
+      double o[3], p[3], nrm[3];
+      pixel_origin(&F, i, j, o);
+      double t = hit_sphere(o, F.f);
+      if (t <= 0) continue;
+      for (int k = 0; k < 3; k++) p[k] = o[k] + t * F.f[k], nrm[k] = (p[k] - sphere_c[k]) / sphere_r;
+      if (-dot(nrm, F.f) < 0.3) continue; /* the limb: the depth gradient is steep there */
+      double nf = dot(nrm, F.f), gr = -dot(nrm, F.r) / nf, gu = -dot(nrm, F.u) / nf;
+      double mm = gr * light_mu[0] + gu * light_mu[1] + 1, v = (gr * gr + gu * gu) * light_var;
+      double phi = 0.5 * erfc(-mm / sqrt(2 * v));
+      worst = fmax(worst, fabs(aov_v(&r, i, j) - phi));
+      (*n)++;
+    }
+  ics_image_destroy(r.img);
+  ics_exr_channels_destroy(r.aov);
+  ics_scene_destroy(s);
+  return worst;
+}
+
+static void test_own_term(void) {
+  for (int m = ICS_MODEL_PATEL; m <= ICS_MODEL_SURFACE; m++) {
+    int n;
+    double e = own_term_error((ics_render_model)m, &n);
+    printf("an opaque sphere's own surface, %s: %d pixels, max |V - Phi| %.4f\n",
+           ics_render_model_name((ics_render_model)m), n, e);
+    CHECK(n > 500, "the sphere holds %d pixels", n);
+    if (m == ICS_MODEL_SURFACE)
+      CHECK(e <= 0.03, "surface: the sphere's visibility off its own term by %.4f (at most 0.03)", e);
+    else
+      CHECK(e > 0.1, "the control (%s) should miss the own term: max %.4f",
+            ics_render_model_name((ics_render_model)m), e);
+  }
+}
+
+static void test_no_solids(const char *disk) {
+  ics_scene *s = scene_from_file(disk);
+  ics_render_settings rs = *ics_scene_settings(s);
+  render_result a = render_scene(s, &rs, 2);
+  for (int m = ICS_MODEL_SOLID; m <= ICS_MODEL_SURFACE; m++) {
+    rs.model = (ics_render_model)m;
+    render_result b = render_scene(s, &rs, 2);
+    CHECK(!memcmp(a.img->data, b.img->data, sizeof(float) * 4 * (size_t)a.img->width * a.img->height),
+          "the disk scene differs between patel and %s", ics_render_model_name(rs.model));
+    ics_image_destroy(b.img);
+  }
+  printf("the disk scene (no closed opaque object): every model bit for bit patel's\n");
+  ics_image_destroy(a.img);
+  ics_scene_destroy(s);
+}
+
+int main(int argc, char **argv) {
+  test_patel_unchanged();
+  test_solid();
+  test_own_term();
+  if (argc > 1) test_no_solids(argv[1]);
+  return test_summary("test_render_model");
+}
