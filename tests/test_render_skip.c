@@ -2,7 +2,8 @@
  * does not need"): the cpu backend's active regions, constant tiles and grey tiles against the
  * dense path (render.dense) on every kind of scene the suite renders: the default scene and its
  * kernel variants (4 rotations per pixel, runs of 16, 384 rotations, Poisson 16, Gauss 19 and
- * top-hat 5 stencils, signed and integer compensation), the contract's disk, a coloured volume
+ * top-hat 5 stencils, signed and integer compensation) and models (solid; surface, whose second
+ * light-buffer set copies the first where they are equal), the contract's disk, a coloured volume
  * under a zero-variance light, a box outside the view casting into it, a perspective camera, and
  * buffers narrower than a tile and than a vector.
  *
@@ -147,6 +148,10 @@ int main(int argc, char **argv) {
   check("signed compensation", s, &v);
   v = rs, v.compensate = ICS_RC_INTEGER;
   check("integer compensation", s, &v);
+  v = rs, v.model = ICS_MODEL_SOLID;
+  check("model solid (the torus solid)", s, &v);
+  v = rs, v.model = ICS_MODEL_SURFACE;
+  check("model surface (two light-buffer sets)", s, &v);
   ics_scene_destroy(s);
   if (argc > 1) {
     ics_scene *disk = scene_from_file(argv[1]);
