@@ -8,7 +8,7 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 PYTHON     ?= /usr/bin/python3
 CMAKE_ARGS ?=
 
-.PHONY: all deps mitsuba configure test test-asan test-fuzz fuzz demo figs notebooks bench analysis error-vs-time install clean
+.PHONY: all deps mitsuba configure test test-asan test-fuzz fuzz demo figs notebooks bench analysis error-vs-time error-by-effect install clean
 
 all: configure
 	cmake --build $(BUILD) -j $(JOBS)
@@ -166,6 +166,12 @@ error-vs-time: deps all
 	$(PYTHON) analysis/error_vs_time.py --icshadow $(BUILD)/bin/icshadow --ref out/analysis/error_vs_time_ref.exr \
 	  --csv out/analysis/error_vs_time.csv --plot out/analysis/error_vs_time.png \
 	  --images out/analysis/error_vs_time_images.png
+
+# the models' error by effect (render.model patel, solid, surface) on the default scene, two
+# solid-object scenes and Patel's Fig. 18-21 against the Monte-Carlo reference (docs/results.md;
+# about 5 minutes)
+error-by-effect: deps-figs all
+	$(PYTHON) analysis/error_by_effect.py --cli $(BUILD)/bin/icshadow --out out/analysis
 
 install: all
 	cmake --install $(BUILD) --prefix $(PREFIX)
