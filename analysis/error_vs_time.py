@@ -11,7 +11,8 @@ Method (docs/results.md "Error against run time"):
    noise taken out (E[rmse^2] = error^2 + noise^2).
 2. Tasks, in a fixed order (the `task` column): the configurations (kernel member, samples,
    compensation, slab spacing with and without preintegration, rotation runs, d1, LUT radii
-   against exact ones, resolution) and Monte-Carlo renders at 4..256 samples per pixel under the
+   against exact ones, render.model surface at three slab spacings, resolution) and Monte-Carlo
+   renders at 4..256 samples per pixel under the
    seed 7 + task, each run REPS times in an interleaved order (task by task, round by round) so
    load drifts spread over all of them; `icshadow render ... --compare REF.exr` gives the error,
    the summary the time. Time is ms_plan + ms_render (the frame: plan with its geometry pass,
@@ -204,6 +205,11 @@ def main():
         for f in (0.25, 0.5, 2):
             tasks.append(("slab", f"ellipse2 expected e={e0:g} d1={d10 * f:g}", res0, scene_with(d1=d10 * f), []))
         tasks.append(("slab", f"ellipse2 expected e={e0:g} lut", res0, scene_with(), ["--radii", "lut"]))
+        # the other model (render.model surface: solid objects, a solid's own term), at three
+        # slab spacings
+        for f in (0.5, 1, 2):
+            tasks.append(("slab", f"ellipse2 expected e={e0 * f:g} model surface", res0,
+                          scene_with(slab_spacing=e0 * f, model="surface"), []))
     for res in resolutions:
         tasks.append(("slab", f"ellipse2 expected e={e0:g} {res}", res, scene_with(res), []))
     for spp in ([4, 16] if a.quick else [4, 16, 64, 256]):
@@ -333,6 +339,8 @@ def plot(rows, ref_spp, ref_noise, reps, path):
         p = r["parameters"]
         if r["method"] == "mc":
             f = "Monte Carlo, samples per pixel"
+        elif "model surface" in p:
+            f = "ellipse2, model surface (slab spacing e)"
         elif r.get("resolution") != res0:
             f = "ellipse2, resolution (against its own reference)"
         elif "d1=" in p:
@@ -344,7 +352,8 @@ def plot(rows, ref_spp, ref_noise, reps, path):
         fams.setdefault(f, []).append(r)
     style = {"Monte Carlo": ("s", "tab:red"), "ellipse2, d1": ("^", "tab:orange"),
              "ellipse2, resolution": ("v", "tab:purple"),
-             "ellipse2, slab": ("D", "tab:green"), "kernel": ("o", "tab:blue")}
+             "ellipse2, slab": ("D", "tab:green"), "kernel": ("o", "tab:blue"),
+             "ellipse2, model": ("P", "tab:brown")}
     fig, (ax, side) = plt.subplots(1, 2, figsize=(11, 5.5), gridspec_kw={"width_ratios": [3, 1.15]})
     y = lambda r: max(r["rmse_beyond_noise"], 1e-5)
     keys, n = [], 0
