@@ -210,8 +210,9 @@ static void test_fused_equal(void) {
 
 /* a span [x0, x1) x [y0, y1) gives bit for bit the whole rows' values there and writes nothing
  * else (the cpu backend steps tiles and runs of tiles): every path, every loop (stencil, 4 and 8
- * blended sets, the 384-entry table, runs of 16 at two phases), spans of every width 1..w at
- * every start of a 70-pixel row (vectors, their overlapping ends, runs cut by the span) */
+ * blended sets, the 384-entry table, runs of 16 at two phases), from every start of a 70-pixel
+ * row spans of every width 1..8 and then of growing steps (9, 11, ...: vectors, their overlapping
+ * ends, runs cut by the span) */
 static void test_spans(path_t path) {
   ics_tap2d t[2 * ICS_SLAB_TABLE_M];
   for (int e = 0; e < ICS_SLAB_TABLE_M; e++) {

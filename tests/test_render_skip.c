@@ -7,12 +7,15 @@
  * under a zero-variance light, a box outside the view casting into it, a perspective camera, and
  * buffers narrower than a tile and than a vector.
  *
- * What must hold: the image within TOLERANCE of the dense one. A skipped tile keeps its constant
+ * What must hold: the image and its AOVs (visibility, depth) within TOLERANCE of the dense ones. A skipped tile keeps its constant
  * where the dense step gives the constant times the float sum of the weights: equal for the
  * ellipse's 1/2 + 1/2 (the disk, the perspective scene, the narrow buffers: bit for bit), a few
  * ulps off for compensated stencils (the default scene at 96 x 72 falls back to a 3 x 3
  * compensated Gaussian for its narrow light). Measured on the scalar, sse2, avx2 and avx512 paths:
- * at most 7.2e-7 (signed compensation), 3.6e-7 elsewhere, over ~190 slabs. And the skipping must
+ * at most 7.2e-7 (signed compensation), 3.6e-7 elsewhere, over ~190 slabs; the AOVs, each
+ * light's visibility unweighted, at most 1.1e-6 (signed; TOLERANCE_AOV 2e-6). Not a bound: a
+ * constant's rounding can move it by the taps' count of float ulps per slab (K n 2^-24 at
+ * most), and the differences grow with the slabs (9.5e-7 on the image at 5792 slabs). And the skipping must
  * happen: the default scene (96 x 72, buffers 200 x 170: few whole tiles) updates at most 60 % of
  * the dense path's channel-pixels (measured 45-50 %; 22 % at 320 x 240; the dense path reports
  * 100 %, the control), the perspective scene fewer than all (constant tiles only); a caster
@@ -28,7 +31,8 @@
 #include "render_util.h"
 #include "testutil.h"
 
-#define TOLERANCE 1e-6
+#define TOLERANCE 1e-6     /* the image (each light weighted by its colour and weight) */
+#define TOLERANCE_AOV 2e-6 /* the AOVs: each light's visibility itself */
 
 static double diff_max(const ics_image *a, const ics_image *b) {
   double m = 0;
@@ -42,9 +46,18 @@ static double check(const char *name, const ics_scene *s, const ics_render_setti
   ics_render_settings dense = *rs, skip = *rs;
   dense.dense = 1;
   skip.dense = 0;
-  render_result d = render_scene(s, &dense, 2), k = render_scene(s, &skip, 2);
+  const unsigned aovs = ICS_AOV_VISIBILITY | ICS_AOV_DEPTH;
+  render_result d = render_scene_aovs(s, &dense, 2, aovs), k = render_scene_aovs(s, &skip, 2, aovs);
   double m = diff_max(d.img, k.img), frac = k.stats.updates_active / k.stats.updates_dense;
-  printf("%-34s max |skip - dense| %.3g, updates %.1f %% of dense\n", name, m, 100 * frac);
+  double ma = 0; /* the AOVs (visibility per light, depth) too */
+  for (size_t i = 0; i < (size_t)d.aov->count * d.img->width * d.img->height; i++)
+    ma = fmax(ma, fabs(d.aov->data[i] - k.aov->data[i]));
+  CHECK(ma <= TOLERANCE_AOV, "%s: the AOVs differ from the dense path's by %.3g (tolerance %g)",
+        name, ma, TOLERANCE_AOV);
+  ics_exr_channels_destroy(d.aov);
+  ics_exr_channels_destroy(k.aov);
+  printf("%-34s max |skip - dense| %.3g (AOVs %.3g), updates %.1f %% of dense\n", name, m, ma,
+         100 * frac);
   CHECK(m <= TOLERANCE, "%s: skipping differs from the dense path by %.3g (tolerance %g)", name,
         m, TOLERANCE);
   CHECK(d.stats.updates_active == d.stats.updates_dense,

@@ -14,13 +14,6 @@ const ics_rect *ics_active_region(const struct ics_plan *p, int l, int k) {
 
 static int clampi(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v; }
 
-static void join(ics_rect *r, const ics_rect *o) {
-  if (o->x0 < r->x0) r->x0 = o->x0;
-  if (o->y0 < r->y0) r->y0 = o->y0;
-  if (o->x1 > r->x1) r->x1 = o->x1;
-  if (o->y1 > r->y1) r->y1 = o->y1;
-}
-
 /* the pixels that slab k + 1, whose reads lie within p + [off.x0, off.x1] x [off.y0, off.y1],
  * reads to make `next`, joined with `next` itself (so the regions only shrink) and the view,
  * within the buffer (orthographic: s = 1) */
@@ -30,8 +23,8 @@ static ics_rect widen(const ics_plan *p, const ics_rect *off, const ics_rect *ne
   int y0 = next->y0 + off->y0, y1 = next->y1 - 1 + off->y1;
   ics_rect r = {clampi(x0, 0, p->Wb - 1), clampi(y0, 0, p->Hb - 1), clampi(x1, 0, p->Wb - 1) + 1,
                 clampi(y1, 0, p->Hb - 1) + 1};
-  join(&r, next);
-  join(&r, view);
+  ics_rect_join(&r, next);
+  ics_rect_join(&r, view);
   return r;
 }
 
@@ -54,7 +47,7 @@ static ics_status light_regions(ics_plan *p, int l, ics_rect *fp, ics_rect *all,
     st = ics_plan_slab_taps(p, l, k, q, mag, cum, scratch, &pt, msg, msg_size);
     fp[k] = (ics_rect){pt.lo[0], pt.lo[1], pt.hi[0], pt.hi[1]};
     if (k == 1) *all = fp[k];
-    join(all, &fp[k]);
+    ics_rect_join(all, &fp[k]);
   }
   ics_prop_release(&pt);
   free(scratch);
@@ -171,27 +164,30 @@ ics_status ics_active_regions_build(struct ics_plan *p, char *msg, size_t msg_si
   int full = p->rs.dense || p->cam.projection == ICS_PROJ_PERSPECTIVE;
   /* the tile needs cost tiles^2 per light: beyond ICS_REGION_MAX_PAIRS every tile is needed */
   int by_tiles = !full && (double)nt * nt * p->nlights * sets <= ICS_REGION_MAX_PAIRS;
-  if (st == ICS_OK) open_until(p, 0, open);
-  for (size_t i = 0; st == ICS_OK && i < nt; i++) p->tile_shade[i] = by_tiles ? open[i] : p->K - 1;
+  /* the rectangles and each light's offsets over all slabs, then per set the tile needs */
+  ics_rect all[ICS_SCENE_MAX_LIGHTS];
+  for (int l = 0; l < p->nlights && st == ICS_OK; l++) {
+    all[l] = (ics_rect){0, 0, 0, 0};
+    if (full)
+      for (int k = 0; k < p->K; k++) p->active[(size_t)k * p->nlights + l] = whole;
+    else
+      st = light_regions(p, l, fp, &all[l], msg, msg_size);
+  }
+  for (size_t i = 0; st == ICS_OK && i < nt; i++) p->tile_shade[i] = p->K - 1;
   for (int set = 0; set < sets && st == ICS_OK; set++) {
-    if (set) open_until(p, set, open);
+    if (by_tiles) open_until(p, set, open);
     for (int l = 0; l < p->nlights && st == ICS_OK; l++) {
       int32_t *last = p->tile_last + (size_t)(set * p->nlights + l) * nt;
-      ics_rect all = {0, 0, 0, 0};
-      if (full) {
-        for (int k = 0; k < p->K; k++) p->active[(size_t)k * p->nlights + l] = whole;
-      } else {
-        st = light_regions(p, l, fp, &all, msg, msg_size);
-      }
-      if (st == ICS_OK && by_tiles) st = tile_needs(p, &all, open, last);
-      if (st != ICS_OK) break;
-      for (size_t i = 0; i < nt; i++) {
+      if (by_tiles) st = tile_needs(p, &all[l], open, last);
+      for (size_t i = 0; st == ICS_OK && i < nt; i++) {
         if (!by_tiles) last[i] = p->K - 1;
+        if (by_tiles && !set && !l) p->tile_shade[i] = open[i]; /* view pixels open */
         if (last[i] > p->tile_shade[i]) p->tile_shade[i] = last[i];
       }
-      if (!set) p->active_fraction[l] = p->K ? active_area(p, l) / (ics_rect_area(&whole) * p->K) : 1;
     }
   }
+  for (int l = 0; l < p->nlights && st == ICS_OK; l++)
+    p->active_fraction[l] = p->K ? active_area(p, l) / (ics_rect_area(&whole) * p->K) : 1;
   free(open), free(fp);
   return st;
 }

@@ -29,6 +29,13 @@ typedef struct ics_rect {
 static inline double ics_rect_area(const ics_rect *r) {
   return (double)(r->x1 - r->x0) * (double)(r->y1 - r->y0);
 }
+/* *r grown to hold o too (their bounding rectangle) */
+static inline void ics_rect_join(ics_rect *r, const ics_rect *o) {
+  if (o->x0 < r->x0) r->x0 = o->x0;
+  if (o->y0 < r->y0) r->y0 = o->y0;
+  if (o->x1 > r->x1) r->x1 = o->x1;
+  if (o->y1 > r->y1) r->y1 = o->y1;
+}
 
 /* Fills p->tiles, p->active (K x nlights rectangles, slab-major), p->tile_last (light sets x
  * nlights x tiles, ics_plan_light_sets: the last slab at which light l's buffer of that set

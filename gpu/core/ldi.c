@@ -76,8 +76,8 @@ static void cull_rect(const ics_plan *p, const ics_object *o, int r[4]) {
     if (!isfinite(bx) || !isfinite(by)) return;
     x0 = fmin(x0, bx), x1 = fmax(x1, bx), y0 = fmin(y0, by), y1 = fmax(y1, by);
   }
-  r[0] = (int)fmax(floor(x0) - 2, -1), r[1] = (int)fmax(floor(y0) - 2, -1);
-  r[2] = (int)fmin(ceil(x1) + 2, p->Wb), r[3] = (int)fmin(ceil(y1) + 2, p->Hb);
+  r[0] = (int)fmin(fmax(floor(x0) - 2, -1), p->Wb), r[1] = (int)fmin(fmax(floor(y0) - 2, -1), p->Hb);
+  r[2] = (int)fmax(fmin(ceil(x1) + 2, p->Wb), -1), r[3] = (int)fmax(fmin(ceil(y1) + 2, p->Hb), -1);
 }
 
 /* all crossings of pixel (bi, bj) into *hv (grown as needed), sorted when `sorted` (the counting

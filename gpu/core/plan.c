@@ -382,13 +382,15 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
     p->nvol = nvol;
     p->nch = coloured ? 3 : 1;
     /* the inside mask: the volumes, then (render.model solid and after) the solid objects, a
-     * closed shape of an opaque (opacity 1) surface material */
+     * closed shape of an opaque surface material (opacity 1, black transport: one that lets
+     * light through, tinted, is not solid) */
     int nin = nvol;
     for (int k = 0; k < s->nobjects; k++) {
       const ics_material *m = &s->materials[s->objects[k].material];
       p->inside_bit[k] = p->vol_bit[k];
-      if (p->rs.model < ICS_MODEL_SOLID || m->volumetric || m->opacity != 1 || !s->objects[k].closed)
-        continue;
+      int opaque = !m->volumetric && m->opacity == 1 && m->transport[0] == 0 &&
+                   m->transport[1] == 0 && m->transport[2] == 0;
+      if (p->rs.model < ICS_MODEL_SOLID || !opaque || !s->objects[k].closed) continue;
       if (nin == ICS_MAX_VOLUMES) {
         if (msg)
           snprintf(msg, msg_size, "more than %d volumetric and solid objects (render.model %s)",

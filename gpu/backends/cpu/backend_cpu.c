@@ -44,7 +44,6 @@ typedef struct {
   int vol_obj[ICS_MAX_VOLUMES]; /* per inside-mask bit: its object */
   uint32_t *scratch;     /* per thread: ICS_PROP_SCRATCH(Wb) words (a row's entries or run choices) */
   ics_simd_path simd;    /* the propagation loops' vector path */
-  ics_tile_grid grid;    /* the light buffers' tiles */
   ics_tile **tsrc, **tdst; /* per buffered light: what each tile of src and dst holds */
   uint8_t **ssrc, **sdst;  /* per buffered light of the second set: each tile of src and dst equal
                               to the first set's bit for bit (then it is copied, not stepped) */
@@ -68,6 +67,7 @@ typedef struct {
                             first and second ends) and their values (first, second) */
   int32_t *dslot;        /* per thread: Wb, each pixel's slot in them, or -1 */
   ics_hits hits[256];    /* per thread: a ray's crossings (the own term's normals) */
+  int failed;            /* out of memory in a thread (the render fails) */
 } job_t;
 
 /* where a piece's detail is sampled: its two ends (preintegrate: the detail varies linearly
@@ -176,9 +176,9 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
  * ray nearest the fragment's depth z), not the layered depth image's quantised depth gradient.
  * arrive: the buffers' values arriving at this slab (before its occlusions), per buffered light
  * and channel. Into L the light (sum over lights of colour x weight x V Phi), into V the AOVs'
- * V Phi per light and channel. */
-static void own_light(job_t *j, int obj, double z, int bi, int bj, const float *arrive, int set,
-                      double L[3], float *V, int t) {
+ * V Phi per light and channel. 0, or -1 when out of memory (j->failed is set). */
+static int own_light(job_t *j, int obj, double z, int bi, int bj, const float *arrive, int set,
+                     double L[3], float *V, int t) {
   const ics_plan *P = j->p;
   const ics_camera *c = &P->cam;
   double o[3], d[3], n[3] = {0, 0, 0}, best = INFINITY;
@@ -186,7 +186,7 @@ static void own_light(job_t *j, int obj, double z, int bi, int bj, const float *
   ics_plan_ray(P, bi, bj, o, d);
   ics_hits *h = &j->hits[t];
   h->n = 0;
-  ics_object_hits(&P->scene->objects[obj], o, d, h, &behind);
+  if (ics_object_hits(&P->scene->objects[obj], o, d, h, &behind)) return -1; /* out of memory */
   for (int i = 0; i < h->n; i++)
     if (fabs(h->h[i].t - z) < best) best = fabs(h->h[i].t - z), memcpy(n, h->h[i].n, sizeof n);
   double nd = n[0] * d[0] + n[1] * d[1] + n[2] * d[2], sgn = nd > 0 ? -1 : 1;
@@ -202,6 +202,7 @@ static void own_light(job_t *j, int obj, double z, int bi, int bj, const float *
     for (int k = 0; k < 3; k++) L[k] += lt->color[k] * lt->weight * phi * B[P->nch == 3 ? k : 0];
     for (int k = 0; k < P->nch; k++) V[l * P->nch + k] = (float)(phi * B[k]);
   }
+  return 0;
 }
 
 static void surface_colour(const job_t *j, int obj, const double L[3], float *C) {
@@ -282,7 +283,7 @@ static void row_details(job_t *j, int bj, double zf, double zb, const int32_t *n
     uint64_t mask = j->mask[p];
     if (!mask) continue; /* (shade_rows reads a slot only inside a volume) */
     slot[bi] = -1;
-    if ((mask & (mask - 1)) || need[ics_tile_col(&j->grid, bi)] < j->k) continue;
+    if ((mask & (mask - 1)) || need[ics_tile_col(&j->p->tiles, bi)] < j->k) continue;
     int obj = j->vol_obj[__builtin_ctzll(mask)];
     ics_detail_fn fn = s->materials[s->objects[obj].material].detail.fn;
     uint32_t cur = j->cursor[p];
@@ -313,10 +314,10 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
   double zf = P->z0 + k * P->e, zb = zf + P->e;
   if (y0 < j->shade.y0) y0 = j->shade.y0;
   if (y1 > j->shade.y1) y1 = j->shade.y1;
-  const int32_t *need = y0 < y1 ? P->tile_shade + (size_t)ics_tile_row(&j->grid, y0) * j->grid.nx : NULL;
+  const int32_t *need = y0 < y1 ? P->tile_shade + (size_t)ics_tile_row(&j->p->tiles, y0) * j->p->tiles.nx : NULL;
   for (int bj = y0; bj < y1; bj++) {
-    int *seg = j->seg_next + (size_t)bj * j->grid.nx, busy = 0;
-    int tx0 = ics_tile_col(&j->grid, j->shade.x0), tx1 = ics_tile_col(&j->grid, j->shade.x1 - 1);
+    int *seg = j->seg_next + (size_t)bj * j->p->tiles.nx, busy = 0;
+    int tx0 = ics_tile_col(&j->p->tiles, j->shade.x0), tx1 = ics_tile_col(&j->p->tiles, j->shade.x1 - 1);
     for (int tx = tx0; tx <= tx1; tx++) busy |= seg[tx] <= k && need[tx] >= k;
     if (!busy) continue; /* nothing in this row before its segments' next slab */
     int batch = j->mask && P->any_detail;
@@ -330,7 +331,7 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
     for (int tx = tx0; tx <= tx1; tx++) {
     /* a segment no longer needed, or with nothing to do before its next slab, is passed over */
     if (need[tx] < k || seg[tx] > k) continue;
-    int next = INT_MAX, x0 = ics_tile_x0(&j->grid, tx), x1 = ics_tile_x1(&j->grid, tx);
+    int next = INT_MAX, x0 = ics_tile_x0(&j->p->tiles, tx), x1 = ics_tile_x1(&j->p->tiles, tx);
     if (x0 < j->shade.x0) x0 = j->shade.x0;
     if (x1 > j->shade.x1) x1 = j->shade.x1;
     for (int bi = x0; bi < x1; bi++) {
@@ -363,7 +364,7 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
           for (int c = 0; c < P->nch; c++) arrive[b * P->nch + c] = j->dst[b][(size_t)c * plane + q];
       /* surface occlusions due at this slab (fragment slab + bias == k), after the light
        * arriving here was read: a surface never shadows its own slab */
-      touched[ics_tile_col(&j->grid, bi)] = 1;
+      touched[ics_tile_col(&j->p->tiles, bi)] = 1;
       for (uint32_t f = acur; f < end && ics_frag_slab(&ldi->frag[f]) <= k; f++) {
         const ics_fragment *fr = &ldi->frag[f];
         int obj = ics_frag_obj(fr), first = ics_frag_slab(fr) + ics_frag_bias(fr), ib = P->inside_bit[obj];
@@ -380,7 +381,7 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       /* without a fragment in the slab the one piece is the whole slab: its detail batched */
       int s0 = batch && mask && !has ? slot[bi] : -1;
       double pre[2] = {0, 0};
-      if (s0 >= 0) pre[0] = values[s0], pre[1] = values[P->Wb + s0];
+      if (s0 >= 0) pre[0] = values[s0], pre[1] = P->rs.preintegrate ? values[P->Wb + s0] : 0;
       double za = zf;
       for (;;) {
         double zn = has ? ldi->frag[cur].z : zb;
@@ -394,8 +395,8 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
         if ((ib < 0 || solid) && inview) { /* a surface */
           double Lo[3];
           int own = P->rs.model >= ICS_MODEL_SURFACE && solid;
-          if (own) /* a solid's surface: its own term, the rest from Patel's set */
-            own_light(j, obj, ldi->frag[cur].z, bi, bj, arrive, j->nb > P->nlights, Lo, V, t);
+          if (own && own_light(j, obj, ldi->frag[cur].z, bi, bj, arrive, j->nb > P->nlights, Lo, V, t))
+            j->failed = 1; /* (a solid's surface: its own term, the rest from Patel's set) */
           surface_colour(j, obj, own ? Lo : L, C);
           if (j->aov && !j->aov_seen[(size_t)jj * P->W + ii] &&
               s->materials[s->objects[obj].material].opacity > 0)
@@ -426,8 +427,8 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
 static void step_tiles(job_t *j, int b, int ty, int tx0, int tx1, int kind, int t,
                        uint8_t *written) {
   const ics_plan *P = j->p;
-  int x0 = ics_tile_x0(&j->grid, tx0), x1 = ics_tile_x1(&j->grid, tx1);
-  int y0 = ics_tile_y0(&j->grid, ty), y1 = ics_tile_y1(&j->grid, ty);
+  int x0 = ics_tile_x0(&j->p->tiles, tx0), x1 = ics_tile_x1(&j->p->tiles, tx1);
+  int y0 = ics_tile_y0(&j->p->tiles, ty), y1 = ics_tile_y1(&j->p->tiles, ty);
   int planes = kind == ICS_TILE_GREY ? 1 : P->nch;
   ics_prop_span(&j->pt[b % P->nlights], j->src[b], j->dst[b], &P->buf, planes, y0, y1, x0, x1,
                 j->scratch + (size_t)t * ICS_PROP_SCRATCH(P->Wb), j->simd);
@@ -436,22 +437,22 @@ static void step_tiles(job_t *j, int b, int ty, int tx0, int tx1, int kind, int 
   memset(written + tx0, 2, (size_t)(tx1 - tx0 + 1));
 }
 
+/* 1 when source tiles [tx0, tx1] x [ty0, ty1] of second-set buffer b all equal the first set's */
+static int mirrors(const job_t *j, int b, int tx0, int tx1, int ty0, int ty1) {
+  for (int ty = ty0; ty <= ty1; ty++)
+    for (int tx = tx0; tx <= tx1; tx++)
+      if (!j->ssrc[b][(size_t)ty * j->p->tiles.nx + tx]) return 0;
+  return 1;
+}
+
 /* Row ty of tiles of buffered light b's buffer at this slab: within the light's active region
  * and its needed tiles (active_region.h), each tile whose reads all lie in tiles of one constant
  * gets that constant (written only where the buffer does not hold it already: flagged 1 in
  * written), the others are stepped, consecutive ones of a kind as one span; render.dense steps
  * every tile. */
-/* 1 when source tiles [tx0, tx1] x [ty0, ty1] of second-set buffer b all equal the first set's */
-static int mirrors(const job_t *j, int b, int tx0, int tx1, int ty0, int ty1) {
-  for (int ty = ty0; ty <= ty1; ty++)
-    for (int tx = tx0; tx <= tx1; tx++)
-      if (!j->ssrc[b][(size_t)ty * j->grid.nx + tx]) return 0;
-  return 1;
-}
-
 static void propagate_row(job_t *j, int b, int ty, int t, uint8_t *written) {
   const ics_plan *P = j->p;
-  const ics_tile_grid *g = &j->grid;
+  const ics_tile_grid *g = &j->p->tiles;
   int l = b % P->nlights;
   const ics_rect *R = ics_active_region(P, l, j->k);
   if (ty < ics_tile_row(g, R->y0) || ty > ics_tile_row(g, R->y1 - 1)) return;
@@ -509,7 +510,7 @@ static void propagate_row(job_t *j, int b, int ty, int t, uint8_t *written) {
  * the apron is refreshed where an edge tile was written (elsewhere it holds its edge already) */
 static void settle_row(job_t *j, int ty, const uint8_t *marks) {
   const ics_plan *P = j->p;
-  const ics_tile_grid *g = &j->grid;
+  const ics_tile_grid *g = &j->p->tiles;
   int y0 = ics_tile_y0(g, ty), y1 = ics_tile_y1(g, ty);
   for (int b = 0; b < j->nb; b++) {
     int signed_ = P->kernels[b % P->nlights].comp == ICS_RC_SIGNED;
@@ -546,15 +547,15 @@ static void settle_row(job_t *j, int ty, const uint8_t *marks) {
 static void slab_job(void *ctx, int t, int n) {
   job_t *j = ctx;
   const ics_plan *P = j->p;
-  size_t nx = (size_t)j->grid.nx;
+  size_t nx = (size_t)P->tiles.nx;
   uint8_t *marks = j->marks + (size_t)t * (1 + (size_t)j->nb) * nx;
-  (void)n, (void)P;
-  for (int ty; (ty = atomic_fetch_add(&j->next_row, 1)) < j->grid.ny;) {
+  (void)n;
+  for (int ty; (ty = atomic_fetch_add(&j->next_row, 1)) < P->tiles.ny;) {
     double t0 = ics_clock_s();
     memset(marks, 0, (1 + (size_t)j->nb) * nx);
     for (int b = 0; b < j->nb; b++) propagate_row(j, b, ty, t, marks + (1 + (size_t)b) * nx);
     double t1 = ics_clock_s();
-    shade_rows(j, ics_tile_y0(&j->grid, ty), ics_tile_y1(&j->grid, ty), t, marks);
+    shade_rows(j, ics_tile_y0(&j->p->tiles, ty), ics_tile_y1(&j->p->tiles, ty), t, marks);
     settle_row(j, ty, marks);
     j->prop_s[t] += t1 - t0;
     j->shade_s[t] += ics_clock_s() - t1;
@@ -565,13 +566,7 @@ static void slab_job(void *ctx, int t, int n) {
  * needed again: the regions only shrink) */
 static ics_rect shade_rect(const ics_plan *P, int k) {
   ics_rect u = {P->Wb, P->Hb, 0, 0};
-  for (int l = 0; l < P->nlights; l++) {
-    const ics_rect *r = ics_active_region(P, l, k);
-    if (r->x0 < u.x0) u.x0 = r->x0;
-    if (r->y0 < u.y0) u.y0 = r->y0;
-    if (r->x1 > u.x1) u.x1 = r->x1;
-    if (r->y1 > u.y1) u.y1 = r->y1;
-  }
+  for (int l = 0; l < P->nlights; l++) ics_rect_join(&u, ics_active_region(P, l, k));
   if (!P->nlights) u = (ics_rect){0, 0, P->Wb, P->Hb};
   return u;
 }
@@ -602,9 +597,8 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->tdst = tiles + nb;
   j->ssrc = sames;
   j->sdst = sames + nb;
-  ics_tile_grid_init(&j->grid, P->Wb, P->Hb);
-  size_t ntiles = (size_t)j->grid.nx * (size_t)j->grid.ny;
-  j->marks = malloc((size_t)j->grid.nx * (1 + (size_t)nb) * (size_t)nt);
+  size_t ntiles = (size_t)j->p->tiles.nx * (size_t)j->p->tiles.ny;
+  j->marks = malloc((size_t)j->p->tiles.nx * (1 + (size_t)nb) * (size_t)nt);
   j->dpts = P->any_detail ? malloc(sizeof *j->dpts * 8 * (size_t)P->Wb * (size_t)nt) : NULL;
   j->dslot = P->any_detail ? malloc(sizeof *j->dslot * (size_t)P->Wb * (size_t)nt) : NULL;
   j->pt = calloc((size_t)(nl ? nl : 1), sizeof *j->pt);
@@ -613,7 +607,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->pnext = malloc(sizeof *j->pnext * npx);
   j->scratch = malloc(sizeof *j->scratch * ICS_PROP_SCRATCH(P->Wb) * (size_t)nt);
   /* 0: look at every segment first */
-  j->seg_next = calloc((size_t)P->Hb * (size_t)j->grid.nx, sizeof *j->seg_next);
+  j->seg_next = calloc((size_t)P->Hb * (size_t)j->p->tiles.nx, sizeof *j->seg_next);
   j->mask = P->ninside ? malloc(sizeof *j->mask * npx) : NULL;
   j->aov = aov;
   j->aov_seen = aov ? calloc((size_t)P->W * P->H, 1) : NULL;
@@ -665,6 +659,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
     j->shade = shade_rect(P, k);
     atomic_store(&j->next_row, 0);
     ics_pool_run(pool, slab_job, j);
+    if (j->failed) goto nomem;
     for (int b = 0; b < nb; b++) ics_prop_apron(&P->buf, j->dst[b], P->nch, 0, 0, 1);
     for (int b = 0; b < nb; b++) {
       float *tmp = j->src[b];

@@ -87,8 +87,8 @@ typedef struct ics_render_settings {
                           (their start moved by a random phase each slab) */
   ics_render_model model; /* default ICS_MODEL_PATEL */
   int dense;           /* 1: every light-buffer pixel propagated at every slab (the reference the
-                          skipping is tested against); 0 (default): only the active regions, and
-                          no constant tiles (docs/renderer.md "Work a frame does not need") */
+                          skipping is tested against); 0 (default): only the active regions, with
+                          constant tiles skipped (docs/renderer.md "Work a frame does not need") */
   uint64_t seed;
   double background[3];
   int max_pad;         /* < 0: default (larger image side) */
