@@ -19,7 +19,7 @@ static const char CMD[] = "bench frame";
 static void help(FILE *f) {
   fprintf(f,
           "usage: icshadow bench frame [SCENE] [--resolution WxH,...] [--threads T] [--reps R]\n"
-          "       [--spp N] [--work W,...] [--progress]\n"
+          "       [--spp N] [--work W,...] [--progress] [--allow-outside-paths]\n"
           "Whole frames of a scene (none: the embedded default scene), side by side in one run,\n"
           "repetitions interleaved after a warm-up round, as CSV:\n"
           "  scene,width,height,work,threads,simd,cpu,ms_frame,ms_min,ms_max,ms_plan,ms_render,\n"
@@ -38,7 +38,8 @@ static void help(FILE *f) {
           "  --spp N           mc samples per pixel (default 16: where it reaches the slab\n"
           "                    renderer's error on the default scene, docs/results.md)\n"
           "  --work W,...      of skip, dense, mc (default all three)\n"
-          "  --progress        progress on stderr even when it is not a terminal\n");
+          "  --progress        progress on stderr even when it is not a terminal\n"
+          "  --allow-outside-paths  let the scene read files outside its own folder\n");
 }
 
 #ifdef ICS_HAVE_RENDER
@@ -152,7 +153,7 @@ int bench_frame(int argc, char **argv) {
   return cli_failure(CMD, "the renderer was not built (it needs jansson)");
 #else
   const char *scene_path = NULL, *res_s = NULL, *works_s = "skip,dense,mc";
-  int threads = 0, reps = 5, spp = 16, force = 0, scenes = 0;
+  int threads = 0, reps = 5, spp = 16, force = 0, scenes = 0, outside = 0;
   const cli_option opts[] = {
       {NULL, .kind = CLI_STRING, .dest = &scene_path, .given = &scenes},
       {"--resolution", .kind = CLI_STRING, .dest = &res_s},
@@ -161,6 +162,7 @@ int bench_frame(int argc, char **argv) {
       {"--spp", .kind = CLI_INT, .dest = &spp, .lo = 1, .hi = 1 << 16},
       {"--work", .kind = CLI_STRING, .dest = &works_s},
       {"--progress", .kind = CLI_FLAG, .dest = &force},
+      {"--allow-outside-paths", .kind = CLI_FLAG, .dest = &outside},
   };
   int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
   if (rc) return rc;
@@ -173,7 +175,8 @@ int bench_frame(int argc, char **argv) {
                      ICS_SCENE_MAX_RES, res_s);
   char msg[CLI_MSG_MAX] = "", cpu[128];
   ics_scene *s = NULL;
-  ics_status st = scene_path ? ics_scene_create_file(&s, scene_path, msg, sizeof msg)
+  ics_scene_opts so = {.allow_outside_paths = outside};
+  ics_status st = scene_path ? ics_scene_create_file_opts(&s, scene_path, &so, msg, sizeof msg)
                              : ics_scene_create_default(&s);
   if (st != ICS_OK)
     return cli_status_error(CMD, st, "%s", scene_path ? msg : ics_status_str(st));

@@ -33,6 +33,7 @@ void scene_args_options(scene_args *a, cli_option *o) {
       {"--threads", .kind = CLI_INT, .dest = &a->threads, .lo = 0, .hi = 256},
       {"--dense", .kind = CLI_FLAG, .dest = &a->dense},
       {"--model", .kind = CLI_STRING, .dest = &a->model},
+      {"--allow-outside-paths", .kind = CLI_FLAG, .dest = &a->outside},
   };
   memcpy(o, opts, sizeof opts);
 }
@@ -54,7 +55,9 @@ void scene_args_help(FILE *f) {
           "                      no skipping of inactive regions and constant tiles)\n"
           "  --model M           patel (Patel's slicing, the default), solid (+ closed opaque\n"
           "                      objects solid) or surface (+ each surface's own light term in\n"
-          "                      closed form); override render.model (docs/renderer.md)\n");
+          "                      closed form); override render.model (docs/renderer.md)\n"
+          "  --allow-outside-paths  let the scene read files (lights_file, grids, meshes and the\n"
+          "                      files they name) outside its own folder\n");
 }
 
 static int pick(const char *cmd, const char *opt, const char *v, const char *(*name)(int), int lo,
@@ -80,7 +83,8 @@ int scene_args_load(const char *cmd, const scene_args *a, ics_scene **s, ics_ren
                     ics_plan_opts *po) {
   char msg[CLI_MSG_MAX] = "";
   if (a->scenes > 1) return cli_error(cmd, "give one SCENE (got %d)", a->scenes);
-  ics_status st = a->scene ? ics_scene_create_file(s, a->scene, msg, sizeof msg)
+  ics_scene_opts so = {.allow_outside_paths = a->outside};
+  ics_status st = a->scene ? ics_scene_create_file_opts(s, a->scene, &so, msg, sizeof msg)
                            : ics_scene_create_default(s);
   if (st != ICS_OK)
     return st == ICS_ERR_NOMEM ? cli_failure(cmd, "%s", a->scene ? msg : "out of memory")

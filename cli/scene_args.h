@@ -20,11 +20,12 @@ typedef struct scene_args {
   uint64_t seed;
   int have_seed, have_slab, have_d1, have_samples;
   int dense;         /* --dense: render.dense */
+  int outside;       /* --allow-outside-paths: the scene may read files outside its folder */
   int threads;       /* --threads (0: all cores) */
   int scenes;        /* SCENE arguments given */
 } scene_args;
 
-#define SCENE_ARGS_NOPTS 12
+#define SCENE_ARGS_NOPTS 13
 /* Writes the shared option entries into opts[0 .. SCENE_ARGS_NOPTS - 1]. */
 void scene_args_options(scene_args *a, cli_option *opts);
 

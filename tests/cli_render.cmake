@@ -150,6 +150,16 @@ endforeach()
 add_test(NAME cli_input_output_paths COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/input_output_paths.sh
   $<TARGET_FILE:icshadow_cli>)
 set_tests_properties(cli_input_output_paths PROPERTIES LABELS fast)
+# meshes that cannot make a surface (NaN, infinite, zero area, overflow under the transform) and
+# Assimp out of memory: each named
+add_test(NAME cli_mesh_messages COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/mesh_messages.sh
+  $<TARGET_FILE:icshadow_cli>)
+set_tests_properties(cli_mesh_messages PROPERTIES LABELS fast SKIP_RETURN_CODE 77)
+# files outside the scene's folder ("..", absolute, symbolic links, an OBJ's material library):
+# refused unless --allow-outside-paths
+add_test(NAME cli_outside_paths COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/outside_paths.sh
+  $<TARGET_FILE:icshadow_cli> ${CMAKE_SOURCE_DIR}/tests/data)
+set_tests_properties(cli_outside_paths PROPERTIES LABELS fast)
 # a light buffer one pixel wide with runs of 16 (two run choices for a 1-pixel row: the per-thread
 # scratch once held one word; ASan caught the overflow in the vector loops)
 file(WRITE ${rd}/narrow.json [=[
@@ -173,6 +183,30 @@ file(WRITE ${rd}/overflow.json [=[
 ]=])
 ics_cli_test(NAME cli_render_overflow RC 2 ARGS "render|${rd}/overflow.json|-o|${rd}/overflow.exr"
   ERR "materials.bright: a colour of 1e[+]30 under lights of 1e[+]30 .* the image would overflow" NOFILE ${rd}/overflow.exr)
+# an extinction of 14 under a transfer extinction scale of 1e308 (each within its own range):
+# refused at parse time, naming the material, where it rendered fully and then failed at the
+# write with a NaN pixel on cpu, cl and gl; the bound at its edge renders finite
+file(WRITE ${rd}/extinction_overflow.json [=[
+{"camera": {"eye": [0, 0, 2], "target": [0, 0, 0], "height": 3, "resolution": [16, 16]},
+ "render": {"slab_spacing": 0.05, "d1": 1},
+ "lights": [{"mean": [0.3, -0.1], "var": [0.02, 0.01]}],
+ "materials": {"white": {"color": [1, 1, 1]},
+               "fog": {"extinction": 14, "detail": {"function": "perlin"},
+                       "transfer": [[0, 1, 1, 1, 1e308], [1, 1, 1, 1, 1e308]]}},
+ "objects": [{"shape": "rect", "center": [0, 0, -1], "normal": [0, 0, 1], "size": [3, 3], "material": "white"},
+             {"shape": "sphere", "center": [0, 0, 0], "radius": 0.5, "material": "fog"}]}
+]=])
+ics_cli_test(NAME cli_render_extinction_overflow RC 2
+  ARGS "render|${rd}/extinction_overflow.json|-o|${rd}/extinction_overflow.exr"
+  ERR "materials.fog: its extinction reaches inf per world unit .* over 1e[+]100: the render would overflow"
+  NOFILE ${rd}/extinction_overflow.exr)
+file(READ ${rd}/extinction_overflow.json ics_json)
+string(REPLACE "\"extinction\": 14" "\"extinction\": 1" ics_json "${ics_json}")
+string(REPLACE "1e308" "1e100" ics_json "${ics_json}")
+file(WRITE ${rd}/extinction_edge.json "${ics_json}")
+ics_cli_test(NAME cli_render_extinction_edge RC 0
+  ARGS "render|${rd}/extinction_edge.json|-o|${rd}/extinction_edge.exr"
+  OUT "\"exr\": ")
 # messages that name the key: d1 and slab_spacing past 1e100 (1e308 overflowed in the plan,
 # "argument out of range"), fov_deg below 1e-6 ("variance is negative"), and a UTF-8 byte-order
 # mark, which is skipped (it was refused with the raw glyph)

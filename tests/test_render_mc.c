@@ -25,6 +25,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "detail.h"
 #include "disk_eq4.h"
 #include "mc_trace.h"
 #include "render_util.h"
@@ -320,7 +321,7 @@ static void test_bounds(void) {
       double p[3] = {20 * ics_rng_uniform(&r) - 10, 20 * ics_rng_uniform(&r) - 10, 20 * ics_rng_uniform(&r) - 10};
       worst = fmax(worst, fabs(ics_detail_value(&e, p)));
     }
-    double b = mc_detail_bound(&ds[k]);
+    double b = ics_detail_bound(&ds[k]);
     printf("detail %d: max |f| %.4f on 200000 points, bound %.4f\n", k, worst, b);
     CHECK(worst <= b, "detail %d: |f| %.4f above the bound %.4f", k, worst, b);
   }

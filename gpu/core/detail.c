@@ -169,3 +169,47 @@ void ics_material_preintegrate(const ics_material *m, double vf, double vb, doub
     *scale = 0;
   }
 }
+
+double ics_detail_bound(const ics_detail *d) {
+  switch (d->fn) {
+  case ICS_DETAIL_PERLIN: return 2;
+  case ICS_DETAIL_FBM: {
+    double b = 0, amp = 1;
+    for (int o = 0; o < d->octaves; o++) b += 2 * amp, amp *= fabs(d->gain);
+    return b;
+  }
+  case ICS_DETAIL_RIDGED: {
+    /* each octave's signal is (offset - |n|)^2 <= max(offset^2, (offset - 2)^2) for |n| <= 2,
+     * times a weight in [0, 1], times lacunarity^-o (o >= 1) */
+    double a = d->offset, top = fmax(a * a, (a - 2) * (a - 2)), b = top, expo = 1;
+    for (int o = 1; o < d->octaves; o++) expo /= d->lacunarity, b += top * expo;
+    return b;
+  }
+  case ICS_DETAIL_GRID: {
+    double b = 0; /* samples outside the grid are 0 */
+    size_t n = (size_t)d->size[0] * d->size[1] * d->size[2];
+    for (size_t i = 0; i < n; i++) b = fmax(b, fabs((double)d->grid[i]));
+    return b;
+  }
+  default: return 0;
+  }
+}
+
+double ics_material_majorant(const ics_material *m) {
+  if (!m->volumetric) return 0;
+  if (m->detail.fn == ICS_DETAIL_NONE) return m->extinction;
+  /* the detail values the function can reach */
+  double f = ics_detail_bound(&m->detail), vlo = m->detail.bias - fabs(m->detail.scale) * f,
+         vhi = m->detail.bias + fabs(m->detail.scale) * f, smax = 0;
+  if (m->ntransfer) {
+    /* piecewise linear and clamped: its maximum over [vlo, vhi] is at an end or a node within */
+    double rgb[3], s;
+    ics_material_transfer(m, vlo, rgb, &s), smax = fmax(smax, s);
+    ics_material_transfer(m, vhi, rgb, &s), smax = fmax(smax, s);
+    for (int i = 0; i < m->ntransfer; i++)
+      if (m->transfer[i][0] > vlo && m->transfer[i][0] < vhi) smax = fmax(smax, m->transfer[i][4]);
+  } else {
+    smax = fmax(0, vhi);
+  }
+  return m->extinction * smax;
+}

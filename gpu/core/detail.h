@@ -34,4 +34,12 @@ void ics_material_transfer(const ics_material *m, double v, double rgb[3], doubl
 void ics_material_preintegrate(const ics_material *m, double vf, double vb, double rgb[3],
                                double *scale);
 
+/* A bound of |f| for the detail function d's noise part (v = bias + scale f): rigorous for
+ * improved noise (|noise| <= 2: the gradients' dot products with offsets in [-1, 1]^3 are at most
+ * 2 and the interpolation is convex), fBm, ridged multifractal and grids (read: d->grid set). */
+double ics_detail_bound(const ics_detail *d);
+/* A bound of material m's extinction over every detail value its detail can take (0 for a
+ * surface): the Monte-Carlo reference's majorant, and the scene reader's overflow check. */
+double ics_material_majorant(const ics_material *m);
+
 #endif

@@ -214,6 +214,9 @@ size_t ics_mesh_bytes(const ics_mesh *m) {
   return sizeof *m + (size_t)m->ntris * (sizeof *m->tris + sizeof *m->order) +
          (size_t)m->nnodes * sizeof *m->nodes;
 }
+double ics_mesh_bytes_min(uint64_t ntris) {
+  return (double)sizeof(ics_mesh) + (double)ntris * (double)(sizeof(tri_t) + sizeof(int));
+}
 void ics_mesh_bounds(const ics_mesh *m, double lo[3], double hi[3]) {
   memcpy(lo, m->lo, sizeof m->lo);
   memcpy(hi, m->hi, sizeof m->hi);

@@ -27,16 +27,21 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
                                 double seconds, char **files, char *msg, size_t msg_size);
 /* The same in two steps, so a file referenced by several objects is read once: the file as
  * Assimp gives it (vertices as floats, triangles as vertex indices, -1 for one out of range; the
- * other files read, as for `files` above; errors as above), then a mesh from it under a
- * transform. */
+ * other files read, as for `files` above; errors as above; with root non-NULL every file Assimp
+ * opens must lie in that folder or below it, path_inside.h, else ICS_ERR_IO naming it), then a
+ * mesh from it under a transform. */
 typedef struct ics_mesh_raw {
   float *v;
   int *tri;
   uint64_t nv, nt;
   char *files;
 } ics_mesh_raw;
-ics_status ics_mesh_read_file(ics_mesh_raw *raw, const char *path, double seconds, char *msg,
-                              size_t msg_size);
+ics_status ics_mesh_read_file(ics_mesh_raw *raw, const char *path, double seconds,
+                              const char *root, char *msg, size_t msg_size);
+/* The faces a PLY file's header declares ("element face N"; 0 for another format, a header
+ * without one, or a file that cannot be opened): each face becomes at least one triangle, so a
+ * mesh's size is bounded below before Assimp reads it (ics_mesh_bytes_min). */
+uint64_t ics_mesh_file_faces(const char *path);
 ics_status ics_mesh_create_raw(ics_mesh **out, const ics_mesh_raw *raw, const double scale[3],
                                const double rot_deg[3], const double translate[3],
                                const char *path, char *msg, size_t msg_size);
@@ -49,6 +54,9 @@ void ics_mesh_destroy(ics_mesh *m);
 int ics_mesh_closed(const ics_mesh *m);
 int ics_mesh_triangle_count(const ics_mesh *m);
 size_t ics_mesh_bytes(const ics_mesh *m); /* memory held (vertices, triangles, BVH) */
+/* A lower bound of ics_mesh_bytes for a mesh of ntris triangles (its triangles and their order,
+ * without the hierarchy's nodes). */
+double ics_mesh_bytes_min(uint64_t ntris);
 void ics_mesh_bounds(const ics_mesh *m, double lo[3], double hi[3]);
 /* As ics_object_hits (geometry.h); coincident crossings (a ray through an edge shared by two
  * triangles) are reported once. */

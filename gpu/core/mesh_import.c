@@ -23,6 +23,7 @@
 #include "mesh.h"
 
 #include "icshadow/input_file.h"
+#include "path_inside.h"
 
 #include <errno.h>
 #include <math.h>
@@ -57,7 +58,6 @@ int ics_mesh_files_supported(void) {
 #endif
 }
 
-#ifdef ICS_HAVE_ASSIMP
 #define PLY_HEADER_MAX 65536
 
 /* s with trailing blanks, tabs and line ends removed: 1 when it is `word` */
@@ -67,6 +67,32 @@ static int is_word(char *s, const char *word) {
   return !strcmp(s, word);
 }
 
+/* 1 when a file's first line passes Assimp 5.2.5's PLY test: "ply" in any case, anything after */
+static int ply_magic(const char *line) {
+  for (int i = 0; i < 3; i++)
+    if (line[i] != "ply"[i] && line[i] != "PLY"[i]) return 0;
+  return 1;
+}
+
+uint64_t ics_mesh_file_faces(const char *path) {
+  char why[256], line[256];
+  FILE *f = ics_input_open(path, 0, 0, NULL, why, sizeof why);
+  if (!f) return 0;
+  uint64_t faces = 0;
+  if (fgets(line, sizeof line, f) && ply_magic(line)) {
+    unsigned long long n;
+    for (long pos = ftell(f); pos >= 0 && pos < PLY_HEADER_MAX && fgets(line, sizeof line, f);
+         pos = ftell(f)) {
+      if (!strchr(line, '-') && sscanf(line, "element face %llu", &n) == 1) faces = n;
+      if (is_word(line, "end_header")) break;
+    }
+  }
+  fclose(f);
+  return faces;
+}
+
+#ifdef ICS_HAVE_ASSIMP
+
 /* 1 when Assimp would not take f for PLY, or when a line that is "end_header" starts within its
  * first PLY_HEADER_MAX bytes (positions from ftell: NUL bytes do not shorten them; only whole
  * lines count, not the tail of a line longer than the buffer). Both as Assimp 5.2.5 reads them:
@@ -74,9 +100,7 @@ static int is_word(char *s, const char *word) {
  * only an exact, lower-case end_header. */
 static int ply_header_ended(FILE *f) {
   char line[256];
-  if (!fgets(line, sizeof line, f)) return 1;
-  for (int i = 0; i < 3; i++)
-    if (line[i] != "ply"[i] && line[i] != "PLY"[i]) return 1;
+  if (!fgets(line, sizeof line, f) || !ply_magic(line)) return 1;
   int at_start = 1;
   for (long pos = ftell(f); pos >= 0 && pos < PLY_HEADER_MAX && fgets(line, sizeof line, f);
        pos = ftell(f)) {
@@ -92,7 +116,7 @@ typedef struct {
   int32_t status;
   uint32_t files_bytes; /* the other files Assimp opened: their names, each ending in a NUL */
   uint64_t nv, nt;
-  char msg[512];
+  char msg[1024 + 64];
 } child_header;
 
 /* ---- the child's file system for Assimp: every file it opens (the mesh, a glTF's buffers, an
@@ -102,7 +126,9 @@ typedef struct {
 static char *child_files;           /* the names opened besides the mesh itself, NUL-terminated */
 static uint32_t child_files_bytes;
 static const char *child_mesh_path;
-static char child_refused[400];     /* the first file refused, with the reason */
+static const char *child_root;      /* the folder every file must lie in (NULL: anywhere) */
+static char child_refused[1024];    /* the first file refused, with the reason */
+static int child_outside;           /* one was outside child_root: the import fails */
 
 static size_t io_read(struct aiFile *f, char *buf, size_t size, size_t count) {
   return fread(buf, size, count, (FILE *)f->UserData);
@@ -140,10 +166,15 @@ static void note_file(const char *name) {
 static struct aiFile *io_open(struct aiFileIO *io, const char *name, const char *mode) {
   (void)io;
   if (strpbrk(mode, "wa+")) return NULL;
-  char why[256];
+  char why[768];
+  if (ics_path_check_inside(name, child_root, why, sizeof why) != ICS_OK) {
+    if (!child_outside) snprintf(child_refused, sizeof child_refused, "%s", why);
+    child_outside = 1;
+    return NULL;
+  }
   FILE *fp = ics_input_open(name, 0, 0, NULL, why, sizeof why);
   if (!fp) {
-    if (!child_refused[0]) snprintf(child_refused, sizeof child_refused, "%s: %s", name, why);
+    if (!child_refused[0]) snprintf(child_refused, sizeof child_refused, "it needs %s: %s", name, why);
     return NULL;
   }
   struct aiFile *f = calloc(1, sizeof *f);
@@ -170,7 +201,7 @@ static int write_all(int fd, const void *p, size_t n) {
 }
 
 /* the child: Assimp's import, sent through fd; never returns */
-static void child_import(int fd, const char *path, pid_t parent) {
+static void child_import(int fd, const char *path, const char *root, pid_t parent) {
 #ifdef __linux__
   /* dies with the parent (killed while Assimp spins or blocks, it would be orphaned for good);
    * a parent already gone before the request took effect is caught by getppid */
@@ -187,16 +218,24 @@ static void child_import(int fd, const char *path, pid_t parent) {
   child_header h;
   memset(&h, 0, sizeof h);
   child_mesh_path = path;
+  child_root = root;
   struct aiFileIO io = {io_open, io_close, NULL};
   const struct aiScene *sc = aiImportFileEx(
       path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices,
       &io);
-  if (!sc) {
-    h.status = child_refused[0] ? ICS_ERR_IO : ICS_ERR_PARSE;
+  if (!sc || child_outside) { /* (Assimp reads on without an OBJ's materials: refused anyway) */
+    /* Assimp turns its exceptions into the error string: std::bad_alloc is out of memory */
+    const char *why = aiGetErrorString();
+    h.status = child_outside         ? ICS_ERR_INVALID_ARG
+               : child_refused[0]    ? ICS_ERR_IO
+               : strstr(why, "bad_alloc") ? ICS_ERR_NOMEM
+                                     : ICS_ERR_PARSE;
     if (child_refused[0])
-      snprintf(h.msg, sizeof h.msg, "cannot read mesh: it needs %s", child_refused);
+      snprintf(h.msg, sizeof h.msg, "cannot read mesh: %s", child_refused);
+    else if (h.status == ICS_ERR_NOMEM)
+      snprintf(h.msg, sizeof h.msg, "cannot read mesh: out of memory (%s)", why);
     else
-      snprintf(h.msg, sizeof h.msg, "cannot read mesh: %s", aiGetErrorString());
+      snprintf(h.msg, sizeof h.msg, "cannot read mesh: %s", why);
     _exit(write_all(fd, &h, sizeof h) ? 1 : 0);
   }
   for (unsigned i = 0; i < sc->mNumMeshes; i++) {
@@ -283,11 +322,11 @@ static int read_all(int fd, void *p, size_t n, double deadline) {
 }
 #endif
 
-ics_status ics_mesh_read_file(ics_mesh_raw *raw, const char *path, double seconds, char *msg,
-                              size_t msg_size) {
+ics_status ics_mesh_read_file(ics_mesh_raw *raw, const char *path, double seconds,
+                              const char *root, char *msg, size_t msg_size) {
   memset(raw, 0, sizeof *raw);
 #ifndef ICS_HAVE_ASSIMP
-  (void)seconds;
+  (void)seconds, (void)root;
   if (msg)
     snprintf(msg, msg_size, "%s: mesh files need Assimp, which was not found when the renderer "
              "was built (install libassimp-dev and rebuild)", path);
@@ -324,7 +363,7 @@ ics_status ics_mesh_read_file(ics_mesh_raw *raw, const char *path, double second
   }
   if (pid == 0) {
     close(fds[0]);
-    child_import(fds[1], path, parent);
+    child_import(fds[1], path, root, parent);
   }
   close(fds[1]);
   double deadline = now_s() + seconds;
@@ -337,7 +376,10 @@ ics_status ics_mesh_read_file(ics_mesh_raw *raw, const char *path, double second
   if (r == 0) {
     h.msg[sizeof h.msg - 1] = 0;
     if (h.status != ICS_OK) {
-      st = h.status == ICS_ERR_SIZE || h.status == ICS_ERR_IO ? (ics_status)h.status : ICS_ERR_PARSE;
+      st = h.status == ICS_ERR_SIZE || h.status == ICS_ERR_IO || h.status == ICS_ERR_NOMEM ||
+                   h.status == ICS_ERR_INVALID_ARG
+               ? (ics_status)h.status
+               : ICS_ERR_PARSE;
       if (msg) snprintf(msg, msg_size, "%s: %s", path, h.msg);
     } else if (h.nt == 0 || h.nt > ICS_MESH_MAX_TRIANGLES || h.nv > (uint64_t)INT32_MAX / 3 ||
                h.files_bytes > CHILD_FILES_MAX) {
@@ -393,10 +435,42 @@ void ics_mesh_raw_release(ics_mesh_raw *raw) {
   memset(raw, 0, sizeof *raw);
 }
 
+/* a mesh as Assimp gave it that cannot make a surface, named: a vertex not finite, an index out
+ * of range, fewer than three distinct vertices (Assimp joins identical ones), no triangle of
+ * non-zero area */
+static ics_status raw_check(const ics_mesh_raw *raw, const char *path, char *msg, size_t msg_size) {
+  for (uint64_t k = 0; k < raw->nv; k++) {
+    const float *v = raw->v + 3 * k;
+    if (!isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2])) {
+      if (msg) snprintf(msg, msg_size, "%s: vertex %llu is (%g, %g, %g): not finite", path,
+                        (unsigned long long)k, v[0], v[1], v[2]);
+      return ICS_ERR_NAN;
+    }
+  }
+  int area = 0;
+  for (uint64_t t = 0; t < raw->nt && !area; t++) {
+    const int *i = raw->tri + 3 * t;
+    if (i[0] < 0 || i[1] < 0 || i[2] < 0) continue; /* ics_mesh_create_triangles names it */
+    const float *a = raw->v + 3 * i[0], *b = raw->v + 3 * i[1], *c = raw->v + 3 * i[2];
+    double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    area = e1[1] * e2[2] - e1[2] * e2[1] != 0 || e1[2] * e2[0] - e1[0] * e2[2] != 0 ||
+           e1[0] * e2[1] - e1[1] * e2[0] != 0;
+  }
+  if (raw->nv < 3 || !area) {
+    if (msg) snprintf(msg, msg_size, "%s: no triangle of non-zero area (%llu distinct vertices, "
+                      "%llu triangles): the mesh has no surface", path,
+                      (unsigned long long)raw->nv, (unsigned long long)raw->nt);
+    return ICS_ERR_SIZE;
+  }
+  return ICS_OK;
+}
+
 ics_status ics_mesh_create_raw(ics_mesh **out, const ics_mesh_raw *raw, const double scale[3],
                                const double rot_deg[3], const double translate[3],
                                const char *path, char *msg, size_t msg_size) {
   *out = NULL;
+  ics_status st = raw_check(raw, path, msg, msg_size);
+  if (st != ICS_OK) return st;
   double *xyz = malloc(sizeof *xyz * 3 * (size_t)(raw->nv ? raw->nv : 1));
   if (!xyz) {
     if (msg) snprintf(msg, msg_size, "%s: out of memory for %llu vertices", path,
@@ -412,8 +486,14 @@ ics_status ics_mesh_create_raw(ics_mesh **out, const ics_mesh_raw *raw, const do
     for (int w = 0; w < 3; w++)
       xyz[3 * k + w] = p[0] * ax[0][w] + p[1] * ax[1][w] + p[2] * ax[2][w] + translate[w];
   }
-  ics_status st = ics_mesh_create_triangles(out, xyz, (int)raw->nv, raw->tri, (int)raw->nt);
-  if (st != ICS_OK && msg) snprintf(msg, msg_size, "%s: %s", path, ics_status_str(st));
+  st = ics_mesh_create_triangles(out, xyz, (int)raw->nv, raw->tri, (int)raw->nt);
+  if (st == ICS_ERR_NAN && msg)
+    snprintf(msg, msg_size, "%s: a vertex under the object's scale, rotation and translation is "
+             "not finite (over 1.8e308)", path);
+  else if (st == ICS_ERR_INVALID_ARG && msg)
+    snprintf(msg, msg_size, "%s: a triangle names a vertex that does not exist", path);
+  else if (st != ICS_OK && msg)
+    snprintf(msg, msg_size, "%s: %s", path, ics_status_str(st));
   free(xyz);
   return st;
 }
@@ -424,7 +504,7 @@ ics_status ics_mesh_create_file(ics_mesh **out, const char *path, const double s
   *out = NULL;
   if (files) *files = NULL;
   ics_mesh_raw raw;
-  ics_status st = ics_mesh_read_file(&raw, path, seconds, msg, msg_size);
+  ics_status st = ics_mesh_read_file(&raw, path, seconds, NULL, msg, msg_size);
   if (st == ICS_OK) st = ics_mesh_create_raw(out, &raw, scale, rot_deg, translate, path, msg, msg_size);
   if (st == ICS_OK && files) *files = raw.files, raw.files = NULL;
   ics_mesh_raw_release(&raw);

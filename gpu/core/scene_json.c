@@ -1,8 +1,9 @@
 /* scene_json.c — the scene-file reader (docs/scene-format.md): strict, every error names its
  * JSON path ("scene.json: objects[1].radius: expected a number"), malformed JSON its line and
  * column. Fences are expanded into boxes here; meshes are loaded (mesh.c); relative paths
- * (lights_file, mesh and grid files) are relative to the scene file's folder. */
-#define _POSIX_C_SOURCE 200809L
+ * (lights_file, mesh and grid files) are relative to the scene file's folder, and every file read
+ * must lie in it unless the reader is told otherwise (ics_scene_opts). */
+#define _XOPEN_SOURCE 700 /* realpath */
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -11,18 +12,21 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "detail.h"
 #include "geometry.h"
 #include "icshadow/input_file.h"
 #include "icshadow/lightsfile.h"
 #include "json_util.h"
 #include "lights_json.h"
 #include "mesh.h"
+#include "path_inside.h"
 #include "scene_internal.h"
 
 typedef struct {
   ics_jctx j;
   const char *name; /* the file, for messages */
   const char *dir;  /* folder of relative paths (NULL: working directory) */
+  char *root;       /* that folder resolved, where every file read must lie (NULL: anywhere) */
   ics_status st;    /* status of the first error */
   char *where;      /* "NAME: path" buffer */
   size_t where_size;
@@ -38,12 +42,18 @@ typedef struct {
   } *read;
 } rctx;
 
+/* the mesh file at path as read for an object before, or NULL */
+static const ics_mesh_raw *mesh_read_before(const rctx *c, const char *path) {
+  for (int i = 0; i < c->nread; i++)
+    if (!strcmp(c->read[i].path, path)) return &c->read[i].raw;
+  return NULL;
+}
 /* the mesh file at path as Assimp gave it, read on its first use, when it and the other files
  * Assimp read for it become the scene's inputs; NULL with the message */
 static const ics_mesh_raw *mesh_file(rctx *c, const char *path, char *msg, size_t msg_size,
                                      ics_status *st) {
-  for (int i = 0; i < c->nread; i++)
-    if (!strcmp(c->read[i].path, path)) return &c->read[i].raw;
+  const ics_mesh_raw *known = mesh_read_before(c, path);
+  if (known) return known;
   struct read_mesh *r = realloc(c->read, sizeof *r * (size_t)(c->nread + 1));
   if (!r) {
     *st = ICS_ERR_NOMEM;
@@ -52,7 +62,7 @@ static const ics_mesh_raw *mesh_file(rctx *c, const char *path, char *msg, size_
   }
   c->read = r;
   r += c->nread;
-  if ((*st = ics_mesh_read_file(&r->raw, path, 0, msg, msg_size)) != ICS_OK) return NULL;
+  if ((*st = ics_mesh_read_file(&r->raw, path, 0, c->root, msg, msg_size)) != ICS_OK) return NULL;
   if (!(r->path = malloc(strlen(path) + 1))) {
     ics_mesh_raw_release(&r->raw);
     *st = ICS_ERR_NOMEM;
@@ -72,18 +82,23 @@ static const ics_mesh_raw *mesh_file(rctx *c, const char *path, char *msg, size_
   return &r->raw;
 }
 
-/* -1 (with the message) when `bytes` more would take what the scene's files hold in memory over
- * render.memory_limit_mib; checked before a grid is read (its size is declared) and after each
- * mesh (its size is known once read) */
-static int account(rctx *c, const char *where, double bytes) {
+/* 0 when `bytes` more fit with what the scene's files hold in memory under
+ * render.memory_limit_mib, else -1 with the message (what: how the bytes are known, "" when
+ * they are exact) */
+static int fits(rctx *c, const char *where, const char *what, double bytes) {
   double limit = c->s->settings.memory_limit_mib * 1048576.0;
-  if (c->loaded + bytes > limit) {
-    c->st = ICS_ERR_SIZE;
-    ics_jerr(&c->j, "%s: %.4g MiB, with the grids and meshes before it %.4g MiB, over "
-             "render.memory_limit_mib = %g", where, bytes / 1048576.0, (c->loaded + bytes) / 1048576.0,
-             c->s->settings.memory_limit_mib);
-    return -1;
-  }
+  if (c->loaded + bytes <= limit) return 0;
+  c->st = ICS_ERR_SIZE;
+  ics_jerr(&c->j, "%s: %s%.4g MiB, with the grids and meshes before it %.4g MiB, over "
+           "render.memory_limit_mib = %g", where, what, bytes / 1048576.0,
+           (c->loaded + bytes) / 1048576.0, c->s->settings.memory_limit_mib);
+  return -1;
+}
+
+/* fits, and then counted: before a grid is read (its size is declared) and after each mesh copy
+ * is built (its size is known then) */
+static int account(rctx *c, const char *where, double bytes) {
+  if (fits(c, where, "", bytes)) return -1;
   c->loaded += bytes;
   return 0;
 }
@@ -141,6 +156,14 @@ static char *join_path(const char *dir, const char *path) {
   char *p = malloc(n);
   if (p) snprintf(p, n, "%s/%s", dir, path);
   return p;
+}
+
+/* 0 when the file at path may be read (path_inside.h), else -1 with the reason after `where` */
+static int may_read(rctx *c, const char *where, const char *path) {
+  char why[4096 + 512];
+  ics_status st = ics_path_check_inside(path, c->root, why, sizeof why);
+  if (st == ICS_OK) return 0;
+  return fail(c, st, "%s: %s", where, st == ICS_ERR_NOMEM ? "out of memory" : why);
 }
 
 /* ---- camera ------------------------------------------------------------------------------ */
@@ -325,6 +348,10 @@ static int read_lights(rctx *c, json_t *arr, json_t *file) {
       return fail(c, ICS_ERR_PARSE, "%s: expected a file name", W(c, "lights_file"));
     char *path = join_path(c->dir, json_string_value(file));
     if (!path) return fail(c, ICS_ERR_NOMEM, "out of memory");
+    if (may_read(c, W(c, "lights_file"), path)) {
+      free(path);
+      return -1;
+    }
     ics_light *l;
     int n;
     ics_status st = ics_lightsfile_read(path, &l, &n, c->j.msg, c->j.msg_size);
@@ -403,9 +430,10 @@ static int load_grid(rctx *c, int mi) {
   ics_detail *d = &m->detail;
   char *path = c->grid_path[mi];
   c->grid_path[mi] = NULL;
-  const char *where = W(c, "materials.%s.detail", m->name);
   size_t cells = (size_t)d->size[0] * (size_t)d->size[1] * (size_t)d->size[2];
-  if (account(c, where, (double)cells * sizeof *d->grid)) {
+  int refused = may_read(c, W(c, "materials.%s.detail.file", m->name), path);
+  const char *where = W(c, "materials.%s.detail", m->name);
+  if (refused || account(c, where, (double)cells * sizeof *d->grid)) {
     free(path);
     return -1;
   }
@@ -462,6 +490,23 @@ static int check_radiance(rctx *c) {
                   "summed) gives %g, over %g: the image would overflow; lower the colours or the "
                   "weights", W(c, "materials.%s", m->name), col, lights, col * lights,
                   ICS_SCENE_MAX_RADIANCE);
+  }
+  return 0;
+}
+
+/* A volume's extinction stays within ICS_SCENE_MAX_EXTINCTION wherever its detail takes it
+ * (ics_material_majorant; after the grids are read): an extinction of 14 under a transfer
+ * extinction scale of 1e308 rendered fully, then failed at the write with a NaN pixel. */
+static int check_extinction(rctx *c) {
+  for (int k = 0; k < c->s->nobjects; k++) {
+    const ics_material *m = &c->s->materials[c->s->objects[k].material];
+    double top = ics_material_majorant(m);
+    if (!(top <= ICS_SCENE_MAX_EXTINCTION))
+      return fail(c, ICS_ERR_RANGE, "%s: its extinction reaches %g per world unit (extinction %g "
+                  "times the largest scale its detail and transfer give), over %g: the render "
+                  "would overflow; lower the extinction, the detail's scale and bias, or the "
+                  "transfer's extinction scales", W(c, "materials.%s", m->name), top,
+                  m->extinction, ICS_SCENE_MAX_EXTINCTION);
   }
   return 0;
 }
@@ -842,11 +887,27 @@ static int read_object(rctx *c, int idx, json_t *o) {
     return -1;
   char *path = join_path(c->dir, json_string_value(x));
   if (!path) return fail(c, ICS_ERR_NOMEM, "out of memory");
+  if (may_read(c, KEY("file"), path)) {
+    free(path);
+    return -1;
+  }
+  /* the memory limit before the work: a PLY header's face count before the file is read, the
+   * triangles read before this object's copy is built */
+  const ics_mesh_raw *raw = mesh_read_before(c, path);
+  uint64_t faces = raw ? 0 : ics_mesh_file_faces(path);
+  char what[128];
+  snprintf(what, sizeof what, "its PLY header declares %llu faces: at least ",
+           (unsigned long long)faces);
+  if ((faces && fits(c, KEY("file"), what, ics_mesh_bytes_min(faces))) ||
+      (raw && fits(c, KEY("file"), "at least ", ics_mesh_bytes_min(raw->nt)))) {
+    free(path);
+    return -1;
+  }
   ics_mesh *mesh;
   char mmsg[4096 + 512];
   ics_status st;
-  const ics_mesh_raw *raw = mesh_file(c, path, mmsg, sizeof mmsg, &st);
-  if (raw) st = ics_mesh_create_raw(&mesh, raw, sc, rot, tr, path, mmsg, sizeof mmsg);
+  if ((raw = mesh_file(c, path, mmsg, sizeof mmsg, &st)))
+    st = ics_mesh_create_raw(&mesh, raw, sc, rot, tr, path, mmsg, sizeof mmsg);
   free(path);
   if (st != ICS_OK) return fail(c, st, "%s: %s", KEY("file"), mmsg);
   if (account(c, KEY("file"), (double)ics_mesh_bytes(mesh))) {
@@ -901,14 +962,29 @@ static ics_status read_root(rctx *c, json_t *root) {
   if (read_camera(c, cam) || read_render(c, ren) ||
       read_lights(c, json_object_get(root, "lights"), json_object_get(root, "lights_file")) ||
       read_materials(c, json_object_get(root, "materials")) || check_radiance(c) ||
-      read_objects(c, json_object_get(root, "objects")) || load_used_grids(c))
+      read_objects(c, json_object_get(root, "objects")) || load_used_grids(c) ||
+      check_extinction(c))
     return c->st;
   return ICS_OK;
 }
 
+/* c->root: the scene's folder resolved, unless the options allow files anywhere; a folder that
+ * does not resolve (missing) stays as given: no real path lies in it, and a relative one inside
+ * it fails to open with its own reason */
+static ics_status resolve_root(rctx *c, const ics_scene_opts *opts) {
+  if (opts && opts->allow_outside_paths) return ICS_OK;
+  const char *dir = c->dir ? c->dir : ".";
+  errno = 0;
+  if ((c->root = realpath(dir, NULL)) || (errno != ENOMEM && (c->root = strdup(dir))))
+    return ICS_OK;
+  if (c->j.msg) snprintf(c->j.msg, c->j.msg_size, "out of memory");
+  return ICS_ERR_NOMEM;
+}
+
 /* file: the scene file (the first of the scene's files), or NULL */
 static ics_status create(ics_scene **out, json_t *root, const char *name, const char *dir,
-                         const char *file, char *msg, size_t msg_size) {
+                         const char *file, const ics_scene_opts *opts, char *msg,
+                         size_t msg_size) {
   rctx c = {.j = {msg, msg_size}, .name = name, .dir = dir, .st = ICS_ERR_PARSE,
             .where_size = strlen(name) + 256};
   c.where = malloc(c.where_size);
@@ -925,9 +1001,10 @@ static ics_status create(ics_scene **out, json_t *root, const char *name, const 
   ics_status st = file ? ics_scene_note_file(c.s, file) : ICS_OK;
   if (st != ICS_OK) {
     if (msg) snprintf(msg, msg_size, "out of memory");
-  } else {
+  } else if ((st = resolve_root(&c, opts)) == ICS_OK) {
     st = read_root(&c, root);
   }
+  free(c.root);
   for (int i = 0; i < ICS_SCENE_MAX_MATERIALS; i++) free(c.grid_path[i]);
   for (int i = 0; i < c.nread; i++) free(c.read[i].path), ics_mesh_raw_release(&c.read[i].raw);
   free(c.read);
@@ -943,6 +1020,12 @@ static ics_status create(ics_scene **out, json_t *root, const char *name, const 
 
 ics_status ics_scene_create_json(ics_scene **out, const char *json, const char *name,
                                  const char *dir, char *msg, size_t msg_size) {
+  return ics_scene_create_json_opts(out, json, name, dir, NULL, msg, msg_size);
+}
+
+ics_status ics_scene_create_json_opts(ics_scene **out, const char *json, const char *name,
+                                      const char *dir, const ics_scene_opts *opts, char *msg,
+                                      size_t msg_size) {
   *out = NULL;
   if (msg && msg_size) msg[0] = 0;
   json_error_t je;
@@ -951,10 +1034,15 @@ ics_status ics_scene_create_json(ics_scene **out, const char *json, const char *
     if (msg) snprintf(msg, msg_size, "%s:%d:%d: %s", name, je.line, je.column, je.text);
     return ICS_ERR_PARSE;
   }
-  return create(out, root, name, dir, NULL, msg, msg_size);
+  return create(out, root, name, dir, NULL, opts, msg, msg_size);
 }
 
 ics_status ics_scene_create_file(ics_scene **out, const char *path, char *msg, size_t msg_size) {
+  return ics_scene_create_file_opts(out, path, NULL, msg, msg_size);
+}
+
+ics_status ics_scene_create_file_opts(ics_scene **out, const char *path,
+                                      const ics_scene_opts *opts, char *msg, size_t msg_size) {
   *out = NULL;
   if (msg && msg_size) msg[0] = 0;
   ics_jctx jc = {msg, msg_size};
@@ -973,7 +1061,7 @@ ics_status ics_scene_create_file(ics_scene **out, const char *path, char *msg, s
   else
     strcpy(dir, ".");
   if (slash == dir) strcpy(dir, "/");
-  ics_status st = create(out, root, path, dir, path, msg, msg_size);
+  ics_status st = create(out, root, path, dir, path, opts, msg, msg_size);
   free(dir);
   return st;
 }

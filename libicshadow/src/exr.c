@@ -115,6 +115,27 @@ static int slot_of(const char *name, int rgba, char *const *names, int n) {
   return rgba ? chan_index(name) : find_name((const char *const *)names, n, name);
 }
 
+/* OpenEXR's stream functions over an open descriptor (user data: the int descriptor) */
+static int64_t fd_read(exr_const_context_t ctxt, void *user, void *buf, uint64_t sz,
+                       uint64_t offset, exr_stream_error_func_ptr_t error_cb) {
+  (void)ctxt, (void)error_cb;
+  int fd = *(const int *)user;
+  uint64_t got = 0;
+  while (got < sz) {
+    ssize_t r = pread(fd, (char *)buf + got, sz - got, (off_t)(offset + got));
+    if (r < 0 && errno == EINTR) continue;
+    if (r < 0) return -1;
+    if (r == 0) break;
+    got += (uint64_t)r;
+  }
+  return (int64_t)got;
+}
+static int64_t fd_size(exr_const_context_t ctxt, void *user) {
+  (void)ctxt;
+  struct stat sb;
+  return fstat(*(const int *)user, &sb) ? -1 : (int64_t)sb.st_size;
+}
+
 /* Reads `path`: header checks, every channel decoded PLANAR into float, interleaved into the
  * display window. rgba: the channel set must be R, G, B[, A] (slots in that order); else any
  * set of HALF / FLOAT channels (slots in the file's order). Non-finite values are refused (and
@@ -123,15 +144,19 @@ static ics_status read_file(const char *path, int rgba, exr_pixels *px, char *ms
   memset(px, 0, sizeof *px);
   char why[256];
   ics_status ost;
-  FILE *probe = ics_input_open(path, 0, 0, &ost, why, sizeof why); /* OpenEXR would block on a FIFO */
-  if (!probe) {
+  /* OpenEXR reads the descriptor this open checked, never the name again: a path swapped for a
+   * FIFO after the check cannot block it */
+  FILE *file = ics_input_open(path, 0, 0, &ost, why, sizeof why);
+  if (!file) {
     set_msg(msg, msg_size, "%s: cannot open: %s", path, why);
     return ost;
   }
-  fclose(probe);
-
+  int fd = fileno(file);
   exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
   init.error_handler_fn = exr_error_cb;
+  init.user_data = &fd;
+  init.read_fn = fd_read;
+  init.size_fn = fd_size;
   exr_context_t ctx = NULL;
   exr_lastmsg[0] = 0;
   exr_result_t rv = exr_start_read(&ctx, path, &init);
@@ -139,6 +164,7 @@ static ics_status read_file(const char *path, int rgba, exr_pixels *px, char *ms
     set_msg(msg, msg_size, "%s: not a readable OpenEXR file: %s", path,
             exr_lastmsg[0] ? exr_lastmsg : exr_get_default_error_message(rv));
     exr_finish(&ctx);
+    fclose(file);
     return map_err(rv);
   }
 
@@ -355,6 +381,7 @@ done:
     for (int k = 0; k < nch; k++) free(planes[k]);
   free(planes);
   exr_finish(&ctx);
+  fclose(file);
   if (st == ICS_OK) {
     px->W = W, px->H = H, px->n = nch;
   } else {

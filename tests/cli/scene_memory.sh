@@ -28,9 +28,17 @@ mats["used"]["detail"] = {"function": "grid", "file": "huge.raw", "size": [4096,
 json.dump(base, open("huge.json", "w"))
 mats["used"]["detail"] = {"function": "grid", "file": "small.raw", "size": [2, 2, 2]}
 base["render"]["memory_limit_mib"] = 0.01
-base["objects"] += [{"shape": "mesh", "file": f"{data}/cube.ply", "translate": [0, 0, 0.1 * k],
+open("cube.ply", "wb").write(open(f"{data}/cube.ply", "rb").read())  # (in the scene's folder)
+base["objects"] += [{"shape": "mesh", "file": "cube.ply", "translate": [0, 0, 0.1 * k],
                      "material": "white"} for k in range(12)]
 json.dump(base, open("meshes.json", "w"))
+# a PLY whose header declares 5e7 faces (its body: 4 bytes): refused from the header, unread
+open("declared.ply", "w").write("ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+    "property float x\nproperty float y\nproperty float z\nelement face 50000000\n"
+    "property list uchar int vertex_indices\nend_header\n\0\0\0\0")
+base["render"]["memory_limit_mib"] = 100
+base["objects"][-1]["file"] = "declared.ply"
+json.dump(base, open("declared.json", "w"))
 PY
 timeout 60 "$cli" plan unused.json > out 2> err; rc=$?
 expect '[ $rc -eq 0 ] && grep -q "\"scene\": \"unused.json\"" out'
@@ -38,4 +46,6 @@ timeout 60 "$cli" plan huge.json > out 2> err; rc=$?
 expect '[ $rc -eq 2 ] && grep -q "materials.used.detail: 1024 MiB, with the grids and meshes before it 1024 MiB, over render.memory_limit_mib = 100" err'
 timeout 60 "$cli" plan meshes.json > out 2> err; rc=$?
 expect '[ $rc -eq 2 ] && grep -q "objects\[[0-9]*\].file: .* MiB, with the grids and meshes before it .* over render.memory_limit_mib = 0.01" err'
+timeout 60 "$cli" plan declared.json > out 2> err; rc=$?
+expect '[ $rc -eq 2 ] && grep -q "objects\[13\].file: its PLY header declares 50000000 faces: at least 3624 MiB, with the grids and meshes before it .* over render.memory_limit_mib = 100" err && [ ! -s out ]'
 finish cli_scene_memory

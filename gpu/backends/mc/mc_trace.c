@@ -7,53 +7,10 @@
 #include <string.h>
 
 #include "clock.h"
+#include "detail.h"
 #include "geometry.h"
 #include "icshadow/light.h"
 #include "scene_internal.h"
-
-double mc_detail_bound(const ics_detail *d) {
-  switch (d->fn) {
-  case ICS_DETAIL_PERLIN: return 2;
-  case ICS_DETAIL_FBM: {
-    double b = 0, amp = 1;
-    for (int o = 0; o < d->octaves; o++) b += 2 * amp, amp *= fabs(d->gain);
-    return b;
-  }
-  case ICS_DETAIL_RIDGED: {
-    /* each octave's signal is (offset - |n|)^2 <= max(offset^2, (offset - 2)^2) for |n| <= 2,
-     * times a weight in [0, 1], times lacunarity^-o (o >= 1) */
-    double a = d->offset, top = fmax(a * a, (a - 2) * (a - 2)), b = top, expo = 1;
-    for (int o = 1; o < d->octaves; o++) expo /= d->lacunarity, b += top * expo;
-    return b;
-  }
-  case ICS_DETAIL_GRID: {
-    double b = 0; /* samples outside the grid are 0 */
-    size_t n = (size_t)d->size[0] * d->size[1] * d->size[2];
-    for (size_t i = 0; i < n; i++) b = fmax(b, fabs((double)d->grid[i]));
-    return b;
-  }
-  default: return 0;
-  }
-}
-
-double mc_extinction_majorant(const ics_material *m) {
-  if (!m->volumetric) return 0;
-  if (m->detail.fn == ICS_DETAIL_NONE) return m->extinction;
-  /* the detail values the function can reach */
-  double f = mc_detail_bound(&m->detail), vlo = m->detail.bias - fabs(m->detail.scale) * f,
-         vhi = m->detail.bias + fabs(m->detail.scale) * f, smax = 0;
-  if (m->ntransfer) {
-    /* piecewise linear and clamped: its maximum over [vlo, vhi] is at an end or a node within */
-    double rgb[3], s;
-    ics_material_transfer(m, vlo, rgb, &s), smax = fmax(smax, s);
-    ics_material_transfer(m, vhi, rgb, &s), smax = fmax(smax, s);
-    for (int i = 0; i < m->ntransfer; i++)
-      if (m->transfer[i][0] > vlo && m->transfer[i][0] < vhi) smax = fmax(smax, m->transfer[i][4]);
-  } else {
-    smax = fmax(0, vhi);
-  }
-  return m->extinction * smax;
-}
 
 ics_status mc_scene_init(mc_scene *m, const ics_plan *P, int embree, char *msg, size_t msg_size) {
   memset(m, 0, sizeof *m);
@@ -66,7 +23,7 @@ ics_status mc_scene_init(mc_scene *m, const ics_plan *P, int embree, char *msg, 
   for (int i = 0; i < s->nobjects; i++) {
     if (P->vol_bit[i] >= 0) {
       m->vol_obj[P->vol_bit[i]] = i;
-      m->majorant[i] = mc_extinction_majorant(&s->materials[s->objects[i].material]);
+      m->majorant[i] = ics_material_majorant(&s->materials[s->objects[i].material]);
     }
     double lo[3], hi[3];
     ics_object_bounds(&s->objects[i], lo, hi);

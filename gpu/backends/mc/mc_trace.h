@@ -68,12 +68,6 @@ ics_status mc_scene_init(mc_scene *m, const ics_plan *P, int embree, char *msg, 
 void mc_scene_release(mc_scene *m);
 void mc_thread_release(mc_thread *th);
 
-/* A bound of |f| for the detail function d's noise part (v = bias + scale f): rigorous for
- * improved noise (|noise| <= 2: the gradients' dot products with offsets in [-1, 1]^3 are at most
- * 2 and the interpolation is convex), fBm, ridged multifractal and grids. */
-double mc_detail_bound(const ics_detail *d);
-/* A bound of material m's extinction over every detail value its detail can take. */
-double mc_extinction_majorant(const ics_material *m);
 /* A bound of the tracking steps of one ray through the volumes with detail: the sum of majorant
  * x the diagonal of each one's bounding box (no chord inside it is longer); the work estimate of
  * a sample (infinite or huge for extinctions no render can finish). */

@@ -29,6 +29,10 @@ extern "C" {
 /* a material's colour (or transfer colour) x the lights' weight x colour summed: the largest
  * value an image can take, kept far below float's 3.4e38 */
 #define ICS_SCENE_MAX_RADIANCE 1e30
+/* the extinction a volume can reach per world unit (its extinction x the largest extinction
+ * scale its detail and transfer function give): 64 overlapping volumes at it, times a colour
+ * and a path length, stay finite doubles */
+#define ICS_SCENE_MAX_EXTINCTION 1e100
 /* bytes of a scene file: the largest scene within the limits above (256 materials of 256
  * transfer nodes, 4096 objects) is a few MiB; parsing holds about 80 bytes per byte of JSON */
 #define ICS_SCENE_FILE_MAX (16u << 20)
@@ -153,20 +157,37 @@ typedef struct ics_object {
 
 typedef struct ics_scene ics_scene;
 
+/* How a scene is read; a zero-initialised struct (or NULL) is the default. */
+typedef struct ics_scene_opts {
+  /* Every file a scene reads (lights_file, grid and mesh files, and the files a mesh file
+   * names: a glTF's buffers, an OBJ's materials) must lie in the scene's folder or below it,
+   * symbolic links resolved; 1 allows files anywhere (docs/scene-format.md "Files"). */
+  int allow_outside_paths;
+} ics_scene_opts;
+
 /* Reads a scene file. On failure *out is NULL and msg (when non-NULL) holds one line naming the
  * problem: "PATH:LINE:COLUMN: reason" for JSON syntax, "PATH: objects[1].radius: reason" for
  * content. ICS_ERR_IO (cannot read), ICS_ERR_PARSE (syntax, unknown key, wrong type),
  * ICS_ERR_RANGE / ICS_ERR_NEGATIVE_VARIANCE / ICS_ERR_NAN (values), ICS_ERR_UNSUPPORTED (mesh
- * files without Assimp), ICS_ERR_NOMEM. */
+ * files without Assimp), ICS_ERR_INVALID_ARG (a file outside the scene's folder), ICS_ERR_NOMEM. */
 ICS_API ics_status ics_scene_create_file(ics_scene **out, const char *path, char *msg,
                                          size_t msg_size);
+/* The same with options (NULL: the defaults). */
+ICS_API ics_status ics_scene_create_file_opts(ics_scene **out, const char *path,
+                                              const ics_scene_opts *opts, char *msg,
+                                              size_t msg_size);
 /* The same from a JSON text; `name` stands for the file in messages, `dir` (may be NULL: the
- * working directory) resolves relative paths (lights_file, mesh and grid files). Mesh files are
+ * working directory) resolves relative paths (lights_file, mesh and grid files) and is the
+ * folder they must lie in (ics_scene_opts; _opts: with options). Mesh files are
  * read by Assimp in a child process (fork): the caller must not ignore SIGCHLD or reap children
  * it did not start, and should read scenes before starting threads that may hold the C or C++
  * runtime's locks. */
 ICS_API ics_status ics_scene_create_json(ics_scene **out, const char *json, const char *name,
                                          const char *dir, char *msg, size_t msg_size);
+ICS_API ics_status ics_scene_create_json_opts(ics_scene **out, const char *json,
+                                              const char *name, const char *dir,
+                                              const ics_scene_opts *opts, char *msg,
+                                              size_t msg_size);
 /* The embedded default scene (docs/scene-format.md "The default scene"), and its text. */
 ICS_API ics_status ics_scene_create_default(ics_scene **out);
 ICS_API const char *ics_scene_default_json(void);
