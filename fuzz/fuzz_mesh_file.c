@@ -1,6 +1,7 @@
-/* fuzz_mesh_file.c — libFuzzer harness for mesh files (ics_mesh_create_file, gpu/core/mesh.c, and
- * Assimp behind it): the input's first byte picks the format (even: OBJ, odd: PLY, as the
- * scratch file's extension), the rest is the file, read with a 5 s limit (mesh_import.c runs
+/* fuzz_mesh_file.c — libFuzzer harness for mesh files (ics_mesh_read_file and ics_mesh_create_raw,
+ * gpu/core/mesh.c, and Assimp behind them): the input's first byte picks the format (even: OBJ,
+ * odd: PLY, as the scratch file's extension), the rest is the file, read with a 5 s limit and
+ * the scratch folder as the folder every file it names must lie in (mesh_import.c runs
  * Assimp in a child process: its crashes and hangs become refusals). Invariants: a refused file
  * gives no mesh and a message that names the file; a loaded one has 1..ICS_MESH_MAX_TRIANGLES triangles, finite
  * bounds with lo <= hi that hold every vertex, and a closedness flag of 0 or 1; and for rays from
@@ -8,7 +9,7 @@
  * from the centre itself, every crossing ics_mesh_hits reports is finite, in front of the
  * origin (t > 0) and in order, no more of them than twice the triangles, and a count of
  * crossings behind the origin that is not negative. */
-#define _POSIX_C_SOURCE 200809L
+#define _XOPEN_SOURCE 700 /* realpath */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -56,9 +57,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   int ok = fwrite(data + 1, 1, size - 1, f) == size - 1;
   if (fclose(f) || !ok) return 0;
   static const double one[3] = {1, 1, 1}, zero[3] = {0, 0, 0};
+  static char *root; /* the scratch folder: the files the mesh names must lie in it */
+  if (!root && !(root = realpath(td && *td ? td : "/tmp", NULL))) return 0;
   ics_mesh *m = NULL;
   char msg[2048] = "";
-  ics_status st = ics_mesh_create_file(&m, path[fmt], one, zero, zero, 5, NULL, msg, sizeof msg);
+  ics_mesh_raw raw;
+  ics_status st = ics_mesh_read_file(&raw, path[fmt], 5, root, msg, sizeof msg);
+  if (st == ICS_OK)
+    st = ics_mesh_create_raw(&m, &raw, one, zero, zero, path[fmt], msg, sizeof msg);
+  ics_mesh_raw_release(&raw);
   if (st != ICS_OK) {
     REQUIRE(m == NULL && (st == ICS_ERR_NOMEM || strstr(msg, path[fmt]) != NULL));
     return 0;

@@ -203,6 +203,10 @@ ics_cli_test(NAME cli_render_extinction_overflow RC 2
 file(READ ${rd}/extinction_overflow.json ics_json)
 string(REPLACE "\"extinction\": 14" "\"extinction\": 1" ics_json "${ics_json}")
 string(REPLACE "1e308" "1e100" ics_json "${ics_json}")
+# (8 overlapping volumes at the bound: their sum, colours and path lengths stay finite)
+string(REPLACE "{\"shape\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0.5, \"material\": \"fog\"}"
+  "{\"shape\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0.5, \"material\": \"fog\"}, {\"shape\": \"sphere\", \"center\": [0.01, 0, 0], \"radius\": 0.5, \"material\": \"fog\"}, {\"shape\": \"sphere\", \"center\": [0.02, 0, 0], \"radius\": 0.5, \"material\": \"fog\"}, {\"shape\": \"sphere\", \"center\": [0.03, 0, 0], \"radius\": 0.5, \"material\": \"fog\"}, {\"shape\": \"sphere\", \"center\": [0, 0.01, 0], \"radius\": 0.5, \"material\": \"fog\"}, {\"shape\": \"sphere\", \"center\": [0, 0.02, 0], \"radius\": 0.5, \"material\": \"fog\"}, {\"shape\": \"sphere\", \"center\": [0, 0.03, 0], \"radius\": 0.5, \"material\": \"fog\"}, {\"shape\": \"sphere\", \"center\": [0, 0, 0.01], \"radius\": 0.5, \"material\": \"fog\"}"
+  ics_json "${ics_json}")
 file(WRITE ${rd}/extinction_edge.json "${ics_json}")
 ics_cli_test(NAME cli_render_extinction_edge RC 0
   ARGS "render|${rd}/extinction_edge.json|-o|${rd}/extinction_edge.exr"

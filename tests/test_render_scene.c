@@ -1,9 +1,12 @@
 /* test_render_scene.c — the scene-file reader (docs/scene-format.md): the contract example and
  * every field read back, fences expanded, the lights-file forms, and bad input refused with a
  * message naming the JSON path (or line and column) and the right status. */
+#define _XOPEN_SOURCE 700 /* realpath, mkdir */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "icshadow/render.h"
 #include "testutil.h"
@@ -256,8 +259,54 @@ static void test_lights_file(void) {
   CHECK(st != ICS_OK && s == NULL && strstr(msg, dir), "a directory as scene: %s", msg);
 }
 
+/* the folder rule (docs/scene-format.md "Files a scene reads") through the library: a sibling
+ * folder that shares the scene folder's prefix is outside it, an empty `dir` is the working
+ * directory (it once let every absolute path through), and ics_scene_opts lifts the rule */
+static void test_outside_paths(void) {
+  const char *tmp = getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp";
+  char ab[2048], abc[2048], lights[4096], msg[2048];
+  snprintf(ab, sizeof ab, "%s/test_render_scene_ab", tmp);
+  snprintf(abc, sizeof abc, "%s/test_render_scene_abc", tmp);
+  snprintf(lights, sizeof lights, "%s/lights.json", abc);
+  mkdir(ab, 0700), mkdir(abc, 0700);
+  FILE *f = fopen(lights, "w");
+  CHECK(f != NULL, "cannot write %s", lights);
+  if (!f) return;
+  fprintf(f, "{\"lights\": [{\"mean\": [0.1, 0.2], \"cov\": [[0.01, 0], [0, 0.02]], \"color\": [1, 0, 0], \"weight\": 3}]}\n");
+  fclose(f);
+  char *rel = edit("\"lights\": [{\"mean\": [0.3, -0.1], \"cov\": [[0.02, 0.005], [0.005, 0.01]], "
+                   "\"color\": [1, 1, 1], \"weight\": 1}],",
+                   "\"lights_file\": \"../test_render_scene_abc/lights.json\",");
+  char absolute[8192];
+  snprintf(absolute, sizeof absolute, "\"lights_file\": \"%s\",", lights);
+  char *abs_j = edit("\"lights\": [{\"mean\": [0.3, -0.1], \"cov\": [[0.02, 0.005], [0.005, 0.01]], "
+                     "\"color\": [1, 1, 1], \"weight\": 1}],", absolute);
+  ics_scene *s = NULL;
+  ics_status st = ics_scene_create_json(&s, rel, "ab.json", ab, msg, sizeof msg);
+  CHECK(st == ICS_ERR_INVALID_ARG && s == NULL && strstr(msg, "lies outside the scene's folder"),
+        "a sibling folder with the same prefix: %s (%s)", msg, ics_status_str(st));
+  ics_scene_opts allow = {.allow_outside_paths = 1};
+  st = ics_scene_create_json_opts(&s, rel, "ab.json", ab, &allow, msg, sizeof msg);
+  CHECK(st == ICS_OK, "allowed: %s", msg);
+  ics_scene_destroy(s);
+  char *cwd = realpath(".", NULL), *real_abc = realpath(abc, NULL);
+  if (cwd && real_abc && strncmp(real_abc, cwd, strlen(cwd))) {
+    for (int k = 0; k < 2; k++) {
+      st = ics_scene_create_json(&s, abs_j, "e.json", k ? "" : NULL, msg, sizeof msg);
+      CHECK(st == ICS_ERR_INVALID_ARG && strstr(msg, "lies outside"),
+            "dir %s: an absolute path outside the working directory: %s (%s)", k ? "\"\"" : "NULL",
+            msg, ics_status_str(st));
+    }
+  } else {
+    printf("SKIPPED part: %s lies in the working directory\n", abc);
+  }
+  free(cwd), free(real_abc), free(rel), free(abs_j);
+  remove(lights), rmdir(abc), rmdir(ab);
+}
+
 int main(void) {
   test_contract();
+  test_outside_paths();
   test_all_fields();
   test_default();
   test_errors();

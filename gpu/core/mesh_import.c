@@ -80,10 +80,15 @@ uint64_t ics_mesh_file_faces(const char *path) {
   if (!f) return 0;
   uint64_t faces = 0;
   if (fgets(line, sizeof line, f) && ply_magic(line)) {
-    unsigned long long n;
+    static const char key[] = "element face ";
     for (long pos = ftell(f); pos >= 0 && pos < PLY_HEADER_MAX && fgets(line, sizeof line, f);
          pos = ftell(f)) {
-      if (!strchr(line, '-') && sscanf(line, "element face %llu", &n) == 1) faces = n;
+      if (!strncmp(line, key, sizeof key - 1) && line[sizeof key - 1] >= '0' &&
+          line[sizeof key - 1] <= '9') {
+        errno = 0;
+        unsigned long long n = strtoull(line + sizeof key - 1, NULL, 10);
+        faces = errno ? 0 : n; /* (a count past 2^64 is no count) */
+      }
       if (is_word(line, "end_header")) break;
     }
   }
@@ -166,15 +171,17 @@ static void note_file(const char *name) {
 static struct aiFile *io_open(struct aiFileIO *io, const char *name, const char *mode) {
   (void)io;
   if (strpbrk(mode, "wa+")) return NULL;
-  char why[768];
+  char why[sizeof child_refused];
   if (ics_path_check_inside(name, child_root, why, sizeof why) != ICS_OK) {
     if (!child_outside) snprintf(child_refused, sizeof child_refused, "%s", why);
     child_outside = 1;
     return NULL;
   }
-  FILE *fp = ics_input_open(name, 0, 0, NULL, why, sizeof why);
+  char reason[256];
+  FILE *fp = ics_input_open(name, 0, 0, NULL, reason, sizeof reason);
   if (!fp) {
-    if (!child_refused[0]) snprintf(child_refused, sizeof child_refused, "it needs %s: %s", name, why);
+    if (!child_refused[0])
+      snprintf(child_refused, sizeof child_refused, "it needs %.700s: %s", name, reason);
     return NULL;
   }
   struct aiFile *f = calloc(1, sizeof *f);
@@ -228,7 +235,7 @@ static void child_import(int fd, const char *path, const char *root, pid_t paren
     const char *why = aiGetErrorString();
     h.status = child_outside         ? ICS_ERR_INVALID_ARG
                : child_refused[0]    ? ICS_ERR_IO
-               : strstr(why, "bad_alloc") ? ICS_ERR_NOMEM
+               : !strcmp(why, "std::bad_alloc") ? ICS_ERR_NOMEM
                                      : ICS_ERR_PARSE;
     if (child_refused[0])
       snprintf(h.msg, sizeof h.msg, "cannot read mesh: %s", child_refused);

@@ -11,7 +11,19 @@ ics_status ics_path_check_inside(const char *path, const char *root, char *msg, 
   if (!root) return ICS_OK;
   errno = 0;
   char *real = realpath(path, NULL);
-  if (!real) return errno == ENOMEM ? ICS_ERR_NOMEM : ICS_OK;
+  if (!real) {
+    /* a missing file, a component that is not a folder, a link loop: the open fails with its own
+     * reason; any other failure (a resolved name over PATH_MAX through a chain of links, which
+     * the kernel still opens) is refused: the rule fails closed */
+    int e = errno;
+    if (e == ENOENT || e == ENOTDIR || e == ELOOP) return ICS_OK;
+    if (e == ENOMEM) return ICS_ERR_NOMEM;
+    if (msg && msg_size)
+      snprintf(msg, msg_size, "the file %s cannot be resolved (%s), so it cannot be shown to lie in "
+               "the scene's folder %s (give --allow-outside-paths to read it)", path, strerror(e),
+               root);
+    return ICS_ERR_INVALID_ARG;
+  }
   size_t n = strlen(root);
   int inside = !strncmp(real, root, n) && (real[n] == '/' || real[n] == 0 || !strcmp(root, "/"));
   if (!inside && msg && msg_size)

@@ -7,10 +7,11 @@
 
 #include "icshadow/status.h"
 
-/* ICS_OK when `path` resolves (symbolic links followed) to `root` or a name below it, or cannot
- * be resolved (a missing file: its open reports why); ICS_ERR_INVALID_ARG when it resolves
- * elsewhere, msg naming the file, where it leads and the folder; ICS_ERR_NOMEM. root: a folder
- * as realpath gives it; NULL allows every path. */
+/* ICS_OK when `path` resolves (symbolic links followed) to `root` or a name below it, or does
+ * not exist (a missing file or folder, a link loop: its open reports why); ICS_ERR_INVALID_ARG
+ * when it resolves elsewhere or cannot be resolved otherwise (ENAMETOOLONG, EACCES, ...), msg
+ * naming the file, where it leads and the folder; ICS_ERR_NOMEM. root: a folder as realpath
+ * gives it; NULL allows every path. */
 ics_status ics_path_check_inside(const char *path, const char *root, char *msg, size_t msg_size);
 
 #endif

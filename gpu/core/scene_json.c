@@ -151,7 +151,7 @@ static int nonzero_vec3(rctx *c, const char *where, json_t *v, double out[3]) {
 }
 
 static char *join_path(const char *dir, const char *path) {
-  if (!dir || path[0] == '/') return strdup(path);
+  if (!dir || !dir[0] || path[0] == '/') return strdup(path);
   size_t n = strlen(dir) + strlen(path) + 2;
   char *p = malloc(n);
   if (p) snprintf(p, n, "%s/%s", dir, path);
@@ -894,7 +894,7 @@ static int read_object(rctx *c, int idx, json_t *o) {
   /* the memory limit before the work: a PLY header's face count before the file is read, the
    * triangles read before this object's copy is built */
   const ics_mesh_raw *raw = mesh_read_before(c, path);
-  uint64_t faces = raw ? 0 : ics_mesh_file_faces(path);
+  uint64_t faces = raw || !ics_mesh_files_supported() ? 0 : ics_mesh_file_faces(path);
   char what[128];
   snprintf(what, sizeof what, "its PLY header declares %llu faces: at least ",
            (unsigned long long)faces);
@@ -973,7 +973,7 @@ static ics_status read_root(rctx *c, json_t *root) {
  * it fails to open with its own reason */
 static ics_status resolve_root(rctx *c, const ics_scene_opts *opts) {
   if (opts && opts->allow_outside_paths) return ICS_OK;
-  const char *dir = c->dir ? c->dir : ".";
+  const char *dir = c->dir && c->dir[0] ? c->dir : ".";
   errno = 0;
   if ((c->root = realpath(dir, NULL)) || (errno != ENOMEM && (c->root = strdup(dir))))
     return ICS_OK;

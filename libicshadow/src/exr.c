@@ -118,13 +118,14 @@ static int slot_of(const char *name, int rgba, char *const *names, int n) {
 /* OpenEXR's stream functions over an open descriptor (user data: the int descriptor) */
 static int64_t fd_read(exr_const_context_t ctxt, void *user, void *buf, uint64_t sz,
                        uint64_t offset, exr_stream_error_func_ptr_t error_cb) {
-  (void)ctxt, (void)error_cb;
   int fd = *(const int *)user;
   uint64_t got = 0;
   while (got < sz) {
     ssize_t r = pread(fd, (char *)buf + got, sz - got, (off_t)(offset + got));
     if (r < 0 && errno == EINTR) continue;
-    if (r < 0) return -1;
+    if (r < 0) return error_cb(ctxt, EXR_ERR_READ_IO, "reading %llu bytes at %llu: %s",
+                               (unsigned long long)(sz - got),
+                               (unsigned long long)(offset + got), strerror(errno)), -1;
     if (r == 0) break;
     got += (uint64_t)r;
   }
