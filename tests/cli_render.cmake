@@ -47,6 +47,11 @@ file(WRITE ${rd}/huge.json "{\"camera\": {\"eye\": [0, 0, 2], \"target\": [0, 0,
 ics_cli_test(NAME cli_render_over_budget RC 2 ARGS "render|${rd}/huge.json|-o|${rd}/h.exr"
   ERR "the plan needs at least [0-9.]+ MiB .* over render.memory_limit_mib = 100" NOFILE ${rd}/h.exr)
 ics_cli_test(NAME cli_plan_over_budget RC 2 ARGS "plan|${rd}/huge.json" ERR "over render.memory_limit_mib")
+# a limit of 1e-320 MiB under a 1 x 1 view: the plan's size in digits that are not all 0 (the
+# review's "needs at least 0.0 MiB")
+file(WRITE ${rd}/tiny_limit.json "{\"camera\": {\"eye\": [0, 0, 2], \"target\": [0, 0, 0], \"height\": 1, \"resolution\": [1, 1]}, \"render\": {\"slab_spacing\": 0.1, \"d1\": 1, \"memory_limit_mib\": 1e-320}, \"lights\": [{\"mean\": [0, 0], \"var\": [1e-3, 1e-3]}], \"materials\": {\"m\": {}}, \"objects\": [{\"shape\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0.5, \"material\": \"m\"}]}\n")
+ics_cli_test(NAME cli_plan_tiny_limit RC 2 ARGS "plan|${rd}/tiny_limit.json"
+  ERR "the plan needs at least 0[.]0*[1-9][0-9]* MiB .* over render.memory_limit_mib = 9.99989e-321")
 ics_cli_test(NAME cli_plan_print_scene_with_scene RC 2 ARGS "plan|${disk}|--print-scene" ERR "give no SCENE")
 # render.model: --model overrides it, the plan and the summary name it, a bad one is refused
 ics_cli_test(NAME cli_plan_model RC 0 ARGS "plan|--model|surface|--resolution|32x24" OUT "\"model\": \"surface\"")

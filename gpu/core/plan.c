@@ -450,10 +450,10 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   p->memory_bytes = p->backend_bytes + offset_bytes + mesh_bytes + grid_bytes;
   if ((double)p->memory_bytes > p->rs.memory_limit_mib * 1048576.0) {
     if (msg)
-      snprintf(msg, msg_size, "the plan needs at least %.1f MiB (%d x %d light buffers for %d "
+      snprintf(msg, msg_size, "the plan needs at least %.*f MiB (%d x %d light buffers for %d "
                "light(s), %d channel(s)), over render.memory_limit_mib = %g",
-               p->memory_bytes / 1048576.0, p->Wb, p->Hb, p->nlights, p->nch,
-               p->rs.memory_limit_mib);
+               p->memory_bytes < 104858 ? 4 : 1, p->memory_bytes / 1048576.0, p->Wb, p->Hb,
+               p->nlights, p->nch, p->rs.memory_limit_mib); /* (a small plan: 0.0130, not 0.0) */
     st = ICS_ERR_SIZE;
     goto fail;
   }
