@@ -160,6 +160,22 @@ static char *edit(const char *from, const char *to) {
   return s;
 }
 
+/* the contract with its "lights" array replaced by `lights_file_entry` (malloc'd) */
+static char *with_lights_file(const char *lights_file_entry) {
+  return edit("\"lights\": [{\"mean\": [0.3, -0.1], \"cov\": [[0.02, 0.005], [0.005, 0.01]], "
+              "\"color\": [1, 1, 1], \"weight\": 1}],",
+              lights_file_entry);
+}
+
+/* writes a lights file of one red light of weight 3; 0 on success (a failed CHECK otherwise) */
+static int write_lights_file(const char *path) {
+  FILE *f = fopen(path, "w");
+  CHECK(f != NULL, "cannot write %s", path);
+  if (!f) return -1;
+  fprintf(f, "{\"lights\": [{\"mean\": [0.1, 0.2], \"cov\": [[0.01, 0], [0, 0.02]], \"color\": [1, 0, 0], \"weight\": 3}]}\n");
+  return fclose(f) ? -1 : 0;
+}
+
 static void expect_error(const char *from, const char *to, ics_status want, const char *want_msg) {
   char *j = edit(from, to);
   char msg[2048] = "";
@@ -228,14 +244,8 @@ static void test_lights_file(void) {
   const char *dir = getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp";
   char path[4096], scene[4096];
   snprintf(path, sizeof path, "%s/test_render_scene_lights.json", dir);
-  FILE *f = fopen(path, "w");
-  CHECK(f != NULL, "cannot write %s", path);
-  if (!f) return;
-  fprintf(f, "{\"lights\": [{\"mean\": [0.1, 0.2], \"cov\": [[0.01, 0], [0, 0.02]], \"color\": [1, 0, 0], \"weight\": 3}]}\n");
-  fclose(f);
-  char *j = edit("\"lights\": [{\"mean\": [0.3, -0.1], \"cov\": [[0.02, 0.005], [0.005, 0.01]], "
-                 "\"color\": [1, 1, 1], \"weight\": 1}],",
-                 "\"lights_file\": \"test_render_scene_lights.json\",");
+  if (write_lights_file(path)) return;
+  char *j = with_lights_file("\"lights_file\": \"test_render_scene_lights.json\",");
   char msg[2048];
   ics_scene *s;
   ics_status st = ics_scene_create_json(&s, j, "lf.json", dir, msg, sizeof msg);
@@ -269,18 +279,11 @@ static void test_outside_paths(void) {
   snprintf(abc, sizeof abc, "%s/test_render_scene_abc", tmp);
   snprintf(lights, sizeof lights, "%s/lights.json", abc);
   mkdir(ab, 0700), mkdir(abc, 0700);
-  FILE *f = fopen(lights, "w");
-  CHECK(f != NULL, "cannot write %s", lights);
-  if (!f) return;
-  fprintf(f, "{\"lights\": [{\"mean\": [0.1, 0.2], \"cov\": [[0.01, 0], [0, 0.02]], \"color\": [1, 0, 0], \"weight\": 3}]}\n");
-  fclose(f);
-  char *rel = edit("\"lights\": [{\"mean\": [0.3, -0.1], \"cov\": [[0.02, 0.005], [0.005, 0.01]], "
-                   "\"color\": [1, 1, 1], \"weight\": 1}],",
-                   "\"lights_file\": \"../test_render_scene_abc/lights.json\",");
+  if (write_lights_file(lights)) return;
+  char *rel = with_lights_file("\"lights_file\": \"../test_render_scene_abc/lights.json\",");
   char absolute[8192];
   snprintf(absolute, sizeof absolute, "\"lights_file\": \"%s\",", lights);
-  char *abs_j = edit("\"lights\": [{\"mean\": [0.3, -0.1], \"cov\": [[0.02, 0.005], [0.005, 0.01]], "
-                     "\"color\": [1, 1, 1], \"weight\": 1}],", absolute);
+  char *abs_j = with_lights_file(absolute);
   ics_scene *s = NULL;
   ics_status st = ics_scene_create_json(&s, rel, "ab.json", ab, msg, sizeof msg);
   CHECK(st == ICS_ERR_INVALID_ARG && s == NULL && strstr(msg, "lies outside the scene's folder"),

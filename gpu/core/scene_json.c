@@ -48,12 +48,10 @@ static const ics_mesh_raw *mesh_read_before(const rctx *c, const char *path) {
     if (!strcmp(c->read[i].path, path)) return &c->read[i].raw;
   return NULL;
 }
-/* the mesh file at path as Assimp gave it, read on its first use, when it and the other files
- * Assimp read for it become the scene's inputs; NULL with the message */
+/* the mesh file at path (not read before) as Assimp gives it; it and the other files Assimp read
+ * for it become the scene's inputs; NULL with the message */
 static const ics_mesh_raw *mesh_file(rctx *c, const char *path, char *msg, size_t msg_size,
                                      ics_status *st) {
-  const ics_mesh_raw *known = mesh_read_before(c, path);
-  if (known) return known;
   struct read_mesh *r = realloc(c->read, sizeof *r * (size_t)(c->nread + 1));
   if (!r) {
     *st = ICS_ERR_NOMEM;
@@ -906,7 +904,7 @@ static int read_object(rctx *c, int idx, json_t *o) {
   ics_mesh *mesh;
   char mmsg[4096 + 512];
   ics_status st;
-  if ((raw = mesh_file(c, path, mmsg, sizeof mmsg, &st)))
+  if (raw || (raw = mesh_file(c, path, mmsg, sizeof mmsg, &st)))
     st = ics_mesh_create_raw(&mesh, raw, sc, rot, tr, path, mmsg, sizeof mmsg);
   free(path);
   if (st != ICS_OK) return fail(c, st, "%s: %s", KEY("file"), mmsg);
