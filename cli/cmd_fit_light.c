@@ -178,7 +178,7 @@ static int fit_and_write(const ics_image *env, const char *inp, const char *outp
   cli_output *all[3];
   int n = 0, to_stdout = !strcmp(outp, "-");
   if (cli_output_open(&out, CMD, outp) != 0) return 1;
-  if (lights_write(out.fp, lights, r->k_fit) != 0) {
+  if (ics_light_write_json(out.fp, lights, r->k_fit) != 0) {
     cli_output_abort(&out);
     return cli_failure(CMD, "cannot write %s", outp);
   }

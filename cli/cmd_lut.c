@@ -57,7 +57,8 @@ typedef struct tables {
   ics_lut_tables view;
 } tables;
 
-static ics_status tables_build(tables *T, int n) {
+/* the n-entry tables and their stamp errors (ics_lut_build_measured) */
+static ics_status tables_build(tables *T, int n, ics_lut_error *ed, ics_lut_error *ef) {
   T->n = n;
   T->s = malloc((size_t)n * sizeof *T->s);
   T->g = malloc((size_t)n * sizeof *T->g);
@@ -65,7 +66,7 @@ static ics_status tables_build(tables *T, int n) {
   T->view.n = n;
   T->view.s = T->s;
   T->view.g = T->g;
-  return ics_lut_build(n, T->s, T->g);
+  return ics_lut_build_measured(n, T->s, T->g, ed, ef);
 }
 
 static void tables_free(tables *T) {
@@ -78,13 +79,8 @@ static int write_header(int n, const char *lang_name, ics_lut_lang lang, const c
   char command[128];
   snprintf(command, sizeof command, "icshadow lut --size %d --lang %s", n, lang_name);
   tables T = {0};
-  ics_lut_grid *grid = NULL;
   ics_lut_error ed, ef;
-  ics_status st = tables_build(&T, n);
-  if (st == ICS_OK) st = ics_lut_grid_create(&grid, n, ICS_LUT_STAMP_PER_INTERVAL);
-  if (st == ICS_OK) st = ics_lut_measure(grid, &T.view, 0, &ed);
-  if (st == ICS_OK) st = ics_lut_measure(grid, &T.view, 1, &ef);
-  ics_lut_grid_destroy(grid);
+  ics_status st = tables_build(&T, n, &ed, &ef);
   if (st != ICS_OK) {
     cli_failure(CMD, "cannot build the tables: %s", ics_status_str(st));
     tables_free(&T);
@@ -192,12 +188,7 @@ static int report(const int *sizes, int nsizes, int progress) {
     if (progress) fprintf(stderr, "icshadow lut: size %d (exact values on its grid, then the tables)\n", n);
     tables T = {0};
     ics_lut_error ed, ef;
-    ics_lut_grid *grid = NULL;
-    st = ics_lut_grid_create(&grid, n, ICS_LUT_STAMP_PER_INTERVAL);
-    if (st == ICS_OK) st = tables_build(&T, n);
-    if (st == ICS_OK) st = ics_lut_measure(grid, &T.view, 0, &ed);
-    if (st == ICS_OK) st = ics_lut_measure(grid, &T.view, 1, &ef);
-    ics_lut_grid_destroy(grid);
+    st = tables_build(&T, n, &ed, &ef);
     if (st != ICS_OK) {
       cli_failure(CMD, "size %d: %s", n, ics_status_str(st));
       tables_free(&T);

@@ -305,39 +305,13 @@ int cmd_render(int argc, char **argv) {
     goto done;
   }
   {
-    int W, H, bw, bh;
-    ics_plan_sizes(plan, &W, &H, &bw, &bh);
     fprintf(sf, "{\"scene\": ");
     cli_json_string(sf, a.scene ? a.scene : "default");
-    fprintf(sf, ", \"backend\": \"%s\", \"device\": ", stats.backend);
-    cli_json_string(sf, stats.device);
-    fprintf(sf, ", \"threads\": %d, \"resolution\": [%d, %d]", stats.threads, W, H);
-    if (!mc)
-      fprintf(sf, ", \"light_buffer\": [%d, %d], \"slabs\": %d, \"kernel\": \"%s\", \"samples\": %d, "
-              "\"model\": \"%s\"", bw, bh, stats.slabs, ics_render_kernel_name(rs.kernel), rs.samples,
-              ics_render_model_name(rs.model));
-    fprintf(sf, ", \"seed\": %llu, \"ms_plan\": %.17g, \"ms_geometry\": %.17g, \"ms_render\": %.17g",
-            (unsigned long long)rs.seed, 1e3 * t_plan, 1e3 * ics_plan_geometry_seconds(plan),
-            stats.ms_total);
-    if (!mc)
-      fprintf(sf, ", \"ms_convolution\": %.17g, \"ms_shading\": %.17g, \"ms_detail\": %.17g,"
-              " \"ns_per_px_slab\": %.17g, \"memory_bytes\": %zu", stats.ms_convolution,
-              stats.ms_shading, stats.ms_detail, stats.ns_per_px_slab, ics_plan_memory_bytes(plan));
-    if (stats.updates_dense > 0)
-      fprintf(sf, ", \"updates_dense\": %.17g, \"updates_active\": %.17g", stats.updates_dense,
-              stats.updates_active);
-    if (stats.ms_geometry_device > 0)
-      fprintf(sf, ", \"ms_geometry_device\": %.17g", stats.ms_geometry_device);
+    fprintf(sf, ", ");
+    ics_render_summary_write(sf, plan, &rs, &stats, 1e3 * t_plan);
     if (exr) fprintf(sf, ", \"exr\": "), cli_json_string(sf, exr);
     if (png) fprintf(sf, ", \"png\": "), cli_json_string(sf, png);
     if (diff_png) fprintf(sf, ", \"diff_png\": "), cli_json_string(sf, diff_png);
-    if (mc) {
-      fprintf(sf, ", \"spp\": %d, \"noise\": ", stats.spp);
-      if (isfinite(stats.noise))
-        fprintf(sf, "%.17g", stats.noise);
-      else
-        fprintf(sf, "null");
-    }
     if (aov) {
       fprintf(sf, ", \"aovs\": [");
       for (int c = 0; c < aov->count; c++)

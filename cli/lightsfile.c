@@ -21,18 +21,6 @@ static void seterr(char *err, size_t n, const char *fmt, ...) {
   va_end(ap);
 }
 
-int lights_write(FILE *f, const ics_light *l, int n) {
-  fprintf(f, "{\"lights\": [");
-  for (int k = 0; k < n; k++)
-    fprintf(f,
-            "%s\n  {\"mean\": [%.17g, %.17g], \"cov\": [[%.17g, %.17g], [%.17g, %.17g]], "
-            "\"color\": [%.17g, %.17g, %.17g], \"weight\": %.17g}",
-            k ? "," : "", l[k].mean[0], l[k].mean[1], l[k].cov[0], l[k].cov[1], l[k].cov[1],
-            l[k].cov[2], l[k].color[0], l[k].color[1], l[k].color[2], l[k].weight);
-  fprintf(f, "\n]}\n");
-  return ferror(f) ? -1 : 0;
-}
-
 /* checks shared by files and specs */
 static int check_light(const ics_light *l, char *err, size_t n, const char *where) {
   for (int c = 0; c < 2; c++)

@@ -1,6 +1,6 @@
 /* lightsfile.h — the lights file (JSON: docs/lights_format.md; frames in docs/architecture.md
- * "Frames and file formats") and the lights SPEC strings of the CLI. Writing needs no library;
- * reading a file is libicshadow_render's ics_lightsfile_read (jansson: line/column in error
+ * "Frames and file formats") and the lights SPEC strings of the CLI. Writing is the core's
+ * ics_light_write_json; reading a file is libicshadow_render's ics_lightsfile_read (jansson: line/column in error
  * messages), present when the CLI was built with the renderer (ICS_HAVE_RENDER). */
 #ifndef ICS_CLI_LIGHTSFILE_H
 #define ICS_CLI_LIGHTSFILE_H
@@ -9,11 +9,6 @@
 #include <stdio.h>
 
 #include "icshadow.h"
-
-/* {"lights": [{"mean": [mx, my], "cov": [[cxx, cxy], [cxy, cyy]], "color": [r, g, b],
- *  "weight": w}, ...]} with %.17g numbers, one light per line. Returns 0, or -1 on a write
- * error. */
-int lights_write(FILE *f, const ics_light *l, int n);
 
 /* Reads a lights file. Accepts "tilt_deg": [wx, wy] instead of "mean" (mean = tan w, |w| < 90)
  * and "var": [varx, vary], "angle_deg": a instead of "cov". "color" defaults to [1, 1, 1] and

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages that libicshadow's build, tests, benchmarks and figures need:
 # `scripts/deps.sh` (or `deps.sh test`) everything, `deps.sh JOB...` what those jobs need (core,
-# demo, figs, notebooks, bench, analysis, fuzz); `deps.sh --list [JOB...]` prints them instead.
+# demo, figs, notebooks, bench, analysis, fuzz, python); `deps.sh --list [JOB...]` prints them instead.
 # Checks with dpkg first, so a second run costs nothing. As root it runs apt-get; otherwise it prints the exact apt-get line and exits non-zero.
 set -euo pipefail
 
@@ -11,7 +11,10 @@ set -euo pipefail
 core=(build-essential cmake pkg-config)
 # the renderer (jansson: scenes and lights files; libpng: previews) and OpenEXR (maps, renders)
 render=(libjansson-dev libpng-dev libopenexr-dev)
-python=(python3 python3-numpy python3-matplotlib python3-mpmath python3-scipy)
+# Python: figures, notebooks and the icshadow package (python/: cffi compiles its binding against
+# Python.h; pip and venv install it)
+python=(python3 python3-numpy python3-matplotlib python3-mpmath python3-scipy python3-cffi python3-dev
+        python3-pip python3-venv python3-setuptools)
 opencl=(pocl-opencl-icd ocl-icd-opencl-dev opencl-headers)
 # the gl backend's contexts: EGL (Mesa's surfaceless platform, llvmpipe, without a GPU) and OSMesa;
 # the GL headers (GL/glcorearb.h); glslangValidator for its shader checks
@@ -21,6 +24,8 @@ declare -A jobs=(
   [demo]="${core[*]} ${render[*]}"
   # figures and table generators (Debian's python3, not a runtime dependency)
   [figs]="${core[*]} ${render[*]} ${python[*]}"
+  # the Python package (python/, docs/python.md)
+  [python]="${core[*]} ${render[*]} ${python[*]}"
   [notebooks]="${core[*]} ${render[*]} ${python[*]} jupyter-nbconvert python3-ipykernel python3-nbformat"
   # benchmarks: Boost.Math as a peer for the elliptic integrals, OpenCL and OpenGL for
   # --backend cl and gl

@@ -15,6 +15,7 @@
 
 #include "clock.h"
 #include "geometry.h"
+#include "json_util.h"
 #include "icshadow/constants.h"
 #include "icshadow/conv.h"
 #include "icshadow/light.h"
@@ -580,23 +581,9 @@ void ics_plan_sizes(const ics_plan *p, int *w, int *h, int *bw, int *bh) {
 }
 double ics_plan_geometry_seconds(const ics_plan *p) { return p->geometry_s; }
 
-static void json_string(FILE *f, const char *s) {
-  fputc('"', f);
-  for (; *s; s++) {
-    unsigned char ch = (unsigned char)*s;
-    if (ch == '"' || ch == '\\')
-      fprintf(f, "\\%c", ch);
-    else if (ch < 0x20)
-      fprintf(f, "\\u%04x", ch);
-    else
-      fputc(ch, f);
-  }
-  fputc('"', f);
-}
-
 ics_status ics_plan_write_json(const ics_plan *p, FILE *f) {
   fprintf(f, "{\n  \"scene\": ");
-  json_string(f, ics_scene_name(p->scene));
+  ics_json_string(f, ics_scene_name(p->scene));
   fprintf(f, ",\n  \"resolution\": [%d, %d],\n  \"light_buffer\": [%d, %d],\n", p->W, p->H, p->Wb,
           p->Hb);
   fprintf(f, "  \"padding\": {\"left\": %d, \"right\": %d, \"top\": %d, \"bottom\": %d},\n",
@@ -609,7 +596,7 @@ ics_status ics_plan_write_json(const ics_plan *p, FILE *f) {
   for (int i = 0; i < p->npasses; i++) {
     const ics_plan_pass *q = &p->passes[i];
     fprintf(f, "%s\n    {\"name\": ", i ? "," : "");
-    json_string(f, q->name);
+    ics_json_string(f, q->name);
     fprintf(f, ", \"bytes\": %zu", q->bytes);
     if (q->light >= 0) {
       const ics_slab_kernel *sk = &p->kernels[q->light];
@@ -624,15 +611,15 @@ ics_status ics_plan_write_json(const ics_plan *p, FILE *f) {
               sk->cov_px[1], sk->cov_px[2], p->active_fraction[q->light]);
     }
     fprintf(f, ", \"detail\": ");
-    json_string(f, q->detail);
+    ics_json_string(f, q->detail);
     fputc('}', f);
   }
   fprintf(f, "\n  ],\n  \"omitted\": [");
   for (int i = 0; i < p->nomitted; i++) {
     fprintf(f, "%s\n    {\"name\": ", i ? "," : "");
-    json_string(f, p->omitted[i].name);
+    ics_json_string(f, p->omitted[i].name);
     fprintf(f, ", \"reason\": ");
-    json_string(f, p->omitted[i].reason);
+    ics_json_string(f, p->omitted[i].reason);
     fputc('}', f);
   }
   fprintf(f, "\n  ]\n}\n");

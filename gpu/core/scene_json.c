@@ -979,10 +979,37 @@ static ics_status resolve_root(rctx *c, const ics_scene_opts *opts) {
   return ICS_ERR_NOMEM;
 }
 
+/* opts->render_json's members over root's "render" object (when both are objects: a missing or
+ * malformed "render" is reported by read_root as it would be without overrides) */
+static ics_status override_render(json_t *root, const ics_scene_opts *opts, char *msg,
+                                  size_t msg_size) {
+  if (!opts || !opts->render_json) return ICS_OK;
+  json_error_t je;
+  json_t *o = json_loads(opts->render_json, JSON_REJECT_DUPLICATES, &je);
+  ics_status st = ICS_OK;
+  if (!o || !json_is_object(o)) {
+    if (msg) snprintf(msg, msg_size, "render overrides: %s", o ? "expected a JSON object" : je.text);
+    st = ICS_ERR_PARSE;
+  } else {
+    json_t *ren = json_is_object(root) ? json_object_get(root, "render") : NULL;
+    if (json_is_object(ren) && json_object_update(ren, o) != 0) {
+      if (msg) snprintf(msg, msg_size, "out of memory");
+      st = ICS_ERR_NOMEM;
+    }
+  }
+  json_decref(o);
+  return st;
+}
+
 /* file: the scene file (the first of the scene's files), or NULL */
 static ics_status create(ics_scene **out, json_t *root, const char *name, const char *dir,
                          const char *file, const ics_scene_opts *opts, char *msg,
                          size_t msg_size) {
+  ics_status ost = override_render(root, opts, msg, msg_size);
+  if (ost != ICS_OK) {
+    json_decref(root);
+    return ost;
+  }
   rctx c = {.j = {msg, msg_size}, .name = name, .dir = dir, .st = ICS_ERR_PARSE,
             .where_size = strlen(name) + 256};
   c.where = malloc(c.where_size);

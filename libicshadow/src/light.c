@@ -536,3 +536,15 @@ double ics_light1d_skewness(const ics_light1d *l) {
   }
   return m3 / (l->var_ * sqrt(l->var_));
 }
+
+int ics_light_write_json(FILE *f, const ics_light *l, int n) {
+  fprintf(f, "{\"lights\": [");
+  for (int k = 0; k < n; k++)
+    fprintf(f,
+            "%s\n  {\"mean\": [%.17g, %.17g], \"cov\": [[%.17g, %.17g], [%.17g, %.17g]], "
+            "\"color\": [%.17g, %.17g, %.17g], \"weight\": %.17g}",
+            k ? "," : "", l[k].mean[0], l[k].mean[1], l[k].cov[0], l[k].cov[1], l[k].cov[1],
+            l[k].cov[2], l[k].color[0], l[k].color[1], l[k].color[2], l[k].weight);
+  fprintf(f, "\n]}\n");
+  return ferror(f) ? -1 : 0;
+}

@@ -671,6 +671,18 @@ static void write_opencl(FILE *f, const ics_lut_tables *L, const char *command,
   write_gpu_functions(f, ICS_LUT_LANG_OPENCL, L);
 }
 
+ics_status ics_lut_build_measured(int n, double *s, double *g, ics_lut_error *err_double,
+                                  ics_lut_error *err_float) {
+  ics_lut_grid *grid = NULL;
+  ics_lut_tables L = {n, s, g};
+  ics_status st = ics_lut_build(n, s, g);
+  if (st == ICS_OK) st = ics_lut_grid_create(&grid, n, ICS_LUT_STAMP_PER_INTERVAL);
+  if (st == ICS_OK) st = ics_lut_measure(grid, &L, 0, err_double);
+  if (st == ICS_OK) st = ics_lut_measure(grid, &L, 1, err_float);
+  ics_lut_grid_destroy(grid);
+  return st;
+}
+
 ics_status ics_lut_write(FILE *f, ics_lut_lang lang, const ics_lut_tables *L, const char *command,
                          const ics_lut_error *ed, const ics_lut_error *ef) {
   if (!f || !L || !L->s || !L->g || !command || !ed || !ef) return ICS_ERR_INVALID_ARG;

@@ -100,6 +100,18 @@ ICS_API ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *pla
                                             ics_image **out, ics_exr_channels **aov_out,
                                             ics_render_stats *stats, char *msg, size_t msg_size);
 
+/* The render summary as JSON object members, without braces, each after the first preceded by
+ * ", " (docs/renderer.md "The render summary"): "backend", "device", "threads", "resolution";
+ * for the slab renderers "light_buffer", "slabs", "kernel", "samples", "model"; "seed",
+ * "ms_plan" (as given), "ms_geometry", "ms_render"; for the slab renderers "ms_convolution",
+ * "ms_shading", "ms_detail", "ns_per_px_slab", "memory_bytes"; "updates_dense" and
+ * "updates_active" where reported, "ms_geometry_device" where the device built the layered
+ * depth image; for "mc" "spp" and "noise" (null after 1 sample). rs: the settings the plan was
+ * made with (its ics_plan_opts.settings, or the scene's). The CLI's `render` prints these after
+ * "scene". */
+ICS_API void ics_render_summary_write(FILE *f, const ics_plan *plan, const ics_render_settings *rs,
+                                      const ics_render_stats *st, double ms_plan);
+
 /* The backend table. */
 ICS_API int ics_backend_count(void);
 ICS_API const char *ics_backend_name(int i);        /* NULL out of range */

@@ -163,6 +163,11 @@ typedef struct ics_scene_opts {
    * names: a glTF's buffers, an OBJ's materials) must lie in the scene's folder or below it,
    * symbolic links resolved; 1 allows files anywhere (docs/scene-format.md "Files"). */
   int allow_outside_paths;
+  /* NULL, or a JSON object whose members replace or add to the scene's "render" object before it
+   * is read ({"model": "solid", "samples": 4}): checked as the scene's own keys are, a bad one
+   * named "PATH: render.KEY: reason"; a text that is not a JSON object is refused as
+   * "render overrides: reason" (ICS_ERR_PARSE). */
+  const char *render_json;
 } ics_scene_opts;
 
 /* Reads a scene file. On failure *out is NULL and msg (when non-NULL) holds one line naming the

@@ -24,6 +24,7 @@
 #define ICSHADOW_LIGHT_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "icshadow/status.h"
 
@@ -69,6 +70,11 @@ ICS_API ics_status ics_light_cov_to_eig(const double cov[3], double *varx, doubl
  * its nearest PSD matrix, not a Cholesky factor blown up by a tiny pivot. Returns 1 when cov is
  * PSD as computed, 0 when an eigenvalue was raised to 0; -1 (root unset) for a non-finite entry. */
 ICS_API int ics_light_cov_sqrt(const double cov[3], double root[3]);
+
+/* Writes n lights as a lights file (docs/lights_format.md): {"lights": [{"mean": [mx, my],
+ * "cov": [[cxx, cxy], [cxy, cyy]], "color": [r, g, b], "weight": w}, ...]}, one light per line,
+ * numbers in %.17g (read back bit for bit). Returns 0, or -1 when the stream reports an error. */
+ICS_API int ics_light_write_json(FILE *f, const ics_light *l, int n);
 
 /* Fills *out with a Gaussian light from tilt angles, (varx, vary, alpha), colour (NULL: white) and
  * weight. ICS_ERR_RANGE when a tilt is at or beyond +-90 degrees; ICS_ERR_NAN, ICS_ERR_INFINITE,

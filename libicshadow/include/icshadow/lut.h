@@ -134,6 +134,12 @@ typedef struct ics_lut_error {
 ICS_API ics_status ics_lut_measure(const ics_lut_grid *grid, const ics_lut_tables *L, int use_float,
                                    ics_lut_error *err);
 
+/* Builds n-entry tables into s and g (ics_lut_build) and measures them on the stamp grid
+ * (ICS_LUT_STAMP_PER_INTERVAL points per interval) in double and in float evaluation: the
+ * errors a header written by ics_lut_write is stamped with. */
+ICS_API ics_status ics_lut_build_measured(int n, double *s, double *g, ics_lut_error *err_double,
+                                          ics_lut_error *err_float);
+
 /* ---- header writers ------------------------------------------------------------------------ */
 typedef enum ics_lut_lang {
   ICS_LUT_LANG_C,      /* self-contained C99 header: static tables + static inline functions */

@@ -1,0 +1,41 @@
+/* render_summary.c — the render summary's members (icshadow/renderer.h): what ran, on which
+ * device, and the time of each pass, as the CLI's `render` prints them and the Python package
+ * returns them. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "icshadow/renderer.h"
+#include "json_util.h"
+
+void ics_render_summary_write(FILE *f, const ics_plan *plan, const ics_render_settings *rs,
+                              const ics_render_stats *st, double ms_plan) {
+  int mc = !strcmp(st->backend, "mc"), W, H, bw, bh;
+  ics_plan_sizes(plan, &W, &H, &bw, &bh);
+  fprintf(f, "\"backend\": \"%s\", \"device\": ", st->backend);
+  ics_json_string(f, st->device);
+  fprintf(f, ", \"threads\": %d, \"resolution\": [%d, %d]", st->threads, W, H);
+  if (!mc)
+    fprintf(f, ", \"light_buffer\": [%d, %d], \"slabs\": %d, \"kernel\": \"%s\", \"samples\": %d, "
+            "\"model\": \"%s\"", bw, bh, st->slabs, ics_render_kernel_name(rs->kernel),
+            rs->samples, ics_render_model_name(rs->model));
+  fprintf(f, ", \"seed\": %llu, \"ms_plan\": %.17g, \"ms_geometry\": %.17g, \"ms_render\": %.17g",
+          (unsigned long long)rs->seed, ms_plan, 1e3 * ics_plan_geometry_seconds(plan),
+          st->ms_total);
+  if (!mc)
+    fprintf(f, ", \"ms_convolution\": %.17g, \"ms_shading\": %.17g, \"ms_detail\": %.17g,"
+            " \"ns_per_px_slab\": %.17g, \"memory_bytes\": %zu", st->ms_convolution,
+            st->ms_shading, st->ms_detail, st->ns_per_px_slab, ics_plan_memory_bytes(plan));
+  if (st->updates_dense > 0)
+    fprintf(f, ", \"updates_dense\": %.17g, \"updates_active\": %.17g", st->updates_dense,
+            st->updates_active);
+  if (st->ms_geometry_device > 0)
+    fprintf(f, ", \"ms_geometry_device\": %.17g", st->ms_geometry_device);
+  if (mc) {
+    fprintf(f, ", \"spp\": %d, \"noise\": ", st->spp);
+    if (isfinite(st->noise))
+      fprintf(f, "%.17g", st->noise);
+    else
+      fprintf(f, "null");
+  }
+}

@@ -1,0 +1,96 @@
+"""lights.py: Gaussian lights (docs/lights_format.md): lights files read and written, and lights
+fitted to an environment map (docs/lightfit.md), through the C library."""
+import os
+import tempfile
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ._lib import check, ffi, image_from_array, lib, msg_buffer, take_string
+
+
+@dataclass
+class Light:
+    """A Gaussian light on the virtual light plane: mean (mx, my), covariance 2x2, linear RGB
+    colour and weight (its luminance power when Y(colour) = 1)."""
+    mean: np.ndarray
+    cov: np.ndarray
+    color: np.ndarray = field(default_factory=lambda: np.ones(3))
+    weight: float = 1.0
+
+
+def _from_c(c):
+    return Light(np.array(list(c.mean)), np.array([[c.cov[0], c.cov[1]], [c.cov[1], c.cov[2]]]),
+                 np.array(list(c.color)), c.weight)
+
+
+def _to_c(lights):
+    arr = ffi.new("ics_light[]", max(len(lights), 1))
+    for k, l in enumerate(lights):
+        m = np.asarray(l.mean, dtype=float).reshape(2)
+        cv = np.asarray(l.cov, dtype=float).reshape(2, 2)
+        arr[k].mean = list(m)
+        arr[k].cov = [cv[0, 0], cv[0, 1], cv[1, 1]]
+        arr[k].color = list(np.asarray(l.color, dtype=float).reshape(3))
+        arr[k].weight = float(l.weight)
+    return arr
+
+
+def read_lights(path):
+    """The lights of a lights file; icshadow.Error with the file, line and key at fault."""
+    out, n, msg = ffi.new("ics_light **"), ffi.new("int *"), msg_buffer()
+    check(lib.ics_lightsfile_read(os.fsencode(path), out, n, msg, len(msg)), msg)
+    try:
+        return [_from_c(out[0][k]) for k in range(n[0])]
+    finally:
+        lib.icspy_free(out[0])
+
+
+def lights_json(lights):
+    """The lights file text `icshadow fit-light` writes for these lights."""
+    return take_string(lib.icspy_lights_json(_to_c(lights), len(lights)), "lights_json")
+
+
+def write_lights(path, lights):
+    """Writes a lights file: the whole file or, on an error, nothing (a temporary file in the same
+    folder renamed over path)."""
+    text = lights_json(lights)
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=".lights.", dir=folder)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
+
+
+def _env_image(env):
+    if isinstance(env, (str, bytes, os.PathLike)):
+        out, msg = ffi.new("ics_image **"), msg_buffer()
+        check(lib.ics_exr_read(os.fsencode(env), out, msg, len(msg)), msg)
+        return ffi.gc(out[0], lib.ics_image_destroy)
+    return image_from_array(env, "fit_light: env")
+
+
+def fit_light(env, lights=3, max_angle=80.0, seed=1, max_samples=0, max_iter=300, tol=1e-9):
+    """Fits `lights` Gaussians to a latitude-longitude environment map (a path to an EXR, or an
+    array (height, width, 3 or 4) of linear RGB, row 0 at the top), as `icshadow fit-light`
+    does. Returns (lights, report): report is a dict of the fit's numbers (k_fit, iterations,
+    l1, l2, edge, converged, the energies; docs/lightfit.md)."""
+    if not 1 <= int(lights) <= lib.ICS_LIGHTFIT_MAX_K:
+        raise ValueError(f"fit_light: lights: expected 1..{lib.ICS_LIGHTFIT_MAX_K}, got {lights}")
+    img = _env_image(env)
+    p = ffi.new("ics_lightfit_params *")
+    lib.ics_lightfit_params_init(p)
+    p.k, p.max_angle_deg, p.seed = int(lights), float(max_angle), int(seed)
+    p.max_samples, p.max_iter, p.tol = int(max_samples), int(max_iter), float(tol)
+    out = ffi.new("ics_light[]", p.k)
+    rep = ffi.new("ics_lightfit_report *")
+    check(lib.ics_lightfit(img, p, out, rep), context="fit_light: ")
+    keys = ("k_fit", "iterations", "samples", "pixels", "energy_total", "energy_front",
+            "energy_cutoff", "energy_kept", "cutoff_loss", "loglik", "l1", "l2", "edge")
+    report = {k: getattr(rep, k) for k in keys}
+    report["converged"] = bool(rep.converged)
+    return [_from_c(out[k]) for k in range(rep.k_fit)], report

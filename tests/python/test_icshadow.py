@@ -1,0 +1,240 @@
+"""test_icshadow.py: the Python package against the CLI, which runs the same C libraries.
+Numbers are compared bit for bit (the CLI prints %.17g, which reads back exactly); images through
+the EXR files the CLI writes. Environment: ICSHADOW_CLI (the icshadow binary), ICSHADOW_TMP (a
+scratch folder). Run by tests/python/run.sh."""
+import json
+import os
+import subprocess
+import threading
+import unittest
+
+import numpy as np
+
+import icshadow as ic
+
+CLI = os.environ["ICSHADOW_CLI"]
+TMP = os.environ["ICSHADOW_TMP"]
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def cli(*args, stdin=None, check=True):
+    r = subprocess.run([CLI, *args], input=stdin, capture_output=True, text=True)
+    if check and r.returncode != 0:
+        raise AssertionError(f"icshadow {' '.join(args)}: exit {r.returncode}: {r.stderr}")
+    return r
+
+
+def tmp(name):
+    return os.path.join(TMP, name)
+
+
+class Numerics(unittest.TestCase):
+    FUNCS = {"ellipk": (ic.ellint_k, np.linspace(-3, 1, 401)),
+             "ellipe": (ic.ellint_e, np.linspace(-3, 1, 401)),
+             "ellipk_m1": (ic.ellint_k_m1, np.geomspace(1e-300, 4, 401)),
+             "ellipe_m1": (ic.ellint_e_m1, np.geomspace(1e-300, 4, 401)),
+             "varx": (ic.ellipse_varx, np.linspace(0, 3, 301)),
+             "vx": (ic.ellipse_vx, np.linspace(0, 1, 301)),
+             "vy": (ic.ellipse_vy, np.linspace(0, 1, 301)),
+             "ratio": (ic.ellipse_ratio, np.linspace(0, 1, 301)),
+             "ratio_to_t": (ic.ellipse_ratio_to_t, np.geomspace(1e-12, 1e12, 301))}
+
+    def test_bit_equal_to_the_cli(self):
+        for name, (f, x) in self.FUNCS.items():
+            text = "\n".join(repr(float(v)) for v in x) + "\n"
+            want = np.array([float(v) for v in cli("eval", name, stdin=text).stdout.split()])
+            got = f(x)
+            self.assertEqual(got.shape, x.shape, name)
+            np.testing.assert_array_equal(got, want, err_msg=name)  # NaN == NaN here
+            self.assertEqual(f(float(x[7])), want[7], name)  # a number in, a float out
+            self.assertIsInstance(f(0.5), float)
+
+    def test_shapes_and_bad_arrays(self):
+        m = np.linspace(0, 0.9, 12).reshape(3, 4)
+        self.assertEqual(ic.ellint_k(m).shape, (3, 4))
+        np.testing.assert_array_equal(ic.ellint_k(m[:, ::2]), ic.ellint_k(m[:, ::2].copy()))
+        np.testing.assert_array_equal(ic.ellint_k(m.astype(np.float32)), ic.ellint_k(m.astype(np.float32).astype(float)))
+        self.assertEqual(ic.ellint_k(np.array([])).shape, (0,))
+        self.assertEqual(ic.ellint_k([1, 0])[1], ic.ellint_k(0.0))  # integers are numbers
+        self.assertTrue(np.isnan(ic.ellint_k(np.nan)))
+        for bad in (np.array([1j]), ["a"], np.array([True]), [object()]):
+            with self.assertRaises(TypeError):
+                ic.ellint_k(bad)
+
+    def test_ellipse_kernel(self):
+        k = ic.ellipse_kernel(1.0, 0.25, 30.0, 8)
+        self.assertEqual(k.xy.shape, (8, 2))
+        cov = k.xy.T @ k.xy / 8
+        self.assertAlmostEqual(k.angle_deg, 30.0)
+        # averaged over offsets the taps have the covariance; at one offset close to it
+        self.assertLess(abs(np.trace(cov) - 1.25), 0.05)
+        self.assertEqual(ic.ellipse_kernel(0, 0, 0, 4).xy.shape, (1, 2))  # a point light: 1 tap
+        with self.assertRaisesRegex(ic.Error, "negative"):
+            ic.ellipse_kernel(-1, 1)
+        with self.assertRaisesRegex(ic.Error, "out of range"):
+            ic.ellipse_kernel(1, 1, 0, 10**9)
+
+
+class Luts(unittest.TestCase):
+    def test_headers_equal_the_cli(self):
+        for lang in ("c", "glsl", "opencl"):
+            self.assertEqual(ic.lut_header(32, lang), cli("lut", "--size", "32", "--lang", lang).stdout, lang)
+
+    def test_tables(self):
+        s, g = ic.lut(64)
+        self.assertEqual(s.shape, (64,))
+        self.assertAlmostEqual(s[0], 2 ** -0.5, 12)  # s(0) = lim t / w = 1 / sqrt(2)
+        for bad in (3, 65537, -1):
+            with self.assertRaisesRegex(ic.Error, "out of range"):
+                ic.lut(bad)
+        with self.assertRaisesRegex(ValueError, "unknown value 'hlsl'"):
+            ic.lut_header(32, "hlsl")
+
+
+class Lights(unittest.TestCase):
+    def test_round_trip_and_the_cli_format(self):
+        lights = [ic.Light(np.array([0.1, -0.3]), np.array([[0.02, 0.005], [0.005, 0.01]]),
+                           np.array([1.0, 0.9, 0.8]), 2.5),
+                  ic.Light(np.array([0.0, 0.0]), np.eye(2) * 1e-3)]
+        path = tmp("two.json")
+        ic.write_lights(path, lights)
+        back = ic.read_lights(path)
+        for a, b in zip(lights, back):
+            np.testing.assert_array_equal(a.mean, b.mean)
+            np.testing.assert_array_equal(a.cov, b.cov)
+            np.testing.assert_array_equal(a.color, b.color)
+            self.assertEqual(a.weight, b.weight)
+        self.assertEqual(json.load(open(path))["lights"][0]["weight"], 2.5)
+
+    def test_errors_carry_the_library_message(self):
+        with self.assertRaisesRegex(ic.Error, "nonexistent.json: cannot open lights file"):
+            ic.read_lights(tmp("nonexistent.json"))
+        bad = tmp("bad.json")
+        with open(bad, "w") as f:
+            f.write('{"lights": [{"mean": [0, 0], "cov": [[1, 0], [0, -1]]}]}')
+        with self.assertRaisesRegex(ic.Error, r"bad.json: lights\[0\]"):
+            ic.read_lights(bad)
+
+    def test_fit_equals_the_cli(self):
+        env = tmp("env.exr")
+        cli("make-env", "--lights", "0.2,0.1,0.02,0.01,30", "--size", "128x64", "-o", env)
+        out = tmp("fit_cli.json")
+        cli("fit-light", env, "--lights", "2", "-o", out)
+        lights, rep = ic.fit_light(env, lights=2)
+        self.assertEqual(ic.lights_json(lights), open(out).read())
+        chans, _ = ic.read_exr(env)
+        arr = np.stack([chans[c] for c in "RGB"], -1)
+        lights2, rep2 = ic.fit_light(arr[:, ::1], lights=2)
+        self.assertEqual(ic.lights_json(lights2), open(out).read())
+        self.assertEqual(rep, rep2)
+        self.assertIn("l1", rep)
+
+    def test_fit_bad_maps(self):
+        good = np.ones((8, 16, 3), np.float32)
+        nan = good.copy()
+        nan[2, 3, 1] = np.nan
+        with self.assertRaisesRegex(ValueError, "NaN"):
+            ic.fit_light(nan)
+        with self.assertRaisesRegex(ValueError, "expected shape"):
+            ic.fit_light(np.ones((8, 16)))
+        with self.assertRaises((ValueError, ic.Error)):
+            ic.fit_light(np.ones((0, 0, 3)))
+        with self.assertRaises(TypeError):
+            ic.fit_light(np.full((8, 16, 3), "x"))
+        with self.assertRaisesRegex(ValueError, r"lights: expected 1\.\.\d+, got 1000000"):
+            ic.fit_light(good, lights=10**6)
+        with self.assertRaisesRegex(ic.Error, "cannot open"):
+            ic.fit_light(tmp("missing.exr"))
+
+
+class Renders(unittest.TestCase):
+    def test_render_equals_the_cli(self):
+        exr = tmp("default.exr")
+        summary = json.loads(cli("render", "--resolution", "64x48", "--aov", "visibility,depth",
+                                 "--threads", "1", "-o", exr).stdout)
+        r = ic.render(resolution=(64, 48), aovs=["visibility", "depth"], threads=1)
+        chans, info = ic.read_exr(exr)
+        self.assertEqual(r.rgba.shape, (48, 64, 4))
+        self.assertEqual(r.rgba.dtype, np.float32)
+        np.testing.assert_array_equal(r.rgba, np.stack([chans[c] for c in "RGBA"], -1))
+        for name, a in r.aovs.items():
+            np.testing.assert_array_equal(a, chans[name], err_msg=name)
+        self.assertEqual(sorted(set(summary) - {"exr"}), sorted(r.summary))
+        for k in ("scene", "backend", "resolution", "slabs", "kernel", "model", "aovs", "memory_bytes"):
+            self.assertEqual(r.summary[k], summary[k], k)
+        self.assertEqual(info["slabs"], r.summary["slabs"])
+
+    def test_overrides_and_scenes(self):
+        disk = os.path.join(REPO, "scenes", "disk.json")
+        a = ic.render(disk, resolution=(32, 32))
+        self.assertEqual(a.summary["scene"], disk)
+        b = ic.render(disk, resolution=(32, 32), model="solid", samples=4)
+        self.assertEqual((b.summary["model"], b.summary["samples"]), ("solid", 4))
+        c = ic.render(json.load(open(disk)), resolution=(32, 32))  # a dict
+        np.testing.assert_array_equal(a.rgba, c.rgba)
+        p = ic.plan(disk, resolution=(32, 32))
+        self.assertEqual(p["resolution"], [32, 32])
+        self.assertEqual(p["slabs"], a.summary["slabs"])
+        self.assertEqual(ic.default_scene()["render"]["kernel"], ic.render(resolution=(8, 8)).summary["kernel"])
+
+    def test_errors_carry_the_cli_message(self):
+        bad = tmp("bad_scene.json")
+        with open(bad, "w") as f:
+            f.write('{"camera": {"eye": [0, 0, 2],,}}\n')
+        err = cli("render", bad, "-o", tmp("never.exr"), check=False).stderr.strip()
+        with self.assertRaises(ic.Error) as e:
+            ic.render(bad)
+        self.assertEqual("icshadow render: " + str(e.exception), err)
+        with self.assertRaisesRegex(ic.Error, 'default: render.model: unknown value "fast"'):
+            ic.render(resolution=(8, 8), model="fast")
+        with self.assertRaisesRegex(ic.Error, 'default: render: unknown key "bogus" \(expected slab_spacing'):
+            ic.plan(bogus=1)
+        with self.assertRaisesRegex(ic.Error, "no backend named 'vulkan'"):
+            ic.render(resolution=(8, 8), backend="vulkan")
+        with self.assertRaisesRegex(ValueError, "unknown 'normals'"):
+            ic.render(resolution=(8, 8), aovs=["normals"])
+        with self.assertRaises(ValueError):
+            ic.render(resolution=(0, 8))
+        with self.assertRaises(TypeError):
+            ic.render(42)
+
+    def test_compare_with_the_reference(self):
+        ref = ic.render(resolution=(32, 24), backend="mc", spp=8, aovs=["stderr"])
+        self.assertEqual(ref.summary["spp"], 8)
+        r = ic.render(resolution=(32, 24))
+        c = ic.compare(r, ref)
+        self.assertGreater(c["rmse"], 0)
+        self.assertLessEqual(c["rmse_beyond_noise"], c["rmse"])
+        self.assertGreaterEqual(c["max_error"], c["rmse"])
+        self.assertEqual(ic.compare(r, r)["rmse"], 0)
+        # the CLI's --compare on the same pair of files: the same numbers
+        a, b = tmp("r.exr"), tmp("ref.exr")
+        cli("render", "--resolution", "32x24", "-o", a)
+        cli("render", "--resolution", "32x24", "--backend", "mc", "--spp", "8", "--aov", "stderr", "-o", b)
+        want = json.loads(cli("render", "--resolution", "32x24", "--compare", b).stdout)["compare"]
+        got = ic.compare(a_render := ic.render(resolution=(32, 24)), b)
+        for k in ("rmse", "max_error", "max_at", "psnr_db"):  # ics_image_diff_rgb's own numbers
+            self.assertEqual(got[k], want[k], k)
+        for k in ("reference_noise", "rmse_beyond_noise"):  # numpy sums in another order
+            self.assertLess(abs(got[k] - want[k]), 1e-12 * want[k], k)
+        with self.assertRaisesRegex(ValueError, "the reference is 8x8"):
+            ic.compare(a_render, np.zeros((8, 8, 3)))
+
+    def test_render_releases_the_gil(self):
+        done, count = threading.Event(), 0
+        t = threading.Thread(target=lambda: (ic.render(resolution=(320, 240), threads=1), done.set()))
+        t.start()
+        while not done.is_set():
+            count += 1
+        t.join()
+        # with the GIL held for the C render this loop would stall for the whole frame
+        self.assertGreater(count, 1000)
+
+    def test_backends(self):
+        names = [b["name"] for b in ic.backends()]
+        self.assertIn("cpu", names)
+        self.assertIn("mc", names)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
