@@ -8,7 +8,7 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 PYTHON     ?= /usr/bin/python3
 CMAKE_ARGS ?=
 
-.PHONY: all deps mitsuba configure test test-asan test-fuzz fuzz demo figs notebooks bench analysis error-vs-time error-by-effect install clean
+.PHONY: all deps mitsuba configure test test-asan test-fuzz fuzz demo figs notebooks bench analysis python error-vs-time error-by-effect install clean
 
 all: configure
 	cmake --build $(BUILD) -j $(JOBS)
@@ -120,8 +120,8 @@ figs: deps-figs all
 # Execute notebooks/iterative_shadows.ipynb headless into out/notebooks (kernel python3 = /usr/bin/python3 through
 # the repo's kernel spec in notebooks/kernels; the CLI path goes in as ICSHADOW_CLI). The absolute
 # paths come from the shell, quoted: $(CURDIR) and $(abspath) split a checkout path with blanks.
-notebooks: deps-notebooks all
-	JUPYTER_PATH="$$(pwd)/notebooks" PYDEVD_DISABLE_FILE_VALIDATION=1 ICSHADOW_CLI="$$(cd "$(BUILD)" && pwd)/bin/icshadow" $(PYTHON) -m nbconvert \
+notebooks: deps-notebooks python
+	JUPYTER_PATH="$$(pwd)/notebooks" PYDEVD_DISABLE_FILE_VALIDATION=1 PYTHONPATH="$$(pwd)/$(PY_PKG)" ICSHADOW_CLI="$$(cd "$(BUILD)" && pwd)/bin/icshadow" $(PYTHON) -m nbconvert \
 	  --to notebook --execute --ExecutePreprocessor.kernel_name=python3 --ExecutePreprocessor.timeout=600 \
 	  --output-dir out/notebooks notebooks/iterative_shadows.ipynb
 
@@ -158,12 +158,22 @@ analysis: deps-analysis all
 	$(PYTHON) analysis/peer_accuracy.py --cli $(BUILD)/bin/icshadow --samples $(ANALYSIS_SAMPLES) --out out/analysis/peer_accuracy.csv
 	@echo "wrote out/analysis/stability.csv and out/analysis/peer_accuracy.csv"
 
+# The Python package (python/, docs/python.md) over this build's libraries, into $(PY_PKG): the
+# analysis drivers import it from there (PYTHONPATH). A user's own install: README "Using it
+# from Python" (a virtual environment and pip install ./python).
+PY_PKG = $(BUILD)/python-pkg
+python: deps-python all
+	rm -rf $(PY_PKG)
+	ICSHADOW_BUILD_DIR="$$(cd "$(BUILD)" && pwd)" $(PYTHON) -m pip install --quiet --disable-pip-version-check --root-user-action=ignore \
+	  --no-build-isolation --no-index --no-deps --target $(PY_PKG) ./python
+	@echo "icshadow package in $(PY_PKG): PYTHONPATH=$(PY_PKG) python3 -c 'import icshadow'"
+
 # Error against run time on the default scene (docs/results.md): a 1024-spp Monte-Carlo
 # reference (made once: out/analysis/error_vs_time_ref.exr), then every configuration and the
 # reference itself at 4..256 spp, interleaved over 3 rounds. 5 to 25 minutes on a 2-core VM, by its load.
-error-vs-time: deps all
+error-vs-time: deps python
 	@mkdir -p out/analysis
-	$(PYTHON) analysis/error_vs_time.py --icshadow $(BUILD)/bin/icshadow --ref out/analysis/error_vs_time_ref.exr \
+	PYTHONPATH="$$(pwd)/$(PY_PKG)" $(PYTHON) analysis/error_vs_time.py --ref out/analysis/error_vs_time_ref.exr \
 	  --csv out/analysis/error_vs_time.csv --plot out/analysis/error_vs_time.png \
 	  --images out/analysis/error_vs_time_images.png
 

@@ -3,8 +3,8 @@
 Monte-Carlo reference itself, on one scene (default: the embedded default scene).
 
 Method (docs/results.md "Error against run time"):
-1. References: `icshadow render SCENE --backend mc --spp REF_SPP --seed 1001 --aov stderr`, one
-   per resolution swept (written once with what they were made from beside them, REF.exr.json;
+1. References: the Monte-Carlo reference (`icshadow.render(SCENE, backend="mc", spp=REF_SPP,
+   seed=1001, aovs=["stderr"])`, written with `write_exr`), one per resolution swept (written once with what they were made from beside them, REF.exr.json;
    reused when that matches, refused when not; `--refs-only` makes them and stops).
    Their own noise (RMS standard error of R, G, B) is reported; every comparison states
    `rmse_beyond_noise` = sqrt(max(rmse^2 - noise^2, 0)), the render's error with the reference's
@@ -14,8 +14,9 @@ Method (docs/results.md "Error against run time"):
    against exact ones, render.model surface at three slab spacings, resolution) and Monte-Carlo
    renders at 4..256 samples per pixel under the
    seed 7 + task, each run REPS times in an interleaved order (task by task, round by round) so
-   load drifts spread over all of them; `icshadow render ... --compare REF.exr` gives the error,
-   the summary the time. Time is ms_plan + ms_render (the frame: plan with its geometry pass,
+   load drifts spread over all of them; `icshadow.render(...)` renders (the configuration as
+   overrides of the scene's render settings) and `icshadow.compare(render, REF.exr)` gives the
+   error, the render's summary the time. Time is ms_plan + ms_render (the frame: plan with its geometry pass,
    then the render) for the slab renderer and ms_render for Monte Carlo (it uses no plan).
 3. CSV (task, method, parameters, resolution, ms median / min / max, rmse, rmse_beyond_noise,
    max_error, psnr, the reference's samples and noise, n_tasks) and a log-log plot of error
@@ -26,7 +27,9 @@ Method (docs/results.md "Error against run time"):
    `--no-times` leaves the time columns out: what is left is a function of the inputs alone, so
    merged shards equal the unsharded run byte for byte (tests/analysis.cmake checks that).
 
-Python is only the driver and the plot; all numbers come from the C tool.
+Python is only the driver and the plot; all numbers come from the C libraries, through the
+icshadow Python package (docs/python.md; `make python` installs it into build/python-pkg, and
+`make error-vs-time` puts it on PYTHONPATH).
 Exit status: 0 done, 1 a render failed, 2 bad arguments or shards that do not merge.
 """
 import argparse
@@ -36,9 +39,16 @@ import json
 import os
 import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
+
+import numpy as np
+
+try:
+    import icshadow
+except ImportError as e:
+    sys.exit(f"error_vs_time: cannot import the icshadow package ({e}): `make python` installs it "
+             "into build/python-pkg; run with PYTHONPATH=build/python-pkg (docs/python.md)")
 
 TIME_COLUMNS = ("ms", "ms_min", "ms_max")
 
@@ -51,11 +61,12 @@ def die(msg, code=2):
     sys.exit(code)
 
 
-def run(cmd):
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
-        die(f"{' '.join(cmd)} failed ({p.returncode}): {p.stderr.strip()}", 1)
-    return json.loads(p.stdout)
+def render(what, **kw):
+    """icshadow.render(**kw); a failure ends the run (exit 1) with the library's message."""
+    try:
+        return icshadow.render(**kw)
+    except (icshadow.Error, MemoryError) as e:
+        die(f"{what}: {e}", 1)
 
 
 def shard_spec(text):
@@ -135,7 +146,6 @@ def merge(a):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--icshadow", default="build/bin/icshadow")
     ap.add_argument("--scene", default=None, help="scene file (default: the embedded default scene)")
     ap.add_argument("--ref", default="out/error_vs_time_ref.exr",
                     help="reference EXR (made if absent); other resolutions: REF_WxH.exr")
@@ -160,14 +170,16 @@ def main():
         return replot(a)
     if a.merge:
         return merge(a)
-    ics = a.icshadow
-    if not os.access(ics, os.X_OK):
-        die(f"{ics}: not an executable (build icshadow first)")
     os.makedirs(os.path.dirname(os.path.abspath(a.csv)), exist_ok=True)
     tmp = tempfile.mkdtemp(prefix="evt")
-    scene_text = subprocess.run([ics, "plan", "--print-scene"] if a.scene is None else ["cat", a.scene],
-                                capture_output=True, text=True, check=True).stdout
-    base = json.loads(scene_text)
+    if a.scene is None:
+        base = icshadow.default_scene()
+    else:
+        try:
+            with open(a.scene) as f:
+                base = json.load(f)
+        except (OSError, ValueError) as e:
+            die(f"--scene: {a.scene}: {e}")
     if a.resolution:
         base["camera"]["resolution"] = [int(v) for v in a.resolution.split("x")]
     W0, H0 = base["camera"]["resolution"]
@@ -176,50 +188,53 @@ def main():
         a.resolutions = "" if a.quick else f"{W0 // 2}x{H0 // 2},{2 * W0}x{2 * H0}"
     resolutions = [r for r in a.resolutions.split(",") if r and r != res0]
 
-    def scene_with(res=res0, **render):
+    def scene_with(res=res0):
+        """the scene at res, as rendered (what a reference records it was made from)"""
         s = json.loads(json.dumps(base))
-        s["render"].update(render)
         s["camera"]["resolution"] = [int(v) for v in res.split("x")]
-        path = os.path.join(tmp, "scene_%d.json" % abs(hash(json.dumps([res, render], sort_keys=True))))
-        with open(path, "w") as f:
-            json.dump(s, f)
-        return path
+        return s
+
+    def run_task(res, overrides, what):
+        """a render of the scene (its file, so that its own files resolve, or the default) at res
+        with the overrides of its render settings (backend, spp: the renderer's own options)"""
+        kw = dict(overrides)
+        return render(what, scene=a.scene, resolution=tuple(int(v) for v in res.split("x")), **kw)
 
     def ref_path(res):
         return a.ref if res == res0 else os.path.splitext(a.ref)[0] + f"_{res}.exr"
 
     e0, d10 = base["render"]["slab_spacing"], base["render"]["d1"]
-    tasks = []  # (method, parameters, resolution, scene, extra args)
+    tasks = []  # (method, parameters, resolution, overrides)
     members = [("ellipse", 2, "expected"), ("ellipse", 3, "expected"), ("poisson", 8, "expected"),
                ("poisson", 16, "expected"), ("gauss", 19, "nonneg"), ("gauss", 19, "signed"),
                ("tophat", 5, "nonneg"), ("ellipse", 2, "signed"), ("ellipse", 2, "integer")]
     if a.quick:
         members = members[:1] + members[4:5]
     for k, n, comp in members:
-        tasks.append(("slab", f"{k}{n} {comp} e={e0:g}", res0, scene_with(),
-                      ["--kernel", k, "--samples", str(n), "--compensate", comp]))
+        tasks.append(("slab", f"{k}{n} {comp} e={e0:g}", res0,
+                      {"kernel": k, "samples": n, "compensate": comp}))
     if not a.quick:
-        tasks.append(("slab", f"ellipse2 expected e={e0:g} run16", res0, scene_with(rotation_run=16), []))
+        tasks.append(("slab", f"ellipse2 expected e={e0:g} run16", res0, {"rotation_run": 16}))
         for f in (0.5, 2, 4):
             for pre in (False, True):
                 tasks.append(("slab", f"ellipse2 expected e={e0 * f:g}{' preint' if pre else ''}", res0,
-                              scene_with(slab_spacing=e0 * f, preintegrate=pre), []))
-        tasks.append(("slab", f"ellipse2 expected e={e0:g} preint", res0, scene_with(preintegrate=True), []))
+                              {"slab_spacing": e0 * f, "preintegrate": pre}))
+        tasks.append(("slab", f"ellipse2 expected e={e0:g} preint", res0, {"preintegrate": True}))
         for f in (0.25, 0.5, 2):
-            tasks.append(("slab", f"ellipse2 expected e={e0:g} d1={d10 * f:g}", res0, scene_with(d1=d10 * f), []))
-        tasks.append(("slab", f"ellipse2 expected e={e0:g} lut", res0, scene_with(), ["--radii", "lut"]))
+            tasks.append(("slab", f"ellipse2 expected e={e0:g} d1={d10 * f:g}", res0, {"d1": d10 * f}))
+        tasks.append(("slab", f"ellipse2 expected e={e0:g} lut", res0, {"radii": "lut"}))
         # the other model (render.model surface: solid objects, a solid's own term), at three
         # slab spacings
         for f in (0.5, 1, 2):
             tasks.append(("slab", f"ellipse2 expected e={e0 * f:g} model surface", res0,
-                          scene_with(slab_spacing=e0 * f, model="surface"), []))
+                          {"slab_spacing": e0 * f, "model": "surface"}))
     for res in resolutions:
-        tasks.append(("slab", f"ellipse2 expected e={e0:g} {res}", res, scene_with(res), []))
+        tasks.append(("slab", f"ellipse2 expected e={e0:g} {res}", res, {}))
     for spp in ([4, 16] if a.quick else [4, 16, 64, 256]):
-        tasks.append(("mc", f"{spp} spp", res0, scene_with(), ["--backend", "mc", "--spp", str(spp)]))
+        tasks.append(("mc", f"{spp} spp", res0, {"backend": "mc", "spp": spp}))
     n_tasks = len(tasks)
     # what makes two shards parts of one sweep: the scene, the tasks and the references
-    sweep_id = hashlib.sha256(json.dumps([base, [t[:3] + (t[4],) for t in tasks], a.ref, a.ref_spp],
+    sweep_id = hashlib.sha256(json.dumps([base, tasks, a.ref, a.ref_spp],
                                          sort_keys=True).encode()).hexdigest()[:16]
     mine = [k for k in range(n_tasks) if a.shard is None or k % a.shard[1] == a.shard[0]]
 
@@ -227,7 +242,7 @@ def main():
     for res in sorted({tasks[k][2] for k in mine} | ({res0} if a.refs_only or a.images else set())):
         # what a reference was made from, kept beside it (REF.exr.json): a reference of another
         # scene, resolution or sample count is refused, not reused
-        made = {"scene": json.loads(open(scene_with(res)).read()), "spp": a.ref_spp, "seed": 1001}
+        made = {"scene": scene_with(res), "spp": a.ref_spp, "seed": 1001}
         side = ref_path(res) + ".json"
         if os.path.exists(ref_path(res)):
             try:
@@ -240,15 +255,17 @@ def main():
                     f"{'differs' if known else 'is missing'}): remove it (it is remade) or give another --ref")
             continue
         print(f"reference: mc {res}, {a.ref_spp} spp -> {ref_path(res)}", file=sys.stderr, flush=True)
-        extra = ["--png", ref_png] if res == res0 else []
-        # --time: a hard stop far beyond what the references take (6 min at 640 x 480 here), which
+        # time: a hard stop far beyond what the references take (6 min at 640 x 480 here), which
         # lifts the reference's work budget (its estimate for the smoke's tracking steps is loose,
         # docs/reference.md); a reference cut short by it is refused, not used
-        got = run([ics, "render", scene_with(res), "--backend", "mc", "--spp", str(a.ref_spp), "--seed", "1001",
-                   "--time", str(REF_TIME_S), "--aov", "stderr", "-o", ref_path(res)] + extra)
-        if got.get("spp") != a.ref_spp:
-            die(f"{ref_path(res)}: the reference stopped at {got.get('spp')} of {a.ref_spp} samples per "
-                f"pixel after {REF_TIME_S} s", 1)
+        ref = run_task(res, {"backend": "mc", "spp": a.ref_spp, "seed": 1001, "time": REF_TIME_S,
+                             "aovs": ["stderr"]}, f"reference {res}")
+        if ref.summary.get("spp") != a.ref_spp:
+            die(f"{ref_path(res)}: the reference stopped at {ref.summary.get('spp')} of {a.ref_spp} "
+                f"samples per pixel after {REF_TIME_S} s", 1)
+        ref.write_exr(ref_path(res))
+        if res == res0:
+            ref.write_png(ref_png)
         fd, tmp_side = tempfile.mkstemp(prefix=".evt", suffix=".json", dir=os.path.dirname(os.path.abspath(side)))
         with os.fdopen(fd, "w") as f:
             json.dump(made, f, sort_keys=True)
@@ -261,19 +278,22 @@ def main():
     result = {}
     for r in range(a.reps):
         for k in mine:
-            method, params, res, scene, extra = tasks[k]
+            method, params, res, overrides = tasks[k]
             print(f"round {r + 1}/{a.reps}: task {k}: {method} {params}", file=sys.stderr, flush=True)
-            seed = ["--seed", str(7 + k)] if method == "mc" else []
-            s = run([ics, "render", scene, "--compare", ref_path(res), "--png", os.path.join(tmp, "x.png")]
-                    + extra + seed)
+            seed = {"seed": 7 + k} if method == "mc" else {}
+            got = run_task(res, {**overrides, **seed}, f"task {k}")
+            s = got.summary
             times[k].append(s["ms_render"] + (0 if method == "mc" else s["ms_plan"]))
-            result[k] = s["compare"]
-            if s["compare"].get("reference_spp") != a.ref_spp:
-                die(f"{ref_path(res)} was made with {s['compare'].get('reference_spp')} samples per pixel, "
+            try:
+                result[k] = icshadow.compare(got, ref_path(res))
+            except (icshadow.Error, ValueError) as e:
+                die(f"task {k}: {e}", 1)
+            if result[k].get("reference_spp") != a.ref_spp:
+                die(f"{ref_path(res)} was made with {result[k].get('reference_spp')} samples per pixel, "
                     f"not --ref-spp {a.ref_spp}: remove it (it is remade) or give its --ref-spp")
     rows = []
     for k in mine:
-        method, params, res, _, _ = tasks[k]
+        method, params, res, _ = tasks[k]
         c, t = result[k], times[k]
         rows.append({"task": k, "method": method, "parameters": params, "resolution": res,
                      "ms": statistics.median(t), "ms_min": min(t), "ms_max": max(t), "rmse": c["rmse"],
@@ -291,9 +311,21 @@ def main():
             plot(rows, ref_info.get("reference_spp"), ref_info["reference_noise"], a.reps, a.plot)
         if a.images and os.path.exists(ref_png):
             slab_png, diff_png = os.path.join(tmp, "slab.png"), os.path.join(tmp, "diff.png")
-            c = run([ics, "render", scene_with(), "--compare", a.ref, "--png", slab_png, "--diff-png", diff_png])
-            images(slab_png, ref_png, diff_png, c["compare"], a.images)
+            got = run_task(res0, {}, "the default configuration")
+            got.write_png(slab_png)
+            ref_rgb = np.stack([icshadow.read_exr(a.ref)[0][c] for c in "RGB"], -1)
+            icshadow.write_png(diff_png, difference_image(got.rgba[:, :, :3], ref_rgb, 4))
+            images(slab_png, ref_png, diff_png, icshadow.compare(got, a.ref), a.images)
     shutil.rmtree(tmp, ignore_errors=True)
+
+
+def difference_image(rgb, ref, scale):
+    """render minus reference, mean over R, G, B, times scale: red where the render is brighter,
+    blue where darker (the picture `icshadow render --diff-png` writes)"""
+    d = (rgb.astype(np.float64) - ref).mean(axis=2) * scale
+    out = np.zeros(rgb.shape, np.float32)
+    out[:, :, 0], out[:, :, 2] = np.clip(d, 0, 1), np.clip(-d, 0, 1)
+    return out
 
 
 def images(slab_png, ref_png, diff_png, c, path):

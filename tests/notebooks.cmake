@@ -27,10 +27,12 @@ if(ICS_PYTHON3_NB AND ics_nb_rc EQUAL 0)
     MPLCONFIGDIR=${ics_nb_dir}/mpl
     PYDEVD_DISABLE_FILE_VALIDATION=1
     ICSHADOW_CLI=$<TARGET_FILE:icshadow_cli>
+    ${ICS_PYTHON_ENV} ICSHADOW_REQUIRE_PACKAGE=1
     ${ICS_PYTHON3_NB} -m nbconvert --to notebook --execute
       --ExecutePreprocessor.kernel_name=python3 --ExecutePreprocessor.timeout=600
       --output-dir ${ics_nb_dir} ${ics_nb_input})
-  set_tests_properties(notebook_iterative_shadows PROPERTIES LABELS medium TIMEOUT 900)
+  set_tests_properties(notebook_iterative_shadows PROPERTIES LABELS medium TIMEOUT 900
+    FIXTURES_REQUIRED icshadow_python)
   # paths go in as arguments, never into the script text (a checkout path with blanks)
   add_test(NAME notebook_generated COMMAND sh -c
     "mkdir -p \"$1\" && \"$2\" \"$3\" \"$1/generated.ipynb\" && cmp \"$1/generated.ipynb\" \"$4\""

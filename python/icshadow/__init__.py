@@ -3,7 +3,7 @@ libraries (libicshadow, libicshadow_render): the numerics over numpy arrays, LUT
 and light fitting, and scenes planned, rendered and compared with the Monte-Carlo reference.
 docs/python.md."""
 from ._lib import Error
-from .exr import read_exr
+from .exr import read_exr, srgb, write_exr, write_png
 from .lights import Light, fit_light, lights_json, read_lights, write_lights
 from .lut import lut, lut_header
 from .numerics import (EllipseKernel, ellint_e, ellint_e_m1, ellint_k, ellint_k_m1,
@@ -14,5 +14,5 @@ from .render import Render, backends, compare, default_scene, plan, render
 __all__ = ["Error", "Light", "fit_light", "lights_json", "read_lights", "write_lights", "lut",
            "lut_header", "EllipseKernel", "ellint_e", "ellint_e_m1", "ellint_k", "ellint_k_m1",
            "ellipse_kernel", "ellipse_ratio", "ellipse_ratio_to_t", "ellipse_varx", "ellipse_vx",
-           "ellipse_vy", "Render", "read_exr", "backends", "compare", "default_scene", "plan", "render"]
+           "ellipse_vy", "Render", "read_exr", "srgb", "write_exr", "write_png", "backends", "compare", "default_scene", "plan", "render"]
 __version__ = "0.2.0"

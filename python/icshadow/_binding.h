@@ -49,6 +49,11 @@ typedef struct {
 ics_status ics_exr_read_channels(const char *path, ics_exr_channels **out, char *msg,
                                  size_t msg_size);
 void ics_exr_channels_destroy(ics_exr_channels *ch);
+typedef enum { ICS_EXR_FLOAT, ... } ics_exr_type;
+ics_status ics_exr_write_channels(const char *path, const ics_exr_channels *ch, ics_exr_type type,
+                                  int latlong, char *msg, size_t msg_size);
+ics_status ics_output_png(const ics_image *img, const char *path, char *msg, size_t msg_size);
+double ics_output_srgb(double linear);
 
 /* lights (icshadow/light.h, lightsfile.h) and light fitting (icshadow/lightfit.h) */
 typedef struct {

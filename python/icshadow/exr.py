@@ -1,10 +1,13 @@
-"""exr.py: OpenEXR images read through libicshadow (OpenEXR's C API): every channel by name, as
-the renderer writes them (R, G, B, A, light0.V, Z, stderr.R, ...)."""
+"""exr.py: images in files through the C libraries: OpenEXR read and written channel by channel
+(R, G, B, A, light0.V, Z, stderr.R, ... as the renderer writes them), and 8-bit sRGB PNG previews.
+Both are written whole or not at all (a temporary file beside the target, renamed)."""
+import json
 import os
+import tempfile
 
 import numpy as np
 
-from ._lib import check, ffi, lib, msg_buffer
+from ._lib import check, ffi, image_from_array, lib, msg_buffer
 
 
 def channels_to_dict(ch):
@@ -18,8 +21,6 @@ def read_exr(path):
     """(channels, info): every channel of the EXR at path as {name: (height, width) float32},
     and its "icshadow" attribute (the render summary of a render the CLI wrote, parsed as a
     dict; None when absent)."""
-    import json
-
     out, msg = ffi.new("ics_exr_channels **"), msg_buffer()
     check(lib.ics_exr_read_channels(os.fsencode(path), out, msg, len(msg)), msg)
     ch = ffi.gc(out[0], lib.ics_exr_channels_destroy)
@@ -29,3 +30,50 @@ def read_exr(path):
     except ValueError:
         pass  # another writer's text: kept as it is
     return channels_to_dict(ch), info
+
+
+def write_exr(path, channels, info=None):
+    """Writes {name: (height, width) array} as a float EXR, channels in the dict's order; info (a
+    dict or a text, may be None) goes into its "icshadow" attribute, where `read_exr` and
+    `icshadow render --compare` find a render's summary."""
+    names = list(channels)
+    if not names:
+        raise ValueError("write_exr: no channels")
+    planes = [np.asarray(channels[n], dtype=np.float32) for n in names]
+    shape = planes[0].shape
+    if len(shape) != 2 or any(p.shape != shape for p in planes):
+        raise ValueError(f"write_exr: every channel must be one (height, width) array; got "
+                         f"{', '.join(f'{n} {p.shape}' for n, p in zip(names, planes))}")
+    data = np.ascontiguousarray(np.stack(planes, axis=-1))
+    cnames = [ffi.new("char[]", n.encode()) for n in names]
+    ctext = ffi.new("char[]", (info if isinstance(info, str) else json.dumps(info)).encode()) \
+        if info is not None else ffi.NULL
+    ch = ffi.new("ics_exr_channels *")
+    ch.height, ch.width, ch.count = shape[0], shape[1], len(names)
+    name_arr = ffi.new("const char *[]", cnames)
+    ch.names, ch.data, ch.info = name_arr, ffi.from_buffer("float[]", data), ctext
+    msg = msg_buffer()
+    check(lib.ics_exr_write_channels(os.fsencode(path), ch, lib.ICS_EXR_FLOAT, 0, msg, len(msg)), msg)
+
+
+def srgb(linear):
+    """The sRGB encoding (IEC 61966-2-1) of linear values in [0, 1], as the PNG previews are
+    encoded: for showing a render (clip it to [0, 1] first)."""
+    from .numerics import map_function
+    return map_function("ics_output_srgb", linear, "srgb")
+
+
+def write_png(path, rgb):
+    """Writes an image (height, width, 3 or 4) of linear values as an 8-bit sRGB PNG preview
+    (clamped to [0, 1]; alpha is not written), as `icshadow render --png` does."""
+    img = image_from_array(rgb, "write_png")
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=".png.", dir=folder)
+    os.close(fd)
+    msg = msg_buffer()
+    try:
+        check(lib.ics_output_png(img, os.fsencode(tmp), msg, len(msg)), msg)
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise

@@ -8,14 +8,20 @@ import numpy as np
 from ._lib import check, ffi, lib, real_array
 
 
+def map_function(cname, x, name):
+    """The library's double -> double function cname over x (a number or an array of real
+    numbers): an array of x's shape, a float for a number."""
+    a = real_array(x, name)
+    out = np.empty(a.shape, dtype=np.float64)
+    if a.size:
+        lib.icspy_map(ffi.addressof(lib, cname), ffi.from_buffer("double[]", a),
+                      ffi.from_buffer("double[]", out), a.size)
+    return out if np.ndim(x) else float(out)
+
+
 def _mapped(cname, doc):
     def f(x):
-        a = real_array(x, cname[4:])
-        out = np.empty(a.shape, dtype=np.float64)
-        if a.size:
-            lib.icspy_map(ffi.addressof(lib, cname), ffi.from_buffer("double[]", a),
-                          ffi.from_buffer("double[]", out), a.size)
-        return out if np.ndim(x) else float(out)
+        return map_function(cname, x, cname[4:])
 
     f.__name__ = cname[4:]
     f.__doc__ = doc + "\n\nx: a number or an array of real numbers; returns the same shape (a float for a number)."

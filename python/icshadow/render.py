@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._lib import check, ffi, image_from_array, image_to_array, lib, msg_buffer, take_string
-from .exr import channels_to_dict, read_exr
+from .exr import channels_to_dict, read_exr, write_exr, write_png
 
 AOV_BITS = {"visibility": 1, "depth": 2, "stderr": 4}  # ICS_AOV_VISIBILITY, _DEPTH, _STDERR
 
@@ -77,6 +77,17 @@ class Render:
     def __getitem__(self, name):
         return self.aovs[name]
 
+    def write_exr(self, path):
+        """R, G, B, A and the AOVs as one float EXR with the summary in it, as `icshadow render
+        -o` writes them."""
+        planes = {c: self.rgba[:, :, k] for k, c in enumerate("RGBA")}
+        planes.update(self.aovs)
+        write_exr(path, planes, self.summary)
+
+    def write_png(self, path):
+        """The 8-bit sRGB preview `icshadow render --png` writes."""
+        write_png(path, self.rgba)
+
 
 def _aov_bits(aovs):
     names = [aovs] if isinstance(aovs, str) else list(aovs or ())
@@ -124,38 +135,46 @@ def render(scene=None, backend="auto", resolution=None, aovs=(), threads=0, spp=
 
 
 def _reference(reference):
-    """(an ics_image of the reference's R, G, B, its stderr (h, w, 3) or None, its name)"""
+    """(an ics_image of the reference's R, G, B, its stderr (h, w, 3) or None, its name, its
+    summary or {})"""
     if isinstance(reference, Render):
-        se = [reference.aovs.get(f"stderr.{c}") for c in "RGB"]
-        noise = np.stack(se, -1) if all(x is not None for x in se) else None
-        return image_from_array(reference.rgba[:, :, :3], "reference"), noise, \
-            reference.summary.get("backend", "render")
-    if isinstance(reference, (str, bytes, os.PathLike)):
-        chans, _ = read_exr(reference)
+        chans, summary, name = reference.aovs, reference.summary, reference.summary.get("backend", "render")
+        rgb = reference.rgba[:, :, :3]
+    elif isinstance(reference, (str, bytes, os.PathLike)):
+        chans, summary = read_exr(reference)
+        name = os.fsdecode(reference)
         if not all(c in chans for c in "RGB"):
-            raise ValueError(f"reference: {os.fsdecode(reference)} has no R, G, B channels")
-        se = [chans.get(f"stderr.{c}") for c in "RGB"]
-        noise = np.stack(se, -1) if all(x is not None for x in se) else None
+            raise ValueError(f"reference: {name} has no R, G, B channels")
         rgb = np.stack([chans[c] for c in "RGB"], -1)
-        return image_from_array(rgb, "reference"), noise, os.fsdecode(reference)
-    return image_from_array(reference, "reference"), None, "array"
+    else:
+        return image_from_array(reference, "reference"), None, "array", {}
+    se = [chans.get(f"stderr.{c}") for c in "RGB"]
+    noise = np.stack(se, -1) if all(x is not None for x in se) else None
+    return image_from_array(rgb, "reference"), noise, name, summary if isinstance(summary, dict) else {}
 
 
 def compare(render, reference):
     """The render's R, G, B against a reference (a Render, e.g. backend="mc"; an EXR path; or an
     array (h, w, 3 or 4)), as `icshadow render --compare` reports it: rmse, max_error, max_at
-    [x, y], psnr_db and, where the reference carries its standard error (stderr AOVs),
-    reference_noise and rmse_beyond_noise = sqrt(max(0, rmse^2 - noise^2))."""
+    [x, y], psnr_db; from the reference's summary (a Render's, or the one the CLI keeps in its
+    EXR) reference_backend, reference_device, reference_spp and ms_reference; and where the
+    reference carries its standard error (stderr AOVs) reference_noise and rmse_beyond_noise =
+    sqrt(max(0, rmse^2 - noise^2))."""
     rgba = render.rgba if isinstance(render, Render) else render
     a = image_from_array(rgba, "render")
-    b, noise, name = _reference(reference)
+    b, noise, name, ref_summary = _reference(reference)
     if (a.width, a.height) != (b.width, b.height):
         raise ValueError(f"compare: the reference is {b.width}x{b.height}, the render "
                          f"{a.width}x{a.height}")
     d = ffi.new("ics_image_diff *")
     check(lib.ics_image_diff_rgb(a, b, d), context="compare: ")
-    out = {"reference": name, "rmse": d.rmse, "max_error": d.max_abs, "max_at": [d.max_x, d.max_y],
-           "psnr_db": d.psnr}
+    out = {"reference": name}
+    for key, ref_key in (("reference_backend", "backend"), ("reference_device", "device"),
+                         ("reference_spp", "spp"), ("ms_reference", "ms_render")):
+        if ref_key in ref_summary:
+            out[key] = ref_summary[ref_key]
+    out.update({"rmse": d.rmse, "max_error": d.max_abs, "max_at": [d.max_x, d.max_y],
+                "psnr_db": d.psnr})
     if noise is not None:
         n = float(np.sqrt(np.mean(np.square(noise, dtype=np.float64))))
         out["reference_noise"] = n

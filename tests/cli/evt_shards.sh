@@ -7,10 +7,10 @@
 # same task count), a file that is not a sweep's, a reference made for another scene — exit 2
 # with the reason and no output file.
 set -u
-py=$1 evt=$2 cli=$3
+py=$1 evt=$2  # the icshadow package on PYTHONPATH (tests/python.cmake installs it)
 . "$(dirname "$0")/checks.sh"
 sweep() {
-  "$py" "$evt" --icshadow "$cli" --quick --resolution 64x48 --resolutions 32x24 --ref-spp 16 \
+  "$py" "$evt" --quick --resolution 64x48 --resolutions 32x24 --ref-spp 16 \
     --reps 1 --no-times --ref "$dir/ref.exr" "$@" 2>> "$dir/log"
 }
 sweep --csv "$dir/all.csv"; expect '[ $? -eq 0 ]'
@@ -27,11 +27,11 @@ expect '[ $rc -eq 2 ] && [ ! -e "$dir/x.csv" ]'
 expect '[ $rc -eq 2 ] && grep -q "tasks missing: 2" "$dir/err" && [ ! -e "$dir/x.csv" ]'
 "$py" "$evt" --merge "$dir/s0.csv" "$dir/s1.csv" "$dir/s1.csv" "$dir/s2.csv" --csv "$dir/x.csv" 2> "$dir/err"; rc=$?
 expect '[ $rc -eq 2 ] && grep -q "is in two shards" "$dir/err" && [ ! -e "$dir/x.csv" ]'
-"$py" "$evt" --icshadow "$cli" --quick --resolution 48x32 --resolutions 32x24 --ref-spp 16 --reps 1 \
+"$py" "$evt" --quick --resolution 48x32 --resolutions 32x24 --ref-spp 16 --reps 1 \
   --no-times --ref "$dir/ref2.exr" --shard 0/3 --csv "$dir/o0.csv" 2>> "$dir/log"
 "$py" "$evt" --merge "$dir/o0.csv" "$dir/s1.csv" "$dir/s2.csv" --csv "$dir/x.csv" 2> "$dir/err"; rc=$?
 expect '[ $rc -eq 2 ] && grep -q "is from another sweep" "$dir/err" && [ ! -e "$dir/x.csv" ]'
-"$py" "$evt" --icshadow "$cli" --quick --resolution 48x32 --resolutions 32x24 --ref-spp 16 --reps 1 \
+"$py" "$evt" --quick --resolution 48x32 --resolutions 32x24 --ref-spp 16 --reps 1 \
   --no-times --ref "$dir/ref.exr" --csv "$dir/x.csv" 2> "$dir/err"; rc=$?
 expect '[ $rc -eq 2 ] && grep -q "ref.exr was not made for this scene" "$dir/err" && [ ! -e "$dir/x.csv" ]'
 echo "a,b" > "$dir/other.csv"

@@ -8,7 +8,7 @@
 # (--no-times). Skipped with the reason when not root (the daemons run as SlurmUser=root) or when
 # slurm-wlm / munge are not installed (scripts/deps.sh installs them).
 set -u
-py=$1 evt=$2 cli=$3 slurm=$4
+py=$1 evt=$2 slurm=$3  # the icshadow package on PYTHONPATH (tests/python.cmake)
 if [ "$(id -u)" -ne 0 ]; then
   echo "SKIPPED: cli_error_vs_time_slurm needs root (a private slurmctld and slurmd as SlurmUser=root)"
   exit 77
@@ -28,7 +28,7 @@ if ! "$slurm" start "$dir/cluster" 2> "$dir/start.log"; then
   exit 1
 fi
 export SLURM_CONF=$dir/cluster/slurm.conf
-E="$py $evt --icshadow $cli --quick --resolution 64x48 --resolutions 32x24 --ref-spp 16 --reps 1 --no-times --ref $dir/ref.exr"
+E="$py $evt --quick --resolution 64x48 --resolutions 32x24 --ref-spp 16 --reps 1 --no-times --ref $dir/ref.exr"
 ref=$(sbatch --parsable -D "$dir" -o "$dir/refs.out" --wrap "$E --refs-only")
 arr=$(sbatch --parsable -D "$dir" --kill-on-invalid-dep=yes --dependency=afterok:$ref --array=0-2 -o "$dir/shard_%a.out" \
       --wrap "$E --shard \$SLURM_ARRAY_TASK_ID/3 --csv $dir/shard_\$SLURM_ARRAY_TASK_ID.csv")

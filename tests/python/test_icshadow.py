@@ -49,6 +49,12 @@ class Numerics(unittest.TestCase):
             self.assertEqual(f(float(x[7])), want[7], name)  # a number in, a float out
             self.assertIsInstance(f(0.5), float)
 
+    def test_srgb(self):
+        x = np.linspace(0, 1, 11)
+        got = ic.srgb(x)
+        want = np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055)  # IEC 61966-2-1
+        np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-15)
+
     def test_shapes_and_bad_arrays(self):
         m = np.linspace(0, 0.9, 12).reshape(3, 4)
         self.assertEqual(ic.ellint_k(m).shape, (3, 4))
@@ -163,6 +169,26 @@ class Renders(unittest.TestCase):
         for k in ("scene", "backend", "resolution", "slabs", "kernel", "model", "aovs", "memory_bytes"):
             self.assertEqual(r.summary[k], summary[k], k)
         self.assertEqual(info["slabs"], r.summary["slabs"])
+        # written by the package: the same pixels, the summary inside, the CLI's compare reads it
+        mine = tmp("mine.exr")
+        r.write_exr(mine)
+        chans2, info2 = ic.read_exr(mine)
+        self.assertEqual(sorted(chans2), sorted(chans))
+        for name in chans:
+            np.testing.assert_array_equal(chans2[name], chans[name], err_msg=name)
+        self.assertEqual(info2, r.summary)
+        c = json.loads(cli("render", "--resolution", "64x48", "--threads", "1", "--compare", mine).stdout)
+        self.assertEqual(c["compare"]["rmse"], 0)
+        self.assertEqual(c["compare"]["reference_backend"], "cpu")
+        png = tmp("mine.png")
+        r.write_png(png)
+        cli("render", "--resolution", "64x48", "--threads", "1", "--png", tmp("cli.png"))
+        self.assertEqual(open(png, "rb").read(), open(tmp("cli.png"), "rb").read())
+        with self.assertRaisesRegex(ValueError, "one \\(height, width\\) array"):
+            ic.write_exr(tmp("x.exr"), {"R": np.zeros((2, 2)), "G": np.zeros((3, 2))})
+        with self.assertRaisesRegex(ic.Error, "NaN"):
+            ic.write_exr(tmp("x.exr"), {"R": np.full((2, 2), np.nan)})
+        self.assertFalse(os.path.exists(tmp("x.exr")))
 
     def test_overrides_and_scenes(self):
         disk = os.path.join(REPO, "scenes", "disk.json")
@@ -213,6 +239,8 @@ class Renders(unittest.TestCase):
         cli("render", "--resolution", "32x24", "--backend", "mc", "--spp", "8", "--aov", "stderr", "-o", b)
         want = json.loads(cli("render", "--resolution", "32x24", "--compare", b).stdout)["compare"]
         got = ic.compare(a_render := ic.render(resolution=(32, 24)), b)
+        for k in ("reference_backend", "reference_spp", "ms_reference", "reference_device"):
+            self.assertEqual(got[k], want[k], k)
         for k in ("rmse", "max_error", "max_at", "psnr_db"):  # ics_image_diff_rgb's own numbers
             self.assertEqual(got[k], want[k], k)
         for k in ("reference_noise", "rmse_beyond_noise"):  # numpy sums in another order
