@@ -68,6 +68,8 @@ def write_png(path, rgb):
     (clamped to [0, 1]; alpha is not written), as `icshadow render --png` does."""
     img = image_from_array(rgb, "write_png")
     folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise FileNotFoundError(f"write_png: {path}: the folder {folder} does not exist")
     fd, tmp = tempfile.mkstemp(prefix=".png.", dir=folder)
     os.close(fd)
     msg = msg_buffer()

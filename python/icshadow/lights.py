@@ -56,6 +56,8 @@ def write_lights(path, lights):
     folder renamed over path)."""
     text = lights_json(lights)
     folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise FileNotFoundError(f"write_lights: {path}: the folder {folder} does not exist")
     fd, tmp = tempfile.mkstemp(prefix=".lights.", dir=folder)
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as f:

@@ -51,6 +51,8 @@ def _plan(s, resolution, threads):
         po.width, po.height = int(w), int(h)
         if po.width < 1 or po.height < 1:
             raise ValueError(f"resolution: expected (width, height) >= 1, got {tuple(resolution)}")
+    if int(threads) < 0:
+        raise ValueError(f"threads: expected 0 (all cores) or more, got {threads}")
     po.threads = int(threads)
     out, msg = ffi.new("ics_plan **"), msg_buffer()
     check(lib.ics_plan_create(out, s, po, msg, len(msg)), msg)

@@ -223,6 +223,16 @@ class Renders(unittest.TestCase):
             ic.render(resolution=(0, 8))
         with self.assertRaises(TypeError):
             ic.render(42)
+        with self.assertRaisesRegex(ValueError, "threads: expected 0"):
+            ic.render(resolution=(8, 8), threads=-3)
+        with self.assertRaisesRegex(ic.Error, "exceeds 16384 per axis"):
+            ic.render(resolution=(10 ** 6, 10))
+        with self.assertRaisesRegex(ic.Error, "samples per pixel must be in"):
+            ic.render(resolution=(8, 8), backend="mc", spp=-1)
+        with self.assertRaisesRegex(ic.Error, "not a regular file"):
+            ic.read_lights("/dev/null")
+        with self.assertRaisesRegex(FileNotFoundError, "does not exist"):
+            ic.write_lights(tmp("no/such/folder/x.json"), [])
 
     def test_compare_with_the_reference(self):
         ref = ic.render(resolution=(32, 24), backend="mc", spp=8, aovs=["stderr"])
