@@ -53,3 +53,10 @@ ics_add_render_test(test_render_aov fast)
 ics_add_render_test(test_render_bias medium) # 8.4 s under ASan (scalar path), 1 s Release
 ics_add_render_test(test_render_mc medium)
 ics_add_render_test(test_render_mc_embree fast ASSIMP EMBREE)
+# the device records' offsets are named once (gpu/core/device_layout.h): no cl or gl program
+# defines an O_*, G_* or CAM_* offset or a stride of its own
+add_test(NAME device_layout_once COMMAND sh -c
+  "! grep -nE '^[[:space:]]*#[[:space:]]*define[[:space:]]+((O|G|CAM)_[A-Z_]+|[A-Z_]*(OBJ|GEO)_STRIDE)[[:space:](]' \"$@\""
+  device_layout_once ${CMAKE_SOURCE_DIR}/gpu/backends/cl/slab.cl ${CMAKE_SOURCE_DIR}/gpu/backends/gl/slab.comp
+  ${CMAKE_SOURCE_DIR}/gpu/backends/gl/ldi.comp)
+set_tests_properties(device_layout_once PROPERTIES LABELS fast)

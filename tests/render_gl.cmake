@@ -32,7 +32,7 @@ if(ICS_HAVE_GL AND ICS_HAVE_GLSLANG)
     endforeach()
     string(REPLACE "," "_" tname ${v})
     add_test(NAME glsl_slab_${tname} COMMAND ${GLSLANG_VALIDATOR} -l -S comp ${defs}
-      ${CMAKE_SOURCE_DIR}/gpu/backends/gl/slab.comp)
+      ${CMAKE_BINARY_DIR}/gpu/generated/slab.comp) # as compiled: device_layout.h ahead
     set_tests_properties(glsl_slab_${tname} PROPERTIES LABELS "fast;render")
   endforeach()
 endif()
@@ -131,7 +131,7 @@ endif()
 foreach(k LDI_CAST LDI_SCAN LDI_SORT)
   if(ICS_HAVE_GL AND ICS_HAVE_GLSLANG)
     add_test(NAME glsl_${k} COMMAND ${GLSLANG_VALIDATOR} -l -S comp -DICS_K_${k}
-      ${CMAKE_SOURCE_DIR}/gpu/backends/gl/ldi.comp)
+      ${CMAKE_BINARY_DIR}/gpu/generated/ldi.comp)
     set_tests_properties(glsl_${k} PROPERTIES LABELS "fast;render")
   endif()
 endforeach()

@@ -19,12 +19,13 @@ void ics_device_scene_destroy(ics_device_scene *d) {
 void ics_device_camera(const ics_plan *P, double cam[ICS_DEV_CAM]) {
   const ics_camera *cm = &P->cam;
   for (int i = 0; i < 3; i++)
-    cam[i] = cm->eye[i], cam[3 + i] = cm->r[i], cam[6 + i] = cm->u[i], cam[9 + i] = cm->f[i];
-  cam[12] = cm->height;
-  cam[13] = cm->height * P->W / P->H; /* as ics_plan_ray computes them */
-  cam[14] = tan(cm->fov_deg * (ICS_PI / 360));
-  cam[15] = (double)P->W / P->H;
-  cam[16] = cm->projection == ICS_PROJ_PERSPECTIVE;
+    cam[CAM_EYE + i] = cm->eye[i], cam[CAM_R + i] = cm->r[i], cam[CAM_U + i] = cm->u[i],
+    cam[CAM_F + i] = cm->f[i];
+  cam[CAM_H] = cm->height;
+  cam[CAM_W] = cm->height * P->W / P->H; /* as ics_plan_ray computes them */
+  cam[CAM_TH] = tan(cm->fov_deg * (ICS_PI / 360));
+  cam[CAM_ASP] = (double)P->W / P->H;
+  cam[CAM_PROJ] = cm->projection == ICS_PROJ_PERSPECTIVE;
 }
 
 ics_status ics_device_scene_create(ics_device_scene *d, const ics_plan *P, int fragments) {
@@ -71,14 +72,15 @@ ics_status ics_device_scene_create(ics_device_scene *d, const ics_plan *P, int f
     const ics_material *m = &sc->materials[sc->objects[i].material];
     const ics_detail *dt = &m->detail;
     double *o = d->obj + (size_t)i * ICS_DEV_OBJ_STRIDE;
-    o[0] = m->opacity;
-    for (int c = 0; c < 3; c++) o[1 + c] = m->color[c], o[4 + c] = m->transport[c];
-    o[7] = m->extinction;
-    o[8] = P->vol_bit[i];
-    o[9] = dt->fn;
-    o[10] = dt->frequency, o[11] = dt->lacunarity, o[12] = dt->gain, o[13] = dt->offset;
-    o[14] = dt->time, o[15] = dt->scale, o[16] = dt->bias, o[17] = dt->octaves;
-    o[18] = m->ntransfer, o[19] = row;
+    o[O_OPACITY] = m->opacity;
+    for (int c = 0; c < 3; c++) o[O_COLOR + c] = m->color[c], o[O_TRANSPORT + c] = m->transport[c];
+    o[O_EXTINCTION] = m->extinction;
+    o[O_VOLBIT] = P->vol_bit[i];
+    o[O_DETAIL] = dt->fn;
+    o[O_FREQ] = dt->frequency, o[O_LACUNARITY] = dt->lacunarity, o[O_GAIN] = dt->gain;
+    o[O_OFFSET] = dt->offset, o[O_TIME] = dt->time, o[O_SCALE] = dt->scale;
+    o[O_BIAS] = dt->bias, o[O_OCTAVES] = dt->octaves;
+    o[O_NTRANSFER] = m->ntransfer, o[O_TRANSFER] = row;
     memcpy(d->tt + 5 * (size_t)row, m->transfer, sizeof(double) * 5 * (size_t)m->ntransfer);
     row += m->ntransfer;
     if (P->vol_bit[i] >= 0) d->vol_obj[P->vol_bit[i]] = i;
@@ -87,9 +89,10 @@ ics_status ics_device_scene_create(ics_device_scene *d, const ics_plan *P, int f
     if (dt->fn == ICS_DETAIL_GRID && P->detail) { /* its cells and the object's box */
       size_t n = (size_t)dt->size[0] * (size_t)dt->size[1] * (size_t)dt->size[2];
       memcpy(d->grids + cell, dt->grid, sizeof *d->grids * n);
-      o[20] = (double)cell;
+      o[O_GRID] = (double)cell;
       for (int a = 0; a < 3; a++)
-        o[21 + a] = dt->size[a], o[24 + a] = P->detail[i].lo[a], o[27 + a] = P->detail[i].hi[a];
+        o[O_GRID_N + a] = dt->size[a], o[O_GRID_LO + a] = P->detail[i].lo[a],
+        o[O_GRID_HI + a] = P->detail[i].hi[a];
       cell += n;
     }
   }
@@ -139,19 +142,19 @@ ics_status ics_device_geometry_create(ics_device_geometry *g, const ics_plan *P)
   for (int i = 0; i < sc->nobjects; i++) {
     const ics_object *o = &sc->objects[i];
     double *r = g->geo + (size_t)i * ICS_DEV_GEO_STRIDE;
-    r[0] = o->shape;
-    memcpy(r + 1, o->center, sizeof o->center);
-    memcpy(r + 4, o->ax, sizeof o->ax);
-    memcpy(r + 13, o->half, sizeof o->half);
-    r[16] = P->vol_bit[i];
-    r[17] = -1;
+    r[G_SHAPE] = o->shape;
+    memcpy(r + G_CENTER, o->center, sizeof o->center);
+    memcpy(r + G_AXES, o->ax, sizeof o->ax);
+    memcpy(r + G_HALF, o->half, sizeof o->half);
+    r[G_VOLBIT] = P->vol_bit[i];
+    r[G_BVH_ROOT] = -1;
     if (o->shape == ICS_SHAPE_MESH) {
       int nn, nt;
       ics_mesh_flat_counts(o->mesh, &nn, &nt);
       ics_mesh_flatten(o->mesh, node_base, tri_base, g->node_box + 6 * (size_t)node_base,
                        g->node_link + 4 * (size_t)node_base, g->tris + 9 * (size_t)tri_base);
-      r[17] = node_base;
-      r[18] = ics_mesh_merge_eps(o->mesh);
+      r[G_BVH_ROOT] = node_base;
+      r[G_MERGE_EPS] = ics_mesh_merge_eps(o->mesh);
       node_base += nn, tri_base += nt;
     }
   }

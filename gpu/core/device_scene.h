@@ -1,6 +1,6 @@
 /* device_scene.h — the plan flattened for a device (the cl and gl backends): the layered depth
  * image as arrays, the objects as records of ICS_DEV_OBJ_STRIDE doubles (the O_* offsets of
- * gpu/backends/cl/slab.cl and gpu/backends/gl/slab.comp), their transfer rows, noise permutations and grid cells,
+ * device_layout.h), their transfer rows, noise permutations and grid cells,
  * the camera and the lights. Built on the host once per render (device_scene.c). */
 #ifndef ICS_RENDER_DEVICE_SCENE_H
 #define ICS_RENDER_DEVICE_SCENE_H
@@ -8,10 +8,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "device_layout.h"
 #include "plan_internal.h"
 
-#define ICS_DEV_OBJ_STRIDE 32 /* doubles per object record */
-#define ICS_DEV_CAM 17        /* eye, r, u, f, h, w, tan(fov / 2), aspect, perspective */
 
 typedef struct ics_device_scene {
   size_t nfrag, nobj, ntt, ncells; /* each at least 1, so no array is empty */
@@ -36,7 +35,6 @@ typedef struct ics_device_scene {
  * ICS_DEV_GEO_STRIDE doubles (shape, centre, frame rows, half sizes, volume bit, the root of
  * its mesh's BVH or -1, the mesh's merge distance), and every mesh's BVH flattened
  * (ics_mesh_flatten: nodes' boxes and links, triangles in leaf order). */
-#define ICS_DEV_GEO_STRIDE 20
 typedef struct ics_device_geometry {
   size_t nobj, nnodes, ntris; /* each at least 1 */
   double *geo;

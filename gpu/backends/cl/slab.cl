@@ -271,34 +271,8 @@ __kernel void ics_apron_ends(__global float *buf, buf_layout B, int A) {
 
 /* ---- shading ---------------------------------------------------------------------------- */
 
-/* Objects: OBJ_STRIDE doubles each (the host's pack_objects) */
-#define OBJ_STRIDE 32
-#define O_OPACITY 0
-#define O_COLOR 1      /* 3 */
-#define O_TRANSPORT 4  /* 3 */
-#define O_EXTINCTION 7
-#define O_VOLBIT 8     /* its bit in the inside mask, -1 for a surface */
-#define O_DETAIL 9     /* 0 none, 1 perlin, 2 fbm, 3 ridged, 4 grid */
-#define O_FREQ 10
-#define O_LACUNARITY 11
-#define O_GAIN 12
-#define O_OFFSET 13
-#define O_TIME 14
-#define O_SCALE 15
-#define O_BIAS 16
-#define O_OCTAVES 17
-#define O_NTRANSFER 18
-#define O_TRANSFER 19  /* first row in the transfer table (rows of v, r, g, b, scale) */
-#define O_GRID 20      /* grid detail: first cell in the grid table, then nx, ny, nz */
-#define O_GRID_LO 24   /* the grid's box: lo (3), hi (3) */
-#define O_GRID_HI 27
-
-/* Camera: eye, r, u, f (3 each), then h, w, tan(fov / 2), aspect, projection (1: perspective) */
-#define CAM_H 12
-#define CAM_W 13
-#define CAM_TH 14
-#define CAM_ASP 15
-#define CAM_PROJ 16
+/* Objects and the camera: the offsets O_*, CAM_* and the strides of gpu/core/device_layout.h
+ * (embedded ahead of this file) */
 
 #define JITTER_STREAM 0x6a69747400000000UL /* "jitt" (backend_cpu.c) */
 #define MAXV 8 /* overlapping volumes whose extinctions are kept (private memory) */
@@ -314,14 +288,14 @@ static void plan_ray(__global const double *cam, int W, int H, int pad_l, int pa
   if (cam[CAM_PROJ] == 0) {
     double h = cam[CAM_H], w = cam[CAM_W];
     for (int i = 0; i < 3; i++) {
-      o[i] = cam[i] + (s - 0.5) * w * cam[3 + i] + (0.5 - t) * h * cam[6 + i];
-      d[i] = cam[9 + i];
+      o[i] = cam[CAM_EYE + i] + (s - 0.5) * w * cam[CAM_R + i] + (0.5 - t) * h * cam[CAM_U + i];
+      d[i] = cam[CAM_F + i];
     }
   } else {
     double th = cam[CAM_TH], asp = cam[CAM_ASP];
     for (int i = 0; i < 3; i++) {
-      o[i] = cam[i];
-      d[i] = cam[9 + i] + (2 * s - 1) * th * asp * cam[3 + i] + (1 - 2 * t) * th * cam[6 + i];
+      o[i] = cam[CAM_EYE + i];
+      d[i] = cam[CAM_F + i] + (2 * s - 1) * th * asp * cam[CAM_R + i] + (1 - 2 * t) * th * cam[CAM_U + i];
     }
   }
 }
@@ -382,7 +356,7 @@ static double detail_value(__global const double *ob, __global const uchar *perm
     double q[3];
     for (int i = 0; i < 3; i++) {
       double lo = ob[O_GRID_LO + i], hi = ob[O_GRID_HI + i];
-      n[i] = (size_t)ob[O_GRID + 1 + i];
+      n[i] = (size_t)ob[O_GRID_N + i];
       q[i] = hi > lo ? (pt[i] - lo) / (hi - lo) * (double)n[i] : 0;
     }
     return ob[O_BIAS] + ob[O_SCALE] * grid_sample(grids + (size_t)ob[O_GRID], n, q);
@@ -499,7 +473,7 @@ static double volume_sig(const shade_args *A, __global const double *obj,
                          __global const double *tt, __global const uchar *perm,
                          __global const float *grids, int ob_i, const double pt[3],
                          const double pt2[3], double c[3]) {
-  __global const double *ob = obj + OBJ_STRIDE * ob_i;
+  __global const double *ob = obj + ICS_DEV_OBJ_STRIDE * ob_i;
   double scale = 1;
   c[0] = ob[O_COLOR], c[1] = ob[O_COLOR + 1], c[2] = ob[O_COLOR + 2];
   if (ob[O_DETAIL] != 0) {
@@ -527,7 +501,7 @@ static void volume_piece(const shade_args *A, __global float *dst, __global cons
   double sig[MAXV], o[3], d[3], pt[3], pt2[3], sum = 0, cc[3] = {0, 0, 0};
   int nv = 0, have_ray = 0, keep = popcount(mask) <= MAXV;
   for (ulong m = mask; m; m &= m - 1) /* the sample point, if some volume has detail */
-    if (obj[OBJ_STRIDE * vol_obj[LOWEST_BIT(m)] + O_DETAIL] != 0) {
+    if (obj[ICS_DEV_OBJ_STRIDE * vol_obj[LOWEST_BIT(m)] + O_DETAIL] != 0) {
       plan_ray(cam, A->W, A->H, A->pad_l, A->pad_t, bi, bj, o, d);
       if (A->preintegrate) {
         for (int i = 0; i < 3; i++) pt[i] = o[i] + za * d[i], pt2[i] = o[i] + (za + dz) * d[i];
@@ -564,7 +538,7 @@ static void volume_piece(const shade_args *A, __global float *dst, __global cons
     for (ulong m = mask; m; m &= m - 1, i++) {
       int ob_i = vol_obj[LOWEST_BIT(m)];
       double c[3], sg = keep ? sig[i] : volume_sig(A, obj, tt, perm, grids, ob_i, pt, pt2, c);
-      __global const double *T = obj + OBJ_STRIDE * ob_i + O_TRANSPORT;
+      __global const double *T = obj + ICS_DEV_OBJ_STRIDE * ob_i + O_TRANSPORT;
       for (int k = 0; k < A->nch; k++) pass[k] *= exp(-sg * dz * lpath[l] * (1 - T[k]));
     }
     for (int k = 0; k < A->nch; k++) dst[(l * A->nch + k) * A->B.plane + q] *= (float)pass[k];
@@ -626,7 +600,7 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_shade(__global
      * this slab's occlusions) and its depth (backend_cpu.c record_aov) */
     if (A.aov_count && inview && has && !aov_seen[(size_t)jj * A.W + ii])
       for (uint f = cur; f < end && FRAG_SLAB(fcode[f]) == k; f++) {
-        __global const double *ob = obj + OBJ_STRIDE * FRAG_OBJ(fcode[f]);
+        __global const double *ob = obj + ICS_DEV_OBJ_STRIDE * FRAG_OBJ(fcode[f]);
         if (ob[O_VOLBIT] >= 0 || !(ob[O_OPACITY] > 0)) continue;
         __global float *o = aov + ((size_t)jj * A.W + ii) * A.aov_count;
         if (A.aov_vis >= 0)
@@ -639,8 +613,8 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_shade(__global
     for (uint f = acur; f < end && FRAG_SLAB(fcode[f]) <= k; f++) {
       uint code = fcode[f];
       int o = FRAG_OBJ(code), first = FRAG_SLAB(code) + FRAG_BIAS(code);
-      if (obj[OBJ_STRIDE * o + O_VOLBIT] < 0 && first <= k && k <= first + fspan[f] * A.window_max)
-        surface_occlusion(&A, dst, obj + OBJ_STRIDE * o, fgrad[f], fspan[f], lmu, window, q, k - first);
+      if (obj[ICS_DEV_OBJ_STRIDE * o + O_VOLBIT] < 0 && first <= k && k <= first + fspan[f] * A.window_max)
+        surface_occlusion(&A, dst, obj + ICS_DEV_OBJ_STRIDE * o, fgrad[f], fspan[f], lmu, window, q, k - first);
     }
     while (acur < end && FRAG_SLAB(fcode[acur]) + FRAG_BIAS(fcode[acur]) +
                              fspan[acur] * A.window_max <= k)
@@ -657,7 +631,7 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_shade(__global
                        L, &C, inview);
         if (!has) break;
         int o = FRAG_OBJ(fcode[cur]);
-        __global const double *ob = obj + OBJ_STRIDE * o;
+        __global const double *ob = obj + ICS_DEV_OBJ_STRIDE * o;
         if (ob[O_VOLBIT] >= 0) {
           mask ^= 1UL << (int)ob[O_VOLBIT];
         } else if (inview) {

@@ -28,7 +28,7 @@
 #define SHAPE_SPHERE 3
 #define SHAPE_TORUS 4
 #define SHAPE_MESH 5
-#define GEO_STRIDE 20 /* device_scene.h ICS_DEV_GEO_STRIDE */
+/* the records' offsets G_*, CAM_* and ICS_DEV_GEO_STRIDE: gpu/core/device_layout.h (embedded ahead) */
 #define NIL 0xffffffffu
 #define DEAD 0xffffffffu /* a merged or behind mesh crossing's object */
 
@@ -55,21 +55,21 @@ layout(std430, binding = 1) readonly buffer Cam { double cam[]; };
 void plan_ray(int bi, int bj, out dvec3 o, out dvec3 d) {
   precise double s = (double(bi - pad_l) + 0.5LF) / double(W);
   precise double t = (double(bj - pad_t) + 0.5LF) / double(H);
-  if (cam[16] == 0.0LF) {
-    precise double h = cam[12], w = cam[13];
+  if (cam[CAM_PROJ] == 0.0LF) {
+    precise double h = cam[CAM_H], w = cam[CAM_W];
     for (int i = 0; i < 3; i++) {
-      precise double a = (s - 0.5LF) * w * cam[3 + i], b = (0.5LF - t) * h * cam[6 + i];
-      precise double v = cam[i] + a + b;
+      precise double a = (s - 0.5LF) * w * cam[CAM_R + i], b = (0.5LF - t) * h * cam[CAM_U + i];
+      precise double v = cam[CAM_EYE + i] + a + b;
       o[i] = v;
-      d[i] = cam[9 + i];
+      d[i] = cam[CAM_F + i];
     }
   } else {
-    precise double th = cam[14], asp = cam[15];
+    precise double th = cam[CAM_TH], asp = cam[CAM_ASP];
     for (int i = 0; i < 3; i++) {
-      precise double a = (2.0LF * s - 1.0LF) * th * asp * cam[3 + i];
-      precise double b = (1.0LF - 2.0LF * t) * th * cam[6 + i];
-      precise double v = cam[9 + i] + a + b;
-      o[i] = cam[i];
+      precise double a = (2.0LF * s - 1.0LF) * th * asp * cam[CAM_R + i];
+      precise double b = (1.0LF - 2.0LF * t) * th * cam[CAM_U + i];
+      precise double v = cam[CAM_F + i] + a + b;
+      o[i] = cam[CAM_EYE + i];
       d[i] = v;
     }
   }
@@ -85,13 +85,13 @@ uniform int nobj;
 
 uint list_head, live, pushes;
 
-double g(int k, int i) { return geo[k * GEO_STRIDE + i]; }
+double g(int k, int i) { return geo[k * ICS_DEV_GEO_STRIDE + i]; }
 
 double dot3(dvec3 a, dvec3 b) {
   precise double r = a.x * b.x + a.y * b.y + a.z * b.z;
   return r;
 }
-dvec3 axis(int k, int i) { return dvec3(g(k, 4 + 3 * i), g(k, 5 + 3 * i), g(k, 6 + 3 * i)); }
+dvec3 axis(int k, int i) { return dvec3(g(k, G_AXES + 3 * i), g(k, G_AXES + 1 + 3 * i), g(k, G_AXES + 2 + 3 * i)); }
 
 void push(double t, dvec3 n, uint obj) {
   uint idx = atomicAdd(next_node, 1u);
@@ -165,14 +165,14 @@ double quartic(double k[5], double s) {
 dvec3 to_world(int k, dvec3 nl) {
   dvec3 n;
   for (int w = 0; w < 3; w++) {
-    precise double v = nl.x * g(k, 4 + w) + nl.y * g(k, 7 + w) + nl.z * g(k, 10 + w);
+    precise double v = nl.x * g(k, G_AXES + w) + nl.y * g(k, G_AXES + 3 + w) + nl.z * g(k, G_AXES + 6 + w);
     n[w] = v;
   }
   return n;
 }
 
 dvec3 torus_normal(int k, dvec3 q, dvec3 e, double t) {
-  precise double R = g(k, 13), r = g(k, 14);
+  precise double R = g(k, G_HALF), r = g(k, G_HALF + 1);
   precise dvec3 p = dvec3(q.x + t * e.x, q.y + t * e.y, q.z + t * e.z);
   precise double a = p.x * p.x + p.y * p.y + p.z * p.z + R * R - r * r;
   precise dvec3 gr = dvec3(4.0LF * a * p.x - 8.0LF * R * R * p.x, 4.0LF * a * p.y - 8.0LF * R * R * p.y,
@@ -181,7 +181,7 @@ dvec3 torus_normal(int k, dvec3 q, dvec3 e, double t) {
 }
 
 void torus_hits(int k, dvec3 q_orig, dvec3 e0, inout int behind) {
-  precise double R = g(k, 13), r = g(k, 14);
+  precise double R = g(k, G_HALF), r = g(k, G_HALF + 1);
   precise double len = sqrt(dot3(e0, e0));
   if (!(len > 0.0LF)) return;
   precise dvec3 d = dvec3(e0.x / len, e0.y / len, e0.z / len);
@@ -329,7 +329,7 @@ void mesh_finish(uint stop, dvec3 d, double eps, inout int behind) {
 void mesh_hits(int k, dvec3 o, dvec3 d, inout int behind) {
   uint stop = list_head;
   int stack[64], sp = 1;
-  stack[0] = int(g(k, 17));
+  stack[0] = int(g(k, G_BVH_ROOT));
   while (sp > 0 && sp <= 62) { /* the host's BVH of median splits is at most 26 deep */
     sp--;
     int node = stack[sp];
@@ -344,7 +344,7 @@ void mesh_hits(int k, dvec3 o, dvec3 d, inout int behind) {
       }
     }
   }
-  mesh_finish(stop, d, g(k, 18), behind);
+  mesh_finish(stop, d, g(k, G_MERGE_EPS), behind);
 }
 
 void main() {
@@ -356,20 +356,20 @@ void main() {
   list_head = NIL, live = 0u, pushes = 0u;
   uvec2 ins = uvec2(0u);
   for (int k = 0; k < nobj; k++) {
-    int shape = int(g(k, 0)), behind = 0;
+    int shape = int(g(k, G_SHAPE)), behind = 0;
     if (shape == SHAPE_MESH) {
       mesh_hits(k, o, d, behind);
     } else {
-      precise dvec3 c = dvec3(g(k, 1), g(k, 2), g(k, 3));
+      precise dvec3 c = dvec3(g(k, G_CENTER), g(k, G_CENTER + 1), g(k, G_CENTER + 2));
       precise dvec3 dd = dvec3(o.x - c.x, o.y - c.y, o.z - c.z);
       dvec3 q, e;
       for (int i = 0; i < 3; i++) q[i] = dot3(axis(k, i), dd), e[i] = dot3(axis(k, i), d);
       if (shape == SHAPE_RECT || shape == SHAPE_DISK) {
         if (e.z != 0.0LF) {
           precise double t = -q.z / e.z;
-          precise double x = q.x + t * e.x, y = q.y + t * e.y, r0 = g(k, 13);
+          precise double x = q.x + t * e.x, y = q.y + t * e.y, r0 = g(k, G_HALF);
           precise double rr = x * x + y * y, r2 = r0 * r0;
-          bool inr = shape == SHAPE_RECT ? abs(x) <= g(k, 13) && abs(y) <= g(k, 14) : rr <= r2;
+          bool inr = shape == SHAPE_RECT ? abs(x) <= g(k, G_HALF) && abs(y) <= g(k, G_HALF + 1) : rr <= r2;
           if (inr && t > 0.0LF) push(t, axis(k, 2), uint(k));
         }
       } else if (shape == SHAPE_BOX) {
@@ -377,7 +377,7 @@ void main() {
         bool any = false, miss = false;
         int i0 = 0, i1 = 0;
         for (int i = 0; i < 3; i++) {
-          double hf = g(k, 13 + i);
+          double hf = g(k, G_HALF + i);
           if (e[i] == 0.0LF) {
             if (abs(q[i]) > hf) miss = true;
             continue;
@@ -399,7 +399,7 @@ void main() {
           push_hit(t1, axis(k, i1), uint(k), behind);
         }
       } else if (shape == SHAPE_SPHERE) {
-        precise double a = dot3(e, e), b = dot3(q, e), r0 = g(k, 13);
+        precise double a = dot3(e, e), b = dot3(q, e), r0 = g(k, G_HALF);
         precise double cc = dot3(q, q) - r0 * r0;
         precise double disc = b * b - a * cc;
         if (disc > 0.0LF && a > 0.0LF) {
@@ -421,7 +421,7 @@ void main() {
         torus_hits(k, q, e, behind);
       }
     }
-    int bit = int(g(k, 16));
+    int bit = int(g(k, G_VOLBIT));
     if (bit >= 0 && (behind & 1) != 0) {
       if (bit < 32) ins.x |= 1u << bit;
       else ins.y |= 1u << (bit - 32);
@@ -520,7 +520,7 @@ void main() {
     precise double c2 = nd * nd / (nn * dd);
     bool level = !(c2 < 1.0LF), edge_on = !level && !(c2 > 0.0LF);
     precise double gr = level || edge_on ? 0.0LF : sqrt((1.0LF - c2) / c2) / e;
-    precise double q = cam[16] == 0.0LF ? cam[12] / double(H) : 2.0LF * t * cam[14] / double(H);
+    precise double q = cam[CAM_PROJ] == 0.0LF ? cam[CAM_H] / double(H) : 2.0LF * t * cam[CAM_TH] / double(H);
     precise double u = (t - z0) / e + 1e-6LF, k = floor(u);
     precise double reach3 = max(3.0LF * q, reach);
     precise double delay = edge_on ? FRAG_MAX_BIAS : min(gr * reach3, FRAG_MAX_BIAS);
@@ -533,12 +533,12 @@ void main() {
     fz[f] = float(t);
     fcode[f] = obj | uint(bias) << FRAG_OBJ_BITS | uint(k) << FRAG_SLAB_SHIFT;
     /* surfaces only; a volume's span is 0 */
-    uint sp = int(geo[int(obj) * GEO_STRIDE + 16]) >= 0 ? 0u : uint(max(span, 0.0LF));
+    uint sp = int(geo[int(obj) * ICS_DEV_GEO_STRIDE + G_VOLBIT]) >= 0 ? 0u : uint(max(span, 0.0LF));
     if (sp != 0u) atomicOr(fspan[f / 4u], sp << (8u * (f % 4u)));
     /* surface_depth_gradient: -n.r / n.f and -n.u / n.f, x 64, rounded, clamped */
-    precise double nr = nv.x * cam[3] + nv.y * cam[4] + nv.z * cam[5];
-    precise double nu = nv.x * cam[6] + nv.y * cam[7] + nv.z * cam[8];
-    precise double nf = nv.x * cam[9] + nv.y * cam[10] + nv.z * cam[11];
+    precise double nr = nv.x * cam[CAM_R] + nv.y * cam[CAM_R + 1] + nv.z * cam[CAM_R + 2];
+    precise double nu = nv.x * cam[CAM_U] + nv.y * cam[CAM_U + 1] + nv.z * cam[CAM_U + 2];
+    precise double nf = nv.x * cam[CAM_F] + nv.y * cam[CAM_F + 1] + nv.z * cam[CAM_F + 2];
     precise double g0 = abs(nf) > 0.0LF ? -nr / nf : 0.0LF, g1 = abs(nf) > 0.0LF ? -nu / nf : 0.0LF;
     precise double s0 = roundEven(max(-32767.0LF, min(32767.0LF, g0 * FRAG_GRAD_SCALE)));
     precise double s1 = roundEven(max(-32767.0LF, min(32767.0LF, g1 * FRAG_GRAD_SCALE)));

@@ -252,34 +252,10 @@ uniform int aov_count, aov_vis, aov_z, off_aov, off_seen;
 uniform int off_cam, off_lcol, off_lmu, off_lpath, off_window, off_signed;
 uniform double zf, zb, window_max;
 
-/* Objects: ICS_DEV_OBJ_STRIDE doubles each (gpu/core/device_scene.c) */
-#define OBJ_STRIDE 32
-#define O_OPACITY 0
-#define O_COLOR 1
-#define O_TRANSPORT 4
-#define O_EXTINCTION 7
-#define O_VOLBIT 8
-#define O_DETAIL 9
-#define O_FREQ 10
-#define O_LACUNARITY 11
-#define O_GAIN 12
-#define O_OFFSET 13
-#define O_TIME 14
-#define O_SCALE 15
-#define O_BIAS 16
-#define O_OCTAVES 17
-#define O_NTRANSFER 18
-#define O_TRANSFER 19
-#define O_GRID 20
-#define O_GRID_LO 24
-#define O_GRID_HI 27
-#define OB(i, f) obj[OBJ_STRIDE * (i) + (f)]
+/* Objects and the camera: the offsets O_*, CAM_* and the strides of gpu/core/device_layout.h
+ * (embedded ahead of this file) */
+#define OB(i, f) obj[ICS_DEV_OBJ_STRIDE * (i) + (f)]
 #define CAM(f) sd[off_cam + (f)]
-#define CAM_H 12
-#define CAM_W 13
-#define CAM_TH 14
-#define CAM_ASP 15
-#define CAM_PROJ 16
 #define MAXV 8
 
 int frag_obj(uint code) { return int(code & 0xfffu); }
@@ -302,8 +278,10 @@ double jitter_at(uint slab_k, uint p) {
 /* ics_plan_ray: the camera ray of buffer pixel (bi, bj) */
 void plan_ray(int bi, int bj, out dvec3 o, out dvec3 d) {
   double s = (bi - pad_l + 0.5lf) / W, t = (bj - pad_t + 0.5lf) / H;
-  dvec3 eye = dvec3(CAM(0), CAM(1), CAM(2)), r = dvec3(CAM(3), CAM(4), CAM(5));
-  dvec3 u = dvec3(CAM(6), CAM(7), CAM(8)), f = dvec3(CAM(9), CAM(10), CAM(11));
+  dvec3 eye = dvec3(CAM(CAM_EYE), CAM(CAM_EYE + 1), CAM(CAM_EYE + 2));
+  dvec3 r = dvec3(CAM(CAM_R), CAM(CAM_R + 1), CAM(CAM_R + 2));
+  dvec3 u = dvec3(CAM(CAM_U), CAM(CAM_U + 1), CAM(CAM_U + 2));
+  dvec3 f = dvec3(CAM(CAM_F), CAM(CAM_F + 1), CAM(CAM_F + 2));
   if (CAM(CAM_PROJ) == 0) {
     double h = CAM(CAM_H), w = CAM(CAM_W);
     for (int i = 0; i < 3; i++) {
@@ -375,7 +353,7 @@ double detail_value(int ob, dvec3 pt) {
     dvec3 q;
     for (int i = 0; i < 3; i++) {
       double lo = OB(ob, O_GRID_LO + i), hi = OB(ob, O_GRID_HI + i);
-      n[i] = int(OB(ob, O_GRID + 1 + i));
+      n[i] = int(OB(ob, O_GRID_N + i));
       q[i] = hi > lo ? (pt[i] - lo) / (hi - lo) * double(n[i]) : 0;
     }
     return OB(ob, O_BIAS) + OB(ob, O_SCALE) * grid_sample(int(OB(ob, O_GRID)), n, q);
