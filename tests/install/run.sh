@@ -5,6 +5,9 @@
 # to the prefix, CMake with OpenEXR disabled): flags without OpenEXR's, no OpenEXR looked for.
 # Shared consumers find the library at run time through the RUNPATH README gives them
 # (-Wl,-rpath,$(pkg-config --variable=libdir icshadow); CMake sets it in the build tree).
+# Where the renderer was built, also a program that renders the default scene to an EXR against
+# the installed libicshadow_render, through pkg-config icshadow-render and through
+# find_package(icshadow COMPONENTS render).
 # usage: run.sh BUILD_DIR SOURCE_DIR C_COMPILER
 set -euo pipefail
 build=$1 src=$2 cc=$3
@@ -57,4 +60,21 @@ cmake -S "$src/tests/install" -B "$tmp/cm" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE
 cmake --build "$tmp/cm" >/dev/null
 "$tmp/cm/consumer_shared"
 "$tmp/cm/consumer_static"
-echo "install test: 6 passed, 0 failed"
+n=6
+if [ -f "$prefix/include/icshadow/render.h" ]; then
+  # the renderer, from C, with only the installed tree (README "Rendering from C")
+  echo "== pkg-config icshadow-render, a render of the default scene to an EXR"
+  out=$(PKG_CONFIG_PATH=$pc pkg-config --cflags --libs icshadow-render) && read -a words <<< "$out"
+  "$cc" -std=c11 "$src/tests/install/consumer_render.c" -o "$tmp/c_render" "${words[@]}" -Wl,-rpath,"$libdir"
+  "$tmp/c_render" "$tmp/pc.exr"
+  test -s "$tmp/pc.exr"
+  echo "== find_package(icshadow COMPONENTS render)"
+  cmake -S "$src/tests/install" -B "$tmp/cm_render" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_C_COMPILER="$cc" \
+    -DICS_CONSUMER_STATIC=OFF -DICS_CONSUMER_RENDER=ON >/dev/null
+  cmake --build "$tmp/cm_render" >/dev/null
+  "$tmp/cm_render/consumer_render" "$tmp/cm.exr"
+  test -s "$tmp/cm.exr"
+  cmp "$tmp/pc.exr" "$tmp/cm.exr"
+  n=8
+fi
+echo "install test: $n passed, 0 failed"
