@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "backend_options.h"
 #include "bench_stats.h"
 #include "commands.h"
 
@@ -67,8 +68,6 @@ static void help(FILE *f) {
           "  --backend B,...   cpu (default) and/or other backends of `icshadow render --backends`,\n"
           "                    run side by side for each member and size (a device backend\n"
           "                    such as cl runs once, threads 0)\n"
-          CLI_CL_DEVICE_HELP
-          CLI_GL_CONTEXT_HELP
           "  --cov C,C,C       per-slab covariance in px^2 (default 2,0.5,1)\n"
           "  --mean MX,MY      per-slab mean in px (default 0.3,-0.2)\n"
           "  --reps R          repetitions, median reported (default 3; 1..50)\n"
@@ -77,6 +76,9 @@ static void help(FILE *f) {
           "  --occluder O      edge (default: a half-plane in the first slab) or stripes (4 px\n"
           "                    bars every 8 px over the whole buffer: nothing to skip)\n"
           "  --progress        progress on stderr even when it is not a terminal\n");
+#ifdef ICS_HAVE_RENDER
+  backend_options_help(f); /* --cl-device, --gl-context, ...: from the backend table */
+#endif
 }
 
 #ifdef ICS_HAVE_RENDER
@@ -121,6 +123,7 @@ typedef struct {
   int n, threads, slabs, reps;
   double mean[2], cov[3];
   int stripes, dense, skip;
+  const char *const *options; /* the backend options (backend_options_list) */
 } config_t;
 
 static int bench_config(const config_t *c, cli_progress *prog, int *busy, int *cpu_threads) {
@@ -163,7 +166,7 @@ static int bench_config(const config_t *c, cli_progress *prog, int *busy, int *c
     st = ics_scene_create_json(&s[w], json, "bench", NULL, msg, sizeof msg);
     if (st == ICS_OK) st = ics_plan_create(&p[w], s[w], &po, msg, sizeof msg);
   }
-  ics_render_opts ro = {.backend = c->backend, .threads = c->threads};
+  ics_render_opts ro = {.backend = c->backend, .threads = c->threads, .options = c->options};
   if (st == ICS_OK) st = ics_renderer_create(&r, &ro, msg, sizeof msg);
   double t[2][50], ms[2][50], fl[2][50], err[2] = {0, 0}, active[2] = {1, 1};
   char simd[16] = "";
@@ -235,14 +238,12 @@ int bench_slab(int argc, char **argv) {
   const char *cov_s = "2,0.5,1", *mean_s = "0.3,-0.2";
   const char *work_s = "dense", *occluder_s = "edge";
   int slabs = 256, reps = 3, force = 0;
-  const cli_option opts[] = {
+  const cli_option mine[] = {
       {"--sizes", .kind = CLI_STRING, .dest = &sizes_s},
       {"--slabs", .kind = CLI_INT, .dest = &slabs, .lo = 1, .hi = 4096},
       {"--threads", .kind = CLI_STRING, .dest = &threads_s},
       {"--kernels", .kind = CLI_STRING, .dest = &kernels_s},
       {"--backend", .kind = CLI_STRING, .dest = &backend_s},
-      {"--cl-device", .kind = CLI_CALL, .parse = cli_parse_cl_device},
-      {"--gl-context", .kind = CLI_CALL, .parse = cli_parse_gl_context},
       {"--cov", .kind = CLI_STRING, .dest = &cov_s},
       {"--mean", .kind = CLI_STRING, .dest = &mean_s},
       {"--reps", .kind = CLI_INT, .dest = &reps, .lo = 1, .hi = 50},
@@ -250,7 +251,11 @@ int bench_slab(int argc, char **argv) {
       {"--work", .kind = CLI_STRING, .dest = &work_s},
       {"--occluder", .kind = CLI_STRING, .dest = &occluder_s},
   };
-  int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
+  cli_option opts[CLI_NOPTS(mine) + BACKEND_OPTIONS_MAX];
+  memcpy(opts, mine, sizeof mine);
+  backend_options bo;
+  int nopts = CLI_NOPTS(mine) + backend_options_table(&bo, opts + CLI_NOPTS(mine));
+  int rc = cli_parse_options(CMD, argc, argv, 1, opts, nopts);
   if (rc) return rc;
   int sizes[8], threads[8], ns, nt;
   if ((ns = parse_list(CMD, "--sizes", sizes_s, 16, 4096, sizes, 8)) < 0) return 2;
@@ -309,7 +314,8 @@ int bench_slab(int argc, char **argv) {
       for (int bi = 0; bi < nb; bi++)
         for (int ti = 0, cpu_threads = 1; ti < nt && cpu_threads; ti++) {
           config_t c = {&members[use[ki]], backends[bi], sizes[si], threads[ti], slabs, reps,
-                        {mean[0], mean[1]}, {cov[0], cov[1], cov[2]}, stripes, dense, skip};
+                        {mean[0], mean[1]}, {cov[0], cov[1], cov[2]}, stripes, dense, skip,
+                        backend_options_list(&bo)};
           rc = bench_config(&c, &prog, &busy, &cpu_threads);
           if (rc) {
             cli_progress_done(&prog);

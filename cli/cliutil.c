@@ -115,24 +115,6 @@ int cli_parse_cl_device(const char *cmd, const char *opt, const char *value, voi
   return 0;
 }
 
-int cli_parse_gl_context(const char *cmd, const char *opt, const char *value, void *dest) {
-  (void)dest;
-  if (strcmp(value, "auto") && strcmp(value, "egl") && strcmp(value, "osmesa"))
-    return cli_error(cmd, "%s: expected auto, egl or osmesa, got '%s'", opt, value);
-  if (setenv("ICS_GL_CONTEXT", value, 1))
-    return cli_error(cmd, "%s: cannot set ICS_GL_CONTEXT: %s", opt, strerror(errno));
-  return 0;
-}
-
-int cli_parse_gl_ldi(const char *cmd, const char *opt, const char *value, void *dest) {
-  (void)dest;
-  if (strcmp(value, "plan") && strcmp(value, "device"))
-    return cli_error(cmd, "%s: expected plan or device, got '%s'", opt, value);
-  if (setenv("ICS_GL_LDI", value, 1))
-    return cli_error(cmd, "%s: cannot set ICS_GL_LDI: %s", opt, strerror(errno));
-  return 0;
-}
-
 double cli_now_s(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "backend_options.h"
 #include "commands.h"
 #include "render_compare.h"
 #include "scene_args.h"
@@ -36,10 +37,11 @@ static void help(FILE *f) {
           "                      stderr (--backend mc: standard errors, stderr.R ...);\n"
           "                      comma-separated, or all. 0 where a pixel has no surface\n"
           "  --backend B         auto (default) or a backend of `icshadow render --backends`\n"
-          "  --backends          list the backends built into this binary and exit\n"
-          CLI_CL_DEVICE_HELP
-          CLI_GL_CONTEXT_HELP
-          CLI_GL_LDI_HELP
+          "  --backends          list the backends built into this binary and exit\n");
+#ifdef ICS_HAVE_RENDER
+  backend_options_help(f); /* --cl-device, --gl-context, ...: from the backend table */
+#endif
+  fprintf(f,
           "  --spp N             mc: samples per pixel (1..16777216; default 64 when no other stop)\n"
           "  --time S            mc: stop after S seconds (checked inside the paths too: the samples\n"
           "                      every pixel finished by then)\n"
@@ -59,7 +61,7 @@ static void help(FILE *f) {
           "                      picture (red: brighter, blue: darker than the reference)\n"
           "  --progress          show progress on stderr even when it is not a terminal\n"
           "  --verbose           say on stderr why --backend auto passed over a backend (also\n"
-          "                      shown on a terminal, or when a --gl-* option was given)\n"
+          "                      shown on a terminal, or when a backend option was given)\n"
           "With only --compare or --reference and no output, the summary alone is printed.\n"
           "ICS_SIMD=auto|scalar|sse2|avx2|avx512|neon in the environment forces the cpu backend's\n"
           "vector path (default auto: the widest this processor has); the summary's device names it.\n"
@@ -166,17 +168,13 @@ int cmd_render(int argc, char **argv) {
              *diff_png = NULL, *mc_mesh = NULL;
   int force_progress = 0, verbose = 0, backends = 0, spp = 0, ref_spp = 0, given_ref = 0;
   double time_s = 0, noise = 0;
-  int given_spp = 0, given_time = 0, given_noise = 0, given_cl_device = 0,
-      given_gl_context = 0, given_gl_ldi = 0;
+  int given_spp = 0, given_time = 0, given_noise = 0;
   const cli_option mine[] = {
       {"-o", .kind = CLI_FILE, .dest = &exr},
       {"--png", .kind = CLI_FILE, .dest = &png},
       {"--aov", .kind = CLI_STRING, .dest = &aov_list},
       {"--backend", .kind = CLI_STRING, .dest = &backend},
       {"--backends", .kind = CLI_FLAG, .dest = &backends},
-      {"--cl-device", .kind = CLI_CALL, .parse = cli_parse_cl_device, .given = &given_cl_device},
-      {"--gl-context", .kind = CLI_CALL, .parse = cli_parse_gl_context, .given = &given_gl_context},
-      {"--gl-ldi", .kind = CLI_CALL, .parse = cli_parse_gl_ldi, .given = &given_gl_ldi},
       {"--progress", .kind = CLI_FLAG, .dest = &force_progress},
       {"--verbose", .kind = CLI_FLAG, .dest = &verbose},
       {"--spp", .kind = CLI_INT, .dest = &spp, .lo = 1, .hi = 1 << 24, .given = &given_spp},
@@ -187,10 +185,13 @@ int cmd_render(int argc, char **argv) {
       {"--reference", .kind = CLI_INT, .dest = &ref_spp, .lo = 1, .hi = 1 << 24, .given = &given_ref},
       {"--mc-mesh", .kind = CLI_STRING, .dest = &mc_mesh},
   };
-  cli_option opts[SCENE_ARGS_NOPTS + CLI_NOPTS(mine)];
+  cli_option opts[SCENE_ARGS_NOPTS + CLI_NOPTS(mine) + BACKEND_OPTIONS_MAX];
   scene_args_options(&a, opts);
   memcpy(opts + SCENE_ARGS_NOPTS, mine, sizeof mine);
-  int rc = cli_parse_options(CMD, argc, argv, 1, opts, CLI_NOPTS(opts));
+  backend_options bo;
+  int nopts = SCENE_ARGS_NOPTS + CLI_NOPTS(mine);
+  nopts += backend_options_table(&bo, opts + nopts);
+  int rc = cli_parse_options(CMD, argc, argv, 1, opts, nopts);
   if (rc) return rc;
   if (backends) return list_backends();
   if (!exr && !png && !diff_png && !compare && !given_ref)
@@ -202,16 +203,6 @@ int cmd_render(int argc, char **argv) {
   if ((exr && !strcmp(exr, "-")) || (png && !strcmp(png, "-")) || (diff_png && !strcmp(diff_png, "-")))
     return cli_error(CMD, "images are written to files, not to stdout (the summary goes there)");
   int mc = backend && !strcmp(backend, "mc");
-  if (given_cl_device && !(backend && !strcmp(backend, "cl")))
-    cli_warning(CMD, "--cl-device only chooses the device of --backend cl (the backend is %s)",
-                backend ? backend : "auto");
-  /* auto may take gl (on a GPU): warn only for a backend that is never gl */
-  int maybe_gl = !backend || !strcmp(backend, "gl") || !strcmp(backend, "auto");
-  if (given_gl_context && !maybe_gl)
-    cli_warning(CMD, "--gl-context only chooses the context of --backend gl (the backend is %s)",
-                backend);
-  if (given_gl_ldi && !maybe_gl)
-    cli_warning(CMD, "--gl-ldi only applies to --backend gl (the backend is %s)", backend);
   if ((given_spp || given_time || given_noise) && !mc)
     return cli_error(CMD, "%s: only the Monte-Carlo reference takes a stop (give --backend mc)",
                      given_spp ? "--spp" : given_time ? "--time" : "--noise");
@@ -266,7 +257,8 @@ int cmd_render(int argc, char **argv) {
   slab_progress sp = {.t_last = cli_now_s()};
   cli_progress_init(&sp.p, "render", force_progress);
   ics_render_opts ro = {.backend = backend, .threads = a.threads, .spp = spp, .time_s = time_s,
-                        .noise = noise, .mc_mesh = mc_mesh};
+                        .noise = noise, .mc_mesh = mc_mesh,
+                        .options = backend_options_list(&bo)};
   if (sp.p.on) ro.progress = mc ? on_sample : on_slab, ro.progress_ctx = &sp;
   ics_renderer *r;
   ics_image *img = NULL;
@@ -275,9 +267,11 @@ int cmd_render(int argc, char **argv) {
   render_comparison cmp = {0};
   st = ics_renderer_create(&r, &ro, msg, sizeof msg);
   if (st == ICS_OK) {
+    backend_options_warn(&bo, CMD, ics_renderer_backend(r), ics_renderer_note(r));
     st = ics_renderer_render_aovs(r, plan, aovs, &img, aovs ? &aov : NULL, &stats, msg, sizeof msg);
-    /* quiet by default: the note is for a user who may care (a terminal, --verbose, gl options) */
-    if (*ics_renderer_note(r) && (verbose || given_gl_context || given_gl_ldi || isatty(2)))
+    /* quiet by default: the note is for a user who may care (a terminal, --verbose, a backend
+     * option) */
+    if (*ics_renderer_note(r) && (verbose || backend_options_any(&bo) || isatty(2)))
       fprintf(stderr, "icshadow render: note: %s\n", ics_renderer_note(r));
     ics_renderer_destroy(r);
   }

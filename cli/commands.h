@@ -114,24 +114,13 @@ int cli_parse_options(const char *cmd, int argc, char **argv, int first, const c
                       int nopts);
 #define CLI_NOPTS(table) ((int)(sizeof(table) / sizeof(table)[0]))
 
-/* --cl-device D (a CLI_CALL parser): the OpenCL device for the cl backend and the OpenCL
- * primitives, as ICS_CL_DEVICE (an index or a substring of "platform: device"), which it sets
- * for this process; an empty D is refused. */
+/* --cl-device D (a CLI_CALL parser) of the OpenCL primitives' benchmarks (bench sat, bench
+ * minmax): their device, as ICS_CL_DEVICE (an index or a substring of "platform: device"),
+ * which it sets for this process; an empty D is refused. The renderer's backends take theirs
+ * as options (backend_options.h). */
 int cli_parse_cl_device(const char *cmd, const char *opt, const char *value, void *dest);
 #define CLI_CL_DEVICE_HELP \
   "  --cl-device D       OpenCL device: an index or part of \"platform: device\" (as ICS_CL_DEVICE)\n"
-/* --gl-context K (a CLI_CALL parser): the gl backend's context, auto, egl or osmesa, as
- * ICS_GL_CONTEXT, which it sets for this process; anything else is refused. */
-int cli_parse_gl_context(const char *cmd, const char *opt, const char *value, void *dest);
-#define CLI_GL_CONTEXT_HELP \
-  "  --gl-context K      gl backend's context: auto (default: egl, then osmesa), egl (a GPU's\n" \
-  "                      EGL device, else Mesa's surfaceless platform) or osmesa (as ICS_GL_CONTEXT)\n"
-/* --gl-ldi plan|device (a CLI_CALL parser): where the gl backend's layered depth image comes
- * from, as ICS_GL_LDI, which it sets for this process; anything else is refused. */
-int cli_parse_gl_ldi(const char *cmd, const char *opt, const char *value, void *dest);
-#define CLI_GL_LDI_HELP \
-  "  --gl-ldi L          gl backend's layered depth image: plan (default: the plan's, uploaded)\n" \
-  "                      or device (ray cast into per-pixel lists on the device; as ICS_GL_LDI)\n"
 
 /* Seconds on the monotonic clock (CLOCK_MONOTONIC), for elapsed times. */
 double cli_now_s(void);

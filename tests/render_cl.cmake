@@ -29,10 +29,10 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
     OUT "cpu,ellipse2,.*\ncl,ellipse2,2,table,64,64,4,0,.*\ncpu,gauss19,.*\ncl,gauss19,19,taps,64,64,4,0,")
   ics_cli_test(NAME cli_render_cl_device_flag RC 2 LABELS medium
     ARGS "render|--backend|cl|--cl-device|no-such-device|-o|${rdc}/flag.exr"
-    ERR "ICS_CL_DEVICE=no-such-device matches no device" NOFILE ${rdc}/flag.exr)
+    ERR "backend cl: cl.device=no-such-device matches no device" NOFILE ${rdc}/flag.exr)
   ics_cli_test(NAME cli_render_cl_device_other_backend RC 0 LABELS medium
     ARGS "render|--cl-device|0|--resolution|16x12|-o|${rdc}/other.exr"
-    ERR "warning: --cl-device only chooses the device of --backend cl \\(the backend is auto\\)")
+    ERR "warning: --cl-device only applies to --backend cl \\(the backend is cpu\\)")
   set_tests_properties(cli_render_cl_no_device PROPERTIES ENVIRONMENT ICS_CL_DEVICE=no-such-device)
 endif()
 

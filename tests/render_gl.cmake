@@ -53,7 +53,7 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_GL)
     ERR "--gl-context: expected auto, egl or osmesa, got 'vulkan'" NOFILE ${rdg}/none.exr)
   ics_cli_test(NAME cli_render_gl_context_other_backend RC 0 LABELS fast
     ARGS "render|--gl-context|egl|--backend|cpu|--resolution|16x12|-o|${rdg}/other.exr"
-    ERR "warning: --gl-context only chooses the context of --backend gl \\(the backend is cpu\\)")
+    ERR "warning: --gl-context only applies to --backend gl \\(the backend is cpu\\)")
   # auto on a machine without a GPU: cpu, with the one-line notice when asked (--verbose, a
   # --gl-* option); quiet otherwise (stderr is not a terminal here)
   ics_cli_test(NAME cli_render_gl_auto_notice RC 0 LABELS fast

@@ -43,6 +43,122 @@ int ics_backend_available(const char *name, char *why, size_t why_size) {
   return b->available(why, why_size);
 }
 
+/* ---- backend options ---------------------------------------------------------------------- */
+
+static int option_count(const ics_backend *b) {
+  int n = 0;
+  while (b->options && b->options[n].name) n++;
+  return n;
+}
+
+static const ics_backend_option *option_at(int i, int j) {
+  return i >= 0 && i < NBACKENDS && j >= 0 && j < option_count(table[i]) ? &table[i]->options[j]
+                                                                          : NULL;
+}
+
+int ics_backend_option_count(int i) { return i >= 0 && i < NBACKENDS ? option_count(table[i]) : 0; }
+const char *ics_backend_option_name(int i, int j) { return option_at(i, j) ? option_at(i, j)->name : NULL; }
+const char *ics_backend_option_help(int i, int j) { return option_at(i, j) ? option_at(i, j)->help : NULL; }
+const char *ics_backend_option_values(int i, int j) {
+  return option_at(i, j) ? option_at(i, j)->values : NULL;
+}
+const char *ics_backend_option_env(int i, int j) { return option_at(i, j) ? option_at(i, j)->env : NULL; }
+
+/* value is one of the '|'-separated words of values (NULL: any text that is not empty) */
+static int value_accepted(const char *values, const char *value) {
+  if (!values) return value[0] != 0;
+  for (const char *w = values; *w;) {
+    size_t n = strcspn(w, "|");
+    if (strlen(value) == n && !strncmp(w, value, n)) return 1;
+    w += n + (w[n] == '|');
+  }
+  return 0;
+}
+
+/* "BACKEND.NAME=VALUE": its backend and option, *value after the '='; NULL with why */
+static const ics_backend_option *parse_option(const char *text, const ics_backend **b,
+                                              const char **value, char *why, size_t why_size) {
+  const char *dot = strchr(text, '.'), *eq = strchr(text, '=');
+  if (!dot || !eq || dot > eq) {
+    if (why) snprintf(why, why_size, "backend option '%s': expected BACKEND.NAME=VALUE", text);
+    return NULL;
+  }
+  *b = NULL;
+  for (int i = 0; i < NBACKENDS && !*b; i++)
+    if (strlen(table[i]->name) == (size_t)(dot - text) && !strncmp(table[i]->name, text, (size_t)(dot - text)))
+      *b = table[i];
+  if (!*b) {
+    if (why) snprintf(why, why_size, "backend option '%s': no backend named '%.*s'", text,
+                      (int)(dot - text), text);
+    return NULL;
+  }
+  const ics_backend_option *o = NULL;
+  for (int j = 0; j < option_count(*b) && !o; j++)
+    if (strlen((*b)->options[j].name) == (size_t)(eq - dot - 1) &&
+        !strncmp((*b)->options[j].name, dot + 1, (size_t)(eq - dot - 1)))
+      o = &(*b)->options[j];
+  if (!o) {
+    if (why) {
+      int n = snprintf(why, why_size, "backend %s has no option '%.*s' (it takes", (*b)->name,
+                       (int)(eq - dot - 1), dot + 1);
+      for (int j = 0; j < option_count(*b) && n >= 0 && (size_t)n < why_size; j++)
+        n += snprintf(why + n, why_size - (size_t)n, "%s %s", j ? "," : "", (*b)->options[j].name);
+      if (n >= 0 && (size_t)n < why_size)
+        snprintf(why + n, why_size - (size_t)n, "%s)", option_count(*b) ? "" : " none");
+    }
+    return NULL;
+  }
+  *value = eq + 1;
+  return o;
+}
+
+int ics_backend_option_check(const char *option, char *why, size_t why_size) {
+  const ics_backend *b;
+  const char *value;
+  const ics_backend_option *o = option ? parse_option(option, &b, &value, why, why_size) : NULL;
+  if (!o) {
+    if (!option && why) snprintf(why, why_size, "backend option: NULL");
+    return 0;
+  }
+  if (value_accepted(o->values, value)) return 1;
+  if (why) {
+    if (!o->values) {
+      snprintf(why, why_size, "%s.%s: expected a value, got ''", b->name, o->name);
+    } else { /* "a|b|c" as "a, b or c" */
+      char list[128] = "";
+      const char *w = o->values;
+      while (*w) {
+        size_t n = strcspn(w, "|");
+        const char *sep = !list[0] ? "" : w[n] ? ", " : " or ";
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%.*s", sep, (int)n, w);
+        w += n + (w[n] == '|');
+      }
+      snprintf(why, why_size, "%s.%s: expected %s, got '%s'", b->name, o->name, list, value);
+    }
+  }
+  return 0;
+}
+
+const char *ics_backend_option_value(const ics_backend *b, const ics_render_opts *opts,
+                                     const char *name, const char **from) {
+  size_t nb = strlen(b->name), nn = strlen(name);
+  for (const char *const *o = opts ? opts->options : NULL; o && *o; o++)
+    if (!strncmp(*o, b->name, nb) && (*o)[nb] == '.' && !strncmp(*o + nb + 1, name, nn) &&
+        (*o)[nb + 1 + nn] == '=') {
+      if (from) *from = NULL; /* said as "BACKEND.NAME" by the caller's message */
+      return *o + nb + nn + 2;
+    }
+  for (int j = 0; j < option_count(b); j++)
+    if (!strcmp(b->options[j].name, name) && b->options[j].env) {
+      const char *v = getenv(b->options[j].env);
+      if (v && *v) {
+        if (from) *from = b->options[j].env;
+        return v;
+      }
+    }
+  return NULL;
+}
+
 struct ics_renderer {
   const ics_backend *b;
   void *state;
@@ -56,6 +172,8 @@ ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, 
   if (msg && msg_size) msg[0] = 0;
   ics_render_opts o = {0};
   if (opts) o = *opts;
+  for (const char *const *op = o.options; op && *op; op++)
+    if (!ics_backend_option_check(*op, msg, msg_size)) return ICS_ERR_INVALID_ARG;
   ics_renderer *r = calloc(1, sizeof *r);
   if (!r) return ICS_ERR_NOMEM;
   r->opts = o;

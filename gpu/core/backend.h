@@ -20,6 +20,13 @@ typedef struct ics_aov_buf {
 
 #define ICS_MODELS_ALL ((1u << ICS_MODEL_COUNT_) - 1)
 
+/* An option a backend takes (ics_render_opts.options, "BACKEND.NAME=VALUE"): its name, the
+ * environment variable that gives its default, the values it accepts ("a|b|c"; NULL: any text
+ * that is not empty) and one line of help. */
+typedef struct ics_backend_option {
+  const char *name, *env, *values, *help;
+} ics_backend_option;
+
 typedef struct ics_backend {
   const char *name;
   const char *description;
@@ -34,7 +41,14 @@ typedef struct ics_backend {
                        ics_image *img, ics_aov_buf *aov, ics_render_stats *stats, char *msg,
                        size_t msg_size);
   void (*destroy)(void *state);
+  const ics_backend_option *options; /* NULL, or entries up to one whose name is NULL */
 } ics_backend;
+
+/* The value of option `name` (one of b's) for a render: from opts->options (checked by
+ * ics_renderer_create), else from its environment variable when set and not empty, else NULL.
+ * *from (may be NULL) says where it came from: "BACKEND.NAME" or the variable's name. */
+const char *ics_backend_option_value(const ics_backend *b, const ics_render_opts *opts,
+                                     const char *name, const char **from);
 
 /* For the backends that run on a pool of CPU threads ("cpu", "mc"): the state is the pool
  * itself (opts->threads workers; NULL and ICS_ERR_NOMEM with msg when they cannot start), and

@@ -114,6 +114,7 @@ typedef struct {
   const char *backend;
   int threads, spp;
   double time_s, noise;
+  const char *const *options;
   ...;
 } ics_render_opts;
 typedef struct {
@@ -130,6 +131,11 @@ int ics_backend_count(void);
 const char *ics_backend_name(int i);
 const char *ics_backend_description(int i);
 int ics_backend_available(const char *name, char *why, size_t why_size);
+int ics_backend_option_count(int i);
+const char *ics_backend_option_name(int i, int j);
+const char *ics_backend_option_help(int i, int j);
+const char *ics_backend_option_values(int i, int j);
+const char *ics_backend_option_env(int i, int j);
 
 /* the package's helpers (_binding.c) */
 void icspy_map(double (*f)(double), const double *x, double *y, size_t n);

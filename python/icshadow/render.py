@@ -102,12 +102,14 @@ def _aov_bits(aovs):
 
 
 def render(scene=None, backend="auto", resolution=None, aovs=(), threads=0, spp=0, time=0.0,
-           noise=0.0, allow_outside_paths=False, **overrides):
+           noise=0.0, allow_outside_paths=False, backend_options=None, **overrides):
     """Renders a scene (None: the default scene; a path; a dict) on a backend ("auto", "cpu",
     "cl", "gl" or "mc", the Monte-Carlo reference; `backends()` lists them) at `resolution`
     (width, height; None: the scene's). aovs: any of "visibility", "depth", "stderr" (mc).
-    spp, time, noise: the Monte-Carlo reference's stop (docs/reference.md). overrides: keys of
-    the scene's "render" object (model="solid", ...). Returns a Render."""
+    spp, time, noise: the Monte-Carlo reference's stop (docs/reference.md). backend_options:
+    {"cl.device": "1", "gl.context": "egl", "gl.ldi": "device"} (`backends()` lists each
+    backend's). overrides: keys of the scene's "render" object (model="solid", ...). Returns a
+    Render."""
     bits = _aov_bits(aovs)
     s, name = _scene(scene, overrides, allow_outside_paths)
     t0 = time_module.perf_counter()
@@ -117,6 +119,10 @@ def render(scene=None, backend="auto", resolution=None, aovs=(), threads=0, spp=
     keep = ffi.new("char[]", str(backend).encode())
     ro.backend, ro.threads = keep, int(threads)
     ro.spp, ro.time_s, ro.noise = int(spp), float(time), float(noise)
+    texts = [ffi.new("char[]", f"{k}={v}".encode()) for k, v in (backend_options or {}).items()]
+    option_list = ffi.new("const char *[]", texts + [ffi.NULL])
+    if texts:
+        ro.options = option_list
     r, msg = ffi.new("ics_renderer **"), msg_buffer()
     check(lib.ics_renderer_create(r, ro, msg, len(msg)), msg)
     r = ffi.gc(r[0], lib.ics_renderer_destroy)
@@ -185,13 +191,23 @@ def compare(render, reference):
 
 
 def backends():
-    """Every backend built into the library: name, description, and whether it can run here
-    (available) and if not why."""
+    """Every backend built into the library: name, description, whether it can run here
+    (available) and if not why, and its options (render's backend_options): name, help, the
+    values it accepts (None: any) and the environment variable of its default."""
+    def text(p):
+        return ffi.string(p).decode() if p != ffi.NULL else None
+
     out = []
     for i in range(lib.ics_backend_count()):
-        name = ffi.string(lib.ics_backend_name(i)).decode()
+        name = text(lib.ics_backend_name(i))
         why = msg_buffer()
         ok = lib.ics_backend_available(name.encode(), why, len(why))
-        out.append({"name": name, "description": ffi.string(lib.ics_backend_description(i)).decode(),
-                    "available": bool(ok), "why": "" if ok else ffi.string(why).decode()})
+        options = [{"name": f"{name}.{text(lib.ics_backend_option_name(i, j))}",
+                    "help": text(lib.ics_backend_option_help(i, j)),
+                    "values": text(lib.ics_backend_option_values(i, j)),
+                    "env": text(lib.ics_backend_option_env(i, j))}
+                   for j in range(lib.ics_backend_option_count(i))]
+        out.append({"name": name, "description": text(lib.ics_backend_description(i)),
+                    "available": bool(ok), "why": "" if ok else ffi.string(why).decode(),
+                    "options": options})
     return out

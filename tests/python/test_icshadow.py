@@ -269,9 +269,27 @@ class Renders(unittest.TestCase):
         self.assertGreater(count, 1000)
 
     def test_backends(self):
-        names = [b["name"] for b in ic.backends()]
-        self.assertIn("cpu", names)
-        self.assertIn("mc", names)
+        table = {b["name"]: b for b in ic.backends()}
+        self.assertIn("cpu", table)
+        self.assertIn("mc", table)
+        self.assertEqual(table["cpu"]["options"], [])
+
+    def test_backend_options(self):
+        table = {b["name"]: b for b in ic.backends()}
+        if "gl" not in table:
+            self.skipTest("no gl backend in this build")
+        opts = {o["name"]: o for o in table["gl"]["options"]}
+        self.assertEqual(opts["gl.context"]["values"], "auto|egl|osmesa")
+        self.assertEqual(opts["gl.context"]["env"], "ICS_GL_CONTEXT")
+        # checked whatever backend runs, with the library's messages
+        with self.assertRaisesRegex(ic.Error, r"backend gl has no option 'lod' \(it takes context, ldi\)"):
+            ic.render(resolution=(8, 8), backend="cpu", backend_options={"gl.lod": "1"})
+        with self.assertRaisesRegex(ic.Error, "gl.context: expected auto, egl or osmesa, got 'vulkan'"):
+            ic.render(resolution=(8, 8), backend="cpu", backend_options={"gl.context": "vulkan"})
+        with self.assertRaisesRegex(ic.Error, "no backend named 'vk'"):
+            ic.render(resolution=(8, 8), backend_options={"vk.x": "1"})
+        r = ic.render(resolution=(8, 8), backend="cpu", backend_options={"gl.context": "osmesa"})
+        self.assertEqual(r.summary["backend"], "cpu")
 
 
 if __name__ == "__main__":

@@ -28,7 +28,21 @@
 #include "slab_taps.h"
 #include "slab_cl_source.h" /* ics_slab_cl_source: gpu/backends/cl/slab.cl (cmake/embed_text.cmake) */
 
-static int cl_available(char *why, size_t why_size) { return ics_cl_available(why, why_size); }
+static const ics_backend_option cl_options[] = {
+    {"device", "ICS_CL_DEVICE", NULL, "OpenCL device: an index or part of \"platform: device\""},
+    {NULL, NULL, NULL, NULL}};
+
+/* the wanted device (cl.device, else ICS_CL_DEVICE) and how to name it in messages */
+static const char *wanted_device(const ics_render_opts *opts, const char **label) {
+  const char *from, *want = ics_backend_option_value(&ics_backend_cl, opts, "device", &from);
+  *label = from ? from : "cl.device";
+  return want;
+}
+
+static int cl_available(char *why, size_t why_size) {
+  const char *label, *want = wanted_device(NULL, &label);
+  return ics_cl_available(want, label, why, why_size);
+}
 
 typedef struct cl_state {
   ics_cl_dev d;
@@ -53,12 +67,12 @@ static void cl_destroy(void *state) {
 }
 
 static ics_status cl_create(void **state, const ics_render_opts *opts, char *msg, size_t msg_size) {
-  (void)opts;
   *state = NULL;
   cl_state *s = calloc(1, sizeof *s);
   if (!s) return ICS_ERR_NOMEM;
   char why[2048];
-  ics_status st = ics_cl_dev_open(&s->d, why, sizeof why);
+  const char *label, *want = wanted_device(opts, &label);
+  ics_status st = ics_cl_dev_open(&s->d, want, label, why, sizeof why);
   if (st == ICS_OK)
     st = ics_cl_build(&s->d, ics_slab_cl_source, "slab.cl", 8, KERNEL_NAMES, &s->prog, s->k, why,
                       sizeof why);
@@ -413,4 +427,4 @@ done:;
 const ics_backend ics_backend_cl = {
     "cl", "the slab renderer on an OpenCL device (PoCL or any OpenCL 1.2 platform with fp64; not picked by auto)",
     ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, 1u << ICS_MODEL_PATEL,
-    cl_available, NULL, cl_create, cl_render, cl_destroy};
+    cl_available, NULL, cl_create, cl_render, cl_destroy, cl_options};

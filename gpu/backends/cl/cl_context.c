@@ -77,7 +77,7 @@ ics_status ics_cl_create(ics_cl **out, char *msg, size_t msg_size) {
   *out = NULL;
   ics_cl *cl = calloc(1, sizeof *cl);
   if (!cl) return ICS_ERR_NOMEM;
-  ics_status st = ics_cl_dev_open(&cl->d, msg, msg_size);
+  ics_status st = ics_cl_dev_open(&cl->d, getenv("ICS_CL_DEVICE"), "ICS_CL_DEVICE", msg, msg_size);
   if (st == ICS_OK)
     st = ics_cl_build(&cl->d, ics_sat_cl_source, "sat.cl", ICS_CL_SAT_KERNELS, SAT_KERNELS,
                       &cl->sat, cl->sat_k, msg, msg_size);

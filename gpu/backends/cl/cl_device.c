@@ -2,7 +2,8 @@
  * (the cl backend, the SAT builder): device choice, program builds with their log, error names,
  * event times (cl_device.h).
  *
- * Device choice: ICS_CL_DEVICE, when set, is a device index in the order of the platform list
+ * Device choice: the wanted device (the cl backend's option cl.device, the primitives' and its
+ * default ICS_CL_DEVICE), when given, is a device index in the order of the platform list
  * (platform by platform), or a case-insensitive substring of "platform: device"; otherwise the
  * first GPU with cl_khr_fp64, else the first device with it (the kernels compute in double where
  * the CPU code does). */
@@ -74,8 +75,10 @@ static int contains_nocase(const char *hay, const char *needle) {
   return n == 0;
 }
 
-/* The device to run on (file comment); 0, or -1 with the reason in why. */
-static int pick_device(cl_pick *out, char *why, size_t why_size) {
+/* The device to run on (file comment; want may be NULL, label names it in messages); 0, or -1
+ * with the reason in why. */
+static int pick_device(cl_pick *out, const char *want, const char *label, char *why,
+                       size_t why_size) {
   cl_platform_id plats[16];
   cl_uint np = 0;
   cl_int e = clGetPlatformIDs(16, plats, &np);
@@ -111,14 +114,13 @@ static int pick_device(cl_pick *out, char *why, size_t why_size) {
     if (why) snprintf(why, why_size, "no OpenCL device on %u platform%s", np, np == 1 ? "" : "s");
     return -1;
   }
-  const char *want = getenv("ICS_CL_DEVICE");
   int chosen = -1;
   if (want && *want) {
     char *end;
     long idx = strtol(want, &end, 10);
     if (!*end && end != want) {
       if (idx < 0 || idx >= n) {
-        if (why) snprintf(why, why_size, "ICS_CL_DEVICE=%s: there are devices 0..%d", want, n - 1);
+        if (why) snprintf(why, why_size, "%s=%s: there are devices 0..%d", label, want, n - 1);
         return -1;
       }
       chosen = (int)idx;
@@ -127,7 +129,7 @@ static int pick_device(cl_pick *out, char *why, size_t why_size) {
         if (contains_nocase(all[i].name, want)) chosen = i;
       if (chosen < 0) {
         if (why) {
-          int m = snprintf(why, why_size, "ICS_CL_DEVICE=%s matches no device (", want);
+          int m = snprintf(why, why_size, "%s=%s matches no device (", label, want);
           for (int i = 0; i < n && m >= 0 && (size_t)m < why_size; i++)
             m += snprintf(why + m, why_size - (size_t)m, "%s%d: %s", i ? "; " : "", i, all[i].name);
           if (m >= 0 && (size_t)m < why_size) snprintf(why + m, why_size - (size_t)m, ")");
@@ -155,15 +157,16 @@ static int pick_device(cl_pick *out, char *why, size_t why_size) {
   return 0;
 }
 
-int ics_cl_available(char *why, size_t why_size) {
+int ics_cl_available(const char *want, const char *label, char *why, size_t why_size) {
   cl_pick pk;
-  return pick_device(&pk, why, why_size) == 0;
+  return pick_device(&pk, want, label, why, why_size) == 0;
 }
 
-ics_status ics_cl_dev_open(ics_cl_dev *d, char *msg, size_t msg_size) {
+ics_status ics_cl_dev_open(ics_cl_dev *d, const char *want, const char *label, char *msg,
+                           size_t msg_size) {
   memset(d, 0, sizeof *d);
   cl_pick pk;
-  if (pick_device(&pk, msg, msg_size)) return ICS_ERR_UNSUPPORTED;
+  if (pick_device(&pk, want, label, msg, msg_size)) return ICS_ERR_UNSUPPORTED;
   d->device = pk.device;
   snprintf(d->name, sizeof d->name, "OpenCL, %s", pk.name);
   cl_int e = clGetDeviceInfo(d->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof d->max_alloc,

@@ -21,11 +21,14 @@ typedef struct ics_cl_dev {
 
 /* "CL_OUT_OF_RESOURCES" etc. */
 const char *ics_cl_err_name(cl_int e);
-/* 1 when a device can be chosen (ICS_CL_DEVICE or the default rule); else 0 with why. */
-int ics_cl_available(char *why, size_t why_size);
-/* Chooses the device and opens its context and queue; ICS_ERR_UNSUPPORTED with the reason (no
- * platform, no device, no fp64, an ICS_CL_DEVICE matching nothing) or ICS_ERR_NOMEM. */
-ics_status ics_cl_dev_open(ics_cl_dev *d, char *msg, size_t msg_size);
+/* 1 when a device can be chosen (`want`, an index or part of a name, or with want NULL the
+ * default rule; label names where want came from, "ICS_CL_DEVICE"); else 0 with why. */
+int ics_cl_available(const char *want, const char *label, char *why, size_t why_size);
+/* Chooses the device as ics_cl_available does and opens its context and queue;
+ * ICS_ERR_UNSUPPORTED with the reason (no platform, no device, no fp64, a `want` matching
+ * nothing) or ICS_ERR_NOMEM. */
+ics_status ics_cl_dev_open(ics_cl_dev *d, const char *want, const char *label, char *msg,
+                           size_t msg_size);
 void ics_cl_dev_close(ics_cl_dev *d); /* a zeroed or closed one is fine */
 /* Builds program source `src` (named `what` in messages) and creates its kernels `names`. On
  * failure *prog and the kernels made so far are left for the caller to release. */

@@ -92,18 +92,31 @@ static void gl_destroy(void *state) {
   state_free(s);
 }
 
-/* where the layered depth image comes from: ICS_GL_LDI (set by --gl-ldi), "plan" (the plan's,
- * uploaded; the default) or "device" (ldi_gl.c); -1 for another value */
-static int ldi_on_device(void) {
-  const char *v = getenv("ICS_GL_LDI");
-  if (!v || !*v || !strcmp(v, "plan")) return 0;
-  return !strcmp(v, "device") ? 1 : -1;
+static const ics_backend_option gl_options[] = {
+    {"context", "ICS_GL_CONTEXT", "auto|egl|osmesa",
+     "the context: auto (egl, then osmesa), egl (a GPU's driver, else Mesa's surfaceless "
+     "llvmpipe) or osmesa"},
+    {"ldi", "ICS_GL_LDI", "plan|device",
+     "the layered depth image: plan (the plan's, uploaded) or device (built on the device)"},
+    {NULL, NULL, NULL, NULL}};
+
+const char *ics_gl_context_kind(const ics_render_opts *opts) {
+  const char *k = ics_backend_option_value(&ics_backend_gl, opts, "context", NULL);
+  return k ? k : "auto";
+}
+
+/* where the layered depth image comes from: gl.ldi (ICS_GL_LDI), "plan" (the plan's, uploaded;
+ * the default) or "device" (ldi_gl.c); -1 for another value (*v: it) */
+static int ldi_on_device(const ics_render_opts *opts, const char **v) {
+  *v = ics_backend_option_value(&ics_backend_gl, opts, "ldi", NULL);
+  if (!*v || !strcmp(*v, "plan")) return 0;
+  return !strcmp(*v, "device") ? 1 : -1;
 }
 
 static int gl_available(char *why, size_t why_size) {
   ics_gl g;
   char w[1024];
-  if (ics_gl_open(&g, ics_gl_context_kind(), w, sizeof w) != ICS_OK) {
+  if (ics_gl_open(&g, ics_gl_context_kind(NULL), w, sizeof w) != ICS_OK) {
     if (why) snprintf(why, why_size, "%s", w);
     return 0;
   }
@@ -128,17 +141,17 @@ static int build(gl_state *s, int i, char *msg, size_t msg_size) {
 
 static ics_status gl_create(void **state, const ics_render_opts *opts, char *msg, size_t msg_size) {
   *state = NULL;
-  int ldi_device = ldi_on_device();
-  if (ldi_device < 0) {
-    if (msg) snprintf(msg, msg_size, "backend gl: ICS_GL_LDI: expected plan or device, got '%s'",
-                      getenv("ICS_GL_LDI"));
+  const char *ldi;
+  int ldi_device = ldi_on_device(opts, &ldi);
+  if (ldi_device < 0) { /* an option is checked already: the environment's */
+    if (msg) snprintf(msg, msg_size, "backend gl: ICS_GL_LDI: expected plan or device, got '%s'", ldi);
     return ICS_ERR_INVALID_ARG;
   }
   gl_state *s = calloc(1, sizeof *s);
   if (!s) return ICS_ERR_NOMEM;
   s->ldi_device = ldi_device;
   char why[1024];
-  if (ics_gl_open(&s->g, ics_gl_context_kind(), why, sizeof why) != ICS_OK) {
+  if (ics_gl_open(&s->g, ics_gl_context_kind(opts), why, sizeof why) != ICS_OK) {
     if (msg) snprintf(msg, msg_size, "backend gl: %s", why);
     free(s);
     return ICS_ERR_UNSUPPORTED;
@@ -573,4 +586,4 @@ done:
 const ics_backend ics_backend_gl = {
     "gl", "the slab renderer as OpenGL 4.5 compute shaders (EGL or OSMesa; auto picks it on a GPU)",
     ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, 1u << ICS_MODEL_PATEL,
-    gl_available, gl_auto_pick, gl_create, gl_render, gl_destroy};
+    gl_available, gl_auto_pick, gl_create, gl_render, gl_destroy, gl_options};

@@ -406,7 +406,4 @@ const char *ics_gl_reset_name(GLenum reset) {
                                               : "GL_UNKNOWN_CONTEXT_RESET";
 }
 
-const char *ics_gl_context_kind(void) {
-  const char *k = getenv("ICS_GL_CONTEXT");
-  return k && *k ? k : "auto";
-}
+

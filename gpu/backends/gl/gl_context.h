@@ -91,8 +91,10 @@ void ics_gl_close(ics_gl *g); /* a zeroed or closed one is fine */
 /* 1 when the EGL device platform lists a device that is not Mesa's software one (a GPU driver),
  * without opening a context; else 0 with why. */
 int ics_gl_hardware_device(char *why, size_t why_size);
-/* the context kind asked for: ICS_GL_CONTEXT (set by --gl-context), else "auto" */
-const char *ics_gl_context_kind(void);
+/* the context kind asked for: the gl backend's option gl.context in opts (may be NULL), else
+ * ICS_GL_CONTEXT, else "auto" (backend_gl.c) */
+struct ics_render_opts;
+const char *ics_gl_context_kind(const struct ics_render_opts *opts);
 /* 1 when `which` names a kind this build has ("auto", "osmesa", "egl"), else 0 */
 int ics_gl_kind_known(const char *which);
 

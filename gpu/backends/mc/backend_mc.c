@@ -239,4 +239,4 @@ const ics_backend ics_backend_mc = {
     /* the reference is the truth every model approximates: it renders them all alike */
     ICS_AOV_VISIBILITY | ICS_AOV_DEPTH | ICS_AOV_STDERR, ICS_MODELS_ALL,
     ics_backend_always_available, NULL, ics_backend_pool_create, mc_render,
-    ics_backend_pool_destroy};
+    ics_backend_pool_destroy, NULL};

@@ -38,6 +38,12 @@ typedef struct ics_render_opts {
    * or "bvh" (the renderer's own BVH, as the slab renderer's layered depth image); NULL or
    * "auto": Embree when built in. The stats' device string says which ran. */
   const char *mc_mesh;
+  /* Backend options: NULL, or a NULL-terminated list of "BACKEND.NAME=VALUE" strings
+   * ("cl.device=1", "gl.context=osmesa", "gl.ldi=device"; ics_backend_option_name lists each
+   * backend's). ics_renderer_create checks every one, whichever backend runs (ICS_ERR_INVALID_ARG
+   * naming it); the backend uses its own in place of the option's environment variable
+   * (ics_backend_option_env), which stays the default. */
+  const char *const *options;
 } ics_render_opts;
 
 /* Time per pass and what ran. */
@@ -118,6 +124,19 @@ ICS_API const char *ics_backend_name(int i);        /* NULL out of range */
 ICS_API const char *ics_backend_description(int i); /* NULL out of range */
 /* 1 when backend `name` can run here; else 0 with the reason in why. */
 ICS_API int ics_backend_available(const char *name, char *why, size_t why_size);
+
+/* The options backend i takes (ics_render_opts.options), j = 0 .. count - 1: the name ("device"),
+ * one line of help, the values it accepts ("auto|egl|osmesa"; NULL: any text that is not empty)
+ * and the environment variable that gives its default ("ICS_CL_DEVICE"). NULL out of range. */
+ICS_API int ics_backend_option_count(int i);
+ICS_API const char *ics_backend_option_name(int i, int j);
+ICS_API const char *ics_backend_option_help(int i, int j);
+ICS_API const char *ics_backend_option_values(int i, int j);
+ICS_API const char *ics_backend_option_env(int i, int j);
+/* 1 when "BACKEND.NAME=VALUE" names an option of a backend built here with a value it accepts;
+ * else 0 with the reason in why ("backend gl has no option 'lod' (it takes context, ldi)",
+ * "gl.context: expected auto, egl or osmesa, got 'vulkan'"). */
+ICS_API int ics_backend_option_check(const char *option, char *why, size_t why_size);
 
 #ifdef __cplusplus
 }
