@@ -150,6 +150,223 @@ static int list_backends(void) {
   }
   return 0;
 }
+
+/* the command line of `render` */
+typedef struct render_args {
+  scene_args a;
+  const char *exr, *png, *backend, *aov_list, *compare, *diff_png, *mc_mesh;
+  int force_progress, verbose, backends, spp, ref_spp, given_ref, mc;
+  double time_s, noise;
+  int given_spp, given_time, given_noise;
+  unsigned aovs;
+  backend_options bo;
+} render_args;
+
+/* the options that only make sense together, and the components the outputs need */
+static int check_args(render_args *r) {
+  int rc;
+  if (!r->exr && !r->png && !r->diff_png && !r->compare && !r->given_ref)
+    return cli_error(CMD, "nothing to write: give -o OUT.exr and/or --png OUT.png (or only "
+                     "measure: --compare REF.exr or --reference N)");
+  size_t ne = r->exr ? strlen(r->exr) : 0;
+  if (ne >= 4 && !strcmp(r->exr + ne - 4, ".png"))
+    return cli_error(CMD, "-o %s: -o writes OpenEXR; give the PNG preview with --png", r->exr);
+  if ((r->exr && !strcmp(r->exr, "-")) || (r->png && !strcmp(r->png, "-")) ||
+      (r->diff_png && !strcmp(r->diff_png, "-")))
+    return cli_error(CMD, "images are written to files, not to stdout (the summary goes there)");
+  r->mc = r->backend && !strcmp(r->backend, "mc");
+  if ((r->given_spp || r->given_time || r->given_noise) && !r->mc)
+    return cli_error(CMD, "%s: only the Monte-Carlo reference takes a stop (give --backend mc)",
+                     r->given_spp ? "--spp" : r->given_time ? "--time" : "--noise");
+  if (r->given_time && !(r->time_s > 0)) return cli_error(CMD, "--time: must be > 0 seconds");
+  if (r->given_noise && !(r->noise > 0)) return cli_error(CMD, "--noise: must be > 0");
+  if (r->mc_mesh && strcmp(r->mc_mesh, "auto") && strcmp(r->mc_mesh, "embree") &&
+      strcmp(r->mc_mesh, "bvh"))
+    return cli_error(CMD, "--mc-mesh %s: expected auto, embree or bvh", r->mc_mesh);
+  if (r->mc_mesh && !r->mc && !r->given_ref)
+    return cli_error(CMD, "--mc-mesh: only the Monte-Carlo reference takes it (give --backend mc "
+                     "or --reference N)");
+  if (r->compare && r->given_ref) return cli_error(CMD, "give --compare or --reference, not both");
+  if (r->given_ref && r->mc)
+    return cli_error(CMD, "--reference: this render is the Monte-Carlo reference itself (same seed, "
+                     "same samples); compare two mc renders with --compare REF.exr and another --seed");
+  if (r->diff_png && !r->compare && !r->given_ref)
+    return cli_error(CMD, "--diff-png: give --compare REF.exr or --reference N");
+  if (r->diff_png && !ics_output_png_available())
+    return cli_failure(CMD, "cannot write PNG: libpng was not found when the renderer was built");
+  if (r->compare && !ics_exr_available())
+    return cli_failure(CMD, "--compare: OpenEXR was not found when icshadow was built");
+  if (r->aov_list && (rc = parse_aovs(r->aov_list, r->mc ? ICS_AOV_STDERR : 0, &r->aovs))) return rc;
+  if (r->aovs && !r->exr) return cli_error(CMD, "--aov: AOVs go into the EXR; give -o OUT.exr");
+  if (r->exr && !ics_exr_available())
+    return cli_failure(CMD, "cannot write OpenEXR: OpenEXR was not found when icshadow was built");
+  if (r->png && !ics_output_png_available())
+    return cli_failure(CMD, "cannot write PNG: libpng was not found when the renderer was built");
+  if (r->backend && strcmp(r->backend, "auto")) {
+    char why[256];
+    if (!ics_backend_available(r->backend, why, sizeof why)) return cli_error(CMD, "--backend: %s", why);
+  }
+  return 0;
+}
+
+/* parses and checks the command line; 0, or the exit status (`--backends` lists and exits 0
+ * through *listed) */
+static int parse_args(render_args *r, int argc, char **argv, int *listed) {
+  memset(r, 0, sizeof *r);
+  *listed = 0;
+  const cli_option mine[] = {
+      {"-o", .kind = CLI_FILE, .dest = &r->exr},
+      {"--png", .kind = CLI_FILE, .dest = &r->png},
+      {"--aov", .kind = CLI_STRING, .dest = &r->aov_list},
+      {"--backend", .kind = CLI_STRING, .dest = &r->backend},
+      {"--backends", .kind = CLI_FLAG, .dest = &r->backends},
+      {"--progress", .kind = CLI_FLAG, .dest = &r->force_progress},
+      {"--verbose", .kind = CLI_FLAG, .dest = &r->verbose},
+      {"--spp", .kind = CLI_INT, .dest = &r->spp, .lo = 1, .hi = 1 << 24, .given = &r->given_spp},
+      {"--time", .kind = CLI_FINITE, .dest = &r->time_s, .given = &r->given_time},
+      {"--noise", .kind = CLI_FINITE, .dest = &r->noise, .given = &r->given_noise},
+      {"--compare", .kind = CLI_FILE, .dest = &r->compare},
+      {"--diff-png", .kind = CLI_FILE, .dest = &r->diff_png},
+      {"--reference", .kind = CLI_INT, .dest = &r->ref_spp, .lo = 1, .hi = 1 << 24, .given = &r->given_ref},
+      {"--mc-mesh", .kind = CLI_STRING, .dest = &r->mc_mesh},
+  };
+  cli_option opts[SCENE_ARGS_NOPTS + CLI_NOPTS(mine) + BACKEND_OPTIONS_MAX];
+  scene_args_options(&r->a, opts);
+  memcpy(opts + SCENE_ARGS_NOPTS, mine, sizeof mine);
+  int nopts = SCENE_ARGS_NOPTS + CLI_NOPTS(mine);
+  nopts += backend_options_table(&r->bo, opts + nopts);
+  int rc = cli_parse_options(CMD, argc, argv, 1, opts, nopts);
+  if (rc) return rc;
+  if (r->backends) {
+    *listed = 1;
+    return list_backends();
+  }
+  return check_args(r);
+}
+
+/* the render on the backend asked for (progress, the auto note, the backend options' warnings);
+ * 0, or the exit status after the message */
+static int render_image(render_args *r, const ics_plan *plan, ics_image **img,
+                        ics_exr_channels **aov, ics_render_stats *stats) {
+  char msg[CLI_MSG_MAX] = "";
+  slab_progress sp = {.t_last = cli_now_s()};
+  cli_progress_init(&sp.p, "render", r->force_progress);
+  ics_render_opts ro = {.backend = r->backend, .threads = r->a.threads, .spp = r->spp,
+                        .time_s = r->time_s, .noise = r->noise, .mc_mesh = r->mc_mesh,
+                        .options = backend_options_list(&r->bo)};
+  if (sp.p.on) ro.progress = r->mc ? on_sample : on_slab, ro.progress_ctx = &sp;
+  ics_renderer *rd;
+  ics_status st = ics_renderer_create(&rd, &ro, msg, sizeof msg);
+  if (st == ICS_OK) {
+    backend_options_warn(&r->bo, CMD, ics_renderer_backend(rd), ics_renderer_note(rd));
+    st = ics_renderer_render_aovs(rd, plan, r->aovs, img, r->aovs ? aov : NULL, stats, msg,
+                                  sizeof msg);
+    /* quiet by default: the note is for a user who may care (a terminal, --verbose, a backend
+     * option) */
+    if (*ics_renderer_note(rd) && (r->verbose || backend_options_any(&r->bo) || isatty(2)))
+      fprintf(stderr, "icshadow render: note: %s\n", ics_renderer_note(rd));
+    ics_renderer_destroy(rd);
+  }
+  if (sp.p.on) cli_progress_done(&sp.p);
+  return st == ICS_OK ? 0 : cli_status_error(CMD, st, "%s", msg);
+}
+
+/* --compare or --reference; 0, or the exit status after the message */
+static int compare_image(const render_args *r, const ics_plan *plan, const ics_image *img,
+                         render_comparison *cmp) {
+  if (r->compare) return render_compare_file(CMD, r->compare, img, cmp);
+  if (!r->given_ref) return 0;
+  slab_progress sp = {.t_last = cli_now_s()};
+  cli_progress_init(&sp.p, "reference", r->force_progress);
+  int rc = render_compare_mc(CMD, plan, r->ref_spp, r->a.threads, r->mc_mesh,
+                             sp.p.on ? on_sample : NULL, &sp, img, cmp);
+  if (sp.p.on) cli_progress_done(&sp.p);
+  return rc;
+}
+
+/* the summary, printed last and kept in the EXR (malloc'ed; NULL when out of memory) */
+static char *summary_text(const render_args *r, const ics_plan *plan,
+                          const ics_render_settings *rs, const ics_render_stats *stats,
+                          double t_plan, const ics_exr_channels *aov,
+                          const render_comparison *cmp) {
+  char *summary = NULL;
+  size_t summary_len = 0;
+  FILE *sf = open_memstream(&summary, &summary_len);
+  if (!sf) return NULL;
+  fprintf(sf, "{\"scene\": ");
+  cli_json_string(sf, r->a.scene ? r->a.scene : "default");
+  fprintf(sf, ", ");
+  ics_render_summary_write(sf, plan, rs, stats, 1e3 * t_plan);
+  if (r->exr) fprintf(sf, ", \"exr\": "), cli_json_string(sf, r->exr);
+  if (r->png) fprintf(sf, ", \"png\": "), cli_json_string(sf, r->png);
+  if (r->diff_png) fprintf(sf, ", \"diff_png\": "), cli_json_string(sf, r->diff_png);
+  if (aov) {
+    fprintf(sf, ", \"aovs\": [");
+    for (int c = 0; c < aov->count; c++)
+      fprintf(sf, "%s", c ? ", " : ""), cli_json_string(sf, aov->names[c]);
+    fprintf(sf, "]");
+  }
+  if (r->compare || r->given_ref) fprintf(sf, ", \"compare\": "), render_comparison_json(sf, cmp);
+  fprintf(sf, "}");
+  if (fclose(sf) != 0 || !summary) {
+    free(summary);
+    return NULL;
+  }
+  return summary;
+}
+
+/* status st of writing `path` as the exit status after the message: 1 for a write that failed,
+ * 2 for what the input made impossible */
+static int write_failure(ics_status st, const char *path, cli_output *o, const char *msg) {
+  return st == ICS_ERR_IO || st == ICS_ERR_NOMEM
+             ? cli_failure(CMD, "cannot write %s: %s", path, cli_output_reason(o, msg))
+             : cli_error(CMD, "cannot write %s: %s", path, cli_output_reason(o, msg));
+}
+
+/* the files and the summary, all or none: each file complete before any is renamed into place,
+ * the summary first (when one cannot be completed, a full disk or a closed stdout, no file is
+ * replaced); 0 or the exit status */
+static int write_outputs(const render_args *r, const ics_image *img, const ics_exr_channels *aov,
+                         const render_comparison *cmp, const char *summary) {
+  char msg[CLI_MSG_MAX] = "";
+  cli_output out[3] = {{0}}; /* -o, --png, --diff-png */
+  cli_output *all[4];
+  int n = 0, rc = 0;
+  if (r->exr) {
+    if (cli_output_open(&out[0], CMD, r->exr) != 0) return 1;
+    all[1 + n++] = &out[0];
+    ics_status st = write_exr(out[0].write_path, img, aov, summary, msg, sizeof msg);
+    if (st != ICS_OK) rc = write_failure(st, r->exr, &out[0], msg);
+  }
+  if (!rc && r->png) {
+    if (cli_output_open(&out[1], CMD, r->png) != 0) rc = 1;
+    else {
+      all[1 + n++] = &out[1];
+      ics_status st = ics_output_png(img, out[1].write_path, msg, sizeof msg);
+      if (st != ICS_OK) rc = write_failure(st, r->png, &out[1], msg);
+    }
+  }
+  if (!rc && r->diff_png) {
+    if (cli_output_open(&out[2], CMD, r->diff_png) != 0) rc = 1;
+    else {
+      all[1 + n++] = &out[2];
+      ics_image *dimg = render_difference_image(img, cmp->ref, 4);
+      ics_status st = dimg ? ics_output_png(dimg, out[2].write_path, msg, sizeof msg) : ICS_ERR_NOMEM;
+      if (!dimg) snprintf(msg, sizeof msg, "out of memory");
+      ics_image_destroy(dimg);
+      if (st != ICS_OK) rc = cli_failure(CMD, "cannot write %s: %s", r->diff_png, cli_output_reason(&out[2], msg));
+    }
+  }
+  if (rc) {
+    for (int i = 0; i < n; i++) cli_output_abort(all[1 + i]);
+    return rc;
+  }
+  cli_output os;
+  cli_output_open(&os, CMD, "-");
+  fprintf(os.fp, "%s\n", summary);
+  all[0] = &os;
+  return cli_outputs_commit(all, 1 + n) != 0 ? 1 : 0;
+}
 #endif
 
 int cmd_render(int argc, char **argv) {
@@ -162,85 +379,16 @@ int cmd_render(int argc, char **argv) {
   return cli_failure(CMD, "the renderer was not built (it needs jansson: install libjansson-dev "
                      "and rebuild)");
 #else
-  scene_args a;
-  memset(&a, 0, sizeof a);
-  const char *exr = NULL, *png = NULL, *backend = NULL, *aov_list = NULL, *compare = NULL,
-             *diff_png = NULL, *mc_mesh = NULL;
-  int force_progress = 0, verbose = 0, backends = 0, spp = 0, ref_spp = 0, given_ref = 0;
-  double time_s = 0, noise = 0;
-  int given_spp = 0, given_time = 0, given_noise = 0;
-  const cli_option mine[] = {
-      {"-o", .kind = CLI_FILE, .dest = &exr},
-      {"--png", .kind = CLI_FILE, .dest = &png},
-      {"--aov", .kind = CLI_STRING, .dest = &aov_list},
-      {"--backend", .kind = CLI_STRING, .dest = &backend},
-      {"--backends", .kind = CLI_FLAG, .dest = &backends},
-      {"--progress", .kind = CLI_FLAG, .dest = &force_progress},
-      {"--verbose", .kind = CLI_FLAG, .dest = &verbose},
-      {"--spp", .kind = CLI_INT, .dest = &spp, .lo = 1, .hi = 1 << 24, .given = &given_spp},
-      {"--time", .kind = CLI_FINITE, .dest = &time_s, .given = &given_time},
-      {"--noise", .kind = CLI_FINITE, .dest = &noise, .given = &given_noise},
-      {"--compare", .kind = CLI_FILE, .dest = &compare},
-      {"--diff-png", .kind = CLI_FILE, .dest = &diff_png},
-      {"--reference", .kind = CLI_INT, .dest = &ref_spp, .lo = 1, .hi = 1 << 24, .given = &given_ref},
-      {"--mc-mesh", .kind = CLI_STRING, .dest = &mc_mesh},
-  };
-  cli_option opts[SCENE_ARGS_NOPTS + CLI_NOPTS(mine) + BACKEND_OPTIONS_MAX];
-  scene_args_options(&a, opts);
-  memcpy(opts + SCENE_ARGS_NOPTS, mine, sizeof mine);
-  backend_options bo;
-  int nopts = SCENE_ARGS_NOPTS + CLI_NOPTS(mine);
-  nopts += backend_options_table(&bo, opts + nopts);
-  int rc = cli_parse_options(CMD, argc, argv, 1, opts, nopts);
-  if (rc) return rc;
-  if (backends) return list_backends();
-  if (!exr && !png && !diff_png && !compare && !given_ref)
-    return cli_error(CMD, "nothing to write: give -o OUT.exr and/or --png OUT.png (or only "
-                     "measure: --compare REF.exr or --reference N)");
-  size_t ne = exr ? strlen(exr) : 0;
-  if (ne >= 4 && !strcmp(exr + ne - 4, ".png"))
-    return cli_error(CMD, "-o %s: -o writes OpenEXR; give the PNG preview with --png", exr);
-  if ((exr && !strcmp(exr, "-")) || (png && !strcmp(png, "-")) || (diff_png && !strcmp(diff_png, "-")))
-    return cli_error(CMD, "images are written to files, not to stdout (the summary goes there)");
-  int mc = backend && !strcmp(backend, "mc");
-  if ((given_spp || given_time || given_noise) && !mc)
-    return cli_error(CMD, "%s: only the Monte-Carlo reference takes a stop (give --backend mc)",
-                     given_spp ? "--spp" : given_time ? "--time" : "--noise");
-  if (given_time && !(time_s > 0)) return cli_error(CMD, "--time: must be > 0 seconds");
-  if (given_noise && !(noise > 0)) return cli_error(CMD, "--noise: must be > 0");
-  if (mc_mesh && strcmp(mc_mesh, "auto") && strcmp(mc_mesh, "embree") && strcmp(mc_mesh, "bvh"))
-    return cli_error(CMD, "--mc-mesh %s: expected auto, embree or bvh", mc_mesh);
-  if (mc_mesh && !mc && !given_ref)
-    return cli_error(CMD, "--mc-mesh: only the Monte-Carlo reference takes it (give --backend mc "
-                     "or --reference N)");
-  if (compare && given_ref) return cli_error(CMD, "give --compare or --reference, not both");
-  if (given_ref && mc)
-    return cli_error(CMD, "--reference: this render is the Monte-Carlo reference itself (same seed, "
-                     "same samples); compare two mc renders with --compare REF.exr and another --seed");
-  if (diff_png && !compare && !given_ref)
-    return cli_error(CMD, "--diff-png: give --compare REF.exr or --reference N");
-  if (diff_png && !ics_output_png_available())
-    return cli_failure(CMD, "cannot write PNG: libpng was not found when the renderer was built");
-  if (compare && !ics_exr_available())
-    return cli_failure(CMD, "--compare: OpenEXR was not found when icshadow was built");
-  unsigned aovs = 0;
-  if (aov_list && (rc = parse_aovs(aov_list, mc ? ICS_AOV_STDERR : 0, &aovs))) return rc;
-  if (aovs && !exr) return cli_error(CMD, "--aov: AOVs go into the EXR; give -o OUT.exr");
-  if (exr && !ics_exr_available())
-    return cli_failure(CMD, "cannot write OpenEXR: OpenEXR was not found when icshadow was built");
-  if (png && !ics_output_png_available())
-    return cli_failure(CMD, "cannot write PNG: libpng was not found when the renderer was built");
-  if (backend && strcmp(backend, "auto")) {
-    char why[256];
-    if (!ics_backend_available(backend, why, sizeof why)) return cli_error(CMD, "--backend: %s", why);
-  }
-  const cli_path ins[] = {{"scene file", a.scene}, {"--compare reference", compare}};
-  const cli_path outs[] = {{"-o", exr}, {"--png", png}, {"--diff-png", diff_png}};
+  render_args r;
+  int listed, rc = parse_args(&r, argc, argv, &listed);
+  if (rc || listed) return rc;
+  const cli_path ins[] = {{"scene file", r.a.scene}, {"--compare reference", r.compare}};
+  const cli_path outs[] = {{"-o", r.exr}, {"--png", r.png}, {"--diff-png", r.diff_png}};
   if ((rc = cli_check_outputs(CMD, ins, 2, outs, 3))) return rc;
   ics_scene *s;
   ics_render_settings rs;
   ics_plan_opts po;
-  if ((rc = scene_args_load(CMD, &a, &s, &rs, &po))) return rc;
+  if ((rc = scene_args_load(CMD, &r.a, &s, &rs, &po))) return rc;
   if ((rc = scene_args_check_outputs(CMD, s, ins + 1, 1, outs, 3))) {
     ics_scene_destroy(s);
     return rc;
@@ -254,138 +402,17 @@ int cmd_render(int argc, char **argv) {
     return cli_status_error(CMD, st, "%s", msg);
   }
   double t_plan = cli_now_s() - t0;
-  slab_progress sp = {.t_last = cli_now_s()};
-  cli_progress_init(&sp.p, "render", force_progress);
-  ics_render_opts ro = {.backend = backend, .threads = a.threads, .spp = spp, .time_s = time_s,
-                        .noise = noise, .mc_mesh = mc_mesh,
-                        .options = backend_options_list(&bo)};
-  if (sp.p.on) ro.progress = mc ? on_sample : on_slab, ro.progress_ctx = &sp;
-  ics_renderer *r;
   ics_image *img = NULL;
   ics_exr_channels *aov = NULL;
   ics_render_stats stats;
   render_comparison cmp = {0};
-  st = ics_renderer_create(&r, &ro, msg, sizeof msg);
-  if (st == ICS_OK) {
-    backend_options_warn(&bo, CMD, ics_renderer_backend(r), ics_renderer_note(r));
-    st = ics_renderer_render_aovs(r, plan, aovs, &img, aovs ? &aov : NULL, &stats, msg, sizeof msg);
-    /* quiet by default: the note is for a user who may care (a terminal, --verbose, a backend
-     * option) */
-    if (*ics_renderer_note(r) && (verbose || backend_options_any(&bo) || isatty(2)))
-      fprintf(stderr, "icshadow render: note: %s\n", ics_renderer_note(r));
-    ics_renderer_destroy(r);
-  }
-  if (sp.p.on) cli_progress_done(&sp.p);
-  rc = 0;
-  if (st != ICS_OK) {
-    rc = cli_status_error(CMD, st, "%s", msg);
-    goto done;
-  }
-  int have_cmp = compare || given_ref;
-  if (compare && (rc = render_compare_file(CMD, compare, img, &cmp))) goto done;
-  if (given_ref) {
-    cli_progress_init(&sp.p, "reference", force_progress);
-    rc = render_compare_mc(CMD, plan, ref_spp, a.threads, mc_mesh, sp.p.on ? on_sample : NULL, &sp,
-                           img, &cmp);
-    if (sp.p.on) cli_progress_done(&sp.p);
-    if (rc) goto done;
-  }
-  /* the summary, printed last and kept in the EXR */
   char *summary = NULL;
-  size_t summary_len = 0;
-  FILE *sf = open_memstream(&summary, &summary_len);
-  if (!sf) {
-    rc = cli_failure(CMD, "out of memory");
-    goto done;
+  if (!(rc = render_image(&r, plan, &img, &aov, &stats)) &&
+      !(rc = compare_image(&r, plan, img, &cmp))) {
+    summary = summary_text(&r, plan, &rs, &stats, t_plan, aov, &cmp);
+    rc = summary ? write_outputs(&r, img, aov, &cmp, summary) : cli_failure(CMD, "out of memory");
   }
-  {
-    fprintf(sf, "{\"scene\": ");
-    cli_json_string(sf, a.scene ? a.scene : "default");
-    fprintf(sf, ", ");
-    ics_render_summary_write(sf, plan, &rs, &stats, 1e3 * t_plan);
-    if (exr) fprintf(sf, ", \"exr\": "), cli_json_string(sf, exr);
-    if (png) fprintf(sf, ", \"png\": "), cli_json_string(sf, png);
-    if (diff_png) fprintf(sf, ", \"diff_png\": "), cli_json_string(sf, diff_png);
-    if (aov) {
-      fprintf(sf, ", \"aovs\": [");
-      for (int c = 0; c < aov->count; c++)
-        fprintf(sf, "%s", c ? ", " : ""), cli_json_string(sf, aov->names[c]);
-      fprintf(sf, "]");
-    }
-    if (have_cmp) fprintf(sf, ", \"compare\": "), render_comparison_json(sf, &cmp);
-    fprintf(sf, "}");
-  }
-  if (fclose(sf) != 0 || !summary) {
-    free(summary);
-    rc = cli_failure(CMD, "out of memory");
-    goto done;
-  }
-  /* both files complete before either is renamed into place */
-  cli_output oe = {0}, op = {0}, od = {0};
-  int have_e = 0, have_p = 0, have_d = 0;
-  if (exr) {
-    if (cli_output_open(&oe, CMD, exr) != 0) {
-      rc = 1;
-      goto done_summary;
-    }
-    have_e = 1;
-    st = write_exr(oe.write_path, img, aov, summary, msg, sizeof msg);
-    if (st != ICS_OK) {
-      rc = st == ICS_ERR_IO || st == ICS_ERR_NOMEM ? cli_failure(CMD, "cannot write %s: %s", exr, cli_output_reason(&oe, msg))
-                                                   : cli_error(CMD, "cannot write %s: %s", exr, cli_output_reason(&oe, msg));
-      goto abort;
-    }
-  }
-  if (png) {
-    if (cli_output_open(&op, CMD, png) != 0) {
-      rc = 1;
-      goto abort;
-    }
-    have_p = 1;
-    st = ics_output_png(img, op.write_path, msg, sizeof msg);
-    if (st != ICS_OK) {
-      rc = st == ICS_ERR_IO || st == ICS_ERR_NOMEM ? cli_failure(CMD, "cannot write %s: %s", png, cli_output_reason(&op, msg))
-                                                   : cli_error(CMD, "cannot write %s: %s", png, cli_output_reason(&op, msg));
-      goto abort;
-    }
-  }
-  if (diff_png) {
-    if (cli_output_open(&od, CMD, diff_png) != 0) {
-      rc = 1;
-      goto abort;
-    }
-    have_d = 1;
-    ics_image *dimg = render_difference_image(img, cmp.ref, 4);
-    st = dimg ? ics_output_png(dimg, od.write_path, msg, sizeof msg) : ICS_ERR_NOMEM;
-    if (!dimg) snprintf(msg, sizeof msg, "out of memory");
-    ics_image_destroy(dimg);
-    if (st != ICS_OK) {
-      rc = cli_failure(CMD, "cannot write %s: %s", diff_png, cli_output_reason(&od, msg));
-      goto abort;
-    }
-  }
-  {
-    /* the summary and every file together, the summary first: when one cannot be completed
-     * (a full disk, a closed stdout), no file is replaced */
-    cli_output os;
-    cli_output_open(&os, CMD, "-");
-    fprintf(os.fp, "%s\n", summary);
-    cli_output *all[4] = {&os};
-    int n = 1;
-    if (have_e) all[n++] = &oe;
-    if (have_p) all[n++] = &op;
-    if (have_d) all[n++] = &od;
-    if (cli_outputs_commit(all, n) != 0) rc = 1;
-  }
-  goto done_summary;
-abort:
-  if (have_e) cli_output_abort(&oe);
-  if (have_p) cli_output_abort(&op);
-  if (have_d) cli_output_abort(&od);
-done_summary:
   free(summary);
-  goto done;
-done:
   ics_image_destroy(img);
   ics_exr_channels_destroy(aov);
   render_comparison_release(&cmp);

@@ -200,94 +200,77 @@ static double geometry_work(const ics_plan *p, double rays) {
   return rays * per;
 }
 
-ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_opts *opts,
-                           char *msg, size_t msg_size) {
-  ics_plan_opts o = {0};
-  if (opts) o = *opts;
-  *out = NULL;
-  if (msg && msg_size) msg[0] = 0;
-  if (!s) return ICS_ERR_INVALID_ARG;
-  ics_plan *p = calloc(1, sizeof *p);
-  if (!p) return ICS_ERR_NOMEM;
-  ics_status st = ICS_OK;
-  p->scene = s;
-  p->rs = o.settings ? *o.settings : s->settings;
-  p->cam = s->camera;
-  if (o.width > 0) p->cam.width = o.width;
-  if (o.height > 0) p->cam.height_px = o.height;
+/* the byte counts the plan's memory estimate and its passes are made of */
+typedef struct plan_bytes {
+  size_t buf, state, image, tap, offset, mesh, grid, ldi, region;
+} plan_bytes;
+
+/* resolution, settings, the slab count and the steps' work, before anything is allocated:
+ * *zlo, *zhi the depth range, *k_est the slabs */
+static ics_status plan_limits(ics_plan *p, double *zlo, double *zhi, double *k_est, char *msg,
+                              size_t msg_size) {
   if (p->cam.width > ICS_SCENE_MAX_RES || p->cam.height_px > ICS_SCENE_MAX_RES) {
     if (msg) snprintf(msg, msg_size, "resolution %dx%d exceeds %d per axis", p->cam.width,
                       p->cam.height_px, ICS_SCENE_MAX_RES);
-    free(p);
     return ICS_ERR_SIZE;
   }
   if (!(p->rs.slab_spacing > 0) || !(p->rs.d1 > 0) || !isfinite(p->rs.slab_spacing) ||
       !isfinite(p->rs.d1)) {
     if (msg) snprintf(msg, msg_size, "slab_spacing and d1 must be finite and > 0");
-    free(p);
     return ICS_ERR_RANGE;
   }
   p->W = p->cam.width;
   p->H = p->cam.height_px;
   p->e = p->rs.slab_spacing;
-  p->nlights = s->nlights;
-  int persp = p->cam.projection == ICS_PROJ_PERSPECTIVE;
-
-  double zlo, zhi;
-  estimate_depth(p, &zlo, &zhi);
-  p->q_ref = ics_plan_pixel_size(p, 0.5 * (zlo + zhi));
-  double k_est = floor((zhi - zlo) / p->e) + 2;
-  if (k_est > ICS_FRAG_MAX_SLABS) {
+  p->nlights = p->scene->nlights;
+  estimate_depth(p, zlo, zhi);
+  p->q_ref = ics_plan_pixel_size(p, 0.5 * (*zlo + *zhi));
+  *k_est = floor((*zhi - *zlo) / p->e) + 2;
+  if (*k_est > ICS_FRAG_MAX_SLABS) {
     if (msg)
       snprintf(msg, msg_size, "about %.3g slabs (depth range %.6g / slab_spacing %.6g) exceed "
-               "the limit %d: increase render.slab_spacing", k_est, zhi - zlo, p->e,
+               "the limit %d: increase render.slab_spacing", *k_est, *zhi - *zlo, p->e,
                ICS_FRAG_MAX_SLABS);
-    free(p);
     return ICS_ERR_SIZE;
   }
-  {
-    /* the steps' work, from the unpadded image (the padding only adds to it), before anything
-     * is allocated; the detail and perspective terms once the kernels are built, below */
-    double work = plan_work(p, k_est, (double)p->W * p->H, 0);
-    if (work > ICS_PLAN_MAX_WORK) {
-      if (msg)
-        snprintf(msg, msg_size, "about %.3g slabs x %d x %d pixels x (%d light(s) and the volume "
-                 "detail's octaves) = %.3g updates exceed the work limit %.3g: increase "
-                 "render.slab_spacing, lower the resolution or the detail's octaves",
-                 k_est, p->W, p->H, p->nlights, work, ICS_PLAN_MAX_WORK);
-      free(p);
-      return ICS_ERR_SIZE;
-    }
+  /* the steps' work, from the unpadded image (the padding only adds to it); the detail and
+   * perspective terms once the kernels are built */
+  double work = plan_work(p, *k_est, (double)p->W * p->H, 0);
+  if (work > ICS_PLAN_MAX_WORK) {
+    if (msg)
+      snprintf(msg, msg_size, "about %.3g slabs x %d x %d pixels x (%d light(s) and the volume "
+               "detail's octaves) = %.3g updates exceed the work limit %.3g: increase "
+               "render.slab_spacing, lower the resolution or the detail's octaves",
+               *k_est, p->W, p->H, p->nlights, work, ICS_PLAN_MAX_WORK);
+    return ICS_ERR_SIZE;
   }
+  return ICS_OK;
+}
 
-  /* kernels */
+/* each light's slab kernel (from the settings in force), and the perspective classes' work */
+static ics_status plan_kernels(ics_plan *p, double k_est, char *msg, size_t msg_size) {
+  const ics_scene *s = p->scene;
   p->kernels = calloc((size_t)p->nlights, sizeof *p->kernels);
   p->vol_bit = malloc(sizeof *p->vol_bit * (size_t)(s->nobjects ? s->nobjects : 1));
   p->inside_bit = malloc(sizeof *p->inside_bit * (size_t)(s->nobjects ? s->nobjects : 1));
   p->detail = calloc((size_t)(s->nobjects ? s->nobjects : 1), sizeof *p->detail);
-  if (!p->kernels || !p->vol_bit || !p->inside_bit || !p->detail) {
-    st = ICS_ERR_NOMEM;
-    goto fail;
-  }
-  {
-    ics_scene tmp = *s; /* the kernels read the settings in force */
-    tmp.settings = p->rs;
-    for (int k = 0; k < p->nlights; k++) {
-      st = ics_slab_kernel_init(&p->kernels[k], &tmp, k, p->q_ref, msg, msg_size);
-      if (st != ICS_OK) goto fail;
-      p->light_path[k] = sqrt(1 + s->lights[k].mean[0] * s->lights[k].mean[0] +
-                              s->lights[k].mean[1] * s->lights[k].mean[1]);
-      const ics_slab_kernel *sk = &p->kernels[k];
-      double big = fmax(fmax(fabs(sk->mean_px[0]), fabs(sk->mean_px[1])),
-                        fmax(sk->cov_px[0], sk->cov_px[2]));
-      if (!(big <= 1e6)) {
-        if (msg)
-          snprintf(msg, msg_size, "light %d: its per-slab kernel is %.3g pixels (mean or variance) "
-                   "at a pixel size of %.3g: the slab spacing, d1 or the light's spread is out of "
-                   "proportion to the image", k, big, p->q_ref);
-        st = ICS_ERR_RANGE;
-        goto fail;
-      }
+  if (!p->kernels || !p->vol_bit || !p->inside_bit || !p->detail) return ICS_ERR_NOMEM;
+  ics_scene tmp = *s; /* the kernels read the settings in force */
+  tmp.settings = p->rs;
+  for (int k = 0; k < p->nlights; k++) {
+    ics_status st = ics_slab_kernel_init(&p->kernels[k], &tmp, k, p->q_ref, msg, msg_size);
+    if (st != ICS_OK) return st;
+    p->light_path[k] = sqrt(1 + s->lights[k].mean[0] * s->lights[k].mean[0] +
+                            s->lights[k].mean[1] * s->lights[k].mean[1]);
+    const ics_slab_kernel *sk = &p->kernels[k];
+    double big = fmax(fmax(fabs(sk->mean_px[0]), fabs(sk->mean_px[1])),
+                      fmax(sk->cov_px[0], sk->cov_px[2]));
+    if (!(big <= 1e6)) {
+      if (msg)
+        snprintf(msg, msg_size, "light %d: its per-slab kernel is %.3g pixels (mean or variance) "
+                 "at a pixel size of %.3g: the slab spacing, d1 or the light's spread is out of "
+                 "proportion to the image", k, big, p->q_ref);
+      return ICS_ERR_RANGE;
     }
   }
   if (p->cam.projection == ICS_PROJ_PERSPECTIVE) { /* the classes' compensation per slab */
@@ -299,132 +282,135 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
                  "work limit %.3g: increase render.slab_spacing, or give fewer lights or samples",
                  k_est, p->nlights, ICS_PROP_CLASSES * ICS_PROP_CLASSES, p->W, p->H, work,
                  ICS_PLAN_MAX_WORK);
-      st = ICS_ERR_SIZE;
-      goto fail;
+      return ICS_ERR_SIZE;
     }
   }
+  return ICS_OK;
+}
 
-  /* padding: content moves by +mean per slab and spreads by the covariance */
-  {
-    double padl = 0, padr = 0, padt = 0, padb = 0;
-    for (int k = 0; k < p->nlights; k++) {
-      const ics_slab_kernel *sk = &p->kernels[k];
-      double mx = 0, my = 0, vmax = 0;
-      for (int i = 0; i < (int)k_est; i++) {
-        double z = zlo + (i + 0.5) * p->e, q = persp ? ics_plan_pixel_size(p, z) : p->q_ref;
-        mx += sk->mean_w[0] / q;
-        my += sk->mean_w[1] / q;
-        double c0 = sk->cov_w[0] / (q * q), c1 = sk->cov_w[1] / (q * q), c2 = sk->cov_w[2] / (q * q);
-        vmax += 0.5 * (c0 + c2) + sqrt(0.25 * (c0 - c2) * (c0 - c2) + c1 * c1);
-        if (!persp) { /* constant per slab: multiply instead of summing */
-          mx *= k_est, my *= k_est, vmax *= k_est;
-          break;
-        }
-      }
-      double spread = 4 * sqrt(vmax) + 2;
-      if (sk->mode == ICS_SLAB_SHIFT || vmax == 0) spread = 1;
-      padl = fmax(padl, fmax(0, mx) + spread);
-      padr = fmax(padr, fmax(0, -mx) + spread);
-      padt = fmax(padt, fmax(0, my) + spread);
-      padb = fmax(padb, fmax(0, -my) + spread);
-    }
-    if (persp) { /* content shrinks toward the principal point as depth grows */
-      double g = zhi / zlo - 1;
-      padl += 0.5 * p->W * g, padr += 0.5 * p->W * g;
-      padt += 0.5 * p->H * g, padb += 0.5 * p->H * g;
-    }
-    int cap = p->rs.max_pad >= 0 ? p->rs.max_pad : (p->W > p->H ? p->W : p->H);
-    double pads[4] = {padl, padr, padt, padb};
-    p->cx = 0;
-    int clipped = 0;
-    for (int i = 0; i < 4; i++) {
-      double v = ceil(pads[i]);
-      if (v > cap) v = cap, clipped = 1;
-      p->pad[i] = (int)v;
-    }
-    p->Wb = p->W + p->pad[0] + p->pad[1];
-    p->Hb = p->H + p->pad[2] + p->pad[3];
-    p->cx = p->pad[0] + 0.5 * p->W - 0.5;
-    p->cy = p->pad[2] + 0.5 * p->H - 0.5;
-    if (clipped) {
-      char r[160];
-      snprintf(r, sizeof r, "padding capped at %d px per side (render.max_pad): casters further "
-               "outside the view do not shadow it", cap);
-      add_omitted(p, "padding beyond max_pad", r);
-    } else if (p->pad[0] + p->pad[1] + p->pad[2] + p->pad[3] == 0) {
-      add_omitted(p, "padding", "no light moves or spreads shadows across the view's edge");
-    }
-  }
-
-  /* volumes, channels, detail */
-  {
-    int coloured = 0, nvol = 0;
-    for (int k = 0; k < s->nobjects; k++) {
-      const ics_material *m = &s->materials[s->objects[k].material];
-      p->vol_bit[k] = -1;
-      if (!grey(m->transport)) coloured = 1;
-      if (m->volumetric && s->objects[k].closed) {
-        if (nvol == ICS_MAX_VOLUMES) {
-          if (msg)
-            snprintf(msg, msg_size, "more than %d objects with volumetric materials",
-                     ICS_MAX_VOLUMES);
-          st = ICS_ERR_SIZE;
-          goto fail;
-        }
-        p->vol_bit[k] = nvol++;
-      }
-      if (m->volumetric && m->detail.fn != ICS_DETAIL_NONE) {
-        double lo[3], hi[3];
-        ics_object_bounds(&s->objects[k], lo, hi);
-        ics_detail_prepare(&p->detail[k], &m->detail, lo, hi);
-        p->any_detail = 1;
-      }
-    }
-    p->nvol = nvol;
-    p->nch = coloured ? 3 : 1;
-    /* the inside mask: the volumes, then (render.model solid and after) the solid objects, a
-     * closed shape of an opaque surface material (opacity 1, black transport: one that lets
-     * light through, tinted, is not solid) */
-    int nin = nvol;
-    for (int k = 0; k < s->nobjects; k++) {
-      const ics_material *m = &s->materials[s->objects[k].material];
-      p->inside_bit[k] = p->vol_bit[k];
-      int opaque = !m->volumetric && m->opacity == 1 && m->transport[0] == 0 &&
-                   m->transport[1] == 0 && m->transport[2] == 0;
-      if (p->rs.model < ICS_MODEL_SOLID || !opaque || !s->objects[k].closed) continue;
-      if (nin == ICS_MAX_VOLUMES) {
-        if (msg)
-          snprintf(msg, msg_size, "more than %d volumetric and solid objects (render.model %s)",
-                   ICS_MAX_VOLUMES, ics_render_model_name(p->rs.model));
-        st = ICS_ERR_SIZE;
-        goto fail;
-      }
-      p->solid_bits |= 1ull << nin;
-      p->inside_bit[k] = nin++;
-    }
-    p->ninside = nin;
-  }
-
-  /* the light buffers' apron: the farthest read of any light at the reference depth (beyond
-   * ICS_PLAN_MAX_APRON, the few slabs or lights that reach farther clamp their reads) */
-  {
-    int apron = 1;
-    for (int k = 0; k < p->nlights; k++)
-      if (p->kernels[k].reach_bound > apron) apron = p->kernels[k].reach_bound;
-    if (apron > ICS_PLAN_MAX_APRON) apron = ICS_PLAN_MAX_APRON;
-    ics_buf_layout_init(&p->buf, p->Wb, p->Hb, apron);
-  }
-
-  /* memory before the geometry pass */
-  size_t npx = (size_t)p->Wb * p->Hb, nimg = (size_t)p->W * p->H;
-  size_t buf_bytes = 2 * (size_t)p->nch * p->buf.plane * sizeof(float);
-  size_t state_bytes = npx * (3 * sizeof(uint32_t) + (p->ninside ? sizeof(uint64_t) : 0));
-  size_t image_bytes = nimg * 4 * sizeof(float);
-  size_t tap_bytes = 0;
+/* the padding: content moves by +mean per slab and spreads by the covariance */
+static void plan_padding(ics_plan *p, double zlo, double zhi, double k_est) {
+  int persp = p->cam.projection == ICS_PROJ_PERSPECTIVE;
+  double padl = 0, padr = 0, padt = 0, padb = 0;
   for (int k = 0; k < p->nlights; k++) {
     const ics_slab_kernel *sk = &p->kernels[k];
-    tap_bytes += (size_t)sk->entries * (size_t)sk->cap * sizeof(ics_tap2d);
-    if (persp) {
+    double mx = 0, my = 0, vmax = 0;
+    for (int i = 0; i < (int)k_est; i++) {
+      double z = zlo + (i + 0.5) * p->e, q = persp ? ics_plan_pixel_size(p, z) : p->q_ref;
+      mx += sk->mean_w[0] / q;
+      my += sk->mean_w[1] / q;
+      double c0 = sk->cov_w[0] / (q * q), c1 = sk->cov_w[1] / (q * q), c2 = sk->cov_w[2] / (q * q);
+      vmax += 0.5 * (c0 + c2) + sqrt(0.25 * (c0 - c2) * (c0 - c2) + c1 * c1);
+      if (!persp) { /* constant per slab: multiply instead of summing */
+        mx *= k_est, my *= k_est, vmax *= k_est;
+        break;
+      }
+    }
+    double spread = 4 * sqrt(vmax) + 2;
+    if (sk->mode == ICS_SLAB_SHIFT || vmax == 0) spread = 1;
+    padl = fmax(padl, fmax(0, mx) + spread);
+    padr = fmax(padr, fmax(0, -mx) + spread);
+    padt = fmax(padt, fmax(0, my) + spread);
+    padb = fmax(padb, fmax(0, -my) + spread);
+  }
+  if (persp) { /* content shrinks toward the principal point as depth grows */
+    double g = zhi / zlo - 1;
+    padl += 0.5 * p->W * g, padr += 0.5 * p->W * g;
+    padt += 0.5 * p->H * g, padb += 0.5 * p->H * g;
+  }
+  int cap = p->rs.max_pad >= 0 ? p->rs.max_pad : (p->W > p->H ? p->W : p->H);
+  double pads[4] = {padl, padr, padt, padb};
+  int clipped = 0;
+  for (int i = 0; i < 4; i++) {
+    double v = ceil(pads[i]);
+    if (v > cap) v = cap, clipped = 1;
+    p->pad[i] = (int)v;
+  }
+  p->Wb = p->W + p->pad[0] + p->pad[1];
+  p->Hb = p->H + p->pad[2] + p->pad[3];
+  p->cx = p->pad[0] + 0.5 * p->W - 0.5;
+  p->cy = p->pad[2] + 0.5 * p->H - 0.5;
+  if (clipped) {
+    char r[160];
+    snprintf(r, sizeof r, "padding capped at %d px per side (render.max_pad): casters further "
+             "outside the view do not shadow it", cap);
+    add_omitted(p, "padding beyond max_pad", r);
+  } else if (p->pad[0] + p->pad[1] + p->pad[2] + p->pad[3] == 0) {
+    add_omitted(p, "padding", "no light moves or spreads shadows across the view's edge");
+  }
+}
+
+/* volumes, channels, detail, and the inside mask's bits: the volumes, then (render.model solid
+ * and after) the solid objects, a closed shape of an opaque surface material (opacity 1, black
+ * transport: one that lets light through, tinted, is not solid) */
+static ics_status plan_volumes(ics_plan *p, char *msg, size_t msg_size) {
+  const ics_scene *s = p->scene;
+  int coloured = 0, nvol = 0;
+  for (int k = 0; k < s->nobjects; k++) {
+    const ics_material *m = &s->materials[s->objects[k].material];
+    p->vol_bit[k] = -1;
+    if (!grey(m->transport)) coloured = 1;
+    if (m->volumetric && s->objects[k].closed) {
+      if (nvol == ICS_MAX_VOLUMES) {
+        if (msg)
+          snprintf(msg, msg_size, "more than %d objects with volumetric materials", ICS_MAX_VOLUMES);
+        return ICS_ERR_SIZE;
+      }
+      p->vol_bit[k] = nvol++;
+    }
+    if (m->volumetric && m->detail.fn != ICS_DETAIL_NONE) {
+      double lo[3], hi[3];
+      ics_object_bounds(&s->objects[k], lo, hi);
+      ics_detail_prepare(&p->detail[k], &m->detail, lo, hi);
+      p->any_detail = 1;
+    }
+  }
+  p->nvol = nvol;
+  p->nch = coloured ? 3 : 1;
+  int nin = nvol;
+  for (int k = 0; k < s->nobjects; k++) {
+    const ics_material *m = &s->materials[s->objects[k].material];
+    p->inside_bit[k] = p->vol_bit[k];
+    int opaque = !m->volumetric && m->opacity == 1 && m->transport[0] == 0 &&
+                 m->transport[1] == 0 && m->transport[2] == 0;
+    if (p->rs.model < ICS_MODEL_SOLID || !opaque || !s->objects[k].closed) continue;
+    if (nin == ICS_MAX_VOLUMES) {
+      if (msg)
+        snprintf(msg, msg_size, "more than %d volumetric and solid objects (render.model %s)",
+                 ICS_MAX_VOLUMES, ics_render_model_name(p->rs.model));
+      return ICS_ERR_SIZE;
+    }
+    p->solid_bits |= 1ull << nin;
+    p->inside_bit[k] = nin++;
+  }
+  p->ninside = nin;
+  return ICS_OK;
+}
+
+/* the light buffers' layout with their apron: the farthest read of any light at the reference
+ * depth (beyond ICS_PLAN_MAX_APRON, the few slabs or lights that reach farther clamp their
+ * reads) */
+static void plan_apron(ics_plan *p) {
+  int apron = 1;
+  for (int k = 0; k < p->nlights; k++)
+    if (p->kernels[k].reach_bound > apron) apron = p->kernels[k].reach_bound;
+  if (apron > ICS_PLAN_MAX_APRON) apron = ICS_PLAN_MAX_APRON;
+  ics_buf_layout_init(&p->buf, p->Wb, p->Hb, apron);
+}
+
+/* the memory before the geometry pass, against render.memory_limit_mib and the loops' index
+ * range */
+static ics_status plan_memory(ics_plan *p, plan_bytes *b, char *msg, size_t msg_size) {
+  const ics_scene *s = p->scene;
+  size_t npx = (size_t)p->Wb * p->Hb, nimg = (size_t)p->W * p->H;
+  b->buf = 2 * (size_t)p->nch * p->buf.plane * sizeof(float);
+  b->state = npx * (3 * sizeof(uint32_t) + (p->ninside ? sizeof(uint64_t) : 0));
+  b->image = nimg * 4 * sizeof(float);
+  b->tap = 0;
+  for (int k = 0; k < p->nlights; k++) {
+    const ics_slab_kernel *sk = &p->kernels[k];
+    b->tap += (size_t)sk->entries * (size_t)sk->cap * sizeof(ics_tap2d);
+    if (p->cam.projection == ICS_PROJ_PERSPECTIVE) {
       /* the perspective step's classes (propagate.h): Q^2 compensated sets of up to
        * 4 n + 9 taps (12 bytes each) and their scratch (24 bytes each) */
       size_t n = (size_t)sk->out_entries * (size_t)sk->cap, cls = (size_t)ICS_PROP_CLASSES * ICS_PROP_CLASSES;
@@ -433,40 +419,45 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
           snprintf(msg, msg_size, "light %d: %zu taps per slab; perspective cameras take at most "
                    "%d (each slab compensates %zu classes of them): fewer samples or an "
                    "orthographic camera", k, n, ICS_PLAN_MAX_PERSPECTIVE_TAPS, cls);
-        st = ICS_ERR_SIZE;
-        goto fail;
+        return ICS_ERR_SIZE;
       }
-      tap_bytes += cls * (4 * n + 9) * 36;
+      b->tap += cls * (4 * n + 9) * 36;
     }
   }
-  p->backend_bytes = (size_t)p->nlights * ics_plan_light_sets(p) * buf_bytes + state_bytes +
-                     image_bytes + tap_bytes;
-  size_t offset_bytes = (npx + 1) * sizeof(uint32_t);
-  size_t mesh_bytes = 0, grid_bytes = 0;
-  for (int i = 0; i < s->nmeshes; i++) mesh_bytes += ics_mesh_bytes(s->meshes[i]);
+  p->backend_bytes = (size_t)p->nlights * ics_plan_light_sets(p) * b->buf + b->state + b->image +
+                     b->tap;
+  b->offset = (npx + 1) * sizeof(uint32_t);
+  b->mesh = b->grid = 0;
+  for (int i = 0; i < s->nmeshes; i++) b->mesh += ics_mesh_bytes(s->meshes[i]);
   for (int i = 0; i < s->nmaterials; i++) /* the grids read: those some object uses */
     if (s->materials[i].detail.fn == ICS_DETAIL_GRID && s->materials[i].detail.grid)
-      grid_bytes += (size_t)s->materials[i].detail.size[0] * s->materials[i].detail.size[1] *
-                    s->materials[i].detail.size[2] * sizeof(float);
-  p->memory_bytes = p->backend_bytes + offset_bytes + mesh_bytes + grid_bytes;
+      b->grid += (size_t)s->materials[i].detail.size[0] * s->materials[i].detail.size[1] *
+                 s->materials[i].detail.size[2] * sizeof(float);
+  p->memory_bytes = p->backend_bytes + b->offset + b->mesh + b->grid;
   if ((double)p->memory_bytes > p->rs.memory_limit_mib * 1048576.0) {
     if (msg)
       snprintf(msg, msg_size, "the plan needs at least %.*f MiB (%d x %d light buffers for %d "
                "light(s), %d channel(s)), over render.memory_limit_mib = %g",
                p->memory_bytes < 104858 ? 4 : 1, p->memory_bytes / 1048576.0, p->Wb, p->Hb,
                p->nlights, p->nch, p->rs.memory_limit_mib); /* (a small plan: 0.0130, not 0.0) */
-    st = ICS_ERR_SIZE;
-    goto fail;
+    return ICS_ERR_SIZE;
   }
   if (p->buf.plane > ICS_CONV_MAX_LEN) { /* the loops index a plane with 32-bit integers */
     if (msg)
       snprintf(msg, msg_size, "light buffers of %d x %d pixels (with padding and apron) exceed "
                "%zu pixels: lower the resolution or render.max_pad", p->Wb, p->Hb,
                (size_t)ICS_CONV_MAX_LEN);
-    st = ICS_ERR_SIZE;
-    goto fail;
+    return ICS_ERR_SIZE;
   }
+  return ICS_OK;
+}
 
+/* the geometry pass (the layered depth image, bounded first), the work of the slabs it found and
+ * the active regions; the memory with them */
+static ics_status plan_geometry(ics_plan *p, int threads, plan_bytes *b, char *msg,
+                                size_t msg_size) {
+  const ics_scene *s = p->scene;
+  size_t npx = (size_t)p->Wb * p->Hb;
   double gwork = geometry_work(p, (double)npx);
   if (gwork > ICS_PLAN_MAX_GEOMETRY) {
     if (msg)
@@ -474,18 +465,17 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
                "their BVH depth) = %.3g ray-object tests exceed the limit %.3g: lower the "
                "resolution, render.max_pad or the number of objects", p->Wb, p->Hb,
                s->nobjects, gwork, ICS_PLAN_MAX_GEOMETRY);
-    st = ICS_ERR_SIZE;
-    goto fail;
+    return ICS_ERR_SIZE;
   }
   double t0 = ics_clock_s();
-  st = ics_ldi_build(p, o.threads, msg, msg_size);
+  ics_status st = ics_ldi_build(p, threads, msg, msg_size);
   p->geometry_s = ics_clock_s() - t0;
-  if (st != ICS_OK) goto fail;
-  size_t ldi_bytes = offset_bytes + p->ldi.nfrag * sizeof(ics_fragment) +
-                     (p->ldi.inside0 ? npx * sizeof(uint64_t) : 0);
-  size_t region_bytes = (size_t)p->K * (size_t)p->nlights * sizeof(ics_rect) +
-                        (size_t)(p->nlights * ics_plan_light_sets(p) + 1) * (npx / (ICS_TILE_W * ICS_TILE_H) + 1) * sizeof(int32_t);
-  p->memory_bytes = p->backend_bytes + ldi_bytes + mesh_bytes + grid_bytes + region_bytes;
+  if (st != ICS_OK) return st;
+  b->ldi = b->offset + p->ldi.nfrag * sizeof(ics_fragment) +
+           (p->ldi.inside0 ? npx * sizeof(uint64_t) : 0);
+  b->region = (size_t)p->K * (size_t)p->nlights * sizeof(ics_rect) +
+              (size_t)(p->nlights * ics_plan_light_sets(p) + 1) * (npx / (ICS_TILE_W * ICS_TILE_H) + 1) * sizeof(int32_t);
+  p->memory_bytes = p->backend_bytes + b->ldi + b->mesh + b->grid + b->region;
   double work = plan_work(p, p->K, (double)npx, 1);
   if (work > ICS_PLAN_MAX_WORK) {
     if (msg)
@@ -493,58 +483,87 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
                "detail's octaves, with the perspective classes) = %.3g updates exceed the work "
                "limit %.3g: increase render.slab_spacing or lower the resolution",
                p->K, p->Wb, p->Hb, p->nlights, work, ICS_PLAN_MAX_WORK);
-    st = ICS_ERR_SIZE;
-    goto fail;
+    return ICS_ERR_SIZE;
   }
+  return ics_active_regions_build(p, msg, msg_size);
+}
 
-  st = ics_active_regions_build(p, msg, msg_size);
-  if (st != ICS_OK) goto fail;
-
-  /* passes and omissions */
-  {
-    char d[192];
-    snprintf(d, sizeof d, "%d layer(s) max, %zu fragments, ray cast over %d x %d", p->ldi.max_layers,
-             p->ldi.nfrag, p->Wb, p->Hb);
-    add_pass(p, "layered_depth_image", ldi_bytes, -1, 0, d);
-    if (mesh_bytes) {
-      snprintf(d, sizeof d, "%d mesh(es)", s->nmeshes);
-      add_pass(p, "mesh_bvh", mesh_bytes, -1, 0, d);
-    } else {
-      add_omitted(p, "mesh_bvh", "no meshes");
-    }
-    for (int k = 0; k < p->nlights; k++) {
-      const ics_slab_kernel *sk = &p->kernels[k];
-      static const char *const modes[] = {"shift", "integer", "taps", "table"};
-      snprintf(d, sizeof d, "%s %d, %s: %s", ics_render_kernel_name(sk->run_member),
-               sk->run_samples, modes[sk->mode], sk->why);
-      size_t kb = buf_bytes + (size_t)sk->entries * (size_t)sk->cap * sizeof(ics_tap2d);
-      add_pass(p, sk->mode == ICS_SLAB_SHIFT ? "shift" : "convolution", kb, k, sk->taps, d);
-      if (sk->mode == ICS_SLAB_SHIFT) {
-        char nm[48];
-        snprintf(nm, sizeof nm, "convolution taps (light %d)", k);
-        add_omitted(p, nm, "zero variance: integer shifts instead");
-      }
-    }
-    if (p->nch == 1) add_omitted(p, "colour light buffers", "every transport colour is grey: one channel per light");
-    if (p->any_detail) {
-      snprintf(d, sizeof d, "detail functions of volumetric materials, one sample per slab piece");
-      add_pass(p, "detail", grid_bytes, -1, 0, d);
-    } else {
-      add_omitted(p, "detail", "no material has volumetric detail");
-    }
-    if (!p->ninside)
-      add_omitted(p, "volume tracking", p->rs.model >= ICS_MODEL_SOLID
-                                            ? "no volumetric or solid objects (surfaces only)"
-                                            : "no volumetric objects (surfaces only)");
-    snprintf(d, sizeof d, "front-to-back compositing into the RGBA image, per-pixel layer cursors");
-    add_pass(p, "shading", state_bytes + image_bytes, -1, 0, d);
+/* the passes the plan makes, with their bytes, and what it leaves out and why */
+static void plan_passes(ics_plan *p, const plan_bytes *b) {
+  const ics_scene *s = p->scene;
+  char d[192];
+  snprintf(d, sizeof d, "%d layer(s) max, %zu fragments, ray cast over %d x %d", p->ldi.max_layers,
+           p->ldi.nfrag, p->Wb, p->Hb);
+  add_pass(p, "layered_depth_image", b->ldi, -1, 0, d);
+  if (b->mesh) {
+    snprintf(d, sizeof d, "%d mesh(es)", s->nmeshes);
+    add_pass(p, "mesh_bvh", b->mesh, -1, 0, d);
+  } else {
+    add_omitted(p, "mesh_bvh", "no meshes");
   }
+  for (int k = 0; k < p->nlights; k++) {
+    const ics_slab_kernel *sk = &p->kernels[k];
+    static const char *const modes[] = {"shift", "integer", "taps", "table"};
+    snprintf(d, sizeof d, "%s %d, %s: %s", ics_render_kernel_name(sk->run_member),
+             sk->run_samples, modes[sk->mode], sk->why);
+    size_t kb = b->buf + (size_t)sk->entries * (size_t)sk->cap * sizeof(ics_tap2d);
+    add_pass(p, sk->mode == ICS_SLAB_SHIFT ? "shift" : "convolution", kb, k, sk->taps, d);
+    if (sk->mode == ICS_SLAB_SHIFT) {
+      char nm[48];
+      snprintf(nm, sizeof nm, "convolution taps (light %d)", k);
+      add_omitted(p, nm, "zero variance: integer shifts instead");
+    }
+  }
+  if (p->nch == 1) add_omitted(p, "colour light buffers", "every transport colour is grey: one channel per light");
+  if (p->any_detail) {
+    snprintf(d, sizeof d, "detail functions of volumetric materials, one sample per slab piece");
+    add_pass(p, "detail", b->grid, -1, 0, d);
+  } else {
+    add_omitted(p, "detail", "no material has volumetric detail");
+  }
+  if (!p->ninside)
+    add_omitted(p, "volume tracking", p->rs.model >= ICS_MODEL_SOLID
+                                          ? "no volumetric or solid objects (surfaces only)"
+                                          : "no volumetric objects (surfaces only)");
+  snprintf(d, sizeof d, "front-to-back compositing into the RGBA image, per-pixel layer cursors");
+  add_pass(p, "shading", b->state + b->image, -1, 0, d);
+}
+
+ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_opts *opts,
+                           char *msg, size_t msg_size) {
+  ics_plan_opts o = {0};
+  if (opts) o = *opts;
+  *out = NULL;
+  if (msg && msg_size) msg[0] = 0;
+  if (!s) return ICS_ERR_INVALID_ARG;
+  ics_plan *p = calloc(1, sizeof *p);
+  if (!p) return ICS_ERR_NOMEM;
+  p->scene = s;
+  p->rs = o.settings ? *o.settings : s->settings;
+  p->cam = s->camera;
+  if (o.width > 0) p->cam.width = o.width;
+  if (o.height > 0) p->cam.height_px = o.height;
+  double zlo, zhi, k_est;
+  plan_bytes b = {0};
+  ics_status st = plan_limits(p, &zlo, &zhi, &k_est, msg, msg_size);
+  if (st == ICS_OK) st = plan_kernels(p, k_est, msg, msg_size);
+  if (st == ICS_OK) {
+    plan_padding(p, zlo, zhi, k_est);
+    st = plan_volumes(p, msg, msg_size);
+  }
+  if (st == ICS_OK) {
+    plan_apron(p);
+    st = plan_memory(p, &b, msg, msg_size);
+  }
+  if (st == ICS_OK) st = plan_geometry(p, o.threads, &b, msg, msg_size);
+  if (st != ICS_OK) {
+    if (msg && msg_size && !msg[0]) snprintf(msg, msg_size, "cannot plan the render: %s", ics_status_str(st));
+    ics_plan_destroy(p);
+    return st;
+  }
+  plan_passes(p, &b);
   *out = p;
   return ICS_OK;
-fail:
-  if (msg && msg_size && !msg[0]) snprintf(msg, msg_size, "cannot plan the render: %s", ics_status_str(st));
-  ics_plan_destroy(p);
-  return st;
 }
 
 void ics_plan_destroy(ics_plan *p) {

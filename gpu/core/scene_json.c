@@ -717,153 +717,162 @@ static json_t *need(rctx *c, const char *where, json_t *o, const char *key) {
   return v;
 }
 
-static int read_object(rctx *c, int idx, json_t *o) {
-  char where[4096 + 64];
-  snprintf(where, sizeof where, "%s: objects[%d]", c->name, idx);
-  char w2[sizeof where + 32];
+/* the "shape" values, in the order of the kinds read_object dispatches on */
+static const char *const shape_names[] = {"rect", "disk", "box", "sphere", "torus", "mesh", "fence"};
+
+/* a rect or disk (kind 0, 1): an open surface, never a volume's bound */
+static int read_open_shape(rctx *c, int idx, json_t *o, const char *where, int kind, int mi) {
+  char w2[4096 + 64 + 32];
 #define KEY(k) (snprintf(w2, sizeof w2, "%s.%s", where, k), w2)
-  if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", where);
-  json_t *sh = json_object_get(o, "shape"), *mat = json_object_get(o, "material");
-  if (!sh) return fail(c, ICS_ERR_PARSE, "%s: missing \"shape\"", where);
-  if (!mat) return fail(c, ICS_ERR_PARSE, "%s: missing \"material\"", where);
-  static const char *const shapes[] = {"rect", "disk", "box", "sphere", "torus", "mesh", "fence"};
-  int kind;
-  if (J(ics_jenum(&c->j, KEY("shape"), sh, shapes, 7, &kind))) return -1;
-  if (!json_is_string(mat)) return fail(c, ICS_ERR_PARSE, "%s: expected a material name", KEY("material"));
-  int mi = -1;
-  for (int i = 0; i < c->s->nmaterials; i++)
-    if (!strcmp(c->s->materials[i].name, json_string_value(mat))) mi = i;
-  if (mi < 0)
-    return fail(c, ICS_ERR_PARSE, "%s: no material named \"%s\" in \"materials\"", KEY("material"),
-                json_string_value(mat));
   const ics_material *m = &c->s->materials[mi];
+  double center[3], n3[3];
+  json_t *x;
+  static const char *const rk[] = {"center", "normal", "size", "up"};
+  static const char *const dk[] = {"center", "normal", "radius"};
+  if (has_only(c, where, o, shape_names[kind], kind == 0 ? rk : dk, kind == 0 ? 4 : 3)) return -1;
+  if (m->volumetric)
+    return fail(c, ICS_ERR_PARSE, "%s: volumetric material \"%s\" on an open shape (%s): only "
+                "closed shapes bound volumes", KEY("material"), m->name, shape_names[kind]);
+  if (!(x = need(c, where, o, "center")) || J(ics_jvec(&c->j, KEY("center"), x, 3, center, "x, y, z")))
+    return -1;
+  if (!(x = need(c, where, o, "normal")) || nonzero_vec3(c, KEY("normal"), x, n3)) return -1;
+  ics_object *ob = new_object(c);
+  if (!ob) return -1;
+  ob->shape = kind == 0 ? ICS_SHAPE_RECT : ICS_SHAPE_DISK;
+  memcpy(ob->center, center, sizeof center);
+  ob->material = mi;
+  ob->source = idx;
+  if (kind == 0) {
+    double sz[2], up[3], *upp = NULL;
+    if (!(x = need(c, where, o, "size")) || J(ics_jvec(&c->j, KEY("size"), x, 2, sz, "sx, sy")))
+      return -1;
+    if (!(sz[0] > 0 && sz[1] > 0)) return fail(c, ICS_ERR_RANGE, "%s: sides must be > 0", KEY("size"));
+    if ((x = json_object_get(o, "up"))) {
+      if (nonzero_vec3(c, KEY("up"), x, up)) return -1;
+      upp = up;
+    }
+    ics_frame_from_normal(n3, upp, ob->ax);
+    ob->half[0] = sz[0] / 2, ob->half[1] = sz[1] / 2;
+  } else {
+    if (!(x = need(c, where, o, "radius")) || positive(c, KEY("radius"), x, &ob->half[0])) return -1;
+    ics_frame_from_normal(n3, NULL, ob->ax);
+  }
+  return 0;
+#undef KEY
+}
+
+/* a box, sphere or torus (kind 2, 3, 4): a closed shape */
+static int read_closed_shape(rctx *c, int idx, json_t *o, const char *where, int kind, int mi) {
+  char w2[4096 + 64 + 32];
+#define KEY(k) (snprintf(w2, sizeof w2, "%s.%s", where, k), w2)
   double center[3], v3[3], n3[3], rot[3] = {0, 0, 0};
   json_t *x;
-  if (kind == 0 || kind == 1) { /* rect, disk: open surfaces */
-    static const char *const rk[] = {"center", "normal", "size", "up"};
-    static const char *const dk[] = {"center", "normal", "radius"};
-    if (has_only(c, where, o, shapes[kind], kind == 0 ? rk : dk, kind == 0 ? 4 : 3)) return -1;
-    if (m->volumetric)
-      return fail(c, ICS_ERR_PARSE, "%s: volumetric material \"%s\" on an open shape (%s): only "
-                  "closed shapes bound volumes", KEY("material"), m->name, shapes[kind]);
-    if (!(x = need(c, where, o, "center")) || J(ics_jvec(&c->j, KEY("center"), x, 3, center, "x, y, z")))
+  static const char *const bk[] = {"center", "size", "rotate_deg"};
+  static const char *const sk[] = {"center", "radius"};
+  static const char *const tk[] = {"center", "normal", "major_radius", "minor_radius"};
+  const char *const *keys = kind == 2 ? bk : kind == 3 ? sk : tk;
+  if (has_only(c, where, o, shape_names[kind], keys, kind == 2 ? 3 : kind == 3 ? 2 : 4)) return -1;
+  if (!(x = need(c, where, o, "center")) || J(ics_jvec(&c->j, KEY("center"), x, 3, center, "x, y, z")))
+    return -1;
+  ics_object *ob = new_object(c);
+  if (!ob) return -1;
+  ob->shape = kind == 2 ? ICS_SHAPE_BOX : kind == 3 ? ICS_SHAPE_SPHERE : ICS_SHAPE_TORUS;
+  ob->closed = 1;
+  ob->material = mi;
+  ob->source = idx;
+  memcpy(ob->center, center, sizeof center);
+  double id[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  memcpy(ob->ax, id, sizeof id);
+  if (kind == 2) {
+    if (!(x = need(c, where, o, "size")) || J(ics_jvec(&c->j, KEY("size"), x, 3, v3, "sx, sy, sz")))
       return -1;
-    if (!(x = need(c, where, o, "normal")) || nonzero_vec3(c, KEY("normal"), x, n3)) return -1;
-    ics_object *ob = new_object(c);
-    if (!ob) return -1;
-    ob->shape = kind == 0 ? ICS_SHAPE_RECT : ICS_SHAPE_DISK;
-    memcpy(ob->center, center, sizeof center);
-    ob->material = mi;
-    ob->source = idx;
-    if (kind == 0) {
-      double sz[2], up[3], *upp = NULL;
-      if (!(x = need(c, where, o, "size")) || J(ics_jvec(&c->j, KEY("size"), x, 2, sz, "sx, sy")))
-        return -1;
-      if (!(sz[0] > 0 && sz[1] > 0)) return fail(c, ICS_ERR_RANGE, "%s: sides must be > 0", KEY("size"));
-      if ((x = json_object_get(o, "up"))) {
-        if (nonzero_vec3(c, KEY("up"), x, up)) return -1;
-        upp = up;
-      }
-      ics_frame_from_normal(n3, upp, ob->ax);
-      ob->half[0] = sz[0] / 2, ob->half[1] = sz[1] / 2;
-    } else {
-      if (!(x = need(c, where, o, "radius")) || positive(c, KEY("radius"), x, &ob->half[0])) return -1;
-      ics_frame_from_normal(n3, NULL, ob->ax);
+    if (!(v3[0] > 0 && v3[1] > 0 && v3[2] > 0))
+      return fail(c, ICS_ERR_RANGE, "%s: sides must be > 0", KEY("size"));
+    for (int i = 0; i < 3; i++) ob->half[i] = v3[i] / 2;
+    if ((x = json_object_get(o, "rotate_deg"))) {
+      if (J(ics_jvec(&c->j, KEY("rotate_deg"), x, 3, rot, "rx, ry, rz"))) return -1;
+      ics_frame_rotate(ob->ax, rot);
     }
-    return 0;
-  }
-  if (kind == 2 || kind == 3 || kind == 4) { /* box, sphere, torus */
-    static const char *const bk[] = {"center", "size", "rotate_deg"};
-    static const char *const sk[] = {"center", "radius"};
-    static const char *const tk[] = {"center", "normal", "major_radius", "minor_radius"};
-    const char *const *keys = kind == 2 ? bk : kind == 3 ? sk : tk;
-    if (has_only(c, where, o, shapes[kind], keys, kind == 2 ? 3 : kind == 3 ? 2 : 4)) return -1;
-    if (!(x = need(c, where, o, "center")) || J(ics_jvec(&c->j, KEY("center"), x, 3, center, "x, y, z")))
+  } else if (kind == 3) {
+    if (!(x = need(c, where, o, "radius")) || positive(c, KEY("radius"), x, &ob->half[0])) return -1;
+  } else {
+    if (!(x = need(c, where, o, "normal")) || nonzero_vec3(c, KEY("normal"), x, n3)) return -1;
+    if (!(x = need(c, where, o, "major_radius")) || positive(c, KEY("major_radius"), x, &ob->half[0]) ||
+        !(x = need(c, where, o, "minor_radius")) || positive(c, KEY("minor_radius"), x, &ob->half[1]))
       return -1;
+    if (!(ob->half[1] < ob->half[0]))
+      return fail(c, ICS_ERR_RANGE, "%s: must be smaller than major_radius", KEY("minor_radius"));
+    ics_frame_from_normal(n3, NULL, ob->ax);
+  }
+  return 0;
+#undef KEY
+}
+
+/* a fence: its poles and its bar, expanded into boxes */
+static int read_fence(rctx *c, int idx, json_t *o, const char *where, int mi) {
+  char w2[4096 + 64 + 32];
+#define KEY(k) (snprintf(w2, sizeof w2, "%s.%s", where, k), w2)
+  double center[3], rot[3] = {0, 0, 0};
+  json_t *x;
+  static const char *const fk[] = {"center", "poles", "pole_size", "spacing", "bar_size",
+                                   "rotate_deg"};
+  if (has_only(c, where, o, "fence", fk, 6)) return -1;
+  double ps[3], bs[2], spacing;
+  long long np;
+  if (!(x = need(c, where, o, "center")) || J(ics_jvec(&c->j, KEY("center"), x, 3, center, "x, y, z")) ||
+      !(x = need(c, where, o, "poles")) || J(ics_jint(&c->j, KEY("poles"), x, 1, 1000, &np)) ||
+      !(x = need(c, where, o, "pole_size")) ||
+      J(ics_jvec(&c->j, KEY("pole_size"), x, 3, ps, "width, height, depth")) ||
+      !(x = need(c, where, o, "spacing")) || positive(c, KEY("spacing"), x, &spacing) ||
+      !(x = need(c, where, o, "bar_size")) ||
+      J(ics_jvec(&c->j, KEY("bar_size"), x, 2, bs, "height, depth")))
+    return -1;
+  if (!(ps[0] > 0 && ps[1] > 0 && ps[2] > 0))
+    return fail(c, ICS_ERR_RANGE, "%s: sizes must be > 0", KEY("pole_size"));
+  if (!(bs[0] > 0 && bs[1] > 0 && bs[0] < ps[1]))
+    return fail(c, ICS_ERR_RANGE, "%s: sizes must be > 0 and the bar lower than the poles",
+                KEY("bar_size"));
+  if (!(spacing > ps[0]))
+    return fail(c, ICS_ERR_RANGE, "%s: must exceed the pole width (poles may not overlap)",
+                KEY("spacing"));
+  if ((x = json_object_get(o, "rotate_deg")) &&
+      J(ics_jvec(&c->j, KEY("rotate_deg"), x, 3, rot, "rx, ry, rz")))
+    return -1;
+  double ax[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  ics_frame_rotate(ax, rot);
+  double span = (double)(np - 1) * spacing;
+  for (long long i = 0; i <= np; i++) {
+    /* i < np: a pole from the ground to the bar's underside; i == np: the bar */
+    double local[3], half[3];
+    if (i < np) {
+      local[0] = -span / 2 + (double)i * spacing, local[1] = (ps[1] - bs[0]) / 2, local[2] = 0;
+      half[0] = ps[0] / 2, half[1] = (ps[1] - bs[0]) / 2, half[2] = ps[2] / 2;
+    } else {
+      local[0] = 0, local[1] = ps[1] - bs[0] / 2, local[2] = 0;
+      half[0] = (span + ps[0]) / 2, half[1] = bs[0] / 2, half[2] = bs[1] / 2;
+    }
     ics_object *ob = new_object(c);
     if (!ob) return -1;
-    ob->shape = kind == 2 ? ICS_SHAPE_BOX : kind == 3 ? ICS_SHAPE_SPHERE : ICS_SHAPE_TORUS;
+    ob->shape = ICS_SHAPE_BOX;
     ob->closed = 1;
     ob->material = mi;
     ob->source = idx;
-    memcpy(ob->center, center, sizeof center);
-    double id[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    memcpy(ob->ax, id, sizeof id);
-    if (kind == 2) {
-      if (!(x = need(c, where, o, "size")) || J(ics_jvec(&c->j, KEY("size"), x, 3, v3, "sx, sy, sz")))
-        return -1;
-      if (!(v3[0] > 0 && v3[1] > 0 && v3[2] > 0))
-        return fail(c, ICS_ERR_RANGE, "%s: sides must be > 0", KEY("size"));
-      for (int i = 0; i < 3; i++) ob->half[i] = v3[i] / 2;
-      if ((x = json_object_get(o, "rotate_deg"))) {
-        if (J(ics_jvec(&c->j, KEY("rotate_deg"), x, 3, rot, "rx, ry, rz"))) return -1;
-        ics_frame_rotate(ob->ax, rot);
-      }
-    } else if (kind == 3) {
-      if (!(x = need(c, where, o, "radius")) || positive(c, KEY("radius"), x, &ob->half[0])) return -1;
-    } else {
-      if (!(x = need(c, where, o, "normal")) || nonzero_vec3(c, KEY("normal"), x, n3)) return -1;
-      if (!(x = need(c, where, o, "major_radius")) || positive(c, KEY("major_radius"), x, &ob->half[0]) ||
-          !(x = need(c, where, o, "minor_radius")) || positive(c, KEY("minor_radius"), x, &ob->half[1]))
-        return -1;
-      if (!(ob->half[1] < ob->half[0]))
-        return fail(c, ICS_ERR_RANGE, "%s: must be smaller than major_radius", KEY("minor_radius"));
-      ics_frame_from_normal(n3, NULL, ob->ax);
-    }
-    return 0;
+    memcpy(ob->ax, ax, sizeof ax);
+    memcpy(ob->half, half, sizeof half);
+    for (int w = 0; w < 3; w++)
+      ob->center[w] = center[w] + local[0] * ax[0][w] + local[1] * ax[1][w] + local[2] * ax[2][w];
   }
-  if (kind == 6) { /* fence: poles and a bar, expanded into boxes */
-    static const char *const fk[] = {"center", "poles", "pole_size", "spacing", "bar_size",
-                                     "rotate_deg"};
-    if (has_only(c, where, o, "fence", fk, 6)) return -1;
-    double ps[3], bs[2], spacing;
-    long long np;
-    if (!(x = need(c, where, o, "center")) || J(ics_jvec(&c->j, KEY("center"), x, 3, center, "x, y, z")) ||
-        !(x = need(c, where, o, "poles")) || J(ics_jint(&c->j, KEY("poles"), x, 1, 1000, &np)) ||
-        !(x = need(c, where, o, "pole_size")) ||
-        J(ics_jvec(&c->j, KEY("pole_size"), x, 3, ps, "width, height, depth")) ||
-        !(x = need(c, where, o, "spacing")) || positive(c, KEY("spacing"), x, &spacing) ||
-        !(x = need(c, where, o, "bar_size")) ||
-        J(ics_jvec(&c->j, KEY("bar_size"), x, 2, bs, "height, depth")))
-      return -1;
-    if (!(ps[0] > 0 && ps[1] > 0 && ps[2] > 0))
-      return fail(c, ICS_ERR_RANGE, "%s: sizes must be > 0", KEY("pole_size"));
-    if (!(bs[0] > 0 && bs[1] > 0 && bs[0] < ps[1]))
-      return fail(c, ICS_ERR_RANGE, "%s: sizes must be > 0 and the bar lower than the poles",
-                  KEY("bar_size"));
-    if (!(spacing > ps[0]))
-      return fail(c, ICS_ERR_RANGE, "%s: must exceed the pole width (poles may not overlap)",
-                  KEY("spacing"));
-    if ((x = json_object_get(o, "rotate_deg")) &&
-        J(ics_jvec(&c->j, KEY("rotate_deg"), x, 3, rot, "rx, ry, rz")))
-      return -1;
-    double ax[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    ics_frame_rotate(ax, rot);
-    double span = (double)(np - 1) * spacing;
-    for (long long i = 0; i <= np; i++) {
-      /* i < np: a pole from the ground to the bar's underside; i == np: the bar */
-      double local[3], half[3];
-      if (i < np) {
-        local[0] = -span / 2 + (double)i * spacing, local[1] = (ps[1] - bs[0]) / 2, local[2] = 0;
-        half[0] = ps[0] / 2, half[1] = (ps[1] - bs[0]) / 2, half[2] = ps[2] / 2;
-      } else {
-        local[0] = 0, local[1] = ps[1] - bs[0] / 2, local[2] = 0;
-        half[0] = (span + ps[0]) / 2, half[1] = bs[0] / 2, half[2] = bs[1] / 2;
-      }
-      ics_object *ob = new_object(c);
-      if (!ob) return -1;
-      ob->shape = ICS_SHAPE_BOX;
-      ob->closed = 1;
-      ob->material = mi;
-      ob->source = idx;
-      memcpy(ob->ax, ax, sizeof ax);
-      memcpy(ob->half, half, sizeof half);
-      for (int w = 0; w < 3; w++)
-        ob->center[w] = center[w] + local[0] * ax[0][w] + local[1] * ax[1][w] + local[2] * ax[2][w];
-    }
-    return 0;
-  }
-  /* mesh */
+  return 0;
+#undef KEY
+}
+
+/* a mesh from a file (Assimp or the PLY reader), in the scene's folder or below */
+static int read_mesh_object(rctx *c, int idx, json_t *o, const char *where, int mi) {
+  char w2[4096 + 64 + 32];
+#define KEY(k) (snprintf(w2, sizeof w2, "%s.%s", where, k), w2)
+  const ics_material *m = &c->s->materials[mi];
+  double rot[3] = {0, 0, 0};
+  json_t *x;
   static const char *const mk[] = {"file", "translate", "scale", "rotate_deg"};
   if (has_only(c, where, o, "mesh", mk, 4)) return -1;
   double tr[3] = {0, 0, 0}, sc[3] = {1, 1, 1};
@@ -933,6 +942,31 @@ static int read_object(rctx *c, int idx, json_t *o) {
   double id[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   memcpy(ob->ax, id, sizeof id);
   return 0;
+#undef KEY
+}
+
+static int read_object(rctx *c, int idx, json_t *o) {
+  char where[4096 + 64];
+  snprintf(where, sizeof where, "%s: objects[%d]", c->name, idx);
+  char w2[sizeof where + 32];
+#define KEY(k) (snprintf(w2, sizeof w2, "%s.%s", where, k), w2)
+  if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", where);
+  json_t *sh = json_object_get(o, "shape"), *mat = json_object_get(o, "material");
+  if (!sh) return fail(c, ICS_ERR_PARSE, "%s: missing \"shape\"", where);
+  if (!mat) return fail(c, ICS_ERR_PARSE, "%s: missing \"material\"", where);
+  int kind;
+  if (J(ics_jenum(&c->j, KEY("shape"), sh, shape_names, 7, &kind))) return -1;
+  if (!json_is_string(mat)) return fail(c, ICS_ERR_PARSE, "%s: expected a material name", KEY("material"));
+  int mi = -1;
+  for (int i = 0; i < c->s->nmaterials; i++)
+    if (!strcmp(c->s->materials[i].name, json_string_value(mat))) mi = i;
+  if (mi < 0)
+    return fail(c, ICS_ERR_PARSE, "%s: no material named \"%s\" in \"materials\"", KEY("material"),
+                json_string_value(mat));
+  if (kind == 0 || kind == 1) return read_open_shape(c, idx, o, where, kind, mi);
+  if (kind == 2 || kind == 3 || kind == 4) return read_closed_shape(c, idx, o, where, kind, mi);
+  if (kind == 6) return read_fence(c, idx, o, where, mi);
+  return read_mesh_object(c, idx, o, where, mi);
 #undef KEY
 }
 

@@ -323,11 +323,10 @@ static int software_threads(void) {
   return n > 0 ? (int)n : 1;
 }
 
-static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opts *o,
-                            ics_image *img, ics_aov_buf *aov, ics_render_stats *st, char *msg,
-                            size_t msg_size) {
-  gl_state *s = state;
-  double t_start = ics_clock_s();
+/* the buffers and dispatches of a render against the shaders' 32-bit indices and the driver's
+ * limits, before anything is allocated */
+static ics_status check_sizes(const gl_state *s, const ics_plan *P, const ics_aov_buf *aov,
+                              char *msg, size_t msg_size) {
   int nl = P->nlights, nch = P->nch;
   size_t npx = (size_t)P->Wb * P->Hb, nview = (size_t)P->W * P->H, plane = P->buf.plane;
   size_t lbytes = sizeof(float) * (size_t)(nl ? nl : 1) * (size_t)nch * plane;
@@ -371,6 +370,145 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
                       s->max_groups[2]);
     return ICS_ERR_SIZE;
   }
+  return ICS_OK;
+}
+
+/* the uniforms that stay fixed over the render: the buffers' layout, the seed, the shading's
+ * sizes and the offsets of the scene's doubles (off_cam, then the lights', at fixed strides) */
+static void set_fixed_uniforms(gl_state *s, const ics_plan *P, const ics_aov_buf *aov, int off_cam,
+                               int off_window) {
+  int nl = P->nlights, nch = P->nch;
+  size_t npx = (size_t)P->Wb * P->Hb, nview = (size_t)P->W * P->H;
+  size_t aov_floats = aov ? (size_t)aov->count * nview : 0;
+  int off_lcol = off_cam + ICS_DEV_CAM, off_lmu = off_lcol + 3 * ICS_SCENE_MAX_LIGHTS;
+  int off_lpath = off_lmu + 2 * ICS_SCENE_MAX_LIGHTS;
+  for (int p = 0; p < NPROGS; p++) {
+    u_int(s, p, "bw", P->buf.w), u_int(s, p, "bh", P->buf.h), u_int(s, p, "stride", P->buf.stride);
+    u_int(s, p, "plane", (int)P->buf.plane), u_int(s, p, "origin", (int)P->buf.origin);
+    u_int(s, p, "nch", nch);
+    u_uint(s, p, "seed_lo", (unsigned)P->rs.seed), u_uint(s, p, "seed_hi", (unsigned)(P->rs.seed >> 32));
+  }
+  for (int p = 0; p < NPROGS; p++) u_int(s, p, "npx", (int)npx);
+  u_int(s, P_APRON_SIDES, "A", P->buf.apron), u_int(s, P_APRON_ENDS, "A", P->buf.apron);
+  static const char *const shade_i[] = {"nlights", "nvol", "W", "H", "pad_l", "pad_t",
+                                        "preintegrate", "aov_count", "aov_vis", "aov_z", "off_aov",
+                                        "off_seen", "off_cam", "off_lcol", "off_lmu", "off_lpath",
+                                        "off_window", "off_signed"};
+  const int shade_v[] = {nl, P->nvol, P->W, P->H, P->pad[0], P->pad[2], P->rs.preintegrate,
+                         aov ? aov->count : 0, aov ? aov->vis : -1, aov ? aov->z : -1,
+                         (int)(4 * nview), (int)(4 * nview + aov_floats), off_cam, off_lcol,
+                         off_lmu, off_lpath, off_window, ICS_MAX_VOLUMES};
+  for (size_t i = 0; i < sizeof shade_v / sizeof *shade_v; i++)
+    for (int p = P_SELECT; p <= P_SHADE_SURFACES; p++) u_int(s, p, shade_i[i], shade_v[i]);
+  u_dbl(s, P_SHADE, "window_max", ics_plan_window_max(P));
+  u_dbl(s, P_SHADE_SURFACES, "window_max", ics_plan_window_max(P));
+}
+
+/* the image and AOVs read back after the last slab, the context's state checked, the passes'
+ * times from the queries, the device string */
+static ics_status read_back(gl_job *j, ics_image *img, ics_aov_buf *aov, ics_render_stats *st,
+                            char *msg, size_t msg_size) {
+  gl_state *s = j->s;
+  const ics_plan *P = j->P;
+  size_t nview = (size_t)P->W * P->H, aov_floats = aov ? (size_t)aov->count * nview : 0;
+  GLenum e = GL_NO_ERROR;
+  GL_.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); /* the shaders' writes, then the readback */
+  GL_.GetNamedBufferSubData(j->buf[B_OUT], 0, (GLsizeiptr)(sizeof(float) * 4 * nview), img->data);
+  if (aov_floats)
+    GL_.GetNamedBufferSubData(j->buf[B_OUT], (GLintptr)(sizeof(float) * 4 * nview),
+                              (GLsizeiptr)(sizeof(float) * aov_floats), aov->data);
+  GLenum reset = GL_.GetGraphicsResetStatus();
+  if (reset != GL_NO_ERROR || (e = GL_.GetError()) != GL_NO_ERROR) {
+    if (msg) {
+      if (reset != GL_NO_ERROR)
+        snprintf(msg, msg_size, "backend gl: the context was lost (%s) on %s",
+                 ics_gl_reset_name(reset), s->g.renderer);
+      else
+        snprintf(msg, msg_size, "backend gl: %s reading the image back from %s", ics_gl_error_name(e),
+                 s->g.renderer);
+    }
+    return reset == GL_NO_ERROR && e == GL_OUT_OF_MEMORY ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
+  }
+  for (int k = 0; k < P->K; k++) {
+    GLuint64 t[3] = {0, 0, 0};
+    for (int i = 0; i < 3; i++) GL_.GetQueryObjectui64v(j->queries[3 * k + i], GL_QUERY_RESULT, &t[i]);
+    st->ms_convolution += 1e-6 * (double)(t[1] - t[0]);
+    st->ms_shading += 1e-6 * (double)(t[2] - t[1]);
+  }
+  ics_plan_over_background(P, img);
+  st->threads = 0; /* a device: llvmpipe's threads are in the device string */
+  st->slabs = P->K;
+  if (s->g.software)
+    snprintf(st->device, sizeof st->device, "OpenGL %.20s: %.72s, %d threads", s->g.context,
+             s->g.renderer, software_threads());
+  else
+    snprintf(st->device, sizeof st->device, "OpenGL %.20s: %.90s", s->g.context, s->g.renderer);
+  return ICS_OK;
+}
+
+/* the slabs: each light's taps for the slab (uploaded), its shading window, the step and the
+ * shading on the device, the buffers swapped; progress after each slab once the device has done
+ * it */
+static ics_status run_slabs(gl_job *j, const ics_render_opts *o, const double *blur,
+                            ics_prop_taps *pts, ics_tap2d **scratch, char *msg, size_t msg_size) {
+  gl_state *s = j->s;
+  const ics_plan *P = j->P;
+  int nl = P->nlights;
+  double cum[ICS_SCENE_MAX_LIGHTS][2] = {{0}}, window[ICS_SCENE_MAX_LIGHTS] = {0};
+  ics_status status = ICS_OK;
+  GLenum e;
+  for (int k = 0; k < P->K; k++) {
+    double mag, q = ics_plan_slab_pixel(P, k, &mag);
+    for (int l = 0; l < nl; l++) {
+      window[l] = fmax(0, 1 - blur[l] / q);
+      ics_prop_taps *pt = &pts[l];
+      status = ics_plan_slab_taps(P, l, k, q, mag, cum[l], scratch[l], pt, msg, msg_size);
+      size_t ntap = (size_t)pt->ntaps * (size_t)(pt->stencil ? 1 : pt->entries);
+      if (status == ICS_OK && ntap * sizeof(gl_tap) > (size_t)s->max_block) {
+        if (msg) snprintf(msg, msg_size, "backend gl: light %d, slab %d takes %zu taps, over the "
+                          "driver's largest shader storage block (%lld bytes, %s)", l, k, ntap,
+                          (long long)s->max_block, s->g.renderer);
+        return ICS_ERR_SIZE;
+      }
+      if (status == ICS_OK &&
+          !upload_taps(j, l, pt, ntap))
+        status = ICS_ERR_NOMEM;
+      if (status == ICS_ERR_NOMEM && msg)
+        snprintf(msg, msg_size, "backend gl: light %d, slab %d: the taps could not be prepared "
+                 "(out of memory, a tap out of range or a compensation that failed)", l, k);
+      if (status != ICS_OK) return status;
+    }
+    GL_.NamedBufferSubData(j->buf[B_SD], (GLintptr)(sizeof(double) * (size_t)j->off_window),
+                           (GLsizeiptr)(sizeof(double) * (size_t)nl), window);
+    run_slab(j, k, pts);
+    GLuint tmp = j->buf[B_SRC];
+    j->buf[B_SRC] = j->buf[B_DST], j->buf[B_DST] = tmp;
+    tmp = j->tex[0], j->tex[0] = j->tex[1], j->tex[1] = tmp;
+    if ((e = GL_.GetError()) != GL_NO_ERROR) {
+      if (msg) snprintf(msg, msg_size, "backend gl: %s in slab %d on %s", ics_gl_error_name(e), k,
+                        s->g.renderer);
+      return e == GL_OUT_OF_MEMORY ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
+    }
+    if (o->progress) {
+      GL_.Finish(); /* the slab done, so the progress is the device's */
+      o->progress(o->progress_ctx, k + 1, P->K);
+    }
+  }
+  return ICS_OK;
+}
+
+static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opts *o,
+                            ics_image *img, ics_aov_buf *aov, ics_render_stats *st, char *msg,
+                            size_t msg_size) {
+  gl_state *s = state;
+  double t_start = ics_clock_s();
+  int nl = P->nlights, nch = P->nch;
+  size_t npx = (size_t)P->Wb * P->Hb, nview = (size_t)P->W * P->H, plane = P->buf.plane;
+  size_t lbytes = sizeof(float) * (size_t)(nl ? nl : 1) * (size_t)nch * plane;
+  size_t aov_floats = aov ? (size_t)aov->count * nview : 0;
+  size_t out_floats = 4 * nview + aov_floats + nview;
+  ics_status status = check_sizes(s, P, aov, msg, msg_size);
+  if (status != ICS_OK) return status;
   ics_device_scene ds;
   if (ics_device_scene_create(&ds, P, !s->ldi_device) != ICS_OK) {
     if (msg) snprintf(msg, msg_size, "backend gl: out of host memory for the upload (%zu fragments)",
@@ -383,12 +521,10 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
     ics_device_scene_destroy(&ds);
     return ICS_ERR_UNSUPPORTED;
   }
-  ics_status status = ICS_OK;
   gl_job job;
   memset(&job, 0, sizeof job);
   gl_job *j = &job;
   j->s = s, j->P = P;
-  double cum[ICS_SCENE_MAX_LIGHTS][2] = {{0}}, window[ICS_SCENE_MAX_LIGHTS] = {0};
   ics_prop_taps *pts = calloc((size_t)(nl ? nl : 1), sizeof *pts);
   ics_tap2d **scratch = calloc((size_t)(nl ? nl : 1), sizeof *scratch);
   /* host images of the packed buffers: per-pixel state (cursor, occlusion cursor, inside mask),
@@ -466,99 +602,11 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
     status = e == GL_OUT_OF_MEMORY ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
     goto done;
   }
-  /* what stays fixed over the render */
-  for (int p = 0; p < NPROGS; p++) {
-    u_int(s, p, "bw", P->buf.w), u_int(s, p, "bh", P->buf.h), u_int(s, p, "stride", P->buf.stride);
-    u_int(s, p, "plane", (int)P->buf.plane), u_int(s, p, "origin", (int)P->buf.origin);
-    u_int(s, p, "nch", nch);
-    u_uint(s, p, "seed_lo", (unsigned)P->rs.seed), u_uint(s, p, "seed_hi", (unsigned)(P->rs.seed >> 32));
-  }
-  for (int p = 0; p < NPROGS; p++) u_int(s, p, "npx", (int)npx);
-  u_int(s, P_APRON_SIDES, "A", P->buf.apron), u_int(s, P_APRON_ENDS, "A", P->buf.apron);
-  static const char *const shade_i[] = {"nlights", "nvol", "W", "H", "pad_l", "pad_t",
-                                        "preintegrate", "aov_count", "aov_vis", "aov_z", "off_aov",
-                                        "off_seen", "off_cam", "off_lcol", "off_lmu", "off_lpath",
-                                        "off_window", "off_signed"};
-  const int shade_v[] = {nl, P->nvol, P->W, P->H, P->pad[0], P->pad[2], P->rs.preintegrate,
-                         aov ? aov->count : 0, aov ? aov->vis : -1, aov ? aov->z : -1,
-                         (int)(4 * nview), (int)(4 * nview + aov_floats), off_cam, off_lcol,
-                         off_lmu, off_lpath, j->off_window, ICS_MAX_VOLUMES};
-  for (size_t i = 0; i < sizeof shade_v / sizeof *shade_v; i++)
-    for (int p = P_SELECT; p <= P_SHADE_SURFACES; p++) u_int(s, p, shade_i[i], shade_v[i]);
-  u_dbl(s, P_SHADE, "window_max", ics_plan_window_max(P));
-  u_dbl(s, P_SHADE_SURFACES, "window_max", ics_plan_window_max(P));
-  for (int k = 0; k < P->K; k++) {
-    double mag, q = ics_plan_slab_pixel(P, k, &mag);
-    for (int l = 0; l < nl; l++) {
-      window[l] = fmax(0, 1 - ds.blur[l] / q);
-      ics_prop_taps *pt = &pts[l];
-      status = ics_plan_slab_taps(P, l, k, q, mag, cum[l], scratch[l], pt, msg, msg_size);
-      size_t ntap = (size_t)pt->ntaps * (size_t)(pt->stencil ? 1 : pt->entries);
-      if (status == ICS_OK && ntap * sizeof(gl_tap) > (size_t)s->max_block) {
-        if (msg) snprintf(msg, msg_size, "backend gl: light %d, slab %d takes %zu taps, over the "
-                          "driver's largest shader storage block (%lld bytes, %s)", l, k, ntap,
-                          (long long)s->max_block, s->g.renderer);
-        status = ICS_ERR_SIZE;
-        goto done;
-      }
-      if (status == ICS_OK &&
-          !upload_taps(j, l, pt, ntap))
-        status = ICS_ERR_NOMEM;
-      if (status == ICS_ERR_NOMEM && msg)
-        snprintf(msg, msg_size, "backend gl: light %d, slab %d: the taps could not be prepared "
-                 "(out of memory, a tap out of range or a compensation that failed)", l, k);
-      if (status != ICS_OK) goto done;
-    }
-    GL_.NamedBufferSubData(j->buf[B_SD], (GLintptr)(sizeof(double) * (size_t)j->off_window),
-                           (GLsizeiptr)(sizeof(double) * (size_t)nl), window);
-    run_slab(j, k, pts);
-    GLuint tmp = j->buf[B_SRC];
-    j->buf[B_SRC] = j->buf[B_DST], j->buf[B_DST] = tmp;
-    tmp = j->tex[0], j->tex[0] = j->tex[1], j->tex[1] = tmp;
-    if ((e = GL_.GetError()) != GL_NO_ERROR) {
-      if (msg) snprintf(msg, msg_size, "backend gl: %s in slab %d on %s", ics_gl_error_name(e), k,
-                        s->g.renderer);
-      status = e == GL_OUT_OF_MEMORY ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
-      goto done;
-    }
-    if (o->progress) {
-      GL_.Finish(); /* the slab done, so the progress is the device's */
-      o->progress(o->progress_ctx, k + 1, P->K);
-    }
-  }
-  GL_.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); /* the shaders' writes, then the readback */
-  GL_.GetNamedBufferSubData(j->buf[B_OUT], 0, (GLsizeiptr)(sizeof(float) * 4 * nview), img->data);
-  if (aov_floats)
-    GL_.GetNamedBufferSubData(j->buf[B_OUT], (GLintptr)(sizeof(float) * 4 * nview),
-                              (GLsizeiptr)(sizeof(float) * aov_floats), aov->data);
-  GLenum reset = GL_.GetGraphicsResetStatus();
-  if (reset != GL_NO_ERROR || (e = GL_.GetError()) != GL_NO_ERROR) {
-    if (msg) {
-      if (reset != GL_NO_ERROR)
-        snprintf(msg, msg_size, "backend gl: the context was lost (%s) on %s",
-                 ics_gl_reset_name(reset), s->g.renderer);
-      else
-        snprintf(msg, msg_size, "backend gl: %s reading the image back from %s", ics_gl_error_name(e),
-                 s->g.renderer);
-    }
-    status = reset == GL_NO_ERROR && e == GL_OUT_OF_MEMORY ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
-    goto done;
-  }
-  for (int k = 0; k < P->K; k++) {
-    GLuint64 t[3] = {0, 0, 0};
-    for (int i = 0; i < 3; i++) GL_.GetQueryObjectui64v(j->queries[3 * k + i], GL_QUERY_RESULT, &t[i]);
-    st->ms_convolution += 1e-6 * (double)(t[1] - t[0]);
-    st->ms_shading += 1e-6 * (double)(t[2] - t[1]);
-  }
-  ics_plan_over_background(P, img);
-  st->threads = 0; /* a device: llvmpipe's threads are in the device string */
-  st->slabs = P->K;
-  if (s->g.software)
-    snprintf(st->device, sizeof st->device, "OpenGL %.20s: %.72s, %d threads", s->g.context,
-             s->g.renderer, software_threads());
-  else
-    snprintf(st->device, sizeof st->device, "OpenGL %.20s: %.90s", s->g.context, s->g.renderer);
-  if (nl && P->K) st->ns_per_px_slab = 1e6 * st->ms_convolution / ((double)npx * P->K * nl);
+  set_fixed_uniforms(s, P, aov, off_cam, j->off_window);
+  status = run_slabs(j, o, ds.blur, pts, scratch, msg, msg_size);
+  if (status != ICS_OK) goto done;
+  status = read_back(j, img, aov, st, msg, msg_size);
+  if (status == ICS_OK && nl && P->K) st->ns_per_px_slab = 1e6 * st->ms_convolution / ((double)npx * P->K * nl);
   st->ms_total = 1e3 * (ics_clock_s() - t_start);
   goto done;
 nomem:
