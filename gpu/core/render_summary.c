@@ -9,32 +9,32 @@
 #include "json_util.h"
 
 void ics_render_summary_write(FILE *f, const ics_plan *plan, const ics_render_settings *rs,
-                              const ics_render_stats *st, double ms_plan) {
-  int mc = !strcmp(st->backend, "mc"), W, H, bw, bh;
+                              const ics_render_stats *stats, double ms_plan) {
+  int mc = !strcmp(stats->backend, "mc"), W, H, bw, bh;
   ics_plan_sizes(plan, &W, &H, &bw, &bh);
-  fprintf(f, "\"backend\": \"%s\", \"device\": ", st->backend);
-  ics_json_string(f, st->device);
-  fprintf(f, ", \"threads\": %d, \"resolution\": [%d, %d]", st->threads, W, H);
+  fprintf(f, "\"backend\": \"%s\", \"device\": ", stats->backend);
+  ics_json_string(f, stats->device);
+  fprintf(f, ", \"threads\": %d, \"resolution\": [%d, %d]", stats->threads, W, H);
   if (!mc)
     fprintf(f, ", \"light_buffer\": [%d, %d], \"slabs\": %d, \"kernel\": \"%s\", \"samples\": %d, "
-            "\"model\": \"%s\"", bw, bh, st->slabs, ics_render_kernel_name(rs->kernel),
+            "\"model\": \"%s\"", bw, bh, stats->slabs, ics_render_kernel_name(rs->kernel),
             rs->samples, ics_render_model_name(rs->model));
   fprintf(f, ", \"seed\": %llu, \"ms_plan\": %.17g, \"ms_geometry\": %.17g, \"ms_render\": %.17g",
           (unsigned long long)rs->seed, ms_plan, 1e3 * ics_plan_geometry_seconds(plan),
-          st->ms_total);
+          stats->ms_total);
   if (!mc)
     fprintf(f, ", \"ms_convolution\": %.17g, \"ms_shading\": %.17g, \"ms_detail\": %.17g,"
-            " \"ns_per_px_slab\": %.17g, \"memory_bytes\": %zu", st->ms_convolution,
-            st->ms_shading, st->ms_detail, st->ns_per_px_slab, ics_plan_memory_bytes(plan));
-  if (st->updates_dense > 0)
-    fprintf(f, ", \"updates_dense\": %.17g, \"updates_active\": %.17g", st->updates_dense,
-            st->updates_active);
-  if (st->ms_geometry_device > 0)
-    fprintf(f, ", \"ms_geometry_device\": %.17g", st->ms_geometry_device);
+            " \"ns_per_px_slab\": %.17g, \"memory_bytes\": %zu", stats->ms_convolution,
+            stats->ms_shading, stats->ms_detail, stats->ns_per_px_slab, ics_plan_memory_bytes(plan));
+  if (stats->updates_dense > 0)
+    fprintf(f, ", \"updates_dense\": %.17g, \"updates_active\": %.17g", stats->updates_dense,
+            stats->updates_active);
+  if (stats->ms_geometry_device > 0)
+    fprintf(f, ", \"ms_geometry_device\": %.17g", stats->ms_geometry_device);
   if (mc) {
-    fprintf(f, ", \"spp\": %d, \"noise\": ", st->spp);
-    if (isfinite(st->noise))
-      fprintf(f, "%.17g", st->noise);
+    fprintf(f, ", \"spp\": %d, \"noise\": ", stats->spp);
+    if (isfinite(stats->noise))
+      fprintf(f, "%.17g", stats->noise);
     else
       fprintf(f, "null");
   }

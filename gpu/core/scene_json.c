@@ -102,7 +102,7 @@ static int account(rctx *c, const char *where, double bytes) {
 }
 
 /* "NAME: " + printf(path) in the context's buffer (valid until the next call) */
-static const char *W(rctx *c, const char *fmt, ...) {
+static const char *where_at(rctx *c, const char *fmt, ...) {
   int n = snprintf(c->where, c->where_size, "%s: ", c->name);
   va_list ap;
   va_start(ap, fmt);
@@ -169,31 +169,31 @@ static int read_camera(rctx *c, json_t *o) {
   static const char *const known[] = {"projection", "eye", "target", "up", "height", "fov_deg",
                                       "resolution"};
   ics_camera *cam = &c->s->camera;
-  if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", W(c, "camera"));
-  if (J(ics_jkeys(&c->j, W(c, "camera"), o, known, 7))) return -1;
+  if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", where_at(c, "camera"));
+  if (J(ics_jkeys(&c->j, where_at(c, "camera"), o, known, 7))) return -1;
   static const char *const proj[] = {"orthographic", "perspective"};
   int p = 0;
   json_t *x;
-  if ((x = json_object_get(o, "projection")) && J(ics_jenum(&c->j, W(c, "camera.projection"), x, proj, 2, &p)))
+  if ((x = json_object_get(o, "projection")) && J(ics_jenum(&c->j, where_at(c, "camera.projection"), x, proj, 2, &p)))
     return -1;
   cam->projection = p ? ICS_PROJ_PERSPECTIVE : ICS_PROJ_ORTHOGRAPHIC;
   const char *req[] = {"eye", "target", "resolution"};
   for (int i = 0; i < 3; i++)
     if (!json_object_get(o, req[i]))
-      return fail(c, ICS_ERR_PARSE, "%s: missing \"%s\"", W(c, "camera"), req[i]);
-  if (J(ics_jvec(&c->j, W(c, "camera.eye"), json_object_get(o, "eye"), 3, cam->eye, "x, y, z")) ||
-      J(ics_jvec(&c->j, W(c, "camera.target"), json_object_get(o, "target"), 3, cam->target,
+      return fail(c, ICS_ERR_PARSE, "%s: missing \"%s\"", where_at(c, "camera"), req[i]);
+  if (J(ics_jvec(&c->j, where_at(c, "camera.eye"), json_object_get(o, "eye"), 3, cam->eye, "x, y, z")) ||
+      J(ics_jvec(&c->j, where_at(c, "camera.target"), json_object_get(o, "target"), 3, cam->target,
                  "x, y, z")))
     return -1;
   cam->up[0] = 0, cam->up[1] = 1, cam->up[2] = 0;
-  if ((x = json_object_get(o, "up")) && J(ics_jvec(&c->j, W(c, "camera.up"), x, 3, cam->up, "x, y, z")))
+  if ((x = json_object_get(o, "up")) && J(ics_jvec(&c->j, where_at(c, "camera.up"), x, 3, cam->up, "x, y, z")))
     return -1;
   json_t *res = json_object_get(o, "resolution");
   long long wh[2];
   if (!json_is_array(res) || json_array_size(res) != 2)
-    return fail(c, ICS_ERR_PARSE, "%s: expected [W, H]", W(c, "camera.resolution"));
+    return fail(c, ICS_ERR_PARSE, "%s: expected [W, H]", where_at(c, "camera.resolution"));
   for (int i = 0; i < 2; i++)
-    if (J(ics_jint(&c->j, W(c, "camera.resolution[%d]", i), json_array_get(res, (size_t)i), 1,
+    if (J(ics_jint(&c->j, where_at(c, "camera.resolution[%d]", i), json_array_get(res, (size_t)i), 1,
                    ICS_SCENE_MAX_RES, &wh[i])))
       return -1;
   cam->width = (int)wh[0];
@@ -202,24 +202,24 @@ static int read_camera(rctx *c, json_t *o) {
   if (cam->projection == ICS_PROJ_ORTHOGRAPHIC) {
     if (fov)
       return fail(c, ICS_ERR_PARSE, "%s: \"fov_deg\" is for perspective cameras (orthographic "
-                  "ones take \"height\")", W(c, "camera"));
-    if (!h) return fail(c, ICS_ERR_PARSE, "%s: an orthographic camera needs \"height\"", W(c, "camera"));
-    if (positive(c, W(c, "camera.height"), h, &cam->height)) return -1;
+                  "ones take \"height\")", where_at(c, "camera"));
+    if (!h) return fail(c, ICS_ERR_PARSE, "%s: an orthographic camera needs \"height\"", where_at(c, "camera"));
+    if (positive(c, where_at(c, "camera.height"), h, &cam->height)) return -1;
     double dist = 0;
     for (int i = 0; i < 3; i++) dist += (cam->target[i] - cam->eye[i]) * (cam->target[i] - cam->eye[i]);
     if (!(cam->height >= 1e-9 * sqrt(dist) && cam->height >= 1e-150 && cam->height <= 1e12))
       return fail(c, ICS_ERR_RANGE, "%s: %.3g is out of proportion to the scene (at least 1e-9 of "
-                  "the eye-target distance, at most 1e12)", W(c, "camera.height"), cam->height);
+                  "the eye-target distance, at most 1e12)", where_at(c, "camera.height"), cam->height);
   } else {
     if (h)
       return fail(c, ICS_ERR_PARSE, "%s: \"height\" is for orthographic cameras (perspective "
-                  "ones take \"fov_deg\")", W(c, "camera"));
-    if (!fov) return fail(c, ICS_ERR_PARSE, "%s: a perspective camera needs \"fov_deg\"", W(c, "camera"));
-    if (J(ics_jnum(&c->j, W(c, "camera.fov_deg"), fov, &cam->fov_deg))) return -1;
+                  "ones take \"fov_deg\")", where_at(c, "camera"));
+    if (!fov) return fail(c, ICS_ERR_PARSE, "%s: a perspective camera needs \"fov_deg\"", where_at(c, "camera"));
+    if (J(ics_jnum(&c->j, where_at(c, "camera.fov_deg"), fov, &cam->fov_deg))) return -1;
     /* from 1e-6 degrees: a view 1.7e-8 of the distance high, as the orthographic height's
      * 1e-9 (1e-300 gave "variance is negative" from the plan) */
     if (!(cam->fov_deg >= 1e-6 && cam->fov_deg < 170))
-      return fail(c, ICS_ERR_RANGE, "%s: %.17g is out of range [1e-6, 170)", W(c, "camera.fov_deg"),
+      return fail(c, ICS_ERR_RANGE, "%s: %.17g is out of range [1e-6, 170)", where_at(c, "camera.fov_deg"),
                   cam->fov_deg);
   }
   char msg[256];
@@ -235,87 +235,87 @@ static int read_render(rctx *c, json_t *o) {
                                       "memory_limit_mib", "pixel_rotations", "preintegrate",
                                       "rotation_run", "dense", "model"};
   ics_render_settings *r = &c->s->settings;
-  if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", W(c, "render"));
-  if (J(ics_jkeys(&c->j, W(c, "render"), o, known, 15))) return -1;
+  if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", where_at(c, "render"));
+  if (J(ics_jkeys(&c->j, where_at(c, "render"), o, known, 15))) return -1;
   json_t *x;
   if (!json_object_get(o, "slab_spacing"))
-    return fail(c, ICS_ERR_PARSE, "%s: missing \"slab_spacing\"", W(c, "render"));
-  if (!json_object_get(o, "d1")) return fail(c, ICS_ERR_PARSE, "%s: missing \"d1\"", W(c, "render"));
-  if (positive(c, W(c, "render.slab_spacing"), json_object_get(o, "slab_spacing"), &r->slab_spacing) ||
-      positive(c, W(c, "render.d1"), json_object_get(o, "d1"), &r->d1))
+    return fail(c, ICS_ERR_PARSE, "%s: missing \"slab_spacing\"", where_at(c, "render"));
+  if (!json_object_get(o, "d1")) return fail(c, ICS_ERR_PARSE, "%s: missing \"d1\"", where_at(c, "render"));
+  if (positive(c, where_at(c, "render.slab_spacing"), json_object_get(o, "slab_spacing"), &r->slab_spacing) ||
+      positive(c, where_at(c, "render.d1"), json_object_get(o, "d1"), &r->d1))
     return -1;
   /* far beyond any scene, and short of where the kernels' arithmetic overflows (1e308 gave
    * "argument out of range" with no key) */
   if (r->slab_spacing > 1e100 || r->d1 > 1e100)
     return fail(c, ICS_ERR_RANGE, "%s: %g is over 1e100 (world units)",
-                W(c, r->slab_spacing > 1e100 ? "render.slab_spacing" : "render.d1"),
+                where_at(c, r->slab_spacing > 1e100 ? "render.slab_spacing" : "render.d1"),
                 r->slab_spacing > 1e100 ? r->slab_spacing : r->d1);
   static const char *const kn[] = {"ellipse", "poisson", "gauss", "tophat"};
   int k = 0;
-  if ((x = json_object_get(o, "kernel")) && J(ics_jenum(&c->j, W(c, "render.kernel"), x, kn, 4, &k)))
+  if ((x = json_object_get(o, "kernel")) && J(ics_jenum(&c->j, where_at(c, "render.kernel"), x, kn, 4, &k)))
     return -1;
   r->kernel = (ics_render_kernel)k;
   static const int lo[] = {2, 3, 2, 2}, dflt[] = {2, 8, 19, 5};
   r->samples = dflt[k];
   if ((x = json_object_get(o, "samples"))) {
     long long n;
-    if (J(ics_jint(&c->j, W(c, "render.samples"), x, lo[k], 64, &n))) return -1;
+    if (J(ics_jint(&c->j, where_at(c, "render.samples"), x, lo[k], 64, &n))) return -1;
     r->samples = (int)n;
   }
   static const char *const cn[] = {"expected", "integer", "nonneg", "signed", "none"};
   int cm;
   if ((x = json_object_get(o, "compensate"))) {
-    if (J(ics_jenum(&c->j, W(c, "render.compensate"), x, cn, 5, &cm))) return -1;
+    if (J(ics_jenum(&c->j, where_at(c, "render.compensate"), x, cn, 5, &cm))) return -1;
     r->compensate = (ics_render_comp)(cm + 1);
   }
   static const char *const rn[] = {"exact", "lut"};
   int rad = 0;
-  if ((x = json_object_get(o, "radii")) && J(ics_jenum(&c->j, W(c, "render.radii"), x, rn, 2, &rad)))
+  if ((x = json_object_get(o, "radii")) && J(ics_jenum(&c->j, where_at(c, "render.radii"), x, rn, 2, &rad)))
     return -1;
   r->lut_radii = rad;
   if ((x = json_object_get(o, "seed"))) {
     long long sd;
-    if (J(ics_jint(&c->j, W(c, "render.seed"), x, 0, INT64_MAX, &sd))) return -1;
+    if (J(ics_jint(&c->j, where_at(c, "render.seed"), x, 0, INT64_MAX, &sd))) return -1;
     r->seed = (uint64_t)sd;
   }
   if ((x = json_object_get(o, "background")) &&
-      nonneg_vec(c, W(c, "render.background"), x, 3, r->background, "r, g, b", 1e30))
+      nonneg_vec(c, where_at(c, "render.background"), x, 3, r->background, "r, g, b", 1e30))
     return -1;
   if ((x = json_object_get(o, "max_pad"))) {
     long long mp;
-    if (J(ics_jint(&c->j, W(c, "render.max_pad"), x, 0, ICS_SCENE_MAX_RES, &mp))) return -1;
+    if (J(ics_jint(&c->j, where_at(c, "render.max_pad"), x, 0, ICS_SCENE_MAX_RES, &mp))) return -1;
     r->max_pad = (int)mp;
   }
   if ((x = json_object_get(o, "pixel_rotations"))) {
     long long pr;
-    if (J(ics_jint(&c->j, W(c, "render.pixel_rotations"), x, 1, 384, &pr))) return -1;
+    if (J(ics_jint(&c->j, where_at(c, "render.pixel_rotations"), x, 1, 384, &pr))) return -1;
     if (pr != 1 && pr != 2 && pr != 4 && pr != 8 && pr != 384)
       return fail(c, ICS_ERR_RANGE, "%s: %lld (expected 1, 2, 4, 8 or 384)",
-                  W(c, "render.pixel_rotations"), pr);
+                  where_at(c, "render.pixel_rotations"), pr);
     r->pixel_rotations = (int)pr;
   }
   if ((x = json_object_get(o, "rotation_run"))) {
     long long rr;
-    if (J(ics_jint(&c->j, W(c, "render.rotation_run"), x, 1, 16, &rr))) return -1;
+    if (J(ics_jint(&c->j, where_at(c, "render.rotation_run"), x, 1, 16, &rr))) return -1;
     if (rr != 1 && rr != 16)
-      return fail(c, ICS_ERR_RANGE, "%s: %lld (expected 1 or 16)", W(c, "render.rotation_run"), rr);
+      return fail(c, ICS_ERR_RANGE, "%s: %lld (expected 1 or 16)", where_at(c, "render.rotation_run"), rr);
     r->rotation_run = (int)rr;
   }
   if ((x = json_object_get(o, "preintegrate"))) {
-    if (!json_is_boolean(x)) return fail(c, ICS_ERR_PARSE, "%s: expected true or false", W(c, "render.preintegrate"));
+    if (!json_is_boolean(x)) return fail(c, ICS_ERR_PARSE, "%s: expected true or false", where_at(c, "render.preintegrate"));
     r->preintegrate = json_is_true(x);
   }
   static const char *const mn[] = {"patel", "solid", "surface"};
   int model = 0;
-  if ((x = json_object_get(o, "model")) && J(ics_jenum(&c->j, W(c, "render.model"), x, mn, 3, &model)))
+  if ((x = json_object_get(o, "model")) && J(ics_jenum(&c->j, where_at(c, "render.model"), x, mn, 3, &model)))
     return -1;
   r->model = (ics_render_model)model;
   if ((x = json_object_get(o, "dense"))) {
-    if (!json_is_boolean(x)) return fail(c, ICS_ERR_PARSE, "%s: expected true or false", W(c, "render.dense"));
+    if (!json_is_boolean(x)) return fail(c, ICS_ERR_PARSE, "%s: expected true or false", where_at(c, "render.dense"));
     r->dense = json_is_true(x);
   }
   if ((x = json_object_get(o, "memory_limit_mib")) &&
-      positive(c, W(c, "render.memory_limit_mib"), x, &r->memory_limit_mib))
+      positive(c, where_at(c, "render.memory_limit_mib"), x, &r->memory_limit_mib))
     return -1;
   return 0;
 }
@@ -343,10 +343,10 @@ static int read_lights(rctx *c, json_t *arr, json_t *file) {
     return fail(c, ICS_ERR_PARSE, "%s: needs \"lights\" or \"lights_file\"", c->name);
   if (file) {
     if (!json_is_string(file))
-      return fail(c, ICS_ERR_PARSE, "%s: expected a file name", W(c, "lights_file"));
+      return fail(c, ICS_ERR_PARSE, "%s: expected a file name", where_at(c, "lights_file"));
     char *path = join_path(c->dir, json_string_value(file));
     if (!path) return fail(c, ICS_ERR_NOMEM, "out of memory");
-    if (may_read(c, W(c, "lights_file"), path)) {
+    if (may_read(c, where_at(c, "lights_file"), path)) {
       free(path);
       return -1;
     }
@@ -370,11 +370,11 @@ static int read_lights(rctx *c, json_t *arr, json_t *file) {
     }
     if (n > ICS_SCENE_MAX_LIGHTS) {
       free(l);
-      return fail(c, ICS_ERR_SIZE, "%s: %d lights, at most %d in a scene", W(c, "lights_file"),
+      return fail(c, ICS_ERR_SIZE, "%s: %d lights, at most %d in a scene", where_at(c, "lights_file"),
                   n, ICS_SCENE_MAX_LIGHTS);
     }
     for (int k = 0; k < n; k++)
-      if (light_out_of_range(c, W(c, "lights_file: lights[%d]", k), &l[k])) {
+      if (light_out_of_range(c, where_at(c, "lights_file: lights[%d]", k), &l[k])) {
         free(l);
         return -1;
       }
@@ -383,17 +383,17 @@ static int read_lights(rctx *c, json_t *arr, json_t *file) {
     free(l);
     return 0;
   }
-  if (!json_is_array(arr)) return fail(c, ICS_ERR_PARSE, "%s: expected an array", W(c, "lights"));
+  if (!json_is_array(arr)) return fail(c, ICS_ERR_PARSE, "%s: expected an array", where_at(c, "lights"));
   size_t n = json_array_size(arr);
   if (n == 0 || n > ICS_SCENE_MAX_LIGHTS)
-    return fail(c, ICS_ERR_SIZE, "%s: must hold 1..%d lights, not %zu", W(c, "lights"),
+    return fail(c, ICS_ERR_SIZE, "%s: must hold 1..%d lights, not %zu", where_at(c, "lights"),
                 ICS_SCENE_MAX_LIGHTS, n);
   for (size_t k = 0; k < n; k++) {
-    if (ics_light_from_json(&c->j, W(c, "lights[%zu]", k), json_array_get(arr, k), &s->lights[k])) {
+    if (ics_light_from_json(&c->j, where_at(c, "lights[%zu]", k), json_array_get(arr, k), &s->lights[k])) {
       c->st = ICS_ERR_PARSE;
       return -1;
     }
-    if (light_out_of_range(c, W(c, "lights[%zu]", k), &s->lights[k])) return -1;
+    if (light_out_of_range(c, where_at(c, "lights[%zu]", k), &s->lights[k])) return -1;
   }
   s->nlights = (int)n;
   return 0;
@@ -429,8 +429,8 @@ static int load_grid(rctx *c, int mi) {
   char *path = c->grid_path[mi];
   c->grid_path[mi] = NULL;
   size_t cells = (size_t)d->size[0] * (size_t)d->size[1] * (size_t)d->size[2];
-  int refused = may_read(c, W(c, "materials.%s.detail.file", m->name), path);
-  const char *where = W(c, "materials.%s.detail", m->name);
+  int refused = may_read(c, where_at(c, "materials.%s.detail.file", m->name), path);
+  const char *where = where_at(c, "materials.%s.detail", m->name);
   if (refused || account(c, where, (double)cells * sizeof *d->grid)) {
     free(path);
     return -1;
@@ -486,7 +486,7 @@ static int check_radiance(rctx *c) {
     if (col * lights > ICS_SCENE_MAX_RADIANCE)
       return fail(c, ICS_ERR_RANGE, "%s: a colour of %g under lights of %g in all (weight x colour, "
                   "summed) gives %g, over %g: the image would overflow; lower the colours or the "
-                  "weights", W(c, "materials.%s", m->name), col, lights, col * lights,
+                  "weights", where_at(c, "materials.%s", m->name), col, lights, col * lights,
                   ICS_SCENE_MAX_RADIANCE);
   }
   return 0;
@@ -503,7 +503,7 @@ static int check_extinction(rctx *c) {
       return fail(c, ICS_ERR_RANGE, "%s: its extinction reaches %g per world unit (extinction %g "
                   "times the largest scale its detail and transfer give), over %g: the render "
                   "would overflow; lower the extinction, the detail's scale and bias, or the "
-                  "transfer's extinction scales", W(c, "materials.%s", m->name), top,
+                  "transfer's extinction scales", where_at(c, "materials.%s", m->name), top,
                   m->extinction, ICS_SCENE_MAX_EXTINCTION);
   }
   return 0;
@@ -650,10 +650,10 @@ static int read_material(rctx *c, const char *name, json_t *o, ics_material *m) 
 
 static int read_materials(rctx *c, json_t *o) {
   if (!o) return fail(c, ICS_ERR_PARSE, "%s: missing \"materials\"", c->name);
-  if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", W(c, "materials"));
+  if (!json_is_object(o)) return fail(c, ICS_ERR_PARSE, "%s: expected an object", where_at(c, "materials"));
   size_t n = json_object_size(o);
   if (n == 0 || n > ICS_SCENE_MAX_MATERIALS)
-    return fail(c, ICS_ERR_SIZE, "%s: must hold 1..%d materials, not %zu", W(c, "materials"),
+    return fail(c, ICS_ERR_SIZE, "%s: must hold 1..%d materials, not %zu", where_at(c, "materials"),
                 ICS_SCENE_MAX_MATERIALS, n);
   c->s->materials = calloc(n, sizeof *c->s->materials);
   if (!c->s->materials) return fail(c, ICS_ERR_NOMEM, "out of memory");
@@ -707,7 +707,6 @@ static int has_only(rctx *c, const char *where, json_t *o, const char *shape,
     return fail(c, ICS_ERR_PARSE, "%s: unknown key \"%s\" for a %s (expected shape, material, %s)",
                 where, key, shape, list);
   }
-  for (size_t i = 0; i < n; i++) (void)keys[i];
   return 0;
 }
 
@@ -972,11 +971,11 @@ static int read_object(rctx *c, int idx, json_t *o) {
 
 static int read_objects(rctx *c, json_t *arr) {
   if (!arr) return fail(c, ICS_ERR_PARSE, "%s: missing \"objects\"", c->name);
-  if (!json_is_array(arr)) return fail(c, ICS_ERR_PARSE, "%s: expected an array", W(c, "objects"));
+  if (!json_is_array(arr)) return fail(c, ICS_ERR_PARSE, "%s: expected an array", where_at(c, "objects"));
   size_t n = json_array_size(arr);
-  if (n == 0) return fail(c, ICS_ERR_SIZE, "%s: no objects", W(c, "objects"));
+  if (n == 0) return fail(c, ICS_ERR_SIZE, "%s: no objects", where_at(c, "objects"));
   if (n > ICS_SCENE_MAX_OBJECTS)
-    return fail(c, ICS_ERR_SIZE, "%s: %zu objects (at most %d)", W(c, "objects"), n,
+    return fail(c, ICS_ERR_SIZE, "%s: %zu objects (at most %d)", where_at(c, "objects"), n,
                 ICS_SCENE_MAX_OBJECTS);
   for (size_t i = 0; i < n; i++)
     if (read_object(c, (int)i, json_array_get(arr, i))) return -1;

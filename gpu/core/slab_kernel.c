@@ -208,8 +208,9 @@ static ics_status set_integer(ics_slab_kernel *sk, const char *why) {
   return st;
 }
 
-static ics_status init(ics_slab_kernel *sk, const ics_scene *s, int k, double q, char *msg,
-                       size_t msg_size);
+/* light k's kernel from the scene's settings at pixel size q (its member, mode and taps) */
+static ics_status kernel_from_scene(ics_slab_kernel *sk, const ics_scene *s, int k, double q,
+                                    char *msg, size_t msg_size);
 
 /* pixels any read of this kernel can reach at the reference depth: the farthest tap plus the
  * mean, the bilinear neighbour and the integer schedule's rounding */
@@ -246,7 +247,7 @@ static ics_status per_slab_compensation(ics_slab_kernel *sk, double q, char *msg
 
 ics_status ics_slab_kernel_init(ics_slab_kernel *sk, const ics_scene *s, int k, double q,
                                 char *msg, size_t msg_size) {
-  ics_status st = init(sk, s, k, q, msg, msg_size);
+  ics_status st = kernel_from_scene(sk, s, k, q, msg, msg_size);
   sk->out_entries = 1;
   if (sk->mode == ICS_SLAB_TABLE && ics_scene_camera(s)->projection != ICS_PROJ_PERSPECTIVE) {
     int K = ics_scene_settings(s)->pixel_rotations;
@@ -256,8 +257,8 @@ ics_status ics_slab_kernel_init(ics_slab_kernel *sk, const ics_scene *s, int k, 
   return st;
 }
 
-static ics_status init(ics_slab_kernel *sk, const ics_scene *s, int k, double q, char *msg,
-                       size_t msg_size) {
+static ics_status kernel_from_scene(ics_slab_kernel *sk, const ics_scene *s, int k, double q,
+                                    char *msg, size_t msg_size) {
   memset(sk, 0, sizeof *sk);
   const ics_render_settings *rs = ics_scene_settings(s);
   const ics_light *L = ics_scene_light(s, k);

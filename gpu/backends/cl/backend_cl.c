@@ -168,7 +168,7 @@ static void set_arg(cl_job *j, cl_kernel k, cl_uint i, size_t size, const void *
 #define ARG(k, i, v) set_arg(j, k, i, sizeof(v), &(v))
 
 /* one slab: every light's step, then the shading; their device times into the stats */
-static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stats *st) {
+static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stats *stats) {
   const ics_plan *P = j->P;
   cl_state *s = j->s;
   cl_int nch = P->nch;
@@ -267,15 +267,15 @@ static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stat
     if (e != CL_SUCCESS && j->err == CL_SUCCESS) j->err = e, j->call = "clWaitForEvents (slab)";
     for (int i = 0; i < nev; i++) {
       double ms = ics_cl_event_ms(evs[i]);
-      if (i < nprop) st->ms_convolution += ms;
-      else st->ms_shading += ms;
+      if (i < nprop) stats->ms_convolution += ms;
+      else stats->ms_shading += ms;
       clReleaseEvent(evs[i]);
     }
   }
 }
 
 static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opts *o,
-                            ics_image *img, ics_aov_buf *aov, ics_render_stats *st, char *msg,
+                            ics_image *img, ics_aov_buf *aov, ics_render_stats *stats, char *msg,
                             size_t msg_size) {
   cl_state *s = state;
   double t_start = ics_clock_s();
@@ -377,7 +377,7 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
       upload_taps(j, l, pt, (size_t)pt->ntaps * (size_t)(pt->stencil ? 1 : pt->entries));
     }
     job_write(j, j->window, sizeof(double) * (size_t)(nl ? nl : 1), window, "clEnqueueWriteBuffer(window)");
-    run_slab(j, k, pts, st);
+    run_slab(j, k, pts, stats);
     cl_mem tmp = j->src;
     j->src = j->dst;
     j->dst = tmp;
@@ -397,11 +397,11 @@ static ics_status cl_render(void *state, const ics_plan *P, const ics_render_opt
     goto done;
   }
   ics_plan_over_background(P, img);
-  st->threads = 0;
-  st->slabs = P->K;
-  snprintf(st->device, sizeof st->device, "%s", s->d.name);
-  if (nl && P->K) st->ns_per_px_slab = 1e6 * st->ms_convolution / ((double)npx * P->K * nl);
-  st->ms_total = 1e3 * (ics_clock_s() - t_start);
+  stats->threads = 0;
+  stats->slabs = P->K;
+  snprintf(stats->device, sizeof stats->device, "%s", s->d.name);
+  if (nl && P->K) stats->ns_per_px_slab = 1e6 * stats->ms_convolution / ((double)npx * P->K * nl);
+  stats->ms_total = 1e3 * (ics_clock_s() - t_start);
   goto done;
 nomem:
   status = ICS_ERR_NOMEM;

@@ -572,7 +572,7 @@ static ics_rect shade_rect(const ics_plan *P, int k) {
 }
 
 static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_opts *o,
-                             ics_image *img, ics_aov_buf *aov, ics_render_stats *st, char *msg,
+                             ics_image *img, ics_aov_buf *aov, ics_render_stats *stats, char *msg,
                              size_t msg_size) {
   ics_pool *pool = state;
   double t_start = ics_clock_s();
@@ -675,21 +675,21 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
     if (o->progress) o->progress(o->progress_ctx, k + 1, P->K);
   }
   ics_plan_over_background(P, img);
-  st->threads = nt;
-  st->slabs = P->K;
-  snprintf(st->device, sizeof st->device, "CPU, %d thread%s, %s", nt, nt == 1 ? "" : "s",
+  stats->threads = nt;
+  stats->slabs = P->K;
+  snprintf(stats->device, sizeof stats->device, "CPU, %d thread%s, %s", nt, nt == 1 ? "" : "s",
            ics_simd_name(j->simd));
-  snprintf(st->simd, sizeof st->simd, "%s", ics_simd_name(j->simd));
+  snprintf(stats->simd, sizeof stats->simd, "%s", ics_simd_name(j->simd));
   for (int t = 0; t < nt; t++) {
-    st->ms_convolution += 1e3 * j->prop_s[t] / nt;
-    st->ms_shading += 1e3 * j->shade_s[t] / nt;
-    st->ms_detail += 1e3 * j->detail_s[t] / nt;
-    st->updates_active += j->active[t];
+    stats->ms_convolution += 1e3 * j->prop_s[t] / nt;
+    stats->ms_shading += 1e3 * j->shade_s[t] / nt;
+    stats->ms_detail += 1e3 * j->detail_s[t] / nt;
+    stats->updates_active += j->active[t];
   }
-  st->updates_dense = (double)npx * P->K * nb * P->nch;
+  stats->updates_dense = (double)npx * P->K * nb * P->nch;
   if (nb && P->K)
-    st->ns_per_px_slab = 1e6 * st->ms_convolution / ((double)npx * P->K * nb);
-  st->ms_total = 1e3 * (ics_clock_s() - t_start);
+    stats->ns_per_px_slab = 1e6 * stats->ms_convolution / ((double)npx * P->K * nb);
+  stats->ms_total = 1e3 * (ics_clock_s() - t_start);
   goto done;
 nomem:
   status = ICS_ERR_NOMEM;

@@ -406,7 +406,7 @@ static void set_fixed_uniforms(gl_state *s, const ics_plan *P, const ics_aov_buf
 
 /* the image and AOVs read back after the last slab, the context's state checked, the passes'
  * times from the queries, the device string */
-static ics_status read_back(gl_job *j, ics_image *img, ics_aov_buf *aov, ics_render_stats *st,
+static ics_status read_back(gl_job *j, ics_image *img, ics_aov_buf *aov, ics_render_stats *stats,
                             char *msg, size_t msg_size) {
   gl_state *s = j->s;
   const ics_plan *P = j->P;
@@ -432,17 +432,17 @@ static ics_status read_back(gl_job *j, ics_image *img, ics_aov_buf *aov, ics_ren
   for (int k = 0; k < P->K; k++) {
     GLuint64 t[3] = {0, 0, 0};
     for (int i = 0; i < 3; i++) GL_.GetQueryObjectui64v(j->queries[3 * k + i], GL_QUERY_RESULT, &t[i]);
-    st->ms_convolution += 1e-6 * (double)(t[1] - t[0]);
-    st->ms_shading += 1e-6 * (double)(t[2] - t[1]);
+    stats->ms_convolution += 1e-6 * (double)(t[1] - t[0]);
+    stats->ms_shading += 1e-6 * (double)(t[2] - t[1]);
   }
   ics_plan_over_background(P, img);
-  st->threads = 0; /* a device: llvmpipe's threads are in the device string */
-  st->slabs = P->K;
+  stats->threads = 0; /* a device: llvmpipe's threads are in the device string */
+  stats->slabs = P->K;
   if (s->g.software)
-    snprintf(st->device, sizeof st->device, "OpenGL %.20s: %.72s, %d threads", s->g.context,
+    snprintf(stats->device, sizeof stats->device, "OpenGL %.20s: %.72s, %d threads", s->g.context,
              s->g.renderer, software_threads());
   else
-    snprintf(st->device, sizeof st->device, "OpenGL %.20s: %.90s", s->g.context, s->g.renderer);
+    snprintf(stats->device, sizeof stats->device, "OpenGL %.20s: %.90s", s->g.context, s->g.renderer);
   return ICS_OK;
 }
 
@@ -498,7 +498,7 @@ static ics_status run_slabs(gl_job *j, const ics_render_opts *o, const double *b
 }
 
 static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opts *o,
-                            ics_image *img, ics_aov_buf *aov, ics_render_stats *st, char *msg,
+                            ics_image *img, ics_aov_buf *aov, ics_render_stats *stats, char *msg,
                             size_t msg_size) {
   gl_state *s = state;
   double t_start = ics_clock_s();
@@ -569,7 +569,7 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
     if (status != ICS_OK) goto done;
     j->buf[B_OFFSET] = ldi.offset, j->buf[B_FZ] = ldi.fz, j->buf[B_FCODE] = ldi.fcode;
     j->buf[B_FGRAD] = ldi.fgrad, j->buf[B_FSPAN] = ldi.fspan, j->buf[B_PIX] = ldi.pix;
-    st->ms_geometry_device = ldi.ms;
+    stats->ms_geometry_device = ldi.ms;
   } else {
     j->buf[B_OFFSET] = ics_gl_buffer(&s->g, sizeof(uint32_t) * (npx + 1), P->ldi.offset);
     j->buf[B_FZ] = ics_gl_buffer(&s->g, sizeof *ds.fz * ds.nfrag, ds.fz);
@@ -605,9 +605,9 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
   set_fixed_uniforms(s, P, aov, off_cam, j->off_window);
   status = run_slabs(j, o, ds.blur, pts, scratch, msg, msg_size);
   if (status != ICS_OK) goto done;
-  status = read_back(j, img, aov, st, msg, msg_size);
-  if (status == ICS_OK && nl && P->K) st->ns_per_px_slab = 1e6 * st->ms_convolution / ((double)npx * P->K * nl);
-  st->ms_total = 1e3 * (ics_clock_s() - t_start);
+  status = read_back(j, img, aov, stats, msg, msg_size);
+  if (status == ICS_OK && nl && P->K) stats->ns_per_px_slab = 1e6 * stats->ms_convolution / ((double)npx * P->K * nl);
+  stats->ms_total = 1e3 * (ics_clock_s() - t_start);
   goto done;
 nomem:
   status = ICS_ERR_NOMEM;

@@ -115,7 +115,7 @@ static double noise_of(const pass_t *ps, size_t npx, int n) {
 }
 
 static ics_status mc_render(void *state, const ics_plan *P, const ics_render_opts *o,
-                            ics_image *img, ics_aov_buf *aov, ics_render_stats *st, char *msg,
+                            ics_image *img, ics_aov_buf *aov, ics_render_stats *stats, char *msg,
                             size_t msg_size) {
   ics_pool *pool = state;
   double t_start = ics_clock_s();
@@ -207,15 +207,15 @@ static ics_status mc_render(void *state, const ics_plan *P, const ics_render_opt
         a[aov->err + c] = n > 1 ? (float)sqrt(m2[c] / ((double)(n - 1) * n)) : 0;
     }
   }
-  st->threads = nt;
-  st->slabs = 0;
-  st->spp = n;
-  st->noise = n > 1 ? noise : NAN;
-  snprintf(st->device, sizeof st->device, "CPU, %d thread%s (Monte Carlo%s%s)", nt, nt == 1 ? "" : "s",
+  stats->threads = nt;
+  stats->slabs = 0;
+  stats->spp = n;
+  stats->noise = n > 1 ? noise : NAN;
+  snprintf(stats->device, sizeof stats->device, "CPU, %d thread%s (Monte Carlo%s%s)", nt, nt == 1 ? "" : "s",
            !P->scene->nmeshes ? "" : m.embree ? "; meshes: Embree " : "; meshes: own BVH",
            P->scene->nmeshes && m.embree ? ver : "");
-  st->ms_total = 1e3 * (ics_clock_s() - t_start);
-  st->ms_shading = st->ms_total;
+  stats->ms_total = 1e3 * (ics_clock_s() - t_start);
+  stats->ms_shading = stats->ms_total;
   goto done;
 nomem:
   status = ICS_ERR_NOMEM;

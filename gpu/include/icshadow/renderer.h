@@ -116,7 +116,7 @@ ICS_API ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *pla
  * made with (its ics_plan_opts.settings, or the scene's). The CLI's `render` prints these after
  * "scene". */
 ICS_API void ics_render_summary_write(FILE *f, const ics_plan *plan, const ics_render_settings *rs,
-                                      const ics_render_stats *st, double ms_plan);
+                                      const ics_render_stats *stats, double ms_plan);
 
 /* The backend table. */
 ICS_API int ics_backend_count(void);
