@@ -23,8 +23,12 @@
  * by S. Greedy initialisation (after Annen et al. 2008): K times, take the maximum of the
  * residual density l - current mixture, flood-fill the 4-connected pixels above half that
  * maximum, and start a Gaussian with their moments scaled to a full Gaussian
- * (x 1/(1 - ln 2) ... see lightfit.c) and twice their residual mass. Refinement: EM on the
- * weighted samples (E-step with each component's centre covariance Sigma + F). When a map has more kept pixels than max_samples, EM runs on max_samples
+ * (x 1/(1 - ln 2) ... see lightfit.c) and twice their residual mass. A map with a sky (a
+ * floor of radiance under the lights holding at least 0.1 % of the kept energy) also gets two
+ * starts that give the floor one or two components and greedy on the map less the floor the
+ * rest; EM runs from each and the fit with the lowest L1 is kept (lightfit.c step 2b).
+ * Refinement: EM on the weighted samples (E-step with each component's centre covariance
+ * Sigma + F). When a map has more kept pixels than max_samples, EM runs on max_samples
  * pixels drawn by systematic resampling of the mass with a start drawn from `seed`
  * (icshadow/rng.h); otherwise the fit is deterministic and the seed is unused.
  *
@@ -59,14 +63,14 @@ typedef struct ics_lightfit_params {
   int max_samples;      /* EM samples; 0 = every kept pixel (default 0) */
   int max_iter;         /* EM iterations (default 300) */
   double tol;           /* stop when the log-likelihood per unit mass changes less (1e-9) */
-  /* optional: called after each EM iteration (iter from 1) */
+  /* optional: called after each EM iteration (iter from 1, again for each start) */
   void (*progress)(void *ctx, int iter, int max_iter, double loglik);
   void *progress_ctx;
 } ics_lightfit_params;
 
 typedef struct ics_lightfit_report {
   int k_fit;            /* lights produced (< k when the map is explained with fewer) */
-  int iterations;       /* EM iterations run */
+  int iterations;       /* EM iterations run from the start kept */
   int samples;          /* weighted samples EM used */
   int pixels;           /* kept pixels (behind the viewer, inside the cut-off) */
   double energy_total;  /* luminance power of the whole map */
