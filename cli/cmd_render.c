@@ -294,16 +294,16 @@ static char *summary_text(const render_args *r, const ics_plan *plan,
   FILE *sf = open_memstream(&summary, &summary_len);
   if (!sf) return NULL;
   fprintf(sf, "{\"scene\": ");
-  cli_json_string(sf, r->a.scene ? r->a.scene : "default");
+  ics_json_write_string(sf, r->a.scene ? r->a.scene : "default");
   fprintf(sf, ", ");
   ics_render_summary_write(sf, plan, rs, stats, 1e3 * t_plan);
-  if (r->exr) fprintf(sf, ", \"exr\": "), cli_json_string(sf, r->exr);
-  if (r->png) fprintf(sf, ", \"png\": "), cli_json_string(sf, r->png);
-  if (r->diff_png) fprintf(sf, ", \"diff_png\": "), cli_json_string(sf, r->diff_png);
+  if (r->exr) fprintf(sf, ", \"exr\": "), ics_json_write_string(sf, r->exr);
+  if (r->png) fprintf(sf, ", \"png\": "), ics_json_write_string(sf, r->png);
+  if (r->diff_png) fprintf(sf, ", \"diff_png\": "), ics_json_write_string(sf, r->diff_png);
   if (aov) {
     fprintf(sf, ", \"aovs\": [");
     for (int c = 0; c < aov->count; c++)
-      fprintf(sf, "%s", c ? ", " : ""), cli_json_string(sf, aov->names[c]);
+      fprintf(sf, "%s", c ? ", " : ""), ics_json_write_string(sf, aov->names[c]);
     fprintf(sf, "]");
   }
   if (r->compare || r->given_ref) fprintf(sf, ", \"compare\": "), render_comparison_json(sf, cmp);

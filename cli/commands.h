@@ -124,8 +124,6 @@ int cli_parse_cl_device(const char *cmd, const char *opt, const char *value, voi
 
 /* Seconds on the monotonic clock (CLOCK_MONOTONIC), for elapsed times. */
 double cli_now_s(void);
-/* s as a JSON string (quoted; '"' and '\\' escaped, control characters as \\u00XX). */
-void cli_json_string(FILE *f, const char *s);
 
 /* splitmix64 (Steele, Lea, Flood 2014) on a caller's state: reproducible benchmark data.
  * cli_splitmix_unit: uniform in [0, 1) from the top 53 bits of the next word. */

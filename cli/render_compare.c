@@ -137,9 +137,9 @@ static void number(FILE *f, const char *key, double v) {
 
 void render_comparison_json(FILE *f, const render_comparison *c) {
   fputs("{\"reference\": ", f);
-  cli_json_string(f, c->reference);
+  ics_json_write_string(f, c->reference);
   if (c->ref_backend[0]) fprintf(f, ", \"reference_backend\": \"%s\"", c->ref_backend);
-  if (c->ref_device[0]) fputs(", \"reference_device\": ", f), cli_json_string(f, c->ref_device);
+  if (c->ref_device[0]) fputs(", \"reference_device\": ", f), ics_json_write_string(f, c->ref_device);
   if (c->ref_spp) fprintf(f, ", \"reference_spp\": %d", c->ref_spp);
   number(f, "ms_reference", c->ms_reference);
   number(f, "reference_noise", c->ref_noise);

@@ -145,17 +145,3 @@ json_t *ics_jload_file(const ics_jctx *c, const char *path, uint64_t max_bytes, 
   }
   return root;
 }
-
-void ics_json_string(FILE *f, const char *s) {
-  fputc('"', f);
-  for (; *s; s++) {
-    unsigned char ch = (unsigned char)*s;
-    if (ch == '"' || ch == '\\')
-      fprintf(f, "\\%c", ch);
-    else if (ch < 0x20)
-      fprintf(f, "\\u%04x", ch);
-    else
-      fputc(ch, f);
-  }
-  fputc('"', f);
-}

@@ -1,5 +1,4 @@
-/* json_util.h — strict reading of JSON values for the scene and lights readers (jansson), and
- * JSON strings written by the plan and the render summary: every reading
+/* json_util.h — strict reading of JSON values for the scene and lights readers (jansson): every
  * failure writes "WHERE: reason" into the caller's message buffer, where WHERE is the value's
  * path ("scene.json: objects[1].radius"). Returns 0 on success, -1 on failure. */
 #ifndef ICS_RENDER_JSON_UTIL_H
@@ -8,7 +7,6 @@
 #include <jansson.h>
 #include <stddef.h>
 #include <stdint.h>
-#include <stdio.h>
 
 #include "icshadow/status.h"
 
@@ -33,9 +31,6 @@ int ics_jerr(const ics_jctx *c, const char *fmt, ...)
 
 /* Every key of object `o` must be in known[0..nknown-1]; else "WHERE: unknown key "K" (expected
  * LIST)". */
-/* s as a JSON string, quotes and backslashes escaped, control characters as \u00XX */
-void ics_json_string(FILE *f, const char *s);
-
 int ics_jkeys(const ics_jctx *c, const char *where, json_t *o, const char *const *known,
               size_t nknown);
 /* A finite number. */

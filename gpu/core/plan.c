@@ -15,7 +15,7 @@
 
 #include "clock.h"
 #include "geometry.h"
-#include "json_util.h"
+#include "icshadow/json_text.h"
 #include "icshadow/constants.h"
 #include "icshadow/conv.h"
 #include "icshadow/light.h"
@@ -602,7 +602,7 @@ double ics_plan_geometry_seconds(const ics_plan *p) { return p->geometry_s; }
 
 ics_status ics_plan_write_json(const ics_plan *p, FILE *f) {
   fprintf(f, "{\n  \"scene\": ");
-  ics_json_string(f, ics_scene_name(p->scene));
+  ics_json_write_string(f, ics_scene_name(p->scene));
   fprintf(f, ",\n  \"resolution\": [%d, %d],\n  \"light_buffer\": [%d, %d],\n", p->W, p->H, p->Wb,
           p->Hb);
   fprintf(f, "  \"padding\": {\"left\": %d, \"right\": %d, \"top\": %d, \"bottom\": %d},\n",
@@ -615,7 +615,7 @@ ics_status ics_plan_write_json(const ics_plan *p, FILE *f) {
   for (int i = 0; i < p->npasses; i++) {
     const ics_plan_pass *q = &p->passes[i];
     fprintf(f, "%s\n    {\"name\": ", i ? "," : "");
-    ics_json_string(f, q->name);
+    ics_json_write_string(f, q->name);
     fprintf(f, ", \"bytes\": %zu", q->bytes);
     if (q->light >= 0) {
       const ics_slab_kernel *sk = &p->kernels[q->light];
@@ -630,15 +630,15 @@ ics_status ics_plan_write_json(const ics_plan *p, FILE *f) {
               sk->cov_px[1], sk->cov_px[2], p->active_fraction[q->light]);
     }
     fprintf(f, ", \"detail\": ");
-    ics_json_string(f, q->detail);
+    ics_json_write_string(f, q->detail);
     fputc('}', f);
   }
   fprintf(f, "\n  ],\n  \"omitted\": [");
   for (int i = 0; i < p->nomitted; i++) {
     fprintf(f, "%s\n    {\"name\": ", i ? "," : "");
-    ics_json_string(f, p->omitted[i].name);
+    ics_json_write_string(f, p->omitted[i].name);
     fprintf(f, ", \"reason\": ");
-    ics_json_string(f, p->omitted[i].reason);
+    ics_json_write_string(f, p->omitted[i].reason);
     fputc('}', f);
   }
   fprintf(f, "\n  ]\n}\n");

@@ -6,14 +6,14 @@
 #include <string.h>
 
 #include "icshadow/renderer.h"
-#include "json_util.h"
+#include "icshadow/json_text.h"
 
 void ics_render_summary_write(FILE *f, const ics_plan *plan, const ics_render_settings *rs,
                               const ics_render_stats *stats, double ms_plan) {
   int mc = !strcmp(stats->backend, "mc"), W, H, bw, bh;
   ics_plan_sizes(plan, &W, &H, &bw, &bh);
   fprintf(f, "\"backend\": \"%s\", \"device\": ", stats->backend);
-  ics_json_string(f, stats->device);
+  ics_json_write_string(f, stats->device);
   fprintf(f, ", \"threads\": %d, \"resolution\": [%d, %d]", stats->threads, W, H);
   if (!mc)
     fprintf(f, ", \"light_buffer\": [%d, %d], \"slabs\": %d, \"kernel\": \"%s\", \"samples\": %d, "

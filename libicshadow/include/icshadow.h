@@ -50,6 +50,7 @@
 #include "icshadow/exr.h"      /* OpenEXR I/O (optional: ICS_ERR_UNSUPPORTED without it) */
 #include "icshadow/envmap.h"   /* latitude-longitude maps on the light plane, synthetic maps */
 #include "icshadow/lightfit.h" /* environment map -> Gaussian lights on the light plane */
+#include "icshadow/json_text.h" /* JSON strings as the library and its tools write them */
 
 /* ---- peer primitives ---- */
 #include "icshadow/sat.h"         /* summed-area tables 2D/3D in four precision modes (Ament 2014) */
