@@ -12,7 +12,7 @@ the fits are deterministic for a given seed.
 Writes into --out: lightfit_auto_sweep.csv (one row per map: its lights, the K chosen, K - n,
 the L1 of the fit kept, the L1, seconds and EM iterations of every K = 1..KMAX), and
 lightfit_auto_sweep.md (the summary tables and case B). Prints them. --ratios: the K - n that
-the rule with another ratio than the CLI's 1.25 would choose from the same fits.
+the rule with another ratio than the CLI's 2 would choose from the same fits.
 
 The sky's share of the kept energy is the weight of the one-Gaussian fit of the sky alone (a
 map of the sky only) over that plus the lights' luminance powers. With --lib (a shared
@@ -23,7 +23,7 @@ its sky components also taking up what the lights' Gaussians miss).
 
 usage: lightfit_auto_sweep.py [--cli build/bin/icshadow] [--lib build/lib/libicshadow.so]
                               [--out out/analysis] [--seed 2023] [--kmax 8] [--maps 12]
-                              [--ratios 2]
+                              [--ratios 1.25,1.5]
 """
 import argparse
 import csv
@@ -147,9 +147,9 @@ def main():
     ap.add_argument("--seed", type=int, default=2023)
     ap.add_argument("--kmax", type=int, default=8)
     ap.add_argument("--maps", type=int, default=12, help="maps per group (without / with a sky)")
-    ap.add_argument("--ratios", default="2",
+    ap.add_argument("--ratios", default="1.25,1.5",
                     help="also the K - n that the rule 'fewest K with L1 <= max(1 %%, RATIO x the "
-                         "best)' would give with these ratios (the CLI's is 1.25)")
+                         "best)' would give with these ratios (the CLI's is 2)")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     rng = random.Random(a.seed)
@@ -208,7 +208,7 @@ def main():
             len(rs), group, ", ".join("%d" % r["k_minus_n"] for r in rs),
             pct(min(r["l1_auto"] for r in rs)), pct(max(r["l1_auto"] for r in rs))))
     for ratio in [float(v) for v in a.ratios.split(",") if v]:
-        lines += ["", "With the ratio %g in place of 1.25 (from the same fits):" % ratio, ""]
+        lines += ["", "With the ratio %g in place of 2 (from the same fits):" % ratio, ""]
         for group in ("no sky", "sky"):
             ks = []
             for r in (r for r in results if r["group"] == group):

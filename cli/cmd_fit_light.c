@@ -30,7 +30,7 @@ static void help(FILE *f) {
           "orientations; cutoff_loss: fraction of the energy behind the viewer beyond DEG.\n\n"
           "options:\n"
           "  --lights K         number of Gaussians, 1..%d (required); auto[:KMAX]: fit 1..KMAX\n"
-          "                     (default 8) and keep the fewest whose L1 is within 1%% or 1.25 x\n"
+          "                     (default 8) and keep the fewest whose L1 is within 1%% or 2 x\n"
           "                     the best of them (said on stderr; every fit in the table)\n"
           "  --max-angle DEG    cut-off angle from the view axis, in (0, 90) (default 80)\n"
           "  --seed S           seed of the EM sample selection, 0..2^64-1 (default 1)\n"
@@ -51,7 +51,7 @@ static const char CMD[] = "fit-light";
 /* --lights auto: the fewest lights whose L1 is at most the larger of these (measured on maps of
  * known lights: docs/lightfit.md "How many lights") */
 #define AUTO_L1_FLOOR 0.01
-#define AUTO_L1_RATIO 1.25
+#define AUTO_L1_RATIO 2.0
 #define AUTO_KMAX 8
 
 /* --lights: K, or auto (a negative K: -KMAX) */

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # fit-light --lights auto: a map of three well-separated Gaussian lights (no sky) gives K = 3
-# (the fewest lights within max(1 %, 1.25 x the best L1) of K = 1..8; docs/lightfit.md "How many
+# (the fewest lights within max(1 %, 2 x the best L1) of K = 1..8; docs/lightfit.md "How many
 # lights"), the table has a row for every K, the file three lights; auto:2 stops at 2; a bad
 # KMAX is refused.
 # Three lights over a sky of (0.02, 0.03, 0.05) (4.5 % of the kept energy; map 10 of the sky
