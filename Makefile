@@ -8,7 +8,7 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 PYTHON     ?= /usr/bin/python3
 CMAKE_ARGS ?=
 
-.PHONY: all deps mitsuba configure test test-asan test-fuzz fuzz demo figs notebooks bench analysis python error-vs-time error-by-effect install clean
+.PHONY: all deps mitsuba configure test test-asan test-fuzz fuzz demo figs notebooks bench analysis python error-vs-time error-by-effect gallery install clean
 
 all: configure
 	cmake --build $(BUILD) -j $(JOBS)
@@ -121,7 +121,7 @@ figs: deps-figs all
 # the repo's kernel spec in notebooks/kernels; the CLI path goes in as ICSHADOW_CLI). The absolute
 # paths come from the shell, quoted: $(CURDIR) and $(abspath) split a checkout path with blanks.
 notebooks: deps-notebooks python
-	JUPYTER_PATH="$$(pwd)/notebooks" PYDEVD_DISABLE_FILE_VALIDATION=1 PYTHONPATH="$$(pwd)/$(PY_PKG)" ICSHADOW_CLI="$$(cd "$(BUILD)" && pwd)/bin/icshadow" $(PYTHON) -m nbconvert \
+	JUPYTER_PATH="$$(pwd)/notebooks" PYDEVD_DISABLE_FILE_VALIDATION=1 PYTHONPATH="$$(cd "$(BUILD)" && pwd)/python-pkg" ICSHADOW_CLI="$$(cd "$(BUILD)" && pwd)/bin/icshadow" $(PYTHON) -m nbconvert \
 	  --to notebook --execute --ExecutePreprocessor.kernel_name=python3 --ExecutePreprocessor.timeout=600 \
 	  --output-dir out/notebooks notebooks/iterative_shadows.ipynb
 
@@ -163,9 +163,9 @@ analysis: deps-analysis all
 # from Python" (a virtual environment and pip install ./python).
 PY_PKG = $(BUILD)/python-pkg
 python: deps-python all
-	rm -rf $(PY_PKG)
+	rm -rf "$(PY_PKG)"
 	ICSHADOW_BUILD_DIR="$$(cd "$(BUILD)" && pwd)" $(PYTHON) -m pip install --quiet --disable-pip-version-check --root-user-action=ignore \
-	  --no-build-isolation --no-index --no-deps --target $(PY_PKG) ./python
+	  --no-build-isolation --no-index --no-deps --target "$(PY_PKG)" ./python
 	@echo "icshadow package in $(PY_PKG): PYTHONPATH=$(PY_PKG) python3 -c 'import icshadow'"
 
 # Error against run time on the default scene (docs/results.md): a 1024-spp Monte-Carlo
@@ -173,7 +173,7 @@ python: deps-python all
 # reference itself at 4..256 spp, interleaved over 3 rounds. 5 to 25 minutes on a 2-core VM, by its load.
 error-vs-time: deps python
 	@mkdir -p out/analysis
-	PYTHONPATH="$$(pwd)/$(PY_PKG)" $(PYTHON) analysis/error_vs_time.py --ref out/analysis/error_vs_time_ref.exr \
+	PYTHONPATH="$$(cd "$(BUILD)" && pwd)/python-pkg" $(PYTHON) analysis/error_vs_time.py --ref out/analysis/error_vs_time_ref.exr \
 	  --csv out/analysis/error_vs_time.csv --plot out/analysis/error_vs_time.png \
 	  --images out/analysis/error_vs_time_images.png
 
@@ -182,6 +182,11 @@ error-vs-time: deps python
 # about 5 minutes)
 error-by-effect: deps-figs all
 	$(PYTHON) analysis/error_by_effect.py --cli $(BUILD)/bin/icshadow --out out/analysis
+
+# the gallery (docs/gallery.md): every scenes/*.json rendered into docs/images/gallery/ with its
+# frame time (median of 3) and its error against the Monte-Carlo reference; about 4 minutes
+gallery: deps-demo all
+	$(PYTHON) analysis/gallery.py --cli $(BUILD)/bin/icshadow
 
 install: all
 	cmake --install $(BUILD) --prefix $(PREFIX)

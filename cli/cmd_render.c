@@ -204,7 +204,9 @@ static int check_args(render_args *r) {
     return cli_failure(CMD, "cannot write PNG: libpng was not found when the renderer was built");
   if (r->backend && strcmp(r->backend, "auto")) {
     char why[256];
-    if (!ics_backend_available(r->backend, why, sizeof why)) return cli_error(CMD, "--backend: %s", why);
+    ics_render_opts ro = {.options = backend_options_list(&r->bo)};
+    if (!ics_backend_available_opts(r->backend, &ro, why, sizeof why))
+      return cli_error(CMD, "--backend: %s", why);
   }
   return 0;
 }

@@ -1,7 +1,8 @@
 """setup.py: builds the icshadow package over the project's C libraries.
 
 The libraries come from the CMake build tree that `make` leaves in build/ (ICSHADOW_BUILD_DIR
-names another); when it has none, this builds them there first (cmake, Release). The two
+names another), brought up to date first (`cmake --build` of the two library targets; where
+there is no build tree, one is configured, Release). The two
 shared libraries are copied into the package, so the installed package works after the build
 tree is gone.
 """
@@ -20,10 +21,12 @@ SONAMES = ["libicshadow.so.0", "libicshadow_render.so.0"]
 
 
 def ensure_libraries():
-    if all(os.path.exists(os.path.join(LIB_DIR, s)) for s in SONAMES):
-        return
-    print(f"icshadow: no C libraries in {LIB_DIR}: building them (cmake, Release)")
-    subprocess.check_call(["cmake", "-S", REPO, "-B", BUILD_DIR, "-DCMAKE_BUILD_TYPE=Release"])
+    """The two libraries built from the sources as they are now (a no-op when they are up to
+    date: the binding compiles the headers' struct layouts in, so a stale library must not be
+    linked); a build tree is configured first where there is none."""
+    if not os.path.exists(os.path.join(BUILD_DIR, "CMakeCache.txt")):
+        print(f"icshadow: no CMake build in {BUILD_DIR}: configuring one (Release)")
+        subprocess.check_call(["cmake", "-S", REPO, "-B", BUILD_DIR, "-DCMAKE_BUILD_TYPE=Release"])
     subprocess.check_call(["cmake", "--build", BUILD_DIR, "-j", str(os.cpu_count() or 2),
                            "--target", "icshadow_shared", "icshadow_render_shared"])
 

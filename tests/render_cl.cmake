@@ -29,7 +29,12 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
     OUT "cpu,ellipse2,.*\ncl,ellipse2,2,table,64,64,4,0,.*\ncpu,gauss19,.*\ncl,gauss19,19,taps,64,64,4,0,")
   ics_cli_test(NAME cli_render_cl_device_flag RC 2 LABELS medium
     ARGS "render|--backend|cl|--cl-device|no-such-device|-o|${rdc}/flag.exr"
-    ERR "backend cl: cl.device=no-such-device matches no device" NOFILE ${rdc}/flag.exr)
+    ERR "--backend: cl.device=no-such-device matches no device" NOFILE ${rdc}/flag.exr)
+  # the option wins over its environment variable, the availability check included
+  ics_cli_test(NAME cli_render_cl_device_over_env RC 0 LABELS medium
+    ARGS "render|--backend|cl|--cl-device|0|--resolution|16x12|-o|${rdc}/over_env.exr"
+    OUT "\"backend\": \"cl\"")
+  set_tests_properties(cli_render_cl_device_over_env PROPERTIES ENVIRONMENT ICS_CL_DEVICE=no-such-device)
   ics_cli_test(NAME cli_render_cl_device_other_backend RC 0 LABELS medium
     ARGS "render|--cl-device|0|--resolution|16x12|-o|${rdc}/other.exr"
     ERR "warning: --cl-device only applies to --backend cl \\(the backend is cpu\\)")

@@ -47,6 +47,11 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_GL)
   ics_cli_test(NAME cli_render_gl_osmesa RC 0 LABELS medium
     ARGS "render|--backend|gl|--gl-context|osmesa|--resolution|64x48|-o|${rdg}/osmesa.exr"
     OUT "\"backend\": \"gl\", \"device\": \"OpenGL osmesa: [^\"]+\"")
+  # the option wins over its environment variable, the availability check included
+  ics_cli_test(NAME cli_render_gl_context_over_env RC 0 LABELS medium
+    ARGS "render|--backend|gl|--gl-context|osmesa|--resolution|16x12|-o|${rdg}/over_env.exr"
+    OUT "\"backend\": \"gl\", \"device\": \"OpenGL osmesa: ")
+  set_tests_properties(cli_render_gl_context_over_env PROPERTIES ENVIRONMENT ICS_GL_CONTEXT=bogus)
   # a context kind that does not exist: refused before anything is written
   ics_cli_test(NAME cli_render_gl_bad_context RC 2 LABELS fast
     ARGS "render|--backend|gl|--gl-context|vulkan|-o|${rdg}/none.exr"

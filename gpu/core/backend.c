@@ -30,6 +30,11 @@ static const ics_backend *find(const char *name) {
 }
 
 int ics_backend_available(const char *name, char *why, size_t why_size) {
+  return ics_backend_available_opts(name, NULL, why, why_size);
+}
+
+int ics_backend_available_opts(const char *name, const ics_render_opts *opts, char *why,
+                               size_t why_size) {
   const ics_backend *b = name ? find(name) : NULL;
   if (!b) {
     if (why) {
@@ -40,7 +45,7 @@ int ics_backend_available(const char *name, char *why, size_t why_size) {
     }
     return 0;
   }
-  return b->available(why, why_size);
+  return b->available(opts, why, why_size);
 }
 
 /* ---- backend options ---------------------------------------------------------------------- */
@@ -181,7 +186,7 @@ ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, 
     for (int i = 0; i < NBACKENDS && !r->b; i++) {
       char why[512] = "";
       const ics_backend *c = table[i];
-      int ok = c->auto_pick ? c->auto_pick(why, sizeof why) : c->available(why, sizeof why);
+      int ok = c->auto_pick ? c->auto_pick(why, sizeof why) : c->available(&o, why, sizeof why);
       if (ok) {
         ics_status st = c->create(&r->state, &o, why, sizeof why);
         if (st == ICS_OK) r->b = c;
@@ -202,7 +207,7 @@ ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, 
     }
   } else {
     char why[1024];
-    if (!ics_backend_available(o.backend, why, sizeof why)) {
+    if (!ics_backend_available_opts(o.backend, &o, why, sizeof why)) {
       if (msg) {
         if (find(o.backend)) snprintf(msg, msg_size, "backend %s: %s", o.backend, why);
         else snprintf(msg, msg_size, "backend %s", why);
@@ -358,7 +363,8 @@ ics_status ics_backend_pool_create(void **state, const ics_render_opts *opts, ch
 
 void ics_backend_pool_destroy(void *state) { ics_pool_destroy(state); }
 
-int ics_backend_always_available(char *why, size_t why_size) {
+int ics_backend_always_available(const ics_render_opts *opts, char *why, size_t why_size) {
+  (void)opts;
   (void)why, (void)why_size;
   return 1;
 }

@@ -32,7 +32,8 @@ typedef struct ics_backend {
   const char *description;
   unsigned aovs; /* the ICS_AOV_* bits it makes */
   unsigned models; /* 1 << ics_render_model: the render.model values it renders (ICS_MODELS_ALL) */
-  int (*available)(char *why, size_t why_size);
+  /* opts: the options of a render (NULL: the defaults, its options' environment variables) */
+  int (*available)(const ics_render_opts *opts, char *why, size_t why_size);
   /* NULL: "auto" takes it when available; else whether auto takes it (0 with why: the notice) */
   int (*auto_pick)(char *why, size_t why_size);
   ics_status (*create)(void **state, const ics_render_opts *opts, char *msg, size_t msg_size);
@@ -56,7 +57,7 @@ const char *ics_backend_option_value(const ics_backend *b, const ics_render_opts
 ics_status ics_backend_pool_create(void **state, const ics_render_opts *opts, char *msg,
                                    size_t msg_size);
 void ics_backend_pool_destroy(void *state);
-int ics_backend_always_available(char *why, size_t why_size);
+int ics_backend_always_available(const ics_render_opts *opts, char *why, size_t why_size);
 
 /* every backend of gpu/backends/list.h: ics_backend_cpu, ics_backend_mc, ... */
 #define ICS_BACKEND_DECLARE_(name) extern const ics_backend ics_backend_##name;

@@ -27,13 +27,14 @@ static FILE *text_open(icspy_text *t) {
 
 /* the text written, or NULL (freed) when a write failed */
 static char *text_close(icspy_text *t, int ok) {
-  int bad = ferror(t->f) || fclose(t->f) != 0 || !ok;
-  if (bad) free(t->buf), t->buf = NULL;
+  int err = ferror(t->f), closed = fclose(t->f) == 0; /* closed whatever happened */
+  if (err || !closed || !ok) free(t->buf), t->buf = NULL;
   return t->buf;
 }
 
 char *icspy_lut_header(int n, int lang, const char *command, char *msg, size_t msg_size) {
-  double *s = malloc(sizeof *s * (size_t)(n > 0 ? n : 1)), *g = malloc(sizeof *g * (size_t)(n > 0 ? n : 1));
+  size_t size = n >= ICS_LUT_MIN_SIZE && n <= ICS_LUT_MAX_SIZE ? (size_t)n : 1; /* else refused */
+  double *s = malloc(sizeof *s * size), *g = malloc(sizeof *g * size);
   ics_lut_error ed, ef;
   ics_status st = s && g ? ics_lut_build_measured(n, s, g, &ed, &ef) : ICS_ERR_NOMEM;
   icspy_text t;

@@ -1,4 +1,7 @@
 """_lib.py: the compiled binding (icshadow._ffi) and how its errors become exceptions."""
+import os
+import tempfile
+
 import numpy as np
 
 from ._ffi import ffi, lib
@@ -51,6 +54,27 @@ def real_array(x, name, dtype=np.float64):
     return np.require(a, dtype=dtype, requirements="C")
 
 
+def write_replacing(path, what, write):
+    """Writes a file whole or not at all: write(tmp) fills a temporary file beside path, which is
+    then renamed over it, with the mode a new file gets (0666 less the umask; mkstemp's is
+    0600)."""
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise FileNotFoundError(f"{what}: {path}: the folder {folder} does not exist")
+    fd, tmp = tempfile.mkstemp(prefix=".icshadow.", dir=folder)
+    os.close(fd)
+    try:
+        write(tmp)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
 def image_from_array(arr, name, channels=(3, 4)):
     """A new ics_image (freed when collected) holding arr, shape (height, width, C), row 0 at
     the top; ValueError for another shape or a NaN or infinite value."""
@@ -64,7 +88,7 @@ def image_from_array(arr, name, channels=(3, 4)):
     out = ffi.new("ics_image **")
     check(lib.ics_image_create(out, w, h, c), context=f"{name}: {w}x{h}: ")
     img = ffi.gc(out[0], lib.ics_image_destroy)
-    ffi.buffer(img.data, a.nbytes)[:] = a.tobytes()
+    np.frombuffer(ffi.buffer(img.data, a.nbytes), dtype=np.float32)[:] = a.reshape(-1)
     return img
 
 

@@ -3,18 +3,18 @@
 Both are written whole or not at all (a temporary file beside the target, renamed)."""
 import json
 import os
-import tempfile
 
 import numpy as np
 
-from ._lib import check, ffi, image_from_array, lib, msg_buffer
+from ._lib import check, ffi, image_from_array, lib, msg_buffer, real_array, write_replacing
 
 
 def channels_to_dict(ch):
     """An ics_exr_channels' channels as {name: (height, width) float32 array}, row 0 at the top."""
     data = np.frombuffer(ffi.buffer(ch.data, 4 * ch.width * ch.height * ch.count), np.float32)
     data = data.reshape(ch.height, ch.width, ch.count)
-    return {ffi.string(ch.names[c]).decode(): data[:, :, c].copy() for c in range(ch.count)}
+    return {ffi.string(ch.names[c]).decode(errors="replace"): data[:, :, c].copy()
+            for c in range(ch.count)}
 
 
 def read_exr(path):
@@ -24,7 +24,7 @@ def read_exr(path):
     out, msg = ffi.new("ics_exr_channels **"), msg_buffer()
     check(lib.ics_exr_read_channels(os.fsencode(path), out, msg, len(msg)), msg)
     ch = ffi.gc(out[0], lib.ics_exr_channels_destroy)
-    info = ffi.string(ch.info).decode() if ch.info != ffi.NULL else None
+    info = ffi.string(ch.info).decode(errors="replace") if ch.info != ffi.NULL else None
     try:
         info = json.loads(info) if info else None
     except ValueError:
@@ -39,7 +39,9 @@ def write_exr(path, channels, info=None):
     names = list(channels)
     if not names:
         raise ValueError("write_exr: no channels")
-    planes = [np.asarray(channels[n], dtype=np.float32) for n in names]
+    if any("\0" in n or not n for n in names):
+        raise ValueError("write_exr: a channel name is empty or holds a NUL")
+    planes = [real_array(channels[n], f"write_exr: {n}", np.float32) for n in names]
     shape = planes[0].shape
     if len(shape) != 2 or any(p.shape != shape for p in planes):
         raise ValueError(f"write_exr: every channel must be one (height, width) array; got "
@@ -51,7 +53,8 @@ def write_exr(path, channels, info=None):
     ch = ffi.new("ics_exr_channels *")
     ch.height, ch.width, ch.count = shape[0], shape[1], len(names)
     name_arr = ffi.new("const char *[]", cnames)
-    ch.names, ch.data, ch.info = name_arr, ffi.from_buffer("float[]", data), ctext
+    cdata = ffi.from_buffer("float[]", data)  # kept alive with data for the call
+    ch.names, ch.data, ch.info = name_arr, cdata, ctext
     msg = msg_buffer()
     check(lib.ics_exr_write_channels(os.fsencode(path), ch, lib.ICS_EXR_FLOAT, 0, msg, len(msg)), msg)
 
@@ -67,15 +70,9 @@ def write_png(path, rgb):
     """Writes an image (height, width, 3 or 4) of linear values as an 8-bit sRGB PNG preview
     (clamped to [0, 1]; alpha is not written), as `icshadow render --png` does."""
     img = image_from_array(rgb, "write_png")
-    folder = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(folder):
-        raise FileNotFoundError(f"write_png: {path}: the folder {folder} does not exist")
-    fd, tmp = tempfile.mkstemp(prefix=".png.", dir=folder)
-    os.close(fd)
-    msg = msg_buffer()
-    try:
+
+    def write(tmp):
+        msg = msg_buffer()
         check(lib.ics_output_png(img, os.fsencode(tmp), msg, len(msg)), msg)
-        os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
+
+    write_replacing(path, "write_png", write)

@@ -1,12 +1,11 @@
 """lights.py: Gaussian lights (docs/lights_format.md): lights files read and written, and lights
 fitted to an environment map (docs/lightfit.md), through the C library."""
 import os
-import tempfile
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._lib import check, ffi, image_from_array, lib, msg_buffer, take_string
+from ._lib import check, ffi, image_from_array, lib, msg_buffer, take_string, write_replacing
 
 
 @dataclass
@@ -29,6 +28,9 @@ def _to_c(lights):
     for k, l in enumerate(lights):
         m = np.asarray(l.mean, dtype=float).reshape(2)
         cv = np.asarray(l.cov, dtype=float).reshape(2, 2)
+        values = np.concatenate([m, cv.ravel(), np.asarray(l.color, dtype=float).ravel(), [l.weight]])
+        if not np.isfinite(values).all():
+            raise ValueError(f"lights[{k}]: a NaN or infinite value (a lights file holds finite numbers)")
         arr[k].mean = list(m)
         arr[k].cov = [cv[0, 0], cv[0, 1], cv[1, 1]]
         arr[k].color = list(np.asarray(l.color, dtype=float).reshape(3))
@@ -55,17 +57,12 @@ def write_lights(path, lights):
     """Writes a lights file: the whole file or, on an error, nothing (a temporary file in the same
     folder renamed over path)."""
     text = lights_json(lights)
-    folder = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(folder):
-        raise FileNotFoundError(f"write_lights: {path}: the folder {folder} does not exist")
-    fd, tmp = tempfile.mkstemp(prefix=".lights.", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
+
+    def write(tmp):
+        with open(tmp, "w", encoding="utf-8") as f:
             f.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
+
+    write_replacing(path, "write_lights", write)
 
 
 def _env_image(env):

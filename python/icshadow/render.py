@@ -111,6 +111,9 @@ def render(scene=None, backend="auto", resolution=None, aovs=(), threads=0, spp=
     backend's). overrides: keys of the scene's "render" object (model="solid", ...). Returns a
     Render."""
     bits = _aov_bits(aovs)
+    if (spp or time or noise) and backend != "mc":
+        raise ValueError("spp, time, noise: only the Monte-Carlo reference takes a stop "
+                         f"(backend=\"mc\"; the backend is {backend!r})")
     s, name = _scene(scene, overrides, allow_outside_paths)
     t0 = time_module.perf_counter()
     p = _plan(s, resolution, threads)

@@ -8,6 +8,9 @@
 # with the reason and no output file.
 set -u
 py=$1 evt=$2  # the icshadow package on PYTHONPATH (tests/python.cmake installs it)
+"$py" -c "import icshadow" 2>/dev/null || {
+  echo "SKIPPED: the icshadow Python package is not importable (the CTest fixture python_install builds it; it needs cffi)"
+  exit 77; }
 . "$(dirname "$0")/checks.sh"
 sweep() {
   "$py" "$evt" --quick --resolution 64x48 --resolutions 32x24 --ref-spp 16 \

@@ -9,6 +9,9 @@
 # slurm-wlm / munge are not installed (scripts/deps.sh installs them).
 set -u
 py=$1 evt=$2 slurm=$3  # the icshadow package on PYTHONPATH (tests/python.cmake)
+"$py" -c "import icshadow" 2>/dev/null || {
+  echo "SKIPPED: the icshadow Python package is not importable (the CTest fixture python_install builds it; it needs cffi)"
+  exit 77; }
 if [ "$(id -u)" -ne 0 ]; then
   echo "SKIPPED: cli_error_vs_time_slurm needs root (a private slurmctld and slurmd as SlurmUser=root)"
   exit 77

@@ -75,6 +75,10 @@ if [ -f "$prefix/include/icshadow/render.h" ]; then
   "$tmp/cm_render/consumer_render" "$tmp/cm.exr"
   test -s "$tmp/cm.exr"
   cmp "$tmp/pc.exr" "$tmp/cm.exr"
-  n=8
+  echo "== a program of the renderer's alone, linked --as-needed: libicshadow found beside it"
+  printf '#include <icshadow/render.h>\nint main(void) { return ics_backend_count() > 0 ? 0 : 1; }\n' > "$tmp/only.c"
+  "$cc" -std=c11 "$tmp/only.c" -o "$tmp/c_only" -Wl,--as-needed "${words[@]}" -Wl,-rpath,"$libdir"
+  "$tmp/c_only"
+  n=9
 fi
 echo "install test: $n passed, 0 failed"

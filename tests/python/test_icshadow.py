@@ -111,6 +111,14 @@ class Lights(unittest.TestCase):
             np.testing.assert_array_equal(a.color, b.color)
             self.assertEqual(a.weight, b.weight)
         self.assertEqual(json.load(open(path))["lights"][0]["weight"], 2.5)
+        umask = os.umask(0o022)
+        try:
+            ic.write_lights(path, lights)
+            self.assertEqual(os.stat(path).st_mode & 0o777, 0o644)  # as a new file, not mkstemp's 0600
+        finally:
+            os.umask(umask)
+        with self.assertRaisesRegex(ValueError, r"lights\[0\]: a NaN or infinite value"):
+            ic.lights_json([ic.Light(np.array([np.nan, 0.0]), np.eye(2))])
 
     def test_errors_carry_the_library_message(self):
         with self.assertRaisesRegex(ic.Error, "nonexistent.json: cannot open lights file"):
@@ -223,6 +231,8 @@ class Renders(unittest.TestCase):
             ic.render(resolution=(0, 8))
         with self.assertRaises(TypeError):
             ic.render(42)
+        with self.assertRaisesRegex(ValueError, "only the Monte-Carlo reference takes a stop"):
+            ic.render(resolution=(8, 8), spp=4)
         with self.assertRaisesRegex(ValueError, "threads: expected 0"):
             ic.render(resolution=(8, 8), threads=-3)
         with self.assertRaisesRegex(ic.Error, "exceeds 16384 per axis"):

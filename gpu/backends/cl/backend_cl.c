@@ -39,8 +39,8 @@ static const char *wanted_device(const ics_render_opts *opts, const char **label
   return want;
 }
 
-static int cl_available(char *why, size_t why_size) {
-  const char *label, *want = wanted_device(NULL, &label);
+static int cl_available(const ics_render_opts *opts, char *why, size_t why_size) {
+  const char *label, *want = wanted_device(opts, &label);
   return ics_cl_available(want, label, why, why_size);
 }
 

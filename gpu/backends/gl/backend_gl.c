@@ -113,10 +113,10 @@ static int ldi_on_device(const ics_render_opts *opts, const char **v) {
   return !strcmp(*v, "device") ? 1 : -1;
 }
 
-static int gl_available(char *why, size_t why_size) {
+static int gl_available(const ics_render_opts *opts, char *why, size_t why_size) {
   ics_gl g;
   char w[1024];
-  if (ics_gl_open(&g, ics_gl_context_kind(NULL), w, sizeof w) != ICS_OK) {
+  if (ics_gl_open(&g, ics_gl_context_kind(opts), w, sizeof w) != ICS_OK) {
     if (why) snprintf(why, why_size, "%s", w);
     return 0;
   }

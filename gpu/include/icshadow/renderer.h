@@ -124,6 +124,10 @@ ICS_API const char *ics_backend_name(int i);        /* NULL out of range */
 ICS_API const char *ics_backend_description(int i); /* NULL out of range */
 /* 1 when backend `name` can run here; else 0 with the reason in why. */
 ICS_API int ics_backend_available(const char *name, char *why, size_t why_size);
+/* The same for a render with these options (opts->options: a device or context asked for is
+ * the one tried; NULL: as ics_backend_available). */
+ICS_API int ics_backend_available_opts(const char *name, const ics_render_opts *opts, char *why,
+                                       size_t why_size);
 
 /* The options backend i takes (ics_render_opts.options), j = 0 .. count - 1: the name ("device"),
  * one line of help, the values it accepts ("auto|egl|osmesa"; NULL: any text that is not empty)
