@@ -2,7 +2,8 @@
 """Patel et al. 2013, Fig. 14 (a)/(b) as a scene: a black disk over a white plane under three
 coloured Gaussian lights like Fig. 14's (a small green one, a broad red one, a thin blue line light
 rotated 70 degrees clockwise; the variances of paper_figs/lightfit_fig14.py, in light-plane
-units), rendered by the slab renderer and by the Monte-Carlo reference.
+units; the scene is scenes/patel_fig14.json), rendered by the slab renderer and by the
+Monte-Carlo reference.
 
 Commands: `icshadow render SCENE --backend mc --spp 512 -o REF.exr --png REF.png`, then
 `icshadow render SCENE --compare REF.exr --png SLAB.png --diff-png DIFF.png` for the default
@@ -32,26 +33,19 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import Ellipse  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
-from figutil import parse_args, run_cli, save_fig, write_csv  # noqa: E402
-
-# mean, variances along the light's axes, angle (deg, counter-clockwise), weight, colour
-LIGHTS = (((-0.55, 0.35), (0.08, 0.08), 0, 1.0, (0.2, 1, 0.2)),
-          ((0.6, 0.3), (0.32, 0.32), 0, 2.0, (1, 0.2, 0.1)),
-          ((0.05, -0.6), (0.3, 0.002), -70, 1.0, (0.15, 0.25, 1)))
-RES, HEIGHT = 128, 4.0
+from figutil import load_scene, parse_args, run_cli, save_fig, write_csv  # noqa: E402
 
 
 def scene():
-    return {
-        "camera": {"projection": "orthographic", "eye": [0, 0, 2], "target": [0, 0, 0], "up": [0, 1, 0],
-                   "height": HEIGHT, "resolution": [RES, RES]},
-        "render": {"slab_spacing": 0.01, "d1": 1.0, "seed": 14},
-        "lights": [{"mean": list(m), "var": list(v), "angle_deg": a, "weight": w / 4.0, "color": list(c)}
-                   for m, v, a, w, c in LIGHTS],
-        "materials": {"black": {"color": [0, 0, 0]}, "white": {}},
-        "objects": [{"shape": "disk", "center": [0, 0, 0], "normal": [0, 0, 1], "radius": 0.5, "material": "black"},
-                    {"shape": "rect", "center": [0, 0, -1], "normal": [0, 0, 1], "size": [6, 6], "material": "white"}],
-    }
+    """scenes/patel_fig14.json (its light weights are Fig. 14's 1, 2, 1 over 4)."""
+    return load_scene("patel_fig14")
+
+
+def lights():
+    """(mean, variances along the light's axes, angle (deg, counter-clockwise), weight, colour) of
+    each of the scene's lights."""
+    return [(l["mean"], l["var"], l.get("angle_deg", 0), l.get("weight", 1), l.get("color", [1, 1, 1]))
+            for l in scene()["lights"]]
 
 
 def cov(v, a):
@@ -64,15 +58,16 @@ def plane_density(ax):
     g = np.linspace(-2, 2, 241)
     x, y = np.meshgrid(g, -g)
     img = np.zeros(x.shape + (3,))
-    for m, v, a, w, col in LIGHTS:
+    for m, v, a, w, col in lights():
         S = cov(v, a)
         Si = np.linalg.inv(S)
         dx, dy = x - m[0], y - m[1]
         q = Si[0, 0] * dx * dx + 2 * Si[0, 1] * dx * dy + Si[1, 1] * dy * dy
         dens = w * np.exp(-0.5 * q) / (2 * math.pi * math.sqrt(np.linalg.det(S)))
         img += dens[:, :, None] * np.array(col)[None, None, :]
-    ax.imshow(1 - np.exp(-img / 2), extent=(-2, 2, -2, 2))
-    for m, v, a, w, col in LIGHTS:
+    # the file's weights are Fig. 14's over 4: 1 - exp(-(4 img) / 2) shades Fig. 14's weights
+    ax.imshow(1 - np.exp(-2 * img), extent=(-2, 2, -2, 2))
+    for m, v, a, w, col in lights():
         for k in (1, 2):
             ax.add_patch(Ellipse(m, 2 * k * math.sqrt(v[0]), 2 * k * math.sqrt(v[1]), angle=a, fill=False,
                                  ec="white", lw=0.8, ls="-" if k == 1 else "--"))

@@ -5,13 +5,14 @@ at increasing distance behind its caster. The Monte-Carlo reference is rendered 
 renderer twice: d1 = 1.0 (the right box's distance to the upright wall, Patel's (c)) and d1 = 0.4
 (the left box's, Patel's (d)). The isolines are measured on the images, not drawn from a model.
 
-The scene: an orthographic view along -z, 200 x 150 pixels of 0.02; the wall at z = 0 for y >= 0
-and z = y below (45 degrees, receding); black boxes 0.5 wide and 0.02 deep spanning the image's
-height, front faces at z = 0.40 (x in [-1.7, -1.2]) and z = 1.00 (x in [0, 0.5]); one light of
-mean (-0.3, 0) and variance 0.003 on each axis, so each shadow is cast to the right by 0.3 d and
-a row at height y sees both boxes from one distance d(y) = z_box - z_wall(y). Every light
-direction leans left (|mean| / sigma = 5.5), so the edge that casts a shadow's right side is the
-box's right front edge: d is measured from the front face.
+The scene (scenes/patel_fig18.json; the constants below are read from it): an orthographic view
+along -z, 200 x 150 pixels of 0.02; the wall at z = 0 for y >= 0 and z = y below (45 degrees,
+receding); black boxes 0.5 wide and 0.02 deep spanning the image's height, front faces at
+z = 0.40 (x in [-1.7, -1.2]) and z = 1.00 (x in [0, 0.5]); one light of mean (-0.3, 0) and
+variance 0.003 on each axis, so each shadow is cast to the right by 0.3 d and a row at height y
+sees both boxes from one distance d(y) = z_box - z_wall(y). Every light direction leans left
+(|mean| / sigma = 5.5), so the edge that casts a shadow's right side is the box's right front
+edge: d is measured from the front face.
 
 Measurement: V = the render with boxes / the same render without boxes (the ratio takes out any
 shading of the tilted wall by slicing, Patel Sec. 7; the script prints what the wall alone
@@ -45,36 +46,32 @@ import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
-from figutil import parse_args, run_cli, save_fig, write_csv  # noqa: E402
+from figutil import load_scene, parse_args, run_cli, save_fig, write_csv  # noqa: E402
 
-W, H, HEIGHT = 200, 150, 3.0
+SCENE = load_scene("patel_fig18")             # the figure's main configuration: d1 = 1.0, (c)
+W, H = SCENE["camera"]["resolution"]
+HEIGHT = SCENE["camera"]["height"]
 PX = HEIGHT / H
 X0, Y0 = -0.5 * W * PX, 0.5 * HEIGHT          # the image's left and top edges
-MEAN_X, VAR = -0.3, 0.003
+MEAN_X, VAR = SCENE["lights"][0]["mean"][0], SCENE["lights"][0]["var"][0]
 SIGMA = VAR ** 0.5
-# (name, x of the left side, x_r of the right side, z of the front face)
-BOXES = (("left", -1.7, -1.2, 0.40), ("right", 0.0, 0.5, 1.00))
-BOX_W, BOX_DEPTH = 0.5, 0.02
+# (name, x of the left side, x_r of the right side, z of the front face), left to right
+_BOXES = sorted((o for o in SCENE["objects"] if o["shape"] == "box"), key=lambda o: o["center"][0])
+BOXES = tuple((name, o["center"][0] - 0.5 * o["size"][0], o["center"][0] + 0.5 * o["size"][0],
+               o["center"][2] + 0.5 * o["size"][2]) for name, o in zip(("left", "right"), _BOXES))
+BOX_W = _BOXES[0]["size"][0]
 LEVELS = (0.1, 0.3, 0.5, 0.7, 0.9)
 D1S = (1.0, 0.4)                               # Patel's (c): the right box, (d): the left box
 SPP = 512
 
 
 def scene(with_boxes, d1):
-    wall = [
-        {"shape": "rect", "center": [0, 0.76, 0], "normal": [0, 0, 1], "size": [4.4, 1.52], "material": "white"},
-        {"shape": "rect", "center": [0, -0.75, -0.75], "normal": [0, -0.5 ** 0.5, 0.5 ** 0.5], "up": [0, 1, 1],
-         "size": [4.4, 2.13], "material": "white"}]
-    boxes = [{"shape": "box", "center": [0.5 * (xl + xr), 0, zf - 0.5 * BOX_DEPTH], "size": [BOX_W, 3.4, BOX_DEPTH],
-              "material": "black"} for _, xl, xr, zf in BOXES]
-    return {
-        "camera": {"projection": "orthographic", "eye": [0, 0, 3], "target": [0, 0, 0], "up": [0, 1, 0],
-                   "height": HEIGHT, "resolution": [W, H]},
-        "render": {"slab_spacing": 0.01, "d1": d1, "seed": 18},
-        "lights": [{"mean": [MEAN_X, 0], "var": [VAR, VAR]}],
-        "materials": {"black": {"color": [0, 0, 0]}, "white": {}},
-        "objects": wall + (boxes if with_boxes else []),
-    }
+    """scenes/patel_fig18.json with d1, and without its boxes for the ratio's denominator."""
+    s = load_scene("patel_fig18")
+    s["render"]["d1"] = d1
+    if not with_boxes:
+        s["objects"] = [o for o in s["objects"] if o["shape"] != "box"]
+    return s
 
 
 def linear(png):

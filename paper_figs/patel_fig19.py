@@ -5,7 +5,8 @@ and to a dense, coloured medium above 0.2) over a white floor, rendered by the s
 slab spacings 0.04, 0.02, 0.01 and 0.005, with and without preintegration, against the Monte-Carlo
 reference. With point samples of the transfer function per slab piece, a thin dense layer is hit
 or missed (banding, error falling slowly with the slab count); preintegration integrates the
-transfer function over each piece's range of detail values.
+transfer function over each piece's range of detail values. The scene: scenes/patel_fig19.json
+(the figure's images: e = 0.02, preintegrated), its slab spacing and preintegration swept.
 
 Commands: `icshadow render SCENE --backend mc --spp 256 --aov stderr -o REF.exr --png REF.png`, then
 `icshadow render SCENE --slab-spacing E [--preintegrate via the scene] --compare REF.exr`.
@@ -28,25 +29,17 @@ import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
-from figutil import parse_args, run_cli, save_fig, write_csv  # noqa: E402
+from figutil import load_scene, parse_args, run_cli, save_fig, write_csv  # noqa: E402
 
 SPACINGS = (0.04, 0.02, 0.01, 0.005)
 
 
 def scene(e, pre):
-    return {
-        "camera": {"projection": "orthographic", "eye": [0, 1.2, 2.4], "target": [0, 0, 0], "up": [0, 1, 0],
-                   "height": 2.0, "resolution": [128, 96]},
-        "render": {"slab_spacing": e, "d1": 1.0, "seed": 19, "preintegrate": pre},
-        "lights": [{"mean": [0.3, 0.5], "cov": [[0.01, 0], [0, 0.01]]}],
-        "materials": {
-            "smoke": {"extinction": 30, "transport": [0.2, 0.1, 0.05],
-                      "detail": {"function": "perlin", "frequency": 2.5, "seed": 4},
-                      "transfer": [[0.1, 1, 0.9, 0.8, 0], [0.2, 0.9, 0.5, 0.3, 1], [1, 0.9, 0.5, 0.3, 1]]},
-            "white": {}},
-        "objects": [{"shape": "box", "center": [0, 0.3, 0], "size": [1.4, 0.6, 1.0], "material": "smoke"},
-                    {"shape": "rect", "center": [0, 0, 0], "normal": [0, 1, 0], "size": [4, 4], "material": "white"}],
-    }
+    """scenes/patel_fig19.json (e = 0.02, preintegrated) at slab spacing e, preintegrated or not."""
+    s = load_scene("patel_fig19")
+    s["render"]["slab_spacing"] = e
+    s["render"]["preintegrate"] = pre
+    return s
 
 
 def main():

@@ -7,9 +7,10 @@ shadow); here a zero-variance light propagates by integer shifts, so its shadow 
 hard as the reference's.
 
 Commands: `icshadow render SCENE --backend mc --spp 256 --aov stderr -o REF.exr --png REF.png`,
-then `icshadow render SCENE --compare REF.exr --png SLAB.png`, per variance. The scene: a fence of
-7 poles (0.12 x 1.2 x 0.12, spacing 0.45) with a bar across their tops, 0.6 in front of a white
-wall, orthographic, 160 x 120, slab spacing 0.01, light mean (0.35, 0.25). Also the fraction of
+then `icshadow render SCENE --compare REF.exr --png SLAB.png`, per variance. The scene
+(scenes/patel_fig20.json, there at variance 0.002): a fence of 7 poles (0.12 x 1.2 x 0.12,
+spacing 0.45) with a bar across their tops, 0.6 in front of a white wall, orthographic,
+160 x 120, slab spacing 0.01, light mean (0.35, 0.25). Also the fraction of
 pixels where the two 8-bit previews (decoded to linear) differ by more than 0.5: for the point
 light, the hard shadow's pixels on the wrong side of an edge.
 Writes patel_fig20.png and patel_fig20.csv (variance, rmse, rmse beyond the reference's noise,
@@ -29,24 +30,16 @@ import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
-from figutil import parse_args, run_cli, save_fig, write_csv  # noqa: E402
+from figutil import load_scene, parse_args, run_cli, save_fig, write_csv  # noqa: E402
 
 VARIANCES = (0.0, 0.002, 0.008)
-W, H = 160, 120
 
 
 def scene(var):
-    return {
-        "camera": {"projection": "orthographic", "eye": [0, 0.6, 3], "target": [0, 0.6, 0], "up": [0, 1, 0],
-                   "height": 1.8, "resolution": [W, H]},
-        "render": {"slab_spacing": 0.01, "d1": 1.0, "seed": 20},
-        "lights": [{"mean": [0.35, 0.25], "cov": [[var, 0], [0, var]]}],
-        "materials": {"wood": {"color": [0.45, 0.3, 0.2]}, "white": {}},
-        "objects": [
-            {"shape": "fence", "center": [0, 0, 0.6], "poles": 7, "pole_size": [0.12, 1.2, 0.12], "spacing": 0.45,
-             "bar_size": [0.1, 0.12], "material": "wood"},
-            {"shape": "rect", "center": [0, 0.6, 0], "normal": [0, 0, 1], "size": [6, 3], "material": "white"}],
-    }
+    """scenes/patel_fig20.json (variance 0.002) with the light's covariance var I."""
+    s = load_scene("patel_fig20")
+    s["lights"][0]["cov"] = [[var, 0], [0, var]]
+    return s
 
 
 def linear(png):

@@ -4,10 +4,12 @@ degrees from the view direction: Lambertian shading, and the slab renderer's "sh
 slicing" for a point light, an isotropic light and a line light rotated 45 degrees, each beside
 the Monte-Carlo reference of the same scene (the model's exact value).
 
-The scene (orthographic, 96 x 96, a unit sphere, slab spacing 0.01, d1 = 1, black background)
-is rendered by `icshadow render --backend mc --spp 256 -o REF.exr` and then by the slab renderer
-with `--compare REF.exr` (RMSE, max error, times from its summary). Light mean (tan a, 0) on the
-light plane; covariances 0, 0.04 I and the line light diag(0.04, 0) rotated 45 degrees.
+The scene (scenes/patel_fig21.json, there at 45 degrees under the isotropic light: orthographic,
+96 x 96, a unit sphere, slab spacing 0.01, d1 = 1, black background) is rendered by
+`icshadow render --backend mc --spp 256 -o REF.exr` and then by the slab renderer with
+`--compare REF.exr` (RMSE, max error, times from its summary). The light's tilt_deg (a, 0), mean
+(tan a, 0) on the light plane; covariances 0, 0.04 I and the line light diag(0.04, 0) rotated 45
+degrees.
 Lambert: max(0, n . w) at each pixel's sphere normal n (computed here, analytically), compared
 with the slab renderer's and the reference's 8-bit sRGB previews decoded to linear (quantisation
 below 0.004). What to see: the reference is the model's exact visibility, a terminator (hard for
@@ -32,24 +34,23 @@ import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
-from figutil import parse_args, run_cli, save_fig, write_csv  # noqa: E402
+from figutil import load_scene, parse_args, run_cli, save_fig, write_csv  # noqa: E402
 
 ANGLES = (0.0, 22.5, 45.0, 67.5)
 LIGHTS = (("point", [[0, 0], [0, 0]]),
           ("isotropic 0.04", [[0.04, 0], [0, 0.04]]),
           ("line 0.04 at 45 deg", [[0.02, 0.02], [0.02, 0.02]]))
-RES, HEIGHT = 96, 2.2
+SCENE = load_scene("patel_fig21")             # the figure's main configuration: 45 deg, isotropic 0.04
+RES = SCENE["camera"]["resolution"][0]
+HEIGHT = SCENE["camera"]["height"]
 
 
 def scene(angle, cov):
-    return {
-        "camera": {"projection": "orthographic", "eye": [0, 0, 3], "target": [0, 0, 0], "up": [0, 1, 0],
-                   "height": HEIGHT, "resolution": [RES, RES]},
-        "render": {"slab_spacing": 0.01, "d1": 1.0, "seed": 21, "background": [0, 0, 0]},
-        "lights": [{"mean": [math.tan(math.radians(angle)), 0], "cov": cov}],
-        "materials": {"white": {}},
-        "objects": [{"shape": "sphere", "center": [0, 0, 0], "radius": 1.0, "material": "white"}],
-    }
+    """scenes/patel_fig21.json with the light at angle degrees from the view direction (x tilt)
+    and covariance cov."""
+    s = load_scene("patel_fig21")
+    s["lights"] = [{"tilt_deg": [angle, 0], "cov": cov}]
+    return s
 
 
 def lambert(angle):

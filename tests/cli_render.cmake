@@ -165,6 +165,11 @@ set_tests_properties(cli_mesh_messages PROPERTIES LABELS fast SKIP_RETURN_CODE 7
 add_test(NAME cli_outside_paths COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/outside_paths.sh
   $<TARGET_FILE:icshadow_cli> ${CMAKE_SOURCE_DIR}/tests/data)
 set_tests_properties(cli_outside_paths PROPERTIES LABELS fast)
+# every example scene (scenes/*.json, docs/gallery.md) renders at 48 x 36 with a PNG; a scene
+# with a mesh is skipped, named, when Assimp was not found (then the test exits 77)
+add_test(NAME cli_gallery COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/gallery.sh
+  $<TARGET_FILE:icshadow_cli> ${CMAKE_SOURCE_DIR}/scenes)
+set_tests_properties(cli_gallery PROPERTIES LABELS fast SKIP_RETURN_CODE 77)
 # a light buffer one pixel wide with runs of 16 (two run choices for a 1-pixel row: the per-thread
 # scratch once held one word; ASan caught the overflow in the vector loops)
 file(WRITE ${rd}/narrow.json [=[

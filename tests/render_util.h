@@ -19,17 +19,17 @@ typedef struct render_result {
   int slabs;
 } render_result;
 
-/* Renders scene s on `backend` with `threads` threads (0: all) and the settings rs (NULL: the
- * scene's), with the AOVs `aovs` (ICS_AOV_* bits; 0: none). */
-/* The plan of scene s (rs, threads as ics_plan_opts take them); exits 2 with the message when
- * it cannot be made. */
-static inline ics_plan *plan_or_exit(const ics_scene *s, const ics_render_settings *rs,
-                                     int threads) {
+/* The plan of scene s (rs, threads, width and height as ics_plan_opts take them: NULL and 0 keep
+ * the scene's); exits 2 with the message when it cannot be made. */
+static inline ics_plan *plan_sized_or_exit(const ics_scene *s, const ics_render_settings *rs,
+                                           int threads, int width, int height) {
   char msg[4096];
   ics_plan_opts po;
   memset(&po, 0, sizeof po);
   po.settings = rs;
   po.threads = threads;
+  po.width = width;
+  po.height = height;
   ics_plan *p;
   if (ics_plan_create(&p, s, &po, msg, sizeof msg) != ICS_OK) {
     fprintf(stderr, "render_util: plan: %s\n", msg);
@@ -38,13 +38,21 @@ static inline ics_plan *plan_or_exit(const ics_scene *s, const ics_render_settin
   return p;
 }
 
-static inline render_result render_scene_on(const char *backend, const ics_scene *s,
-                                            const ics_render_settings *rs, int threads,
-                                            unsigned aovs) {
+static inline ics_plan *plan_or_exit(const ics_scene *s, const ics_render_settings *rs,
+                                     int threads) {
+  return plan_sized_or_exit(s, rs, threads, 0, 0);
+}
+
+/* Renders scene s on `backend` with `threads` threads (0: all) and the settings rs (NULL: the
+ * scene's), with the AOVs `aovs` (ICS_AOV_* bits; 0: none), at width x height (0, 0: the
+ * scene's resolution). */
+static inline render_result render_scene_sized_on(const char *backend, const ics_scene *s,
+                                                  const ics_render_settings *rs, int threads,
+                                                  unsigned aovs, int width, int height) {
   render_result r;
   memset(&r, 0, sizeof r);
   char msg[4096];
-  ics_plan *p = plan_or_exit(s, rs, threads);
+  ics_plan *p = plan_sized_or_exit(s, rs, threads, width, height);
   ics_render_opts ro;
   memset(&ro, 0, sizeof ro);
   ro.backend = backend;
@@ -61,6 +69,12 @@ static inline render_result render_scene_on(const char *backend, const ics_scene
   ics_renderer_destroy(rr);
   ics_plan_destroy(p);
   return r;
+}
+
+static inline render_result render_scene_on(const char *backend, const ics_scene *s,
+                                            const ics_render_settings *rs, int threads,
+                                            unsigned aovs) {
+  return render_scene_sized_on(backend, s, rs, threads, aovs, 0, 0);
 }
 
 static inline render_result render_scene_aovs(const ics_scene *s, const ics_render_settings *rs,

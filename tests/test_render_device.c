@@ -1,6 +1,7 @@
 /* test_render_device.c — a device backend (cl: gpu/backends/cl, gl: gpu/backends/gl) renders what the cpu backend
- * renders: the embedded default scene, every scene file given on the command line (scenes/), and
- * variants that reach each path of slab.cl and slab.comp (stencil, table with per-pixel and run-of-16 choices, 1 and 384
+ * renders: the embedded default scene, every scene file given on the command line (scenes/, at
+ * most 128 pixels on a side), and variants that reach each path of slab.cl and slab.comp
+ * (stencil, table with per-pixel and run-of-16 choices, 1 and 384
  * rotations, the perspective classes, integer and signed kernels, coloured transport, translucent
  * surfaces, volumes with and without detail, Perlin / fBm / ridged / grid detail,
  * preintegration, more overlapping volumes than the shading keeps, several lights). Per image:
@@ -114,10 +115,19 @@ static const char *const variants[][3] = {
      "  {\"shape\": \"sphere\", \"center\": [0.2, 0.1, 0], \"radius\": 0.45, \"material\": \"smoke\"}]}"},
 };
 
-static void compare(const char *what, const char *mode, const ics_scene *s) {
+/* Scene files are compared at most SCENE_FILE_SIDE pixels on their longer side, the aspect kept
+ * (scenes/ holds the gallery's scenes, up to 320 x 240): the same paths as at their own size,
+ * and the gl runs on llvmpipe stay medium (at their own sizes the gallery's scenes took 87 s
+ * more on each of the three gl runs). */
+#define SCENE_FILE_SIDE 128
+
+/* cpu against the backend on scene s at width x height (0, 0: the scene's resolution); mode: the
+ * path light 0 must run in (NULL: any) */
+static void compare(const char *what, const char *mode, const ics_scene *s, int width,
+                    int height) {
   if (mode) { /* the path this variant is for */
     char got[64] = "";
-    ics_plan *p = plan_or_exit(s, NULL, 0);
+    ics_plan *p = plan_sized_or_exit(s, NULL, 0, width, height);
     for (int i = 0; i < ics_plan_pass_count(p); i++) {
       const ics_plan_pass *q = ics_plan_pass_at(p, i);
       if (q->light == 0) sscanf(q->detail, "%*s %*s %63[a-z]", got);
@@ -126,7 +136,8 @@ static void compare(const char *what, const char *mode, const ics_scene *s) {
     CHECK(!strcmp(got, mode), "%s: light 0 runs in mode '%s', the variant is for '%s'", what, got, mode);
   }
   const unsigned aovs = ICS_AOV_VISIBILITY | ICS_AOV_DEPTH;
-  render_result a = render_scene_on("cpu", s, NULL, 0, aovs), b = render_scene_on(backend, s, NULL, 0, aovs);
+  render_result a = render_scene_sized_on("cpu", s, NULL, 0, aovs, width, height),
+                b = render_scene_sized_on(backend, s, NULL, 0, aovs, width, height);
   double maxd = 0, sum = 0;
   int at = 0;
   size_t n = (size_t)a.img->width * a.img->height * 4;
@@ -243,16 +254,24 @@ int main(int argc, char **argv) {
   }
   lifecycle(variants[3][2]);
   ics_scene *s = scene_from_json(ics_scene_default_json());
-  compare("the embedded default scene", "table", s);
+  compare("the embedded default scene", "table", s, 0, 0);
   ics_scene_destroy(s);
   for (int i = 2; i < argc; i++) {
     s = scene_from_file(argv[i]);
-    compare(argv[i], NULL, s);
+    const ics_camera *c = ics_scene_camera(s);
+    int side = c->width > c->height_px ? c->width : c->height_px, w = 0, h = 0;
+    if (side > SCENE_FILE_SIDE) { /* sides below 16384: no overflow; at least 1 x 1 */
+      w = c->width * SCENE_FILE_SIDE / side;
+      h = c->height_px * SCENE_FILE_SIDE / side;
+      w = w > 0 ? w : 1;
+      h = h > 0 ? h : 1;
+    }
+    compare(argv[i], NULL, s, w, h);
     ics_scene_destroy(s);
   }
   for (size_t v = 0; v < sizeof variants / sizeof *variants; v++) {
     s = scene_from_json(variants[v][2]);
-    compare(variants[v][0], variants[v][1], s);
+    compare(variants[v][0], variants[v][1], s, 0, 0);
     ics_scene_destroy(s);
   }
   /* grid detail: a 5 x 4 x 3 grid of random values over a box, preintegrated */
@@ -276,7 +295,7 @@ int main(int argc, char **argv) {
            "  {\"shape\": \"box\", \"center\": [0, 0.1, 0], \"size\": [1.2, 0.8, 0.9], \"material\": \"g\"}]}",
            grid);
   s = scene_from_json(json);
-  compare("volume with grid detail (5 x 4 x 3), preintegrated", "table", s);
+  compare("volume with grid detail (5 x 4 x 3), preintegrated", "table", s, 0, 0);
   ics_scene_destroy(s);
   remove(grid);
   /* ten volumes overlapping at the centre (more than the 8 whose extinctions ics_shade keeps),
@@ -294,7 +313,7 @@ int main(int argc, char **argv) {
                   0.04 * v - 0.2, 0.02 * v, 0.5 + 0.02 * v, v % 2 ? 'b' : 'a');
   if (n > 0 && (size_t)n + 3 < sizeof json) snprintf(json + n, sizeof json - (size_t)n, "]}");
   s = scene_from_json(json);
-  compare("ten overlapping volumes (five with fBm detail), two lights", "table", s);
+  compare("ten overlapping volumes (five with fBm detail), two lights", "table", s, 0, 0);
   ics_scene_destroy(s);
   if (!strcmp(backend, "cl")) {
     setenv("ICS_CL_DEVICE", "no such device anywhere", 1);

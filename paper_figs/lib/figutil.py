@@ -1,6 +1,8 @@
 """figutil.py — helpers shared by the paper_figs/*.py scripts (a module, not a figure script:
 it lives in lib/ so that `make figs`, which runs every paper_figs/*.py, does not run it).
 
+load_scene  a scene file of scenes/ (the figure's main configuration) as a dict, for the script
+            to apply its sweep's overrides to;
 arg_parser  the --cli/--out argument parser every script starts from (add options to it);
 parse_args  parses them (a docstring or an arg_parser) and creates the --out folder;
 run_cli     runs the icshadow CLI and returns its stdout, or exits naming the failed command;
@@ -10,9 +12,18 @@ save_fig    saves a matplotlib figure atomically.
 """
 import argparse
 import csv
+import json
 import os
 import subprocess
 import sys
+
+SCENES = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "scenes")
+
+
+def load_scene(name):
+    """The scene file scenes/NAME.json as a dict (a fresh copy on every call: the caller may change it)."""
+    with open(os.path.join(SCENES, name + ".json")) as f:
+        return json.load(f)
 
 
 def arg_parser(doc):
