@@ -2,7 +2,7 @@
  * through it, the number parser every numeric option uses (cli_parse_double). Invariants: a SPEC
  * that parses gives at least one light with finite means, positive-semidefinite
  * covariances and finite non-negative weights and colours; written as a lights file
- * (lights_write, %.17g) and read back (lights_read_file) the lights have the same values (a
+ * (ics_light_write_json, %.17g) and read back (lights_read_file) the lights have the same values (a
  * negative zero comes back as +0: JSON's "-0" is read as the integer 0); a
  * number that parses prints (%.17g) to a string that parses to the same double. */
 #define _POSIX_C_SOURCE 200809L
@@ -45,7 +45,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     snprintf(path, sizeof path, "%s/fuzz_lights.%ld.json", td && *td ? td : "/tmp", (long)getpid());
     FILE *f = fopen(path, "w");
     if (f) {
-      REQUIRE(lights_write(f, l, n) == 0);
+      REQUIRE(ics_light_write_json(f, l, n) == 0);
       fclose(f);
       ics_light *b = NULL;
       int m = 0;
