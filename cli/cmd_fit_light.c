@@ -4,7 +4,7 @@
  * file (docs/lights_format.md) atomically. stdout: a CSV summary table, one row per fit
  * (k = K, or k = 1..K with --sweep or --lights auto): k, lights fitted, L1, L2, edge-shadow
  * error, seconds, EM iterations, samples, cut-off loss. --lights auto[:KMAX] fits k = 1..KMAX
- * (default 8) and keeps the fewest lights whose L1 is within AUTO_L1_FLOOR or AUTO_L1_RATIO x
+ * (default 8) and keeps the fewest lights whose L1 is within ICS_LIGHTFIT_AUTO_L1_FLOOR or _RATIO x
  * the best of them (docs/lightfit.md "How many lights"). stderr: the energy report, and progress when stderr is
  * a terminal or --progress is given. */
 #include <stdio.h>
@@ -48,17 +48,11 @@ static void help(FILE *f) {
 
 static const char CMD[] = "fit-light";
 
-/* --lights auto: the fewest lights whose L1 is at most the larger of these (measured on maps of
- * known lights: docs/lightfit.md "How many lights") */
-#define AUTO_L1_FLOOR 0.01
-#define AUTO_L1_RATIO 2.0
-#define AUTO_KMAX 8
-
 /* --lights: K, or auto (a negative K: -KMAX) */
 static int parse_lights(const char *cmd, const char *opt, const char *s, void *dest) {
   int *K = dest;
   if (!strncmp(s, "auto", 4)) {
-    int kmax = AUTO_KMAX;
+    int kmax = ICS_LIGHTFIT_AUTO_KMAX;
     if (s[4] == ':' ? cli_parse_int(s + 5, 1, ICS_LIGHTFIT_MAX_K, &kmax) : s[4] != 0)
       return cli_error(cmd, "%s: expected auto or auto:KMAX with KMAX in 1..%d, got '%s'", opt,
                        ICS_LIGHTFIT_MAX_K, s);
@@ -68,16 +62,6 @@ static int parse_lights(const char *cmd, const char *opt, const char *s, void *d
   if (cli_parse_int(s, 1, ICS_LIGHTFIT_MAX_K, K))
     return cli_error(cmd, "%s: expected 1..%d or auto[:KMAX], got '%s'", opt, ICS_LIGHTFIT_MAX_K, s);
   return 0;
-}
-
-/* the auto choice among the fits k = 1..K: its k */
-static int auto_choice(const ics_lightfit_report *rep, int K) {
-  double best = rep[0].l1;
-  for (int k = 1; k < K; k++) best = rep[k].l1 < best ? rep[k].l1 : best;
-  double limit = best * AUTO_L1_RATIO > AUTO_L1_FLOOR ? best * AUTO_L1_RATIO : AUTO_L1_FLOOR;
-  for (int k = 0; k < K; k++)
-    if (rep[k].l1 <= limit) return k + 1;
-  return K;
 }
 
 /* EM progress: every iteration on a terminal, every 25th (and the first) otherwise */
@@ -149,7 +133,7 @@ static int fit_and_write(const ics_image *env, const char *inp, const char *outp
     if (st != ICS_OK)
       return cli_status_error(CMD, st, "%s: fit failed: %s", inp, ics_status_str(st));
   }
-  int kc = autopick ? auto_choice(rep, K) : K; /* the fit written */
+  int kc = autopick ? ics_lightfit_auto_choice(rep, K) : K; /* the fit written */
   for (int k = k0; k <= K; k++)
     if (!rep[k - 1].converged && (!autopick || k == kc)) /* auto: only the one kept */
       cli_warning(CMD, "K=%d: EM stopped at --max-iter %d before converging (log-likelihood "
@@ -157,8 +141,8 @@ static int fit_and_write(const ics_image *env, const char *inp, const char *outp
                   "of lights (--lights auto)", k, p->max_iter, 4 * p->max_iter);
   if (autopick)
     fprintf(stderr, "fit-light: --lights auto: K = %d, the fewest lights whose L1 (%.3g) is within "
-            "max(%g, %g x the best of K = 1..%d)\n", kc, rep[kc - 1].l1, AUTO_L1_FLOOR,
-            AUTO_L1_RATIO, K);
+            "max(%g, %g x the best of K = 1..%d)\n", kc, rep[kc - 1].l1, ICS_LIGHTFIT_AUTO_L1_FLOOR,
+            ICS_LIGHTFIT_AUTO_L1_RATIO, K);
   const ics_light *lights = fits[kc - 1];
   const ics_lightfit_report *r = &rep[kc - 1];
   double behind = r->energy_kept + r->energy_cutoff;

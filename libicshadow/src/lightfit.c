@@ -709,3 +709,15 @@ out:
   pixset_free(&ps);
   return st;
 }
+
+int ics_lightfit_auto_choice(const ics_lightfit_report *rep, int kmax) {
+  if (!rep || kmax < 1) return 0;
+  double best = rep[0].l1;
+  for (int k = 1; k < kmax; k++) best = rep[k].l1 < best ? rep[k].l1 : best;
+  double limit = best * ICS_LIGHTFIT_AUTO_L1_RATIO > ICS_LIGHTFIT_AUTO_L1_FLOOR
+                     ? best * ICS_LIGHTFIT_AUTO_L1_RATIO
+                     : ICS_LIGHTFIT_AUTO_L1_FLOOR;
+  for (int k = 0; k < kmax; k++)
+    if (rep[k].l1 <= limit) return k + 1;
+  return kmax;
+}

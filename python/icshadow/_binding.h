@@ -63,6 +63,7 @@ typedef struct {
 ics_status ics_lightsfile_read(const char *path, ics_light **out, int *n, char *msg,
                                size_t msg_size);
 #define ICS_LIGHTFIT_MAX_K ...
+#define ICS_LIGHTFIT_AUTO_KMAX ...
 typedef struct {
   int k;
   double max_angle_deg;
@@ -81,6 +82,7 @@ typedef struct {
 void ics_lightfit_params_init(ics_lightfit_params *out);
 ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *p, ics_light *lights,
                         ics_lightfit_report *report);
+int ics_lightfit_auto_choice(const ics_lightfit_report *reports, int kmax);
 
 /* LUTs (icshadow/lut.h) */
 #define ICS_LUT_MIN_SIZE ...

@@ -73,23 +73,56 @@ def _env_image(env):
     return image_from_array(env, "fit_light: env")
 
 
-def fit_light(env, lights=3, max_angle=80.0, seed=1, max_samples=0, max_iter=300, tol=1e-9):
-    """Fits `lights` Gaussians to a latitude-longitude environment map (a path to an EXR, or an
-    array (height, width, 3 or 4) of linear RGB, row 0 at the top), as `icshadow fit-light`
-    does. Returns (lights, report): report is a dict of the fit's numbers (k_fit, iterations,
-    l1, l2, edge, converged, the energies; docs/lightfit.md)."""
+def _lights_arg(lights):
+    """(K, auto): lights is K, "auto" or "auto:KMAX" (the CLI's --lights)"""
+    if isinstance(lights, str):
+        if lights == "auto":
+            return lib.ICS_LIGHTFIT_AUTO_KMAX, True
+        if lights.startswith("auto:") and lights[5:].isdigit():
+            kmax = int(lights[5:])
+            if 1 <= kmax <= lib.ICS_LIGHTFIT_MAX_K:
+                return kmax, True
+        raise ValueError(f"fit_light: lights: expected 1..{lib.ICS_LIGHTFIT_MAX_K}, \"auto\" or "
+                         f"\"auto:KMAX\", got {lights!r}")
     if not 1 <= int(lights) <= lib.ICS_LIGHTFIT_MAX_K:
         raise ValueError(f"fit_light: lights: expected 1..{lib.ICS_LIGHTFIT_MAX_K}, got {lights}")
+    return int(lights), False
+
+
+_REPORT_KEYS = ("k_fit", "iterations", "samples", "pixels", "energy_total", "energy_front",
+                "energy_cutoff", "energy_kept", "cutoff_loss", "loglik", "l1", "l2", "edge")
+
+
+def _report(rep):
+    out = {k: getattr(rep, k) for k in _REPORT_KEYS}
+    out["converged"] = bool(rep.converged)
+    return out
+
+
+def fit_light(env, lights=3, max_angle=80.0, seed=1, max_samples=0, max_iter=300, tol=1e-9):
+    """Fits Gaussian lights to a latitude-longitude environment map (a path to an EXR, or an
+    array (height, width, 3 or 4) of linear RGB, row 0 at the top), as `icshadow fit-light`
+    does. lights: K, or "auto" / "auto:KMAX": every K = 1..KMAX fitted and the fewest lights
+    within max(1 %, 2 x the best L1) kept (docs/lightfit.md "How many lights"). Returns (lights,
+    report): report is a dict of the kept fit's numbers (k_fit, iterations, l1, l2, edge,
+    converged, the energies); with auto also "k" (the K kept) and "fits" (every K's report)."""
+    kmax, auto = _lights_arg(lights)
     img = _env_image(env)
     p = ffi.new("ics_lightfit_params *")
     lib.ics_lightfit_params_init(p)
-    p.k, p.max_angle_deg, p.seed = int(lights), float(max_angle), int(seed)
+    p.max_angle_deg, p.seed = float(max_angle), int(seed)
     p.max_samples, p.max_iter, p.tol = int(max_samples), int(max_iter), float(tol)
-    out = ffi.new("ics_light[]", p.k)
-    rep = ffi.new("ics_lightfit_report *")
-    check(lib.ics_lightfit(img, p, out, rep), context="fit_light: ")
-    keys = ("k_fit", "iterations", "samples", "pixels", "energy_total", "energy_front",
-            "energy_cutoff", "energy_kept", "cutoff_loss", "loglik", "l1", "l2", "edge")
-    report = {k: getattr(rep, k) for k in keys}
-    report["converged"] = bool(rep.converged)
-    return [_from_c(out[k]) for k in range(rep.k_fit)], report
+    reps = ffi.new("ics_lightfit_report[]", kmax)
+    fits = []
+    for k in (range(1, kmax + 1) if auto else [kmax]):
+        p.k = k
+        out = ffi.new("ics_light[]", k)
+        check(lib.ics_lightfit(img, p, out, reps + (k - 1)), context=f"fit_light: K = {k}: ")
+        fits.append([_from_c(out[i]) for i in range(reps[k - 1].k_fit)])
+    if not auto:
+        return fits[0], _report(reps[kmax - 1])
+    kc = lib.ics_lightfit_auto_choice(reps, kmax)
+    report = _report(reps[kc - 1])
+    report["k"] = kc
+    report["fits"] = [_report(reps[k]) for k in range(kmax)]
+    return fits[kc - 1], report

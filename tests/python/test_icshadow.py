@@ -110,7 +110,8 @@ class Lights(unittest.TestCase):
             np.testing.assert_array_equal(a.cov, b.cov)
             np.testing.assert_array_equal(a.color, b.color)
             self.assertEqual(a.weight, b.weight)
-        self.assertEqual(json.load(open(path))["lights"][0]["weight"], 2.5)
+        with open(path) as f:
+            self.assertEqual(json.load(f)["lights"][0]["weight"], 2.5)
         umask = os.umask(0o022)
         try:
             ic.write_lights(path, lights)
@@ -142,6 +143,22 @@ class Lights(unittest.TestCase):
         self.assertEqual(ic.lights_json(lights2), open(out).read())
         self.assertEqual(rep, rep2)
         self.assertIn("l1", rep)
+
+    def test_fit_auto_equals_the_cli(self):
+        env = tmp("sky.exr")  # three lights over a sky (tests/cli/lightfit_auto.sh's sky map)
+        spec = ("0.2771,0.3447,0.0095,0.0476,55.2994,0.9095,0.6895,0.5246,0.5798:"
+                "0.4211,-0.5810,0.0174,0.0173,-48.2847,1.8773,0.3854,0.7815,0.7366:"
+                "-0.6648,-0.5302,0.0056,0.0066,56.4572,1.8205,0.7776,0.8258,0.5824")
+        cli("make-env", "--lights", spec, "--sky", "0.02,0.03,0.05", "--size", "128x64", "-o", env)
+        out = tmp("auto_cli.json")
+        err = cli("fit-light", env, "--lights", "auto:6", "-o", out).stderr
+        lights, rep = ic.fit_light(env, lights="auto:6")
+        self.assertIn(f"auto: K = {rep['k']},", err)
+        self.assertEqual(ic.lights_json(lights), open(out).read())
+        self.assertEqual(len(rep["fits"]), 6)
+        self.assertEqual(rep["l1"], rep["fits"][rep["k"] - 1]["l1"])
+        with self.assertRaisesRegex(ValueError, "auto:KMAX"):
+            ic.fit_light(env, lights="auto:99")
 
     def test_fit_bad_maps(self):
         good = np.ones((8, 16, 3), np.float32)

@@ -56,6 +56,14 @@ extern "C" {
 
 #define ICS_LIGHTFIT_MAX_K 32
 
+/* How many lights (`fit-light --lights auto`, docs/lightfit.md "How many lights"): of the fits
+ * K = 1 .. KMAX (default ICS_LIGHTFIT_AUTO_KMAX), the fewest lights whose L1 is at most
+ * max(ICS_LIGHTFIT_AUTO_L1_FLOOR, ICS_LIGHTFIT_AUTO_L1_RATIO x the best L1): measured on maps of
+ * known lights with and without a sky. */
+#define ICS_LIGHTFIT_AUTO_KMAX 8
+#define ICS_LIGHTFIT_AUTO_L1_FLOOR 0.01
+#define ICS_LIGHTFIT_AUTO_L1_RATIO 2.0
+
 typedef struct ics_lightfit_params {
   int k;                /* number of Gaussians, 1..ICS_LIGHTFIT_MAX_K (default 3) */
   double max_angle_deg; /* cut-off angle from +z, (0, 90) (default 80) */
@@ -93,6 +101,10 @@ ICS_API void ics_lightfit_params_init(ics_lightfit_params *out);
  * 4 x 2; ICS_ERR_NOMEM. */
 ICS_API ics_status ics_lightfit(const ics_image *env, const ics_lightfit_params *p,
                                 ics_light *lights, ics_lightfit_report *report);
+
+/* The K the auto rule (above) keeps among kmax fits, reports[k - 1] the fit of k lights; 0 when
+ * kmax < 1 or reports is NULL. */
+ICS_API int ics_lightfit_auto_choice(const ics_lightfit_report *reports, int kmax);
 
 /* The error fields (l1, l2, edge) and energies of any set of n lights against env, with the
  * cut-off max_angle_deg (k_fit = n, iterations = samples = 0). */
