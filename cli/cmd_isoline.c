@@ -138,33 +138,15 @@ static int kernel1d_member(const char *name) {
 /* Model iterative: the iterated isoline into *x; 0, or the exit status after an error message. */
 static int iterated_isoline(const ics_light1d *l, double level, double dist, double d1,
                             double slab, int member, int samples, uint64_t seed, double *x) {
-  double nf = dist / slab;
-  if (fabs(nf - nearbyint(nf)) > 1e-9 * fmax(nf, 1.0) || nf > 1e6)
-    return cli_error(CMD, "--distance / --slab = %.17g must be an integer number of slabs (at "
-                          "most 1e6)", nf);
-  if (ics_light1d_var(l) == 0 && dist > 0)
-    return cli_error(CMD, "model iterative needs a light with variance > 0");
   ics_iter1d_opts o;
   ics_iter1d_opts_init(&o);
   o.member = (ics_kernel_member)member;
   o.nsamples = samples;
   o.seed = seed;
-  double disc, h = 0, nodes = 0, w1 = 0, w2 = 0;
-  ics_status st = dist > 0 ? ics_iter1d_cost(l, dist, d1, slab, &o, &h, &nodes, &w1)
-                           : ICS_OK;
-  if (st == ICS_OK && dist > 0) { /* and the run on the grid twice as fine */
-    ics_iter1d_opts o2 = o;
-    o2.h = h / 2;
-    st = ics_iter1d_cost(l, dist, d1, slab, &o2, NULL, NULL, &w2);
-  }
-  if (st == ICS_OK && w1 + w2 > ICS_CONV_WORK_BUDGET)
-    return cli_error(CMD, "estimated work %.3g tap-updates (%.0f slabs on %.0f nodes, and again "
-                          "on a grid twice as fine) exceeds the budget of %.0e (give fewer "
-                          "slabs: a larger --slab or smaller --distance, or smaller --samples)",
-                     w1 + w2, nearbyint(nf), nodes, ICS_CONV_WORK_BUDGET);
-  if (st == ICS_OK) st = ics_isoline_iterative(l, level, dist, d1, slab, &o, x, &disc);
-  if (st != ICS_OK)
-    return cli_status_error(CMD, st, "iterated shadow failed: %s", ics_status_str(st));
+  char msg[512];
+  ics_status st = ics_isoline_iterative_bounded(l, level, dist, d1, slab, &o, x, NULL, msg, sizeof msg);
+  if (st == ICS_ERR_RANGE || st == ICS_ERR_SIZE) return cli_error(CMD, "%s", msg);
+  if (st != ICS_OK) return cli_status_error(CMD, st, "%s", msg);
   return 0;
 }
 

@@ -3,9 +3,11 @@
  * icshadow/isoline.h). The correct isolines use the light's upper quantile (isf) so that
  * levels near 0 and 1 keep their precision. */
 #include "icshadow/isoline.h"
+#include "icshadow/conv.h"
 #include "icshadow/normal.h"
 
 #include <math.h>
+#include <stdio.h>
 
 static int bad_d(double d) { return isnan(d) || d < 0 || isinf(d); }
 static int bad_s(double s) { return !(s > 0 && s < 1); }
@@ -50,4 +52,40 @@ ics_status ics_isoline_iterative(const ics_light1d *l, double s, double d, doubl
   if (x) *x = xb;
   if (disc_err) *disc_err = fabs(xa - xb);
   return (isnan(xa) || isnan(xb)) ? ICS_ERR_RANGE : ICS_OK;
+}
+
+ics_status ics_isoline_iterative_bounded(const ics_light1d *l, double s, double d, double d1,
+                                         double e, const ics_iter1d_opts *opts, double *x,
+                                         double *disc_err, char *msg, size_t msg_size) {
+  double nf = d / e, disc;
+  if (fabs(nf - nearbyint(nf)) > 1e-9 * fmax(nf, 1.0) || nf > 1e6) {
+    if (msg) snprintf(msg, msg_size, "distance / slab = %.17g must be an integer number of slabs "
+                      "(at most 1e6)", nf);
+    return ICS_ERR_RANGE;
+  }
+  if (ics_light1d_var(l) == 0 && d > 0) {
+    if (msg) snprintf(msg, msg_size, "the iterated isoline needs a light with variance > 0");
+    return ICS_ERR_RANGE;
+  }
+  double h = 0, nodes = 0, w1 = 0, w2 = 0;
+  ics_status st = d > 0 ? ics_iter1d_cost(l, d, d1, e, opts, &h, &nodes, &w1) : ICS_OK;
+  if (st == ICS_OK && d > 0) { /* and the run on the grid twice as fine */
+    ics_iter1d_opts o2 = *opts;
+    o2.h = h / 2;
+    st = ics_iter1d_cost(l, d, d1, e, &o2, NULL, NULL, &w2);
+  }
+  if (st == ICS_OK && w1 + w2 > ICS_CONV_WORK_BUDGET) {
+    if (msg) snprintf(msg, msg_size, "estimated work %.3g tap-updates (%.0f slabs on %.0f nodes, "
+                      "and again on a grid twice as fine) exceeds the budget of %.0e (give fewer "
+                      "slabs: a larger slab or a smaller distance, or fewer samples)",
+                      w1 + w2, nearbyint(nf), nodes, ICS_CONV_WORK_BUDGET);
+    return ICS_ERR_SIZE;
+  }
+  if (st == ICS_OK) st = ics_isoline_iterative(l, s, d, d1, e, opts, x, &disc);
+  if (st != ICS_OK) {
+    if (msg) snprintf(msg, msg_size, "iterated shadow failed: %s", ics_status_str(st));
+    return st;
+  }
+  if (disc_err) *disc_err = disc;
+  return ICS_OK;
 }

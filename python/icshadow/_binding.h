@@ -23,6 +23,24 @@ typedef struct {
 ics_status ics_ellipse_kernel(double varx, double vary, double angle_deg, int nsamples,
                               double offset, ics_ellipse_shape *shape, double *xy);
 
+/* 1D lights and the isolines of the shadow behind an edge (icshadow/light.h, isoline.h) */
+#define ICS_LIGHT1D_MAX_MIX ...
+typedef struct ics_light1d ics_light1d;
+ics_status ics_light1d_create_gauss(ics_light1d **out, double mean, double var);
+ics_status ics_light1d_create_box(ics_light1d **out, double lo, double hi);
+ics_status ics_light1d_create_mix(ics_light1d **out, int n, const double *w, const double *mu,
+                                  const double *var);
+void ics_light1d_destroy(ics_light1d *l);
+double ics_isoline_correct(const ics_light1d *l, double s, double d);
+double ics_isoline_clt(const ics_light1d *l, double s, double d, double d1);
+typedef struct {
+  ...;
+} ics_iter1d_opts;
+void ics_iter1d_opts_init(ics_iter1d_opts *out);
+ics_status ics_isoline_iterative_bounded(const ics_light1d *l, double s, double d, double d1,
+                                         double e, const ics_iter1d_opts *opts, double *x,
+                                         double *disc_err, char *msg, size_t msg_size);
+
 /* images and EXR files (icshadow/image.h, exr.h) */
 typedef struct {
   int width, height, channels;

@@ -81,6 +81,36 @@ class Numerics(unittest.TestCase):
             ic.ellipse_kernel(1, 1, 0, 10**9)
 
 
+class Isolines(unittest.TestCase):
+    LIGHTS = {"gauss:0.3,1": lambda: ic.Light1D.gauss(0.3, 1), "box:-1,2": lambda: ic.Light1D.box(-1, 2),
+              "mix:0.8,0,0.2;0.2,2,1": lambda: ic.Light1D.mix([0.8, 0.2], [0, 2], [0.2, 1])}
+
+    def test_bit_equal_to_the_cli(self):
+        for spec, make in self.LIGHTS.items():
+            light = make()
+            for model, extra, kw in (("correct", [], {}), ("clt", ["--d1", "1"], {"d1": 1}),
+                                     ("iterative", ["--d1", "1", "--slab", "0.05"], {"d1": 1, "slab": 0.05})):
+                for s, d in ((0.1, 0.5), (0.5, 1.0), (0.9, 2.0)):
+                    want = float(cli("isoline", "--light", spec, "--level", str(s), "--distance", str(d),
+                                     "--model", model, *extra).stdout)
+                    self.assertEqual(ic.isoline(light, s, d, model, **kw), want, (spec, model, s, d))
+
+    def test_bad_input(self):
+        g = ic.Light1D.gauss(0, 1)
+        with self.assertRaisesRegex(ic.Error, "integer number of slabs"):
+            ic.isoline(g, 0.5, 1.0, "iterative", d1=1, slab=0.3)
+        with self.assertRaisesRegex(ic.Error, r"= 10000000 must be an integer number of slabs \(at most 1e6\)"):
+            ic.isoline(g, 0.5, 1e4, "iterative", d1=1, slab=0.001)  # (the work budget: cli_isoline_work_budget)
+        with self.assertRaisesRegex(ValueError, "needs d1"):
+            ic.isoline(g, 0.5, 1.0, "clt")
+        with self.assertRaisesRegex(ValueError, r"level must be in \(0, 1\)"):
+            ic.isoline(g, 1.5, 1.0)
+        with self.assertRaises(ic.Error):
+            ic.Light1D.box(2, 1)
+        with self.assertRaisesRegex(ValueError, "three lists of one length"):
+            ic.Light1D.mix([1], [0, 1], [1])
+
+
 class Luts(unittest.TestCase):
     def test_headers_equal_the_cli(self):
         for lang in ("c", "glsl", "opencl"):

@@ -25,6 +25,16 @@ ICS_API ics_status ics_isoline_iterative(const ics_light1d *l, double s, double 
                                          double e, const ics_iter1d_opts *opts, double *x,
                                          double *disc_err);
 
+/* The same, with its work bounded before it starts (`icshadow isoline --model iterative`):
+ * d / e must be a whole number of slabs, at most 1e6 (ICS_ERR_RANGE), the light must spread
+ * (variance > 0, ICS_ERR_RANGE, unless d = 0), and the work on both grids must stay within
+ * ICS_CONV_WORK_BUDGET (ICS_ERR_SIZE); msg (may be NULL) says which, with the numbers.
+ * disc_err may be NULL. */
+ICS_API ics_status ics_isoline_iterative_bounded(const ics_light1d *l, double s, double d,
+                                                 double d1, double e,
+                                                 const ics_iter1d_opts *opts, double *x,
+                                                 double *disc_err, char *msg, size_t msg_size);
+
 #ifdef __cplusplus
 }
 #endif
