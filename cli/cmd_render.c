@@ -37,7 +37,7 @@ static void help(FILE *f) {
           "                      stderr (--backend mc: standard errors, stderr.R ...);\n"
           "                      comma-separated, or all. 0 where a pixel has no surface\n"
           "  --backend B         auto (default) or a backend of `icshadow render --backends`\n"
-          "  --backends          list the backends built into this binary and exit\n");
+          "  --backends          list the backends built into this binary, with their options, and exit\n");
 #ifdef ICS_HAVE_RENDER
   backend_options_help(f); /* --cl-device, --gl-context, ...: from the backend table */
 #endif
@@ -147,6 +147,11 @@ static int list_backends(void) {
     int ok = ics_backend_available(ics_backend_name(i), why, sizeof why);
     printf("%-6s %s%s%s\n", ics_backend_name(i), ics_backend_description(i), ok ? "" : " -- not available: ",
            ok ? "" : why);
+    for (int j = 0; j < ics_backend_option_count(i); j++) { /* its options, as flags */
+      const char *values = ics_backend_option_values(i, j), *env = ics_backend_option_env(i, j);
+      printf("       --%s-%s %s%s%s%s\n", ics_backend_name(i), ics_backend_option_name(i, j),
+             values ? values : "VALUE", env ? " (default: $" : "", env ? env : "", env ? ")" : "");
+    }
   }
   return 0;
 }

@@ -8,7 +8,7 @@ ics_cli_test(NAME cli_render_help RC 0 ARGS "render|--help" OUT "usage: icshadow
 ics_cli_test(NAME cli_plan_help RC 0 ARGS "plan|--help" OUT "usage: icshadow plan \\[SCENE\\].*omitted")
 # the table in order: gl first when built (auto takes it only on a GPU), then cpu, ..., mc last
 if(ICS_HAVE_GL)
-  set(ics_first_backends "gl +[^\n]*auto picks it on a GPU[^\n]*\ncpu ")
+  set(ics_first_backends "gl +[^\n]*auto picks it on a GPU[^\n]*\n +--gl-context auto\\|egl\\|osmesa \\(default: \\$ICS_GL_CONTEXT\\)\n +--gl-ldi [^\n]*\ncpu ")
   set(ics_built "gl cpu")
 else()
   set(ics_first_backends "cpu ")
