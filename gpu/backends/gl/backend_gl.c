@@ -373,15 +373,30 @@ static ics_status check_sizes(const gl_state *s, const ics_plan *P, const ics_ao
   return ICS_OK;
 }
 
+/* where each part of the scene's doubles starts: the transfer rows (ntt of 5), the camera, the
+ * lights' colours, mean directions and path lengths, the shading windows */
+typedef struct sd_layout {
+  int cam, lcol, lmu, lpath, window, size;
+} sd_layout;
+
+static sd_layout sd_offsets(size_t ntt) {
+  sd_layout o;
+  o.cam = (int)(5 * ntt);
+  o.lcol = o.cam + ICS_DEV_CAM;
+  o.lmu = o.lcol + 3 * ICS_SCENE_MAX_LIGHTS;
+  o.lpath = o.lmu + 2 * ICS_SCENE_MAX_LIGHTS;
+  o.window = o.lpath + ICS_SCENE_MAX_LIGHTS;
+  o.size = o.window + ICS_SCENE_MAX_LIGHTS;
+  return o;
+}
+
 /* the uniforms that stay fixed over the render: the buffers' layout, the seed, the shading's
- * sizes and the offsets of the scene's doubles (off_cam, then the lights', at fixed strides) */
-static void set_fixed_uniforms(gl_state *s, const ics_plan *P, const ics_aov_buf *aov, int off_cam,
-                               int off_window) {
+ * sizes and the offsets of the scene's doubles */
+static void set_fixed_uniforms(gl_state *s, const ics_plan *P, const ics_aov_buf *aov,
+                               const sd_layout *o) {
   int nl = P->nlights, nch = P->nch;
   size_t npx = (size_t)P->Wb * P->Hb, nview = (size_t)P->W * P->H;
   size_t aov_floats = aov ? (size_t)aov->count * nview : 0;
-  int off_lcol = off_cam + ICS_DEV_CAM, off_lmu = off_lcol + 3 * ICS_SCENE_MAX_LIGHTS;
-  int off_lpath = off_lmu + 2 * ICS_SCENE_MAX_LIGHTS;
   for (int p = 0; p < NPROGS; p++) {
     u_int(s, p, "bw", P->buf.w), u_int(s, p, "bh", P->buf.h), u_int(s, p, "stride", P->buf.stride);
     u_int(s, p, "plane", (int)P->buf.plane), u_int(s, p, "origin", (int)P->buf.origin);
@@ -396,8 +411,8 @@ static void set_fixed_uniforms(gl_state *s, const ics_plan *P, const ics_aov_buf
                                         "off_window", "off_signed"};
   const int shade_v[] = {nl, P->nvol, P->W, P->H, P->pad[0], P->pad[2], P->rs.preintegrate,
                          aov ? aov->count : 0, aov ? aov->vis : -1, aov ? aov->z : -1,
-                         (int)(4 * nview), (int)(4 * nview + aov_floats), off_cam, off_lcol,
-                         off_lmu, off_lpath, off_window, ICS_MAX_VOLUMES};
+                         (int)(4 * nview), (int)(4 * nview + aov_floats), o->cam, o->lcol,
+                         o->lmu, o->lpath, o->window, ICS_MAX_VOLUMES};
   for (size_t i = 0; i < sizeof shade_v / sizeof *shade_v; i++)
     for (int p = P_SELECT; p <= P_SHADE_SURFACES; p++) u_int(s, p, shade_i[i], shade_v[i]);
   u_dbl(s, P_SHADE, "window_max", ics_plan_window_max(P));
@@ -530,8 +545,8 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
   /* host images of the packed buffers: per-pixel state (cursor, occlusion cursor, inside mask),
    * the span bytes padded to words, the scene's doubles (transfer rows, camera, lights, windows)
    * and ints (volume objects, signed lights) */
-  size_t nsd = 5 * ds.ntt + ICS_DEV_CAM + 3 * ICS_SCENE_MAX_LIGHTS + 2 * ICS_SCENE_MAX_LIGHTS +
-               2 * (size_t)ICS_SCENE_MAX_LIGHTS;
+  sd_layout sdo = sd_offsets(ds.ntt);
+  size_t nsd = (size_t)sdo.size;
   /* the plan's per-pixel state and spans (the device LDI makes its own) */
   uint32_t *pix = s->ldi_device ? NULL : malloc(sizeof *pix * 4 * (npx ? npx : 1));
   uint8_t *span = s->ldi_device ? NULL : calloc((ds.nfrag + 3) / 4, 4);
@@ -550,14 +565,12 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
     pix[4 * p + 2] = (uint32_t)m, pix[4 * p + 3] = (uint32_t)(m >> 32);
   }
   if (span) memcpy(span, ds.fspan, ds.nfrag);
-  int off_cam = (int)(5 * ds.ntt), off_lcol = off_cam + ICS_DEV_CAM;
-  int off_lmu = off_lcol + 3 * ICS_SCENE_MAX_LIGHTS, off_lpath = off_lmu + 2 * ICS_SCENE_MAX_LIGHTS;
-  j->off_window = off_lpath + ICS_SCENE_MAX_LIGHTS;
+  j->off_window = sdo.window;
   memcpy(sd, ds.tt, sizeof *sd * 5 * ds.ntt);
-  memcpy(sd + off_cam, ds.cam, sizeof ds.cam);
-  memcpy(sd + off_lcol, ds.lcol, sizeof ds.lcol);
-  memcpy(sd + off_lmu, ds.lmu, sizeof ds.lmu);
-  memcpy(sd + off_lpath, P->light_path, sizeof P->light_path);
+  memcpy(sd + sdo.cam, ds.cam, sizeof ds.cam);
+  memcpy(sd + sdo.lcol, ds.lcol, sizeof ds.lcol);
+  memcpy(sd + sdo.lmu, ds.lmu, sizeof ds.lmu);
+  memcpy(sd + sdo.lpath, P->light_path, sizeof P->light_path);
   memcpy(ints, ds.vol_obj, sizeof ds.vol_obj);
   memcpy(ints + ICS_MAX_VOLUMES, ds.signed_l, sizeof ds.signed_l);
 
@@ -602,7 +615,7 @@ static ics_status gl_render(void *state, const ics_plan *P, const ics_render_opt
     status = e == GL_OUT_OF_MEMORY ? ICS_ERR_NOMEM : ICS_ERR_UNSUPPORTED;
     goto done;
   }
-  set_fixed_uniforms(s, P, aov, off_cam, j->off_window);
+  set_fixed_uniforms(s, P, aov, &sdo);
   status = run_slabs(j, o, ds.blur, pts, scratch, msg, msg_size);
   if (status != ICS_OK) goto done;
   status = read_back(j, img, aov, stats, msg, msg_size);
