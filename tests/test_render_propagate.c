@@ -6,7 +6,7 @@
  * reads) and without an apron (the clamped path). The portable loops and every vector path the
  * processor has (simd_path.h) are compared. Agreement to 4 float ulps of the values (the engine
  * sums in double and rounds once); since the set of each pixel of every third row is checked,
- * the vector paths' Philox gives exactly ics_slab_choice's words. Also rows 1..17 pixels wide
+ * the vector paths' Philox gives exactly ics_slab_pixel_choice's choices. Also rows 1..17 pixels wide
  * on every path, and the fused paths against each other bit for bit. It needs only the propagation sources and the core
  * library, so tests/cross/neon.sh also builds it for AArch64 and runs it under qemu-user. */
 #include <math.h>
@@ -100,7 +100,7 @@ static void test_sets_run(int M, path_t path, int apron, int run) {
   for (int y = 0; y < H; y += 3)
     for (int x = 0; x < W; x++) {
       int e = run > 1 ? (int)ics_prop_run_choice(&pt, W, x, y)
-                      : (int)ics_slab_choice(12345, 1, 7, (uint32_t)(y * W + x), (uint32_t)M);
+                      : (int)ics_slab_pixel_choice(12345, 1, 7, (uint32_t)(y * W + x), (uint32_t)M);
       for (int c = 0; c < 3; c++) {
         float **r = &ref[(size_t)e * 3 + c];
         if (!*r) {
@@ -257,8 +257,8 @@ static void test_spans(path_t path) {
 }
 
 static void test_entries(void) {
-  /* the portable loops' row entries equal ics_slab_entry (the vector paths' choices are checked
-   * pixel by pixel in test_sets_run) */
+  /* the portable loops' row entries equal ics_slab_entry, and their choices among 2, 4 and 8
+   * ics_slab_pixel_choice (the vector paths' choices are checked pixel by pixel in test_sets) */
   ics_prop_taps pt = {0};
   pt.seed = 0xfeedface12345678ull, pt.light = 3, pt.slab = 99, pt.entries = ICS_SLAB_TABLE_M;
   uint32_t ent[W];
@@ -269,14 +269,37 @@ static void test_entries(void) {
       bad += ent[x] != ics_slab_entry(pt.seed, 3, 99, (uint32_t)(y * W + x)) || ent[x] >= ICS_SLAB_TABLE_M;
   }
   CHECK(bad == 0, "portable row entries differ from ics_slab_entry in %d pixels", bad);
-  pt.entries = 4;
-  bad = 0;
-  for (int y = 0; y < 9; y++) {
-    ics_prop_entries_row(&pt, W, y, 0, W, ent);
-    for (int x = 0; x < W; x++)
-      bad += ent[x] != ics_slab_choice(pt.seed, 3, 99, (uint32_t)(y * W + x), 4) || ent[x] >= 4;
+  for (int k = 2; k <= 8; k *= 2) {
+    pt.entries = k, bad = 0;
+    for (int y = 0; y < 9; y++) {
+      ics_prop_entries_row(&pt, W, y, 0, W, ent);
+      for (int x = 0; x < W; x++)
+        bad += ent[x] != ics_slab_pixel_choice(pt.seed, 3, 99, (uint32_t)(y * W + x), (uint32_t)k) ||
+               ent[x] >= (uint32_t)k;
+    }
+    CHECK(bad == 0, "portable row choices (%d) differ from ics_slab_pixel_choice in %d pixels", k, bad);
   }
-  CHECK(bad == 0, "portable row choices (4) differ from ics_slab_choice in %d pixels", bad);
+  /* the packing, written out: 4 candidates take 2 bits, 16 to a word; pixel 1024 g + 64 c +
+   * 16 w + i is bits 31 - 2c .. 30 - 2c of word w of block 16 g + i */
+  bad = 0;
+  for (uint32_t px = 0; px < 5000; px += 7) {
+    uint32_t g = px / 1024, c = px % 1024 / 64, w = px % 64 / 16, i = px % 16, words[4];
+    ics_slab_entry_block(pt.seed, 3, 99, 16 * g + i, words);
+    bad += ics_slab_pixel_choice(pt.seed, 3, 99, px, 4) != (words[w] >> (30 - 2 * c) & 3);
+  }
+  CHECK(bad == 0, "packed choices (4) differ from the words' bits in %d pixels", bad);
+  /* packed choices are uniform and independent of their neighbours in a row and in the word:
+   * chi-square of the pairs (p, p + d) over 4 x 4 bins (15 degrees of freedom: mean 15, sd 5.5) */
+  for (int d = 1; d <= 64; d *= 64) {
+    long pairs[16] = {0};
+    const int NP = 160000;
+    for (int p = 0; p < NP; p++)
+      pairs[4 * ics_slab_pixel_choice(9, 1, 2, (uint32_t)p, 4) +
+            ics_slab_pixel_choice(9, 1, 2, (uint32_t)(p + d), 4)]++;
+    double chi2 = 0, e16 = NP / 16.0;
+    for (int b = 0; b < 16; b++) chi2 += (pairs[b] - e16) * (pairs[b] - e16) / e16;
+    CHECK(fabs(chi2 - 15) < 5 * 5.5, "choices (4) at distance %d not independent: chi^2 = %.1f", d, chi2);
+  }
   /* the entries are uniform over the table: chi-square over 384 bins, 384 000 draws */
   static long cnt[ICS_SLAB_TABLE_M];
   const int N = 384000;

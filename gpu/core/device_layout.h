@@ -54,4 +54,9 @@
 #define G_BVH_ROOT 17  /* a mesh: the root of its BVH among all meshes' nodes; else -1 */
 #define G_MERGE_EPS 18 /* a mesh: the distance under which crossings merge */
 
+/* The per-pixel tap-set choices (slab_choice.h, ics_slab_pixel_choice): b bits each, b = log2
+ * of the candidates where that is a power of two in [2, 256], else 0 (one word scaled per
+ * choice); ICS_CHOICE_CHUNKS(b) choices to a 32-bit word. */
+#define ICS_CHOICE_CHUNKS(b) ((b) == 0 ? 1 : (b) == 1 ? 32 : (b) == 2 ? 16 : (b) <= 4 ? 8 : 4)
+
 #endif

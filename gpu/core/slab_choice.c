@@ -1,5 +1,5 @@
 /* slab_choice.c — the per-pixel tap-set choice (slab_choice.h): Philox-4x32-10 words by block of
- * 64 pixels. */
+ * 64 pixels, or of 64 n where a word packs n choices. */
 #include "slab_choice.h"
 
 #include "icshadow/rng.h"
@@ -15,8 +15,20 @@ uint32_t ics_slab_entry(uint64_t seed, uint32_t light, uint32_t slab, uint32_t p
   return ics_slab_choice(seed, light, slab, pixel, ICS_SLAB_TABLE_M);
 }
 
+/* chunk (pixel % span) / 64 of word (pixel % 64) / 16 of block (pixel / span) 16 + pixel % 16,
+ * span = 64 n */
+static uint32_t choice_at(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel, uint32_t k,
+                          int b, uint32_t n) {
+  uint32_t r = pixel % (64 * n), w[4];
+  ics_slab_entry_block(seed, light, slab, pixel / (64 * n) * 16 + r % 16, w);
+  return ics_slab_word_choice(w[r % 64 / 16], k, b, r / 64);
+}
+
 uint32_t ics_slab_choice(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel, uint32_t k) {
-  uint32_t w[4];
-  ics_slab_entry_block(seed, light, slab, ics_slab_word_block(pixel), w);
-  return (uint32_t)(((uint64_t)w[ics_slab_word_index(pixel)] * k) >> 32);
+  return choice_at(seed, light, slab, pixel, k, 0, 1);
+}
+
+uint32_t ics_slab_pixel_choice(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel,
+                               uint32_t k) {
+  return choice_at(seed, light, slab, pixel, k, ics_slab_choice_bits(k), ics_slab_choice_chunks(k));
 }

@@ -25,6 +25,7 @@
 #include "clock.h"
 #include "device_scene.h"
 #include "plan_internal.h"
+#include "slab_choice.h"
 #include "slab_taps.h"
 #include "slab_cl_source.h" /* ics_slab_cl_source: gpu/backends/cl/slab.cl (cmake/embed_text.cmake) */
 
@@ -197,7 +198,8 @@ static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stat
     if (mode == 1) {
       cl_kernel ke = s->k[K_ENTRIES + (run > 1)];
       cl_int bw = B.w, bh = B.h, npx = B.w * B.h;
-      size_t g_px[1] = {((size_t)npx + 63) / 64 * 16};
+      size_t span = 64 * ics_slab_choice_chunks((uint32_t)entries); /* pixels per 16 blocks */
+      size_t g_px[1] = {((size_t)npx + span - 1) / span * 16};
       size_t g_run[2] = {(size_t)B.w / 16 + 2, (size_t)B.h};
       ARG(ke, 0, j->ent);
       if (run > 1) {

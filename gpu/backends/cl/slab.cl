@@ -63,11 +63,20 @@ static double uniform_at(uint seed_lo, uint seed_hi, ulong stream, ulong index) 
   return (double)(x >> 11) * 0x1p-53;
 }
 
+/* ics_slab_choice_bits and ics_slab_word_choice: the bits of a packed choice among k (0: the
+ * word scaled), and chunk c of a word */
+static int choice_bits(uint k) {
+  return k >= 2u && k <= 256u && (k & (k - 1u)) == 0u ? (int)(31u - clz(k)) : 0;
+}
+static uint word_choice(uint word, uint k, int b, uint c) {
+  return b ? (word >> (32 - b * (int)(c + 1u))) & (k - 1u) : (uint)(((ulong)word * k) >> 32);
+}
+
 /* ics_slab_choice: the word of counter `id` scaled to [0, k) */
 static uint slab_choice(uint seed_lo, uint seed_hi, uint light, uint slab, uint id, uint k) {
   uint block = (id / 64u) * 16u + id % 16u;
   uint w = slab_word(seed_lo, seed_hi, light, slab, block, (int)((id / 16u) % 4u));
-  return (uint)(((ulong)w * k) >> 32);
+  return word_choice(w, k, 0, 0u);
 }
 
 static int clampi(int v, int hi) { return v < 0 ? 0 : v > hi ? hi : v; }
@@ -133,18 +142,24 @@ __kernel __attribute__((reqd_work_group_size(8, 8, 1))) void ics_prop_stencil(PR
 
 /* The tap set of each pixel of a table step (below), the choices of ics_prop_entries_row and
  * ics_prop_run_choice. Per pixel (run 1): one work-item per Philox block b, whose four words
- * are the choices of pixels 64 (b / 16) + b % 16 + 16 i (i = 0..3) of the row-major w x h grid.
+ * hold the choices of pixels 64 n (b / 16) + b % 16 + 64 c + 16 i (word i = 0..3, chunk
+ * c = 0..n - 1; ics_slab_pixel_choice) of the row-major w x h grid.
  * Per run of 16 (run 16): one work-item per run k of row y, the pixels x with
  * (x + 16 - phase) / 16 = k. No loops but the pixels' writes, so PoCL vectorises the rounds. */
 __kernel void ics_entries_pixel(__global uint *ent, int npx, int entries, uint seed_lo,
                                 uint seed_hi, uint light, uint slab) {
-  uint b = (uint)get_global_id(0), first = 64u * (b / 16u) + b % 16u;
+  int bits = choice_bits((uint)entries);
+  uint n = (uint)ICS_CHOICE_CHUNKS(bits), b = (uint)get_global_id(0);
+  uint first = 64u * n * (b / 16u) + b % 16u;
   if (first >= (uint)npx) return;
   uint c0 = b, c1 = slab, c2 = light, c3 = 0x736c6162u, k0 = seed_lo, k1 = seed_hi;
   PHILOX(c0, c1, c2, c3, k0, k1)
   uint words[4] = {c0, c1, c2, c3};
-  for (int i = 0; i < 4 && first + 16u * i < (uint)npx; i++)
-    ent[first + 16u * i] = (uint)(((ulong)words[i] * (uint)entries) >> 32);
+  for (uint c = 0; c < n; c++)
+    for (int i = 0; i < 4; i++) {
+      uint px = first + 64u * c + 16u * (uint)i;
+      if (px < (uint)npx) ent[px] = word_choice(words[i], (uint)entries, bits, c);
+    }
 }
 __kernel void ics_entries_run(__global uint *ent, int w, int h, int entries, uint seed_lo,
                               uint seed_hi, uint light, uint slab, int phase) {

@@ -118,12 +118,13 @@ void ics_prop_entries_row(const ics_prop_taps *pt, int w, int y, int x0, int x1,
     for (int x = x0; x < x1; x++) ent[x] = ics_prop_run_choice(pt, w, x, y);
     return;
   }
-  uint32_t first = (uint32_t)((size_t)y * w);
-  uint32_t words[4], block = UINT32_MAX;
-  for (int x = x0; x < x1; x++) {
-    uint32_t px = first + (uint32_t)x, b = ics_slab_word_block(px);
-    if (b != block) ics_slab_entry_block(pt->seed, pt->light, pt->slab, b, words), block = b;
-    ent[x] = (uint32_t)(((uint64_t)words[ics_slab_word_index(px)] * (uint32_t)pt->entries) >> 32);
+  uint32_t first = (uint32_t)((size_t)y * w), k = (uint32_t)pt->entries;
+  uint32_t span = 64 * ics_slab_choice_chunks(k), words[4], block = UINT32_MAX;
+  int b = ics_slab_choice_bits(k);
+  for (int x = x0; x < x1; x++) { /* (ics_slab_pixel_choice, a block's words fetched once) */
+    uint32_t px = first + (uint32_t)x, r = px % span, bl = px / span * 16 + r % 16;
+    if (bl != block) ics_slab_entry_block(pt->seed, pt->light, pt->slab, bl, words), block = bl;
+    ent[x] = ics_slab_word_choice(words[r % 64 / 16], k, b, r / 64);
   }
 }
 

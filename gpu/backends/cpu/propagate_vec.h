@@ -10,8 +10,9 @@
  * e.g. the default 4 rotations per slab): every set evaluated for two vectors of pixels with
  * unaligned loads, each pixel keeping its own set's result (a masked blend). Runs of 16 pixels
  * sharing a set: each run as vectors of its own set, the partial runs at the row's ends
- * evaluated over the row's first or last 16 pixels. Many tap sets (a per-pixel table): per lane loads of the taps and corners. Tap-set
- * choices come from a W-lane Philox-4x32-10 (the same words as ics_slab_entry_block).
+ * evaluated over the row's first or last 16 pixels. Many tap sets (a per-pixel table): per lane
+ * loads of the taps and corners. Tap-set choices come from a W-lane Philox-4x32-10 (the same
+ * words as ics_slab_entry_block), packed as ics_slab_pixel_choice.
  *
  * Arithmetic: a * b + c written once; these files are compiled with -ffp-contract=fast, so
  * where the target has FMA (AVX2 + FMA, AVX-512, NEON) it is one fused operation, as in
@@ -111,33 +112,44 @@ static void philox(vu c[4], uint64_t seed) {
   }
 }
 
-/* the four words of the W blocks `blocks` (ics_slab_entry_block), each scaled to a choice in
- * 0 .. entries - 1: out[k] lane i is word k of block i */
-static void choices(const ics_prop_taps *pt, vu blocks, vu out[4]) {
-  vu c[4] = {blocks, splatu(pt->slab), splatu(pt->light), splatu(0x736c6162u)};
-  philox(c, pt->seed);
-  for (int k = 0; k < 4; k++) {
-    vu lo;
-    mul32(c[k], (uint32_t)pt->entries, &lo, &out[k]);
-  }
+/* the four words of the W blocks `blocks` (ics_slab_entry_block): words[k] lane i is word k of
+ * block i */
+static void block_words(const ics_prop_taps *pt, vu blocks, vu words[4]) {
+  words[0] = blocks, words[1] = splatu(pt->slab), words[2] = splatu(pt->light);
+  words[3] = splatu(0x736c6162u);
+  philox(words, pt->seed);
 }
 
-/* the entries of pixels [x0, x1) of row y (ent[x]; a few around them too): block 16 q + i holds
- * the pixels 64 q + i + 16 k (k = 0..3) */
+/* the words scaled to a choice in 0 .. entries - 1 (ics_slab_choice) */
+static inline vu scaled(vu word, uint32_t k) {
+  vu lo, hi;
+  mul32(word, k, &lo, &hi);
+  return hi;
+}
+
+/* the choices of pixels [x0, x1) of row y (ent[x], nothing else written), packed as
+ * ics_slab_pixel_choice: block 16 g + i holds the pixels span g + 64 c + 16 k + i (chunk c of
+ * word k), span = 64 n */
 static void entries_row(const ics_prop_taps *pt, int w, int y, int x0, int x1, uint32_t *ent) {
+  uint32_t k = (uint32_t)pt->entries, n = ics_slab_choice_chunks(k), span = 64 * n;
+  int b = ics_slab_choice_bits(k);
   uint32_t row = (uint32_t)((size_t)y * w), first = row + (uint32_t)x0, last = row + (uint32_t)x1 - 1;
-  uint32_t tmp[64];
-  for (uint32_t q = first / 64; q <= last / 64; q++) {
-    uint32_t p0 = 64 * q;
-    uint32_t *dst = p0 >= first && p0 + 63 <= last ? ent + (p0 - row) : tmp;
+  uint32_t tmp[64 * 32];
+  for (uint32_t g = first / span; g <= last / span; g++) {
+    uint32_t p0 = span * g;
+    uint32_t *dst = p0 >= first && p0 + span - 1 <= last ? ent + (p0 - row) : tmp;
     for (int h = 0; h < 16; h += W) {
-      vu out[4];
-      choices(pt, splatu(16 * q + (uint32_t)h) + iota(), out);
-      for (int k = 0; k < 4; k++) storeu(dst + 16 * k + h, out[k]);
+      vu words[4];
+      block_words(pt, splatu(16 * g + (uint32_t)h) + iota(), words);
+      for (uint32_t c = 0; c < n; c++)
+        for (int q = 0; q < 4; q++)
+          storeu(dst + 64 * c + 16 * q + h,
+                 b ? (words[q] >> (32 - b * (int)(c + 1))) & (k - 1) : scaled(words[q], k));
     }
-    if (dst == tmp)
-      for (uint32_t i = 0; i < 64; i++)
-        if (p0 + i >= first && p0 + i <= last) ent[p0 + i - row] = tmp[i];
+    if (dst == tmp) {
+      uint32_t lo = p0 > first ? p0 : first, hi = p0 + span - 1 < last ? p0 + span - 1 : last;
+      memcpy(ent + (lo - row), tmp + (lo - p0), sizeof(uint32_t) * (hi - lo + 1));
+    }
   }
 }
 
@@ -148,7 +160,8 @@ static void run_choices(const ics_prop_taps *pt, int w, int y, int m0, int nruns
   uint32_t Y = (uint32_t)((size_t)y * (size_t)(w + 32)), c0 = Y % 16, G0 = Y / 16 + (uint32_t)m0;
   for (uint32_t q0 = G0 / 4; q0 <= (G0 + (uint32_t)nruns - 1) / 4; q0 += W) {
     vu words[4];
-    choices(pt, splatu(16 * q0 + c0) + 16 * iota(), words);
+    block_words(pt, splatu(16 * q0 + c0) + 16 * iota(), words);
+    for (int k = 0; k < 4; k++) words[k] = scaled(words[k], (uint32_t)pt->entries);
     for (uint32_t i = 0; i < W; i++)
       for (uint32_t k = 0; k < 4; k++) {
         uint32_t G = 4 * (q0 + i) + k;

@@ -29,6 +29,7 @@
 #include "gl_context.h"
 #include "ldi_gl.h"
 #include "plan_internal.h"
+#include "slab_choice.h"
 #include "slab_taps.h"
 #include "slab_comp_source.h" /* ics_slab_comp_source: gpu/backends/gl/slab.comp (cmake/embed_text.cmake) */
 
@@ -271,13 +272,14 @@ static void run_slab(gl_job *j, int k, const ics_prop_taps *pts) {
     GL_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, j->buf[B_ENT]);
     if (mode % NSTEP == P_TABLE || mode % NSTEP == P_TABLE_CLAMPED) {
       int pe = pt->run > 1 ? P_ENTRIES_RUN : P_ENTRIES_PIXEL;
+      size_t span = 64 * ics_slab_choice_chunks((uint32_t)pt->entries); /* pixels per 16 blocks */
       u_int(s, pe, "entries", pt->entries), u_uint(s, pe, "light", pt->light);
       u_uint(s, pe, "slab", pt->slab), u_int(s, pe, "phase", pt->phase);
       u_uint(s, pe, "seed_lo", (unsigned)pt->seed), u_uint(s, pe, "seed_hi", (unsigned)(pt->seed >> 32));
       if (pe == P_ENTRIES_RUN)
         dispatch(s, pe, ((size_t)P->Wb / 16 + 2 + 15) / 16, gy, 1);
       else
-        dispatch(s, pe, (((size_t)P->Wb * P->Hb + 63) / 64 * 16 + 63) / 64, 1, 1);
+        dispatch(s, pe, (((size_t)P->Wb * P->Hb + span - 1) / span * 16 + 63) / 64, 1, 1);
       u_int(s, mode, "entries", pt->entries);
     } else if (mode % NSTEP == P_CLASSES) {
       u_int(s, mode, "Q", pt->classes);

@@ -45,14 +45,22 @@ uniform uint seed_lo, seed_hi;
 #define AT(x, y) (origin + (y) * stride + (x))
 int clampi(int v, int hi) { return v < 0 ? 0 : v > hi ? hi : v; }
 
+/* ics_slab_choice_bits and ics_slab_word_choice: the bits of a packed choice among k (0: the
+ * word scaled), and chunk c of a word */
+int choice_bits(uint k) { return k >= 2u && k <= 256u && (k & (k - 1u)) == 0u ? findLSB(k) : 0; }
+uint word_choice(uint word, uint k, int b, uint c) {
+  if (b != 0) return (word >> uint(32 - b * int(c + 1u))) & (k - 1u);
+  uint hi, lo;
+  umulExtended(word, k, hi, lo);
+  return hi;
+}
+
 /* ics_slab_choice: word (id / 16) % 4 of block (id / 64) 16 + id % 16 of the counter (block,
  * slab, light, "slab") scaled to [0, k) */
 uint slab_choice(uint light, uint slab, uint id, uint k) {
   uvec4 w = philox(uvec4((id / 64u) * 16u + id % 16u, slab, light, 0x736c6162u),
                    uvec2(seed_lo, seed_hi));
-  uint i = (id / 16u) % 4u, word = i == 0u ? w.x : i == 1u ? w.y : i == 2u ? w.z : w.w, hi, lo;
-  umulExtended(word, k, hi, lo);
-  return hi;
+  return word_choice(w[(id / 16u) % 4u], k, 0, 0u);
 }
 
 /* ---- the slab step ------------------------------------------------------------------------ */
@@ -153,17 +161,20 @@ layout(std430, binding = 3) writeonly buffer Ent { uint ent[]; };
 uniform int entries, npx, phase;
 uniform uint light, slab;
 #ifdef ICS_K_ENTRIES_PIXEL
-/* one invocation per Philox block b: its four words choose pixels 64 (b / 16) + b % 16 + 16 i */
+/* one invocation per Philox block b: its four words choose pixels 64 n (b / 16) + b % 16 +
+ * 64 c + 16 i (word i, chunk c; ics_slab_pixel_choice) */
 layout(local_size_x = 64) in;
 void main() {
-  uint b = gl_GlobalInvocationID.x, first = 64u * (b / 16u) + b % 16u;
+  int bits = choice_bits(uint(entries));
+  uint n = uint(ICS_CHOICE_CHUNKS(bits)), b = gl_GlobalInvocationID.x;
+  uint first = 64u * n * (b / 16u) + b % 16u;
   if (first >= uint(npx)) return;
   uvec4 w = philox(uvec4(b, slab, light, 0x736c6162u), uvec2(seed_lo, seed_hi));
-  for (int i = 0; i < 4 && first + 16u * uint(i) < uint(npx); i++) {
-    uint hi, lo;
-    umulExtended(w[i], uint(entries), hi, lo);
-    ent[first + 16u * uint(i)] = hi;
-  }
+  for (uint c = 0u; c < n; c++)
+    for (int i = 0; i < 4; i++) {
+      uint px = first + 64u * c + 16u * uint(i);
+      if (px < uint(npx)) ent[px] = word_choice(w[i], uint(entries), bits, c);
+    }
 }
 #else
 /* one invocation per run k of row y: the pixels x with (x + 16 - phase) / 16 = k */
