@@ -30,15 +30,17 @@ typedef struct {
   const char *kernel;
   int samples;
   const char *comp;
-  int run; /* render.rotation_run */
+  int run;       /* render.rotation_run */
+  int rotations; /* render.pixel_rotations (0: the default) */
 } member_t;
 
 static const member_t members[] = {
-    {"ellipse2", "ellipse", 2, "expected", 1},         {"ellipse2-run16", "ellipse", 2, "expected", 16},
-    {"ellipse3", "ellipse", 3, "expected", 1},         {"poisson8", "poisson", 8, "expected", 1},
-    {"poisson16", "poisson", 16, "expected", 1},       {"gauss19", "gauss", 19, "nonneg", 1},
-    {"tophat5", "tophat", 5, "nonneg", 1},             {"ellipse2-signed", "ellipse", 2, "signed", 1},
-    {"integer", "gauss", 3, "integer", 1},
+    {"ellipse2", "ellipse", 2, "expected", 1, 0},         {"ellipse2-rot4", "ellipse", 2, "expected", 1, 4},
+    {"ellipse2-run16", "ellipse", 2, "expected", 16, 0},
+    {"ellipse3", "ellipse", 3, "expected", 1, 0},         {"poisson8", "poisson", 8, "expected", 1, 0},
+    {"poisson16", "poisson", 16, "expected", 1, 0},       {"gauss19", "gauss", 19, "nonneg", 1, 0},
+    {"tophat5", "tophat", 5, "nonneg", 1, 0},             {"ellipse2-signed", "ellipse", 2, "signed", 1, 0},
+    {"integer", "gauss", 3, "integer", 1, 0},
 };
 #define NMEMBERS ((int)(sizeof members / sizeof *members))
 #endif
@@ -63,7 +65,8 @@ static void help(FILE *f) {
           "  --sizes N,...     square buffer sides (default 512,768; 16..4096)\n"
           "  --slabs K         slabs (default 256; 1..4096)\n"
           "  --threads T,...   thread counts (default 1,2)\n"
-          "  --kernels K,...   members (default all): ellipse2 ellipse2-run16 ellipse3 poisson8\n"
+          "  --kernels K,...   members (default all): ellipse2 (2 rotations per pixel, the\n"
+          "                    default) ellipse2-rot4 ellipse2-run16 ellipse3 poisson8\n"
           "                    poisson16 gauss19 tophat5 ellipse2-signed integer\n"
           "  --backend B,...   cpu (default) and/or other backends of `icshadow render --backends`,\n"
           "                    run side by side for each member and size (a device backend\n"
@@ -144,7 +147,8 @@ static int bench_config(const config_t *c, cli_progress *prog, int *busy, int *c
      * axis pointing down (y components change sign). The occluder: a half-plane (its edge at
      * x = 0), or vertical stripes 4 px wide every 8 px over the whole buffer, which no tile
      * ever sees constant */
-    char occ[512], json[2048];
+    char occ[512], json[2048], rot[48] = "";
+    if (m->rotations) snprintf(rot, sizeof rot, " \"pixel_rotations\": %d,", m->rotations);
     if (c->stripes)
       snprintf(occ, sizeof occ, "{\"shape\": \"fence\", \"center\": [0, %d, 0], \"poles\": %d, "
                "\"pole_size\": [4, %d, 0.5], \"spacing\": 8, \"bar_size\": [1, 0.5], \"material\": \"black\"}", -n, n / 8 + 1, 2 * n);
@@ -154,12 +158,12 @@ static int bench_config(const config_t *c, cli_progress *prog, int *busy, int *c
     snprintf(json, sizeof json,
              "{\"camera\": {\"eye\": [0, 0, 1], \"target\": [0, 0, 0], \"height\": %d, \"resolution\": [%d, %d]},"
              " \"render\": {\"slab_spacing\": 1, \"d1\": 1, \"kernel\": \"%s\", \"samples\": %d,"
-             " \"compensate\": \"%s\", \"max_pad\": 0, \"seed\": 1, \"rotation_run\": %d, \"dense\": %s},"
+             " \"compensate\": \"%s\", \"max_pad\": 0, \"seed\": 1, \"rotation_run\": %d,%s \"dense\": %s},"
              " \"lights\": [{\"mean\": [%.17g, %.17g], \"cov\": [[%.17g, %.17g], [%.17g, %.17g]]}],"
              " \"materials\": {\"black\": {\"color\": [0, 0, 0]}, \"white\": {}},"
              " \"objects\": [%s,"
              "  {\"shape\": \"rect\", \"center\": [0, 0, %d], \"normal\": [0, 0, 1], \"size\": [%d, %d], \"material\": \"white\"}]}",
-             n, n, n, m->kernel, m->samples, m->comp, m->run, works[w] ? "true" : "false",
+             n, n, n, m->kernel, m->samples, m->comp, m->run, rot, works[w] ? "true" : "false",
              -c->mean[0], c->mean[1], c->cov[0], -c->cov[1], -c->cov[1], c->cov[2], occ, -c->slabs,
              2 * n, 2 * n);
     ics_plan_opts po = {.threads = c->threads};

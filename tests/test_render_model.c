@@ -52,6 +52,7 @@ static void test_patel_unchanged(void) {
   ics_render_settings rs = *ics_scene_settings(s);
   rs.model = ICS_MODEL_PATEL;
   rs.dense = 1;
+  rs.pixel_rotations = 4; /* the default before it became 2 */
   for (size_t i = 0; i < sizeof before / sizeof *before; i++) {
     if (!ics_simd_has(before[i].path)) {
       printf("patel, %s: skipped (not on this processor)\n", ics_simd_name(before[i].path));

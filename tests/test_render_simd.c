@@ -66,7 +66,9 @@ int main(void) {
   ics_render_settings rs = *ics_scene_settings(s);
   check_variant("default scene", s, &rs);
   ics_render_settings v = rs;
-  v.pixel_rotations = 8;
+  v.pixel_rotations = 4;
+  check_variant("4 rotations", s, &v);
+  v = rs, v.pixel_rotations = 8;
   check_variant("8 rotations", s, &v);
   v = rs, v.pixel_rotations = 384;
   check_variant("384 per-pixel rotations", s, &v);

@@ -1,7 +1,7 @@
 /* test_render_skip.c — the work a frame does not need, left out (docs/renderer.md "Work a frame
  * does not need"): the cpu backend's active regions, constant tiles and grey tiles against the
  * dense path (render.dense) on every kind of scene the suite renders: the default scene and its
- * kernel variants (4 rotations per pixel, runs of 16, 384 rotations, Poisson 16, Gauss 19 and
+ * kernel variants (2 (the default) and 4 rotations per pixel, runs of 16, 384 rotations, Poisson 16, Gauss 19 and
  * top-hat 5 stencils, signed and integer compensation) and models (solid; surface, whose second
  * light-buffer set copies the first where they are equal), the contract's disk, a coloured volume
  * under a zero-variance light, a box outside the view casting into it, a perspective camera, and
@@ -147,6 +147,8 @@ int main(int argc, char **argv) {
   ics_render_settings rs = *ics_scene_settings(s), v;
   double f = check("default scene", s, &rs);
   CHECK(f <= 0.6, "default scene: %.3f of the dense updates (expected at most 0.6)", f);
+  v = rs, v.pixel_rotations = 4;
+  check("4 per-pixel rotations", s, &v);
   v = rs, v.rotation_run = 16;
   check("runs of 16", s, &v);
   v = rs, v.pixel_rotations = 384;

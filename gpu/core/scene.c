@@ -35,7 +35,7 @@ void ics_render_settings_defaults(ics_render_settings *s) {
   s->kernel = ICS_RK_ELLIPSE;
   s->compensate = ICS_RC_DEFAULT;
   s->max_pad = -1;
-  s->pixel_rotations = 4;
+  s->pixel_rotations = 2;
   s->rotation_run = 1;
   s->memory_limit_mib = 4096;
 }
