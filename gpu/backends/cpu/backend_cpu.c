@@ -264,38 +264,52 @@ static void record_aov(job_t *j, int ii, int jj, const float *V, double z) {
   if (a->z >= 0) o[a->z] = (float)z;
 }
 
+/* row_details' pixel (bi, bj): 1 with its piece's points in *x .. *z2 when it joins the batch
+ * (inside one volume with noise detail, the batch's volume *obj0, no fragment in the slab), else
+ * 0; its slot -1 inside a volume (shade_rows reads a slot only there) */
+static int detail_point(job_t *j, int bj, int bi, double zf, double zb, int *obj0, double *x,
+                        double *y, double *z, double *x2, double *y2, double *z2, int32_t *slot) {
+  const ics_plan *P = j->p;
+  const ics_scene *s = P->scene;
+  size_t p = (size_t)bj * P->Wb + bi;
+  uint64_t mask = j->mask[p];
+  if (!mask) return 0;
+  slot[bi] = -1;
+  if (mask & (mask - 1)) return 0;
+  int obj = j->vol_obj[__builtin_ctzll(mask)];
+  ics_detail_fn fn = s->materials[s->objects[obj].material].detail.fn;
+  uint32_t cur = j->cursor[p];
+  if (fn == ICS_DETAIL_NONE || fn == ICS_DETAIL_GRID || (*obj0 >= 0 && obj != *obj0) ||
+      (cur < P->ldi.offset[p + 1] && ics_frag_slab(&P->ldi.frag[cur]) == j->k))
+    return 0;
+  *obj0 = obj;
+  double o[3], d[3], a[3], b[3];
+  piece_points(j, p, bi, bj, zf, zb - zf, o, d, a, b);
+  *x = a[0], *y = a[1], *z = a[2], *x2 = b[0], *y2 = b[1], *z2 = b[2];
+  return 1;
+}
+
 /* The detail values of row bj's volume pieces at this slab, evaluated in one batch on the vector
  * path (detail_batch.h; bit for bit one by one): the pixels inside exactly one volume with noise
  * detail (the row's first such volume) and no fragment in the slab, so that the slab is one piece
  * [zf, zb]. Each gets its slot in j->dslot (else -1); the pieces shade_rows meets otherwise
  * (fragments, overlapping volumes, grids) evaluate their own. */
-static void row_details(job_t *j, int bj, double zf, double zb, const int32_t *need, int t) {
+static void row_details(job_t *j, int bj, double zf, double zb, const int32_t *need,
+                        const int *seg, int tx0, int tx1, int t) {
   const ics_plan *P = j->p;
-  const ics_scene *s = P->scene;
-  const ics_ldi *ldi = &P->ldi;
   size_t w = (size_t)P->Wb;
   double *X = j->dpts + (size_t)t * 8 * w, *Y = X + w, *Z = Y + w, *X2 = Z + w, *Y2 = X2 + w,
          *Z2 = Y2 + w, *V = Z2 + w, *V2 = V + w;
   int32_t *slot = j->dslot + (size_t)t * w;
   int n = 0, obj0 = -1;
-  for (int bi = j->shade.x0; bi < j->shade.x1; bi++) {
-    size_t p = (size_t)bj * w + bi;
-    uint64_t mask = j->mask[p];
-    if (!mask) continue; /* (shade_rows reads a slot only inside a volume) */
-    slot[bi] = -1;
-    if ((mask & (mask - 1)) || need[ics_tile_col(&j->p->tiles, bi)] < j->k) continue;
-    int obj = j->vol_obj[__builtin_ctzll(mask)];
-    ics_detail_fn fn = s->materials[s->objects[obj].material].detail.fn;
-    uint32_t cur = j->cursor[p];
-    if (fn == ICS_DETAIL_NONE || fn == ICS_DETAIL_GRID || (obj0 >= 0 && obj != obj0) ||
-        (cur < ldi->offset[p + 1] && ics_frag_slab(&ldi->frag[cur]) == j->k))
-      continue;
-    obj0 = obj;
-    double o[3], d[3], a[3], b[3];
-    piece_points(j, p, bi, bj, zf, zb - zf, o, d, a, b);
-    X[n] = a[0], Y[n] = a[1], Z[n] = a[2];
-    X2[n] = b[0], Y2[n] = b[1], Z2[n] = b[2];
-    slot[bi] = n++;
+  for (int tx = tx0; tx <= tx1; tx++) { /* the tiles shade_rows steps (their pixels alone) */
+    if (need[tx] < j->k || seg[tx] > j->k) continue;
+    int x0 = ics_tile_x0(&P->tiles, tx), x1 = ics_tile_x1(&P->tiles, tx);
+    if (x0 < j->shade.x0) x0 = j->shade.x0;
+    if (x1 > j->shade.x1) x1 = j->shade.x1;
+    for (int bi = x0; bi < x1; bi++)
+      if (detail_point(j, bj, bi, zf, zb, &obj0, X + n, Y + n, Z + n, X2 + n, Y2 + n, Z2 + n, slot))
+        slot[bi] = n++;
   }
   if (!n) return;
   double t0 = ics_clock_s();
@@ -324,7 +338,7 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
     const int32_t *slot = NULL;
     const double *values = NULL;
     if (batch) {
-      row_details(j, bj, zf, zb, need, t);
+      row_details(j, bj, zf, zb, need, seg, tx0, tx1, t);
       slot = j->dslot + (size_t)t * P->Wb;
       values = j->dpts + (size_t)t * 8 * P->Wb + 6 * (size_t)P->Wb;
     }

@@ -129,26 +129,28 @@ static inline vu scaled(vu word, uint32_t k) {
 
 /* the choices of pixels [x0, x1) of row y (ent[x], nothing else written), packed as
  * ics_slab_pixel_choice: block 16 g + i holds the pixels span g + 64 c + 16 k + i (chunk c of
- * word k), span = 64 n */
+ * word k), span = 64 n; only the chunks the row's pixels take are unpacked */
 static void entries_row(const ics_prop_taps *pt, int w, int y, int x0, int x1, uint32_t *ent) {
-  uint32_t k = (uint32_t)pt->entries, n = ics_slab_choice_chunks(k), span = 64 * n;
+  uint32_t k = (uint32_t)pt->entries, span = 64 * ics_slab_choice_chunks(k);
   int b = ics_slab_choice_bits(k);
   uint32_t row = (uint32_t)((size_t)y * w), first = row + (uint32_t)x0, last = row + (uint32_t)x1 - 1;
-  uint32_t tmp[64 * 32];
   for (uint32_t g = first / span; g <= last / span; g++) {
-    uint32_t p0 = span * g;
-    uint32_t *dst = p0 >= first && p0 + span - 1 <= last ? ent + (p0 - row) : tmp;
-    for (int h = 0; h < 16; h += W) {
-      vu words[4];
-      block_words(pt, splatu(16 * g + (uint32_t)h) + iota(), words);
-      for (uint32_t c = 0; c < n; c++)
-        for (int q = 0; q < 4; q++)
-          storeu(dst + 64 * c + 16 * q + h,
-                 b ? (words[q] >> (32 - b * (int)(c + 1))) & (k - 1) : scaled(words[q], k));
-    }
-    if (dst == tmp) {
-      uint32_t lo = p0 > first ? p0 : first, hi = p0 + span - 1 < last ? p0 + span - 1 : last;
-      memcpy(ent + (lo - row), tmp + (lo - p0), sizeof(uint32_t) * (hi - lo + 1));
+    uint32_t p0 = span * g, lo = p0 > first ? p0 : first;
+    uint32_t hi = p0 + span - 1 < last ? p0 + span - 1 : last;
+    vu words[16 / W][4];
+    for (int h = 0; h < 16; h += W) block_words(pt, splatu(16 * g + (uint32_t)h) + iota(), words[h / W]);
+    for (uint32_t c = (lo - p0) / 64; c <= (hi - p0) / 64; c++) {
+      uint32_t q0 = p0 + 64 * c, tmp[64];
+      uint32_t *dst = q0 >= first && q0 + 63 <= last ? ent + (q0 - row) : tmp;
+      for (int h = 0; h < 16; h += W)
+        for (int q = 0; q < 4; q++) {
+          vu v = words[h / W][q];
+          storeu(dst + 16 * q + h, b ? (v >> (32 - b * (int)(c + 1))) & (k - 1) : scaled(v, k));
+        }
+      if (dst == tmp) {
+        uint32_t a = q0 > lo ? q0 : lo, z = q0 + 63 < hi ? q0 + 63 : hi;
+        memcpy(ent + (a - row), tmp + (a - q0), sizeof(uint32_t) * (z - a + 1));
+      }
     }
   }
 }
