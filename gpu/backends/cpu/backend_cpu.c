@@ -362,8 +362,8 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       float dummy[4] = {0, 0, 0, 1};
       float *C = inview ? j->img->data + ((size_t)jj * P->W + ii) * 4 : dummy;
       size_t q = ics_buf_index(&P->buf, bi, bj);
-      double L[3] = {0, 0, 0};
-      for (int l = 0; l < P->nlights; l++) {
+      double L[3] = {0, 0, 0}; /* the light arriving, for the colour of what is in view */
+      for (int l = 0; inview && l < P->nlights; l++) {
         const ics_light *lt = &s->lights[l];
         for (int c = 0; c < 3; c++)
           L[c] += lt->color[c] * lt->weight * j->dst[l][(size_t)(P->nch == 3 ? c : 0) * plane + q];
