@@ -310,6 +310,69 @@ static void test_entries(void) {
   CHECK(fabs(chi - 383) < 5 * 27.7, "entries not uniform: chi^2 = %.1f (383 +- 27.7)", chi);
 }
 
+/* Perspective steps (the classes of ics_prop_prepare_perspective): every path against the
+ * portable pixel (4 float ulps of 1: the paths with fused multiply-adds round differently), the
+ * fused paths against each other bit for bit, and spans against whole rows bit for bit, at
+ * magnifications above and below 1 (a few and many classes to a vector), with an apron of 8 and
+ * of 1 (lanes reading beyond it take the clamped pixel) */
+static void test_classes(void) {
+  const ics_tap2d t[2] = {{0.9, -0.4, 0.5}, {-0.9, 0.4, 0.5}};
+  const double mags[3] = {1.004, 0.993, 1.06};
+  int bad_fused = 0, bad_span = 0, outside = 0;
+  double worst = 0;
+  for (int a = 0; a < 2; a++)
+    for (int v = 0; v < 3; v++) {
+      ics_buf_layout L;
+      ics_buf_layout_init(&L, W, H, a ? 1 : 8);
+      float *src = calloc(3 * L.plane, sizeof *src), *out[ICS_SIMD_PATHS_] = {0};
+      for (size_t i = 0; i < 3 * L.plane; i++) src[i] = (float)test_rng_unit();
+      for (int c = 0; c < 3; c++) ics_prop_apron(&L, src + c * L.plane, 1, 0, H, 1);
+      ics_prop_taps pt = {0};
+      CHECK(ics_prop_prepare_perspective(&pt, t, 2, mags[v], 29.3, 17.8, &L) == 0, "prepare classes");
+      uint32_t scratch[ICS_PROP_SCRATCH(W)];
+      for (int p = 0; p < ICS_SIMD_PATHS_; p++) {
+        if (p != PORTABLE && !ics_simd_has((path_t)p)) continue;
+        out[p] = calloc(3 * L.plane, sizeof *out[p]);
+        ics_prop_rows(&pt, src, out[p], &L, 3, 0, H, scratch, (path_t)p);
+        for (int c = 0; c < 3; c++)
+          for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+              size_t i = c * L.plane + ics_buf_index(&L, x, y);
+              worst = fmax(worst, fabs(out[p][i] - out[PORTABLE][i]) / 0x1p-24);
+            }
+        /* spans of row 5 from every start, widths 1 .. 40 */
+        float *d = calloc(3 * L.plane, sizeof *d);
+        for (int x0 = 0; x0 < W; x0 += 3)
+          for (int x1 = x0 + 1; x1 <= W && x1 <= x0 + 40; x1++) {
+            for (size_t i = 0; i < 3 * L.plane; i++) d[i] = -1;
+            ics_prop_span(&pt, src, d, &L, 3, 5, 6, x0, x1, scratch, (path_t)p);
+            for (int c = 0; c < 3; c++)
+              for (int y = 0; y < H; y++)
+                for (int x = 0; x < W; x++) {
+                  size_t i = c * L.plane + ics_buf_index(&L, x, y);
+                  if (y == 5 && x >= x0 && x < x1) bad_span += d[i] != out[p][i];
+                  else outside += d[i] != -1;
+                }
+          }
+        free(d);
+      }
+      const path_t fused[] = {ICS_SIMD_AVX2, ICS_SIMD_AVX512, ICS_SIMD_NEON};
+      for (int f = 1; f < 3; f++)
+        if (out[fused[0]] && out[fused[f]])
+          for (size_t i = 0; i < 3 * L.plane; i++) bad_fused += out[fused[0]][i] != out[fused[f]][i];
+      for (int p = 0; p < ICS_SIMD_PATHS_; p++) free(out[p]);
+      free(src);
+      ics_prop_release(&pt);
+    }
+  CHECK(worst <= 4, "perspective classes: a path differs from the portable pixel by %.2f ulps", worst);
+  CHECK(bad_fused == 0, "perspective classes: the fused paths differ in %d values", bad_fused);
+  CHECK(bad_span == 0 && outside == 0, "perspective classes: spans differ in %d values, %d written outside",
+        bad_span, outside);
+  printf("perspective classes: every path within %.2f ulps of the portable pixel; fused paths "
+         "differ in %d values; spans differ in %d, %d written outside\n", worst, bad_fused,
+         bad_span, outside);
+}
+
 int main(void) {
   /* apron 8 covers every read (unclamped loops); apron 0 takes the clamped path */
   for (int apron = 8; apron >= 0; apron -= 8) {
@@ -335,6 +398,7 @@ int main(void) {
     test_spans((path_t)p);
   }
   test_fused_equal();
+  test_classes();
   test_entries();
   return test_summary("test_render_propagate");
 }

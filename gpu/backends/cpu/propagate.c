@@ -51,8 +51,8 @@ static inline float class_sum(const ics_prop_taps *pt, const float *S, const ics
 
 /* a perspective step's pixel (see ics_prop_prepare_perspective): the classes on either side of
  * the fraction, blended linearly by where it lies between them */
-static void pixel_classes(const ics_prop_taps *pt, const float *src, float *dst,
-                          const ics_buf_layout *L, int nch, int x, int y) {
+void ics_prop_pixel_classes(const ics_prop_taps *pt, const float *src, float *dst,
+                            const ics_buf_layout *L, int nch, int x, int y) {
   const int Q = pt->classes;
   double D[2] = {(pt->s - 1) * (x - pt->cx), (pt->s - 1) * (y - pt->cy)};
   int n[2], k[2];
@@ -166,12 +166,7 @@ static void span_portable(const ics_prop_taps *pt, const float *src, float *dst,
 void ics_prop_span(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
                    int nch, int y0, int y1, int x0, int x1, uint32_t *scratch, ics_simd_path simd) {
   if (x1 <= x0 || y1 <= y0) return;
-  if (pt->classes) {
-    for (int y = y0; y < y1; y++)
-      for (int x = x0; x < x1; x++) pixel_classes(pt, src, dst, L, nch, x, y);
-    return;
-  }
-  if (pt->s == 1 && pt->reach <= L->apron) {
+  if (pt->classes || (pt->s == 1 && pt->reach <= L->apron)) {
     switch (simd) {
     case ICS_SIMD_SSE2: ics_prop_rows_sse2(pt, src, dst, L, nch, y0, y1, x0, x1, scratch); return;
     case ICS_SIMD_NEON: ics_prop_rows_neon(pt, src, dst, L, nch, y0, y1, x0, x1, scratch); return;
@@ -179,6 +174,11 @@ void ics_prop_span(const ics_prop_taps *pt, const float *src, float *dst, const 
     case ICS_SIMD_AVX512: ics_prop_rows_avx512(pt, src, dst, L, nch, y0, y1, x0, x1, scratch); return;
     default: break;
     }
+  }
+  if (pt->classes) {
+    for (int y = y0; y < y1; y++)
+      for (int x = x0; x < x1; x++) ics_prop_pixel_classes(pt, src, dst, L, nch, x, y);
+    return;
   }
   span_portable(pt, src, dst, L, nch, y0, y1, x0, x1, scratch);
 }

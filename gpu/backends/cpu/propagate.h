@@ -31,6 +31,9 @@ void ics_prop_rows(const ics_prop_taps *pt, const float *src, float *dst, const 
 void ics_prop_pixel(const ics_prop_taps *pt, int e, const float *src, float *dst,
                     const ics_buf_layout *L, int nch, int x, int y);
 void ics_prop_entries_row(const ics_prop_taps *pt, int w, int y, int x0, int x1, uint32_t *ent);
+/* One pixel of a perspective step (pt->classes), clamped reads. */
+void ics_prop_pixel_classes(const ics_prop_taps *pt, const float *src, float *dst,
+                            const ics_buf_layout *L, int nch, int x, int y);
 /* The choice of the run holding pixel (x, y) of a w-wide buffer (pt->run = 16): the choice
  * (ics_slab_choice) of the counter y (w + 32) + 16 floor((x + 16 - phase) / 16). */
 uint32_t ics_prop_run_choice(const ics_prop_taps *pt, int w, int x, int y);

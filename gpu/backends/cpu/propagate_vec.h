@@ -18,6 +18,7 @@
  * where the target has FMA (AVX2 + FMA, AVX-512, NEON) it is one fused operation, as in
  * pixel_fma for the row ends; on SSE2 it is a multiply and an add. So the last bits depend on the
  * path (and can differ from the portable loops'), never on the thread count. */
+#include <math.h>
 #include <stdint.h>
 #include <string.h>
 
@@ -361,9 +362,151 @@ static void table_row(const ics_prop_taps *pt, const float *src, float *dst,
           pixel_fma(pt, (int)ent[x], src + (size_t)c * L->plane + row0 + x, stride);
 }
 
+/* Perspective steps (pt->classes; ics_prop_prepare_perspective): pixel x of row y takes the four
+ * classes around the fraction of D = (s - 1)(x - c) at x + floor(D_x), y + floor(D_y), blended
+ * by where the fraction lies between them (propagate.c's pixel_classes, whose arithmetic decides
+ * every pixel's classes and blend weights here too). Numbered along an axis, class
+ * l = floor(D) Q + floor(frac(D) Q) is class l mod Q shifted by floor(l / Q) pixels, and a pixel
+ * blends l and l + 1; along a row l changes by (s - 1) Q per pixel, so a vector's lanes span a
+ * few consecutive l. Each is a stencil of integer taps over the whole vector, and each lane keeps
+ * its own two (a masked blend). Lanes whose reads leave the apron take the clamped portable
+ * pixel, vectors spanning more than CLASS_SPAN classes and spans narrower than a vector
+ * class_pixel (each lane's formula). */
+#define CLASS_SPAN 3
+
+/* floor(a / Q) */
+static inline int floor_div(int a, int Q) { return a >= 0 ? a / Q : -((-a + Q - 1) / Q); }
+
+/* a pixel's class number along one axis (above) and its blend r */
+static inline int class_axis(double s, double c, int x, int Q, float *r) {
+  double D = (s - 1) * (x - c), f = floor(D), t = (D - f) * Q, kk = floor(t);
+  *r = (float)(t - kk);
+  return (int)f * Q + (int)kk;
+}
+
+/* class number l along x and m along y: its first tap, and its reads' offset from the pixel */
+static inline void class_at(const ics_prop_taps *pt, int stride, int l, int m, int *base, int *shift) {
+  const int Q = pt->classes;
+  int sx = floor_div(l, Q), sy = floor_div(m, Q);
+  *base = ((m - sy * Q) * Q + (l - sx * Q)) * pt->ntaps;
+  *shift = sy * stride + sx;
+}
+
+/* class (l, m) over W pixels from S */
+static inline vf class_vector(const ics_prop_taps *pt, const float *S, int stride, int l, int m) {
+  int base, shift;
+  class_at(pt, stride, l, m, &base, &shift);
+  vf acc = splatf(0);
+  for (int t = base; t < base + pt->ntaps; t++)
+    acc = madd(splatf(pt->w[t]), loadf(S + shift + pt->iy[t] * stride + pt->ix[t]), acc);
+  return acc;
+}
+
+/* a * b + c for one float as the vector lanes compute it: fused where the target has FMA (GCC
+ * leaves some scalar accumulation chains unfused under -ffp-contract=fast, so it is spelled) */
+static inline float madd1(float a, float b, float c) {
+#if defined(__FMA__) || defined(__ARM_FEATURE_FMA)
+  return __builtin_fmaf(a, b, c);
+#else
+  return a * b + c;
+#endif
+}
+
+/* one pixel (class l along x, m along y), reads within the apron: each lane's formula of
+ * classes_vector */
+static inline float class_pixel(const ics_prop_taps *pt, const float *S, int stride, int l,
+                                float rx, int m, float ry) {
+  float a[4];
+  for (int q = 0; q < 4; q++) {
+    int base, shift;
+    class_at(pt, stride, l + (q & 1), m + (q >> 1), &base, &shift);
+    float acc = 0;
+    for (int t = base; t < base + pt->ntaps; t++)
+      acc = madd1(pt->w[t], S[shift + pt->iy[t] * stride + pt->ix[t]], acc);
+    a[q] = acc;
+  }
+  float top = madd1(rx, a[1] - a[0], a[0]), bot = madd1(rx, a[3] - a[2], a[2]);
+  return madd1(ry, bot - top, top);
+}
+
+/* W pixels whose classes along x are lmin + lane's d (0 <= d <= span <= CLASS_SPAN) */
+static inline vf classes_vector(const ics_prop_taps *pt, const float *S, int stride, int lmin,
+                                int span, vi d, vf rx, int m, float ry) {
+  vf row0[CLASS_SPAN + 2] = {0}, row1[CLASS_SPAN + 2] = {0};
+  for (int i = 0; i <= span + 1; i++) {
+    row0[i] = class_vector(pt, S, stride, lmin + i, m);
+    row1[i] = class_vector(pt, S, stride, lmin + i, m + 1);
+  }
+  vf a00 = row0[0], a10 = row0[1], a01 = row1[0], a11 = row1[1];
+  for (int i = 1; i <= span; i++) {
+    vi sel = d == i;
+    a00 = blend(sel, row0[i], a00), a10 = blend(sel, row0[i + 1], a10);
+    a01 = blend(sel, row1[i], a01), a11 = blend(sel, row1[i + 1], a11);
+  }
+  vf top = madd(rx, a10 - a00, a00), bot = madd(rx, a11 - a01, a01);
+  return madd(splatf(ry), bot - top, top);
+}
+
+/* pixel x (class l, blend r) of row y (class m, blend ry): within the apron, the lanes' formula;
+ * else clamped reads */
+static inline void class_one(const ics_prop_taps *pt, const float *src, float *dst,
+                             const ics_buf_layout *L, int nch, int x, int y, int l, float r, int m,
+                             float ry, int row_in) {
+  int nx = floor_div(l, pt->classes), A = L->apron;
+  if (!row_in || x + nx + pt->lo[0] < -A || x + nx + pt->hi[0] > L->w - 1 + A) {
+    ics_prop_pixel_classes(pt, src, dst, L, nch, x, y);
+    return;
+  }
+  for (int c = 0; c < nch; c++)
+    dst[(size_t)c * L->plane + ics_buf_index(L, x, y)] =
+        class_pixel(pt, src + (size_t)c * L->plane + ics_buf_index(L, x, y), L->stride, l, r, m, ry);
+}
+
+/* pixels [x0, x1) of row y of a perspective step; the span's end as in stencil_row */
+static void classes_row(const ics_prop_taps *pt, const float *src, float *dst,
+                        const ics_buf_layout *L, int nch, int y, int x0, int x1) {
+  const int Q = pt->classes, A = L->apron, stride = L->stride;
+  float ry, r[W];
+  int m = class_axis(pt->s, pt->cy, y, Q, &ry), ny = floor_div(m, Q), l[W];
+  int row_in = y + ny + pt->lo[1] >= -A && y + ny + pt->hi[1] <= L->h - 1 + A;
+  if (x1 - x0 < W) {
+    for (int x = x0; x < x1; x++) {
+      int lx = class_axis(pt->s, pt->cx, x, Q, &r[0]);
+      class_one(pt, src, dst, L, nch, x, y, lx, r[0], m, ry, row_in);
+    }
+    return;
+  }
+  for (int x = x0;; x += W) {
+    if (x + W > x1) x = x1 - W;
+    int lmin = INT32_MAX, lmax = INT32_MIN, rmin = INT32_MAX, rmax = INT32_MIN;
+    for (int i = 0; i < W; i++) { /* lane i reads x + i + floor(l / Q) + [lo, hi] */
+      l[i] = class_axis(pt->s, pt->cx, x + i, Q, &r[i]);
+      int at = x + i + floor_div(l[i], Q);
+      lmin = l[i] < lmin ? l[i] : lmin, lmax = l[i] > lmax ? l[i] : lmax;
+      rmin = at < rmin ? at : rmin, rmax = at > rmax ? at : rmax;
+    }
+    int in = row_in && rmin + pt->lo[0] >= -A && rmax + pt->hi[0] <= L->w - 1 + A;
+    if (in && lmax - lmin <= CLASS_SPAN) {
+      vi d;
+      for (int i = 0; i < W; i++) d[i] = l[i] - lmin;
+      for (int c = 0; c < nch; c++) {
+        size_t o = (size_t)c * L->plane + ics_buf_index(L, x, y);
+        storef(dst + o, classes_vector(pt, src + o, stride, lmin, lmax - lmin, d, loadf(r), m, ry));
+      }
+    } else {
+      for (int i = 0; i < W; i++) class_one(pt, src, dst, L, nch, x + i, y, l[i], r[i], m, ry, row_in);
+    }
+    if (x + W == x1) break;
+  }
+}
+
 void ICS_VEC_FN(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
                 int nch, int y0, int y1, int x0, int x1, uint32_t *scratch) {
   for (int y = y0; y < y1; y++) {
+    if (pt->classes) {
+      classes_row(pt, src, dst, L, nch, y, x0, x1);
+      continue;
+    }
     if (pt->entries > 1 && pt->run > 1) {
       runs_row(pt, src, dst, L, nch, y, x0, x1, scratch);
       continue;
