@@ -60,7 +60,7 @@ static void cull_rect(const ics_plan *p, const ics_object *o, int r[4]) {
   double lo[3], hi[3], x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
   ics_object_bounds(o, lo, hi);
   r[0] = r[1] = INT32_MIN, r[2] = r[3] = INT32_MAX;
-  double th = tan(c->fov_deg * (ICS_PI / 360)), asp = (double)p->W / p->H;
+  double th = p->tan_half_fov, asp = (double)p->W / p->H;
   for (int m = 0; m < 8; m++) {
     double v[3] = {(m & 1 ? hi[0] : lo[0]) - c->eye[0], (m & 2 ? hi[1] : lo[1]) - c->eye[1],
                    (m & 4 ? hi[2] : lo[2]) - c->eye[2]};

@@ -33,7 +33,7 @@ void ics_plan_ray(const ics_plan *p, int bi, int bj, double o[3], double d[3]) {
       d[i] = c->f[i];
     }
   } else {
-    double th = tan(c->fov_deg * (ICS_PI / 360)), asp = (double)p->W / p->H;
+    double th = p->tan_half_fov, asp = (double)p->W / p->H;
     for (int i = 0; i < 3; i++) {
       o[i] = c->eye[i];
       d[i] = c->f[i] + (2 * s - 1) * th * asp * c->r[i] + (1 - 2 * t) * th * c->u[i];
@@ -43,7 +43,7 @@ void ics_plan_ray(const ics_plan *p, int bi, int bj, double o[3], double d[3]) {
 
 double ics_plan_pixel_size(const ics_plan *p, double z) {
   if (p->cam.projection == ICS_PROJ_ORTHOGRAPHIC) return p->cam.height / p->H;
-  return 2 * z * tan(p->cam.fov_deg * (ICS_PI / 360)) / p->H;
+  return 2 * z * p->tan_half_fov / p->H;
 }
 
 double ics_plan_slab_depth(const ics_plan *p, int k) { return p->z0 + (k + 0.5) * p->e; }
@@ -541,6 +541,7 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   p->scene = s;
   p->rs = o.settings ? *o.settings : s->settings;
   p->cam = s->camera;
+  p->tan_half_fov = tan(p->cam.fov_deg * (ICS_PI / 360));
   if (o.width > 0) p->cam.width = o.width;
   if (o.height > 0) p->cam.height_px = o.height;
   double zlo, zhi, k_est;

@@ -60,6 +60,7 @@ struct ics_plan {
   const ics_scene *scene;
   ics_render_settings rs; /* the settings in force (scene's or overridden) */
   ics_camera cam;         /* the camera in force (resolution overridden) */
+  double tan_half_fov;    /* perspective: tan(fov / 2), computed once (every ray takes it) */
   int W, H;               /* image */
   int Wb, Hb;             /* light buffers = LDI grid */
   int pad[4];             /* left, right, top, bottom */
