@@ -33,9 +33,9 @@ static char device[128];    /* the device of the last render (its stats) */
 
 /* name, the mode light 0's kernel runs in (the plan's pass detail), scene */
 static const char *const variants[][3] = {
-    {"ellipse, 2 lights, coloured transport, translucent", "table",
+    {"ellipse (4 rotations per pixel), 2 lights, coloured transport, translucent", "table",
      "{\"camera\": {\"eye\": [0, 0.5, 3], \"target\": [0, 0, 0], \"height\": 2.4, \"resolution\": [96, 72]},"
-     " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"seed\": 5},"
+     " \"render\": {\"slab_spacing\": 0.02, \"d1\": 1, \"seed\": 5, \"pixel_rotations\": 4},"
      " \"lights\": [{\"mean\": [0.4, 0.2], \"var\": [0.2, 0.06], \"angle_deg\": 25},"
      "  {\"mean\": [-0.3, 0.1], \"var\": [0.01, 0.01], \"color\": [0.4, 0.6, 1], \"weight\": 0.5}],"
      " \"materials\": {\"floor\": {\"color\": [0.8, 0.8, 0.75]}, \"glass\": {\"color\": [0.3, 0.6, 0.9],"

@@ -40,7 +40,8 @@ static void test_patel_unchanged(void) {
    * same), the EXR's RGBA floats hashed: at 9b34856 (before the models); again when the per-pixel
    * choices were packed several to a Philox word (slab_choice.h), which changed the default's
    * random stream and nothing else (the default scene with 1 or 384 rotations, or runs of 16,
-   * whose choices it left alone, rendered bit for bit as before it) */
+   * whose choices it left alone, rendered bit for bit as before it: icshadow render --compare
+   * of the two builds, RMSE 0, checked by hand at that commit) */
   static const struct {
     ics_simd_path path;
     uint64_t hash;

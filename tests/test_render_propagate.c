@@ -1,7 +1,7 @@
 /* test_render_propagate.c — the CPU slab step (gpu/backends/cpu/propagate*.c) against the core engine
  * (ics_conv2d_step, double sums per pixel, clamp-to-edge): one tap set with fractional offsets
- * (discretised into a stencil), 4 tap sets (the default per-pixel rotations: blended vector
- * loads) and 384 (a per-pixel table: gathers), where each pixel's set is the one its RNG word
+ * (discretised into a stencil), 2, 4 and 8 tap sets (per-pixel rotations, 2 the default: blended
+ * vector loads) and 384 (a per-pixel table: gathers), where each pixel's set is the one its RNG word
  * chooses and the reference applies that set to that pixel alone; in the apron layout (unclamped
  * reads) and without an apron (the clamped path). The portable loops and every vector path the
  * processor has (simd_path.h) are compared. Agreement to 4 float ulps of the values (the engine
@@ -177,9 +177,9 @@ static void test_fused_equal(void) {
     t[2 * e] = (ics_tap2d){0.31 + 1.3 * cos(a), -0.17 + 0.8 * sin(a), 0.5};
     t[2 * e + 1] = (ics_tap2d){0.31 - 1.3 * cos(a), -0.17 - 0.8 * sin(a), 0.5};
   }
-  const int sets[] = {1, 4, 8, ICS_SLAB_TABLE_M, 4};
+  const int sets[] = {1, 4, 8, ICS_SLAB_TABLE_M, 4, 2};
   for (int w = 1; w <= 40; w++)
-    for (int v = 0; v < 5; v++) {
+    for (int v = 0; v < 6; v++) {
       ics_buf_layout L;
       ics_buf_layout_init(&L, w, 2, 8);
       float *src = calloc(L.plane, sizeof *src), *ref = NULL;
@@ -220,10 +220,10 @@ static void test_spans(path_t path) {
     t[2 * e] = (ics_tap2d){0.31 + 1.3 * cos(a), -0.17 + 0.8 * sin(a), 0.5};
     t[2 * e + 1] = (ics_tap2d){0.31 - 1.3 * cos(a), -0.17 - 0.8 * sin(a), 0.5};
   }
-  const int sets[] = {1, 4, 8, ICS_SLAB_TABLE_M, 4, 4};
+  const int sets[] = {1, 4, 8, ICS_SLAB_TABLE_M, 4, 4, 2};
   const int w = 70, h = 3;
   int bad = 0, outside = 0, spans = 0;
-  for (int v = 0; v < 6; v++) {
+  for (int v = 0; v < 7; v++) {
     ics_buf_layout L;
     ics_buf_layout_init(&L, w, h, 8);
     float *src = calloc(L.plane, sizeof *src), *full = calloc(L.plane, sizeof *full),
@@ -231,7 +231,7 @@ static void test_spans(path_t path) {
     for (size_t i = 0; i < L.plane; i++) src[i] = (float)test_rng_unit();
     ics_prop_taps pt = {0};
     CHECK(ics_prop_prepare(&pt, t, sets[v], 2, 2, 1, 0, 0, &L) == 0, "prepare spans");
-    pt.seed = 5, pt.slab = 2, pt.run = v >= 4 ? 16 : 1, pt.phase = v == 5 ? 11 : 0;
+    pt.seed = 5, pt.slab = 2, pt.run = v == 4 || v == 5 ? 16 : 1, pt.phase = v == 5 ? 11 : 0;
     uint32_t *scratch = malloc(sizeof *scratch * ICS_PROP_SCRATCH(w));
     ics_prop_rows(&pt, src, full, &L, 1, 0, h, scratch, path);
     for (int x0 = 0; x0 < w; x0++)
@@ -314,21 +314,26 @@ static void test_entries(void) {
  * portable pixel (4 float ulps of 1: the paths with fused multiply-adds round differently), the
  * fused paths against each other bit for bit, and spans against whole rows bit for bit, at
  * magnifications above and below 1 (a few and many classes to a vector), with an apron of 8 and
- * of 1 (lanes reading beyond it take the clamped pixel) */
+ * of 1 (lanes reading beyond it take the clamped pixel; the ASan build checks that no read leaves
+ * the buffer) */
 static void test_classes(void) {
   const ics_tap2d t[2] = {{0.9, -0.4, 0.5}, {-0.9, 0.4, 0.5}};
-  const double mags[3] = {1.004, 0.993, 1.06};
+  /* magnification and principal point: the last makes floor(D) drop inside the first vector
+   * (s < 1, D crossing 0 between x = 1 and 2), where the classes' reads reach farthest left */
+  const double mags[4][3] = {{1.004, 29.3, 17.8}, {0.993, 29.3, 17.8}, {1.06, 29.3, 17.8},
+                             {0.95, 1.02, 1.02}};
   int bad_fused = 0, bad_span = 0, outside = 0;
   double worst = 0;
   for (int a = 0; a < 2; a++)
-    for (int v = 0; v < 3; v++) {
+    for (int v = 0; v < 4; v++) {
       ics_buf_layout L;
       ics_buf_layout_init(&L, W, H, a ? 1 : 8);
       float *src = calloc(3 * L.plane, sizeof *src), *out[ICS_SIMD_PATHS_] = {0};
       for (size_t i = 0; i < 3 * L.plane; i++) src[i] = (float)test_rng_unit();
       for (int c = 0; c < 3; c++) ics_prop_apron(&L, src + c * L.plane, 1, 0, H, 1);
       ics_prop_taps pt = {0};
-      CHECK(ics_prop_prepare_perspective(&pt, t, 2, mags[v], 29.3, 17.8, &L) == 0, "prepare classes");
+      CHECK(ics_prop_prepare_perspective(&pt, t, 2, mags[v][0], mags[v][1], mags[v][2], &L) == 0,
+            "prepare classes");
       uint32_t scratch[ICS_PROP_SCRATCH(W)];
       for (int p = 0; p < ICS_SIMD_PATHS_; p++) {
         if (p != PORTABLE && !ics_simd_has((path_t)p)) continue;
@@ -391,6 +396,7 @@ int main(void) {
     }
     test_sets_run(4, (path_t)p, 8, 16);
     test_stencil((path_t)p, 8);
+    test_sets(2, (path_t)p, 8);
     test_sets(4, (path_t)p, 8);
     test_sets(8, (path_t)p, 8);
     test_sets(ICS_SLAB_TABLE_M, (path_t)p, 8);

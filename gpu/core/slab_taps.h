@@ -9,8 +9,8 @@
  * take the clamped path. Light buffers are nch planes of that layout, float.
  *
  * Tap sets: one per slab (a stencil of integer taps with merged bilinear weights), or several
- * ("entries") of which each pixel uses the one chosen by the counter RNG: entry
- * floor(word * entries / 2^32), word = ics_slab_entry_block's word of the pixel. */
+ * ("entries") of which each pixel uses the one chosen by the counter RNG
+ * (ics_slab_pixel_choice: 2, 4 or 8 entries packed several to a word, else the word scaled). */
 #ifndef ICS_RENDER_SLAB_TAPS_H
 #define ICS_RENDER_SLAB_TAPS_H
 

@@ -14,8 +14,9 @@
 extern const int ics_prop_built_sse2, ics_prop_built_avx2, ics_prop_built_avx512,
     ics_prop_built_neon;
 
-/* As ics_prop_span for s = 1 and taps within the apron; call only where ics_simd_has says the
- * processor has the instructions. */
+/* As ics_prop_span for s = 1 and taps within the apron, or for a perspective step (pt->classes:
+ * lanes reading beyond the apron clamp); call only where ics_simd_has says the processor has
+ * the instructions. */
 #define ICS_PROP_ROWS_DECLARE_(isa)                                                                \
   void ics_prop_rows_##isa(const ics_prop_taps *pt, const float *src, float *dst,                  \
                            const ics_buf_layout *L, int nch, int y0, int y1, int x0, int x1,       \

@@ -3,27 +3,35 @@
  * propagate_avx512.c, propagate_neon.c: each defines ICS_VEC_W, the lanes of a float vector,
  * and ICS_VEC_FN, the name of its entry point, and is compiled with its target's flags; the
  * processor's paths are chosen at run time, simd_path.h). Preconditions: s = 1 and the taps'
- * reach within the buffers' apron (no read is clamped).
+ * reach within the buffers' apron (no read is clamped), or a perspective step (pt->classes),
+ * whose lanes reading beyond the apron take the clamped portable pixel.
  *
  * Stencils (one tap set): W pixels per vector, one unaligned load and one multiply-add per tap,
  * four independent sums added in a fixed order. Few tap sets (entries <= ICS_PROP_CANDIDATES_MAX,
- * e.g. the default 4 rotations per slab): every set evaluated for two vectors of pixels with
+ * e.g. the default 2 rotations per slab): every set evaluated for two vectors of pixels with
  * unaligned loads, each pixel keeping its own set's result (a masked blend). Runs of 16 pixels
  * sharing a set: each run as vectors of its own set, the partial runs at the row's ends
  * evaluated over the row's first or last 16 pixels. Many tap sets (a per-pixel table): per lane
  * loads of the taps and corners. Tap-set choices come from a W-lane Philox-4x32-10 (the same
- * words as ics_slab_entry_block), packed as ics_slab_pixel_choice.
+ * words as ics_slab_entry_block), packed as ics_slab_pixel_choice. Perspective steps: the
+ * magnification classes (classes_row, below).
  *
- * Arithmetic: a * b + c written once; these files are compiled with -ffp-contract=fast, so
- * where the target has FMA (AVX2 + FMA, AVX-512, NEON) it is one fused operation, as in
- * pixel_fma for the row ends; on SSE2 it is a multiply and an add. So the last bits depend on the
- * path (and can differ from the portable loops'), never on the thread count. */
+ * Arithmetic: a * b + c written once (madd, and madd1 for one pixel: pixel_fma and class_pixel
+ * at the spans' ends), with the target's fused multiply-add where it has one (AVX2 + FMA,
+ * AVX-512, NEON) and a multiply and an add on SSE2. So the last bits depend on the path (and can
+ * differ from the portable loops'), never on the thread count, the span or the build type. */
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
 
 #include "propagate_simd.h"
 #include "slab_choice.h"
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#elif defined(__ARM_NEON)
+#include <arm_neon.h>
+#endif
 
 #if !defined(ICS_VEC_W) || !defined(ICS_VEC_FN)
 #error "define ICS_VEC_W and ICS_VEC_FN before including propagate_vec.h"
@@ -54,8 +62,29 @@ static inline vu iota(void) {
   for (int i = 0; i < W; i++) v[i] = (uint32_t)i;
   return v;
 }
-/* a * b + c: fused where the target has FMA (-ffp-contract=fast) */
-static inline vf madd(vf a, vf b, vf c) { return a * b + c; }
+/* a * b + c, fused where the target has FMA: spelled with the target's fused multiply-add (GCC
+ * contracts a * b + c only from -O2 on, and not every scalar accumulation chain even there), so
+ * the vector lanes and the one-pixel formula (madd1) round alike in every build */
+static inline vf madd(vf a, vf b, vf c) {
+#if defined(__x86_64__) && defined(__FMA__) && W == 16
+  return (vf)_mm512_fmadd_ps((__m512)a, (__m512)b, (__m512)c);
+#elif defined(__x86_64__) && defined(__FMA__) && W == 8
+  return (vf)_mm256_fmadd_ps((__m256)a, (__m256)b, (__m256)c);
+#elif defined(__x86_64__) && defined(__FMA__) && W == 4
+  return (vf)_mm_fmadd_ps((__m128)a, (__m128)b, (__m128)c);
+#elif defined(__ARM_FEATURE_FMA) && W == 4
+  return (vf)vfmaq_f32((float32x4_t)c, (float32x4_t)a, (float32x4_t)b);
+#else
+  return a * b + c;
+#endif
+}
+static inline float madd1(float a, float b, float c) {
+#if defined(__FMA__) || defined(__ARM_FEATURE_FMA)
+  return __builtin_fmaf(a, b, c);
+#else
+  return a * b + c;
+#endif
+}
 /* lanes of `a` where mask (all ones or zero per lane) is set, else `b` */
 static inline vf blend(vi mask, vf a, vf b) { return (vf)(((vi)a & mask) | ((vi)b & ~mask)); }
 
@@ -64,7 +93,6 @@ static inline vf blend(vi mask, vf a, vf b) { return (vf)(((vi)a & mask) | ((vi)
  * 64-bit product the compilers emit a full 64 x 64 multiply (three multiplies and the shifts
  * and adds, or vpmullq) where one pmuludq per pair of lanes does. */
 #if defined(__x86_64__)
-#include <immintrin.h>
 /* the products of the even 32-bit lanes (the low halves of each 64-bit pair) with m */
 static inline vh mul_even(vh a, uint32_t m) {
 #if W == 16
@@ -82,7 +110,6 @@ static inline void mul32(vu a, uint32_t m, vu *lo, vu *hi) {
   *hi = (vu)((ev >> 32) | (od & ~low));
 }
 #elif defined(__ARM_NEON) && W == 4
-#include <arm_neon.h>
 static inline void mul32(vu a, uint32_t m, vu *lo, vu *hi) {
   uint32x4_t va = (uint32x4_t)a;
   uint32x2_t vm = vdup_n_u32(m);
@@ -180,17 +207,17 @@ static inline float pixel_fma(const ics_prop_taps *pt, int e, const float *S, in
     float a[4] = {0, 0, 0, 0};
     int n = pt->ntaps, j = 0;
     for (; j + 4 <= n; j += 4)
-      for (int k = 0; k < 4; k++) a[k] = pt->w[j + k] * S[pt->off[j + k]] + a[k];
-    for (; j < n; j++) a[0] = pt->w[j] * S[pt->off[j]] + a[0];
+      for (int k = 0; k < 4; k++) a[k] = madd1(pt->w[j + k], S[pt->off[j + k]], a[k]);
+    for (; j < n; j++) a[0] = madd1(pt->w[j], S[pt->off[j]], a[0]);
     return (a[0] + a[1]) + (a[2] + a[3]);
   }
   float acc = 0;
   for (int j = e * pt->ntaps; j < (e + 1) * pt->ntaps; j++) {
     const float *r0 = S + pt->off[j];
     float fx = pt->fx[j], fy = pt->fy[j];
-    float top = fx * (r0[1] - r0[0]) + r0[0];
-    float bot = fx * (r0[stride + 1] - r0[stride]) + r0[stride];
-    acc = pt->w[j] * (fy * (bot - top) + top) + acc;
+    float top = madd1(fx, r0[1] - r0[0], r0[0]);
+    float bot = madd1(fx, r0[stride + 1] - r0[stride], r0[stride]);
+    acc = madd1(pt->w[j], madd1(fy, bot - top, top), acc);
   }
   return acc;
 }
@@ -402,16 +429,6 @@ static inline vf class_vector(const ics_prop_taps *pt, const float *S, int strid
   return acc;
 }
 
-/* a * b + c for one float as the vector lanes compute it: fused where the target has FMA (GCC
- * leaves some scalar accumulation chains unfused under -ffp-contract=fast, so it is spelled) */
-static inline float madd1(float a, float b, float c) {
-#if defined(__FMA__) || defined(__ARM_FEATURE_FMA)
-  return __builtin_fmaf(a, b, c);
-#else
-  return a * b + c;
-#endif
-}
-
 /* one pixel (class l along x, m along y), reads within the apron: each lane's formula of
  * classes_vector */
 static inline float class_pixel(const ics_prop_taps *pt, const float *S, int stride, int l,
@@ -478,14 +495,16 @@ static void classes_row(const ics_prop_taps *pt, const float *src, float *dst,
   }
   for (int x = x0;; x += W) {
     if (x + W > x1) x = x1 - W;
-    int lmin = INT32_MAX, lmax = INT32_MIN, rmin = INT32_MAX, rmax = INT32_MIN;
-    for (int i = 0; i < W; i++) { /* lane i reads x + i + floor(l / Q) + [lo, hi] */
+    int lmin = INT32_MAX, lmax = INT32_MIN;
+    for (int i = 0; i < W; i++) {
       l[i] = class_axis(pt->s, pt->cx, x + i, Q, &r[i]);
-      int at = x + i + floor_div(l[i], Q);
       lmin = l[i] < lmin ? l[i] : lmin, lmax = l[i] > lmax ? l[i] : lmax;
-      rmin = at < rmin ? at : rmin, rmax = at > rmax ? at : rmax;
     }
-    int in = row_in && rmin + pt->lo[0] >= -A && rmax + pt->hi[0] <= L->w - 1 + A;
+    /* every lane evaluates every class lmin .. lmax + 1: lane i reads within
+     * x + i + floor(l' / Q) + [lo, hi] (hi counts class Q's extra pixel), so within
+     * x + floor(lmin / Q) + lo .. x + W - 1 + floor(lmax / Q) + hi */
+    int in = row_in && x + floor_div(lmin, Q) + pt->lo[0] >= -A &&
+             x + W - 1 + floor_div(lmax, Q) + pt->hi[0] <= L->w - 1 + A;
     if (in && lmax - lmin <= CLASS_SPAN) {
       vi d;
       for (int i = 0; i < W; i++) d[i] = l[i] - lmin;

@@ -86,7 +86,7 @@ typedef struct ics_render_settings {
   int preintegrate;    /* 1: detail sampled at both ends of each volume piece, the transfer
                           function integrated between them (Engel 2001; Patel Fig. 19) */
   int pixel_rotations; /* ellipse / poisson: rotations a pixel chooses from per slab (1, 2, 4, 8
-                          or 384; default 4) */
+                          or 384; default 2) */
   int rotation_run;    /* 1: every pixel chooses; 16: runs of 16 pixels of a row share a choice
                           (their start moved by a random phase each slab) */
   ics_render_model model; /* default ICS_MODEL_PATEL */
