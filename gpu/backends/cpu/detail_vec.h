@@ -49,9 +49,34 @@ static inline vl cell(vd f) {
   return r;
 }
 
+/* Below 2^51 in magnitude a double's floor and its lattice cell come from adding M = 1.5 2^52,
+ * where the spacing of doubles is 1: x + M - M is x rounded to an integer (exactly: a sum
+ * in (2^52, 2^53) is rounded once, the difference is exact), floor is that less 1 where it
+ * exceeds x, and for an integer f the low bits of f + M's bit pattern are those of 2^51 + f, so
+ * its low 8 are f mod 256. Both equal vfloor's and cell's results; lanes beyond take those. */
+#define LATTICE_MAGIC 0x1.8p52
+static inline int all_small(vd x, vd y, vd z) {
+  vl in = (vfabs(x) < 0x1p51) & (vfabs(y) < 0x1p51) & (vfabs(z) < 0x1p51);
+  int64_t all = -1;
+  for (int k = 0; k < W; k++) all &= in[k];
+  return all != 0;
+}
+static inline vd floor_small(vd x) {
+  vd r = (x + LATTICE_MAGIC) - LATTICE_MAGIC;
+  return blend(r > x, r - 1, r);
+}
+static inline vl cell_small(vd f) { return (vl)(f + LATTICE_MAGIC) & 255; }
+
 static vd noise(const uint8_t p[512], vd x, vd y, vd z) {
-  vd fx = vfloor(x), fy = vfloor(y), fz = vfloor(z);
-  vl X = cell(fx), Y = cell(fy), Z = cell(fz);
+  vd fx, fy, fz;
+  vl X, Y, Z;
+  if (all_small(x, y, z)) {
+    fx = floor_small(x), fy = floor_small(y), fz = floor_small(z);
+    X = cell_small(fx), Y = cell_small(fy), Z = cell_small(fz);
+  } else {
+    fx = vfloor(x), fy = vfloor(y), fz = vfloor(z);
+    X = cell(fx), Y = cell(fy), Z = cell(fz);
+  }
   x -= fx, y -= fy, z -= fz;
   vd u = fade(x), v = fade(y), w = fade(z);
   vl A = gather(p, X) + Y, AA = gather(p, A) + Z, AB = gather(p, A + 1) + Z;
