@@ -29,18 +29,6 @@
 #include "icshadow/lut.h"
 #include "icshadow/rng.h"
 
-/* Sigma^(1/2) of a PSD 2x2 matrix (cxx, cxy, cyy) as a row-major 2x2 */
-static int sqrtm(const double c[3], double S[4]) {
-  double vx, vy, ang;
-  if (ics_light_cov_to_eig(c, &vx, &vy, &ang) != ICS_OK) return -1;
-  double a = ang * (ICS_PI / 180), co = cos(a), si = sin(a);
-  double s1 = sqrt(vx), s2 = sqrt(vy);
-  S[0] = co * co * s1 + si * si * s2;
-  S[1] = S[2] = co * si * (s1 - s2);
-  S[3] = si * si * s1 + co * co * s2;
-  return 0;
-}
-
 /* the taps of the member that runs (sk->run_member, sk->run_samples) for class covariance cls
  * (pixels^2), zero mean: entries * n into out */
 static ics_status member_taps(const ics_slab_kernel *sk, const double cls[3], ics_tap2d *out) {
@@ -98,13 +86,16 @@ static ics_status member_taps(const ics_slab_kernel *sk, const double cls[3], ic
     return ICS_OK;
   }
   /* tophat */
-  double S[4];
-  if (sqrtm(cls, S)) return ICS_ERR_NEGATIVE_VARIANCE;
+  /* the grid in the whitened frame mapped by the class's symmetric root R (R R = cls; not PSD
+   * beyond rounding: refused) */
+  double vx, vy, ang, R[3];
+  if (ics_light_cov_to_eig(cls, &vx, &vy, &ang) != ICS_OK || ics_light_cov_sqrt(cls, R) < 0)
+    return ICS_ERR_NEGATIVE_VARIANCE;
   double T = sqrt(3.0 * (n - 1) / (n + 1));
   for (int a = 0; a < n; a++)
     for (int b = 0; b < n; b++) {
       double zx = -T + 2 * T * a / (n - 1), zy = -T + 2 * T * b / (n - 1);
-      out[a * n + b] = (ics_tap2d){S[0] * zx + S[1] * zy, S[2] * zx + S[3] * zy, 1.0 / (n * n)};
+      out[a * n + b] = (ics_tap2d){R[0] * zx + R[1] * zy, R[1] * zx + R[2] * zy, 1.0 / (n * n)};
     }
   return ICS_OK;
 }
