@@ -21,6 +21,11 @@ int ics_jerr(const ics_jctx *c, const char *fmt, ...) {
 
 int ics_jkeys(const ics_jctx *c, const char *where, json_t *o, const char *const *known,
               size_t nknown) {
+  return ics_jkeys_of(c, where, o, known, nknown, NULL);
+}
+
+int ics_jkeys_of(const ics_jctx *c, const char *where, json_t *o, const char *const *known,
+                 size_t nknown, const char *what) {
   const char *key;
   json_t *val;
   json_object_foreach(o, key, val) {
@@ -32,6 +37,7 @@ int ics_jkeys(const ics_jctx *c, const char *where, json_t *o, const char *const
     list[0] = 0;
     for (size_t i = 0; i < nknown && len + 1 < sizeof list; i++)
       len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "", known[i]);
+    if (what) return ics_jerr(c, "%s: unknown key \"%s\" for a %s (expected %s)", where, key, what, list);
     return ics_jerr(c, "%s: unknown key \"%s\" (expected %s)", where, key, list);
   }
   return 0;

@@ -33,6 +33,10 @@ int ics_jerr(const ics_jctx *c, const char *fmt, ...)
  * LIST)". */
 int ics_jkeys(const ics_jctx *c, const char *where, json_t *o, const char *const *known,
               size_t nknown);
+/* The same, the message naming what the object is: "... unknown key "K" for a WHAT (expected
+ * LIST)" (WHAT NULL: as ics_jkeys). */
+int ics_jkeys_of(const ics_jctx *c, const char *where, json_t *o, const char *const *known,
+                 size_t nknown, const char *what);
 /* A finite number. */
 int ics_jnum(const ics_jctx *c, const char *where, json_t *v, double *out);
 /* An array of exactly n finite numbers ("expected [what]" names the shape in the message). */

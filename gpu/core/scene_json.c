@@ -690,24 +690,12 @@ static ics_object *new_object(rctx *c) {
   return o;
 }
 
+/* an object's keys: "shape", "material" and the shape's own n (n <= 14) */
 static int has_only(rctx *c, const char *where, json_t *o, const char *shape,
                     const char *const *keys, size_t n) {
-  const char *key;
-  json_t *val;
-  json_object_foreach(o, key, val) {
-    if (!strcmp(key, "shape") || !strcmp(key, "material")) continue;
-    size_t q = 0;
-    while (q < n && strcmp(key, keys[q])) q++;
-    if (q < n) continue;
-    char list[256];
-    size_t len = 0;
-    list[0] = 0;
-    for (size_t i = 0; i < n; i++)
-      len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "", keys[i]);
-    return fail(c, ICS_ERR_PARSE, "%s: unknown key \"%s\" for a %s (expected shape, material, %s)",
-                where, key, shape, list);
-  }
-  return 0;
+  const char *known[16] = {"shape", "material"};
+  for (size_t i = 0; i < n; i++) known[2 + i] = keys[i];
+  return J(ics_jkeys_of(&c->j, where, o, known, 2 + n, shape));
 }
 
 static json_t *need(rctx *c, const char *where, json_t *o, const char *key) {
