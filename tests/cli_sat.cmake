@@ -48,8 +48,7 @@ ics_cli_test(NAME cli_sat2d_chirp_unwritable RC 1 ARGS "bench|sat2d|--chirp-csv|
 ics_cli_test(NAME cli_sat2d_lights RC 2 ARGS "bench|sat2d|--lights" ERR "--lights is for sat3d")
 # CSAT / SSAT against brute-force marching (a few seconds): 16 csat and 12 ssat rows; mean
 # error <= 5 % and max error <= 50 % of the mean optical depth, the mean error falling when the
-# table is refined, lookups > 10x faster than brute force for U >= 2 and flat in U
-# (tests/cli/sat_csv_checks.sh; the numbers are discussed in docs/sat.md).
+# table is refined (tests/cli/sat_csv_checks.sh; the times are the benchmark's, docs/sat.md).
 add_test(NAME cli_sat3d_lights
   COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/sat_csv_checks.sh $<TARGET_FILE:icshadow_cli> lights)
 set_tests_properties(cli_sat3d_lights PROPERTIES LABELS medium ENVIRONMENT LC_ALL=C)
