@@ -150,7 +150,7 @@ int bench_frame(int argc, char **argv) {
   }
 #ifndef ICS_HAVE_RENDER
   (void)argc, (void)argv;
-  return cli_failure(CMD, "the renderer was not built (it needs jansson)");
+  return cli_no_renderer(CMD);
 #else
   const char *scene_path = NULL, *res_s = NULL, *works_s = "skip,dense,mc";
   int threads = 0, reps = 5, spp = 16, force = 0, scenes = 0, outside = 0;

@@ -40,7 +40,9 @@ static const char CMD[] = "bench minmax";
 static cli_progress g_prog; /* set up once the options are parsed */
 static int g_progress;    /* --progress given */
 static int g_cpu = 1;     /* --backend: the CPU rows, */
-static void *g_cl;        /* and the OpenCL context of the cl rows (ics_cl *, NULL: none) */
+#ifdef ICS_HAVE_RENDER
+static void *g_cl; /* and the OpenCL context of the cl rows (ics_cl *, NULL: none) */
+#endif
 static int g_busy;        /* a size's traversal or march times spread over 30 % */
 
 static void help(FILE *f) {

@@ -115,8 +115,6 @@ static double now_floor_ns(size_t npx, int slabs, float *a, float *b) {
   return 1e9 * (cli_now_s() - t0) / ((double)npx * slabs);
 }
 
-#endif
-
 /* One member, size, backend and thread count: the scene (an edge or stripes occluder in the first
  * slab, a receiver after `slabs`), planned dense and with skipping as asked, rendered reps
  * times with the works interleaved (after a warm-up each) and the memcpy floor between them. */
@@ -228,6 +226,7 @@ static int bench_config(const config_t *c, cli_progress *prog, int *busy, int *c
                                           : cli_status_error(CMD, st, "%s %dx%d: %s", m->label, n, n, msg);
   return cli_stdout_failed(CMD); /* stop at the first row that fails, with its cause */
 }
+#endif
 
 int bench_slab(int argc, char **argv) {
   if (cli_wants_help(argc, argv)) {
@@ -236,7 +235,7 @@ int bench_slab(int argc, char **argv) {
   }
 #ifndef ICS_HAVE_RENDER
   (void)argc, (void)argv;
-  return cli_failure(CMD, "the renderer was not built (it needs jansson)");
+  return cli_no_renderer(CMD);
 #else
   const char *sizes_s = "512,768", *threads_s = "1,2", *kernels_s = NULL, *backend_s = "cpu";
   const char *cov_s = "2,0.5,1", *mean_s = "0.3,-0.2";

@@ -34,8 +34,7 @@ int cmd_plan(int argc, char **argv) {
   }
 #ifndef ICS_HAVE_RENDER
   (void)argc, (void)argv;
-  return cli_failure(CMD, "the renderer was not built (it needs jansson: install libjansson-dev "
-                     "and rebuild)");
+  return cli_no_renderer(CMD);
 #else
   scene_args a;
   memset(&a, 0, sizeof a);

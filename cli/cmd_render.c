@@ -383,8 +383,7 @@ int cmd_render(int argc, char **argv) {
   }
 #ifndef ICS_HAVE_RENDER
   (void)argc, (void)argv;
-  return cli_failure(CMD, "the renderer was not built (it needs jansson: install libjansson-dev "
-                     "and rebuild)");
+  return cli_no_renderer(CMD);
 #else
   render_args r;
   int listed, rc = parse_args(&r, argc, argv, &listed);

@@ -47,6 +47,10 @@ int cli_report(int status, const char *cmd, const char *fmt, ...) CLI_PRINTF(3, 
 #define cli_failure(cmd, ...) cli_report(1, cmd, __VA_ARGS__)
 #define cli_status_error(cmd, st, ...) cli_report((st) == ICS_ERR_NOMEM ? 1 : 2, cmd, __VA_ARGS__)
 #define cli_warning(cmd, ...) ((void)cli_report(0, cmd, "warning: " __VA_ARGS__))
+/* a command of the renderer in a build without it */
+#define cli_no_renderer(cmd)                                                                       \
+  cli_failure(cmd, "the renderer was not built (it needs jansson: install libjansson-dev and "     \
+                   "rebuild)")
 
 /* Strict number parsing: the whole string must be a number (leading/trailing blanks allowed).
  * Return 0 on success, -1 otherwise. */
