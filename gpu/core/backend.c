@@ -298,12 +298,14 @@ ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsig
                (missing & ICS_AOV_STDERR) ? " (only mc estimates a standard error)" : "");
     return ICS_ERR_UNSUPPORTED;
   }
-  /* a scene without solid objects renders alike under every model */
-  if (!(r->b->models >> plan->rs.model & 1) && plan->solid_bits) {
+  /* a scene without solid objects or open surfaces lit by their own term renders alike under
+   * every model */
+  if (!(r->b->models >> plan->rs.model & 1) && (plan->solid_bits || plan->own_any)) {
     if (msg)
       snprintf(msg, msg_size, "backend %s renders render.model patel only, not %s, which this "
-               "scene's closed opaque objects need (the cpu backend renders every model)",
-               r->b->name, ics_render_model_name(plan->rs.model));
+               "scene's %s need (the cpu backend renders every model)", r->b->name,
+               ics_render_model_name(plan->rs.model),
+               plan->solid_bits ? "closed opaque objects" : "open surfaces lit by their own term");
     return ICS_ERR_UNSUPPORTED;
   }
   ics_render_stats local;

@@ -20,6 +20,7 @@
 #include "icshadow/conv.h"
 #include "icshadow/light.h"
 #include "mesh.h"
+#include "own_term.h"
 #include "plan_internal.h"
 #include "scene_internal.h"
 
@@ -470,6 +471,7 @@ static ics_status plan_geometry(ics_plan *p, int threads, plan_bytes *b, char *m
   double t0 = ics_clock_s();
   ics_status st = ics_ldi_build(p, threads, msg, msg_size);
   p->geometry_s = ics_clock_s() - t0;
+  if (st == ICS_OK) st = ics_plan_own_surfaces(p);
   if (st != ICS_OK) return st;
   b->ldi = b->offset + p->ldi.nfrag * sizeof(ics_fragment) +
            (p->ldi.inside0 ? npx * sizeof(uint64_t) : 0);
@@ -525,6 +527,13 @@ static void plan_passes(ics_plan *p, const plan_bytes *b) {
     add_omitted(p, "volume tracking", p->rs.model >= ICS_MODEL_SOLID
                                           ? "no volumetric or solid objects (surfaces only)"
                                           : "no volumetric objects (surfaces only)");
+  if (p->own_any) {
+    ics_own_term_describe(p, d, sizeof d);
+    add_pass(p, "own_term", 0, -1, 0, d);
+  } else if (p->rs.model >= ICS_MODEL_SURFACE) {
+    add_omitted(p, "own term of open surfaces", "no opaque rect or disk has the other shaded "
+                "points on one side of its plane with a light in front of it (own_term.c)");
+  }
   snprintf(d, sizeof d, "front-to-back compositing into the RGBA image, per-pixel layer cursors");
   add_pass(p, "shading", b->state + b->image, -1, 0, d);
 }
@@ -574,6 +583,7 @@ void ics_plan_destroy(ics_plan *p) {
   free(p->kernels);
   free(p->vol_bit);
   free(p->inside_bit);
+  free(p->own_lights);
   free(p->detail);
   ics_ldi_release(&p->ldi);
   free(p->active);

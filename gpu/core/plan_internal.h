@@ -79,6 +79,9 @@ struct ics_plan {
   int *inside_bit;        /* per object: its bit in that mask, or -1: the volumes' bits, then,
                              with render.model solid or surface, the solid objects' */
   uint64_t solid_bits;    /* the bits of solid objects (closed, opaque surfaces) */
+  uint64_t *own_lights;   /* per object: the lights (bit l) whose buffers leave it out, an open
+                             surface lit by its own term (render.model surface; own_term.h) */
+  int own_any;            /* some object has own_lights */
   int any_detail;
   ics_detail_eval *detail; /* per object with a detail material (NULL otherwise) */
   double light_path[ICS_SCENE_MAX_LIGHTS]; /* sqrt(1 + |mu_k|^2): light path per unit depth */

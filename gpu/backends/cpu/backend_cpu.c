@@ -19,8 +19,8 @@
 #include "clock.h"
 #include "geometry.h"
 #include "detail_batch.h"
-#include "icshadow/normal.h"
 #include "icshadow/rng.h"
+#include "own_term.h"
 #include "plan_internal.h"
 #include "pool.h"
 #include "propagate.h"
@@ -175,12 +175,12 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
  * a' Sigma a = 0). The normal is the object's own at the fragment (its crossing of the pixel's
  * ray nearest the fragment's depth z), not the layered depth image's quantised depth gradient.
  * arrive: the buffers' values arriving at this slab (before its occlusions), per buffered light
- * and channel. Into L the light (sum over lights of colour x weight x V Phi), into V the AOVs'
- * V Phi per light and channel. 0, or -1 when out of memory (j->failed is set). */
+ * and channel; the own term applies to the lights in `lights` (Phi = 1 for the others). Into L
+ * the light (sum over lights of colour x weight x V Phi), into V the AOVs' V Phi per light and
+ * channel. 0, or -1 when out of memory (j->failed is set). */
 static int own_light(job_t *j, int obj, double z, int bi, int bj, const float *arrive, int set,
-                     double L[3], float *V, int t) {
+                     uint64_t lights, double L[3], float *V, int t) {
   const ics_plan *P = j->p;
-  const ics_camera *c = &P->cam;
   double o[3], d[3], n[3] = {0, 0, 0}, best = INFINITY;
   int behind = 0;
   ics_plan_ray(P, bi, bj, o, d);
@@ -189,15 +189,11 @@ static int own_light(job_t *j, int obj, double z, int bi, int bj, const float *a
   if (ics_object_hits(&P->scene->objects[obj], o, d, h, &behind)) return -1; /* out of memory */
   for (int i = 0; i < h->n; i++)
     if (fabs(h->h[i].t - z) < best) best = fabs(h->h[i].t - z), memcpy(n, h->h[i].n, sizeof n);
-  double nd = n[0] * d[0] + n[1] * d[1] + n[2] * d[2], sgn = nd > 0 ? -1 : 1;
-  double ar = 0, au = 0, b = 0;
-  for (int i = 0; i < 3; i++) ar += sgn * n[i] * c->r[i], au += sgn * n[i] * c->u[i], b -= sgn * n[i] * c->f[i];
+  if (n[0] * d[0] + n[1] * d[1] + n[2] * d[2] > 0) n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
   L[0] = L[1] = L[2] = 0;
   for (int l = 0; l < P->nlights; l++) {
     const ics_light *lt = &P->scene->lights[l];
-    double m = ar * lt->mean[0] + au * lt->mean[1] + b;
-    double v = ar * ar * lt->cov[0] + 2 * ar * au * lt->cov[1] + au * au * lt->cov[2];
-    double phi = v > 0 ? ics_normal_cdf(m / sqrt(v)) : m > 0 ? 1 : m < 0 ? 0 : 0.5;
+    double phi = lights >> l & 1 ? ics_light_side_fraction(&P->cam, lt, n) : 1;
     const float *B = arrive + (size_t)(set * P->nlights + l) * P->nch;
     for (int k = 0; k < 3; k++) L[k] += lt->color[k] * lt->weight * phi * B[P->nch == 3 ? k : 0];
     for (int k = 0; k < P->nch; k++) V[l * P->nch + k] = (float)(phi * B[k]);
@@ -234,8 +230,10 @@ static void surface_occlusion(job_t *j, size_t q, const ics_fragment *fr, int af
   if (!(a > 0)) return;
   size_t plane = P->buf.plane;
   double gr = fr->grad[0] / ICS_FRAG_GRAD_SCALE, gu = fr->grad[1] / ICS_FRAG_GRAD_SCALE;
+  uint64_t own = P->own_lights[ics_frag_obj(fr)]; /* lights that leave this surface out */
   for (int l = 0; l < P->nlights; l++) {
     double window = floor(fr->span * j->window[l]);
+    if (own >> l & 1) continue;
     if (after > window) continue;
     const double *mu = P->scene->lights[l].mean;
     double rho = -(gr * mu[0] + gu * mu[1]), rel = fabs(1 - rho), meets = 1;
@@ -408,9 +406,13 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
         int solid = ib >= 0 && (P->solid_bits >> ib & 1);
         if ((ib < 0 || solid) && inview) { /* a surface */
           double Lo[3];
-          int own = P->rs.model >= ICS_MODEL_SURFACE && solid;
-          if (own && own_light(j, obj, ldi->frag[cur].z, bi, bj, arrive, j->nb > P->nlights, Lo, V, t))
-            j->failed = 1; /* (a solid's surface: its own term, the rest from Patel's set) */
+          uint64_t lights = P->rs.model < ICS_MODEL_SURFACE ? 0 : solid ? ~0ull : P->own_lights[obj];
+          int own = lights != 0;
+          /* a solid's surface: its own term, the rest from Patel's set; an open surface lit by
+           * its own term: from the first set, which leaves it out */
+          if (own && own_light(j, obj, ldi->frag[cur].z, bi, bj, arrive, solid && j->nb > P->nlights,
+                               lights, Lo, V, t))
+            j->failed = 1;
           surface_colour(j, obj, own ? Lo : L, C);
           if (j->aov && !j->aov_seen[(size_t)jj * P->W + ii] &&
               s->materials[s->objects[obj].material].opacity > 0)
