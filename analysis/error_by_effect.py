@@ -5,8 +5,9 @@ solid's shadow on another), and the scenes of Patel's Fig. 18, 19, 20 and 21 (bu
 --backend mc --spp N --aov stderr`), then the slab renderer under each model (render.model:
 patel, solid, surface; each adds one step) with `--compare REF.exr`: RMSE beyond the reference's
 noise, max error, and the frame time (plan with its geometry pass plus render; the median of
---reps renders, the models interleaved round by round). Writes error_by_effect.csv and
-error_by_effect.md (the table) into --out.
+--reps renders, the models interleaved round by round). Writes error_by_effect.csv,
+error_by_effect.md (the table) and, per scene and model, the render minus the reference (x4, red
+brighter, blue darker: `--diff-png`) as error_by_effect_SCENE_MODEL.png into --out.
 
 usage: error_by_effect.py [--cli build/bin/icshadow] [--out out/analysis] [--reps 3]
 """
@@ -50,11 +51,30 @@ SPHERE_ON_BOX = {
                 {"shape": "box", "center": [0, -0.3, 0], "size": [2.5, 0.6, 2.5], "material": "white"}],
 }
 
+# an open surface alone: a floor under a broad light at 45 deg elevation from the side (its exact
+# visibility, the light's share above the floor, 0.9617), and a plane whose light lies partly
+# below its horizon (exact Phi(-0.5) = 0.3085; test_render_model holds both to the closed form)
+def plane(eye, center, normal, mean, var):
+    return {
+        "camera": {"projection": "orthographic", "eye": eye, "target": [0, 0, 0], "up": [0, 1, 0],
+                   "height": 3, "resolution": [96, 72]},
+        "render": {"slab_spacing": 0.02, "d1": 1.0, "seed": 5},
+        "lights": [{"mean": mean, "var": [var, var], "color": [1, 1, 1], "weight": 1}],
+        "materials": {"white": {"color": [1, 1, 1]}},
+        "objects": [{"shape": "rect", "center": center, "normal": normal, "size": [20, 20],
+                     "material": "white"}],
+    }
+
+
 # name, scene (None: the embedded default scene), reference samples per pixel
 SCENES = (
     ("default scene (320 x 240)", None, 1024),
     ("opaque sphere over a floor, narrow light", SPHERE, 1024),
     ("opaque sphere over an opaque box", SPHERE_ON_BOX, 1024),
+    ("a floor under a light at 45 deg from the side (exact 0.9617)",
+     plane([0, 1.2, 3], [0, -1, 0], [0, 1, 0], [0.8, 0.72], 0.4), 1024),
+    ("a plane with its light partly below its horizon (exact 0.3085)",
+     plane([0, 0, 2], [0, 0, 0], [0, 0.8, 0.6], [0, -0.8], 0.01), 1024),
     ("Fig. 18: two boxes over a wall with a 45 deg part", patel_fig18.scene(True, 1.0), 256),
     ("Fig. 19: smoke (e = 0.01)", patel_fig19.scene(0.01, False), 256),
     ("Fig. 20: fence, light variance 0.002", patel_fig20.scene(0.002), 256),
@@ -91,9 +111,10 @@ def main():
                                              "--aov", "stderr", "-o", ref])
         times = {m: [] for m in MODELS}
         last = {}
-        for _ in range(a.reps):
+        for rep in range(a.reps):
             for m in MODELS:
-                s = run(a.cli, ["render"] + args + ["--model", m, "--compare", ref])
+                diff = ["--diff-png", os.path.join(a.out, f"error_by_effect_{si}_{m}.png")] if rep == 0 else []
+                s = run(a.cli, ["render"] + args + ["--model", m, "--compare", ref] + diff)
                 times[m].append(s["ms_plan"] + s["ms_render"])
                 last[m] = s
         for m in MODELS:
