@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """The slab renderer's error by effect (docs/results.md "Error by effect"): for the default scene,
 an opaque sphere over a white floor under a narrow light, the same over an opaque box (one
-solid's shadow on another), and the scenes of Patel's Fig. 18, 19, 20 and 21 (built by paper_figs/patel_fig*.py), the Monte-Carlo reference (`icshadow render
+solid's shadow on another), two planes alone whose exact visibility is known, and the scenes of
+Patel's Fig. 18, 19, 20 and 21 (built by paper_figs/patel_fig*.py), the Monte-Carlo reference (`icshadow render
 --backend mc --spp N --aov stderr`), then the slab renderer under each model (render.model:
-patel, solid, surface; each adds one step) with `--compare REF.exr`: RMSE beyond the reference's
+patel, solid, surface, blocker; each adds one step) with `--compare REF.exr`: RMSE beyond the reference's
 noise, max error, and the frame time (plan with its geometry pass plus render; the median of
 --reps renders, the models interleaved round by round). Writes error_by_effect.csv,
 error_by_effect.md (the table) and, per scene and model, the render minus the reference (x4, red
@@ -27,7 +28,7 @@ import patel_fig19  # noqa: E402
 import patel_fig20  # noqa: E402
 import patel_fig21  # noqa: E402
 
-MODELS = ("patel", "solid", "surface")
+MODELS = ("patel", "solid", "surface", "blocker")
 
 SPHERE = {
     "camera": {"projection": "orthographic", "eye": [0, 1.2, 3], "target": [0, 0, 0], "up": [0, 1, 0],

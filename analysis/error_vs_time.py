@@ -11,7 +11,7 @@ Method (docs/results.md "Error against run time"):
    noise taken out (E[rmse^2] = error^2 + noise^2).
 2. Tasks, in a fixed order (the `task` column): the configurations (kernel member, samples,
    compensation, slab spacing with and without preintegration, rotation runs, d1, LUT radii
-   against exact ones, render.model surface at three slab spacings, resolution) and Monte-Carlo
+   against exact ones, render.model surface and blocker at three slab spacings each, resolution) and Monte-Carlo
    renders at 4..256 samples per pixel under the
    seed 7 + task, each run REPS times in an interleaved order (task by task, round by round) so
    load drifts spread over all of them; `icshadow.render(...)` renders (the configuration as
@@ -228,6 +228,10 @@ def main():
         for f in (0.5, 1, 2):
             tasks.append(("slab", f"ellipse2 expected e={e0 * f:g} model surface", res0,
                           {"slab_spacing": e0 * f, "model": "surface"}))
+        # render.model blocker (+ blocker-aware penumbrae), at three slab spacings
+        for f in (1, 2, 4):
+            tasks.append(("slab", f"ellipse2 expected e={e0 * f:g} model blocker", res0,
+                          {"slab_spacing": e0 * f, "model": "blocker"}))
     for res in resolutions:
         tasks.append(("slab", f"ellipse2 expected e={e0:g} {res}", res, {}))
     for spp in ([4, 16] if a.quick else [4, 16, 64, 256]):
@@ -382,6 +386,8 @@ def plot(rows, ref_spp, ref_noise, reps, path):
             f = "Monte Carlo, samples per pixel"
         elif "model surface" in p:
             f = "ellipse2, model surface (slab spacing e)"
+        elif "model blocker" in p:
+            f = "ellipse2, model blocker (slab spacing e)"
         elif r.get("resolution") != res0:
             f = "ellipse2, resolution (against its own reference)"
         elif "d1=" in p:
@@ -394,7 +400,8 @@ def plot(rows, ref_spp, ref_noise, reps, path):
     style = {"Monte Carlo": ("s", "tab:red"), "ellipse2, d1": ("^", "tab:orange"),
              "ellipse2, resolution": ("v", "tab:purple"),
              "ellipse2, slab": ("D", "tab:green"), "kernel": ("o", "tab:blue"),
-             "ellipse2, model": ("P", "tab:brown")}
+             "ellipse2, model surface": ("P", "tab:brown"),
+             "ellipse2, model blocker": ("X", "tab:pink")}
     fig, (ax, side) = plt.subplots(1, 2, figsize=(11, 5.5), gridspec_kw={"width_ratios": [3, 1.15]})
     y = lambda r: max(r["rmse_beyond_noise"], 1e-5)
     keys, n = [], 0

@@ -54,8 +54,9 @@ void scene_args_help(FILE *f) {
           "  --dense             propagate every light-buffer pixel at every slab (render.dense:\n"
           "                      no skipping of inactive regions and constant tiles)\n"
           "  --model M           patel (Patel's slicing, the default), solid (+ closed opaque\n"
-          "                      objects solid) or surface (+ each surface's own light term in\n"
-          "                      closed form); override render.model (docs/renderer.md)\n"
+          "                      objects solid), surface (+ own light terms in closed form) or\n"
+          "                      blocker (+ blocker-aware penumbrae); override render.model\n"
+          "                      (docs/renderer.md \"Models\"; the cpu backend)\n"
           "  --allow-outside-paths  let the scene read files (lights_file, grids, meshes and the\n"
           "                      files they name) outside its own folder\n");
 }

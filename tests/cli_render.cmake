@@ -58,7 +58,9 @@ ics_cli_test(NAME cli_plan_model RC 0 ARGS "plan|--model|surface|--resolution|32
 ics_cli_test(NAME cli_render_model RC 0 ARGS "render|--model|solid|--resolution|32x24|-o|${rd}/model.exr"
   OUT "\"model\": \"solid\"")
 ics_cli_test(NAME cli_render_model_bad RC 2 ARGS "render|--model|exact|--resolution|8x6|-o|${rd}/mb.exr"
-  ERR "--model: unknown value 'exact' \\(expected patel, solid, surface\\)" NOFILE ${rd}/mb.exr)
+  ERR "--model: unknown value 'exact' \\(expected patel, solid, surface, blocker\\)" NOFILE ${rd}/mb.exr)
+ics_cli_test(NAME cli_render_model_blocker RC 0 ARGS "render|--model|blocker|--resolution|32x24|-o|${rd}/mblk.exr"
+  OUT "\"model\": \"blocker\"")
 endif()
 if(ICS_HAVE_RENDER)
 ics_cli_test(NAME cli_bench_slab RC 0 ARGS "bench|slab|--sizes|32|--slabs|8|--threads|1|--reps|1|--kernels|ellipse2,gauss19"

@@ -3,9 +3,10 @@
  * dense path (render.dense) on every kind of scene the suite renders: the default scene and its
  * kernel variants (2 (the default) and 4 rotations per pixel, runs of 16, 384 rotations, Poisson 16, Gauss 19 and
  * top-hat 5 stencils, signed and integer compensation) and models (solid; surface, whose second
- * light-buffer set copies the first where they are equal), the contract's disk, a coloured volume
- * under a zero-variance light, a box outside the view casting into it, a perspective camera, and
- * buffers narrower than a tile and than a vector.
+ * light-buffer set copies the first where they are equal; blocker, with its sharp and moment
+ * sets, also on the perspective and coloured-volume scenes), the contract's disk, a coloured
+ * volume under a zero-variance light, a box outside the view casting into it, a perspective
+ * camera, and buffers narrower than a tile and than a vector.
  *
  * What must hold: the image and its AOVs (visibility, depth) within TOLERANCE of the dense ones. A skipped tile keeps its constant
  * where the dense step gives the constant times the float sum of the weights: equal for the
@@ -167,6 +168,8 @@ int main(int argc, char **argv) {
   check("model solid (the torus solid)", s, &v);
   v = rs, v.model = ICS_MODEL_SURFACE;
   check("model surface (two light-buffer sets)", s, &v);
+  v = rs, v.model = ICS_MODEL_BLOCKER;
+  check("model blocker (four light-buffer sets: the sharp set, the moment)", s, &v);
   ics_scene_destroy(s);
   if (argc > 1) {
     ics_scene *disk = scene_from_file(argv[1]);
@@ -184,6 +187,17 @@ int main(int argc, char **argv) {
   }
   check_json("coloured volume, zero-variance light", coloured, 1);
   check_json("perspective", perspective, 0.999);
+  { /* the blocker model's sets on a perspective camera and a coloured volume */
+    const char *js[2] = {perspective, coloured};
+    const char *names[2] = {"perspective, model blocker", "coloured volume, model blocker"};
+    for (int i = 0; i < 2; i++) {
+      ics_scene *b = scene_from_json(js[i]);
+      ics_render_settings v = *ics_scene_settings(b);
+      v.model = ICS_MODEL_BLOCKER;
+      check(names[i], b, &v);
+      ics_scene_destroy(b);
+    }
+  }
   char j[2048];
   for (int w = 8; w <= 72; w += 64) {
     char name[64];

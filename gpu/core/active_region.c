@@ -175,7 +175,7 @@ ics_status ics_active_regions_build(struct ics_plan *p, char *msg, size_t msg_si
   }
   for (size_t i = 0; st == ICS_OK && i < nt; i++) p->tile_shade[i] = p->K - 1;
   for (int set = 0; set < sets && st == ICS_OK; set++) {
-    if (by_tiles) open_until(p, set, open);
+    if (by_tiles) open_until(p, ics_plan_set_role(p, set) == ICS_SET_PATEL, open);
     for (int l = 0; l < p->nlights && st == ICS_OK; l++) {
       int32_t *last = p->tile_last + (size_t)(set * p->nlights + l) * nt;
       if (by_tiles) st = tile_needs(p, &all[l], open, last);

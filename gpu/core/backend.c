@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "backend.h"
+#include "own_term.h"
 #include "plan_internal.h"
 #include "pool.h"
 
@@ -298,14 +299,13 @@ ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsig
                (missing & ICS_AOV_STDERR) ? " (only mc estimates a standard error)" : "");
     return ICS_ERR_UNSUPPORTED;
   }
-  /* a scene without solid objects or open surfaces lit by their own term renders alike under
-   * every model */
-  if (!(r->b->models >> plan->rs.model & 1) && (plan->solid_bits || plan->own_any)) {
+  /* a scene with nothing the model changes renders alike under every model */
+  const char *needs = ics_plan_model_needs(plan);
+  if (!(r->b->models >> plan->rs.model & 1) && needs) {
     if (msg)
       snprintf(msg, msg_size, "backend %s renders render.model patel only, not %s, which this "
                "scene's %s need (the cpu backend renders every model)", r->b->name,
-               ics_render_model_name(plan->rs.model),
-               plan->solid_bits ? "closed opaque objects" : "open surfaces lit by their own term");
+               ics_render_model_name(plan->rs.model), needs);
     return ICS_ERR_UNSUPPORTED;
   }
   ics_render_stats local;

@@ -119,3 +119,11 @@ void ics_own_term_describe(const ics_plan *p, char *d, size_t n) {
     snprintf(d + at, n - at, ")");
   }
 }
+
+const char *ics_plan_model_needs(const ics_plan *p) {
+  if (p->rs.model >= ICS_MODEL_BLOCKER) return "blocker-aware penumbrae";
+  if (p->rs.model >= ICS_MODEL_SOLID && p->solid_bits) return "closed opaque objects";
+  if (p->rs.model >= ICS_MODEL_SURFACE && p->own_any) return "open surfaces lit by their own term";
+  if (p->rs.model >= ICS_MODEL_SURFACE && p->nvol) return "volumes (a piece's own term)";
+  return NULL;
+}

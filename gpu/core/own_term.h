@@ -24,6 +24,11 @@ double ics_light_side_fraction(const ics_camera *c, const ics_light *lt, const d
  * image. Other models: none. */
 ics_status ics_plan_own_surfaces(struct ics_plan *p);
 
+/* What in the plan's scene its model renders differently from Patel's (closed opaque objects,
+ * open surfaces lit by their own term, volumes under surface), or NULL: nothing, the model
+ * renders it as patel does. */
+const char *ics_plan_model_needs(const struct ics_plan *p);
+
 /* "object I (lights L, ...); ..." for the objects with own lights (their scene-file indices) */
 void ics_own_term_describe(const struct ics_plan *p, char *d, size_t n);
 

@@ -65,8 +65,21 @@ double ics_plan_slab_pixel(const ics_plan *p, int k, double *mag) {
   return ics_plan_pixel_size(p, zk);
 }
 
+static int has_patel_set(const ics_plan *p) { return p->rs.model >= ICS_MODEL_SURFACE && p->solid_bits; }
+
 int ics_plan_light_sets(const ics_plan *p) {
-  return p->rs.model >= ICS_MODEL_SURFACE && p->solid_bits ? 2 : 1;
+  return 1 + has_patel_set(p) + (p->rs.model >= ICS_MODEL_BLOCKER ? 2 : 0);
+}
+
+ics_set_role ics_plan_set_role(const ics_plan *p, int set) {
+  if (set == 0) return ICS_SET_FIRST;
+  if (has_patel_set(p) && set == 1) return ICS_SET_PATEL;
+  return set - has_patel_set(p) == 1 ? ICS_SET_SHARP : ICS_SET_MOMENT;
+}
+
+const ics_slab_kernel *ics_plan_set_kernel(const ics_plan *p, int b) {
+  int l = b % p->nlights;
+  return ics_plan_set_role(p, b / p->nlights) == ICS_SET_SHARP ? &p->kernels_sharp[l] : &p->kernels[l];
 }
 
 double ics_plan_window_max(const ics_plan *p) {
@@ -80,7 +93,12 @@ double ics_plan_window_max(const ics_plan *p) {
 ics_status ics_plan_slab_taps(const ics_plan *p, int l, int k, double q, double mag,
                               double cum[2], ics_tap2d *scratch, ics_prop_taps *pt, char *msg,
                               size_t msg_size) {
-  const ics_slab_kernel *sk = &p->kernels[l];
+  return ics_plan_kernel_taps(p, &p->kernels[l], l, k, q, mag, cum, scratch, pt, msg, msg_size);
+}
+
+ics_status ics_plan_kernel_taps(const ics_plan *p, const ics_slab_kernel *sk, int l, int k,
+                                double q, double mag, double cum[2], ics_tap2d *scratch,
+                                ics_prop_taps *pt, char *msg, size_t msg_size) {
   int n;
   ics_status st = ics_slab_kernel_taps(sk, (uint64_t)k, q, cum, scratch, &n);
   if (st != ICS_OK) {
@@ -256,10 +274,18 @@ static ics_status plan_kernels(ics_plan *p, double k_est, char *msg, size_t msg_
   p->inside_bit = malloc(sizeof *p->inside_bit * (size_t)(s->nobjects ? s->nobjects : 1));
   p->detail = calloc((size_t)(s->nobjects ? s->nobjects : 1), sizeof *p->detail);
   if (!p->kernels || !p->vol_bit || !p->inside_bit || !p->detail) return ICS_ERR_NOMEM;
-  ics_scene tmp = *s; /* the kernels read the settings in force */
+  ics_scene tmp = *s, sharp; /* the kernels read the settings in force */
   tmp.settings = p->rs;
+  sharp = tmp;
+  sharp.settings.d1 *= ICS_BLOCKER_SHARP;
+  if (p->rs.model >= ICS_MODEL_BLOCKER) {
+    p->kernels_sharp = calloc((size_t)p->nlights, sizeof *p->kernels_sharp);
+    if (!p->kernels_sharp && p->nlights) return ICS_ERR_NOMEM;
+  }
   for (int k = 0; k < p->nlights; k++) {
     ics_status st = ics_slab_kernel_init(&p->kernels[k], &tmp, k, p->q_ref, msg, msg_size);
+    if (st == ICS_OK && p->kernels_sharp)
+      st = ics_slab_kernel_init(&p->kernels_sharp[k], &sharp, k, p->q_ref, msg, msg_size);
     if (st != ICS_OK) return st;
     p->light_path[k] = sqrt(1 + s->lights[k].mean[0] * s->lights[k].mean[0] +
                             s->lights[k].mean[1] * s->lights[k].mean[1]);
@@ -580,7 +606,10 @@ void ics_plan_destroy(ics_plan *p) {
   if (!p) return;
   if (p->kernels)
     for (int k = 0; k < p->nlights; k++) ics_slab_kernel_release(&p->kernels[k]);
+  if (p->kernels_sharp)
+    for (int k = 0; k < p->nlights; k++) ics_slab_kernel_release(&p->kernels_sharp[k]);
   free(p->kernels);
+  free(p->kernels_sharp);
   free(p->vol_bit);
   free(p->inside_bit);
   free(p->own_lights);

@@ -72,6 +72,7 @@ struct ics_plan {
   ics_buf_layout buf;     /* the light buffers' storage: Wb x Hb with an apron (propagate.h) */
   int nlights;
   ics_slab_kernel *kernels; /* nlights */
+  ics_slab_kernel *kernels_sharp; /* render.model blocker: nlights, at d1 x ICS_BLOCKER_SHARP */
   int nvol;               /* volumetric objects */
   int *vol_bit;           /* per object: its bit among the volumes, or -1 (what the Monte-Carlo
                              reference tracks) */
@@ -120,13 +121,28 @@ double ics_plan_slab_depth(const ics_plan *p, int k);
  * light's integer-shift schedule state, scratch: sk->entries * sk->cap taps); and the image's
  * RGB over the background by its accumulated alpha. */
 double ics_plan_slab_pixel(const ics_plan *p, int k, double *mag);
-/* Light-buffer sets a slab renderer keeps per light: 2 with render.model surface and solid
- * objects (the second Patel's, which lights the solids' own surfaces), else 1. */
+/* The light-buffer sets a slab renderer keeps per light, in this order (buffered light
+ * b = set nlights + l): the first, which lights everything else; Patel's, with render.model
+ * surface and after on a scene with solid objects (surfaces occlude at their fragments, no
+ * solid interiors), which lights the solids' own surfaces; and with render.model blocker the
+ * first set again at d1 x ICS_BLOCKER_SHARP (kernels_sharp), and the blocker moment: the
+ * light the first set lost at each occlusion times its depth, (z - z0) / (K e) in [0, 1],
+ * summed and propagated with the first set's taps, so moment / (1 - V) is the mean depth of a
+ * receiver's blockers (docs/renderer.md "Models"). */
+typedef enum { ICS_SET_FIRST, ICS_SET_PATEL, ICS_SET_SHARP, ICS_SET_MOMENT } ics_set_role;
+#define ICS_BLOCKER_SHARP 0.25
 int ics_plan_light_sets(const ics_plan *p);
+ics_set_role ics_plan_set_role(const ics_plan *p, int set);
+/* The kernel of buffered light b's set (the sharp set's, or light l's) */
+const ics_slab_kernel *ics_plan_set_kernel(const ics_plan *p, int b);
 double ics_plan_window_max(const ics_plan *p);
 ics_status ics_plan_slab_taps(const ics_plan *p, int l, int k, double q, double mag,
                               double cum[2], ics_tap2d *scratch, ics_prop_taps *pt, char *msg,
                               size_t msg_size);
+/* The same with kernel sk (light l's, or its sharp set's) */
+ics_status ics_plan_kernel_taps(const ics_plan *p, const ics_slab_kernel *sk, int l, int k,
+                                double q, double mag, double cum[2], ics_tap2d *scratch,
+                                ics_prop_taps *pt, char *msg, size_t msg_size);
 void ics_plan_over_background(const ics_plan *p, ics_image *img);
 
 /* Builds the LDI over the plan's buffer grid (geometry pass; ldi.c). */

@@ -13,7 +13,7 @@
 static const char *const kernel_names[ICS_RK_COUNT_] = {"ellipse", "poisson", "gauss", "tophat"};
 static const char *const comp_names[ICS_RC_COUNT_] = {"default", "expected", "integer",
                                                       "nonneg",  "signed",   "none"};
-static const char *const model_names[ICS_MODEL_COUNT_] = {"patel", "solid", "surface"};
+static const char *const model_names[ICS_MODEL_COUNT_] = {"patel", "solid", "surface", "blocker"};
 static const char *const shape_names[ICS_SHAPE_COUNT_] = {"rect",   "disk",  "box",
                                                           "sphere", "torus", "mesh"};
 

@@ -305,9 +305,11 @@ static int read_render(rctx *c, json_t *o) {
     if (!json_is_boolean(x)) return fail(c, ICS_ERR_PARSE, "%s: expected true or false", where_at(c, "render.preintegrate"));
     r->preintegrate = json_is_true(x);
   }
-  static const char *const mn[] = {"patel", "solid", "surface"};
+  const char *mn[ICS_MODEL_COUNT_];
+  for (int i = 0; i < ICS_MODEL_COUNT_; i++) mn[i] = ics_render_model_name((ics_render_model)i);
   int model = 0;
-  if ((x = json_object_get(o, "model")) && J(ics_jenum(&c->j, where_at(c, "render.model"), x, mn, 3, &model)))
+  if ((x = json_object_get(o, "model")) &&
+      J(ics_jenum(&c->j, where_at(c, "render.model"), x, mn, ICS_MODEL_COUNT_, &model)))
     return -1;
   r->model = (ics_render_model)model;
   if ((x = json_object_get(o, "dense"))) {

@@ -34,10 +34,12 @@ typedef struct {
   const ics_plan *p;
   ics_image *img;
   int k;                 /* current slab */
-  int nb;                /* buffered lights: nlights x sets (render.model surface with solid
-                            objects: 2, the second set Patel's, shading the solids' surfaces) */
+  int nb;                /* buffered lights: nlights x sets (ics_plan_light_sets: the first,
+                            Patel's, the sharp and the moment set, as the model has them) */
+  ics_set_role *role;    /* per buffered light: its set's role */
+  int patel_set;         /* Patel's set, which lights the solids' surfaces (0: none) */
   float **src, **dst;    /* per buffered light b (light b % nlights, set b / nlights): nch planes */
-  ics_prop_taps *pt;     /* per light */
+  ics_prop_taps *pt;     /* per light, then (render.model blocker) per light its sharp set's */
   uint32_t *cursor;      /* per pixel: first fragment not yet reached (colour, volumes) */
   uint32_t *acursor;     /* per pixel: first fragment whose occlusion may still be due */
   uint64_t *mask;        /* NULL without volumes */
@@ -70,6 +72,35 @@ typedef struct {
   int failed;            /* out of memory in a thread (the render fails) */
 } job_t;
 
+/* the taps buffered light b steps with */
+static ics_prop_taps *taps_of(const job_t *j, int b) {
+  int l = b % j->p->nlights;
+  return &j->pt[j->role[b] == ICS_SET_SHARP ? j->p->nlights + l : l];
+}
+
+/* whether an occlusion filters buffered light b: a solid object's surface only in Patel's set
+ * (elsewhere its interior is dark), any other in every set but the moment */
+static int occludes_in(const job_t *j, int b, int solid) {
+  return j->role[b] == ICS_SET_PATEL || (!solid && j->role[b] != ICS_SET_MOMENT);
+}
+
+/* render.model blocker: the first set's light at pixel q of light l, its channels' mean */
+static double first_mean(const job_t *j, int l, size_t q) {
+  double v = 0;
+  for (int c = 0; c < j->p->nch; c++) v += j->dst[l][(size_t)c * j->p->buf.plane + q];
+  return v / j->p->nch;
+}
+
+/* render.model blocker: the moment set gains the first set's loss at pixel q of light l (its
+ * channels' mean, v0 before the occlusion) times the occlusion's depth z, normalised */
+static void moment_add(job_t *j, int l, size_t q, double v0, double z) {
+  const ics_plan *P = j->p;
+  double gain = (v0 - first_mean(j, l, q)) * (z - P->z0) / (P->K * P->e);
+  for (int b = l; b < j->nb; b += P->nlights)
+    if (j->role[b] == ICS_SET_MOMENT)
+      for (int c = 0; c < P->nch; c++) j->dst[b][(size_t)c * P->buf.plane + q] += (float)gain;
+}
+
 /* where a piece's detail is sampled: its two ends (preintegrate: the detail varies linearly
  * between them) or one jittered point (Patel: the volume is constant within the slab), on the
  * camera ray o + z d of buffer pixel (bi, bj) = p */
@@ -88,8 +119,36 @@ static void piece_points(const job_t *j, size_t p, int bi, int bj, double za, do
 
 /* one volume piece of depth extent dz ending the events at (pixel p, depth za..za+dz); pre: its
  * one volume's detail values (first and second end) evaluated already, or NULL */
+/* render.model surface: the light shading a volume piece of depth dz, seen at a = sigma dl
+ * extinction per unit depth (sigma the pieces' sum), its own attenuation of the light inside it
+ * included: light l's channel c falls off as exp(-b x) over the piece, b = sum_i sigma_i (1 -
+ * T_i,c) path_l (the transport's exponent per unit depth), so the piece's emission sum_i sigma_i
+ * col_i L(x) seen through exp(-a x) integrates to (1 - exp(-(a + b) dz)) / (a + b) where a light
+ * that did not fall off gives (1 - exp(-a dz)) / a: each light's arriving V (arrive, per light
+ * and channel, read before this slab's occlusions) is scaled by the ratio (docs/renderer.md
+ * "Models": a volume piece's own term). Into L the light per colour channel. */
+static void piece_light(const job_t *j, const float *arrive, int nv, const double *sig,
+                        const int *objs, double a, double dz, double L[3]) {
+  const ics_plan *P = j->p;
+  const ics_scene *s = P->scene;
+  double plain = -expm1(-a * dz) / a;
+  L[0] = L[1] = L[2] = 0;
+  for (int l = 0; l < P->nlights; l++) {
+    const ics_light *lt = &s->lights[l];
+    for (int c = 0; c < 3; c++) {
+      int ch = P->nch == 3 ? c : 0;
+      double b = 0;
+      for (int i = 0; i < nv; i++)
+        b += sig[i] * (1 - s->materials[s->objects[objs[i]].material].transport[ch]);
+      b *= P->light_path[l];
+      L[c] += lt->color[c] * lt->weight * arrive[l * P->nch + ch] * (-expm1(-(a + b) * dz) / (a + b)) / plain;
+    }
+  }
+}
+
 static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, double za, double dz,
-                         const double L[3], float *C, int inview, int t, const double *pre) {
+                         const double L[3], const float *arrive, float *C, int inview, int t,
+                         const double *pre) {
   const ics_plan *P = j->p;
   const ics_scene *s = P->scene;
   double sig[ICS_MAX_VOLUMES], col[ICS_MAX_VOLUMES][3];
@@ -102,8 +161,13 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
   if (mask & P->solid_bits) { /* inside a solid object: no light in the first set (render.model
                                  solid and surface; the second set is Patel's) */
     size_t q = ics_buf_index(&P->buf, bi, bj);
-    for (int l = 0; l < P->nlights; l++)
-      for (int c = 0; c < P->nch; c++) j->dst[l][(size_t)c * P->buf.plane + q] = 0;
+    for (int l = 0; l < P->nlights; l++) {
+      double v0 = first_mean(j, l, q);
+      for (int b = l; b < j->nb; b += P->nlights)
+        if (j->role[b] == ICS_SET_FIRST || j->role[b] == ICS_SET_SHARP)
+          for (int c = 0; c < P->nch; c++) j->dst[b][(size_t)c * P->buf.plane + q] = 0;
+      if (j->nb > P->nlights && v0 > 0) moment_add(j, l, q, v0, za + dz / 2);
+    }
     mask &= ~P->solid_bits;
     if (!mask) return;
   }
@@ -143,11 +207,12 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
       if (!have_ray) ics_plan_ray(P, bi, bj, o, d);
       dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     }
-    double a = 1 - exp(-sum * dz * dl), wgt = (1 - C[3]) * a;
+    double a = 1 - exp(-sum * dz * dl), wgt = (1 - C[3]) * a, Lp[3];
+    if (arrive) piece_light(j, arrive, nv, sig, objs, sum * dl, dz, Lp);
     for (int c = 0; c < 3; c++) {
       double cc = 0;
       for (int i = 0; i < nv; i++) cc += sig[i] * col[i][c];
-      C[c] += (float)(wgt * (cc / sum) * L[c]);
+      C[c] += (float)(wgt * (cc / sum) * (arrive ? Lp[c] : L[c]));
     }
     C[3] += (float)wgt;
   }
@@ -160,8 +225,11 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
       const double *T = s->materials[s->objects[objs[i]].material].transport;
       for (int c = 0; c < P->nch; c++) pass[c] *= exp(-sig[i] * dz * P->light_path[l] * (1 - T[c]));
     }
+    double v0 = first_mean(j, l, q);
     for (int b = l; b < j->nb; b += P->nlights)
-      for (int c = 0; c < P->nch; c++) j->dst[b][(size_t)c * plane + q] *= (float)pass[c];
+      if (occludes_in(j, b, 0))
+        for (int c = 0; c < P->nch; c++) j->dst[b][(size_t)c * plane + q] *= (float)pass[c];
+    if (j->nb > P->nlights) moment_add(j, l, q, v0, za + dz / 2);
   }
 }
 
@@ -221,9 +289,9 @@ static void surface_colour(const job_t *j, int obj, const double L[3], float *C)
  * its own depth grows by one: it stays (window + 1) / |1 - rho| slabs within the windows of the
  * surface (clamped to [1, 8 (window + 1)]), and each of those slabs passes that root's share of
  * 1 - a (1 - T): the parcel is filtered once in all (docs/renderer.md "Surface bias"). Without a
- * window the fragment filters at its one slab, as it always did. The buffer sets from b0 on take
- * it (a solid object's surface occludes only in Patel's set). */
-static void surface_occlusion(job_t *j, size_t q, const ics_fragment *fr, int after, int b0) {
+ * window the fragment filters at its one slab, as it always did. The buffer sets take it as
+ * occludes_in says (a solid object's surface occludes only in Patel's set). */
+static void surface_occlusion(job_t *j, size_t q, const ics_fragment *fr, int after, int solid) {
   const ics_plan *P = j->p;
   const ics_material *m = &P->scene->materials[P->scene->objects[ics_frag_obj(fr)].material];
   double a = m->opacity;
@@ -239,11 +307,14 @@ static void surface_occlusion(job_t *j, size_t q, const ics_fragment *fr, int af
     double rho = -(gr * mu[0] + gu * mu[1]), rel = fabs(1 - rho), meets = 1;
     if (window > 0) /* no window (a blur of a pixel or more): one slab, filtered as it is */
       meets = rel > 0 ? fmin(fmax((window + 1) / rel, 1), 8 * (window + 1)) : 8 * (window + 1);
+    double v0 = first_mean(j, l, q);
     for (int c = 0; c < P->nch; c++) {
       double pass = 1 - a * (1 - m->transport[c]);
       float f = (float)(meets > 1 ? pow(pass, 1 / meets) : pass);
-      for (int b = b0 + l; b < j->nb; b += P->nlights) j->dst[b][(size_t)c * plane + q] *= f;
+      for (int b = l; b < j->nb; b += P->nlights)
+        if (occludes_in(j, b, solid)) j->dst[b][(size_t)c * plane + q] *= f;
     }
+    if (!solid && j->nb > P->nlights) moment_add(j, l, q, v0, fr->z);
   }
 }
 
@@ -316,13 +387,38 @@ static void row_details(job_t *j, int bj, double zf, double zb, const int32_t *n
   j->detail_s[t] += ics_clock_s() - t0;
 }
 
+/* The light arriving at pixel q (before this slab's occlusions) into arrive[b nch + c] for every
+ * buffered light b. render.model blocker: the first set's (b < nlights) is the sharp set's where
+ * the receiver, at depth z, lies within d1 ICS_BLOCKER_SHARP of the mean depth of its blockers
+ * (the moment over the first set's occlusion 1 - V), the first set's beyond d1, and between them
+ * a blend, linear in log distance (docs/renderer.md "Models": blocker-aware penumbrae). */
+static void arriving_light(const job_t *j, size_t q, double z, float *arrive) {
+  const ics_plan *P = j->p;
+  size_t plane = P->buf.plane;
+  for (int b = 0; b < j->nb; b++)
+    for (int c = 0; c < P->nch; c++) arrive[b * P->nch + c] = j->dst[b][(size_t)c * plane + q];
+  if (P->rs.model < ICS_MODEL_BLOCKER) return;
+  int nl = P->nlights, sharp = j->patel_set ? 2 : 1;
+  double d_sharp = P->rs.d1 * ICS_BLOCKER_SHARP;
+  for (int l = 0; l < nl; l++) {
+    float *first = arrive + l * P->nch;
+    const float *sh = arrive + (sharp * nl + l) * P->nch, *mom = arrive + ((sharp + 1) * nl + l) * P->nch;
+    double occ = 0;
+    for (int c = 0; c < P->nch; c++) occ += 1 - first[c];
+    occ /= P->nch;
+    if (!(occ > 1e-4)) continue; /* no blocker: the sets agree */
+    double zb = P->z0 + mom[0] / occ * P->K * P->e, d = z - zb;
+    double t = d <= d_sharp ? 0 : d >= P->rs.d1 ? 1 : log(d / d_sharp) / log(P->rs.d1 / d_sharp);
+    for (int c = 0; c < P->nch; c++) first[c] = (float)(sh[c] + t * (first[c] - sh[c]));
+  }
+}
+
 /* rows [y0, y1) within this slab's shading rectangle; the tiles written into flagged in touched */
 static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
   const ics_plan *P = j->p;
   const ics_scene *s = P->scene;
   const ics_ldi *ldi = &P->ldi;
   int k = j->k;
-  size_t plane = P->buf.plane;
   double zf = P->z0 + k * P->e, zb = zf + P->e;
   if (y0 < j->shade.y0) y0 = j->shade.y0;
   if (y1 > j->shade.y1) y1 = j->shade.y1;
@@ -360,20 +456,17 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       float dummy[4] = {0, 0, 0, 1};
       float *C = inview ? j->img->data + ((size_t)jj * P->W + ii) * 4 : dummy;
       size_t q = ics_buf_index(&P->buf, bi, bj);
+      /* every set's arriving light, per buffered light and channel; the first set's (render.model
+       * blocker) blended with the sharp set's by this pixel's distance to its blockers */
+      float arrive[4 * ICS_SCENE_MAX_LIGHTS * 3];
+      if (inview) arriving_light(j, q, zf + P->e / 2, arrive);
       double L[3] = {0, 0, 0}; /* the light arriving, for the colour of what is in view */
       for (int l = 0; inview && l < P->nlights; l++) {
         const ics_light *lt = &s->lights[l];
-        for (int c = 0; c < 3; c++)
-          L[c] += lt->color[c] * lt->weight * j->dst[l][(size_t)(P->nch == 3 ? c : 0) * plane + q];
+        for (int c = 0; c < 3; c++) L[c] += lt->color[c] * lt->weight * arrive[l * P->nch + (P->nch == 3 ? c : 0)];
       }
       float V[ICS_SCENE_MAX_LIGHTS * 3]; /* AOVs: the light arriving, per light and channel */
-      if (j->aov && inview)
-        for (int l = 0; l < P->nlights; l++)
-          for (int c = 0; c < P->nch; c++) V[l * P->nch + c] = j->dst[l][(size_t)c * plane + q];
-      float arrive[2 * ICS_SCENE_MAX_LIGHTS * 3]; /* render.model surface: every set's arriving light */
-      if (P->rs.model >= ICS_MODEL_SURFACE && inview)
-        for (int b = 0; b < j->nb; b++)
-          for (int c = 0; c < P->nch; c++) arrive[b * P->nch + c] = j->dst[b][(size_t)c * plane + q];
+      if (j->aov && inview) memcpy(V, arrive, sizeof(float) * (size_t)P->nlights * P->nch);
       /* surface occlusions due at this slab (fragment slab + bias == k), after the light
        * arriving here was read: a surface never shadows its own slab */
       touched[ics_tile_col(&j->p->tiles, bi)] = 1;
@@ -381,9 +474,9 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
         const ics_fragment *fr = &ldi->frag[f];
         int obj = ics_frag_obj(fr), first = ics_frag_slab(fr) + ics_frag_bias(fr), ib = P->inside_bit[obj];
         /* open surfaces occlude in every set; a solid's surface in Patel's set only */
-        int b0 = ib < 0 ? 0 : (P->solid_bits >> ib & 1) ? P->nlights : j->nb;
-        if (b0 < j->nb && first <= k && k <= first + fr->span * j->window_max)
-          surface_occlusion(j, q, fr, k - first, b0);
+        int solid = ib >= 0 && (P->solid_bits >> ib & 1); /* (a volume's boundary: no occlusion) */
+        if ((ib < 0 || solid) && first <= k && k <= first + fr->span * j->window_max)
+          surface_occlusion(j, q, fr, k - first, solid);
       }
       while (acur < end && ics_frag_slab(&ldi->frag[acur]) + ics_frag_bias(&ldi->frag[acur]) +
                                ldi->frag[acur].span * j->window_max <= k)
@@ -399,7 +492,10 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
         double zn = has ? ldi->frag[cur].z : zb;
         if (zn < za) zn = za;
         if (zn > zb) zn = zb;
-        if (mask && zn > za) volume_piece(j, p, bi, bj, mask, za, zn - za, L, C, inview, t, s0 >= 0 ? pre : NULL);
+        if (mask && zn > za)
+          volume_piece(j, p, bi, bj, mask, za, zn - za, L,
+                       P->rs.model >= ICS_MODEL_SURFACE && inview ? arrive : NULL, C, inview, t,
+                       s0 >= 0 ? pre : NULL);
         if (!has) break;
         int obj = ics_frag_obj(&ldi->frag[cur]), ib = P->inside_bit[obj];
         if (ib >= 0) mask ^= 1ull << ib; /* a volume's or a solid's boundary */
@@ -410,7 +506,7 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
           int own = lights != 0;
           /* a solid's surface: its own term, the rest from Patel's set; an open surface lit by
            * its own term: from the first set, which leaves it out */
-          if (own && own_light(j, obj, ldi->frag[cur].z, bi, bj, arrive, solid && j->nb > P->nlights,
+          if (own && own_light(j, obj, ldi->frag[cur].z, bi, bj, arrive, solid ? j->patel_set : 0,
                                lights, Lo, V, t))
             j->failed = 1;
           surface_colour(j, obj, own ? Lo : L, C);
@@ -446,7 +542,7 @@ static void step_tiles(job_t *j, int b, int ty, int tx0, int tx1, int kind, int 
   int x0 = ics_tile_x0(&j->p->tiles, tx0), x1 = ics_tile_x1(&j->p->tiles, tx1);
   int y0 = ics_tile_y0(&j->p->tiles, ty), y1 = ics_tile_y1(&j->p->tiles, ty);
   int planes = kind == ICS_TILE_GREY ? 1 : P->nch;
-  ics_prop_span(&j->pt[b % P->nlights], j->src[b], j->dst[b], &P->buf, planes, y0, y1, x0, x1,
+  ics_prop_span(taps_of(j, b), j->src[b], j->dst[b], &P->buf, planes, y0, y1, x0, x1,
                 j->scratch + (size_t)t * ICS_PROP_SCRATCH(P->Wb), j->simd);
   if (planes < P->nch) ics_tile_copy_grey(&P->buf, j->dst[b], P->nch, x0, x1, y0, y1);
   j->active[t] += (double)(x1 - x0) * (y1 - y0) * planes;
@@ -473,7 +569,7 @@ static void propagate_row(job_t *j, int b, int ty, int t, uint8_t *written) {
   const ics_rect *R = ics_active_region(P, l, j->k);
   if (ty < ics_tile_row(g, R->y0) || ty > ics_tile_row(g, R->y1 - 1)) return;
   int y0 = ics_tile_y0(g, ty), y1 = ics_tile_y1(g, ty), fy0, fy1;
-  ics_prop_footprint(&j->pt[l], 1, y0, y1, &fy0, &fy1);
+  ics_prop_footprint(taps_of(j, b), 1, y0, y1, &fy0, &fy1);
   fy0 = ics_tile_row(g, fy0), fy1 = ics_tile_row(g, fy1);
   int run = -1, run_kind = ICS_TILE_ANY, tx1 = ics_tile_col(g, R->x1 - 1);
   const int32_t *last = P->tile_last + (size_t)b * g->nx * g->ny + (size_t)ty * g->nx;
@@ -486,9 +582,9 @@ static void propagate_row(job_t *j, int b, int ty, int t, uint8_t *written) {
     }
     if (!P->rs.dense) {
       int fx0, fx1;
-      ics_prop_footprint(&j->pt[l], 0, ics_tile_x0(g, tx), ics_tile_x1(g, tx), &fx0, &fx1);
+      ics_prop_footprint(taps_of(j, b), 0, ics_tile_x0(g, tx), ics_tile_x1(g, tx), &fx0, &fx1);
       fx0 = ics_tile_col(g, fx0), fx1 = ics_tile_col(g, fx1);
-      if (b >= P->nlights && mirrors(j, b, fx0, fx1, fy0, fy1)) {
+      if (j->role[b] == ICS_SET_PATEL && mirrors(j, b, fx0, fx1, fy0, fy1)) {
         /* every read equals the first set's: the step's result is the first set's (this row's
          * first-set tiles are stepped already), copied */
         if (run >= 0) step_tiles(j, b, ty, run, tx - 1, run_kind, t, written);
@@ -529,7 +625,7 @@ static void settle_row(job_t *j, int ty, const uint8_t *marks) {
   const ics_tile_grid *g = &j->p->tiles;
   int y0 = ics_tile_y0(g, ty), y1 = ics_tile_y1(g, ty);
   for (int b = 0; b < j->nb; b++) {
-    int signed_ = P->kernels[b % P->nlights].comp == ICS_RC_SIGNED;
+    int signed_ = ics_plan_set_kernel(P, b)->comp == ICS_RC_SIGNED;
     if (signed_)
       for (int c = 0; c < P->nch; c++)
         for (int y = y0; y < y1; y++) {
@@ -542,7 +638,7 @@ static void settle_row(job_t *j, int ty, const uint8_t *marks) {
       int x0 = ics_tile_x0(g, tx), x1 = ics_tile_x1(g, tx);
       if (shaded[tx] || written[tx] == 2 || signed_)
         j->tdst[b][i] = ics_tile_scan(&P->buf, j->dst[b], P->nch, x0, x1, y0, y1);
-      if (b < P->nlights) continue;
+      if (j->role[b] != ICS_SET_PATEL) continue;
       /* the second set: a copied tile shading left alone still equals the first set's (and
        * holds what it holds, scanned there); a tile either set wrote is compared */
       const uint8_t *written0 = marks + (size_t)(1 + b - P->nlights) * g->nx;
@@ -593,20 +689,27 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   ics_pool *pool = state;
   double t_start = ics_clock_s();
   int nl = P->nlights, nt = ics_pool_size(pool), nb = nl * ics_plan_light_sets(P);
+  int nk = P->kernels_sharp ? 2 * nl : nl; /* kernels: each light's, then its sharp set's */
   size_t plane = (size_t)P->Wb * P->Hb, npx = plane;
   job_t *j = calloc(1, sizeof *j);
   float **bufs = calloc(2 * (size_t)(nb ? nb : 1), sizeof *bufs);
   ics_tile **tiles = calloc(2 * (size_t)(nb ? nb : 1), sizeof *tiles);
   uint8_t **sames = calloc(2 * (size_t)(nb ? nb : 1), sizeof *sames);
-  ics_tap2d **scratch = calloc((size_t)(nl ? nl : 1), sizeof *scratch);
-  double(*cum)[2] = calloc((size_t)(nl ? nl : 1), sizeof *cum);
+  ics_tap2d **scratch = calloc((size_t)(nk ? nk : 1), sizeof *scratch);
+  double(*cum)[2] = calloc((size_t)(nk ? nk : 1), sizeof *cum);
+  ics_set_role *role = calloc((size_t)(nb ? nb : 1), sizeof *role);
   ics_status status = ICS_OK;
-  if (!j || !bufs || !tiles || !sames || !scratch || !cum) goto nomem;
+  if (!j || !bufs || !tiles || !sames || !scratch || !cum || !role) goto nomem;
   status = ics_simd_choose(&j->simd, msg, msg_size);
   if (status != ICS_OK) goto done;
   j->p = P;
   j->img = img;
   j->nb = nb;
+  j->role = role;
+  for (int b = 0; b < nb; b++) {
+    role[b] = ics_plan_set_role(P, b / nl);
+    if (role[b] == ICS_SET_PATEL) j->patel_set = b / nl;
+  }
   j->src = bufs;
   j->dst = bufs + nb;
   j->tsrc = tiles;
@@ -617,7 +720,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->marks = malloc((size_t)j->p->tiles.nx * (1 + (size_t)nb) * (size_t)nt);
   j->dpts = P->any_detail ? malloc(sizeof *j->dpts * 8 * (size_t)P->Wb * (size_t)nt) : NULL;
   j->dslot = P->any_detail ? malloc(sizeof *j->dslot * (size_t)P->Wb * (size_t)nt) : NULL;
-  j->pt = calloc((size_t)(nl ? nl : 1), sizeof *j->pt);
+  j->pt = calloc((size_t)(nk ? nk : 1), sizeof *j->pt);
   j->cursor = malloc(sizeof *j->cursor * npx);
   j->acursor = malloc(sizeof *j->acursor * npx);
   j->pnext = malloc(sizeof *j->pnext * npx);
@@ -634,20 +737,22 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
       (aov && !j->aov_seen) || !j->marks || (P->any_detail && (!j->dpts || !j->dslot)))
     goto nomem;
   for (int i = 0; i < 2 * nb; i++) {
-    /* both buffers start lit (1) and say so: a pixel outside the active regions keeps a value */
-    const ics_tile lit = {ICS_TILE_CONST, {1, 1, 1}};
+    /* both buffers start lit (1; the moment 0) and say so: a pixel outside the active regions
+     * keeps a value */
+    float v0 = role[i % nb] == ICS_SET_MOMENT ? 0.0f : 1.0f;
+    const ics_tile lit = {ICS_TILE_CONST, {v0, v0, v0}};
     bufs[i] = malloc(sizeof(float) * (size_t)P->nch * P->buf.plane);
     tiles[i] = malloc(sizeof(ics_tile) * ntiles);
     sames[i] = malloc(ntiles); /* the sets start equal */
     if (!bufs[i] || !tiles[i] || !sames[i]) goto nomem;
     memset(sames[i], 1, ntiles);
-    for (size_t x = 0; x < (size_t)P->nch * P->buf.plane; x++) bufs[i][x] = 1;
+    for (size_t x = 0; x < (size_t)P->nch * P->buf.plane; x++) bufs[i][x] = v0;
     for (size_t x = 0; x < ntiles; x++) tiles[i][x] = lit;
   }
-  for (int l = 0; l < nl; l++) {
-    const ics_slab_kernel *sk = &P->kernels[l];
-    scratch[l] = malloc(sizeof **scratch * (size_t)sk->entries * (size_t)sk->cap);
-    if (!scratch[l]) goto nomem;
+  for (int i = 0; i < nk; i++) {
+    const ics_slab_kernel *sk = i < nl ? &P->kernels[i] : &P->kernels_sharp[i - nl];
+    scratch[i] = malloc(sizeof **scratch * (size_t)sk->entries * (size_t)sk->cap);
+    if (!scratch[i]) goto nomem;
   }
   memcpy(j->cursor, P->ldi.offset, sizeof *j->cursor * npx);
   memcpy(j->acursor, P->ldi.offset, sizeof *j->acursor * npx);
@@ -667,8 +772,9 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
     j->k = k;
     double s, q = ics_plan_slab_pixel(P, k, &s);
     for (int l = 0; l < nl; l++) j->window[l] = fmax(0, 1 - j->blur_world[l] / q);
-    for (int l = 0; l < nl; l++) {
-      status = ics_plan_slab_taps(P, l, k, q, s, cum[l], scratch[l], &j->pt[l], msg, msg_size);
+    for (int i = 0; i < nk; i++) {
+      const ics_slab_kernel *sk = i < nl ? &P->kernels[i] : &P->kernels_sharp[i - nl];
+      status = ics_plan_kernel_taps(P, sk, i % nl, k, q, s, cum[i], scratch[i], &j->pt[i], msg, msg_size);
       if (status == ICS_ERR_NOMEM) goto nomem;
       if (status != ICS_OK) goto done;
     }
@@ -712,7 +818,7 @@ nomem:
   if (msg) snprintf(msg, msg_size, "out of memory for the light buffers (%zu bytes)", P->backend_bytes);
 done:
   if (j && j->pt)
-    for (int l = 0; l < nl; l++) ics_prop_release(&j->pt[l]);
+    for (int i = 0; i < nk; i++) ics_prop_release(&j->pt[i]);
   if (bufs)
     for (int b = 0; b < 2 * nb; b++) free(bufs[b]);
   if (tiles)
@@ -720,7 +826,7 @@ done:
   if (sames)
     for (int b = 0; b < 2 * nb; b++) free(sames[b]);
   if (scratch)
-    for (int l = 0; l < nl; l++) free(scratch[l]);
+    for (int i = 0; i < nk; i++) free(scratch[i]);
   if (j) {
     free(j->pt);
     free(j->cursor);
@@ -740,6 +846,7 @@ done:
   free(sames);
   free(scratch);
   free(cum);
+  free(role);
   free(j);
   return status;
 }

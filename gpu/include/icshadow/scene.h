@@ -73,6 +73,8 @@ typedef enum ics_render_model {
   ICS_MODEL_PATEL = 0, /* surfaces occlude at their fragments (slicing) */
   ICS_MODEL_SOLID,     /* + closed opaque objects are solid: no light inside them */
   ICS_MODEL_SURFACE,   /* + a surface's own term in closed form (the light on its lit side) */
+  ICS_MODEL_BLOCKER,   /* + blocker-aware penumbrae: a sharper light-buffer set blended in by
+                          each receiver's distance to its blockers */
   ICS_MODEL_COUNT_
 } ics_render_model;
 
