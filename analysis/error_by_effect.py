@@ -7,8 +7,9 @@ Patel's Fig. 18, 19, 20 and 21 (built by paper_figs/patel_fig*.py), the Monte-Ca
 patel, solid, surface, blocker; each adds one step) with `--compare REF.exr`: RMSE beyond the reference's
 noise, max error, and the frame time (plan with its geometry pass plus render; the median of
 --reps renders, the models interleaved round by round). Writes error_by_effect.csv,
-error_by_effect.md (the table) and, per scene and model, the render minus the reference (x4, red
-brighter, blue darker: `--diff-png`) as error_by_effect_SCENE_MODEL.png into --out.
+error_by_effect.md (the table), per scene and model the render minus the reference (x4, red
+brighter, blue darker: `--diff-png`) as error_by_effect_SCENE_MODEL.png, and the default scene's
+side by side as error_by_effect_default.png into --out.
 
 usage: error_by_effect.py [--cli build/bin/icshadow] [--out out/analysis] [--reps 3]
 """
@@ -138,7 +139,31 @@ def main():
         for r in rows:
             f.write(f"| {r['scene']} | {r['model']} | {r['rmse_beyond_noise']:.4f} | "
                     f"{r['max_error']:.3f} | {r['ms_frame']:.0f} [{r['ms_min']:.0f}, {r['ms_max']:.0f}] |\n")
+    figure(a.out, [r for r in rows if r["scene"] == SCENES[0][0]])
     print(f"wrote {a.out}/error_by_effect.csv and .md")
+
+
+def figure(out, rows):
+    """error_by_effect_default.png: the default scene's difference images, one per model, side by
+    side with their RMSE beyond noise (matplotlib; left out without it)."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.image as mpimg
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("error_by_effect.py: matplotlib not installed: no figure", file=sys.stderr)
+        return
+    fig, axes = plt.subplots(1, len(rows), figsize=(3.2 * len(rows), 2.9))
+    for ax, r in zip(axes, rows):
+        ax.imshow(mpimg.imread(os.path.join(out, f"error_by_effect_0_{r['model']}.png")))
+        ax.set_title(f"{r['model']}: RMSE {r['rmse_beyond_noise']:.4f}, {r['ms_frame']:.0f} ms", fontsize=9)
+        ax.axis("off")
+    fig.suptitle("default scene, render minus Monte-Carlo reference (x4; red brighter, blue darker)",
+                 fontsize=10)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "error_by_effect_default.png"), dpi=110)
+    plt.close(fig)
 
 
 if __name__ == "__main__":

@@ -4,6 +4,7 @@
 
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "plan_internal.h"
 #include "scene_internal.h"
@@ -162,8 +163,10 @@ ics_status ics_active_regions_build(struct ics_plan *p, char *msg, size_t msg_si
   ics_status st = p->active && p->tile_last && p->tile_shade && open && fp ? ICS_OK : ICS_ERR_NOMEM;
   const ics_rect whole = {0, 0, p->Wb, p->Hb};
   int full = p->rs.dense || p->cam.projection == ICS_PROJ_PERSPECTIVE;
-  /* the tile needs cost tiles^2 per light: beyond ICS_REGION_MAX_PAIRS every tile is needed */
-  int by_tiles = !full && (double)nt * nt * p->nlights * sets <= ICS_REGION_MAX_PAIRS;
+  /* the tile needs cost tiles^2 per light and distinct set (the first set's needs are the sharp
+   * and moment sets' too): beyond ICS_REGION_MAX_PAIRS every tile is needed */
+  int distinct = sets > 1 && ics_plan_set_role(p, 1) == ICS_SET_PATEL ? 2 : 1;
+  int by_tiles = !full && (double)nt * nt * p->nlights * distinct <= ICS_REGION_MAX_PAIRS;
   /* the rectangles and each light's offsets over all slabs, then per set the tile needs */
   ics_rect all[ICS_SCENE_MAX_LIGHTS];
   for (int l = 0; l < p->nlights && st == ICS_OK; l++) {
@@ -175,7 +178,13 @@ ics_status ics_active_regions_build(struct ics_plan *p, char *msg, size_t msg_si
   }
   for (size_t i = 0; st == ICS_OK && i < nt; i++) p->tile_shade[i] = p->K - 1;
   for (int set = 0; set < sets && st == ICS_OK; set++) {
-    if (by_tiles) open_until(p, ics_plan_set_role(p, set) == ICS_SET_PATEL, open);
+    ics_set_role role = ics_plan_set_role(p, set);
+    if (role == ICS_SET_SHARP || role == ICS_SET_MOMENT) { /* the first set's needs */
+      memcpy(p->tile_last + (size_t)set * p->nlights * nt, p->tile_last,
+             sizeof *p->tile_last * nt * (size_t)p->nlights);
+      continue;
+    }
+    if (by_tiles) open_until(p, role == ICS_SET_PATEL, open);
     for (int l = 0; l < p->nlights && st == ICS_OK; l++) {
       int32_t *last = p->tile_last + (size_t)(set * p->nlights + l) * nt;
       if (by_tiles) st = tile_needs(p, &all[l], open, last);

@@ -86,7 +86,8 @@ double ics_plan_window_max(const ics_plan *p) {
   double q_max = p->cam.projection == ICS_PROJ_PERSPECTIVE
                      ? ics_plan_pixel_size(p, ics_plan_slab_depth(p, p->K - 1)) : p->q_ref;
   double w = 0;
-  for (int l = 0; l < p->nlights; l++) w = fmax(w, 1 - ics_plan_light_blur(p, l) / q_max);
+  double sharp = p->rs.model >= ICS_MODEL_BLOCKER ? sqrt(ICS_BLOCKER_SHARP) : 1; /* its sharp set's */
+  for (int l = 0; l < p->nlights; l++) w = fmax(w, 1 - sharp * ics_plan_light_blur(p, l) / q_max);
   return w;
 }
 
@@ -196,7 +197,7 @@ static int grey(const double t[3]) { return t[0] == t[1] && t[1] == t[2]; }
  * taps). */
 static double plan_work(const ics_plan *p, double slabs, double pixels, int kernels_done) {
   const ics_scene *s = p->scene;
-  double per = p->nlights ? p->nlights : 1;
+  double per = p->nlights ? p->nlights * ics_plan_light_sets(p) : 1;
   for (int i = 0; i < s->nobjects; i++) {
     const ics_material *m = &s->materials[s->objects[i].material];
     if (!m->volumetric || m->detail.fn == ICS_DETAIL_NONE) continue;
@@ -257,10 +258,10 @@ static ics_status plan_limits(ics_plan *p, double *zlo, double *zhi, double *k_e
   double work = plan_work(p, *k_est, (double)p->W * p->H, 0);
   if (work > ICS_PLAN_MAX_WORK) {
     if (msg)
-      snprintf(msg, msg_size, "about %.3g slabs x %d x %d pixels x (%d light(s) and the volume "
-               "detail's octaves) = %.3g updates exceed the work limit %.3g: increase "
+      snprintf(msg, msg_size, "about %.3g slabs x %d x %d pixels x (%d light buffer(s) and the "
+               "volume detail's octaves) = %.3g updates exceed the work limit %.3g: increase "
                "render.slab_spacing, lower the resolution or the detail's octaves",
-               *k_est, p->W, p->H, p->nlights, work, ICS_PLAN_MAX_WORK);
+               *k_est, p->W, p->H, p->nlights * ics_plan_light_sets(p), work, ICS_PLAN_MAX_WORK);
     return ICS_ERR_SIZE;
   }
   return ICS_OK;
@@ -507,10 +508,10 @@ static ics_status plan_geometry(ics_plan *p, int threads, plan_bytes *b, char *m
   double work = plan_work(p, p->K, (double)npx, 1);
   if (work > ICS_PLAN_MAX_WORK) {
     if (msg)
-      snprintf(msg, msg_size, "%d slabs x %d x %d buffer pixels x (%d light(s) and the volume "
-               "detail's octaves, with the perspective classes) = %.3g updates exceed the work "
-               "limit %.3g: increase render.slab_spacing or lower the resolution",
-               p->K, p->Wb, p->Hb, p->nlights, work, ICS_PLAN_MAX_WORK);
+      snprintf(msg, msg_size, "%d slabs x %d x %d buffer pixels x (%d light buffer(s) and the "
+               "volume detail's octaves, with the perspective classes) = %.3g updates exceed the "
+               "work limit %.3g: increase render.slab_spacing or lower the resolution",
+               p->K, p->Wb, p->Hb, p->nlights * ics_plan_light_sets(p), work, ICS_PLAN_MAX_WORK);
     return ICS_ERR_SIZE;
   }
   return ics_active_regions_build(p, msg, msg_size);

@@ -38,6 +38,7 @@ typedef struct {
                             Patel's, the sharp and the moment set, as the model has them) */
   ics_set_role *role;    /* per buffered light: its set's role */
   int patel_set;         /* Patel's set, which lights the solids' surfaces (0: none) */
+  int moment;            /* render.model blocker: the sharp and moment sets are kept */
   float **src, **dst;    /* per buffered light b (light b % nlights, set b / nlights): nch planes */
   ics_prop_taps *pt;     /* per light, then (render.model blocker) per light its sharp set's */
   uint32_t *cursor;      /* per pixel: first fragment not yet reached (colour, volumes) */
@@ -62,7 +63,8 @@ typedef struct {
   ics_aov_buf *aov;      /* NULL: no AOVs */
   uint8_t *aov_seen;     /* per view pixel: its first surface recorded */
   double prop_s[256], shade_s[256], detail_s[256];
-  double window[ICS_SCENE_MAX_LIGHTS]; /* this slab, per light: 1 - its blur sigma in pixels, >= 0 */
+  double window[2 * ICS_SCENE_MAX_LIGHTS]; /* this slab, per light: 1 - its blur sigma in pixels,
+                                              >= 0; then (blocker) its sharp set's */
   double window_max;                   /* the largest over lights and slabs (the cursor's reach) */
   double blur_world[ICS_SCENE_MAX_LIGHTS]; /* per light: the per-slab blur's sigma, world units */
   double *dpts;          /* per thread: 8 x Wb doubles, a row's detail points (x, y, z of the
@@ -162,11 +164,11 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
                                  solid and surface; the second set is Patel's) */
     size_t q = ics_buf_index(&P->buf, bi, bj);
     for (int l = 0; l < P->nlights; l++) {
-      double v0 = first_mean(j, l, q);
+      double v0 = j->moment ? first_mean(j, l, q) : 0;
       for (int b = l; b < j->nb; b += P->nlights)
         if (j->role[b] == ICS_SET_FIRST || j->role[b] == ICS_SET_SHARP)
           for (int c = 0; c < P->nch; c++) j->dst[b][(size_t)c * P->buf.plane + q] = 0;
-      if (j->nb > P->nlights && v0 > 0) moment_add(j, l, q, v0, za + dz / 2);
+      if (v0 > 0) moment_add(j, l, q, v0, za + dz / 2);
     }
     mask &= ~P->solid_bits;
     if (!mask) return;
@@ -225,11 +227,11 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
       const double *T = s->materials[s->objects[objs[i]].material].transport;
       for (int c = 0; c < P->nch; c++) pass[c] *= exp(-sig[i] * dz * P->light_path[l] * (1 - T[c]));
     }
-    double v0 = first_mean(j, l, q);
+    double v0 = j->moment ? first_mean(j, l, q) : 0;
     for (int b = l; b < j->nb; b += P->nlights)
       if (occludes_in(j, b, 0))
         for (int c = 0; c < P->nch; c++) j->dst[b][(size_t)c * plane + q] *= (float)pass[c];
-    if (j->nb > P->nlights) moment_add(j, l, q, v0, za + dz / 2);
+    if (j->moment) moment_add(j, l, q, v0, za + dz / 2);
   }
 }
 
@@ -300,21 +302,24 @@ static void surface_occlusion(job_t *j, size_t q, const ics_fragment *fr, int af
   double gr = fr->grad[0] / ICS_FRAG_GRAD_SCALE, gu = fr->grad[1] / ICS_FRAG_GRAD_SCALE;
   uint64_t own = P->own_lights[ics_frag_obj(fr)]; /* lights that leave this surface out */
   for (int l = 0; l < P->nlights; l++) {
-    double window = floor(fr->span * j->window[l]);
     if (own >> l & 1) continue;
-    if (after > window) continue;
     const double *mu = P->scene->lights[l].mean;
-    double rho = -(gr * mu[0] + gu * mu[1]), rel = fabs(1 - rho), meets = 1;
-    if (window > 0) /* no window (a blur of a pixel or more): one slab, filtered as it is */
-      meets = rel > 0 ? fmin(fmax((window + 1) / rel, 1), 8 * (window + 1)) : 8 * (window + 1);
-    double v0 = first_mean(j, l, q);
-    for (int c = 0; c < P->nch; c++) {
-      double pass = 1 - a * (1 - m->transport[c]);
-      float f = (float)(meets > 1 ? pow(pass, 1 / meets) : pass);
-      for (int b = l; b < j->nb; b += P->nlights)
-        if (occludes_in(j, b, solid)) j->dst[b][(size_t)c * plane + q] *= f;
+    double rho = -(gr * mu[0] + gu * mu[1]), rel = fabs(1 - rho);
+    double v0 = j->moment ? first_mean(j, l, q) : 0;
+    for (int sharp = 0; sharp <= j->moment; sharp++) { /* the sets of d1's blur, the sharp set */
+      double window = floor(fr->span * j->window[sharp * P->nlights + l]), meets = 1;
+      if (after > window) continue;
+      if (window > 0) /* no window (a blur of a pixel or more): one slab, filtered as it is */
+        meets = rel > 0 ? fmin(fmax((window + 1) / rel, 1), 8 * (window + 1)) : 8 * (window + 1);
+      for (int c = 0; c < P->nch; c++) {
+        double pass = 1 - a * (1 - m->transport[c]);
+        float f = (float)(meets > 1 ? pow(pass, 1 / meets) : pass);
+        for (int b = l; b < j->nb; b += P->nlights)
+          if (occludes_in(j, b, solid) && (j->role[b] == ICS_SET_SHARP) == sharp)
+            j->dst[b][(size_t)c * plane + q] *= f;
+      }
     }
-    if (!solid && j->nb > P->nlights) moment_add(j, l, q, v0, fr->z);
+    if (!solid && j->moment) moment_add(j, l, q, v0, fr->z);
   }
 }
 
@@ -706,6 +711,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->img = img;
   j->nb = nb;
   j->role = role;
+  j->moment = P->rs.model >= ICS_MODEL_BLOCKER;
   for (int b = 0; b < nb; b++) {
     role[b] = ics_plan_set_role(P, b / nl);
     if (role[b] == ICS_SET_PATEL) j->patel_set = b / nl;
@@ -771,7 +777,10 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   for (int k = 0; k < P->K; k++) {
     j->k = k;
     double s, q = ics_plan_slab_pixel(P, k, &s);
-    for (int l = 0; l < nl; l++) j->window[l] = fmax(0, 1 - j->blur_world[l] / q);
+    for (int l = 0; l < nl; l++) {
+      j->window[l] = fmax(0, 1 - j->blur_world[l] / q);
+      j->window[nl + l] = fmax(0, 1 - j->blur_world[l] * sqrt(ICS_BLOCKER_SHARP) / q);
+    }
     for (int i = 0; i < nk; i++) {
       const ics_slab_kernel *sk = i < nl ? &P->kernels[i] : &P->kernels_sharp[i - nl];
       status = ics_plan_kernel_taps(P, sk, i % nl, k, q, s, cum[i], scratch[i], &j->pt[i], msg, msg_size);
