@@ -3,7 +3,10 @@
 of a wall whose lower half is angled at 45 degrees, so that each shadow's penumbra can be followed
 at increasing distance behind its caster. The Monte-Carlo reference is rendered once, the slab
 renderer twice: d1 = 1.0 (the right box's distance to the upright wall, Patel's (c)) and d1 = 0.4
-(the left box's, Patel's (d)). The isolines are measured on the images, not drawn from a model.
+(the left box's, Patel's (d)), and once more under render.model blocker (blocker-aware penumbrae,
+d1 = 2.5: its sets at 0.625 and 2.5 cover the boxes' distances, 0.4 to 2.6), measured against the
+correct lines. The isolines are measured on the
+images, not drawn from a model.
 
 The scene (scenes/patel_fig18.json; the constants below are read from it): an orthographic view
 along -z, 200 x 150 pixels of 0.02; the wall at z = 0 for y >= 0 and z = y below (45 degrees,
@@ -62,6 +65,8 @@ BOXES = tuple((name, o["center"][0] - 0.5 * o["size"][0], o["center"][0] + 0.5 *
 BOX_W = _BOXES[0]["size"][0]
 LEVELS = (0.1, 0.3, 0.5, 0.7, 0.9)
 D1S = (1.0, 0.4)                               # Patel's (c): the right box, (d): the left box
+BLOCKER_D1 = 2.5                               # render.model blocker: its sets at d1 / 4 and d1, d1 the
+#                                               farthest box-to-wall distance (2.6)
 SPP = 512
 
 
@@ -159,6 +164,12 @@ def main():
         print(f"slab d1 = {d1:g}: rmse {sl_sum['compare']['rmse']:.4f} against the reference, max "
               f"{sl_sum['compare']['max_error']:.3f}; the tilted wall alone renders at {tilt.mean():.3f} "
               f"(min {tilt.min():.3f}; the reference: 1)")
+    # the blocker-aware model (docs/renderer.md "Models"), measured against the correct lines only
+    bl, bl_sum = render("blocker", True, BLOCKER_D1, ["--model", "blocker", "--compare", ref_exr])
+    bl0, _ = render("blocker0", False, BLOCKER_D1, ["--model", "blocker"])
+    images.append((f"blocker d1 = {BLOCKER_D1:g}", bl / np.maximum(bl0, 1e-6), None, bl,
+                   bl_sum["ms_plan"] + bl_sum["ms_render"], bl_sum["compare"]))
+    print(f"blocker d1 = {BLOCKER_D1:g}: rmse {bl_sum['compare']['rmse']:.4f} against the reference")
 
     rows, lines, measured = [], [], {}
     for label, v, d1, _, _, _ in images:
@@ -177,7 +188,7 @@ def main():
     write_csv(os.path.join(args.out, "patel_fig18_isolines.csv"),
               ["image", "box", "level", "row", "distance", "x_measured", "x_correct", "x_clt"], lines)
 
-    fig, ax = plt.subplots(1, 4, figsize=(16, 3.9), gridspec_kw={"width_ratios": [1, 1, 1, 0.9]})
+    fig, ax = plt.subplots(1, 5, figsize=(20, 3.9), gridspec_kw={"width_ratios": [1, 1, 1, 1, 0.9]})
     ext = (X0, X0 + W * PX, Y0 - H * PX, Y0)
     for k, (label, v, d1, img, ms, cmp_) in enumerate(images):
         a = ax[k]
@@ -187,12 +198,13 @@ def main():
                 continue
             y = [Y0 - (r[0] + 0.5) * PX for r in rs]
             a.plot([r[3] for r in rs], y, color="tab:blue", lw=0.8, ls="--")
-            a.plot([r[2] for r in rs], y, color="tab:red" if d1 else "tab:cyan", lw=0.9)
+            colour = "tab:red" if d1 else "tab:green" if label.startswith("blocker") else "tab:cyan"
+            a.plot([r[2] for r in rs], y, color=colour, lw=0.9)
         title = f"{label}: {ms:.0f} ms" + (f", rmse {cmp_['rmse']:.3f}" if cmp_ else f" ({SPP} spp)")
         a.set_title(title, fontsize=8)
         a.set_xticks([]), a.set_yticks([])
         a.set_xlim(ext[0], ext[1]), a.set_ylim(ext[2], ext[3])
-    a = ax[3]
+    a = ax[4]
     for label, _, d1, _, _, _ in images:
         for box, _, _, _ in BOXES:
             lo, hi = measured[label][(box, 0.1)], measured[label][(box, 0.9)]
@@ -210,8 +222,8 @@ def main():
     a.set_ylabel("penumbra width: x(S=0.1) - x(S=0.9)", fontsize=8)
     a.tick_params(labelsize=7)
     a.legend(fontsize=6, loc="upper left")
-    fig.suptitle("Patel Fig. 18: isolines S = 0.1 ... 0.9 measured on the images (solid; cyan: reference, red: slab) "
-                 "and the correct ones (dashed blue)", fontsize=9)
+    fig.suptitle("Patel Fig. 18: isolines S = 0.1 ... 0.9 measured on the images (solid; cyan: reference, red: slab, "
+                 "green: slab under render.model blocker) and the correct ones (dashed blue)", fontsize=9)
     fig.tight_layout()
     save_fig(fig, os.path.join(args.out, "patel_fig18.png"), 100)
 
