@@ -427,7 +427,7 @@ def plot(rows, ref_spp, ref_noise, reps, path):
     ax.set_title("Error against run time, %s (reference: Monte Carlo, %s spp, noise %.2g)"
                  % (res0, ref_spp, ref_noise), fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7.5, loc="lower left")
+    ax.legend(fontsize=7.5, loc="upper right")
     side.axis("off")
     for k, (num, text, colour) in enumerate(keys):
         side.text(0, 1 - k / max(len(keys), 22), f"{num:2d}  {text}", fontsize=7.5, color=colour,
