@@ -183,8 +183,9 @@ error-vs-time: deps python
 error-by-effect: deps-figs all
 	$(PYTHON) analysis/error_by_effect.py --cli $(BUILD)/bin/icshadow --out out/analysis
 
-# the gallery (docs/gallery.md): every scenes/*.json rendered into docs/images/gallery/ with its
-# frame time (median of 3) and its error against the Monte-Carlo reference; about 4 minutes
+# the gallery (docs/gallery.md): every scenes/*.json rendered into docs/images/gallery/, under its
+# own settings and under --model blocker, with their frame times (median of 3) and their errors
+# against the Monte-Carlo reference; about 6 minutes
 gallery: deps-demo all
 	$(PYTHON) analysis/gallery.py --cli $(BUILD)/bin/icshadow
 

@@ -1,12 +1,17 @@
 #!/usr/bin/env python3
 """gallery.py — docs/gallery.md and its pictures: every example scene under scenes/ rendered by
-the slab renderer, with its frame time and its error against the Monte-Carlo reference.
+the slab renderer, under its own settings (Patel's model unless the scene says otherwise) and
+under render.model blocker, with their frame times and their errors against the Monte-Carlo
+reference.
 
 Per scene, from the repository root (the scene's own resolution, or --resolution fitting it into
 320 x 240 where it is larger):
   icshadow render scenes/NAME.json --png docs/images/gallery/NAME.png    (REPS runs, interleaved
       over the scenes; the frame time is the median of the summaries' ms_plan + ms_render)
-  icshadow render scenes/NAME.json --reference N                          (compare.rmse,
+  icshadow render scenes/NAME.json --model blocker --png docs/images/gallery/NAME_blocker.png
+      (the same, interleaved with the first)
+  icshadow render scenes/NAME.json --backend mc --spp N --aov stderr -o REF.exr
+  icshadow render scenes/NAME.json [--model blocker] --compare REF.exr   (compare.rmse,
       rmse_beyond_noise, max_error, reference_noise, ms_reference; N per scene in SCENES below,
       chosen so that each reference takes under a minute on a 2-core VM; volumes.json's 512
       would pass the reference's work bound of 2e10 tracking steps)
@@ -15,7 +20,7 @@ threads from the summary's device string. A scene whose mesh cannot be read (a b
 without Assimp) is listed as not rendered, with the reason; its old picture is left alone.
 
 Writes the whole page (generated: edit this script, not docs/gallery.md) and the PNGs. Standard
-library only; `make gallery` runs it with the build's binary (about 4 minutes here):
+library only; `make gallery` runs it with the build's binary (about 6 minutes here):
   /usr/bin/python3 analysis/gallery.py --cli build/bin/icshadow
 --md, --images, --reps and --ref-spp (one N for every scene) are for trying it out elsewhere.
 """
@@ -154,20 +159,24 @@ def page(rows, mach, ref_note, load):
         "**Frame** is the summary's ms_plan + ms_render, the median of "
         f"{rows[0]['reps'] if rows else 3} runs interleaved over the scenes (min–max beside it); "
         "**RMSE** is over the pixels and R, G, B against the reference of N samples per pixel "
-        f"(`--reference N`{ref_note}), **beyond noise** is sqrt(RMSE² − σ_ref²), the render's own error "
+        f"(`--compare REF.exr`{ref_note}), **beyond noise** is sqrt(RMSE² − σ_ref²), the render's own error "
         "once the reference's noise σ_ref is taken out, and **max** is the largest error of a pixel's "
-        "channel. Pictures are 8-bit sRGB previews (`--png`) of the float image."),
+        "channel. Each scene is rendered twice: under its own settings (Patel's model, as every scene "
+        "here says nothing else) and under `--model blocker` ([renderer.md](renderer.md) \"Models\": own "
+        "terms in closed form and blocker-aware penumbrae; the cpu backend), its picture on the right. "
+        "Pictures are 8-bit sRGB previews (`--png`) of the float image."),
         "",
-        "| scene | size | slabs | frame ms | RMSE | beyond noise | max | reference N | σ_ref | reference s |",
-        "|---|---|---|---|---|---|---|---|---|---|",
+        "| scene | size | slabs | frame ms | RMSE | beyond noise | max | blocker: frame ms | beyond noise | max | reference N | σ_ref | reference s |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
         if r.get("skipped"):
-            out.append(f"| [{r['name']}](#{r['name']}) | — | — | not rendered: {r['skipped']} | | | | | | |")
+            out.append(f"| [{r['name']}](#{r['name']}) | — | — | not rendered: {r['skipped']} | | | | | | | | | |")
             continue
-        c = r["compare"]
+        c, b = r["compare"], r["blocker"]["compare"]
         out.append(f"| [{r['name']}](#{r['name']}) | {r['w']} × {r['h']} | {r['slabs']} | "
                    f"{fmt_ms(r['ms'])} | {c['rmse']:.4f} | {c['rmse_beyond_noise']:.4f} | {c['max_error']:.3f} | "
+                   f"{fmt_ms(r['blocker']['ms'])} | {b['rmse_beyond_noise']:.4f} | {b['max_error']:.3f} | "
                    f"{c['reference_spp']} | {c['reference_noise']:.4f} | {c['ms_reference'] / 1e3:.1f} |")
     for r in rows:
         title, text, _ = SCENES[r["name"]]
@@ -175,14 +184,19 @@ def page(rows, mach, ref_note, load):
         if r.get("skipped"):
             out += [f"Not rendered by this run: {r['skipped']}.", ""]
             continue
-        c = r["compare"]
-        out += [f"![{r['name']}]({r['img_rel']})", "", "```sh"] + r["commands"] + ["```", "",
+        c, bl = r["compare"], r["blocker"]
+        b = bl["compare"]
+        out += [f"![{r['name']}]({r['img_rel']}) ![{r['name']}, --model blocker]({bl['img_rel']})", "",
+                "```sh"] + r["commands"] + ["```", "",
                 para(f"{r['w']} × {r['h']}, {r['slabs']} slabs; frame {fmt_ms(r['ms'])} ms "
                 f"({fmt_ms(r['ms_min'])}–{fmt_ms(r['ms_max'])}; plan {fmt_ms(r['ms_plan'])} + render "
                 f"{fmt_ms(r['ms_render'])}); against the reference at {c['reference_spp']} spp "
                 f"({c['ms_reference'] / 1e3:.1f} s, σ_ref {c['reference_noise']:.4f}): RMSE {c['rmse']:.4f}, "
                 f"beyond noise {c['rmse_beyond_noise']:.4f}, max {c['max_error']:.3f} at pixel "
-                f"({c['max_at'][0]}, {c['max_at'][1]}).")]
+                f"({c['max_at'][0]}, {c['max_at'][1]}). Under `--model blocker` (right): frame "
+                f"{fmt_ms(bl['ms'])} ms ({fmt_ms(bl['ms_min'])}–{fmt_ms(bl['ms_max'])}), beyond noise "
+                f"{b['rmse_beyond_noise']:.4f}, max {b['max_error']:.3f} at pixel ({b['max_at'][0]}, "
+                f"{b['max_at'][1]}).")]
     return "\n".join(out) + "\n"
 
 
@@ -223,18 +237,22 @@ def main():
                     sys.exit(f"gallery.py: icshadow plan {scene} failed (exit {rc}): {err}")
                 r["res"] = fit(*plan["resolution"])
             res = ["--resolution", "%dx%d" % r["res"]] if r["res"] else []
-            png = os.path.join(images, n + ".png") if rep == 0 else tmp_png
-            rc, s, err = run(cli, ["render", scene, "--png", png] + res)
-            if rc != 0:
-                sys.exit(f"gallery.py: icshadow render {scene} failed (exit {rc}): {err}")
-            r["times"].append((s["ms_plan"] + s["ms_render"], s["ms_plan"], s["ms_render"]))
-            r["w"], r["h"] = s["resolution"]
-            r["slabs"] = s["slabs"]
-            device = device or s["device"]
-            print(f"gallery: {n} run {rep + 1}/{args.reps}: {s['ms_plan'] + s['ms_render']:.0f} ms", file=sys.stderr)
+            for model, suffix in ((None, ""), ("blocker", "_blocker")):
+                png = os.path.join(images, n + suffix + ".png") if rep == 0 else tmp_png
+                rc, s, err = run(cli, ["render", scene, "--png", png] + res + (["--model", model] if model else []))
+                if rc != 0:
+                    sys.exit(f"gallery.py: icshadow render {scene} (model {model or 'as the scene says'}) failed "
+                             f"(exit {rc}): {err}")
+                times = r["times"] if not model else r.setdefault("blocker", {"times": []})["times"]
+                times.append((s["ms_plan"] + s["ms_render"], s["ms_plan"], s["ms_render"]))
+                if not model:
+                    r["w"], r["h"] = s["resolution"]
+                    r["slabs"] = s["slabs"]
+                    device = device or s["device"]
+                print(f"gallery: {n}{suffix} run {rep + 1}/{args.reps}: {s['ms_plan'] + s['ms_render']:.0f} ms",
+                      file=sys.stderr)
     if os.path.exists(tmp_png):
         os.remove(tmp_png)
-    os.rmdir(tmp_dir)
     load.append(os.getloadavg()[0])
     ref_note = ""
     for n in names:
@@ -246,23 +264,33 @@ def main():
         if args.ref_spp:
             ref_note = f"; N = {spp} for every scene in this run"
         res = ["--resolution", "%dx%d" % r["res"]] if r["res"] else []
-        rc, s, err = run(cli, ["render", scene, "--reference", str(spp)] + res)
+        ref = os.path.join(tmp_dir, n + "_ref.exr")
+        rc, _, err = run(cli, ["render", scene, "--backend", "mc", "--spp", str(spp), "--aov", "stderr",
+                               "-o", ref] + res)
         if rc != 0:
-            sys.exit(f"gallery.py: icshadow render {scene} --reference {spp} failed (exit {rc}): {err}")
-        r["compare"] = s["compare"]
-        times = sorted(r["times"])
-        r["ms"] = statistics.median(t[0] for t in times)
-        mid = times[len(times) // 2]
-        r["ms_plan"], r["ms_render"] = mid[1], mid[2]
-        r["ms_min"], r["ms_max"] = times[0][0], times[-1][0]
+            sys.exit(f"gallery.py: icshadow render {scene} --backend mc --spp {spp} failed (exit {rc}): {err}")
+        for sub_row, model, suffix in ((r, None, ""), (r["blocker"], "blocker", "_blocker")):
+            rc, s, err = run(cli, ["render", scene, "--compare", ref] + res + (["--model", model] if model else []))
+            if rc != 0:
+                sys.exit(f"gallery.py: icshadow render {scene} --compare failed (exit {rc}): {err}")
+            sub_row["compare"] = s["compare"]
+            times = sorted(sub_row["times"])
+            sub_row["ms"] = statistics.median(t[0] for t in times)
+            mid = times[len(times) // 2]
+            sub_row["ms_plan"], sub_row["ms_render"] = mid[1], mid[2]
+            sub_row["ms_min"], sub_row["ms_max"] = times[0][0], times[-1][0]
+            sub_row["img_rel"] = os.path.relpath(os.path.join(images, n + suffix + ".png"), os.path.dirname(md))
+        os.remove(ref)
         rel_png = os.path.relpath(os.path.join(images, n + ".png"), ROOT)
-        r["img_rel"] = os.path.relpath(os.path.join(images, n + ".png"), os.path.dirname(md))
         extra = " " + " ".join(res) if res else ""
         r["commands"] = [f"icshadow render {scene} --png {rel_png}{extra}",
-                         f"icshadow render {scene} --reference {spp}{extra}"]
+                         f"icshadow render {scene} --model blocker --png {rel_png[:-4]}_blocker.png{extra}",
+                         f"icshadow render {scene} --backend mc --spp {spp} --aov stderr -o REF.exr{extra}",
+                         f"icshadow render {scene} [--model blocker] --compare REF.exr{extra}"]
         c = r["compare"]
         print(f"gallery: {n}: {r['ms']:.0f} ms, rmse {c['rmse']:.4f} (beyond noise {c['rmse_beyond_noise']:.4f}), "
               f"max {c['max_error']:.3f}, reference {spp} spp in {c['ms_reference'] / 1e3:.1f} s", file=sys.stderr)
+    os.rmdir(tmp_dir)
     text = page([rows[n] for n in names], machine(device or "no render"), ref_note, load)
     tmp = md + ".tmp"
     with open(tmp, "w") as f:

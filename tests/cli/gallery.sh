@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # gallery.sh CLI SCENES — every example scene renders (the scenes of docs/gallery.md): each
 # SCENES/*.json at 48 x 36 with --png into a scratch folder, exit 0, a PNG written and named in
-# the summary. A scene that reads a mesh is skipped, named with the reason, when the binary was
+# the summary; and again under --model blocker (the gallery's second picture), exit 0. A scene that reads a mesh is skipped, named with the reason, when the binary was
 # built without Assimp (its "mesh files need Assimp" message); the others are still checked, and
 # the test then exits 77 (skipped) when they passed. Without libpng nothing can be checked: 77.
 set -u
@@ -26,6 +26,12 @@ for s in "$scenes"/*.json; do
   fi
   expect "[ $rc -eq 0 ] && [ \"\$(head -c 4 '$dir/$name.png' | tail -c 3)\" = PNG ] && grep -q '\"png\": \"[^\"]*$name.png\"' '$dir/$name.out'"
   [ "$rc" -eq 0 ] || { echo "$name: exit $rc"; cat "$dir/$name.err"; }
+  # the gallery's second picture: the same scene under render.model blocker
+  $T "$cli" render "$s" --resolution 48x36 --model blocker --png "$dir/${name}_blocker.png" \
+    > "$dir/${name}_blocker.out" 2> "$dir/${name}_blocker.err"
+  rc=$?
+  expect "[ $rc -eq 0 ] && grep -q '\"model\": \"blocker\"' '$dir/${name}_blocker.out'"
+  [ "$rc" -eq 0 ] || { echo "$name, blocker: exit $rc"; cat "$dir/${name}_blocker.err"; }
 done
 expect "[ $n -gt 0 ]" # an empty or wrong folder is a failure, not a pass
 echo "gallery: $n scenes, ${#skipped[@]} skipped${skipped[*]:+ (${skipped[*]})}"
