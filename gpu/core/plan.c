@@ -100,17 +100,27 @@ ics_status ics_plan_slab_taps(const ics_plan *p, int l, int k, double q, double 
 ics_status ics_plan_kernel_taps(const ics_plan *p, const ics_slab_kernel *sk, int l, int k,
                                 double q, double mag, double cum[2], ics_tap2d *scratch,
                                 ics_prop_taps *pt, char *msg, size_t msg_size) {
-  int n;
+  return ics_plan_kernel_taps_deferred(p, sk, l, k, q, mag, cum, scratch, pt, NULL, msg, msg_size);
+}
+
+ics_status ics_plan_kernel_taps_deferred(const ics_plan *p, const ics_slab_kernel *sk, int l, int k,
+                                         double q, double mag, double cum[2], ics_tap2d *scratch,
+                                         ics_prop_taps *pt, int *deferred, char *msg,
+                                         size_t msg_size) {
+  int n, persp = p->cam.projection == ICS_PROJ_PERSPECTIVE;
   ics_status st = ics_slab_kernel_taps(sk, (uint64_t)k, q, cum, scratch, &n);
   if (st != ICS_OK) {
     if (msg) snprintf(msg, msg_size, "light %d, slab %d: kernel taps: %s", l, k, ics_status_str(st));
     return st;
   }
-  if (p->cam.projection == ICS_PROJ_PERSPECTIVE
-          ? ics_prop_prepare_perspective(pt, scratch, n, mag, p->cx, p->cy, &p->buf)
-          : ics_prop_prepare(pt, scratch, sk->out_entries, n / sk->out_entries, sk->cap, mag,
-                             p->cx, p->cy, &p->buf))
+  if (persp && deferred) { /* the classes left to the caller */
+    if (ics_prop_perspective_begin(pt, n, mag, p->cx, p->cy)) return ICS_ERR_NOMEM;
+    *deferred = n;
+  } else if (persp ? ics_prop_prepare_perspective(pt, scratch, n, mag, p->cx, p->cy, &p->buf)
+                   : ics_prop_prepare(pt, scratch, sk->out_entries, n / sk->out_entries, sk->cap,
+                                      mag, p->cx, p->cy, &p->buf)) {
     return ICS_ERR_NOMEM;
+  }
   pt->seed = p->rs.seed; /* table choices */
   pt->run = p->rs.rotation_run;
   pt->phase = (int)ics_slab_choice(p->rs.seed, (uint32_t)l, (uint32_t)k, UINT32_MAX - 2, 16);
@@ -184,7 +194,6 @@ static void estimate_depth(const ics_plan *p, double *zlo, double *zhi) {
 }
 
 #define ICS_PLAN_MAX_APRON 64             /* pixels; kernels that reach farther clamp */
-#define ICS_PLAN_MAX_PERSPECTIVE_TAPS 400 /* taps per slab a perspective step compensates */
 
 static int grey(const double t[3]) { return t[0] == t[1] && t[1] == t[2]; }
 
@@ -442,11 +451,11 @@ static ics_status plan_memory(ics_plan *p, plan_bytes *b, char *msg, size_t msg_
       /* the perspective step's classes (propagate.h): Q^2 compensated sets of up to
        * 4 n + 9 taps (12 bytes each) and their scratch (24 bytes each) */
       size_t n = (size_t)sk->out_entries * (size_t)sk->cap, cls = (size_t)ICS_PROP_CLASSES * ICS_PROP_CLASSES;
-      if (n > ICS_PLAN_MAX_PERSPECTIVE_TAPS) {
+      if (n > ICS_PROP_PERSPECTIVE_MAX_TAPS) {
         if (msg)
           snprintf(msg, msg_size, "light %d: %zu taps per slab; perspective cameras take at most "
                    "%d (each slab compensates %zu classes of them): fewer samples or an "
-                   "orthographic camera", k, n, ICS_PLAN_MAX_PERSPECTIVE_TAPS, cls);
+                   "orthographic camera", k, n, ICS_PROP_PERSPECTIVE_MAX_TAPS, cls);
         return ICS_ERR_SIZE;
       }
       b->tap += cls * (4 * n + 9) * 36;

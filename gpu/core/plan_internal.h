@@ -143,6 +143,14 @@ ics_status ics_plan_slab_taps(const ics_plan *p, int l, int k, double q, double 
 ics_status ics_plan_kernel_taps(const ics_plan *p, const ics_slab_kernel *sk, int l, int k,
                                 double q, double mag, double cum[2], ics_tap2d *scratch,
                                 ics_prop_taps *pt, char *msg, size_t msg_size);
+/* The same, but with a perspective camera and deferred != NULL the classes' compensations are
+ * left to the caller (*deferred: the slab's tap count in scratch; the caller runs
+ * ics_prop_perspective_classes over every class, then ics_prop_perspective_end), so that they
+ * can run on several threads; *deferred is left alone otherwise. */
+ics_status ics_plan_kernel_taps_deferred(const ics_plan *p, const ics_slab_kernel *sk, int l, int k,
+                                         double q, double mag, double cum[2], ics_tap2d *scratch,
+                                         ics_prop_taps *pt, int *deferred, char *msg,
+                                         size_t msg_size);
 void ics_plan_over_background(const ics_plan *p, ics_image *img);
 
 /* Builds the LDI over the plan's buffer grid (geometry pass; ldi.c). */

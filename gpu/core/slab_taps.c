@@ -143,8 +143,7 @@ int ics_prop_prepare(ics_prop_taps *pt, const ics_tap2d *taps, int entries, int 
   return 0;
 }
 
-int ics_prop_prepare_perspective(ics_prop_taps *pt, const ics_tap2d *taps, int ntaps, double s,
-                                 double cx, double cy, const ics_buf_layout *L) {
+int ics_prop_perspective_begin(ics_prop_taps *pt, int ntaps, double s, double cx, double cy) {
   const int Q = ICS_PROP_CLASSES, cap = 4 * ntaps + 9, ncls = Q * Q;
   size_t c = (size_t)ncls * (size_t)cap;
   if (!pt->ix || pt->classes_cap < c) {
@@ -152,31 +151,43 @@ int ics_prop_prepare_perspective(ics_prop_taps *pt, const ics_tap2d *taps, int n
     pt->ix = malloc(sizeof *pt->ix * c);
     pt->iy = malloc(sizeof *pt->iy * c);
     pt->w = malloc(sizeof *pt->w * c);
-    pt->disc = malloc(sizeof *pt->disc * (c + (size_t)ntaps));
+    pt->disc = malloc(sizeof *pt->disc * c);
     pt->off = malloc(sizeof *pt->off * (size_t)ncls); /* each class's tap count */
     if (!pt->ix || !pt->iy || !pt->w || !pt->disc || !pt->off) return -1;
     pt->classes_cap = c;
   }
-  (void)L;
   pt->entries = ncls;
   pt->s = s, pt->cx = cx, pt->cy = cy;
   pt->stencil = 0;
   pt->classes = Q;
-  ics_tap2d *in = pt->disc + c, *out = pt->disc;
-  int maxn = 1;
-  /* the taps as engine taps (read at p - x): x = s x_j - d for the class's fraction d */
-  for (int cl = 0; cl < ncls; cl++) {
+  pt->class_cap = cap;
+  return 0;
+}
+
+/* the taps as engine taps (read at p - x): x = s x_j - d for the class's fraction d */
+int ics_prop_perspective_classes(ics_prop_taps *pt, const ics_tap2d *taps, int ntaps, int cl0, int cl1) {
+  const int Q = pt->classes;
+  ics_tap2d in[ICS_PROP_PERSPECTIVE_MAX_TAPS];
+  if (ntaps > ICS_PROP_PERSPECTIVE_MAX_TAPS) return -1;
+  for (int cl = cl0; cl < cl1; cl++) {
     double dx = (double)(cl % Q) / Q, dy = (double)(cl / Q) / Q;
-    for (int j = 0; j < ntaps; j++) in[j] = (ics_tap2d){taps[j].x * s - dx, taps[j].y * s - dy, taps[j].w};
+    for (int j = 0; j < ntaps; j++) in[j] = (ics_tap2d){taps[j].x * pt->s - dx, taps[j].y * pt->s - dy, taps[j].w};
     int nout;
-    if (ics_taps2d_compensate(in, ntaps, ICS_COMP_NONNEG, out + (size_t)cl * cap, cap, &nout, NULL) !=
-        ICS_OK)
+    if (ics_taps2d_compensate(in, ntaps, ICS_COMP_NONNEG, pt->disc + (size_t)cl * pt->class_cap,
+                              pt->class_cap, &nout, NULL) != ICS_OK)
       return -1;
     pt->off[cl] = nout;
-    if (nout > maxn) maxn = nout;
   }
+  return 0;
+}
+
+void ics_prop_perspective_end(ics_prop_taps *pt) {
+  const int ncls = pt->classes * pt->classes;
+  int maxn = 1;
+  for (int cl = 0; cl < ncls; cl++)
+    if (pt->off[cl] > maxn) maxn = pt->off[cl];
   for (int cl = 0; cl < ncls; cl++) {
-    const ics_tap2d *o = out + (size_t)cl * cap;
+    const ics_tap2d *o = pt->disc + (size_t)cl * pt->class_cap;
     size_t base = (size_t)cl * (size_t)maxn;
     for (int m = 0; m < maxn; m++) {
       int in_set = m < pt->off[cl];
@@ -188,6 +199,15 @@ int ics_prop_prepare_perspective(ics_prop_taps *pt, const ics_tap2d *taps, int n
   pt->ntaps = maxn;
   /* class Q is class 0 one pixel on (pixel_classes): the reads reach one more */
   read_bounds(pt, (size_t)ncls * (size_t)maxn, 1);
+}
+
+int ics_prop_prepare_perspective(ics_prop_taps *pt, const ics_tap2d *taps, int ntaps, double s,
+                                 double cx, double cy, const ics_buf_layout *L) {
+  (void)L;
+  if (ics_prop_perspective_begin(pt, ntaps, s, cx, cy) ||
+      ics_prop_perspective_classes(pt, taps, ntaps, 0, ICS_PROP_CLASSES * ICS_PROP_CLASSES))
+    return -1;
+  ics_prop_perspective_end(pt);
   return 0;
 }
 

@@ -46,6 +46,7 @@ typedef struct ics_prop_taps {
                          p + floor((s - 1)(p - c)) + [lo, hi] (ics_prop_footprint) */
   int classes;        /* perspective: Q x Q classes of the magnification's fraction (0: none) */
   size_t classes_cap; /* capacity of the perspective arrays */
+  int class_cap;      /* perspective: taps room per class (4 ntaps + 9) */
   uint64_t seed;      /* entry selection: ics_slab_entry_block(seed, light, slab, ...) */
   int run;            /* 1: a choice per pixel; 16: runs of 16 pixels share one (ics_prop_run_choice) */
   int phase;          /* runs start at x = phase (mod 16) this slab */
@@ -73,7 +74,16 @@ void ics_prop_release(ics_prop_taps *pt);
  * fixed quantisation to the nearest class would move the shadow by up to 1/(2Q) px every slab,
  * in the same direction). 0, or -1 (out of memory or a compensation that failed). */
 #define ICS_PROP_CLASSES 16
+#define ICS_PROP_PERSPECTIVE_MAX_TAPS 400 /* taps per slab a perspective step compensates */
 int ics_prop_prepare_perspective(ics_prop_taps *pt, const ics_tap2d *taps, int ntaps, double s,
                                  double cx, double cy, const ics_buf_layout *L);
+/* The same in three parts, so that the Q^2 classes' compensations can run on several threads:
+ * begin (allocation; 0 or -1 out of memory), the classes [cl0, cl1) (independent of each other:
+ * any split gives the same taps; 0, or -1 when a compensation failed; ntaps at most
+ * ICS_PROP_PERSPECTIVE_MAX_TAPS), end (the classes' taps laid out for the loops, the reads'
+ * bounds) once every class is done. */
+int ics_prop_perspective_begin(ics_prop_taps *pt, int ntaps, double s, double cx, double cy);
+int ics_prop_perspective_classes(ics_prop_taps *pt, const ics_tap2d *taps, int ntaps, int cl0, int cl1);
+void ics_prop_perspective_end(ics_prop_taps *pt);
 
 #endif

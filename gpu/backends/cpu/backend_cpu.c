@@ -72,6 +72,10 @@ typedef struct {
   int32_t *dslot;        /* per thread: Wb, each pixel's slot in them, or -1 */
   ics_hits hits[256];    /* per thread: a ray's crossings (the own term's normals) */
   int failed;            /* out of memory in a thread (the render fails) */
+  int nk;                /* kernels: each light's, then (blocker) each light's sharp set's */
+  int *pending;          /* perspective, per kernel: this slab's tap count whose classes are
+                            still to compensate (classes_job), or -1 */
+  ics_tap2d **taps;      /* per kernel: this slab's taps */
 } job_t;
 
 /* the taps buffered light b steps with */
@@ -679,6 +683,17 @@ static void slab_job(void *ctx, int t, int n) {
   }
 }
 
+/* perspective: each kernel's classes compensated, the threads taking a share of every kernel's
+ * (the split does not change the taps) */
+static void classes_job(void *ctx, int t, int n) {
+  job_t *j = ctx;
+  const int ncls = ICS_PROP_CLASSES * ICS_PROP_CLASSES;
+  for (int i = 0; i < j->nk; i++)
+    if (j->pending[i] >= 0 &&
+        ics_prop_perspective_classes(&j->pt[i], j->taps[i], j->pending[i], t * ncls / n, (t + 1) * ncls / n))
+      j->failed = 1;
+}
+
 /* this slab's shading rectangle: the lights' active regions joined (a pixel outside it is never
  * needed again: the regions only shrink) */
 static ics_rect shade_rect(const ics_plan *P, int k) {
@@ -710,6 +725,8 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->p = P;
   j->img = img;
   j->nb = nb;
+  j->nk = nk;
+  j->taps = scratch;
   j->role = role;
   j->moment = P->rs.model >= ICS_MODEL_BLOCKER;
   for (int b = 0; b < nb; b++) {
@@ -781,11 +798,22 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
       j->window[l] = fmax(0, 1 - j->blur_world[l] / q);
       j->window[nl + l] = fmax(0, 1 - j->blur_world[l] * sqrt(ICS_BLOCKER_SHARP) / q);
     }
+    int pending[2 * ICS_SCENE_MAX_LIGHTS], any_pending = 0;
     for (int i = 0; i < nk; i++) {
       const ics_slab_kernel *sk = i < nl ? &P->kernels[i] : &P->kernels_sharp[i - nl];
-      status = ics_plan_kernel_taps(P, sk, i % nl, k, q, s, cum[i], scratch[i], &j->pt[i], msg, msg_size);
+      pending[i] = -1;
+      status = ics_plan_kernel_taps_deferred(P, sk, i % nl, k, q, s, cum[i], scratch[i], &j->pt[i],
+                                             &pending[i], msg, msg_size);
       if (status == ICS_ERR_NOMEM) goto nomem;
       if (status != ICS_OK) goto done;
+      any_pending |= pending[i] >= 0;
+    }
+    if (any_pending) { /* a perspective step's classes, on every thread */
+      j->pending = pending;
+      ics_pool_run(pool, classes_job, j);
+      if (j->failed) goto nomem;
+      for (int i = 0; i < nk; i++)
+        if (pending[i] >= 0) ics_prop_perspective_end(&j->pt[i]);
     }
     j->shade = shade_rect(P, k);
     atomic_store(&j->next_row, 0);
