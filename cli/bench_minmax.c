@@ -23,9 +23,7 @@
 #include "bench_stats.h"
 #include "commands.h"
 #include "icshadow.h"
-#ifdef ICS_HAVE_RENDER
 #include "icshadow/cl.h"
-#endif
 
 #define GRID 64
 #define MAX_TERMS 10 /* beyond, s_N / s_1 < 1e-13 and the Nystrom factors are noise */
@@ -40,9 +38,7 @@ static const char CMD[] = "bench minmax";
 static cli_progress g_prog; /* set up once the options are parsed */
 static int g_progress;    /* --progress given */
 static int g_cpu = 1;     /* --backend: the CPU rows, */
-#ifdef ICS_HAVE_RENDER
 static void *g_cl; /* and the OpenCL context of the cl rows (ics_cl *, NULL: none) */
-#endif
 static int g_busy;        /* a size's traversal or march times spread over 30 % */
 
 static void help(FILE *f) {
@@ -374,7 +370,6 @@ static int bench_one(const setup *S, int reps) {
            d, S->rows, S->rays, N, tb, tp, tt, tm, tree_bytes, march_bytes, tm / tt,
            tm / (tb + tp + tt), runs / (double)nr, maxe, maxL > 0 ? maxe / maxL : 0.0,
            sp_t.median, sp_t.max, sp_m.median, sp_m.max);
-#ifdef ICS_HAVE_RENDER
   if (g_cl) {
     /* the same trees and rays on the device: build and one batch of all rays, min over reps */
     size_t *rr = malloc(sizeof *rr * nr);
@@ -413,7 +408,6 @@ static int bench_one(const setup *S, int reps) {
            tm / (cb + tp + ct), runs / (double)nr, maxc, maxL > 0 ? maxc / maxL : 0.0,
            sp_c.median, sp_c.max, sp_m.median, sp_m.max);
   }
-#endif
   free(Lt);
   free(Lm);
   free(pre);
@@ -644,7 +638,6 @@ int bench_minmax(int argc, char **argv) {
     cli_progress_done(&g_prog);
     return rc;
   }
-#ifdef ICS_HAVE_RENDER
   if (want_cl) {
     char msg[2048];
     ics_cl *cl = NULL;
@@ -654,9 +647,6 @@ int bench_minmax(int argc, char **argv) {
     }
     g_cl = cl;
   }
-#else
-  if (want_cl) return cli_error(CMD, "--backend cl: built without the renderer library (jansson)");
-#endif
   printf("samples,rows,rays,terms,build_s,prefix_s,traverse_s,march_s,tree_bytes,march_bytes,speedup,"
          "speedup_with_build,lit_runs_per_ray,max_abs_err,max_rel_err,backend,traverse_median_s,"
          "traverse_max_s,march_median_s,march_max_s\n");
@@ -666,10 +656,8 @@ int bench_minmax(int argc, char **argv) {
     setup_free(&S);
     if (rc) break;
   }
-#ifdef ICS_HAVE_RENDER
   ics_cl_destroy(g_cl);
   g_cl = NULL;
-#endif
   cli_progress_done(&g_prog);
   if (g_busy) cli_warn_busy(CMD, "traverse_s, march_s; the columns are minima");
   return rc;

@@ -13,9 +13,7 @@
 #include "bench_stats.h"
 #include "commands.h"
 #include "icshadow.h"
-#ifdef ICS_HAVE_RENDER
 #include "icshadow/cl.h"
-#endif
 
 /* the subcommand, for messages */
 static const char *sat_cmd(int dims) { return dims == 2 ? "bench sat2d" : "bench sat3d"; }
@@ -441,7 +439,6 @@ static void measure_error(const table_ref *t, const float *data, double *pre, do
   }
 }
 
-#ifdef ICS_HAVE_RENDER
 /* The table of mode m built on the device: the first call (whole, wall clock), then R builds
  * (device time of the passes) interleaved with the memcpy floor, its error, one CSV row. */
 static int cl_row(const config *c, ics_cl *cl, ics_sat_precision m, float off, const float *data,
@@ -476,7 +473,6 @@ static int cl_row(const config *c, ics_cl *cl, ics_sat_precision m, float off, c
          sp.median, sp.max);
   return 0;
 }
-#endif
 
 static int run_bench(const config *c) {
   size_t cells = c->n[0] * c->n[1] * c->n[2];
@@ -498,7 +494,6 @@ static int run_bench(const config *c) {
     data[i] = (float)(1000.0 + (2.0 * cli_splitmix_unit(&seed) - 1.0));
   memset(src, 1, copy_max);
   memset(dst, 0, copy_max);
-#ifdef ICS_HAVE_RENDER
   ics_cl *cl = NULL;
   void *cltab = NULL;
   float *cllo = NULL;
@@ -516,7 +511,6 @@ static int run_bench(const config *c) {
       return cli_failure(sat_cmd(c->dims), "out of memory");
     }
   }
-#endif
   printf("kind,mode,width,height,depth,reps,time_s,first_build_s,bytes,memcpy_s,floor_ratio,"
          "gbytes_per_s,max_rel_err,max_bound_frac,boxes,time_median_s,time_max_s\n");
   int header_ok = stdout_ok(c->dims), rc = header_ok ? 0 : 1, busy = 0;
@@ -564,23 +558,19 @@ static int run_bench(const config *c) {
              bytes, best_copy, best_copy / best, (double)bytes / best * 1e-9, max_rel, max_frac,
              c->boxes, sp.median, sp.max);
     }
-#ifdef ICS_HAVE_RENDER
     if (c->cl && cl_row(c, cl, m, (float)off, data, cltab, cllo, src, dst, copy, bytes, pre, &busy)) {
       free_any(c, sat);
       rc = 1;
       break;
     }
-#endif
     free_any(c, sat);
     if (!stdout_ok(c->dims)) {
       rc = 1;
       break;
     }
   }
-#ifdef ICS_HAVE_RENDER
   ics_cl_destroy(cl);
   free(cltab), free(cllo);
-#endif
   free(data), free(src), free(dst), free(pre);
   if (busy) cli_warn_busy(sat_cmd(c->dims), "time_s vs time_max_s");
   return rc;
@@ -624,9 +614,6 @@ static int bench_sat(int argc, char **argv, int dims) {
   else if (!strcmp(backend, "cl")) c.cl = 1;
   else if (!strcmp(backend, "cpu,cl") || !strcmp(backend, "cl,cpu")) c.cpu = c.cl = 1;
   else return cli_error(cmd, "--backend: expected cpu, cl or cpu,cl, got '%s'", backend);
-#ifndef ICS_HAVE_RENDER
-  if (c.cl) return cli_error(cmd, "--backend cl: built without the renderer library (jansson)");
-#endif
   if (dims == 2 && lights) return cli_error(cmd, "--lights is for sat3d");
   if (dims == 2 && given_depth) return cli_error(cmd, "--depth is for sat3d");
   if (dims == 3 && given_chirp) return cli_error(cmd, "--chirp-csv is for sat2d");

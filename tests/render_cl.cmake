@@ -40,27 +40,3 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
     ERR "warning: --cl-device only applies to --backend cl \\(the backend is cpu\\)")
   set_tests_properties(cli_render_cl_no_device PROPERTIES ENVIRONMENT ICS_CL_DEVICE=no-such-device)
 endif()
-
-# summed-area tables on the device (icshadow/cl.h) equal the core's bit for bit
-ics_add_test(NAME test_sat_cl SOURCES test_sat_cl.c LABELS medium
-  LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER OPENCL)
-# bench sat2d / sat3d with the device's table beside the CPU's, per mode
-if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
-  set(f "[0-9.e+-]+")
-  ics_cli_test(NAME cli_sat2d_cl RC 0 LABELS medium
-    ARGS "bench|sat2d|--width|67|--height|33|--modes|float,compensated|--reps|1|--boxes|20|--backend|cpu,cl"
-    OUT "\nsat2d,float,67,33,1,1,[^\n]*\nsat2d-cl,float,67,33,1,1,[^\n]*\nsat2d,compensated,67,33,1,1,[^\n]*,0,0,20,${f},${f}\nsat2d-cl,compensated,67,33,1,1,[^\n]*,0,0,20,${f},${f}\n$")
-  ics_cli_test(NAME cli_sat3d_cl RC 0 LABELS medium
-    ARGS "bench|sat3d|--width|9|--height|7|--depth|5|--modes|double|--reps|1|--boxes|20|--backend|cl"
-    OUT "^kind,[^\n]*\nsat3d-cl,double,9,7,5,1,[^\n]*,0,0,20,${f},${f}\n$")
-endif()
-# min-max mipmaps on the device: the same trees and the same integrated sums as the core's
-ics_add_test(NAME test_minmax_cl SOURCES test_minmax_cl.c LABELS medium
-  LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER OPENCL)
-# bench minmax with the device's trees beside the CPU's (the sums' equality: test_minmax_cl)
-if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
-  set(f "[0-9.e+-]+")
-  ics_cli_test(NAME cli_minmax_cl RC 0 LABELS medium
-    ARGS "bench|minmax|--samples|64|--rows|8|--rays|4|--reps|1|--backend|cpu,cl"
-    OUT "\n64,8,4,4,${f},${f},${f},${f},[0-9]+,[0-9]+,${f},${f},${f},${f},${f},cpu,${f},${f},${f},${f}\n64,8,4,4,${f},${f},${f},${f},[0-9]+,[0-9]+,${f},${f},${f},${f},${f},cl,${f},${f},${f},${f}\n$")
-endif()

@@ -1,4 +1,4 @@
-/* test_minmax_cl.c — 1D min-max mipmaps on an OpenCL device (icshadow/cl.h, gpu/backends/cl/minmax.cl)
+/* test_minmax_cl.c — 1D min-max mipmaps on an OpenCL device (icshadow/cl.h, libicshadow_cl/src/minmax.cl)
  * against the core's (icshadow/minmax.h): every node of the trees equal, and for random rays
  * (flat and sloped, level with a sample's height, gamma_end anywhere in [0, d], rows with steps,
  * plateaus and +-inf) the integrated sums equal bit for bit and the lit-run counts equal; then

@@ -1,4 +1,4 @@
-/* test_sat_cl.c — summed-area tables built on an OpenCL device (icshadow/cl.h, gpu/backends/cl/sat.cl)
+/* test_sat_cl.c — summed-area tables built on an OpenCL device (icshadow/cl.h, libicshadow_cl/src/sat.cl)
  * equal the core's tables (icshadow/sat.h) bit for bit: every entry of 2D and 3D tables in the
  * four precision modes, on sizes that reach every path of the passes (widths not a multiple of
  * the 4-cell and 2-cell blocks, one row, one column, one slice), on data near 1000 (a ramp: the

@@ -18,7 +18,8 @@ declared=$(sed -n 's/^ICS_API //p' "${headers[@]}" | while IFS= read -r decl; do
   [[ $decl =~ ([A-Za-z_][A-Za-z0-9_]*)[[:space:]]*$ ]] && echo "${BASH_REMATCH[1]}"
 done | sort -u)
 
-unmarked=$(grep -n -E '^[A-Za-z_].*\<ics_[A-Za-z0-9_]*\(' "${headers[@]}" |
+# (-H: the file name on every line, also where the folder holds one header)
+unmarked=$(grep -H -n -E '^[A-Za-z_].*\<ics_[A-Za-z0-9_]*\(' "${headers[@]}" |
   grep -v -E '^[^:]*:[0-9]+:(ICS_API |ICS_DEPRECATED|typedef |static |#)' || true)
 if [ -n "$unmarked" ]; then
   echo "declared without ICS_API:"; echo "$unmarked" | sed 's/^/  /'; fail=1

@@ -5,6 +5,9 @@
 # to the prefix, CMake with OpenEXR disabled): flags without OpenEXR's, no OpenEXR looked for.
 # Shared consumers find the library at run time through the RUNPATH README gives them
 # (-Wl,-rpath,$(pkg-config --variable=libdir icshadow); CMake sets it in the build tree).
+# A program that builds a summed-area table on an OpenCL device against the installed
+# libicshadow_cl, through pkg-config icshadow-cl and find_package(icshadow COMPONENTS cl) (where
+# this machine has no OpenCL device it checks the link).
 # Where the renderer was built, also a program that renders the default scene to an EXR against
 # the installed libicshadow_render, through pkg-config icshadow-render and through
 # find_package(icshadow COMPONENTS render).
@@ -60,7 +63,17 @@ cmake -S "$src/tests/install" -B "$tmp/cm" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE
 cmake --build "$tmp/cm" >/dev/null
 "$tmp/cm/consumer_shared"
 "$tmp/cm/consumer_static"
-n=6
+echo "== pkg-config icshadow-cl, a summed-area table on an OpenCL device"
+out=$(PKG_CONFIG_PATH=$pc pkg-config --cflags --libs icshadow-cl) && read -a words <<< "$out"
+case "$out" in *render*|*jansson*) echo "libicshadow_cl's flags name the renderer: $out"; exit 1 ;; esac
+"$cc" -std=c11 "$src/tests/install/consumer_cl.c" -o "$tmp/c_cl" "${words[@]}" -Wl,-rpath,"$libdir"
+"$tmp/c_cl"
+echo "== find_package(icshadow COMPONENTS cl)"
+cmake -S "$src/tests/install" -B "$tmp/cm_cl" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_C_COMPILER="$cc" \
+  -DICS_CONSUMER_STATIC=OFF -DICS_CONSUMER_CL=ON >/dev/null
+cmake --build "$tmp/cm_cl" >/dev/null
+"$tmp/cm_cl/consumer_cl"
+n=8
 if [ -f "$prefix/include/icshadow/render.h" ]; then
   # the renderer, from C, with only the installed tree (README "Rendering from C")
   echo "== pkg-config icshadow-render, a render of the default scene to an EXR"
@@ -79,6 +92,6 @@ if [ -f "$prefix/include/icshadow/render.h" ]; then
   printf '#include <icshadow/render.h>\nint main(void) { return ics_backend_count() > 0 ? 0 : 1; }\n' > "$tmp/only.c"
   "$cc" -std=c11 "$tmp/only.c" -o "$tmp/c_only" -Wl,--as-needed "${words[@]}" -Wl,-rpath,"$libdir"
   "$tmp/c_only"
-  n=9
+  n=11
 fi
 echo "install test: $n passed, 0 failed"

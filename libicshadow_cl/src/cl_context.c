@@ -51,8 +51,8 @@ ics_status ics_cl_minmax_integrate(ics_cl_minmax *t, const size_t *ray_rows,
 }
 #else
 #include "cl_context.h"
-#include "minmax_cl_source.h" /* ics_minmax_cl_source: gpu/backends/cl/minmax.cl */
-#include "sat_cl_source.h"    /* ics_sat_cl_source: gpu/backends/cl/sat.cl (cmake/embed_text.cmake) */
+#include "minmax_cl_source.h" /* ics_minmax_cl_source: libicshadow_cl/src/minmax.cl */
+#include "sat_cl_source.h"    /* ics_sat_cl_source: libicshadow_cl/src/sat.cl (cmake/embed_text.cmake) */
 
 static const char *const SAT_KERNELS[ICS_CL_SAT_KERNELS] = {
     "sat_rows_f32", "sat_cols_f32", "sat_slices_f32", "sat_rows_f64", "sat_cols_f64",

@@ -1,4 +1,4 @@
-/* sat.cl — summed-area tables in OpenCL C 1.2 (gpu/backends/cl/sat_cl.c, docs/sat.md "On OpenCL"): the
+/* sat.cl — summed-area tables in OpenCL C 1.2 (libicshadow_cl/src/sat_cl.c, docs/sat.md "On OpenCL"): the
  * same sums in the same order as the core's SSE2 builder (libicshadow/src/sat_build.c), as three
  * passes over the table, so a table built here equals the CPU's bit for bit:
  *   rows    one work-item per row (all slices): the x prefix in blocks of 4 (float) or 2

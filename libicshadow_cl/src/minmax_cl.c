@@ -1,5 +1,5 @@
 /* minmax_cl.c — ics_cl_minmax_* (icshadow/cl.h): 1D min-max mipmaps built and traversed on the
- * device (gpu/backends/cl/minmax.cl; method: docs/minmax.md "On OpenCL"). The trees stay on the device;
+ * device (libicshadow_cl/src/minmax.cl; method: docs/minmax.md "On OpenCL"). The trees stay on the device;
  * a batch of rays is uploaded with the shared prefix sums, one work-item per ray traverses its
  * row's tree, the sums come back. */
 #define _POSIX_C_SOURCE 200809L

@@ -1,5 +1,5 @@
 /* sat_cl.c — ics_cl_sat_build (icshadow/cl.h): summed-area tables built on the device
- * (gpu/backends/cl/sat.cl; method: docs/sat.md "On OpenCL"). The data are uploaded, the rows, columns and
+ * (libicshadow_cl/src/sat.cl; method: docs/sat.md "On OpenCL"). The data are uploaded, the rows, columns and
  * (3D) slices passes run in the context's in-order queue, the table is read back. */
 #define _POSIX_C_SOURCE 200809L
 #include <limits.h>

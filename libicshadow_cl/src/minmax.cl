@@ -1,4 +1,4 @@
-/* minmax.cl — 1D min-max mipmaps on the device (gpu/backends/cl/minmax_cl.c, docs/minmax.md "On
+/* minmax.cl — 1D min-max mipmaps on the device (libicshadow_cl/src/minmax_cl.c, docs/minmax.md "On
  * OpenCL"): the trees of libicshadow/src/minmax.c in its layout (per row 2P (min, max) pairs,
  * Ahnentafel order, the row padded with its last sample), built level by level, and Chen's
  * traversal with integration, one work-item per ray, in the CPU's order: the same nodes visited,

@@ -1,7 +1,8 @@
-/* icshadow/cl.h — libicshadow's primitives on an OpenCL device (part of the renderer library,
- * docs/sat.md and docs/minmax.md "On OpenCL"): a device context, summed-area tables built on
- * it, and 1D min-max mipmaps built and traversed on it. Built with
- * OpenCL (CMake finds it); without it every function returns ICS_ERR_UNSUPPORTED. The device is
+/* icshadow/cl.h — libicshadow's primitives on an OpenCL device, libicshadow_cl (a library of its
+ * own beside the core: link with -licshadow_cl -licshadow; docs/sat.md and docs/minmax.md "On
+ * OpenCL"): a device context, summed-area tables built on it, and 1D min-max mipmaps built and
+ * traversed on it. Built with OpenCL (CMake finds it); without it every function returns
+ * ICS_ERR_UNSUPPORTED. The device is
  * the cl backend's choice: ICS_CL_DEVICE (an index or a substring of "platform: device"), else
  * the first GPU with fp64, else the first device with fp64 (docs/backend_cl.md). */
 #ifndef ICSHADOW_CL_H
