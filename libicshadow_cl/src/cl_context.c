@@ -11,7 +11,7 @@
 #ifndef ICS_HAVE_OPENCL
 ics_status ics_cl_create(ics_cl **out, char *msg, size_t msg_size) {
   if (out) *out = NULL;
-  if (msg) snprintf(msg, msg_size, "libicshadow_render was built without OpenCL");
+  if (msg) snprintf(msg, msg_size, "libicshadow_cl was built without OpenCL");
   return ICS_ERR_UNSUPPORTED;
 }
 void ics_cl_destroy(ics_cl *cl) { (void)cl; }
@@ -24,7 +24,7 @@ ics_status ics_cl_sat_build(ics_cl *cl, const float *data, size_t w, size_t h, s
                             double *ms_device, char *msg, size_t msg_size) {
   (void)cl, (void)data, (void)w, (void)h, (void)d, (void)mode, (void)offset, (void)table, (void)lo;
   (void)ms_device;
-  if (msg) snprintf(msg, msg_size, "libicshadow_render was built without OpenCL");
+  if (msg) snprintf(msg, msg_size, "libicshadow_cl was built without OpenCL");
   return ICS_ERR_UNSUPPORTED;
 }
 ics_status ics_cl_minmax_create(ics_cl *cl, const float *values, size_t rows, size_t d,
@@ -32,7 +32,7 @@ ics_status ics_cl_minmax_create(ics_cl *cl, const float *values, size_t rows, si
                                 size_t msg_size) {
   (void)cl, (void)values, (void)rows, (void)d, (void)stride, (void)ms_device;
   if (out) *out = NULL;
-  if (msg) snprintf(msg, msg_size, "libicshadow_render was built without OpenCL");
+  if (msg) snprintf(msg, msg_size, "libicshadow_cl was built without OpenCL");
   return ICS_ERR_UNSUPPORTED;
 }
 void ics_cl_minmax_destroy(ics_cl_minmax *t) { (void)t; }
@@ -46,7 +46,7 @@ ics_status ics_cl_minmax_integrate(ics_cl_minmax *t, const size_t *ray_rows,
                                    double *ms_device, char *msg, size_t msg_size) {
   (void)t, (void)ray_rows, (void)rays, (void)nrays, (void)prefix, (void)nterms, (void)ld, (void)out;
   (void)nseg, (void)ms_device;
-  if (msg) snprintf(msg, msg_size, "libicshadow_render was built without OpenCL");
+  if (msg) snprintf(msg, msg_size, "libicshadow_cl was built without OpenCL");
   return ICS_ERR_UNSUPPORTED;
 }
 #else
