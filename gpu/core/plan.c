@@ -553,6 +553,14 @@ static void plan_passes(ics_plan *p, const plan_bytes *b) {
     }
   }
   if (p->nch == 1) add_omitted(p, "colour light buffers", "every transport colour is grey: one channel per light");
+  int sets = ics_plan_light_sets(p); /* the sets beyond the first (ics_set_role) */
+  if (sets > 1) {
+    int patel = ics_plan_set_role(p, 1) == ICS_SET_PATEL, blocker = p->rs.model >= ICS_MODEL_BLOCKER;
+    snprintf(d, sizeof d, "%d more light-buffer set(s) per light: %s%s%s", sets - 1,
+             patel ? "Patel's (it lights the solids' surfaces)" : "", patel && blocker ? "; " : "",
+             blocker ? "the sharp set (d1 / 4) and the blocker moment (render.model blocker)" : "");
+    add_pass(p, "light_buffer_sets", (size_t)p->nlights * (size_t)(sets - 1) * b->buf, -1, 0, d);
+  }
   if (p->any_detail) {
     snprintf(d, sizeof d, "detail functions of volumetric materials, one sample per slab piece");
     add_pass(p, "detail", b->grid, -1, 0, d);
