@@ -296,7 +296,10 @@ static void surface_colour(const job_t *j, int obj, const double L[3], float *C)
  * surface (clamped to [1, 8 (window + 1)]), and each of those slabs passes that root's share of
  * 1 - a (1 - T): the parcel is filtered once in all (docs/renderer.md "Surface bias"). Without a
  * window the fragment filters at its one slab, as it always did. The buffer sets take it as
- * occludes_in says (a solid object's surface occludes only in Patel's set). */
+ * occludes_in says (a solid object's surface occludes only in Patel's set). A solid's surface
+ * (render.model surface and after) takes no window: its interior keeps the light out of the
+ * first set, and in Patel's set, which lights only solids' surfaces by their own term, the
+ * windows made the error larger (docs/renderer.md "Models": measured without them). */
 static void surface_occlusion(job_t *j, size_t q, const ics_fragment *fr, int after, int solid) {
   const ics_plan *P = j->p;
   const ics_material *m = &P->scene->materials[P->scene->objects[ics_frag_obj(fr)].material];
@@ -311,7 +314,7 @@ static void surface_occlusion(job_t *j, size_t q, const ics_fragment *fr, int af
     double rho = -(gr * mu[0] + gu * mu[1]), rel = fabs(1 - rho);
     double v0 = j->moment ? first_mean(j, l, q) : 0;
     for (int sharp = 0; sharp <= j->moment; sharp++) { /* the sets of d1's blur, the sharp set */
-      double window = floor(fr->span * j->window[sharp * P->nlights + l]), meets = 1;
+      double window = solid ? 0 : floor(fr->span * j->window[sharp * P->nlights + l]), meets = 1;
       if (after > window) continue;
       if (window > 0) /* no window (a blur of a pixel or more): one slab, filtered as it is */
         meets = rel > 0 ? fmin(fmax((window + 1) / rel, 1), 8 * (window + 1)) : 8 * (window + 1);
