@@ -1,6 +1,6 @@
 /* cl_context.h — the context behind icshadow/cl.h (cl_context.c): the device and the programs
  * of the primitives, and the bookkeeping of one call (the first failed OpenCL call, the events
- * whose device times it sums). Private to the renderer library. */
+ * whose device times it sums). Private to libicshadow_cl. */
 #ifndef ICS_CL_CONTEXT_H
 #define ICS_CL_CONTEXT_H
 

@@ -201,10 +201,12 @@ void ics_cl_dev_close(ics_cl_dev *d) {
 /* The compiler's own output on stderr (PoCL runs clang in the process, which prints "N warnings
  * generated." for a first build) is kept out of the user's stderr: fd 2 goes to a private
  * temporary file while the program builds, and the end of what was written there is returned,
- * to be shown only when the build fails. Builds take a process-wide lock for that time, so two
- * threads building at once cannot leave fd 2 on the other's file; whatever else the process
- * writes to stderr during a build (about a second, once per program with PoCL's cache) goes into
- * that record too. -1 (and no lock held) when fd 2 is closed or cannot be redirected. */
+ * to be shown only when the build fails. Builds take a lock for that time, so two threads
+ * building at once cannot leave fd 2 on the other's file (one lock per library this file is
+ * compiled into: a process that builds through libicshadow_cl.so and the renderer's shared cl
+ * backend on two threads at the same moment is not covered; static links share one); whatever
+ * else the process writes to stderr during a build (about a second, once per program with
+ * PoCL's cache) goes into that record too. -1 (and no lock held) when fd 2 is closed or cannot be redirected. */
 static pthread_mutex_t quiet_lock = PTHREAD_MUTEX_INITIALIZER;
 
 static int quiet_stderr_begin(void) {

@@ -1,7 +1,7 @@
 /* cl_device.h — what libicshadow's OpenCL code shares (cl_device.c): the chosen device with its
  * context and profiling queue, program builds (the log in the message on failure), OpenCL
- * error names, event times and the ics_status of a failed call. Private to the renderer
- * library. */
+ * error names, event times and the ics_status of a failed call. Private: compiled into
+ * libicshadow_cl and into the renderer's cl backend, exported by neither. */
 #ifndef ICS_CL_DEVICE_H
 #define ICS_CL_DEVICE_H
 
