@@ -38,6 +38,7 @@ typedef struct {
                             Patel's, the sharp and the moment set, as the model has them) */
   ics_set_role *role;    /* per buffered light: its set's role */
   int patel_set;         /* Patel's set, which lights the solids' surfaces (0: none) */
+  int sharp_set;         /* render.model blocker: the sharp set (the moment set follows it) */
   int moment;            /* render.model blocker: the sharp and moment sets are kept */
   float **src, **dst;    /* per buffered light b (light b % nlights, set b / nlights): nch planes */
   ics_prop_taps *pt;     /* per light, then (render.model blocker) per light its sharp set's */
@@ -137,16 +138,15 @@ static void piece_light(const job_t *j, const float *arrive, int nv, const doubl
                         const int *objs, double a, double dz, double L[3]) {
   const ics_plan *P = j->p;
   const ics_scene *s = P->scene;
-  double plain = -expm1(-a * dz) / a;
+  double plain = -expm1(-a * dz) / a, bc[3] = {0, 0, 0}; /* per channel, per unit light path */
+  for (int c = 0; c < P->nch; c++)
+    for (int i = 0; i < nv; i++) bc[c] += sig[i] * (1 - s->materials[s->objects[objs[i]].material].transport[c]);
   L[0] = L[1] = L[2] = 0;
   for (int l = 0; l < P->nlights; l++) {
     const ics_light *lt = &s->lights[l];
     for (int c = 0; c < 3; c++) {
       int ch = P->nch == 3 ? c : 0;
-      double b = 0;
-      for (int i = 0; i < nv; i++)
-        b += sig[i] * (1 - s->materials[s->objects[objs[i]].material].transport[ch]);
-      b *= P->light_path[l];
+      double b = bc[ch] * P->light_path[l];
       L[c] += lt->color[c] * lt->weight * arrive[l * P->nch + ch] * (-expm1(-(a + b) * dz) / (a + b)) / plain;
     }
   }
@@ -410,7 +410,7 @@ static void arriving_light(const job_t *j, size_t q, double z, float *arrive) {
   for (int b = 0; b < j->nb; b++)
     for (int c = 0; c < P->nch; c++) arrive[b * P->nch + c] = j->dst[b][(size_t)c * plane + q];
   if (P->rs.model < ICS_MODEL_BLOCKER) return;
-  int nl = P->nlights, sharp = j->patel_set ? 2 : 1;
+  int nl = P->nlights, sharp = j->sharp_set;
   double d_sharp = P->rs.d1 * ICS_BLOCKER_SHARP;
   for (int l = 0; l < nl; l++) {
     float *first = arrive + l * P->nch;
@@ -735,6 +735,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   for (int b = 0; b < nb; b++) {
     role[b] = ics_plan_set_role(P, b / nl);
     if (role[b] == ICS_SET_PATEL) j->patel_set = b / nl;
+    if (role[b] == ICS_SET_SHARP) j->sharp_set = b / nl;
   }
   j->src = bufs;
   j->dst = bufs + nb;
