@@ -53,10 +53,16 @@ ics_add_render_test(test_render_aov fast)
 ics_add_render_test(test_render_bias medium) # 8.4 s under ASan (scalar path), 1 s Release
 ics_add_render_test(test_render_mc medium)
 ics_add_render_test(test_render_mc_embree fast ASSIMP EMBREE)
-# the device records' offsets are named once (gpu/core/device_layout.h): no cl or gl program
-# defines an O_*, G_* or CAM_* offset or a stride of its own
-add_test(NAME device_layout_once COMMAND sh -c
-  "! grep -nE '^[[:space:]]*#[[:space:]]*define[[:space:]]+((O|G|CAM)_[A-Z_]+|[A-Z_]*(OBJ|GEO)_STRIDE)[[:space:](]' \"$@\""
-  device_layout_once ${CMAKE_SOURCE_DIR}/gpu/backends/cl/slab.cl ${CMAKE_SOURCE_DIR}/gpu/backends/gl/slab.comp
-  ${CMAKE_SOURCE_DIR}/gpu/backends/gl/ldi.comp)
-set_tests_properties(device_layout_once PROPERTIES LABELS fast)
+# the shared kernel source (gpu/kernel) compiled as C against the host's detail, transfer and rays
+ics_add_test(NAME test_kernel_c SOURCES test_kernel_c.c LABELS fast render
+  LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/scenes/volumes.json)
+if(TARGET test_kernel_c)
+  target_include_directories(test_kernel_c PRIVATE ${ICS_RENDER_PRIVATE_INCLUDES})
+endif()
+# the kernel source is written once (gpu/kernel): no device function defined in two kernel files,
+# no record offset or stride defined outside gpu/kernel/device_layout.h
+file(GLOB ics_kernel_shared ${CMAKE_SOURCE_DIR}/gpu/kernel/*.h)
+add_test(NAME kernel_source_once COMMAND ${CMAKE_SOURCE_DIR}/tests/source/kernel_once.sh
+  ${CMAKE_SOURCE_DIR}/gpu/backends/cl/slab.cl ${CMAKE_SOURCE_DIR}/gpu/backends/gl/slab.comp
+  ${CMAKE_SOURCE_DIR}/gpu/backends/gl/ldi.comp ${ics_kernel_shared})
+set_tests_properties(kernel_source_once PROPERTIES LABELS fast)

@@ -32,7 +32,7 @@ if(ICS_HAVE_GL AND ICS_HAVE_GLSLANG)
     endforeach()
     string(REPLACE "," "_" tname ${v})
     add_test(NAME glsl_slab_${tname} COMMAND ${GLSLANG_VALIDATOR} -l -S comp ${defs}
-      ${CMAKE_BINARY_DIR}/gpu/generated/slab.comp) # as compiled: device_layout.h ahead
+      ${CMAKE_BINARY_DIR}/gpu/generated/slab.comp) # as compiled: the includes expanded
     set_tests_properties(glsl_slab_${tname} PROPERTIES LABELS "fast;render")
   endforeach()
 endif()

@@ -16,28 +16,24 @@
 #include "icshadow/rng.h"
 #include "icshadow/volume.h"
 
-static double fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
-static double lerp(double t, double a, double b) { return a + t * (b - a); }
-static double grad(int hash, double x, double y, double z) {
-  int h = hash & 15;
-  double u = h < 8 ? x : y, v = h < 4 ? y : (h == 12 || h == 14 ? x : z);
-  return ((h & 1) ? -u : u) + ((h & 2) ? -v : v);
-}
+/* the shared kernel source's noise and transfer functions (gpu/kernel: the same text the cl and gl
+ * programs compile) over a permutation and a material: object 0 is the material */
+typedef struct detail_view {
+  const uint8_t *perm;
+  const ics_material *m;
+} detail_view;
+#define ICS_VIEW_PARAM const detail_view *view,
+#define ICS_VIEW_ARG view,
+#define ICS_PERM(i) view->perm[i]
+#define ICS_NTRANSFER(ob) view->m[ob].ntransfer
+#define ICS_TRANSFER(ob, i) view->m[ob].transfer[(i) / 5][(i) % 5]
+#define ICS_COLOR(ob, c) view->m[ob].color[c]
+#include "kernel/noise.h"
+#include "kernel/transfer.h"
 
 double ics_perlin_noise(const uint8_t p[512], double x, double y, double z) {
-  double fx = floor(x), fy = floor(y), fz = floor(z);
-  /* the lattice cell modulo 256, in floating point (no integer conversion can overflow) */
-  int X = (int)(fx - 256 * floor(fx / 256)) & 255, Y = (int)(fy - 256 * floor(fy / 256)) & 255,
-      Z = (int)(fz - 256 * floor(fz / 256)) & 255;
-  x -= fx, y -= fy, z -= fz;
-  double u = fade(x), v = fade(y), w = fade(z);
-  int A = p[X] + Y, AA = p[A] + Z, AB = p[A + 1] + Z;
-  int B = p[X + 1] + Y, BA = p[B] + Z, BB = p[B + 1] + Z;
-  return lerp(w,
-              lerp(v, lerp(u, grad(p[AA], x, y, z), grad(p[BA], x - 1, y, z)),
-                   lerp(u, grad(p[AB], x, y - 1, z), grad(p[BB], x - 1, y - 1, z))),
-              lerp(v, lerp(u, grad(p[AA + 1], x, y, z - 1), grad(p[BA + 1], x - 1, y, z - 1)),
-                   lerp(u, grad(p[AB + 1], x, y - 1, z - 1), grad(p[BB + 1], x - 1, y - 1, z - 1))));
+  const detail_view view = {p, NULL};
+  return ics_k_perlin(&view, 0, x, y, z);
 }
 
 void ics_detail_prepare(ics_detail_eval *e, const ics_detail *d, const double lo[3],
@@ -103,71 +99,14 @@ double ics_detail_value(const ics_detail_eval *e, const double p[3]) {
 }
 
 void ics_material_transfer(const ics_material *m, double v, double rgb[3], double *scale) {
-  int n = m->ntransfer;
-  if (n == 0) {
-    memcpy(rgb, m->color, 3 * sizeof *rgb);
-    *scale = v > 0 ? v : 0;
-    return;
-  }
-  const double(*t)[5] = m->transfer;
-  int k = 0;
-  if (v <= t[0][0]) {
-    k = -1;
-  } else if (v >= t[n - 1][0]) {
-    k = n - 1;
-  } else {
-    while (k + 1 < n && t[k + 1][0] <= v) k++;
-  }
-  if (k < 0 || k == n - 1) {
-    const double *row = t[k < 0 ? 0 : n - 1];
-    rgb[0] = row[1], rgb[1] = row[2], rgb[2] = row[3];
-    *scale = row[4];
-    return;
-  }
-  double a = (v - t[k][0]) / (t[k + 1][0] - t[k][0]);
-  for (int c = 0; c < 3; c++) rgb[c] = t[k][1 + c] + a * (t[k + 1][1 + c] - t[k][1 + c]);
-  *scale = t[k][4] + a * (t[k + 1][4] - t[k][4]);
-}
-
-/* integrals over [a, b] (a < b) of s(v) and c_k(v) s(v) for a transfer function that is linear
- * on [a, b]: s and c linear, so c s is quadratic and Simpson's rule is exact */
-static void linear_piece(const ics_material *m, double a, double b, double *S, double CS[3]) {
-  double ca[3], cm[3], cb[3], sa, sm, sb, h = b - a;
-  ics_material_transfer(m, a, ca, &sa);
-  ics_material_transfer(m, 0.5 * (a + b), cm, &sm);
-  ics_material_transfer(m, b, cb, &sb);
-  *S += h * (sa + 4 * sm + sb) / 6;
-  for (int c = 0; c < 3; c++) CS[c] += h * (ca[c] * sa + 4 * cm[c] * sm + cb[c] * sb) / 6;
+  const detail_view view = {NULL, m};
+  *scale = ics_k_transfer(&view, 0, v, rgb);
 }
 
 void ics_material_preintegrate(const ics_material *m, double vf, double vb, double rgb[3],
                                double *scale) {
-  double lo = fmin(vf, vb), hi = fmax(vf, vb);
-  if (!(hi - lo > 1e-12 * (1 + fabs(hi)))) {
-    ics_material_transfer(m, 0.5 * (vf + vb), rgb, scale);
-    return;
-  }
-  /* breakpoints: the transfer function's nodes inside (lo, hi), and 0 when it has none
-   * (s = max(v, 0) bends there) */
-  double bp[ICS_SCENE_MAX_TRANSFER + 2];
-  int nb = 0;
-  bp[nb++] = lo;
-  if (m->ntransfer == 0) {
-    if (lo < 0 && hi > 0) bp[nb++] = 0;
-  } else {
-    for (int i = 0; i < m->ntransfer; i++)
-      if (m->transfer[i][0] > lo && m->transfer[i][0] < hi) bp[nb++] = m->transfer[i][0];
-  }
-  bp[nb++] = hi;
-  double S = 0, CS[3] = {0, 0, 0};
-  for (int i = 0; i + 1 < nb; i++) linear_piece(m, bp[i], bp[i + 1], &S, CS);
-  *scale = S / (hi - lo);
-  if (S > 0) {
-    for (int c = 0; c < 3; c++) rgb[c] = CS[c] / S;
-  } else {
-    ics_material_transfer(m, 0.5 * (vf + vb), rgb, scale);
-    *scale = 0;
-  }
+  const detail_view view = {NULL, m};
+  *scale = ics_k_preintegrate(&view, 0, vf, vb, rgb);
 }
 
 double ics_detail_bound(const ics_detail *d) {

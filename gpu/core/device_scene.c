@@ -22,7 +22,7 @@ void ics_device_camera(const ics_plan *P, double cam[ICS_DEV_CAM]) {
     cam[CAM_EYE + i] = cm->eye[i], cam[CAM_R + i] = cm->r[i], cam[CAM_U + i] = cm->u[i],
     cam[CAM_F + i] = cm->f[i];
   cam[CAM_H] = cm->height;
-  cam[CAM_W] = cm->height * P->W / P->H; /* as ics_plan_ray computes them */
+  cam[CAM_W] = cm->height * P->W / P->H;
   cam[CAM_TH] = P->tan_half_fov;
   cam[CAM_ASP] = (double)P->W / P->H;
   cam[CAM_PROJ] = cm->projection == ICS_PROJ_PERSPECTIVE;

@@ -8,7 +8,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "device_layout.h"
+#include "kernel/device_layout.h"
 #include "plan_internal.h"
 
 

@@ -19,27 +19,21 @@
 #include "icshadow/constants.h"
 #include "icshadow/conv.h"
 #include "icshadow/light.h"
+#include "device_scene.h"
 #include "mesh.h"
 #include "own_term.h"
 #include "plan_internal.h"
 #include "scene_internal.h"
 
+/* the camera ray: the shared kernel source (gpu/kernel/camera.h, the text the cl and gl programs
+ * compile) over the plan's camera record */
+#define ICS_VIEW_PARAM const double *cam_rec,
+#define ICS_VIEW_ARG cam_rec,
+#define ICS_CAM(f) cam_rec[f]
+#include "kernel/camera.h"
+
 void ics_plan_ray(const ics_plan *p, int bi, int bj, double o[3], double d[3]) {
-  const ics_camera *c = &p->cam;
-  double s = (bi - p->pad[0] + 0.5) / p->W, t = (bj - p->pad[2] + 0.5) / p->H;
-  if (c->projection == ICS_PROJ_ORTHOGRAPHIC) {
-    double h = c->height, w = h * p->W / p->H;
-    for (int i = 0; i < 3; i++) {
-      o[i] = c->eye[i] + (s - 0.5) * w * c->r[i] + (0.5 - t) * h * c->u[i];
-      d[i] = c->f[i];
-    }
-  } else {
-    double th = p->tan_half_fov, asp = (double)p->W / p->H;
-    for (int i = 0; i < 3; i++) {
-      o[i] = c->eye[i];
-      d[i] = c->f[i] + (2 * s - 1) * th * asp * c->r[i] + (1 - 2 * t) * th * c->u[i];
-    }
-  }
+  ics_k_plan_ray(p->cam_rec, bi, bj, p->W, p->H, p->pad[0], p->pad[2], o, d);
 }
 
 double ics_plan_pixel_size(const ics_plan *p, double z) {
@@ -250,6 +244,7 @@ static ics_status plan_limits(ics_plan *p, double *zlo, double *zhi, double *k_e
   }
   p->W = p->cam.width;
   p->H = p->cam.height_px;
+  ics_device_camera(p, p->cam_rec);
   p->e = p->rs.slab_spacing;
   p->nlights = p->scene->nlights;
   estimate_depth(p, zlo, zhi);

@@ -7,6 +7,8 @@
 
 #include <stdint.h>
 
+#include "kernel/device_layout.h"
+
 #include "active_region.h"
 #include "tile_grid.h"
 #include "detail.h"
@@ -61,6 +63,7 @@ struct ics_plan {
   ics_render_settings rs; /* the settings in force (scene's or overridden) */
   ics_camera cam;         /* the camera in force (resolution overridden) */
   double tan_half_fov;    /* perspective: tan(fov / 2), computed once (every ray takes it) */
+  double cam_rec[ICS_DEV_CAM]; /* the camera record (kernel/device_layout.h) rays are cast from */
   int W, H;               /* image */
   int Wb, Hb;             /* light buffers = LDI grid */
   int pad[4];             /* left, right, top, bottom */

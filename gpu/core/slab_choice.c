@@ -15,20 +15,18 @@ uint32_t ics_slab_entry(uint64_t seed, uint32_t light, uint32_t slab, uint32_t p
   return ics_slab_choice(seed, light, slab, pixel, ICS_SLAB_TABLE_M);
 }
 
-/* chunk (pixel % span) / 64 of word (pixel % 64) / 16 of block (pixel / span) 16 + pixel % 16,
- * span = 64 n */
-static uint32_t choice_at(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel, uint32_t k,
-                          int b, uint32_t n) {
-  uint32_t r = pixel % (64 * n), w[4];
-  ics_slab_entry_block(seed, light, slab, pixel / (64 * n) * 16 + r % 16, w);
-  return ics_slab_word_choice(w[r % 64 / 16], k, b, r / 64);
+/* word i of block `block` */
+uint32_t ics_slab_entry_word(uint64_t seed, uint32_t light, uint32_t slab, uint32_t block, int i) {
+  uint32_t w[4];
+  ics_slab_entry_block(seed, light, slab, block, w);
+  return w[i];
 }
 
 uint32_t ics_slab_choice(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel, uint32_t k) {
-  return choice_at(seed, light, slab, pixel, k, 0, 1);
+  return ics_k_pixel_choice(seed, light, slab, pixel, k, 0, 1);
 }
 
 uint32_t ics_slab_pixel_choice(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel,
                                uint32_t k) {
-  return choice_at(seed, light, slab, pixel, k, ics_slab_choice_bits(k), ics_slab_choice_chunks(k));
+  return ics_k_pixel_choice(seed, light, slab, pixel, k, ics_slab_choice_bits(k), ics_slab_choice_chunks(k));
 }

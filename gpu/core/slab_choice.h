@@ -7,7 +7,15 @@
 
 #include <stdint.h>
 
-#include "device_layout.h"
+#include "kernel/device_layout.h"
+#define ICS_VIEW_PARAM uint64_t seed,
+#define ICS_VIEW_ARG seed,
+#define ICS_SLAB_WORD(light, slab, block, i) ics_slab_entry_word(seed, light, slab, block, i)
+uint32_t ics_slab_entry_word(uint64_t seed, uint32_t light, uint32_t slab, uint32_t block, int i);
+#include "kernel/choice.h" /* the arithmetic, shared with the cl and gl programs */
+#undef ICS_VIEW_PARAM
+#undef ICS_VIEW_ARG
+#undef ICS_SLAB_WORD
 
 #define ICS_SLAB_TABLE_M 384 /* offsets / rotations of the per-pixel random members */
 
@@ -35,16 +43,13 @@ void ics_slab_entry_block(uint64_t seed, uint32_t light, uint32_t slab, uint32_t
  * n = 1, the word scaled as ics_slab_choice (so chunk 0 of a packed word is that choice too).
  * Every backend chooses so; Philox's words are independent uniform bits, so every choice is
  * exactly uniform. */
-static inline int ics_slab_choice_bits(uint32_t k) {
-  if (k < 2 || k > 256 || (k & (k - 1))) return 0;
-  return __builtin_ctz(k);
-}
+static inline int ics_slab_choice_bits(uint32_t k) { return ics_k_choice_bits(k); }
 static inline uint32_t ics_slab_choice_chunks(uint32_t k) {
   return (uint32_t)ICS_CHOICE_CHUNKS(ics_slab_choice_bits(k));
 }
 /* chunk c of a pixel's word: its choice among k (b = ics_slab_choice_bits(k)) */
 static inline uint32_t ics_slab_word_choice(uint32_t word, uint32_t k, int b, uint32_t c) {
-  return b ? (word >> (32 - b * (c + 1))) & (k - 1) : (uint32_t)(((uint64_t)word * k) >> 32);
+  return ics_k_word_choice(word, k, b, c);
 }
 uint32_t ics_slab_pixel_choice(uint64_t seed, uint32_t light, uint32_t slab, uint32_t pixel,
                                uint32_t k);

@@ -10,7 +10,7 @@
 set -u
 src=$1 out=$2 cc=$3 qemu=$4
 mkdir -p "$out" || exit 1
-inc=(-I"$src/gpu/backends/cpu" -I"$src/gpu/core" -I"$src/gpu/include" -I"$src/libicshadow/include"
+inc=(-I"$src/gpu" -I"$src/gpu/backends/cpu" -I"$src/gpu/core" -I"$src/gpu/include" -I"$src/libicshadow/include"
      -I"$src/libicshadow/src" -I"$src/tests")
 objs=()
 for f in "$src"/libicshadow/src/*.c "$src"/gpu/backends/cpu/propagate.c \

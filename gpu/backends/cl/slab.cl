@@ -11,12 +11,21 @@
  *              colours of the surfaces in this slab lit by the light arriving here, then the
  *              clamp of signed kernels.
  *
+ * The per-pixel functions are the shared kernel source (gpu/kernel: choice.h, class_sum.h,
+ * shade.h and what they include), the text slab.comp compiles too (and the host: choice.h,
+ * camera.h, noise.h and transfer.h in the plan and the cpu backend, the rest in
+ * test_kernel_c); this file holds the entry points, Philox in OpenCL C and the view of the
+ * buffers those functions read.
  * Light buffers have the CPU's layout with its apron (below): light l, channel c at planes
  * l nch + c; ics_apron_* refresh the apron after each slab. Double precision
  * where the CPU computes in double (the device must offer cl_khr_fp64); no contraction, so a
  * product and a sum round as they do in C. */
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #pragma OPENCL FP_CONTRACT OFF
+
+/* the shared kernel source (gpu/kernel; cmake/embed_text.cmake expands the includes) */
+#include "kernel/lang.h"
+#include "kernel/device_layout.h"
 
 #define PHILOX_M0 0xD2511F53u
 #define PHILOX_M1 0xCD9E8D57u
@@ -63,24 +72,6 @@ static double uniform_at(uint seed_lo, uint seed_hi, ulong stream, ulong index) 
   return (double)(x >> 11) * 0x1p-53;
 }
 
-/* ics_slab_choice_bits and ics_slab_word_choice: the bits of a packed choice among k (0: the
- * word scaled), and chunk c of a word */
-static int choice_bits(uint k) {
-  return k >= 2u && k <= 256u && (k & (k - 1u)) == 0u ? (int)(31u - clz(k)) : 0;
-}
-static uint word_choice(uint word, uint k, int b, uint c) {
-  return b ? (word >> (32 - b * (int)(c + 1u))) & (k - 1u) : (uint)(((ulong)word * k) >> 32);
-}
-
-/* ics_slab_choice: the word of counter `id` scaled to [0, k) */
-static uint slab_choice(uint seed_lo, uint seed_hi, uint light, uint slab, uint id, uint k) {
-  uint block = (id / 64u) * 16u + id % 16u;
-  uint w = slab_word(seed_lo, seed_hi, light, slab, block, (int)((id / 16u) % 4u));
-  return word_choice(w, k, 0, 0u);
-}
-
-static int clampi(int v, int hi) { return v < 0 ? 0 : v > hi ? hi : v; }
-
 /* Buffers have the CPU's layout (propagate.h): rows of `stride` floats with an apron of A
  * replicated edge pixels on every side, pixel (x, y) at origin + y stride + x, channel planes
  * `plane` floats apart. Within the apron a read needs no clamp, so neighbouring work-items read
@@ -90,18 +81,58 @@ typedef struct buf_layout {
 } buf_layout;
 #define AT(B, x, y) ((B).origin + (y) * (B).stride + (x))
 
-/* the taps of perspective class (bx, by) at pixel (nx, ny) (propagate.c class_sum) */
-static float class_sum(__global const float *S, buf_layout B, __global const int *ix,
-                       __global const int *iy, __global const float *wt, int n, int Q, int bx,
-                       int by, int nx, int ny) {
-  if (bx == Q) bx = 0, nx++;
-  if (by == Q) by = 0, ny++;
-  int base = (by * Q + bx) * n;
-  float acc = 0;
-  for (int m = base; m < base + n; m++)
-    acc += wt[m] * S[AT(B, clampi(nx + ix[m], B.w - 1), clampi(ny + iy[m], B.h - 1))];
-  return acc;
-}
+/* What ics_shade needs besides the buffers (one struct: OpenCL C 1.2 passes it by value). */
+typedef struct shade_args {
+  buf_layout B; /* the light buffers (B.w x B.h = the LDI grid) */
+  int nch, nlights, k, nvol, W, H, pad_l, pad_t, preintegrate;
+  int aov_count, aov_vis, aov_z; /* AOV floats per view pixel, offsets (-1: not asked; 0 count:
+                                    none) */
+  uint seed_lo, seed_hi;
+  double zf, zb, window_max;
+} shade_args;
+
+/* The program's view of its buffers for the shared kernel source (gpu/kernel/lang.h): a slab
+ * step fills the source part (class_sum.h), ics_shade the rest (shade.h), the tap-set choices
+ * the seed (choice.h). */
+typedef struct ics_view {
+  __global const float *S; /* a step's source planes, its taps */
+  buf_layout B;
+  __global const int *ix, *iy;
+  __global const float *wt;
+  uint seed_lo, seed_hi;
+  const shade_args *A; /* the shading */
+  __global float *dst;
+  __global const double *obj, *tt, *cam, *lpath, *lmu, *window;
+  __global const uchar *perm;
+  __global const float *grids;
+  __global const int *vol_obj;
+} ics_view;
+#define ICS_VIEW_PARAM const ics_view *V,
+#define ICS_VIEW_ARG V,
+#define ICS_SLAB_WORD(light, slab, block, i) slab_word(V->seed_lo, V->seed_hi, light, slab, block, i)
+#define ICS_TAP_X(m) V->ix[m]
+#define ICS_TAP_Y(m) V->iy[m]
+#define ICS_TAP_W(m) V->wt[m]
+#define ICS_SRC(c, i) V->S[(c) * V->B.plane + (i)]
+#define ICS_AT(x, y) AT(V->B, x, y)
+#define ICS_BW V->B.w
+#define ICS_BH V->B.h
+#define ICS_OBJ(ob, f) V->obj[ICS_DEV_OBJ_STRIDE * (ob) + (f)]
+#define ICS_TT(i) V->tt[i]
+#define ICS_PERM(i) V->perm[i]
+#define ICS_GRID(i) V->grids[i]
+#define ICS_CAM(f) V->cam[f]
+#define ICS_VOLOBJ(i) V->vol_obj[i]
+#define ICS_LPATH(l) V->lpath[l]
+#define ICS_LMU(i) V->lmu[i]
+#define ICS_WINDOW(l) V->window[l]
+#define ICS_DST(l, c, q) V->dst[((l) * V->A->nch + (c)) * V->A->B.plane + (q)]
+#define ICS_ARG(name) (V->A->name)
+#define JITTER_STREAM 0x6a69747400000000UL /* "jitt" (backend_cpu.c) */
+#define ICS_JITTER(k, p) uniform_at(V->seed_lo, V->seed_hi, JITTER_STREAM | (ulong)(k), (ulong)(p))
+#include "kernel/choice.h"
+#include "kernel/class_sum.h"
+#include "kernel/shade.h"
 
 /* The three forms of a slab step (propagate.c), one kernel each. Each reads light l's planes at
  * src + base and writes them at dst + base; `clamped` when a tap reaches beyond the apron. */
@@ -132,7 +163,7 @@ __kernel __attribute__((reqd_work_group_size(8, 8, 1))) void ics_prop_stencil(PR
       float acc = 0;
       if (clamped)
         for (int j = 0; j < ntaps; j++)
-          acc += wt[j] * S[AT(B, clampi(x + ix[j], B.w - 1), clampi(y + iy[j], B.h - 1))];
+          acc += wt[j] * S[AT(B, ics_k_clampi(x + ix[j], B.w - 1), ics_k_clampi(y + iy[j], B.h - 1))];
       else
         for (int j = 0; j < ntaps; j++) acc += wt[j] * S[p + (x - x0) + off[j]];
       dst[c * B.plane + p + (x - x0)] = acc;
@@ -148,7 +179,7 @@ __kernel __attribute__((reqd_work_group_size(8, 8, 1))) void ics_prop_stencil(PR
  * (x + 16 - phase) / 16 = k. No loops but the pixels' writes, so PoCL vectorises the rounds. */
 __kernel void ics_entries_pixel(__global uint *ent, int npx, int entries, uint seed_lo,
                                 uint seed_hi, uint light, uint slab) {
-  int bits = choice_bits((uint)entries);
+  int bits = ics_k_choice_bits((uint)entries);
   uint n = (uint)ICS_CHOICE_CHUNKS(bits), b = (uint)get_global_id(0);
   uint first = 64u * n * (b / 16u) + b % 16u;
   if (first >= (uint)npx) return;
@@ -158,7 +189,7 @@ __kernel void ics_entries_pixel(__global uint *ent, int npx, int entries, uint s
   for (uint c = 0; c < n; c++)
     for (int i = 0; i < 4; i++) {
       uint px = first + 64u * c + 16u * (uint)i;
-      if (px < (uint)npx) ent[px] = word_choice(words[i], (uint)entries, bits, c);
+      if (px < (uint)npx) ent[px] = ics_k_word_choice(words[i], (uint)entries, bits, c);
     }
 }
 __kernel void ics_entries_run(__global uint *ent, int w, int h, int entries, uint seed_lo,
@@ -166,8 +197,10 @@ __kernel void ics_entries_run(__global uint *ent, int w, int h, int entries, uin
   int k = (int)get_global_id(0), y = (int)get_global_id(1);
   int xa = max(16 * k - 16 + phase, 0), xb = min(16 * k + phase, w);
   if (y >= h || xa >= xb) return;
-  uint e = slab_choice(seed_lo, seed_hi, light, slab, (uint)y * (uint)(w + 32) + 16u * (uint)k,
-                       (uint)entries);
+  ics_view V;
+  V.seed_lo = seed_lo, V.seed_hi = seed_hi;
+  uint e = ics_k_pixel_choice(&V, light, slab, (uint)y * (uint)(w + 32) + 16u * (uint)k,
+                              (uint)entries, 0, 1u);
   for (int x = xa; x < xb; x++) ent[y * w + x] = e;
 }
 
@@ -181,8 +214,8 @@ static float table_pixel(__global const float *S, buf_layout B, int x, int y, in
     float a, b, cc, d;
     if (clamped) {
       int x0 = x + ix[j], y0 = y + iy[j];
-      int xa = clampi(x0, B.w - 1), xb = clampi(x0 + 1, B.w - 1);
-      int ya = clampi(y0, B.h - 1), yb = clampi(y0 + 1, B.h - 1);
+      int xa = ics_k_clampi(x0, B.w - 1), xb = ics_k_clampi(x0 + 1, B.w - 1);
+      int ya = ics_k_clampi(y0, B.h - 1), yb = ics_k_clampi(y0 + 1, B.h - 1);
       a = S[AT(B, xa, ya)], b = S[AT(B, xb, ya)], cc = S[AT(B, xa, yb)], d = S[AT(B, xb, yb)];
     } else {
       __global const float *r0 = S + p + off[j];
@@ -257,12 +290,13 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_prop_classes(
   double fY = floor(Dy), tY = (Dy - fY) * Q, kY = floor(tY);
   int nx = x + (int)fX, ny = y + (int)fY, k0 = (int)kX, k1 = (int)kY;
   float r0 = (float)(tX - kX), r1 = (float)(tY - kY);
+  ics_view V;
+  V.S = src, V.B = B, V.ix = ix, V.iy = iy, V.wt = wt;
   for (int c = 0; c < nch; c++) {
-    __global const float *S = src + c * B.plane;
-    float a00 = class_sum(S, B, ix, iy, wt, ntaps, Q, k0, k1, nx, ny);
-    float a10 = class_sum(S, B, ix, iy, wt, ntaps, Q, k0 + 1, k1, nx, ny);
-    float a01 = class_sum(S, B, ix, iy, wt, ntaps, Q, k0, k1 + 1, nx, ny);
-    float a11 = class_sum(S, B, ix, iy, wt, ntaps, Q, k0 + 1, k1 + 1, nx, ny);
+    float a00 = ics_k_class_sum(&V, c, ntaps, Q, k0, k1, nx, ny);
+    float a10 = ics_k_class_sum(&V, c, ntaps, Q, k0 + 1, k1, nx, ny);
+    float a01 = ics_k_class_sum(&V, c, ntaps, Q, k0, k1 + 1, nx, ny);
+    float a11 = ics_k_class_sum(&V, c, ntaps, Q, k0 + 1, k1 + 1, nx, ny);
     float top = a00 + r0 * (a10 - a00), bot = a01 + r0 * (a11 - a01);
     dst[c * B.plane + p] = top + r1 * (bot - top);
   }
@@ -284,300 +318,7 @@ __kernel void ics_apron_ends(__global float *buf, buf_layout B, int A) {
   else P[AT(B, x, B.h + (r - A))] = P[AT(B, x, B.h - 1)];
 }
 
-/* ---- shading ---------------------------------------------------------------------------- */
-
-/* Objects and the camera: the offsets O_*, CAM_* and the strides of gpu/core/device_layout.h
- * (embedded ahead of this file) */
-
-#define JITTER_STREAM 0x6a69747400000000UL /* "jitt" (backend_cpu.c) */
-#define MAXV 8 /* overlapping volumes whose extinctions are kept (private memory) */
-
-#define FRAG_OBJ(code) ((int)((code) & 0xfffu))
-#define FRAG_BIAS(code) ((int)((code) >> 12 & 0xfu))
-#define FRAG_SLAB(code) ((int)((code) >> 16))
-
-/* ics_plan_ray: the camera ray of buffer pixel (bi, bj) */
-static void plan_ray(__global const double *cam, int W, int H, int pad_l, int pad_t, int bi,
-                     int bj, double o[3], double d[3]) {
-  double s = (bi - pad_l + 0.5) / W, t = (bj - pad_t + 0.5) / H;
-  if (cam[CAM_PROJ] == 0) {
-    double h = cam[CAM_H], w = cam[CAM_W];
-    for (int i = 0; i < 3; i++) {
-      o[i] = cam[CAM_EYE + i] + (s - 0.5) * w * cam[CAM_R + i] + (0.5 - t) * h * cam[CAM_U + i];
-      d[i] = cam[CAM_F + i];
-    }
-  } else {
-    double th = cam[CAM_TH], asp = cam[CAM_ASP];
-    for (int i = 0; i < 3; i++) {
-      o[i] = cam[CAM_EYE + i];
-      d[i] = cam[CAM_F + i] + (2 * s - 1) * th * asp * cam[CAM_R + i] + (1 - 2 * t) * th * cam[CAM_U + i];
-    }
-  }
-}
-
-/* detail.c: improved noise, fBm, ridged multifractal */
-static double fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
-static double lerp_d(double t, double a, double b) { return a + t * (b - a); }
-static double grad3(int hash, double x, double y, double z) {
-  int h = hash & 15;
-  double u = h < 8 ? x : y, v = h < 4 ? y : (h == 12 || h == 14 ? x : z);
-  return ((h & 1) ? -u : u) + ((h & 2) ? -v : v);
-}
-static double perlin(__global const uchar *p, double x, double y, double z) {
-  double fx = floor(x), fy = floor(y), fz = floor(z);
-  int X = (int)(fx - 256 * floor(fx / 256)) & 255, Y = (int)(fy - 256 * floor(fy / 256)) & 255,
-      Z = (int)(fz - 256 * floor(fz / 256)) & 255;
-  x -= fx, y -= fy, z -= fz;
-  double u = fade(x), v = fade(y), w = fade(z);
-  int A = p[X] + Y, AA = p[A] + Z, AB = p[A + 1] + Z;
-  int B = p[X + 1] + Y, BA = p[B] + Z, BB = p[B + 1] + Z;
-  return lerp_d(w,
-                lerp_d(v, lerp_d(u, grad3(p[AA], x, y, z), grad3(p[BA], x - 1, y, z)),
-                       lerp_d(u, grad3(p[AB], x, y - 1, z), grad3(p[BB], x - 1, y - 1, z))),
-                lerp_d(v, lerp_d(u, grad3(p[AA + 1], x, y, z - 1), grad3(p[BA + 1], x - 1, y, z - 1)),
-                       lerp_d(u, grad3(p[AB + 1], x, y - 1, z - 1),
-                              grad3(p[BB + 1], x - 1, y - 1, z - 1))));
-}
-
-/* ics_volume_sample: trilinear, cell centres at i + 1/2, clamped at the faces, 0 outside */
-static double grid_sample(__global const float *d, const size_t n[3], const double p[3]) {
-  long i0[3], i1[3];
-  double f[3];
-  for (int a = 0; a < 3; a++) {
-    if (!(p[a] >= 0.0 && p[a] <= (double)n[a])) return 0.0;
-    double g = p[a] - 0.5, fl = floor(g);
-    f[a] = g - fl;
-    long i = (long)fl, last = (long)n[a] - 1;
-    i0[a] = i < 0 ? 0 : i > last ? last : i;
-    i1[a] = i + 1 < 0 ? 0 : i + 1 > last ? last : i + 1;
-  }
-  size_t sy = n[0], sz = n[0] * n[1];
-#define V_(i, j, k) ((double)d[(size_t)(i) + (size_t)(j) * sy + (size_t)(k) * sz])
-  double c00 = V_(i0[0], i0[1], i0[2]) * (1 - f[0]) + V_(i1[0], i0[1], i0[2]) * f[0];
-  double c10 = V_(i0[0], i1[1], i0[2]) * (1 - f[0]) + V_(i1[0], i1[1], i0[2]) * f[0];
-  double c01 = V_(i0[0], i0[1], i1[2]) * (1 - f[0]) + V_(i1[0], i0[1], i1[2]) * f[0];
-  double c11 = V_(i0[0], i1[1], i1[2]) * (1 - f[0]) + V_(i1[0], i1[1], i1[2]) * f[0];
-#undef V_
-  double c0 = c00 * (1 - f[1]) + c10 * f[1], c1 = c01 * (1 - f[1]) + c11 * f[1];
-  return c0 * (1 - f[2]) + c1 * f[2];
-}
-
-static double detail_value(__global const double *ob, __global const uchar *perm,
-                           __global const float *grids, const double pt[3]) {
-  const double drift[3] = {0.3713, 0.5129, 0.7731};
-  int fn = (int)ob[O_DETAIL], octaves = (int)ob[O_OCTAVES];
-  if (fn == 4) { /* the grid over the object's box (detail.c) */
-    size_t n[3];
-    double q[3];
-    for (int i = 0; i < 3; i++) {
-      double lo = ob[O_GRID_LO + i], hi = ob[O_GRID_HI + i];
-      n[i] = (size_t)ob[O_GRID_N + i];
-      q[i] = hi > lo ? (pt[i] - lo) / (hi - lo) * (double)n[i] : 0;
-    }
-    return ob[O_BIAS] + ob[O_SCALE] * grid_sample(grids + (size_t)ob[O_GRID], n, q);
-  }
-  double fr = ob[O_FREQ], tm = ob[O_TIME], lac = ob[O_LACUNARITY], gain = ob[O_GAIN];
-  double x = fr * pt[0] + tm * drift[0], y = fr * pt[1] + tm * drift[1], z = fr * pt[2] + tm * drift[2];
-  double f;
-  if (fn == 1) {
-    f = perlin(perm, x, y, z);
-  } else if (fn == 2) {
-    f = 0;
-    double amp = 1;
-    for (int o = 0; o < octaves; o++) {
-      f += amp * perlin(perm, x, y, z);
-      amp *= gain;
-      x *= lac, y *= lac, z *= lac;
-    }
-  } else {
-    double off = ob[O_OFFSET], signal = off - fabs(perlin(perm, x, y, z));
-    signal *= signal;
-    f = signal;
-    double expo = 1;
-    for (int o = 1; o < octaves; o++) {
-      x *= lac, y *= lac, z *= lac;
-      expo /= lac;
-      double weight = signal * gain;
-      weight = weight < 0 ? 0 : weight > 1 ? 1 : weight;
-      signal = off - fabs(perlin(perm, x, y, z));
-      signal *= signal * weight;
-      f += signal * expo;
-    }
-  }
-  return ob[O_BIAS] + ob[O_SCALE] * f;
-}
-
-/* ics_material_transfer */
-static void transfer(__global const double *ob, __global const double *tt, double v, double rgb[3],
-                     double *scale) {
-  int n = (int)ob[O_NTRANSFER];
-  if (n == 0) {
-    for (int c = 0; c < 3; c++) rgb[c] = ob[O_COLOR + c];
-    *scale = v > 0 ? v : 0;
-    return;
-  }
-  __global const double *t = tt + 5 * (size_t)ob[O_TRANSFER];
-  int k = 0;
-  if (v <= t[0]) {
-    k = -1;
-  } else if (v >= t[5 * (n - 1)]) {
-    k = n - 1;
-  } else {
-    while (k + 1 < n && t[5 * (k + 1)] <= v) k++;
-  }
-  if (k < 0 || k == n - 1) {
-    __global const double *row = t + 5 * (k < 0 ? 0 : n - 1);
-    rgb[0] = row[1], rgb[1] = row[2], rgb[2] = row[3];
-    *scale = row[4];
-    return;
-  }
-  double a = (v - t[5 * k]) / (t[5 * (k + 1)] - t[5 * k]);
-  for (int c = 0; c < 3; c++) rgb[c] = t[5 * k + 1 + c] + a * (t[5 * (k + 1) + 1 + c] - t[5 * k + 1 + c]);
-  *scale = t[5 * k + 4] + a * (t[5 * (k + 1) + 4] - t[5 * k + 4]);
-}
-
-static void linear_piece(__global const double *ob, __global const double *tt, double a, double b,
-                         double *S, double CS[3]) {
-  double ca[3], cm[3], cb[3], sa, sm, sb, h = b - a;
-  transfer(ob, tt, a, ca, &sa);
-  transfer(ob, tt, 0.5 * (a + b), cm, &sm);
-  transfer(ob, tt, b, cb, &sb);
-  *S += h * (sa + 4 * sm + sb) / 6;
-  for (int c = 0; c < 3; c++) CS[c] += h * (ca[c] * sa + 4 * cm[c] * sm + cb[c] * sb) / 6;
-}
-
-/* ics_material_preintegrate, walking the breakpoints in order instead of collecting them */
-static void preintegrate(__global const double *ob, __global const double *tt, double vf, double vb,
-                         double rgb[3], double *scale) {
-  double lo = fmin(vf, vb), hi = fmax(vf, vb);
-  if (!(hi - lo > 1e-12 * (1 + fabs(hi)))) {
-    transfer(ob, tt, 0.5 * (vf + vb), rgb, scale);
-    return;
-  }
-  int n = (int)ob[O_NTRANSFER];
-  __global const double *t = tt + 5 * (size_t)ob[O_TRANSFER];
-  double S = 0, CS[3] = {0, 0, 0}, prev = lo;
-  if (n == 0) {
-    if (lo < 0 && hi > 0) linear_piece(ob, tt, prev, 0.0, &S, CS), prev = 0;
-  } else {
-    for (int i = 0; i < n; i++)
-      if (t[5 * i] > lo && t[5 * i] < hi) linear_piece(ob, tt, prev, t[5 * i], &S, CS), prev = t[5 * i];
-  }
-  linear_piece(ob, tt, prev, hi, &S, CS);
-  *scale = S / (hi - lo);
-  if (S > 0) {
-    for (int c = 0; c < 3; c++) rgb[c] = CS[c] / S;
-  } else {
-    transfer(ob, tt, 0.5 * (vf + vb), rgb, scale);
-    *scale = 0;
-  }
-}
-
-/* What ics_shade needs besides the buffers (one struct: OpenCL C 1.2 passes it by value). */
-typedef struct shade_args {
-  buf_layout B; /* the light buffers (B.w x B.h = the LDI grid) */
-  int nch, nlights, k, nvol, W, H, pad_l, pad_t, preintegrate;
-  int aov_count, aov_vis, aov_z; /* AOV floats per view pixel, offsets (-1: not asked; 0 count:
-                                    none) */
-  uint seed_lo, seed_hi;
-  double zf, zb, window_max;
-} shade_args;
-
-/* the extinction and colour of volume object ob_i at the piece's sample point(s) */
-static double volume_sig(const shade_args *A, __global const double *obj,
-                         __global const double *tt, __global const uchar *perm,
-                         __global const float *grids, int ob_i, const double pt[3],
-                         const double pt2[3], double c[3]) {
-  __global const double *ob = obj + ICS_DEV_OBJ_STRIDE * ob_i;
-  double scale = 1;
-  c[0] = ob[O_COLOR], c[1] = ob[O_COLOR + 1], c[2] = ob[O_COLOR + 2];
-  if (ob[O_DETAIL] != 0) {
-    __global const uchar *pm = perm + 512 * ob_i;
-    double v = detail_value(ob, pm, grids, pt);
-    if (A->preintegrate)
-      preintegrate(ob, tt, v, detail_value(ob, pm, grids, pt2), c, &scale);
-    else
-      transfer(ob, tt, v, c, &scale);
-  }
-  return ob[O_EXTINCTION] * scale;
-}
-
-#define LOWEST_BIT(m) ((int)(63 - clz((m) & (~(m) + 1))))
-
-/* backend_cpu.c volume_piece: one volume piece of depth extent dz from za. The extinctions of
- * up to MAXV overlapping volumes are kept for the transmittance; with more, each is evaluated
- * again per light (the same values: the sample point depends on the pixel and slab only). */
-static void volume_piece(const shade_args *A, __global float *dst, __global const double *obj,
-                         __global const double *tt, __global const uchar *perm,
-                         __global const float *grids, __global const int *vol_obj,
-                         __global const double *cam,
-                         __global const double *lpath, int p, int q, int bi, int bj, ulong mask,
-                         double za, double dz, const double L[3], float4 *C, int inview) {
-  double sig[MAXV], o[3], d[3], pt[3], pt2[3], sum = 0, cc[3] = {0, 0, 0};
-  int nv = 0, have_ray = 0, keep = popcount(mask) <= MAXV;
-  for (ulong m = mask; m; m &= m - 1) /* the sample point, if some volume has detail */
-    if (obj[ICS_DEV_OBJ_STRIDE * vol_obj[LOWEST_BIT(m)] + O_DETAIL] != 0) {
-      plan_ray(cam, A->W, A->H, A->pad_l, A->pad_t, bi, bj, o, d);
-      if (A->preintegrate) {
-        for (int i = 0; i < 3; i++) pt[i] = o[i] + za * d[i], pt2[i] = o[i] + (za + dz) * d[i];
-      } else {
-        double xi = uniform_at(A->seed_lo, A->seed_hi, JITTER_STREAM | (ulong)A->k, (ulong)p);
-        double zs = za + xi * dz;
-        for (int i = 0; i < 3; i++) pt[i] = o[i] + zs * d[i];
-      }
-      have_ray = 1;
-      break;
-    }
-  for (ulong m = mask; m; m &= m - 1, nv++) {
-    double c[3], sg = volume_sig(A, obj, tt, perm, grids, vol_obj[LOWEST_BIT(m)], pt, pt2, c);
-    if (keep) sig[nv] = sg;
-    sum += sg;
-    for (int k = 0; k < 3; k++) cc[k] += sg * c[k];
-  }
-  if (!(sum > 0)) return;
-  if (inview && C->w < 1) {
-    double dl = 1;
-    if (cam[CAM_PROJ] != 0) {
-      if (!have_ray) plan_ray(cam, A->W, A->H, A->pad_l, A->pad_t, bi, bj, o, d);
-      dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    }
-    double a = 1 - exp(-sum * dz * dl), wgt = (1 - C->w) * a;
-    C->x += (float)(wgt * (cc[0] / sum) * L[0]);
-    C->y += (float)(wgt * (cc[1] / sum) * L[1]);
-    C->z += (float)(wgt * (cc[2] / sum) * L[2]);
-    C->w += (float)wgt;
-  }
-  for (int l = 0; l < A->nlights; l++) {
-    double pass[3] = {1, 1, 1};
-    int i = 0;
-    for (ulong m = mask; m; m &= m - 1, i++) {
-      int ob_i = vol_obj[LOWEST_BIT(m)];
-      double c[3], sg = keep ? sig[i] : volume_sig(A, obj, tt, perm, grids, ob_i, pt, pt2, c);
-      __global const double *T = obj + ICS_DEV_OBJ_STRIDE * ob_i + O_TRANSPORT;
-      for (int k = 0; k < A->nch; k++) pass[k] *= exp(-sg * dz * lpath[l] * (1 - T[k]));
-    }
-    for (int k = 0; k < A->nch; k++) dst[(l * A->nch + k) * A->B.plane + q] *= (float)pass[k];
-  }
-}
-
-/* backend_cpu.c surface_occlusion: fragment f's occlusion, `after` slabs after its first */
-static void surface_occlusion(const shade_args *A, __global float *dst, __global const double *ob,
-                              float2 g, uchar span, __global const double *lmu,
-                              __global const double *window, int q, int after) {
-  double a = ob[O_OPACITY];
-  if (!(a > 0)) return;
-  double gr = g.x, gu = g.y;
-  for (int l = 0; l < A->nlights; l++) {
-    double win = floor(span * window[l]);
-    if (after > win) continue;
-    double rho = -(gr * lmu[2 * l] + gu * lmu[2 * l + 1]), rel = fabs(1 - rho), meets = 1;
-    if (win > 0) meets = rel > 0 ? fmin(fmax((win + 1) / rel, 1.0), 8 * (win + 1)) : 8 * (win + 1);
-    for (int c = 0; c < A->nch; c++) {
-      double pass = 1 - a * (1 - ob[O_TRANSPORT + c]);
-      dst[(l * A->nch + c) * A->B.plane + q] *= (float)(meets > 1 ? pow(pass, 1 / meets) : pass);
-    }
-  }
-}
+/* ---- shading (the steps: gpu/kernel/shade.h) ------------------------------------------- */
 
 /* Per buffer pixel, slab A.k (backend_cpu.c shade_rows): the light arriving, the occlusions due
  * now, the volume pieces and surfaces of this slab front to back, then the clamp of signed
@@ -598,40 +339,45 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_shade(__global
                         __global uchar *aov_seen) {
   int bi = (int)get_global_id(0), bj = (int)get_global_id(1), k = A.k;
   if (bi >= A.B.w || bj >= A.B.h) return;
-  int p = bj * A.B.w + bi, q = AT(A.B, bi, bj), nch = A.nch, plane = A.B.plane;
+  int p = bj * A.B.w + bi, q = AT(A.B, bi, bj), nch = A.nch;
+  ics_view view;
+  const ics_view *V = &view;
+  view.seed_lo = A.seed_lo, view.seed_hi = A.seed_hi, view.A = &A, view.dst = dst, view.obj = obj;
+  view.tt = tt, view.cam = cam, view.lpath = lpath, view.lmu = lmu, view.window = window;
+  view.perm = perm, view.grids = grids, view.vol_obj = vol_obj;
   uint cur = cursor[p], end = offset[p + 1], acur = acursor[p];
   ulong mask = A.nvol ? inside[p] : 0;
-  int has = cur < end && FRAG_SLAB(fcode[cur]) == k;
-  int occl = acur < end && FRAG_SLAB(fcode[acur]) <= k;
+  int has = cur < end && ics_k_frag_slab(fcode[cur]) == k;
+  int occl = acur < end && ics_k_frag_slab(fcode[acur]) <= k;
   if (has || mask || occl) {
     int ii = bi - A.pad_l, jj = bj - A.pad_t;
     int inview = ii >= 0 && ii < A.W && jj >= 0 && jj < A.H;
-    float4 C = inview ? vload4((size_t)jj * A.W + ii, img) : (float4)(0, 0, 0, 1);
+    float C[4] = {0, 0, 0, 1};
+    if (inview) vstore4(vload4((size_t)jj * A.W + ii, img), 0, C);
     double L[3] = {0, 0, 0};
     for (int l = 0; l < A.nlights; l++)
-      for (int c = 0; c < 3; c++)
-        L[c] += lcol[3 * l + c] * dst[(l * nch + (nch == 3 ? c : 0)) * plane + q];
+      for (int c = 0; c < 3; c++) L[c] += lcol[3 * l + c] * ICS_DST(l, nch == 3 ? c : 0, q);
     /* the AOVs of the pixel's first surface, if it is in this slab: the light arriving (before
      * this slab's occlusions) and its depth (backend_cpu.c record_aov) */
     if (A.aov_count && inview && has && !aov_seen[(size_t)jj * A.W + ii])
-      for (uint f = cur; f < end && FRAG_SLAB(fcode[f]) == k; f++) {
-        __global const double *ob = obj + ICS_DEV_OBJ_STRIDE * FRAG_OBJ(fcode[f]);
-        if (ob[O_VOLBIT] >= 0 || !(ob[O_OPACITY] > 0)) continue;
+      for (uint f = cur; f < end && ics_k_frag_slab(fcode[f]) == k; f++) {
+        int ob = ics_k_frag_obj(fcode[f]);
+        if (ICS_OBJ(ob, O_VOLBIT) >= 0 || !(ICS_OBJ(ob, O_OPACITY) > 0)) continue;
         __global float *o = aov + ((size_t)jj * A.W + ii) * A.aov_count;
         if (A.aov_vis >= 0)
           for (int l = 0; l < A.nlights; l++)
-            for (int c = 0; c < nch; c++) o[A.aov_vis + l * nch + c] = dst[(l * nch + c) * plane + q];
+            for (int c = 0; c < nch; c++) o[A.aov_vis + l * nch + c] = ICS_DST(l, c, q);
         if (A.aov_z >= 0) o[A.aov_z] = fz[f];
         aov_seen[(size_t)jj * A.W + ii] = 1;
         break;
       }
-    for (uint f = acur; f < end && FRAG_SLAB(fcode[f]) <= k; f++) {
+    for (uint f = acur; f < end && ics_k_frag_slab(fcode[f]) <= k; f++) {
       uint code = fcode[f];
-      int o = FRAG_OBJ(code), first = FRAG_SLAB(code) + FRAG_BIAS(code);
-      if (obj[ICS_DEV_OBJ_STRIDE * o + O_VOLBIT] < 0 && first <= k && k <= first + fspan[f] * A.window_max)
-        surface_occlusion(&A, dst, obj + ICS_DEV_OBJ_STRIDE * o, fgrad[f], fspan[f], lmu, window, q, k - first);
+      int o = ics_k_frag_obj(code), first = ics_k_frag_slab(code) + ics_k_frag_bias(code);
+      if (ICS_OBJ(o, O_VOLBIT) < 0 && first <= k && k <= first + fspan[f] * A.window_max)
+        ics_k_surface_occlusion(V, o, fgrad[f].x, fgrad[f].y, fspan[f], q, k - first);
     }
-    while (acur < end && FRAG_SLAB(fcode[acur]) + FRAG_BIAS(fcode[acur]) +
+    while (acur < end && ics_k_frag_slab(fcode[acur]) + ics_k_frag_bias(fcode[acur]) +
                              fspan[acur] * A.window_max <= k)
       acur++;
     acursor[p] = acur;
@@ -641,37 +387,29 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_shade(__global
         double zn = has ? fz[cur] : A.zb;
         if (zn < za) zn = za;
         if (zn > A.zb) zn = A.zb;
-        if (mask && zn > za)
-          volume_piece(&A, dst, obj, tt, perm, grids, vol_obj, cam, lpath, p, q, bi, bj, mask, za, zn - za,
-                       L, &C, inview);
+        if (mask && zn > za) ics_k_volume_piece(V, p, q, bi, bj, mask, za, zn - za, L, C, inview);
         if (!has) break;
-        int o = FRAG_OBJ(fcode[cur]);
-        __global const double *ob = obj + ICS_DEV_OBJ_STRIDE * o;
-        if (ob[O_VOLBIT] >= 0) {
-          mask ^= 1UL << (int)ob[O_VOLBIT];
+        int o = ics_k_frag_obj(fcode[cur]);
+        if (ICS_OBJ(o, O_VOLBIT) >= 0) {
+          mask ^= 1UL << (int)ICS_OBJ(o, O_VOLBIT);
         } else if (inview) {
-          double a = ob[O_OPACITY];
-          if (a > 0 && C.w < 1) {
-            double wgt = (1 - C.w) * a;
-            C.x += (float)(wgt * ob[O_COLOR] * L[0]);
-            C.y += (float)(wgt * ob[O_COLOR + 1] * L[1]);
-            C.z += (float)(wgt * ob[O_COLOR + 2] * L[2]);
-            C.w += (float)wgt;
-          }
+          double a = ICS_OBJ(o, O_OPACITY), rgb[3];
+          for (int c = 0; c < 3; c++) rgb[c] = ICS_OBJ(o, O_COLOR + c);
+          if (a > 0 && C[3] < 1) ics_k_composite(a, rgb, L, C);
         }
         za = zn;
         cur++;
-        has = cur < end && FRAG_SLAB(fcode[cur]) == k;
+        has = cur < end && ics_k_frag_slab(fcode[cur]) == k;
       }
       cursor[p] = cur;
       if (A.nvol) inside[p] = mask;
     }
-    if (inview) vstore4(C, (size_t)jj * A.W + ii, img);
+    if (inview) vstore4(vload4(0, C), (size_t)jj * A.W + ii, img);
   }
   for (int l = 0; l < A.nlights; l++)
     if (signed_l[l])
       for (int c = 0; c < nch; c++) {
-        float v = dst[(l * nch + c) * plane + q];
-        dst[(l * nch + c) * plane + q] = v < 0 ? 0 : v > 1 ? 1 : v;
+        float v = ICS_DST(l, c, q);
+        ICS_DST(l, c, q) = v < 0 ? 0 : v > 1 ? 1 : v;
       }
 }

@@ -19,6 +19,8 @@
 #include "clock.h"
 #include "geometry.h"
 #include "detail_batch.h"
+#include "kernel/composite.h" /* shared with the cl and gl programs */
+#include "kernel/occlusion.h"
 #include "icshadow/rng.h"
 #include "own_term.h"
 #include "plan_internal.h"
@@ -213,14 +215,14 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
       if (!have_ray) ics_plan_ray(P, bi, bj, o, d);
       dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     }
-    double a = 1 - exp(-sum * dz * dl), wgt = (1 - C[3]) * a, Lp[3];
+    double Lp[3], rgb[3];
     if (arrive) piece_light(j, arrive, nv, sig, objs, sum * dl, dz, Lp);
     for (int c = 0; c < 3; c++) {
       double cc = 0;
       for (int i = 0; i < nv; i++) cc += sig[i] * col[i][c];
-      C[c] += (float)(wgt * (cc / sum) * (arrive ? Lp[c] : L[c]));
+      rgb[c] = cc / sum;
     }
-    C[3] += (float)wgt;
+    ics_k_composite(ics_k_piece_alpha(sum, dz, dl), rgb, arrive ? Lp : L, C);
   }
   size_t plane = P->buf.plane, q = ics_buf_index(&P->buf, bi, bj);
   for (int l = 0; l < P->nlights; l++) {
@@ -229,7 +231,7 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
       /* a volume's transport colour scales its extinction for the light, per channel, so the
        * pieces of any slab spacing multiply to the same transmittance */
       const double *T = s->materials[s->objects[objs[i]].material].transport;
-      for (int c = 0; c < P->nch; c++) pass[c] *= exp(-sig[i] * dz * P->light_path[l] * (1 - T[c]));
+      for (int c = 0; c < P->nch; c++) pass[c] *= ics_k_piece_pass(sig[i], dz, P->light_path[l], T[c]);
     }
     double v0 = j->moment ? first_mean(j, l, q) : 0;
     for (int b = l; b < j->nb; b += P->nlights)
@@ -280,9 +282,7 @@ static void surface_colour(const job_t *j, int obj, const double L[3], float *C)
   const ics_material *m = &P->scene->materials[P->scene->objects[obj].material];
   double a = m->opacity;
   if (!(a > 0) || !(C[3] < 1)) return;
-  double wgt = (1 - C[3]) * a;
-  for (int c = 0; c < 3; c++) C[c] += (float)(wgt * m->color[c] * L[c]);
-  C[3] += (float)wgt;
+  ics_k_composite(a, m->color, L, C);
 }
 
 /* a surface's occlusion of the light leaving this slab, `after` slabs after its first (slab +
@@ -314,13 +314,11 @@ static void surface_occlusion(job_t *j, size_t q, const ics_fragment *fr, int af
     double rho = -(gr * mu[0] + gu * mu[1]), rel = fabs(1 - rho);
     double v0 = j->moment ? first_mean(j, l, q) : 0;
     for (int sharp = 0; sharp <= j->moment; sharp++) { /* the sets of d1's blur, the sharp set */
-      double window = solid ? 0 : floor(fr->span * j->window[sharp * P->nlights + l]), meets = 1;
+      double window = solid ? 0 : floor(fr->span * j->window[sharp * P->nlights + l]);
       if (after > window) continue;
-      if (window > 0) /* no window (a blur of a pixel or more): one slab, filtered as it is */
-        meets = rel > 0 ? fmin(fmax((window + 1) / rel, 1), 8 * (window + 1)) : 8 * (window + 1);
+      double meets = ics_k_meets(window, rel); /* no window (a blur of a pixel or more): one slab */
       for (int c = 0; c < P->nch; c++) {
-        double pass = 1 - a * (1 - m->transport[c]);
-        float f = (float)(meets > 1 ? pow(pass, 1 / meets) : pass);
+        float f = ics_k_slab_pass(a, m->transport[c], meets);
         for (int b = l; b < j->nb; b += P->nlights)
           if (occludes_in(j, b, solid) && (j->role[b] == ICS_SET_SHARP) == sharp)
             j->dst[b][(size_t)c * plane + q] *= f;

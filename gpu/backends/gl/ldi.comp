@@ -21,6 +21,9 @@
  * roots start in float and are polished by Newton's method in double, and only split the chord
  * into monotone pieces, within which bisection finds the crossing as the host does. */
 #extension GL_ARB_gpu_shader_fp64 : enable
+#define ICS_GLSL 1
+#include "kernel/lang.h"
+#include "kernel/device_layout.h"
 
 #define SHAPE_RECT 0
 #define SHAPE_DISK 1
@@ -28,7 +31,7 @@
 #define SHAPE_SPHERE 3
 #define SHAPE_TORUS 4
 #define SHAPE_MESH 5
-/* the records' offsets G_*, CAM_* and ICS_DEV_GEO_STRIDE: gpu/core/device_layout.h (embedded ahead) */
+/* the records' offsets G_*, CAM_* and ICS_DEV_GEO_STRIDE: gpu/kernel/device_layout.h */
 #define NIL 0xffffffffu
 #define DEAD 0xffffffffu /* a merged or behind mesh crossing's object */
 
@@ -51,28 +54,16 @@ uniform uint cap;
 layout(std430, binding = 0) readonly buffer Geo { double geo[]; };
 layout(std430, binding = 1) readonly buffer Cam { double cam[]; };
 
-/* ics_plan_ray */
+/* the camera ray of a buffer pixel: gpu/kernel/camera.h over the camera record */
+#define ICS_VIEW_PARAM
+#define ICS_VIEW_ARG
+#define ICS_CAM(f) cam[f]
+#include "kernel/camera.h"
 void plan_ray(int bi, int bj, out dvec3 o, out dvec3 d) {
-  precise double s = (double(bi - pad_l) + 0.5LF) / double(W);
-  precise double t = (double(bj - pad_t) + 0.5LF) / double(H);
-  if (cam[CAM_PROJ] == 0.0LF) {
-    precise double h = cam[CAM_H], w = cam[CAM_W];
-    for (int i = 0; i < 3; i++) {
-      precise double a = (s - 0.5LF) * w * cam[CAM_R + i], b = (0.5LF - t) * h * cam[CAM_U + i];
-      precise double v = cam[CAM_EYE + i] + a + b;
-      o[i] = v;
-      d[i] = cam[CAM_F + i];
-    }
-  } else {
-    precise double th = cam[CAM_TH], asp = cam[CAM_ASP];
-    for (int i = 0; i < 3; i++) {
-      precise double a = (2.0LF * s - 1.0LF) * th * asp * cam[CAM_R + i];
-      precise double b = (1.0LF - 2.0LF * t) * th * cam[CAM_U + i];
-      precise double v = cam[CAM_F + i] + a + b;
-      o[i] = cam[CAM_EYE + i];
-      d[i] = v;
-    }
-  }
+  double oa[3], da[3];
+  ics_k_plan_ray(bi, bj, W, H, pad_l, pad_t, oa, da);
+  o = dvec3(oa[0], oa[1], oa[2]);
+  d = dvec3(da[0], da[1], da[2]);
 }
 #endif
 
