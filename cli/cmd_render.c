@@ -37,7 +37,8 @@ static void help(FILE *f) {
           "                      stderr (--backend mc: standard errors, stderr.R ...);\n"
           "                      comma-separated, or all. 0 where a pixel has no surface\n"
           "  --backend B         auto (default) or a backend of `icshadow render --backends`\n"
-          "  --backends          list the backends built into this binary, with their options, and exit\n");
+          "  --backends          list the backends built into this binary, with their options, and\n"
+          "                      the modules with whether they load, and exit\n");
 #ifdef ICS_HAVE_RENDER
   backend_options_help(f); /* --cl-device, --gl-context, ...: from the backend table */
 #endif
@@ -152,6 +153,13 @@ static int list_backends(void) {
       printf("       --%s-%s %s%s%s%s\n", ics_backend_name(i), ics_backend_option_name(i, j),
              values ? values : "VALUE", env ? " (default: $" : "", env ? env : "", env ? ")" : "");
     }
+  }
+  printf("modules (loaded on first use; ICS_MODULE_DIR overrides where):\n");
+  for (int i = 0; i < ics_render_module_count(); i++) {
+    char why[1024] = "";
+    int ok = ics_render_module_loads(ics_render_module_name(i), why, sizeof why);
+    printf("  %-7s %s: %s%s\n", ics_render_module_name(i), ics_render_module_purpose(i),
+           ok ? "loads" : "does not load: ", ok ? "" : why);
   }
   return 0;
 }

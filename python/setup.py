@@ -3,8 +3,10 @@
 The libraries come from the CMake build tree that `make` leaves in build/ (ICSHADOW_BUILD_DIR
 names another), brought up to date first (`cmake --build` of the two library targets; where
 there is no build tree, one is configured, Release). The two
-shared libraries are copied into the package, so the installed package works after the build
-tree is gone.
+shared libraries are copied into the package, and the renderer's modules (the gl and cl
+backends, Embree's and Assimp's readers: icshadow-NAME.so, loaded on first use) into its
+icshadow/ folder, where the renderer looks beside itself, so the installed package works after
+the build tree is gone.
 """
 import os
 import shutil
@@ -41,6 +43,11 @@ class BuildWithLibraries(build_ext):
             os.makedirs(d, exist_ok=True)
             for s in SONAMES:  # the real file under its soname, which the module's rpath finds
                 shutil.copy2(os.path.realpath(os.path.join(LIB_DIR, s)), os.path.join(d, s))
+            mods = os.path.join(LIB_DIR, "icshadow")  # the renderer's modules, beside it
+            os.makedirs(os.path.join(d, "icshadow"), exist_ok=True)
+            for m in sorted(os.listdir(mods)) if os.path.isdir(mods) else []:
+                if m.startswith("icshadow-") and m.endswith(".so"):
+                    shutil.copy2(os.path.join(mods, m), os.path.join(d, "icshadow", m))
         self.force = True  # the headers' struct layouts are compiled in: never reuse a stale build
         super().run()
 

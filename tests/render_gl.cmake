@@ -115,8 +115,9 @@ endif()
 ics_add_test(NAME test_lut_glsl SOURCES test_lut_glsl.c LABELS medium
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER GL
   ARGS ${CMAKE_SOURCE_DIR}/gpu/backends/gl/icshadow_lut.glsl ${CMAKE_CURRENT_BINARY_DIR}/lut_out/icshadow_lut_64.glsl)
-if(TARGET test_lut_glsl)
+if(TARGET test_lut_glsl) # the gl module's code itself (its contexts), not the module
   target_include_directories(test_lut_glsl PRIVATE ${CMAKE_SOURCE_DIR}/gpu/backends/gl)
+  target_link_libraries(test_lut_glsl PRIVATE icshadow_gl_objects)
   set_tests_properties(test_lut_glsl PROPERTIES FIXTURES_REQUIRED lut_gen_glsl_64 SKIP_RETURN_CODE 77)
 endif()
 
@@ -124,8 +125,9 @@ endif()
 # fragment; and the renders of test_render_device.c with it (ICS_GL_LDI=device)
 ics_add_test(NAME test_gl_ldi SOURCES test_gl_ldi.c LABELS medium render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER GL ARGS ${CMAKE_SOURCE_DIR}/tests/data ${ics_scene_files})
-if(TARGET test_gl_ldi)
+if(TARGET test_gl_ldi) # the gl module's code itself, not the module
   target_include_directories(test_gl_ldi PRIVATE ${CMAKE_SOURCE_DIR}/gpu/backends/gl ${ICS_RENDER_PRIVATE_INCLUDES})
+  target_link_libraries(test_gl_ldi PRIVATE icshadow_gl_objects)
   set_tests_properties(test_gl_ldi PROPERTIES SKIP_RETURN_CODE 77)
 endif()
 if(TARGET test_render_gl)

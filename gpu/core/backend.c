@@ -24,7 +24,7 @@ const char *ics_backend_description(int i) {
   return i >= 0 && i < NBACKENDS ? table[i]->description : NULL;
 }
 
-static const ics_backend *find(const char *name) {
+const ics_backend *ics_backend_find(const char *name) {
   for (int i = 0; i < NBACKENDS; i++)
     if (!strcmp(table[i]->name, name)) return table[i];
   return NULL;
@@ -36,7 +36,7 @@ int ics_backend_available(const char *name, char *why, size_t why_size) {
 
 int ics_backend_available_opts(const char *name, const ics_render_opts *opts, char *why,
                                size_t why_size) {
-  const ics_backend *b = name ? find(name) : NULL;
+  const ics_backend *b = name ? ics_backend_find(name) : NULL;
   if (!b) {
     if (why) {
       int n = snprintf(why, why_size, "no backend named '%s' (built:", name ? name : "(null)");
@@ -46,7 +46,7 @@ int ics_backend_available_opts(const char *name, const ics_render_opts *opts, ch
     }
     return 0;
   }
-  return b->available(opts, why, why_size);
+  return b->f.available(opts, why, why_size);
 }
 
 /* ---- backend options ---------------------------------------------------------------------- */
@@ -187,9 +187,9 @@ ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, 
     for (int i = 0; i < NBACKENDS && !r->b; i++) {
       char why[512] = "";
       const ics_backend *c = table[i];
-      int ok = c->auto_pick ? c->auto_pick(why, sizeof why) : c->available(&o, why, sizeof why);
+      int ok = c->f.auto_pick ? c->f.auto_pick(why, sizeof why) : c->f.available(&o, why, sizeof why);
       if (ok) {
-        ics_status st = c->create(&r->state, &o, why, sizeof why);
+        ics_status st = c->f.create(&r->state, &o, why, sizeof why);
         if (st == ICS_OK) r->b = c;
         else if (c == &ics_backend_cpu) { /* the last resort failed: say so */
           if (msg) snprintf(msg, msg_size, "%s", why);
@@ -197,7 +197,7 @@ ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, 
           return st;
         }
       }
-      if (!r->b && c->auto_pick && !r->note[0]) { /* one line, without a "backend NAME: " */
+      if (!r->b && c->f.auto_pick && !r->note[0]) { /* one line, without a "backend NAME: " */
         char prefix[32];
         snprintf(prefix, sizeof prefix, "backend %s: ", c->name);
         const char *w = strncmp(why, prefix, strlen(prefix)) ? why : why + strlen(prefix);
@@ -210,14 +210,14 @@ ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, 
     char why[1024];
     if (!ics_backend_available_opts(o.backend, &o, why, sizeof why)) {
       if (msg) {
-        if (find(o.backend)) snprintf(msg, msg_size, "backend %s: %s", o.backend, why);
+        if (ics_backend_find(o.backend)) snprintf(msg, msg_size, "backend %s: %s", o.backend, why);
         else snprintf(msg, msg_size, "backend %s", why);
       }
       free(r);
       return ICS_ERR_UNSUPPORTED;
     }
-    r->b = find(o.backend);
-    ics_status st = r->b->create(&r->state, &o, msg, msg_size);
+    r->b = ics_backend_find(o.backend);
+    ics_status st = r->b->f.create(&r->state, &o, msg, msg_size);
     if (st != ICS_OK) {
       free(r);
       return st;
@@ -229,7 +229,7 @@ ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, 
 
 void ics_renderer_destroy(ics_renderer *r) {
   if (!r) return;
-  r->b->destroy(r->state);
+  r->b->f.destroy(r->state);
   free(r);
 }
 
@@ -335,7 +335,7 @@ ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsig
     ics_image_destroy(img);
     return ICS_ERR_NOMEM;
   }
-  st = r->b->render(r->state, plan, &r->opts, img, ch ? &buf : NULL, stats, msg, msg_size);
+  st = r->b->f.render(r->state, plan, &r->opts, img, ch ? &buf : NULL, stats, msg, msg_size);
   if (st != ICS_OK) {
     if (msg && msg_size && !msg[0]) snprintf(msg, msg_size, "render failed: %s", ics_status_str(st));
     ics_image_destroy(img);

@@ -27,11 +27,9 @@ typedef struct ics_backend_option {
   const char *name, *env, *values, *help;
 } ics_backend_option;
 
-typedef struct ics_backend {
-  const char *name;
-  const char *description;
-  unsigned aovs; /* the ICS_AOV_* bits it makes */
-  unsigned models; /* 1 << ics_render_model: the render.model values it renders (ICS_MODELS_ALL) */
+/* What a backend does: an availability test, whether auto takes it, and create / render /
+ * destroy over its own state. */
+typedef struct ics_backend_funcs {
   /* opts: the options of a render (NULL: the defaults, its options' environment variables) */
   int (*available)(const ics_render_opts *opts, char *why, size_t why_size);
   /* NULL: "auto" takes it when available; else whether auto takes it (0 with why: the notice) */
@@ -42,8 +40,57 @@ typedef struct ics_backend {
                        ics_image *img, ics_aov_buf *aov, ics_render_stats *stats, char *msg,
                        size_t msg_size);
   void (*destroy)(void *state);
+} ics_backend_funcs;
+
+typedef struct ics_backend {
+  const char *name;
+  const char *description;
+  unsigned aovs; /* the ICS_AOV_* bits it makes */
+  unsigned models; /* 1 << ics_render_model: the render.model values it renders (ICS_MODELS_ALL) */
+  ics_backend_funcs f;
   const ics_backend_option *options; /* NULL, or entries up to one whose name is NULL */
 } ics_backend;
+
+
+/* A backend built as a module (module.h: the gl and cl backends, whose libraries are heavy): its
+ * entry in the table, with what the core must know without loading it (name, description, AOVs,
+ * models, options), comes from ICS_MODULE_BACKEND in its folder's *_entry.c; its functions are
+ * the module's table (ics_backend_funcs), loaded on the first call (a module that does not
+ * load makes the backend unavailable, with the reason). AUTO_PICK: 1 when the module decides
+ * whether auto takes it (its auto_pick), 0 when auto takes it whenever available. */
+int ics_module_backend_available(const char *module, const ics_render_opts *opts, char *why,
+                                 size_t why_size);
+int ics_module_backend_auto_pick(const char *module, char *why, size_t why_size);
+ics_status ics_module_backend_create(const char *module, void **state, const ics_render_opts *opts,
+                                     char *msg, size_t msg_size);
+ics_status ics_module_backend_render(const char *module, void *state, const ics_plan *plan,
+                                     const ics_render_opts *opts, ics_image *img, ics_aov_buf *aov,
+                                     ics_render_stats *stats, char *msg, size_t msg_size);
+void ics_module_backend_destroy(const char *module, void *state);
+#define ICS_MODULE_BACKEND(NAME, DESCRIPTION, AOVS, MODELS, OPTIONS, AUTO_PICK)                   \
+  static int NAME##_available_(const ics_render_opts *o, char *why, size_t n) {                \
+    return ics_module_backend_available(#NAME, o, why, n);                                       \
+  }                                                                                              \
+  static int NAME##_auto_pick_(char *why, size_t n) {                                            \
+    return ics_module_backend_auto_pick(#NAME, why, n);                                          \
+  }                                                                                              \
+  static ics_status NAME##_create_(void **st, const ics_render_opts *o, char *msg, size_t n) {  \
+    return ics_module_backend_create(#NAME, st, o, msg, n);                                      \
+  }                                                                                              \
+  static ics_status NAME##_render_(void *st, const ics_plan *p, const ics_render_opts *o,       \
+                                   ics_image *img, ics_aov_buf *aov, ics_render_stats *stats,    \
+                                   char *msg, size_t n) {                                        \
+    return ics_module_backend_render(#NAME, st, p, o, img, aov, stats, msg, n);                  \
+  }                                                                                              \
+  static void NAME##_destroy_(void *st) { ics_module_backend_destroy(#NAME, st); }              \
+  const ics_backend ics_backend_##NAME = {                                                      \
+      #NAME, DESCRIPTION, AOVS, MODELS,                                                          \
+      {NAME##_available_, AUTO_PICK ? NAME##_auto_pick_ : NULL, NAME##_create_, NAME##_render_, \
+       NAME##_destroy_},                                                                         \
+      OPTIONS};
+
+/* The table's entry named `name`, or NULL. */
+const ics_backend *ics_backend_find(const char *name);
 
 /* The value of option `name` (one of b's) for a render: from opts->options (checked by
  * ics_renderer_create), else from its environment variable when set and not empty, else NULL.

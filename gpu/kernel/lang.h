@@ -42,15 +42,12 @@ uint ics_k_mulhi(uint a, uint b) {
 }
 #define ICS_MULHI(a, b) ics_k_mulhi(a, b)
 
-#elif defined(__OPENCL_VERSION__)
-#define ICS_FN static
+#else /* C11 and OpenCL C spell the rest alike */
 #define ICS_OUT
 #define ICS_INOUT
 #define ICS_CONST_IN const
 #define ICS_PRECISE
-#define ICS_UINT uint
 #define ICS_TO_INT(x) ((int)(x))
-#define ICS_TO_UINT(x) ((uint)(x))
 #define ICS_TO_FLOAT(x) ((float)(x))
 #define ICS_TO_DOUBLE(x) ((double)(x))
 #define ICS_FABS(x) fabs(x)
@@ -58,29 +55,21 @@ uint ics_k_mulhi(uint a, uint b) {
 #define ICS_FMAX(a, b) fmax(a, b)
 #define ICS_EXP(x) exp(x)
 #define ICS_POW(x, y) pow(x, y)
+#if defined(__OPENCL_VERSION__)
+#define ICS_FN static
+#define ICS_UINT uint
+#define ICS_TO_UINT(x) ((uint)(x))
 #define ICS_LOG2_POW2(k) ((int)(31u - clz(k)))
 #define ICS_MULHI(a, b) ((uint)(((ulong)(a) * (b)) >> 32))
-
 #else /* C11 */
 #include <math.h>
 #include <stdint.h>
 #define ICS_FN static inline
-#define ICS_OUT
-#define ICS_INOUT
-#define ICS_CONST_IN const
-#define ICS_PRECISE
 #define ICS_UINT uint32_t
-#define ICS_TO_INT(x) ((int)(x))
 #define ICS_TO_UINT(x) ((uint32_t)(x))
-#define ICS_TO_FLOAT(x) ((float)(x))
-#define ICS_TO_DOUBLE(x) ((double)(x))
-#define ICS_FABS(x) fabs(x)
-#define ICS_FMIN(a, b) fmin(a, b)
-#define ICS_FMAX(a, b) fmax(a, b)
-#define ICS_EXP(x) exp(x)
-#define ICS_POW(x, y) pow(x, y)
 #define ICS_LOG2_POW2(k) __builtin_ctz(k)
 #define ICS_MULHI(a, b) ((uint32_t)(((uint64_t)(a) * (b)) >> 32))
+#endif
 #endif
 
 /* ICS_MASK, a set of up to 64 volumes (the inside mask: bit i for the volume with bit i), and

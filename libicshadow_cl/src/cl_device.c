@@ -159,14 +159,15 @@ static int pick_device(cl_pick *out, const char *want, const char *label, char *
 
 int ics_cl_available(const char *want, const char *label, char *why, size_t why_size) {
   cl_pick pk;
-  return pick_device(&pk, want, label, why, why_size) == 0;
+  return ics_cl_load(why, why_size) && pick_device(&pk, want, label, why, why_size) == 0;
 }
 
 ics_status ics_cl_dev_open(ics_cl_dev *d, const char *want, const char *label, char *msg,
                            size_t msg_size) {
   memset(d, 0, sizeof *d);
   cl_pick pk;
-  if (pick_device(&pk, want, label, msg, msg_size)) return ICS_ERR_UNSUPPORTED;
+  if (!ics_cl_load(msg, msg_size) || pick_device(&pk, want, label, msg, msg_size))
+    return ICS_ERR_UNSUPPORTED;
   d->device = pk.device;
   snprintf(d->name, sizeof d->name, "OpenCL, %s", pk.name);
   cl_int e = clGetDeviceInfo(d->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof d->max_alloc,

@@ -9,6 +9,8 @@
 #include <CL/cl.h>
 #include <stddef.h>
 
+#include "cl_loader.h" /* OpenCL loaded on first use: every cl* call through its table */
+
 #include "icshadow/status.h"
 
 typedef struct ics_cl_dev {

@@ -14,6 +14,17 @@
 #include <string.h>
 #include <unistd.h>
 
+/* the real function: the next definition in the global scope, else (a library the renderer's
+ * modules opened with RTLD_LOCAL: EGL, OSMesa, Assimp) the one in that library, already loaded */
+static void *real_fn(const char *name, const char *lib) {
+  void *f = dlsym(RTLD_NEXT, name);
+  if (!f && lib) {
+    void *h = dlopen(lib, RTLD_LAZY | RTLD_NOLOAD);
+    if (h) f = dlsym(h, name);
+  }
+  return f;
+}
+
 static int should_fail(const char *fn) {
   static int calls;
   const char *f = getenv("ICS_FAULT");
@@ -55,13 +66,13 @@ static gl_proc hand_out(const char *name, gl_proc p) {
 
 gl_proc eglGetProcAddress(const char *name) {
   static gl_proc (*real)(const char *);
-  if (!real) real = (gl_proc(*)(const char *))dlsym(RTLD_NEXT, "eglGetProcAddress");
+  if (!real) real = (gl_proc(*)(const char *))real_fn("eglGetProcAddress", "libEGL.so.1");
   return real ? hand_out(name, real(name)) : NULL;
 }
 
 gl_proc OSMesaGetProcAddress(const char *name) {
   static gl_proc (*real)(const char *);
-  if (!real) real = (gl_proc(*)(const char *))dlsym(RTLD_NEXT, "OSMesaGetProcAddress");
+  if (!real) real = (gl_proc(*)(const char *))real_fn("OSMesaGetProcAddress", "libOSMesa.so.8");
   return real ? hand_out(name, real(name)) : NULL;
 }
 
@@ -71,8 +82,8 @@ struct aiFileIO;
 const struct aiScene *aiImportFileEx(const char *file, unsigned flags, struct aiFileIO *io) {
   static const struct aiScene *(*real)(const char *, unsigned, struct aiFileIO *);
   if (!real)
-    real = (const struct aiScene *(*)(const char *, unsigned, struct aiFileIO *))dlsym(
-        RTLD_NEXT, "aiImportFileEx");
+    real = (const struct aiScene *(*)(const char *, unsigned, struct aiFileIO *))real_fn(
+        "aiImportFileEx", "libassimp.so.5");
   if (should_fail("assimp-hang"))
     for (;;) pause();
   return real(file, flags, io);

@@ -92,6 +92,20 @@ if [ -f "$prefix/include/icshadow/render.h" ]; then
   printf '#include <icshadow/render.h>\nint main(void) { return ics_backend_count() > 0 ? 0 : 1; }\n' > "$tmp/only.c"
   "$cc" -std=c11 "$tmp/only.c" -o "$tmp/c_only" -Wl,--as-needed "${words[@]}" -Wl,-rpath,"$libdir"
   "$tmp/c_only"
-  n=11
+  echo "== the modules, installed beside the library and loaded from there"
+  mods=$(ls "$libdir"/icshadow/icshadow-*.so 2>/dev/null | wc -l)
+  built=$(ls "$build"/lib/icshadow/icshadow-*.so 2>/dev/null | wc -l)
+  [ "$mods" -eq "$built" ] || { echo "$mods modules installed in $libdir/icshadow, $built built"; exit 1; }
+  if [ "$built" -gt 0 ]; then
+    loaded=$(LD_DEBUG=files "$prefix/bin/icshadow" render --backends 2>&1 >/dev/null |
+      grep -Eo "file=[^ ]*icshadow-[a-z]+\.so" | sort -u | sed 's/file=//')
+    echo "$loaded"
+    real_libdir=$(realpath "$libdir")
+    echo "$loaded" | grep -v -q "^$real_libdir/icshadow/" &&
+      { echo "the installed icshadow loaded a module from outside $real_libdir/icshadow"; exit 1; }
+    [ "$(echo "$loaded" | grep -c .)" -eq "$built" ] ||
+      { echo "the installed icshadow loaded $(echo "$loaded" | grep -c .) of $built modules"; exit 1; }
+  fi
+  n=12
 fi
 echo "install test: $n passed, 0 failed"

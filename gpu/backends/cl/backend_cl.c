@@ -29,13 +29,9 @@
 #include "slab_taps.h"
 #include "slab_cl_source.h" /* ics_slab_cl_source: gpu/backends/cl/slab.cl (cmake/embed_text.cmake) */
 
-static const ics_backend_option cl_options[] = {
-    {"device", "ICS_CL_DEVICE", NULL, "OpenCL device: an index or part of \"platform: device\""},
-    {NULL, NULL, NULL, NULL}};
-
 /* the wanted device (cl.device, else ICS_CL_DEVICE) and how to name it in messages */
 static const char *wanted_device(const ics_render_opts *opts, const char **label) {
-  const char *from, *want = ics_backend_option_value(&ics_backend_cl, opts, "device", &from);
+  const char *from, *want = ics_backend_option_value(ics_backend_find("cl"), opts, "device", &from);
   *label = from ? from : "cl.device";
   return want;
 }
@@ -426,7 +422,5 @@ done:;
   return status;
 }
 
-const ics_backend ics_backend_cl = {
-    "cl", "the slab renderer on an OpenCL device (PoCL or any OpenCL 1.2 platform with fp64; not picked by auto)",
-    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, 1u << ICS_MODEL_PATEL,
-    cl_available, NULL, cl_create, cl_render, cl_destroy, cl_options};
+/* the module's table (module_cl.c); the backend's entry: backend_cl_entry.c */
+const ics_backend_funcs ics_cl_funcs = {cl_available, NULL, cl_create, cl_render, cl_destroy};

@@ -93,23 +93,15 @@ static void gl_destroy(void *state) {
   state_free(s);
 }
 
-static const ics_backend_option gl_options[] = {
-    {"context", "ICS_GL_CONTEXT", "auto|egl|osmesa",
-     "the context: auto (egl, then osmesa), egl (a GPU's driver, else Mesa's surfaceless "
-     "llvmpipe) or osmesa"},
-    {"ldi", "ICS_GL_LDI", "plan|device",
-     "the layered depth image: plan (the plan's, uploaded) or device (built on the device)"},
-    {NULL, NULL, NULL, NULL}};
-
 const char *ics_gl_context_kind(const ics_render_opts *opts) {
-  const char *k = ics_backend_option_value(&ics_backend_gl, opts, "context", NULL);
+  const char *k = ics_backend_option_value(ics_backend_find("gl"), opts, "context", NULL);
   return k ? k : "auto";
 }
 
 /* where the layered depth image comes from: gl.ldi (ICS_GL_LDI), "plan" (the plan's, uploaded;
  * the default) or "device" (ldi_gl.c); -1 for another value (*v: it) */
 static int ldi_on_device(const ics_render_opts *opts, const char **v) {
-  *v = ics_backend_option_value(&ics_backend_gl, opts, "ldi", NULL);
+  *v = ics_backend_option_value(ics_backend_find("gl"), opts, "ldi", NULL);
   if (!*v || !strcmp(*v, "plan")) return 0;
   return !strcmp(*v, "device") ? 1 : -1;
 }
@@ -646,7 +638,6 @@ done:
   return status;
 }
 
-const ics_backend ics_backend_gl = {
-    "gl", "the slab renderer as OpenGL 4.5 compute shaders (EGL or OSMesa; auto picks it on a GPU)",
-    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, 1u << ICS_MODEL_PATEL,
-    gl_available, gl_auto_pick, gl_create, gl_render, gl_destroy, gl_options};
+/* the module's table (module_gl.c); the backend's entry: backend_gl_entry.c */
+const ics_backend_funcs ics_gl_funcs = {gl_available, gl_auto_pick, gl_create, gl_render,
+                                        gl_destroy};

@@ -9,7 +9,9 @@
  *           backend computes into buffers, it draws nothing). Gone from Mesa 25.1: EGL is the
  *           long-term path.
  *   auto    egl, then osmesa.
- * Each is compiled in when CMake found its library (ICS_HAVE_EGL, ICS_HAVE_OSMESA). */
+ * Each is compiled in when CMake found its library (ICS_HAVE_EGL, ICS_HAVE_OSMESA); OSMesa is
+ * opened on first use (dlopen), not linked, since it maps LLVM. */
+#define _GNU_SOURCE /* RTLD_DEFAULT */
 #include "gl_context.h"
 
 #include <stdio.h>
@@ -22,6 +24,55 @@
 #endif
 #ifdef ICS_HAVE_OSMESA
 #include <GL/osmesa.h>
+#include <dlfcn.h>
+#include <pthread.h>
+
+/* OSMesa, opened on first use (libOSMesa.so.8 links LLVM: a program that only asks whether
+ * there is a GPU, as --backend auto does, should not map it): its six entry points */
+#define ICS_OSMESA_FUNCS(X)                                                                     \
+  X(OSMesaCreateContextAttribs) X(OSMesaMakeCurrent) X(OSMesaGetCurrentContext)                 \
+  X(OSMesaDestroyContext) X(OSMesaGetColorBuffer) X(OSMesaGetProcAddress)
+#define ICS_OSMESA_FIELD_(name) __typeof__(name) *name;
+static struct {
+  ICS_OSMESA_FUNCS(ICS_OSMESA_FIELD_)
+} osm;
+#undef ICS_OSMESA_FIELD_
+static pthread_once_t osm_once = PTHREAD_ONCE_INIT;
+static char osm_failure[512];
+
+static void osmesa_load_once(void) {
+  void *h = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);
+  const char *missing = NULL;
+  /* each bound as the dynamic linker would: the global scope first (a preloaded library
+   * interposes, as the fault tests' shim does), then the library itself */
+#define ICS_OSMESA_RESOLVE_(name)                                                               \
+  if (h && !missing && !(*(void **)&osm.name = dlsym(RTLD_DEFAULT, #name)) &&                   \
+      !(*(void **)&osm.name = dlsym(h, #name)))                                                 \
+    missing = #name;
+  ICS_OSMESA_FUNCS(ICS_OSMESA_RESOLVE_)
+#undef ICS_OSMESA_RESOLVE_
+  if (!h) {
+    const char *e = dlerror();
+    snprintf(osm_failure, sizeof osm_failure, "osmesa: libOSMesa.so.8 does not load (%s)",
+             e ? e : "dlopen failed");
+  } else if (missing) {
+    snprintf(osm_failure, sizeof osm_failure, "osmesa: libOSMesa.so.8 lacks %s", missing);
+    memset(&osm, 0, sizeof osm);
+  }
+}
+
+/* 1 when OSMesa is there, else 0 with why */
+static int osmesa_load(char *why, size_t why_size) {
+  pthread_once(&osm_once, osmesa_load_once);
+  if (osm_failure[0] && why) snprintf(why, why_size, "%s", osm_failure);
+  return !osm_failure[0];
+}
+#define OSMesaCreateContextAttribs (osm.OSMesaCreateContextAttribs)
+#define OSMesaMakeCurrent (osm.OSMesaMakeCurrent)
+#define OSMesaGetCurrentContext (osm.OSMesaGetCurrentContext)
+#define OSMesaDestroyContext (osm.OSMesaDestroyContext)
+#define OSMesaGetColorBuffer (osm.OSMesaGetColorBuffer)
+#define OSMesaGetProcAddress (osm.OSMesaGetProcAddress)
 #endif
 
 enum { KIND_NONE, KIND_EGL, KIND_OSMESA };
@@ -199,6 +250,7 @@ static ics_gl_proc osmesa_gpa(const char *name) { return (ics_gl_proc)OSMesaGetP
 
 static int osmesa_open(ics_gl *g, char *why, size_t why_size) {
   snprintf(g->context, sizeof g->context, "osmesa");
+  if (!osmesa_load(why, why_size)) return 0;
   const int attr[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
                       OSMESA_CONTEXT_MAJOR_VERSION, 4, OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
   OSMesaContext c = OSMesaCreateContextAttribs(attr, NULL);

@@ -134,19 +134,18 @@ static ics_status mc_render(void *state, const ics_plan *P, const ics_render_opt
   int spp = o->spp, stop_by_count = spp > 0;
   if (spp == 0 && !(o->time_s > 0) && !(o->noise > 0)) spp = MC_DEFAULT_SPP, stop_by_count = 1;
   if (!stop_by_count) spp = MC_MAX_SPP;
-  char ver[32];
-  int have_embree = mc_embree_available(ver, sizeof ver), embree = have_embree;
-  if (o->mc_mesh && !strcmp(o->mc_mesh, "embree")) {
-    if (!have_embree) {
-      if (msg) snprintf(msg, msg_size, "mc: meshes through Embree: Embree was not found when the "
-                        "renderer was built (apt-get install libembree-dev and rebuild)");
-      return ICS_ERR_UNSUPPORTED;
-    }
-  } else if (o->mc_mesh && !strcmp(o->mc_mesh, "bvh")) {
-    embree = 0;
-  } else if (o->mc_mesh && strcmp(o->mc_mesh, "auto")) {
+  char ver[32] = "", why[1024] = "";
+  int embree = 0; /* Embree's module is loaded only for a scene with meshes */
+  if (o->mc_mesh && strcmp(o->mc_mesh, "auto") && strcmp(o->mc_mesh, "embree") &&
+      strcmp(o->mc_mesh, "bvh")) {
     if (msg) snprintf(msg, msg_size, "mc: mesh crossings '%s': expected auto, embree or bvh", o->mc_mesh);
     return ICS_ERR_INVALID_ARG;
+  }
+  int want = !o->mc_mesh || strcmp(o->mc_mesh, "bvh");
+  if (want && P->scene->nmeshes) embree = mc_embree_available(ver, sizeof ver, why, sizeof why);
+  if (o->mc_mesh && !strcmp(o->mc_mesh, "embree") && P->scene->nmeshes && !embree) {
+    if (msg) snprintf(msg, msg_size, "mc: meshes through Embree: %s", why);
+    return ICS_ERR_UNSUPPORTED;
   }
   pass_t ps = {0};
   mc_scene m;
@@ -238,5 +237,6 @@ const ics_backend ics_backend_mc = {
           "(CPU threads; always built; never chosen by auto)",
     /* the reference is the truth every model approximates: it renders them all alike */
     ICS_AOV_VISIBILITY | ICS_AOV_DEPTH | ICS_AOV_STDERR, ICS_MODELS_ALL,
-    ics_backend_always_available, NULL, ics_backend_pool_create, mc_render,
-    ics_backend_pool_destroy, NULL};
+    {ics_backend_always_available, NULL, ics_backend_pool_create, mc_render,
+     ics_backend_pool_destroy},
+    NULL};

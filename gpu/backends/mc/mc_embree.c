@@ -1,5 +1,6 @@
 /* mc_embree.c — mesh crossings for the Monte-Carlo reference through Embree 3 (see mc_embree.h,
- * docs/reference.md). The query covers the whole line through the ray, as ics_mesh_hits does:
+ * docs/reference.md), the module icshadow-embree.so (gpu/core/module.h; the renderer reaches it
+ * through mc_embree_entry.c). The query covers the whole line through the ray, as ics_mesh_hits does:
  * Embree's segment starts at its origin (t >= 0), so the query starts where the line enters the
  * mesh's bounding box (padded by 0.1 % of its size; a line that misses it meets nothing), and t
  * is measured from the real origin again in double precision afterwards. Each mesh's vertices
@@ -14,8 +15,9 @@
 
 #include "mesh.h"
 
-#ifdef ICS_HAVE_EMBREE
 #include <embree3/rtcore.h>
+
+#include "module.h"
 
 struct mc_embree {
   RTCDevice dev;
@@ -59,9 +61,8 @@ static void record_all(const struct RTCFilterFunctionNArguments *a) {
   }
 }
 
-int mc_embree_available(char *ver, size_t ver_size) {
+static void embree_version(char *ver, size_t ver_size) {
   if (ver) snprintf(ver, ver_size, "%d.%d.%d", RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH);
-  return 1;
 }
 
 static ics_status embree_error(mc_embree *e, char *msg, size_t msg_size, const char *what) {
@@ -195,37 +196,6 @@ int mc_embree_hits(const mc_embree *e, int obj, const double orig[3], const doub
   return ics_mesh_hits_of(mesh, sc->tri, sc->n, orig, dir, h, behind);
 }
 
-#else
-
-struct mc_embree {
-  int unused;
-};
-
-int mc_embree_available(char *ver, size_t ver_size) {
-  if (ver && ver_size) ver[0] = 0;
-  return 0;
-}
-
-ics_status mc_embree_create(mc_embree **out, const ics_scene *s, int threads, char *msg,
-                            size_t msg_size) {
-  (void)s, (void)threads;
-  *out = NULL;
-  if (msg) snprintf(msg, msg_size, "Embree was not found when the renderer was built "
-                    "(apt-get install libembree-dev and rebuild)");
-  return ICS_ERR_UNSUPPORTED;
-}
-
-void mc_embree_destroy(mc_embree *e) { (void)e; }
-
-int mc_embree_hits(const mc_embree *e, int obj, const double orig[3], const double dir[3],
-                   mc_embree_scratch *sc, ics_hits *h, int *behind) {
-  (void)e, (void)obj, (void)orig, (void)dir, (void)sc, (void)h, (void)behind;
-  return -1;
-}
-
-#endif
-
-void mc_embree_scratch_free(mc_embree_scratch *sc) {
-  free(sc->tri);
-  memset(sc, 0, sizeof *sc);
-}
+static const mc_embree_funcs funcs = {embree_version, mc_embree_create, mc_embree_destroy,
+                                      mc_embree_hits};
+ICS_MODULE_DEFINE("embree", &funcs)

@@ -129,6 +129,16 @@ ICS_API int ics_backend_available(const char *name, char *why, size_t why_size);
 ICS_API int ics_backend_available_opts(const char *name, const ics_render_opts *opts, char *why,
                                        size_t why_size);
 
+/* The renderer's modules (docs/architecture.md "Modules"): the parts that need heavy libraries
+ * (the gl and cl backends, the reference's Embree meshes, Assimp's mesh files), shared objects
+ * loaded on first use. i = 0 .. count - 1: the module's name ("gl") and what it is for; NULL out
+ * of range. ics_render_module_loads: 1 when module `name` loads here (loading it), else 0 with
+ * the reason in why (not found, with the folders searched; a library it needs missing). */
+ICS_API int ics_render_module_count(void);
+ICS_API const char *ics_render_module_name(int i);
+ICS_API const char *ics_render_module_purpose(int i);
+ICS_API int ics_render_module_loads(const char *name, char *why, size_t why_size);
+
 /* The options backend i takes (ics_render_opts.options), j = 0 .. count - 1: the name ("device"),
  * one line of help, the values it accepts ("auto|egl|osmesa"; NULL: any text that is not empty)
  * and the environment variable that gives its default ("ICS_CL_DEVICE"). NULL out of range. */
