@@ -44,7 +44,8 @@ class BuildWithLibraries(build_ext):
             for s in SONAMES:  # the real file under its soname, which the module's rpath finds
                 shutil.copy2(os.path.realpath(os.path.join(LIB_DIR, s)), os.path.join(d, s))
             mods = os.path.join(LIB_DIR, "icshadow")  # the renderer's modules, beside it
-            os.makedirs(os.path.join(d, "icshadow"), exist_ok=True)
+            shutil.rmtree(os.path.join(d, "icshadow"), ignore_errors=True)  # none left from before
+            os.makedirs(os.path.join(d, "icshadow"))
             for m in sorted(os.listdir(mods)) if os.path.isdir(mods) else []:
                 if m.startswith("icshadow-") and m.endswith(".so"):
                     shutil.copy2(os.path.join(mods, m), os.path.join(d, "icshadow", m))

@@ -10,7 +10,8 @@
  *     for bit, with and without pre-integration;
  *   - ics_k_class_sum over a 3 x 3 buffer equals the weighted sum written out by hand, the
  *     reads clamped at the edges;
- *   - ics_k_plan_ray (camera.h) through the packed camera equals ics_plan_ray.
+ *   - ics_k_plan_ray (camera.h) through the packed camera, and ics_plan_ray, equal the camera
+ *     ray written out in this file from the plan's camera, orthographic and perspective.
  * A wrong record offset, a wrong drift constant or a changed operation order in the shared text
  * fails here on a machine without OpenCL or OpenGL (checked: the drift's y constant changed
  * in its last digit fails the noise comparisons). */
@@ -19,6 +20,7 @@
 #include <string.h>
 
 #include "detail.h"
+#include "icshadow/constants.h"
 #include "device_scene.h"
 #include "render_util.h"
 #include "testutil.h"
@@ -59,7 +61,8 @@ static float dst_unused[1];
 /* a point in [-spread, spread] */
 static double spread_point(double spread) { return spread * (2 * test_rng_unit() - 1); }
 
-static void test_detail(const ics_plan *P, const ics_device_scene *d, const ics_scene *s) {
+static void test_detail(const ics_plan *P, const ics_device_scene *d, const ics_scene *s,
+                        int expected) {
   kernel_view V = {.d = d};
   int nobj = ics_scene_object_count(s), tested = 0;
   for (int o = 0; o < nobj; o++) {
@@ -97,7 +100,7 @@ static void test_detail(const ics_plan *P, const ics_device_scene *d, const ics_
     snprintf(name, sizeof name, "object %d: ics_k_volume_sig == host, both modes", o);
     CHECK(worst_sig == 0, "%s (worst %.3g)", name, worst_sig);
   }
-  CHECK(tested == 4, "four detail objects (%d)", tested);
+  CHECK(tested == expected, "%d detail objects (expected %d)", tested, expected);
 }
 
 static void test_class_sum(void) {
@@ -118,17 +121,40 @@ static void test_class_sum(void) {
   CHECK(got == want, "class_sum Q wraps to the next pixel: %g == %g", got, want);
 }
 
-static void test_camera(const ics_plan *P, const ics_device_scene *d) {
+/* the camera ray written out from the plan's camera, as plan.c computed it before camera.h */
+static void reference_ray(const ics_plan *p, int bi, int bj, double o[3], double d[3]) {
+  const ics_camera *c = &p->cam;
+  double s = (bi - p->pad[0] + 0.5) / p->W, t = (bj - p->pad[2] + 0.5) / p->H;
+  if (c->projection == ICS_PROJ_ORTHOGRAPHIC) {
+    double h = c->height, w = h * p->W / p->H;
+    for (int i = 0; i < 3; i++) {
+      o[i] = c->eye[i] + (s - 0.5) * w * c->r[i] + (0.5 - t) * h * c->u[i];
+      d[i] = c->f[i];
+    }
+  } else {
+    double th = tan(c->fov_deg * (ICS_PI / 360)), asp = (double)p->W / p->H;
+    for (int i = 0; i < 3; i++) {
+      o[i] = c->eye[i];
+      d[i] = c->f[i] + (2 * s - 1) * th * asp * c->r[i] + (1 - 2 * t) * th * c->u[i];
+    }
+  }
+}
+
+/* ics_k_plan_ray over the packed camera, and ics_plan_ray, against the formula written out */
+static void test_camera(const ics_plan *P, const ics_device_scene *d, const char *name) {
   kernel_view V = {.d = d};
-  int same = 1;
+  int same = 1, n = 0;
   for (int bj = 0; bj < P->Hb; bj += 7)
-    for (int bi = 0; bi < P->Wb; bi += 5) {
-      double o[3], dir[3], ho[3], hd[3];
+    for (int bi = 0; bi < P->Wb; bi += 5, n++) {
+      double o[3], dir[3], ho[3], hd[3], ro[3], rd[3];
       ics_k_plan_ray(&V, bi, bj, P->W, P->H, P->pad[0], P->pad[2], o, dir);
       ics_plan_ray(P, bi, bj, ho, hd);
-      same &= memcmp(o, ho, sizeof o) == 0 && memcmp(dir, hd, sizeof dir) == 0;
+      reference_ray(P, bi, bj, ro, rd);
+      same &= !memcmp(o, ro, sizeof o) && !memcmp(dir, rd, sizeof dir) && !memcmp(ho, ro, sizeof ho) &&
+              !memcmp(hd, rd, sizeof hd);
     }
-  CHECK(same, "ics_k_plan_ray over the packed camera == ics_plan_ray");
+  CHECK(same && n > 0, "%s (%s): the camera rays == the formula written out (%d pixels)", name,
+        P->cam.projection == ICS_PROJ_ORTHOGRAPHIC ? "orthographic" : "perspective", n);
 }
 
 /* text with every `from` replaced by `to` (malloc'd; NULL when out of memory) */
@@ -146,8 +172,8 @@ static char *replace_all(const char *text, const char *from, const char *to) {
   return out;
 }
 
-/* scene `text` (files relative to dir): its detail, class sums and camera rays */
-static void test_scene(const char *text, const char *name, const char *dir) {
+/* scene `text` (files relative to dir; ndetail objects with detail): its detail and camera rays */
+static void test_scene(const char *text, const char *name, const char *dir, int ndetail) {
   char msg[4096];
   ics_scene *s;
   if (ics_scene_create_json(&s, text, name, dir, msg, sizeof msg) != ICS_OK) {
@@ -158,8 +184,8 @@ static void test_scene(const char *text, const char *name, const char *dir) {
   ics_device_scene d;
   memset(&d, 0, sizeof d);
   CHECK(ics_device_scene_create(&d, P, 0) == ICS_OK, "%s: device scene", name);
-  test_detail(P, &d, s);
-  test_camera(P, &d);
+  test_detail(P, &d, s, ndetail);
+  test_camera(P, &d, name);
   ics_device_scene_destroy(&d);
   ics_plan_destroy(P);
   ics_scene_destroy(s);
@@ -191,8 +217,17 @@ int main(int argc, char **argv) {
     return 2;
   }
   CHECK(strcmp(timed, text) != 0 && strstr(timed, "\"offset\": 0.9"), "the timed variant differs");
-  test_scene(text, "volumes.json", dir);
-  test_scene(timed, "volumes.json, timed", dir);
+  test_scene(text, "volumes.json", dir, 4);
+  test_scene(timed, "volumes.json, timed", dir, 4);
+  char persp[4200];
+  snprintf(persp, sizeof persp, "%s/perspective.json", dir);
+  char *ptext = test_read_text(persp);
+  if (!ptext) {
+    fprintf(stderr, "test_kernel_c: cannot read %s\n", persp);
+    return 2;
+  }
+  test_scene(ptext, "perspective.json", dir, 0);
+  free(ptext);
   test_class_sum();
   free(text), free(t1), free(t2), free(timed);
   return test_summary("test_kernel_c");

@@ -9,6 +9,7 @@
  * pieces, and each sign change is bisected to full precision: no root of multiplicity one is
  * missed, whatever the ray (a tangential double root may be). */
 #include "geometry.h"
+#include "kernel/crossings.h" /* shared with ldi.comp */
 
 #include <math.h>
 #include <stdlib.h>
@@ -186,52 +187,24 @@ int ics_object_hits(const ics_object *o, const double orig[3], const double dir[
   switch (o->shape) {
   case ICS_SHAPE_RECT:
   case ICS_SHAPE_DISK: {
-    if (e[2] == 0) return 0;
-    double t = -q[2] / e[2];
-    double x = q[0] + t * e[0], y = q[1] + t * e[1];
-    int in = o->shape == ICS_SHAPE_RECT ? fabs(x) <= o->half[0] && fabs(y) <= o->half[1]
-                                        : x * x + y * y <= o->half[0] * o->half[0];
-    return in && t > 0 ? ics_hits_push(h, t, o->ax[2]) : 0;
+    double t[2];
+    int in = ics_k_plane_crossing(q, e, o->shape == ICS_SHAPE_DISK, o->half[0], o->half[1], t);
+    return in && t[0] > 0 ? ics_hits_push(h, t[0], o->ax[2]) : 0;
   }
   case ICS_SHAPE_BOX: {
-    double t0 = -INFINITY, t1 = INFINITY;
-    int i0 = 0, i1 = 0;
-    for (int i = 0; i < 3; i++) {
-      if (e[i] == 0) {
-        if (fabs(q[i]) > o->half[i]) return 0;
-        continue;
-      }
-      double a = (-o->half[i] - q[i]) / e[i], b = (o->half[i] - q[i]) / e[i];
-      if (a > b) {
-        double tmp = a;
-        a = b;
-        b = tmp;
-      }
-      if (a > t0) t0 = a, i0 = i;
-      if (b < t1) t1 = b, i1 = i;
-    }
-    if (!(t0 < t1)) return 0;
-    if (push_hit(h, behind, t0, o->ax[i0])) return -1;
-    return push_hit(h, behind, t1, o->ax[i1]);
+    double t[2];
+    int axis[2];
+    if (!ics_k_box_crossings(q, e, o->half, t, axis)) return 0;
+    if (push_hit(h, behind, t[0], o->ax[axis[0]])) return -1;
+    return push_hit(h, behind, t[1], o->ax[axis[1]]);
   }
   case ICS_SHAPE_SPHERE: {
-    double a = dot3(e, e), b = dot3(q, e), c = dot3(q, q) - o->half[0] * o->half[0];
-    double disc = b * b - a * c;
-    if (!(disc > 0) || !(a > 0)) return 0;
-    double s = sqrt(disc);
-    /* stable pair: t = (-b -+ s) / a, the far one from c / (a t_near) */
-    double qv = -(b + copysign(s, b));
-    double t0 = qv / a, t1 = c / qv;
-    if (t0 > t1) {
-      double tmp = t0;
-      t0 = t1;
-      t1 = tmp;
-    }
-    double n0[3], n1[3];
-    for (int i = 0; i < 3; i++) n0[i] = orig[i] + t0 * dir[i] - o->center[i];
-    for (int i = 0; i < 3; i++) n1[i] = orig[i] + t1 * dir[i] - o->center[i];
-    if (push_hit(h, behind, t0, n0)) return -1;
-    return push_hit(h, behind, t1, n1);
+    double t[2], n0[3], n1[3];
+    if (!ics_k_sphere_crossings(q, e, o->half[0], t)) return 0;
+    for (int i = 0; i < 3; i++) n0[i] = orig[i] + t[0] * dir[i] - o->center[i];
+    for (int i = 0; i < 3; i++) n1[i] = orig[i] + t[1] * dir[i] - o->center[i];
+    if (push_hit(h, behind, t[0], n0)) return -1;
+    return push_hit(h, behind, t[1], n1);
   }
   case ICS_SHAPE_TORUS:
     return torus_hits(o, q, e, h, behind);

@@ -1,10 +1,12 @@
 /* module.c — loading the renderer's modules on first use (module.h): the folder, dlopen, the
  * entry's check, the host's table handed over once; every outcome remembered per module. */
-#define _GNU_SOURCE /* dladdr */
+#define _GNU_SOURCE /* dladdr1 */
 #include "module.h"
 
 #include <dlfcn.h>
 #include <limits.h>
+#include <link.h>
+#include <sys/stat.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -56,14 +58,16 @@ static loaded mods[MAX_MODULES];
 static int nmods;
 
 /* the folder of the object that holds this code (the library, or the program that links it
- * statically), into dir; 0 when it cannot be told */
+ * statically: its link map has no name, and /proc/self/exe is its file), into dir; 0 when it
+ * cannot be told */
 static int own_folder(char *dir, size_t size) {
   Dl_info info;
+  struct link_map *lm = NULL;
   char path[PATH_MAX];
-  if (!dladdr((const void *)&own_folder, &info) || !info.dli_fname) return 0;
-  if (strchr(info.dli_fname, '/')) {
-    if (!realpath(info.dli_fname, path)) return 0;
-  } else { /* the main program named without a folder */
+  if (!dladdr1((const void *)&own_folder, &info, (void **)&lm, RTLD_DL_LINKMAP)) return 0;
+  if (lm && lm->l_name && lm->l_name[0]) {
+    if (!realpath(lm->l_name, path)) return 0;
+  } else {
     ssize_t n = readlink("/proc/self/exe", path, sizeof path - 1);
     if (n <= 0) return 0;
     path[n] = 0;
@@ -74,39 +78,52 @@ static int own_folder(char *dir, size_t size) {
   return snprintf(dir, size, "%s", path) < (int)size;
 }
 
-/* folder + "/" + rel into dirs[*n] (PATH_MAX; resolved where it exists), counted when it fits
- * and is not already there */
+/* folder + "/" + rel, resolved, into dirs[*n] (PATH_MAX), counted when it is a folder not
+ * already there */
 static void add_folder(char dirs[][PATH_MAX], int *n, const char *folder, const char *rel) {
   char path[PATH_MAX];
+  struct stat sb;
   int w = snprintf(path, sizeof path, "%s%s%s", folder, rel[0] ? "/" : "", rel);
-  if (w <= 0 || w >= PATH_MAX) return;
-  if (!realpath(path, dirs[*n])) memcpy(dirs[*n], path, (size_t)w + 1); /* shown as given */
+  if (w <= 0 || w >= PATH_MAX || !realpath(path, dirs[*n]) || stat(dirs[*n], &sb) ||
+      !S_ISDIR(sb.st_mode))
+    return;
   for (int i = 0; i < *n; i++)
-    if (!strcmp(dirs[i], dirs[*n])) return; /* the same folder twice */
+    if (!strcmp(dirs[i], dirs[*n])) return;
   (*n)++;
 }
 
-/* the folders to try, in order, into dirs (at least 4 of PATH_MAX); their count */
+/* the folders to try, in order, into dirs (at least 3 of PATH_MAX); their count */
 static int module_folders(char dirs[][PATH_MAX]) {
   int n = 0;
-  const char *env = getenv("ICS_MODULE_DIR");
-  if (env && env[0]) {
-    add_folder(dirs, &n, env, "");
-    return n;
-  }
   char own[PATH_MAX];
   if (own_folder(own, sizeof own)) {
-    add_folder(dirs, &n, own, "icshadow");              /* LIBDIR/ */
-    add_folder(dirs, &n, own, ICS_MODULE_DIR_FROM_BIN); /* bin/ */
+    add_folder(dirs, &n, own, "icshadow");                    /* LIBDIR/ */
+    add_folder(dirs, &n, own, ICS_MODULE_DIR_FROM_BIN);       /* bin/, installed */
+    add_folder(dirs, &n, own, ICS_MODULE_DIR_FROM_BUILD_BIN); /* bin/, the build tree */
   }
-  add_folder(dirs, &n, ICS_MODULE_BUILD_DIR, "");
-  add_folder(dirs, &n, ICS_MODULE_INSTALL_DIR, "");
   return n;
 }
 
+/* 1 when module `name` was built (the table above) */
+static int was_built(const char *name) {
+  for (int i = 0; i < NBUILT; i++)
+    if (!strcmp(built[i].name, name)) return 1;
+  return 0;
+}
+
 static void load(loaded *m) {
-  char dirs[4][PATH_MAX], file[PATH_MAX], tried[WHY_SIZE] = "";
-  int nd = module_folders(dirs);
+  char dirs[3][PATH_MAX], file[PATH_MAX], tried[WHY_SIZE] = "";
+  const char *env = getenv("ICS_MODULE_DIR");
+  int nd = 1;
+  if (env && env[0]) /* only there, tried even when it is not a folder (the message says so) */
+    snprintf(dirs[0], PATH_MAX, "%s", env);
+  else
+    nd = module_folders(dirs);
+  if (!was_built(m->name)) {
+    snprintf(m->why, sizeof m->why, "module %s was not built (its library was not found when "
+             "the renderer was built; `icshadow render --backends` lists the modules)", m->name);
+    return;
+  }
   for (int i = 0; i < nd; i++) {
     int w = snprintf(file, sizeof file, "%s/icshadow-%s.so", dirs[i], m->name);
     if (w < 0 || w >= (int)sizeof file || access(file, F_OK) != 0) {
@@ -123,10 +140,13 @@ static void load(loaded *m) {
       return;
     }
     const ics_module_info *e = dlsym(m->handle, "ics_module_entry");
-    if (!e || e->abi != ICS_MODULE_ABI || !e->name || strcmp(e->name, m->name) || !e->api) {
-      if (snprintf(m->why, sizeof m->why, "module %s is not this build's %s module (entry %s)",
-                   file, m->name,
-                   !e ? "missing" : e->abi != ICS_MODULE_ABI ? "of another version" : "wrong") < 0)
+    const char *wrong = !e ? "no ics_module_entry"
+                        : !e->build_id || strcmp(e->build_id, ICS_MODULE_BUILD_ID)
+                            ? "built from other sources than this renderer"
+                        : !e->name || strcmp(e->name, m->name) || !e->api ? "another module's entry"
+                                                                          : NULL;
+    if (wrong) {
+      if (snprintf(m->why, sizeof m->why, "module %s is refused: %s", file, wrong) < 0)
         m->why[0] = 0;
       dlclose(m->handle), m->handle = NULL;
       return;
@@ -135,9 +155,9 @@ static void load(loaded *m) {
     m->api = e->api;
     return;
   }
-  const char *env = getenv("ICS_MODULE_DIR");
   if (snprintf(m->why, sizeof m->why, "module icshadow-%s.so not found (looked in %s%s)", m->name,
-               tried, env && env[0] ? ", set by ICS_MODULE_DIR" : "") < 0)
+               tried[0] ? tried : "no folder beside the renderer",
+               env && env[0] ? ", set by ICS_MODULE_DIR" : "") < 0)
     m->why[0] = 0;
 }
 
@@ -155,14 +175,6 @@ const void *ics_module_api(const char *name, char *why, size_t why_size) {
   if (!api && why) snprintf(why, why_size, "%s", m ? m->why : "too many modules");
   pthread_mutex_unlock(&lock);
   return api;
-}
-
-int ics_module_loaded(const char *name) {
-  pthread_mutex_lock(&lock);
-  int yes = 0;
-  for (int i = 0; i < nmods; i++) yes |= !strcmp(mods[i].name, name) && mods[i].api != NULL;
-  pthread_mutex_unlock(&lock);
-  return yes;
 }
 
 int ics_render_module_count(void) { return NBUILT; }

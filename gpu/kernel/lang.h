@@ -41,6 +41,12 @@ uint ics_k_mulhi(uint a, uint b) {
   return hi;
 }
 #define ICS_MULHI(a, b) ics_k_mulhi(a, b)
+/* copysign(m, s) and infinity for doubles (GLSL has neither): bits */
+double ics_k_copysign(double m, double s) {
+  return (unpackDouble2x32(s).y & 0x80000000u) != 0u ? -abs(m) : abs(m);
+}
+#define ICS_COPYSIGN(m, s) ics_k_copysign(m, s)
+#define ICS_DBL_INF packDouble2x32(uvec2(0u, 0x7ff00000u))
 
 #else /* C11 and OpenCL C spell the rest alike */
 #define ICS_OUT
@@ -55,6 +61,8 @@ uint ics_k_mulhi(uint a, uint b) {
 #define ICS_FMAX(a, b) fmax(a, b)
 #define ICS_EXP(x) exp(x)
 #define ICS_POW(x, y) pow(x, y)
+#define ICS_COPYSIGN(m, s) copysign(m, s)
+#define ICS_DBL_INF ((double)INFINITY)
 #if defined(__OPENCL_VERSION__)
 #define ICS_FN static
 #define ICS_UINT uint

@@ -5,6 +5,7 @@
 #include <dlfcn.h>
 #include <pthread.h>
 #include <stdio.h>
+#include <string.h>
 
 ics_cl_api ics_cl_fn;
 
@@ -29,6 +30,7 @@ static void load(void) {
   if (missing) {
     snprintf(failure, sizeof failure, "libOpenCL.so.1 lacks %s (an OpenCL 1.2 ICD loader is needed)",
              missing);
+    memset(&ics_cl_fn, 0, sizeof ics_cl_fn);
     dlclose(h);
     return;
   }

@@ -1,9 +1,10 @@
 #!/bin/sh
 # modules.sh — the renderer's modules (docs/architecture.md "Modules"), through the CLI:
-#   missing DIR  with ICS_MODULE_DIR an empty folder (a machine where no module loads): eval,
-#                lut, make-env, fit-light and a cpu render work; --backend gl and cl, a scene
-#                with a mesh file and the reference's Embree meshes fail with exit 2, naming the
-#                module and where it was looked for, and write nothing;
+#   missing      with ICS_MODULE_DIR an empty folder (a machine where no module loads): eval,
+#                lut, make-env, fit-light and a cpu render work; --backend gl and cl and a scene
+#                with a mesh file fail with exit 2, naming the module and where it was looked
+#                for, and write nothing; with Assimp's module alone, the reference renders a
+#                mesh scene through the meshes' own BVH, and --mc-mesh embree fails so;
 #   mapped       which libraries each command maps (LD_DEBUG=files lists every one the loader
 #                opens, dlopen included): eval, lut and a cpu render none of LLVM, Embree, TBB,
 #                Assimp, OpenCL, EGL or OSMesa; and, so that the check can fail, a gl render
@@ -40,8 +41,9 @@ if [ "$what" = missing ]; then
   run make_env 0 "" make-env --lights 0.1,0.2,0.01,0.01 --size 64x32 -o "$work/env.exr"
   run fit_light 0 "" fit-light "$work/env.exr" --lights 1 -o "$work/fit.json"
   run render_cpu 0 "" render --backend cpu --resolution 32x24 -o "$work/cpu.exr"
-  run render_auto 0 "auto passed over gl: module icshadow-gl.so not found" \
-    render --verbose --resolution 32x24 -o "$work/auto.exr"
+  auto_note=""
+  case $built in *" gl "*) auto_note="auto passed over gl: module icshadow-gl.so not found" ;; esac
+  run render_auto 0 "$auto_note" render --verbose --resolution 32x24 -o "$work/auto.exr"
   case $built in *" gl "*)
     run render_gl 2 "module icshadow-gl.so not found \\(looked in $empty, set by ICS_MODULE_DIR\\)" \
       render --backend gl --resolution 32x24 -o "$work/gl.exr" ;;
@@ -52,6 +54,17 @@ if [ "$what" = missing ]; then
   case $built in *" assimp "*)
     run render_mesh 2 "trefoil.ply: mesh files need Assimp's reader: module icshadow-assimp.so not found" \
       render "$scenes/mesh.json" --resolution 32x24 -o "$work/mesh.exr" ;;
+  esac
+  case $built in *" assimp "*" embree "*|*" embree "*" assimp "*)
+    only="$work/assimp_only"
+    mkdir -p "$only" && rm -f "$only"/*
+    cp "$(dirname "$cli")/../lib/icshadow/icshadow-assimp.so" "$only/" || bad "no Assimp module to copy"
+    export ICS_MODULE_DIR="$only"
+    run mc_bvh 0 "" render "$scenes/mesh.json" --backend mc --spp 1 --resolution 16x12 -o "$work/mc.exr"
+    grep -q "meshes: own BVH" "$work/mc_bvh.out" || bad "mc without Embree: $(head -c 300 "$work/mc_bvh.out")"
+    run mc_embree 2 "mc: meshes through Embree: module icshadow-embree.so not found" \
+      render "$scenes/mesh.json" --backend mc --mc-mesh embree --spp 1 --resolution 16x12 -o "$work/mce.exr"
+    [ ! -e "$work/mce.exr" ] || bad "mce.exr written after a failure" ;;
   esac
   for f in gl cl mesh; do [ ! -e "$work/$f.exr" ] || bad "$f.exr written after a failure"; done
   for f in cpu auto env; do [ -s "$work/$f.exr" ] || bad "$f.exr not written"; done

@@ -58,6 +58,7 @@ static void osmesa_load_once(void) {
   } else if (missing) {
     snprintf(osm_failure, sizeof osm_failure, "osmesa: libOSMesa.so.8 lacks %s", missing);
     memset(&osm, 0, sizeof osm);
+    dlclose(h); /* (and LLVM with it) */
   }
 }
 

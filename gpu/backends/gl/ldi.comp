@@ -59,6 +59,7 @@ layout(std430, binding = 1) readonly buffer Cam { double cam[]; };
 #define ICS_VIEW_ARG
 #define ICS_CAM(f) cam[f]
 #include "kernel/camera.h"
+#include "kernel/crossings.h"
 void plan_ray(int bi, int bj, out dvec3 o, out dvec3 d) {
   double oa[3], da[3];
   ics_k_plan_ray(bi, bj, W, H, pad_l, pad_t, oa, da);
@@ -355,58 +356,24 @@ void main() {
       precise dvec3 dd = dvec3(o.x - c.x, o.y - c.y, o.z - c.z);
       dvec3 q, e;
       for (int i = 0; i < 3; i++) q[i] = dot3(axis(k, i), dd), e[i] = dot3(axis(k, i), d);
+      double qa[3] = double[3](q.x, q.y, q.z), ea[3] = double[3](e.x, e.y, e.z), t[2];
+      int axis_of[2];
       if (shape == SHAPE_RECT || shape == SHAPE_DISK) {
-        if (e.z != 0.0LF) {
-          precise double t = -q.z / e.z;
-          precise double x = q.x + t * e.x, y = q.y + t * e.y, r0 = g(k, G_HALF);
-          precise double rr = x * x + y * y, r2 = r0 * r0;
-          bool inr = shape == SHAPE_RECT ? abs(x) <= g(k, G_HALF) && abs(y) <= g(k, G_HALF + 1) : rr <= r2;
-          if (inr && t > 0.0LF) push(t, axis(k, 2), uint(k));
-        }
+        if (ics_k_plane_crossing(qa, ea, shape == SHAPE_DISK ? 1 : 0, g(k, G_HALF), g(k, G_HALF + 1), t) != 0 &&
+            t[0] > 0.0LF)
+          push(t[0], axis(k, 2), uint(k));
       } else if (shape == SHAPE_BOX) {
-        precise double t0 = 0.0LF, t1 = 0.0LF;
-        bool any = false, miss = false;
-        int i0 = 0, i1 = 0;
-        for (int i = 0; i < 3; i++) {
-          double hf = g(k, G_HALF + i);
-          if (e[i] == 0.0LF) {
-            if (abs(q[i]) > hf) miss = true;
-            continue;
-          }
-          precise double a = (-hf - q[i]) / e[i], b = (hf - q[i]) / e[i];
-          if (a > b) {
-            double tmp = a;
-            a = b;
-            b = tmp;
-          }
-          if (!any || a > t0) t0 = a, i0 = i;
-          if (!any || b < t1) t1 = b, i1 = i;
-          any = true;
-        }
-        /* every axis parallel (a zero direction): the host's -inf < inf, no crossing pushed
-         * with a finite t; it cannot happen for a camera ray */
-        if (!miss && any && t0 < t1) {
-          push_hit(t0, axis(k, i0), uint(k), behind);
-          push_hit(t1, axis(k, i1), uint(k), behind);
+        double hb[3] = double[3](g(k, G_HALF), g(k, G_HALF + 1), g(k, G_HALF + 2));
+        if (ics_k_box_crossings(qa, ea, hb, t, axis_of) != 0) {
+          push_hit(t[0], axis(k, axis_of[0]), uint(k), behind);
+          push_hit(t[1], axis(k, axis_of[1]), uint(k), behind);
         }
       } else if (shape == SHAPE_SPHERE) {
-        precise double a = dot3(e, e), b = dot3(q, e), r0 = g(k, G_HALF);
-        precise double cc = dot3(q, q) - r0 * r0;
-        precise double disc = b * b - a * cc;
-        if (disc > 0.0LF && a > 0.0LF) {
-          precise double s = sqrt(disc);
-          bool neg = (unpackDouble2x32(b).y & 0x80000000u) != 0u; /* copysign(s, b) */
-          precise double qv = -(b + (neg ? -s : s));
-          precise double t0 = qv / a, t1 = cc / qv;
-          if (t0 > t1) {
-            double tmp = t0;
-            t0 = t1;
-            t1 = tmp;
-          }
-          precise dvec3 n0 = dvec3(o.x + t0 * d.x - c.x, o.y + t0 * d.y - c.y, o.z + t0 * d.z - c.z);
-          precise dvec3 n1 = dvec3(o.x + t1 * d.x - c.x, o.y + t1 * d.y - c.y, o.z + t1 * d.z - c.z);
-          push_hit(t0, n0, uint(k), behind);
-          push_hit(t1, n1, uint(k), behind);
+        if (ics_k_sphere_crossings(qa, ea, g(k, G_HALF), t) != 0) {
+          precise dvec3 n0 = dvec3(o.x + t[0] * d.x - c.x, o.y + t[0] * d.y - c.y, o.z + t[0] * d.z - c.z);
+          precise dvec3 n1 = dvec3(o.x + t[1] * d.x - c.x, o.y + t[1] * d.y - c.y, o.z + t[1] * d.z - c.z);
+          push_hit(t[0], n0, uint(k), behind);
+          push_hit(t[1], n1, uint(k), behind);
         }
       } else if (shape == SHAPE_TORUS) {
         torus_hits(k, q, e, behind);
