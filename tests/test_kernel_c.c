@@ -29,6 +29,8 @@
 typedef struct kernel_view {
   const ics_device_scene *d;
   int preintegrate, nlights, nch, k, W, H, pad_l, pad_t; /* shade.h's arguments */
+  int aov_count, aov_vis, aov_z;
+  double zf, zb, window_max;
   const float *src; /* class_sum: a 3 x 3 buffer and its taps */
   const int *tx, *ty;
   const float *tw;
@@ -47,6 +49,13 @@ typedef struct kernel_view {
 #define ICS_DST(l, c, q) dst_unused[(l)*0 + (c)*0 + (q)*0] /* not called */
 #define ICS_ARG(name) V->name
 #define ICS_JITTER(k, p) ((void)(k), (void)(p), 0.5)
+#define ICS_FZ(f) ((void)(f), 0.0f) /* ics_k_shade_pixel is compiled here, not called */
+#define ICS_FCODE(f) ((void)(f), 0u)
+#define ICS_FGRAD(f) ((void)(f), grad_unused)
+#define ICS_FSPAN(f) ((void)(f), 0)
+#define ICS_LCOL(i) ((void)(i), 1.0)
+#define ICS_AOV(pi, i) dst_unused[(pi) * 0 + (i) * 0]
+#define ICS_AOV_SEEN(pi) dst_unused[(pi) * 0]
 #define ICS_TAP_X(m) V->tx[m]
 #define ICS_TAP_Y(m) V->ty[m]
 #define ICS_TAP_W(m) V->tw[m]
@@ -55,6 +64,9 @@ typedef struct kernel_view {
 #define ICS_BW 3
 #define ICS_BH 3
 static float dst_unused[1];
+static const struct {
+  float x, y;
+} grad_unused;
 #include "kernel/class_sum.h"
 #include "kernel/shade.h"
 

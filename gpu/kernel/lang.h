@@ -82,7 +82,7 @@ double ics_k_copysign(double m, double s) {
 
 /* ICS_MASK, a set of up to 64 volumes (the inside mask: bit i for the volume with bit i), and
  * its operations: any member, the lowest member's bit, the set without it, the number of
- * members. GLSL has no 64-bit integers: two words, low first. */
+ * members, the set with one bit flipped. GLSL has no 64-bit integers: two words, low first. */
 #if defined(ICS_GLSL)
 #define ICS_MASK uvec2
 bool ics_mask_any(uvec2 m) { return (m.x | m.y) != 0u; }
@@ -91,18 +91,23 @@ uvec2 ics_mask_drop(uvec2 m) {
   return m.x != 0u ? uvec2(m.x & (m.x - 1u), m.y) : uvec2(0u, m.y & (m.y - 1u));
 }
 int ics_mask_count(uvec2 m) { return bitCount(m.x) + bitCount(m.y); }
+uvec2 ics_mask_toggle(uvec2 m, int bit) {
+  return bit < 32 ? uvec2(m.x ^ (1u << bit), m.y) : uvec2(m.x, m.y ^ (1u << (bit - 32)));
+}
 #elif defined(__OPENCL_VERSION__)
 #define ICS_MASK ulong
 #define ics_mask_any(m) ((m) != 0)
 #define ics_mask_lowest(m) ((int)(63 - clz((m) & (~(m) + 1))))
 #define ics_mask_drop(m) ((m) & ((m)-1))
 #define ics_mask_count(m) ((int)popcount(m))
+#define ics_mask_toggle(m, bit) ((m) ^ (1UL << (bit)))
 #else
 #define ICS_MASK uint64_t
 #define ics_mask_any(m) ((m) != 0)
 #define ics_mask_lowest(m) __builtin_ctzll(m)
 #define ics_mask_drop(m) ((m) & ((m)-1))
 #define ics_mask_count(m) __builtin_popcountll(m)
+#define ics_mask_toggle(m, bit) ((m) ^ ((uint64_t)1 << (bit)))
 #endif
 
 /* a double literal v spelled twice, v and v with GLSL's suffix (lf) */

@@ -5,14 +5,18 @@
  *   ics_k_volume_sig      a volume's extinction and colour at a piece's sample point(s);
  *   ics_k_volume_piece    one volume piece: its colour composited into the pixel and the light
  *                         buffers attenuated by the volumes' transmittance along each light;
- *   ics_k_surface_occlusion  a surface fragment's occlusion of each light within its window.
+ *   ics_k_surface_occlusion  a surface fragment's occlusion of each light within its window;
+ *   ics_k_shade_pixel     all of that for one buffer pixel at one slab, front to back.
  * The including program defines, over its own storage (lang.h "view"): ICS_OBJ(ob, f) (the
  * object records, device_layout.h), ICS_TT(i) (the transfer rows), ICS_PERM(i), ICS_GRID(i),
  * ICS_CAM(f), ICS_VOLOBJ(i) (the object of volume bit i), ICS_LPATH(l) (light l's path per unit
  * depth), ICS_LMU(i) (the lights' means, two per light), ICS_WINDOW(l) (this slab's windows),
  * ICS_DST(l, c, q) (light l's channel c at buffer index q), ICS_ARG(name) (nlights, nch, k, W,
- * H, pad_l, pad_t, preintegrate) and ICS_JITTER(k, p) (ics_rng_uniform_at(seed, "jitt" << 32 | k,
- * p)). Shared kernel source (lang.h) for slab.cl and slab.comp. */
+ * H, pad_l, pad_t, preintegrate, zf, zb, window_max, aov_count, aov_vis, aov_z) and
+ * ICS_JITTER(k, p) (ics_rng_uniform_at(seed, "jitt" << 32 | k, p)); for ics_k_shade_pixel also
+ * the fragments ICS_FZ(f), ICS_FCODE(f), ICS_FGRAD(f) (.x, .y: dz/dr, dz/du), ICS_FSPAN(f), the
+ * lights' colour x weight ICS_LCOL(i), and the AOVs ICS_AOV(pi, i), ICS_AOV_SEEN(pi) of view
+ * pixel pi. Shared kernel source (lang.h) for slab.cl and slab.comp. */
 #ifndef ICS_KERNEL_SHADE_H
 #define ICS_KERNEL_SHADE_H
 /* transfer.h's accessors over the object records and the transfer rows */
@@ -125,6 +129,74 @@ ICS_FN void ics_k_surface_occlusion(ICS_VIEW_PARAM int ob, double gr, double gu,
     for (int c = 0; c < ICS_ARG(nch); c++)
       ICS_DST(l, c, q) *= ics_k_slab_pass(a, ICS_OBJ(ob, O_TRANSPORT + c), meets);
   }
+}
+
+/* Buffer pixel (bi, bj) at slab ICS_ARG(k) (backend_cpu.c shade_rows): the light arriving; the
+ * AOVs of its first surface when that lies in this slab (the light before this slab's
+ * occlusions, its depth); the occlusions due now; then the volume pieces (not with
+ * ICS_SURFACES_ONLY) and surfaces of this slab front to back, composited under C (RGBA of view
+ * pixel pi, when inview). p: the pixel's index in the grid, q in the light buffers; its
+ * fragments end before `end`; cursor: its next fragment and its next occluding one (updated);
+ * mask: the volumes it is inside; returns them after this slab. */
+ICS_FN ICS_MASK ics_k_shade_pixel(ICS_VIEW_PARAM int p, int q, int bi, int bj, ICS_UINT end,
+                                  ICS_INOUT ICS_UINT cursor[2], ICS_MASK mask, int inview, int pi,
+                                  ICS_INOUT float C[4]) {
+  int k = ICS_ARG(k), nch = ICS_ARG(nch);
+  ICS_UINT cur = cursor[0], acur = cursor[1];
+  int has = cur < end && ics_k_frag_slab(ICS_FCODE(cur)) == k ? 1 : 0;
+  double L[3];
+  for (int c = 0; c < 3; c++) L[c] = 0.0;
+  for (int l = 0; l < ICS_ARG(nlights); l++)
+    for (int c = 0; c < 3; c++) L[c] += ICS_LCOL(3 * l + c) * ICS_DST(l, nch == 3 ? c : 0, q);
+  if (ICS_ARG(aov_count) != 0 && inview != 0 && has != 0 && ICS_AOV_SEEN(pi) == 0)
+    for (ICS_UINT f = cur; f < end && ics_k_frag_slab(ICS_FCODE(f)) == k; f++) {
+      int ob = ics_k_frag_obj(ICS_FCODE(f));
+      if (ICS_OBJ(ob, O_VOLBIT) >= 0.0 || !(ICS_OBJ(ob, O_OPACITY) > 0.0)) continue;
+      if (ICS_ARG(aov_vis) >= 0)
+        for (int l = 0; l < ICS_ARG(nlights); l++)
+          for (int c = 0; c < nch; c++) ICS_AOV(pi, ICS_ARG(aov_vis) + l * nch + c) = ICS_DST(l, c, q);
+      if (ICS_ARG(aov_z) >= 0) ICS_AOV(pi, ICS_ARG(aov_z)) = ICS_FZ(f);
+      ICS_AOV_SEEN(pi) = 1;
+      break;
+    }
+  for (ICS_UINT f = acur; f < end && ics_k_frag_slab(ICS_FCODE(f)) <= k; f++) {
+    ICS_UINT code = ICS_FCODE(f);
+    int o = ics_k_frag_obj(code), first = ics_k_frag_slab(code) + ics_k_frag_bias(code);
+    if (ICS_OBJ(o, O_VOLBIT) < 0.0 && first <= k &&
+        ICS_TO_DOUBLE(k) <= ICS_TO_DOUBLE(first) + ICS_TO_DOUBLE(ICS_FSPAN(f)) * ICS_ARG(window_max))
+      ics_k_surface_occlusion(ICS_VIEW_ARG o, ICS_FGRAD(f).x, ICS_FGRAD(f).y, ICS_TO_INT(ICS_FSPAN(f)),
+                              q, k - first);
+  }
+  while (acur < end && ICS_TO_DOUBLE(ics_k_frag_slab(ICS_FCODE(acur)) + ics_k_frag_bias(ICS_FCODE(acur))) +
+                               ICS_TO_DOUBLE(ICS_FSPAN(acur)) * ICS_ARG(window_max) <=
+                           ICS_TO_DOUBLE(k))
+    acur++;
+  if (has != 0 || ics_mask_any(mask)) {
+    double za = ICS_ARG(zf);
+    for (;;) {
+      double zn = has != 0 ? ICS_TO_DOUBLE(ICS_FZ(cur)) : ICS_ARG(zb);
+      if (zn < za) zn = za;
+      if (zn > ICS_ARG(zb)) zn = ICS_ARG(zb);
+#ifndef ICS_SURFACES_ONLY
+      if (ics_mask_any(mask) && zn > za)
+        ics_k_volume_piece(ICS_VIEW_ARG p, q, bi, bj, mask, za, zn - za, L, C, inview);
+#endif
+      if (has == 0) break;
+      int ob = ics_k_frag_obj(ICS_FCODE(cur));
+      if (ICS_OBJ(ob, O_VOLBIT) >= 0.0) {
+        mask = ics_mask_toggle(mask, ICS_TO_INT(ICS_OBJ(ob, O_VOLBIT)));
+      } else if (inview != 0) {
+        double a = ICS_OBJ(ob, O_OPACITY), rgb[3];
+        for (int c = 0; c < 3; c++) rgb[c] = ICS_OBJ(ob, O_COLOR + c);
+        if (a > 0.0 && C[3] < 1.0) ics_k_composite(a, rgb, L, C);
+      }
+      za = zn;
+      cur++;
+      has = cur < end && ics_k_frag_slab(ICS_FCODE(cur)) == k ? 1 : 0;
+    }
+  }
+  cursor[0] = cur, cursor[1] = acur;
+  return mask;
 }
 
 #endif

@@ -106,6 +106,13 @@ typedef struct ics_view {
   __global const uchar *perm;
   __global const float *grids;
   __global const int *vol_obj;
+  __global const float *fz; /* the fragments */
+  __global const uint *fcode;
+  __global const float2 *fgrad;
+  __global const uchar *fspan;
+  __global const double *lcol;
+  __global float *aov; /* the AOVs: aov_count per view pixel, and whether each is set */
+  __global uchar *aov_seen;
 } ics_view;
 #define ICS_VIEW_PARAM const ics_view *V,
 #define ICS_VIEW_ARG V,
@@ -128,6 +135,13 @@ typedef struct ics_view {
 #define ICS_WINDOW(l) V->window[l]
 #define ICS_DST(l, c, q) V->dst[((l) * V->A->nch + (c)) * V->A->B.plane + (q)]
 #define ICS_ARG(name) (V->A->name)
+#define ICS_FZ(f) V->fz[f]
+#define ICS_FCODE(f) V->fcode[f]
+#define ICS_FGRAD(f) V->fgrad[f]
+#define ICS_FSPAN(f) V->fspan[f]
+#define ICS_LCOL(i) V->lcol[i]
+#define ICS_AOV(pi, i) V->aov[(size_t)(pi) * V->A->aov_count + (i)]
+#define ICS_AOV_SEEN(pi) V->aov_seen[pi]
 #define JITTER_STREAM 0x6a69747400000000UL /* "jitt" (backend_cpu.c) */
 #define ICS_JITTER(k, p) uniform_at(V->seed_lo, V->seed_hi, JITTER_STREAM | (ulong)(k), (ulong)(p))
 #include "kernel/choice.h"
@@ -320,9 +334,8 @@ __kernel void ics_apron_ends(__global float *buf, buf_layout B, int A) {
 
 /* ---- shading (the steps: gpu/kernel/shade.h) ------------------------------------------- */
 
-/* Per buffer pixel, slab A.k (backend_cpu.c shade_rows): the light arriving, the occlusions due
- * now, the volume pieces and surfaces of this slab front to back, then the clamp of signed
- * kernels. Fragments: depth, code (object | bias << 12 | slab << 16), depth gradient
+/* Per buffer pixel, slab A.k: ics_k_shade_pixel (gpu/kernel/shade.h) where the pixel has work at
+ * this slab, then the clamp of signed kernels. Fragments: depth, code (object | bias << 12 | slab << 16), depth gradient
  * (dz/dr, dz/du), span. Lights: lcol[3 l ..] = colour x weight, lmu[2 l ..] = mean, lpath[l] =
  * light path per unit depth, window[l] this slab's window, signed_l[l] = 1 for signed weights. */
 __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_shade(__global float *dst, shade_args A, __global const uint *offset,
@@ -345,66 +358,21 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_shade(__global
   view.seed_lo = A.seed_lo, view.seed_hi = A.seed_hi, view.A = &A, view.dst = dst, view.obj = obj;
   view.tt = tt, view.cam = cam, view.lpath = lpath, view.lmu = lmu, view.window = window;
   view.perm = perm, view.grids = grids, view.vol_obj = vol_obj;
-  uint cur = cursor[p], end = offset[p + 1], acur = acursor[p];
+  view.fz = fz, view.fcode = fcode, view.fgrad = fgrad, view.fspan = fspan, view.lcol = lcol;
+  view.aov = aov, view.aov_seen = aov_seen;
+  uint end = offset[p + 1], cursors[2] = {cursor[p], acursor[p]};
   ulong mask = A.nvol ? inside[p] : 0;
-  int has = cur < end && ics_k_frag_slab(fcode[cur]) == k;
-  int occl = acur < end && ics_k_frag_slab(fcode[acur]) <= k;
+  int has = cursors[0] < end && ics_k_frag_slab(fcode[cursors[0]]) == k;
+  int occl = cursors[1] < end && ics_k_frag_slab(fcode[cursors[1]]) <= k;
   if (has || mask || occl) {
     int ii = bi - A.pad_l, jj = bj - A.pad_t;
-    int inview = ii >= 0 && ii < A.W && jj >= 0 && jj < A.H;
+    int inview = ii >= 0 && ii < A.W && jj >= 0 && jj < A.H, pi = jj * A.W + ii;
     float C[4] = {0, 0, 0, 1};
-    if (inview) vstore4(vload4((size_t)jj * A.W + ii, img), 0, C);
-    double L[3] = {0, 0, 0};
-    for (int l = 0; l < A.nlights; l++)
-      for (int c = 0; c < 3; c++) L[c] += lcol[3 * l + c] * ICS_DST(l, nch == 3 ? c : 0, q);
-    /* the AOVs of the pixel's first surface, if it is in this slab: the light arriving (before
-     * this slab's occlusions) and its depth (backend_cpu.c record_aov) */
-    if (A.aov_count && inview && has && !aov_seen[(size_t)jj * A.W + ii])
-      for (uint f = cur; f < end && ics_k_frag_slab(fcode[f]) == k; f++) {
-        int ob = ics_k_frag_obj(fcode[f]);
-        if (ICS_OBJ(ob, O_VOLBIT) >= 0 || !(ICS_OBJ(ob, O_OPACITY) > 0)) continue;
-        __global float *o = aov + ((size_t)jj * A.W + ii) * A.aov_count;
-        if (A.aov_vis >= 0)
-          for (int l = 0; l < A.nlights; l++)
-            for (int c = 0; c < nch; c++) o[A.aov_vis + l * nch + c] = ICS_DST(l, c, q);
-        if (A.aov_z >= 0) o[A.aov_z] = fz[f];
-        aov_seen[(size_t)jj * A.W + ii] = 1;
-        break;
-      }
-    for (uint f = acur; f < end && ics_k_frag_slab(fcode[f]) <= k; f++) {
-      uint code = fcode[f];
-      int o = ics_k_frag_obj(code), first = ics_k_frag_slab(code) + ics_k_frag_bias(code);
-      if (ICS_OBJ(o, O_VOLBIT) < 0 && first <= k && k <= first + fspan[f] * A.window_max)
-        ics_k_surface_occlusion(V, o, fgrad[f].x, fgrad[f].y, fspan[f], q, k - first);
-    }
-    while (acur < end && ics_k_frag_slab(fcode[acur]) + ics_k_frag_bias(fcode[acur]) +
-                             fspan[acur] * A.window_max <= k)
-      acur++;
-    acursor[p] = acur;
-    if (has || mask) {
-      double za = A.zf;
-      for (;;) {
-        double zn = has ? fz[cur] : A.zb;
-        if (zn < za) zn = za;
-        if (zn > A.zb) zn = A.zb;
-        if (mask && zn > za) ics_k_volume_piece(V, p, q, bi, bj, mask, za, zn - za, L, C, inview);
-        if (!has) break;
-        int o = ics_k_frag_obj(fcode[cur]);
-        if (ICS_OBJ(o, O_VOLBIT) >= 0) {
-          mask ^= 1UL << (int)ICS_OBJ(o, O_VOLBIT);
-        } else if (inview) {
-          double a = ICS_OBJ(o, O_OPACITY), rgb[3];
-          for (int c = 0; c < 3; c++) rgb[c] = ICS_OBJ(o, O_COLOR + c);
-          if (a > 0 && C[3] < 1) ics_k_composite(a, rgb, L, C);
-        }
-        za = zn;
-        cur++;
-        has = cur < end && ics_k_frag_slab(fcode[cur]) == k;
-      }
-      cursor[p] = cur;
-      if (A.nvol) inside[p] = mask;
-    }
-    if (inview) vstore4(vload4(0, C), (size_t)jj * A.W + ii, img);
+    if (inview) vstore4(vload4(pi, img), 0, C);
+    mask = ics_k_shade_pixel(V, p, q, bi, bj, end, cursors, mask, inview, pi, C);
+    cursor[p] = cursors[0], acursor[p] = cursors[1];
+    if (A.nvol) inside[p] = mask;
+    if (inview) vstore4(vload4(0, C), pi, img);
   }
   for (int l = 0; l < A.nlights; l++)
     if (signed_l[l])

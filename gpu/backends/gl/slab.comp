@@ -279,6 +279,13 @@ double jitter_at(uint slab_k, uint p) {
 #define ICS_DST(l, c, q) dst[((l) * nch + (c)) * plane + (q)]
 #define ICS_ARG(name) name
 #define ICS_JITTER(k, p) jitter_at(uint(k), uint(p))
+#define ICS_FZ(f) fz[f]
+#define ICS_FCODE(f) fcode[f]
+#define ICS_FGRAD(f) fgrad[f]
+#define ICS_FSPAN(f) fspan(f)
+#define ICS_LCOL(i) sd[off_lcol + (i)]
+#define ICS_AOV(pi, i) outv[off_aov + (pi) * aov_count + (i)]
+#define ICS_AOV_SEEN(pi) outv[off_seen + (pi)]
 #include "kernel/shade.h"
 
 /* the clamp of signed kernels, after the shading */
@@ -308,7 +315,8 @@ void main() {
   else clamp_signed(AT(bi, bj));
 }
 #else
-/* per listed buffer pixel, slab k (backend_cpu.c shade_rows) */
+/* per listed buffer pixel, slab k: ics_k_shade_pixel (gpu/kernel/shade.h), then the clamp of
+ * signed kernels */
 #ifdef ICS_SURFACES_ONLY
 #define LIST 1
 #else
@@ -318,70 +326,17 @@ void shade_pixel(uint p) {
   int bi = int(p % uint(bw)), bj = int(p / uint(bw));
   int q = AT(bi, bj);
   uvec4 st = pix[p];
-  uint cur = st.x, acur = st.y, end = offset[p + 1u];
+  uint cursors[2] = uint[2](st.x, st.y);
   uvec2 mask = nvol != 0 ? st.zw : uvec2(0u);
-  bool has = cur < end && ics_k_frag_slab(fcode[cur]) == k;
-  {
-    int ii = bi - pad_l, jj = bj - pad_t;
-    bool inview = ii >= 0 && ii < W && jj >= 0 && jj < H;
-    int pi = jj * W + ii;
-    float C[4] = float[4](0, 0, 0, 1);
-    if (inview)
-      for (int c = 0; c < 4; c++) C[c] = outv[4 * pi + c];
-    double L[3] = double[3](0, 0, 0);
-    for (int l = 0; l < nlights; l++)
-      for (int c = 0; c < 3; c++) L[c] += sd[off_lcol + 3 * l + c] * ICS_DST(l, nch == 3 ? c : 0, q);
-    /* the AOVs of the pixel's first surface, if it is in this slab (backend_cpu.c record_aov) */
-    if (aov_count != 0 && inview && has && outv[off_seen + pi] == 0)
-      for (uint f = cur; f < end && ics_k_frag_slab(fcode[f]) == k; f++) {
-        int ob = ics_k_frag_obj(fcode[f]);
-        if (ICS_OBJ(ob, O_VOLBIT) >= 0 || !(ICS_OBJ(ob, O_OPACITY) > 0)) continue;
-        int o = off_aov + pi * aov_count;
-        if (aov_vis >= 0)
-          for (int l = 0; l < nlights; l++)
-            for (int c = 0; c < nch; c++) outv[o + aov_vis + l * nch + c] = ICS_DST(l, c, q);
-        if (aov_z >= 0) outv[o + aov_z] = fz[f];
-        outv[off_seen + pi] = 1;
-        break;
-      }
-    for (uint f = acur; f < end && ics_k_frag_slab(fcode[f]) <= k; f++) {
-      uint code = fcode[f];
-      int o = ics_k_frag_obj(code), first = ics_k_frag_slab(code) + ics_k_frag_bias(code);
-      if (ICS_OBJ(o, O_VOLBIT) < 0 && first <= k && k <= first + fspan(f) * window_max)
-        ics_k_surface_occlusion(o, fgrad[f].x, fgrad[f].y, int(fspan(f)), q, k - first);
-    }
-    while (acur < end && ics_k_frag_slab(fcode[acur]) + ics_k_frag_bias(fcode[acur]) + fspan(acur) * window_max <= k)
-      acur++;
-    if (has || ics_mask_any(mask)) {
-      double za = zf;
-      for (;;) {
-        double zn = has ? double(fz[cur]) : zb;
-        if (zn < za) zn = za;
-        if (zn > zb) zn = zb;
-#ifndef ICS_SURFACES_ONLY
-        if (ics_mask_any(mask) && zn > za)
-          ics_k_volume_piece(int(p), q, bi, bj, mask, za, zn - za, L, C, inview ? 1 : 0);
-#endif
-        if (!has) break;
-        int ob = ics_k_frag_obj(fcode[cur]);
-        if (ICS_OBJ(ob, O_VOLBIT) >= 0) {
-          int bit = int(ICS_OBJ(ob, O_VOLBIT));
-          if (bit < 32) mask.x ^= 1u << bit;
-          else mask.y ^= 1u << (bit - 32);
-        } else if (inview) {
-          double a = ICS_OBJ(ob, O_OPACITY), rgb[3];
-          for (int c = 0; c < 3; c++) rgb[c] = ICS_OBJ(ob, O_COLOR + c);
-          if (a > 0 && C[3] < 1) ics_k_composite(a, rgb, L, C);
-        }
-        za = zn;
-        cur++;
-        has = cur < end && ics_k_frag_slab(fcode[cur]) == k;
-      }
-    }
-    pix[p] = uvec4(cur, acur, nvol != 0 ? mask : st.zw);
-    if (inview)
-      for (int c = 0; c < 4; c++) outv[4 * pi + c] = C[c];
-  }
+  int ii = bi - pad_l, jj = bj - pad_t, pi = jj * W + ii;
+  bool inview = ii >= 0 && ii < W && jj >= 0 && jj < H;
+  float C[4] = float[4](0, 0, 0, 1);
+  if (inview)
+    for (int c = 0; c < 4; c++) C[c] = outv[4 * pi + c];
+  mask = ics_k_shade_pixel(int(p), q, bi, bj, offset[p + 1u], cursors, mask, inview ? 1 : 0, pi, C);
+  pix[p] = uvec4(cursors[0], cursors[1], nvol != 0 ? mask : st.zw);
+  if (inview)
+    for (int c = 0; c < 4; c++) outv[4 * pi + c] = C[c];
   clamp_signed(q);
 }
 
