@@ -7,9 +7,9 @@
  *   - out and in-out parameters are arrays, written ICS_OUT double x[3] (C and OpenCL C pass the
  *     array's address, GLSL copies it back: the same as long as no two arguments alias);
  *   - memory is read through accessor macros that the including file defines over its own
- *     storage (its "view": a struct of pointers in C and OpenCL C, the buffers by name in
- *     GLSL), passed as the first parameter ICS_VIEW_PARAM / argument ICS_VIEW_ARG, both empty
- *     in GLSL;
+ *     storage (its "view": the buffer pointers as parameters in OpenCL C, a struct in C, the
+ *     buffers by name in GLSL), passed as the first parameters ICS_VIEW_PARAM / arguments
+ *     ICS_VIEW_ARG, both empty in GLSL;
  *   - a double literal that is not exact in float is spelled through ICS_DBL_CONST (GLSL reads
  *     an unsuffixed literal as float);
  *   - exp and pow, which GLSL has in float only, through ICS_EXP and ICS_POW.

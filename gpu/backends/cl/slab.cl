@@ -91,61 +91,63 @@ typedef struct shade_args {
   double zf, zb, window_max;
 } shade_args;
 
-/* The program's view of its buffers for the shared kernel source (gpu/kernel/lang.h): a slab
- * step fills the source part (class_sum.h), ics_shade the rest (shade.h), the tap-set choices
- * the seed (choice.h). */
-typedef struct ics_view {
-  __global const float *S; /* a step's source planes, its taps */
-  buf_layout B;
-  __global const int *ix, *iy;
-  __global const float *wt;
-  uint seed_lo, seed_hi;
-  const shade_args *A; /* the shading */
-  __global float *dst;
-  __global const double *obj, *tt, *cam, *lpath, *lmu, *window;
-  __global const uchar *perm;
-  __global const float *grids;
-  __global const int *vol_obj;
-  __global const float *fz; /* the fragments */
-  __global const uint *fcode;
-  __global const float2 *fgrad;
-  __global const uchar *fspan;
-  __global const double *lcol;
-  __global float *aov; /* the AOVs: aov_count per view pixel, and whether each is set */
-  __global uchar *aov_seen;
-} ics_view;
-#define ICS_VIEW_PARAM const ics_view *V,
-#define ICS_VIEW_ARG V,
-#define ICS_SLAB_WORD(light, slab, block, i) slab_word(V->seed_lo, V->seed_hi, light, slab, block, i)
-#define ICS_TAP_X(m) V->ix[m]
-#define ICS_TAP_Y(m) V->iy[m]
-#define ICS_TAP_W(m) V->wt[m]
-#define ICS_SRC(c, i) V->S[(c) * V->B.plane + (i)]
-#define ICS_AT(x, y) AT(V->B, x, y)
-#define ICS_BW V->B.w
-#define ICS_BH V->B.h
-#define ICS_OBJ(ob, f) V->obj[ICS_DEV_OBJ_STRIDE * (ob) + (f)]
-#define ICS_TT(i) V->tt[i]
-#define ICS_PERM(i) V->perm[i]
-#define ICS_GRID(i) V->grids[i]
-#define ICS_CAM(f) V->cam[f]
-#define ICS_VOLOBJ(i) V->vol_obj[i]
-#define ICS_LPATH(l) V->lpath[l]
-#define ICS_LMU(i) V->lmu[i]
-#define ICS_WINDOW(l) V->window[l]
-#define ICS_DST(l, c, q) V->dst[((l) * V->A->nch + (c)) * V->A->B.plane + (q)]
-#define ICS_ARG(name) (V->A->name)
-#define ICS_FZ(f) V->fz[f]
-#define ICS_FCODE(f) V->fcode[f]
-#define ICS_FGRAD(f) V->fgrad[f]
-#define ICS_FSPAN(f) V->fspan[f]
-#define ICS_LCOL(i) V->lcol[i]
-#define ICS_AOV(pi, i) V->aov[(size_t)(pi) * V->A->aov_count + (i)]
-#define ICS_AOV_SEEN(pi) V->aov_seen[pi]
-#define JITTER_STREAM 0x6a69747400000000UL /* "jitt" (backend_cpu.c) */
-#define ICS_JITTER(k, p) uniform_at(V->seed_lo, V->seed_hi, JITTER_STREAM | (ulong)(k), (ulong)(p))
+/* The program's view of its buffers for the shared kernel source (gpu/kernel/lang.h): not a
+ * struct (PoCL keeps a private struct of pointers in memory, work-item by work-item: the shading
+ * took about 1.5x as long), but the buffers themselves as the shared functions' first
+ * parameters, one list per header included. */
+#define ICS_SLAB_WORD(light, slab, block, i) slab_word(seed_lo, seed_hi, light, slab, block, i)
+#define ICS_VIEW_PARAM uint seed_lo, uint seed_hi,
+#define ICS_VIEW_ARG seed_lo, seed_hi,
 #include "kernel/choice.h"
+#undef ICS_VIEW_PARAM
+#undef ICS_VIEW_ARG
+
+/* a perspective step's classes: the source planes (at light l's base) and the taps */
+#define ICS_VIEW_PARAM __global const float *S, buf_layout B, __global const int *ix, \
+                       __global const int *iy, __global const float *wt,
+#define ICS_VIEW_ARG S, B, ix, iy, wt,
+#define ICS_TAP_X(m) ix[m]
+#define ICS_TAP_Y(m) iy[m]
+#define ICS_TAP_W(m) wt[m]
+#define ICS_SRC(c, i) S[(c) * B.plane + (i)]
+#define ICS_AT(x, y) AT(B, x, y)
+#define ICS_BW B.w
+#define ICS_BH B.h
 #include "kernel/class_sum.h"
+#undef ICS_VIEW_PARAM
+#undef ICS_VIEW_ARG
+
+/* the shading: ics_shade's buffers, by the names of its parameters */
+#define ICS_VIEW_PARAM const shade_args *A, __global float *dst, __global const double *obj,     \
+                       __global const double *tt, __global const double *cam,                   \
+                       __global const double *lpath, __global const double *lmu,                \
+                       __global const double *window, __global const uchar *perm,               \
+                       __global const float *grids, __global const int *vol_obj,                \
+                       __global const float *fz, __global const uint *fcode,                    \
+                       __global const float2 *fgrad, __global const uchar *fspan,               \
+                       __global const double *lcol, __global float *aov, __global uchar *aov_seen,
+#define ICS_VIEW_ARG A, dst, obj, tt, cam, lpath, lmu, window, perm, grids, vol_obj, fz, fcode, \
+                     fgrad, fspan, lcol, aov, aov_seen,
+#define ICS_OBJ(ob, f) obj[ICS_DEV_OBJ_STRIDE * (ob) + (f)]
+#define ICS_TT(i) tt[i]
+#define ICS_PERM(i) perm[i]
+#define ICS_GRID(i) grids[i]
+#define ICS_CAM(f) cam[f]
+#define ICS_VOLOBJ(i) vol_obj[i]
+#define ICS_LPATH(l) lpath[l]
+#define ICS_LMU(i) lmu[i]
+#define ICS_WINDOW(l) window[l]
+#define ICS_DST(l, c, q) dst[((l) * A->nch + (c)) * A->B.plane + (q)]
+#define ICS_ARG(name) (A->name)
+#define ICS_FZ(f) fz[f]
+#define ICS_FCODE(f) fcode[f]
+#define ICS_FGRAD(f) fgrad[f]
+#define ICS_FSPAN(f) fspan[f]
+#define ICS_LCOL(i) lcol[i]
+#define ICS_AOV(pi, i) aov[(size_t)(pi) * A->aov_count + (i)]
+#define ICS_AOV_SEEN(pi) aov_seen[pi]
+#define JITTER_STREAM 0x6a69747400000000UL /* "jitt" (backend_cpu.c) */
+#define ICS_JITTER(k, p) uniform_at(A->seed_lo, A->seed_hi, JITTER_STREAM | (ulong)(k), (ulong)(p))
 #include "kernel/shade.h"
 
 /* The three forms of a slab step (propagate.c), one kernel each. Each reads light l's planes at
@@ -211,9 +213,7 @@ __kernel void ics_entries_run(__global uint *ent, int w, int h, int entries, uin
   int k = (int)get_global_id(0), y = (int)get_global_id(1);
   int xa = max(16 * k - 16 + phase, 0), xb = min(16 * k + phase, w);
   if (y >= h || xa >= xb) return;
-  ics_view V;
-  V.seed_lo = seed_lo, V.seed_hi = seed_hi;
-  uint e = ics_k_pixel_choice(&V, light, slab, (uint)y * (uint)(w + 32) + 16u * (uint)k,
+  uint e = ics_k_pixel_choice(seed_lo, seed_hi, light, slab, (uint)y * (uint)(w + 32) + 16u * (uint)k,
                               (uint)entries, 0, 1u);
   for (int x = xa; x < xb; x++) ent[y * w + x] = e;
 }
@@ -304,13 +304,11 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_prop_classes(
   double fY = floor(Dy), tY = (Dy - fY) * Q, kY = floor(tY);
   int nx = x + (int)fX, ny = y + (int)fY, k0 = (int)kX, k1 = (int)kY;
   float r0 = (float)(tX - kX), r1 = (float)(tY - kY);
-  ics_view V;
-  V.S = src, V.B = B, V.ix = ix, V.iy = iy, V.wt = wt;
   for (int c = 0; c < nch; c++) {
-    float a00 = ics_k_class_sum(&V, c, ntaps, Q, k0, k1, nx, ny);
-    float a10 = ics_k_class_sum(&V, c, ntaps, Q, k0 + 1, k1, nx, ny);
-    float a01 = ics_k_class_sum(&V, c, ntaps, Q, k0, k1 + 1, nx, ny);
-    float a11 = ics_k_class_sum(&V, c, ntaps, Q, k0 + 1, k1 + 1, nx, ny);
+    float a00 = ics_k_class_sum(src, B, ix, iy, wt, c, ntaps, Q, k0, k1, nx, ny);
+    float a10 = ics_k_class_sum(src, B, ix, iy, wt, c, ntaps, Q, k0 + 1, k1, nx, ny);
+    float a01 = ics_k_class_sum(src, B, ix, iy, wt, c, ntaps, Q, k0, k1 + 1, nx, ny);
+    float a11 = ics_k_class_sum(src, B, ix, iy, wt, c, ntaps, Q, k0 + 1, k1 + 1, nx, ny);
     float top = a00 + r0 * (a10 - a00), bot = a01 + r0 * (a11 - a01);
     dst[c * B.plane + p] = top + r1 * (bot - top);
   }
@@ -353,13 +351,6 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_shade(__global
   int bi = (int)get_global_id(0), bj = (int)get_global_id(1), k = A.k;
   if (bi >= A.B.w || bj >= A.B.h) return;
   int p = bj * A.B.w + bi, q = AT(A.B, bi, bj), nch = A.nch;
-  ics_view view;
-  const ics_view *V = &view;
-  view.seed_lo = A.seed_lo, view.seed_hi = A.seed_hi, view.A = &A, view.dst = dst, view.obj = obj;
-  view.tt = tt, view.cam = cam, view.lpath = lpath, view.lmu = lmu, view.window = window;
-  view.perm = perm, view.grids = grids, view.vol_obj = vol_obj;
-  view.fz = fz, view.fcode = fcode, view.fgrad = fgrad, view.fspan = fspan, view.lcol = lcol;
-  view.aov = aov, view.aov_seen = aov_seen;
   uint end = offset[p + 1], cursors[2] = {cursor[p], acursor[p]};
   ulong mask = A.nvol ? inside[p] : 0;
   int has = cursors[0] < end && ics_k_frag_slab(fcode[cursors[0]]) == k;
@@ -369,7 +360,9 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_shade(__global
     int inview = ii >= 0 && ii < A.W && jj >= 0 && jj < A.H, pi = jj * A.W + ii;
     float C[4] = {0, 0, 0, 1};
     if (inview) vstore4(vload4(pi, img), 0, C);
-    mask = ics_k_shade_pixel(V, p, q, bi, bj, end, cursors, mask, inview, pi, C);
+    mask = ics_k_shade_pixel(&A, dst, obj, tt, cam, lpath, lmu, window, perm, grids, vol_obj, fz,
+                             fcode, fgrad, fspan, lcol, aov, aov_seen, p, q, bi, bj, end, cursors,
+                             mask, inview, pi, C);
     cursor[p] = cursors[0], acursor[p] = cursors[1];
     if (A.nvol) inside[p] = mask;
     if (inview) vstore4(vload4(0, C), pi, img);
@@ -377,7 +370,7 @@ __kernel __attribute__((reqd_work_group_size(16, 8, 1))) void ics_shade(__global
   for (int l = 0; l < A.nlights; l++)
     if (signed_l[l])
       for (int c = 0; c < nch; c++) {
-        float v = ICS_DST(l, c, q);
-        ICS_DST(l, c, q) = v < 0 ? 0 : v > 1 ? 1 : v;
+        float v = dst[(l * nch + c) * A.B.plane + q];
+        dst[(l * nch + c) * A.B.plane + q] = v < 0 ? 0 : v > 1 ? 1 : v;
       }
 }
