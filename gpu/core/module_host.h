@@ -27,6 +27,7 @@
     (d, p, fragments))                                                                          \
   V(ics_device_scene_destroy, (ics_device_scene * d), (d))                                      \
   X(double, ics_ldi_kernel_reach, (const ics_plan *p), (p))                                     \
+  X(const ics_rect *, ics_active_region, (const struct ics_plan *p, int l, int k), (p, l, k))   \
   V(ics_plan_over_background, (const ics_plan *p, ics_image *img), (p, img))                    \
   X(double, ics_plan_slab_pixel, (const ics_plan *p, int k, double *mag), (p, k, mag))          \
   X(ics_status, ics_plan_slab_taps,                                                             \

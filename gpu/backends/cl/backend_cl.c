@@ -165,6 +165,21 @@ static void set_arg(cl_job *j, cl_kernel k, cl_uint i, size_t size, const void *
 #define ARG(k, i, v) set_arg(j, k, i, sizeof(v), &(v))
 
 /* one slab: every light's step, then the shading; their device times into the stats */
+/* The work-items of light l's slab step at slab k: only its active region (active_region.h: no
+ * needed pixel ever reads the rest of the buffer again), `per` pixels along x to a work-item,
+ * rounded out to whole work-groups of lx x ly (the kernels skip what lies beyond the buffer).
+ * 0 when the region is empty. */
+static int step_range(const ics_plan *P, int l, int k, size_t per, size_t lx, size_t ly,
+                      size_t off[2], size_t size[2]) {
+  const ics_rect *r = ics_active_region(P, l, k);
+  if (r->x1 <= r->x0 || r->y1 <= r->y0) return 0;
+  size_t x0 = (size_t)r->x0 / per, x1 = ((size_t)r->x1 + per - 1) / per;
+  off[0] = x0, off[1] = (size_t)r->y0;
+  size[0] = (x1 - x0 + lx - 1) / lx * lx;
+  size[1] = ((size_t)(r->y1 - r->y0) + ly - 1) / ly * ly;
+  return 1;
+}
+
 static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stats *stats) {
   const ics_plan *P = j->P;
   cl_state *s = j->s;
@@ -218,11 +233,12 @@ static void run_slab(cl_job *j, int k, const ics_prop_taps *pts, ics_render_stat
       ARG(kp, 11, Q), ARG(kp, 12, sc), ARG(kp, 13, cx), ARG(kp, 14, cy);
     }
     if (j->err != CL_SUCCESS) break;
-    /* the stencil and the table: 16 pixels per work-item, groups of 8 x 8 */
-    size_t local_st[2] = {8, 8};
-    size_t global_st[2] = {((size_t)P->Wb + 127) / 128 * 8, ((size_t)P->Hb + 7) / 8 * 8};
-    cl_int e = clEnqueueNDRangeKernel(s->d.q, kp, 2, NULL, mode < 2 ? global_st : global,
-                                      mode < 2 ? local_st : local, 0, NULL, &evs[nev]);
+    /* the stencil and the table: 16 pixels per work-item, groups of 8 x 8; the classes: one
+     * pixel, groups of 16 x 8; over the light's active region */
+    size_t local_st[2] = {8, 8}, off[2], size[2];
+    if (!step_range(P, l, k, mode < 2 ? 16 : 1, mode < 2 ? 8 : 16, 8, off, size)) continue;
+    cl_int e = clEnqueueNDRangeKernel(s->d.q, kp, 2, off, size, mode < 2 ? local_st : local, 0,
+                                      NULL, &evs[nev]);
     if (e != CL_SUCCESS) j->err = e, j->call = "clEnqueueNDRangeKernel(ics_prop)";
     else nev++;
   }

@@ -278,7 +278,12 @@ static void run_slab(gl_job *j, int k, const ics_prop_taps *pts) {
       u_dbl(s, mode, "s", pt->s), u_dbl(s, mode, "cx", pt->cx), u_dbl(s, mode, "cy", pt->cy);
     }
     u_int(s, mode, "base", l * nch * plane), u_int(s, mode, "ntaps", pt->ntaps);
-    dispatch(s, mode, gx, gy, 1);
+    /* over the light's active region only (active_region.h: no needed pixel ever reads the
+     * rest of the buffer again), in groups of 16 x 8 */
+    const ics_rect *r = ics_active_region(P, l, k);
+    if (r->x1 <= r->x0 || r->y1 <= r->y0) continue;
+    u_int(s, mode, "ofs_x", r->x0), u_int(s, mode, "ofs_y", r->y0);
+    dispatch(s, mode, ((size_t)(r->x1 - r->x0) + 15) / 16, ((size_t)(r->y1 - r->y0) + 7) / 8, 1);
   }
   GL_.QueryCounter(j->queries[3 * k + 1], GL_TIMESTAMP);
   /* the shading's bindings 1..14 (the steps took 2 and 3); 1 is the buffers the steps wrote */

@@ -78,6 +78,7 @@ layout(std140, binding = 0) uniform Taps { tap taps[ICS_MAX_TAPS]; };
 #endif
 layout(std430, binding = 3) readonly buffer Ent { uint ent[]; };
 uniform int base, ntaps; /* light l's planes start at base */
+uniform int ofs_x, ofs_y; /* the dispatch's first pixel: the light's active region */
 uniform int entries, Q;
 uniform double s, cx, cy;
 
@@ -94,7 +95,7 @@ float S_at(int c, int i) { return texelFetch(src, base + c * plane + i).r; }
 #include "kernel/class_sum.h"
 
 void main() {
-  int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
+  int x = int(gl_GlobalInvocationID.x) + ofs_x, y = int(gl_GlobalInvocationID.y) + ofs_y;
   if (x >= bw || y >= bh) return;
   int p = AT(x, y);
 #ifdef ICS_K_PROP_STENCIL
