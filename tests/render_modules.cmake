@@ -15,6 +15,6 @@ if(ICS_HAVE_RENDER)
     add_test(NAME cli_modules_${what} COMMAND ${CMAKE_SOURCE_DIR}/tests/cli/modules.sh
       $<TARGET_FILE:icshadow_cli> ${CMAKE_SOURCE_DIR}/scenes
       ${CMAKE_CURRENT_BINARY_DIR}/tmp/cli_modules_${what} ${what} ${ics_modules_built})
-    set_tests_properties(cli_modules_${what} PROPERTIES LABELS "fast;cli")
+    set_tests_properties(cli_modules_${what} PROPERTIES LABELS "fast;cli" TIMEOUT 300) # (a hang fails)
   endforeach()
 endif()

@@ -131,6 +131,12 @@ static void load(loaded *m) {
       if (snprintf(tried + t, sizeof tried - t, "%s%s", t ? ", " : "", dirs[i]) < 0) tried[t] = 0;
       continue;
     }
+    struct stat sb;
+    if (stat(file, &sb) || !S_ISREG(sb.st_mode)) { /* a FIFO would block dlopen */
+      if (snprintf(m->why, sizeof m->why, "module %s is not a regular file", file) < 0)
+        m->why[0] = 0;
+      return;
+    }
     m->handle = dlopen(file, RTLD_NOW | RTLD_LOCAL);
     if (!m->handle) {
       const char *e = dlerror();

@@ -4,7 +4,8 @@
 #                lut, make-env, fit-light and a cpu render work; --backend gl and cl and a scene
 #                with a mesh file fail with exit 2, naming the module and where it was looked
 #                for, and write nothing; with Assimp's module alone, the reference renders a
-#                mesh scene through the meshes' own BVH, and --mc-mesh embree fails so;
+#                mesh scene through the meshes' own BVH, and --mc-mesh embree fails so; a
+#                module that is a FIFO is refused at once (dlopen would block on it);
 #   mapped       which libraries each command maps (LD_DEBUG=files lists every one the loader
 #                opens, dlopen included): eval, lut and a cpu render none of LLVM, Embree, TBB,
 #                Assimp, OpenCL, EGL or OSMesa; and, so that the check can fail, a gl render
@@ -65,6 +66,13 @@ if [ "$what" = missing ]; then
     run mc_embree 2 "mc: meshes through Embree: module icshadow-embree.so not found" \
       render "$scenes/mesh.json" --backend mc --mc-mesh embree --spp 1 --resolution 16x12 -o "$work/mce.exr"
     [ ! -e "$work/mce.exr" ] || bad "mce.exr written after a failure" ;;
+  esac
+  case $built in *" gl "*) # a module that is a FIFO: refused at once, not opened (dlopen would block)
+    fifo="$work/fifo_modules"
+    mkdir -p "$fifo" && rm -f "$fifo"/* && mkfifo "$fifo/icshadow-gl.so"
+    export ICS_MODULE_DIR="$fifo"
+    run render_fifo 2 "icshadow-gl.so is not a regular file" \
+      render --backend gl --resolution 16x12 -o "$work/gl.exr" ;;
   esac
   for f in gl cl mesh; do [ ! -e "$work/$f.exr" ] || bad "$f.exr written after a failure"; done
   for f in cpu auto env; do [ -s "$work/$f.exr" ] || bad "$f.exr not written"; done
