@@ -8,6 +8,7 @@
 #include <link.h>
 #include <sys/stat.h>
 #include <pthread.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -111,6 +112,14 @@ static int was_built(const char *name) {
   return 0;
 }
 
+/* the reason module m does not load (a message cut at its buffer's end is still a message) */
+__attribute__((format(printf, 2, 3))) static void refuse(loaded *m, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  if (vsnprintf(m->why, sizeof m->why, fmt, ap) < 0) m->why[0] = 0;
+  va_end(ap);
+}
+
 static void load(loaded *m) {
   char dirs[3][PATH_MAX], file[PATH_MAX], tried[WHY_SIZE] = "";
   const char *env = getenv("ICS_MODULE_DIR");
@@ -120,8 +129,8 @@ static void load(loaded *m) {
   else
     nd = module_folders(dirs);
   if (!was_built(m->name)) {
-    snprintf(m->why, sizeof m->why, "module %s was not built (its library was not found when "
-             "the renderer was built; `icshadow render --backends` lists the modules)", m->name);
+    refuse(m, "module %s was not built (its library was not found when the renderer was built; "
+           "`icshadow render --backends` lists the modules)", m->name);
     return;
   }
   for (int i = 0; i < nd; i++) {
@@ -133,16 +142,13 @@ static void load(loaded *m) {
     }
     struct stat sb;
     if (stat(file, &sb) || !S_ISREG(sb.st_mode)) { /* a FIFO would block dlopen */
-      if (snprintf(m->why, sizeof m->why, "module %s is not a regular file", file) < 0)
-        m->why[0] = 0;
+      refuse(m, "module %s is not a regular file", file);
       return;
     }
     m->handle = dlopen(file, RTLD_NOW | RTLD_LOCAL);
     if (!m->handle) {
       const char *e = dlerror();
-      if (snprintf(m->why, sizeof m->why, "module %s does not load: %s", file,
-                   e ? e : "dlopen failed") < 0)
-        m->why[0] = 0;
+      refuse(m, "module %s does not load: %s", file, e ? e : "dlopen failed");
       return;
     }
     const ics_module_info *e = dlsym(m->handle, "ics_module_entry");
@@ -152,8 +158,7 @@ static void load(loaded *m) {
                         : !e->name || strcmp(e->name, m->name) || !e->api ? "another module's entry"
                                                                           : NULL;
     if (wrong) {
-      if (snprintf(m->why, sizeof m->why, "module %s is refused: %s", file, wrong) < 0)
-        m->why[0] = 0;
+      refuse(m, "module %s is refused: %s", file, wrong);
       dlclose(m->handle), m->handle = NULL;
       return;
     }
@@ -161,10 +166,9 @@ static void load(loaded *m) {
     m->api = e->api;
     return;
   }
-  if (snprintf(m->why, sizeof m->why, "module icshadow-%s.so not found (looked in %s%s)", m->name,
-               tried[0] ? tried : "no folder beside the renderer",
-               env && env[0] ? ", set by ICS_MODULE_DIR" : "") < 0)
-    m->why[0] = 0;
+  refuse(m, "module icshadow-%s.so not found (looked in %s%s)", m->name,
+         tried[0] ? tried : "no folder beside the renderer",
+         env && env[0] ? ", set by ICS_MODULE_DIR" : "");
 }
 
 const void *ics_module_api(const char *name, char *why, size_t why_size) {
