@@ -14,7 +14,4 @@ void ics_pool_destroy(ics_pool *p);
 int ics_pool_size(const ics_pool *p);
 void ics_pool_run(ics_pool *p, void (*fn)(void *ctx, int t, int n), void *ctx);
 
-/* Rows [*lo, *hi) of thread t among n for `rows` rows (contiguous bands). */
-void ics_pool_band(int rows, int t, int n, int *lo, int *hi);
-
 #endif
