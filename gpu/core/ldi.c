@@ -161,9 +161,9 @@ static void ldi_rows(void *ctx, int t, int nt) {
   int hcap = 0;
   double zmin = INFINITY, zmax = -INFINITY;
   int layers = 0, any_inside = 0;
-  int lo, hi;
-  ics_pool_band(l->h, t, nt, &lo, &hi);
-  for (int bj = lo; bj < hi && !j->failed; bj++)
+  /* rows t, t + nt, ...: the objects' rows spread over the threads (bands left one thread the
+   * sky's rows) */
+  for (int bj = t; bj < l->h && !j->failed; bj += nt)
     for (int bi = 0; bi < l->w; bi++) {
       size_t px = (size_t)bj * l->w + bi;
       uint64_t inside;
