@@ -684,6 +684,34 @@ static void slab_job(void *ctx, int t, int n) {
   }
 }
 
+/* the render's start, a band of every array per thread (their pages touched on every thread):
+ * both ping-pong buffers lit (1; the moment 0) and saying so, so that a pixel outside the active
+ * regions keeps a value; the sets equal; each pixel's cursors at its first fragment, its volumes
+ * those its ray starts inside, and its next slab to look at */
+static void start_job(void *ctx, int t, int n) {
+  job_t *j = ctx;
+  const ics_plan *P = j->p;
+  const ics_ldi *ldi = &P->ldi;
+  size_t ntiles = (size_t)P->tiles.nx * P->tiles.ny, size = (size_t)P->nch * P->buf.plane;
+  size_t npx = (size_t)P->Wb * P->Hb;
+  for (size_t i = npx * t / n; i < npx * (t + 1) / n; i++) {
+    j->cursor[i] = j->acursor[i] = ldi->offset[i];
+    if (j->mask) j->mask[i] = ldi->inside0 ? ldi->inside0[i] : 0;
+    j->pnext[i] = j->mask && j->mask[i]               ? 0
+                  : ldi->offset[i] < ldi->offset[i + 1] ? ics_frag_slab(&ldi->frag[ldi->offset[i]])
+                                                        : INT_MAX;
+  }
+  for (int i = 0; i < 2 * j->nb; i++) {
+    float v0 = j->role[i % j->nb] == ICS_SET_MOMENT ? 0.0f : 1.0f;
+    const ics_tile lit = {ICS_TILE_CONST, {v0, v0, v0}};
+    float *buf = i < j->nb ? j->src[i] : j->dst[i - j->nb];
+    ics_tile *tiles = i < j->nb ? j->tsrc[i] : j->tdst[i - j->nb];
+    uint8_t *same = i < j->nb ? j->ssrc[i] : j->sdst[i - j->nb];
+    for (size_t x = size * t / n; x < size * (t + 1) / n; x++) buf[x] = v0;
+    for (size_t x = ntiles * t / n; x < ntiles * (t + 1) / n; x++) tiles[x] = lit, same[x] = 1;
+  }
+}
+
 /* perspective: each kernel's classes compensated, the threads taking a share of every kernel's
  * (the split does not change the taps) */
 static void classes_job(void *ctx, int t, int n) {
@@ -762,37 +790,19 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
       (aov && !j->aov_seen) || !j->marks || (P->any_detail && (!j->dpts || !j->dslot)))
     goto nomem;
   for (int i = 0; i < 2 * nb; i++) {
-    /* both buffers start lit (1; the moment 0) and say so: a pixel outside the active regions
-     * keeps a value */
-    float v0 = role[i % nb] == ICS_SET_MOMENT ? 0.0f : 1.0f;
-    const ics_tile lit = {ICS_TILE_CONST, {v0, v0, v0}};
     bufs[i] = malloc(sizeof(float) * (size_t)P->nch * P->buf.plane);
     tiles[i] = malloc(sizeof(ics_tile) * ntiles);
-    sames[i] = malloc(ntiles); /* the sets start equal */
+    sames[i] = malloc(ntiles);
     if (!bufs[i] || !tiles[i] || !sames[i]) goto nomem;
-    memset(sames[i], 1, ntiles);
-    for (size_t x = 0; x < (size_t)P->nch * P->buf.plane; x++) bufs[i][x] = v0;
-    for (size_t x = 0; x < ntiles; x++) tiles[i][x] = lit;
   }
+  for (int i = 0; i < P->scene->nobjects; i++)
+    if (P->inside_bit[i] >= 0) j->vol_obj[P->inside_bit[i]] = i;
+  ics_pool_run(pool, start_job, j);
   for (int i = 0; i < nk; i++) {
     const ics_slab_kernel *sk = i < nl ? &P->kernels[i] : &P->kernels_sharp[i - nl];
     scratch[i] = malloc(sizeof **scratch * (size_t)sk->entries * (size_t)sk->cap);
     if (!scratch[i]) goto nomem;
   }
-  memcpy(j->cursor, P->ldi.offset, sizeof *j->cursor * npx);
-  memcpy(j->acursor, P->ldi.offset, sizeof *j->acursor * npx);
-  if (j->mask) {
-    if (P->ldi.inside0)
-      memcpy(j->mask, P->ldi.inside0, sizeof *j->mask * npx);
-    else
-      memset(j->mask, 0, sizeof *j->mask * npx);
-  }
-  for (size_t i = 0; i < npx; i++)
-    j->pnext[i] = j->mask && j->mask[i] ? 0
-                  : P->ldi.offset[i] < P->ldi.offset[i + 1] ? ics_frag_slab(&P->ldi.frag[P->ldi.offset[i]])
-                                                           : INT_MAX;
-  for (int i = 0; i < P->scene->nobjects; i++)
-    if (P->inside_bit[i] >= 0) j->vol_obj[P->inside_bit[i]] = i;
   for (int k = 0; k < P->K; k++) {
     j->k = k;
     double s, q = ics_plan_slab_pixel(P, k, &s);
