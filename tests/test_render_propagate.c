@@ -212,7 +212,9 @@ static void test_fused_equal(void) {
  * else (the cpu backend steps tiles and runs of tiles): every path, every loop (stencil, 4 and 8
  * blended sets, the 384-entry table, runs of 16 at two phases), from every start of a 70-pixel
  * row spans of every width 1..8 and then of growing steps (9, 11, ...: vectors, their overlapping
- * ends, runs cut by the span) */
+ * ends, runs cut by the span), over one row and over rows that split into blocks of
+ * ICS_PROP_ROW_BLOCK with every kind of remainder (21 rows: 8 + 8 + 5; 17 rows from 3: 8 + 8 +
+ * 1; 9 rows from 5: 8 + 1; 2 rows) */
 static void test_spans(path_t path) {
   ics_tap2d t[2 * ICS_SLAB_TABLE_M];
   for (int e = 0; e < ICS_SLAB_TABLE_M; e++) {
@@ -221,7 +223,7 @@ static void test_spans(path_t path) {
     t[2 * e + 1] = (ics_tap2d){0.31 - 1.3 * cos(a), -0.17 - 0.8 * sin(a), 0.5};
   }
   const int sets[] = {1, 4, 8, ICS_SLAB_TABLE_M, 4, 4, 2};
-  const int w = 70, h = 3;
+  const int w = 70, h = 21, rows[][2] = {{1, 2}, {0, 21}, {3, 20}, {5, 14}, {10, 12}};
   int bad = 0, outside = 0, spans = 0;
   for (int v = 0; v < 7; v++) {
     ics_buf_layout L;
@@ -236,24 +238,27 @@ static void test_spans(path_t path) {
     ics_prop_rows(&pt, src, full, &L, 1, 0, h, scratch, path);
     for (int x0 = 0; x0 < w; x0++)
       for (int x1 = x0 + 1; x1 <= w; x1 += 1 + (x1 - x0) / 8) {
-        for (size_t i = 0; i < L.plane; i++) d[i] = -1;
-        ics_prop_span(&pt, src, d, &L, 1, 1, 2, x0, x1, scratch, path);
-        for (int y = 0; y < h; y++)
-          for (int x = 0; x < w; x++) {
-            size_t i = ics_buf_index(&L, x, y);
-            int in = y == 1 && x >= x0 && x < x1;
-            if (in) bad += d[i] != full[i];
-            else outside += d[i] != -1;
-          }
-        spans++;
+        for (int r = 0; r < (int)(sizeof rows / sizeof rows[0]); r++) {
+          int y0 = rows[r][0], y1 = rows[r][1];
+          for (size_t i = 0; i < L.plane; i++) d[i] = -1;
+          ics_prop_span(&pt, src, d, &L, 1, y0, y1, x0, x1, scratch, path);
+          for (int y = 0; y < h; y++)
+            for (int x = 0; x < w; x++) {
+              size_t i = ics_buf_index(&L, x, y);
+              int in = y >= y0 && y < y1 && x >= x0 && x < x1;
+              if (in) bad += d[i] != full[i];
+              else outside += d[i] != -1;
+            }
+          spans++;
+        }
       }
     free(scratch), free(src), free(full), free(d);
     ics_prop_release(&pt);
   }
   CHECK(bad == 0 && outside == 0, "%s, spans: %d pixels differ from whole rows, %d written outside",
         ics_simd_name(path), bad, outside);
-  printf("spans (%s): %d spans of a 70-pixel row, %d pixels differ from whole rows, %d written "
-         "outside\n", ics_simd_name(path), spans, bad, outside);
+  printf("spans (%s): %d spans of 70-pixel rows (1 to 21 rows), %d pixels differ from whole rows, "
+         "%d written outside\n", ics_simd_name(path), spans, bad, outside);
 }
 
 static void test_entries(void) {

@@ -15,11 +15,12 @@
 void ics_prop_apron(const ics_buf_layout *L, float *buf, int nch, int y0, int y1, int top_bottom);
 
 /* Pixels [x0, x1) x [y0, y1) of the first nch planes of dst from src, nothing else written;
- * scratch holds ICS_PROP_SCRATCH(L->w) words (a row's entries, or the choices of its runs of 16:
- * up to (w + 31) / 16 of them, 2 for w = 1). simd: the loops to take where they apply
- * (ics_simd_choose; the portable ones elsewhere). A pixel's value does not depend on the span it
- * is computed in. */
-#define ICS_PROP_SCRATCH(w) ((size_t)(w) + 2)
+ * scratch holds ICS_PROP_SCRATCH(L->w) words (the entries of ICS_PROP_ROW_BLOCK rows, w + 2
+ * words each, or the choices of a row's runs of 16: up to (w + 31) / 16 of them, 2 for w = 1).
+ * simd: the loops to take where they apply (ics_simd_choose; the portable ones elsewhere). A
+ * pixel's value does not depend on the span it is computed in. */
+#define ICS_PROP_ROW_BLOCK 8
+#define ICS_PROP_SCRATCH(w) (ICS_PROP_ROW_BLOCK * ((size_t)(w) + 2))
 void ics_prop_span(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
                    int nch, int y0, int y1, int x0, int x1, uint32_t *scratch, ics_simd_path simd);
 /* Whole rows [y0, y1): ics_prop_span over [0, L->w). */

@@ -8,8 +8,10 @@
  *
  * Stencils (one tap set): W pixels per vector, one unaligned load and one multiply-add per tap,
  * four independent sums added in a fixed order. Few tap sets (entries <= ICS_PROP_CANDIDATES_MAX,
- * e.g. the default 2 rotations per slab): every set evaluated for two vectors of pixels with
- * unaligned loads, each pixel keeping its own set's result (a masked blend). Runs of 16 pixels
+ * e.g. the default 2 rotations per slab): every set evaluated for a vector of pixels in blocks of
+ * ICS_PROP_ROW_BLOCK rows with unaligned loads, a buffer row's horizontal interpolation shared
+ * by the two output rows that read it, each pixel keeping its own set's result (a masked blend).
+ * Runs of 16 pixels
  * sharing a set: each run as vectors of its own set, the partial runs at the row's ends
  * evaluated over the row's first or last 16 pixels. Many tap sets (a per-pixel table): per lane
  * loads of the taps and corners. Tap-set choices come from a W-lane Philox-4x32-10 (the same
@@ -266,46 +268,70 @@ static void stencil_row(const ics_prop_taps *pt, const float *src, float *dst,
   }
 }
 
-/* the pixels x .. x + W - 1 and x1 .. x1 + W - 1 (two independent chains hide the latency;
- * x1 = x for a single vector): every candidate evaluated, each pixel keeping its own set's */
-static inline void candidates_vectors(const ics_prop_taps *pt, const float *S, int stride,
-                                      const uint32_t *ent, int x, int x1, float *D) {
-  int n = pt->ntaps, K = pt->entries;
-  vi e0 = (vi)loadu(ent + x), e1 = (vi)loadu(ent + x1);
-  vf out0 = splatf(0), out1 = out0;
-  for (int k = 0; k < K; k++) {
-    vf acc0 = splatf(0), acc1 = acc0;
-    for (int j = k * n; j < (k + 1) * n; j++) {
-      vf fx = splatf(pt->fx[j]), fy = splatf(pt->fy[j]), wt = splatf(pt->w[j]);
-      acc0 = madd(wt, bilinear(S + x + pt->off[j], stride, fx, fy), acc0);
-      acc1 = madd(wt, bilinear(S + x1 + pt->off[j], stride, fx, fy), acc1);
-    }
-    out0 = blend(e0 == k, acc0, out0);
-    out1 = blend(e1 == k, acc1, out1);
-  }
-  storef(D + x, out0);
-  storef(D + x1, out1);
+/* the horizontal interpolation of a tap's two reads p[0], p[1] (bilinear's first step) */
+static inline vf hlerp(const float *p, vf fx) {
+  vf a = loadf(p), b = loadf(p + 1);
+  return madd(fx, b - a, a);
 }
 
-/* every candidate set is evaluated for each vector (with 4 rotations per slab almost every
- * vector needs all of them); the span's end as in stencil_row */
-static void candidates_row(const ics_prop_taps *pt, const float *src, float *dst,
-                           const ics_buf_layout *L, int nch, int y, int x0, int x1,
-                           const uint32_t *ent) {
-  int stride = L->stride;
+/* rows 0 .. R - 1 (R <= ICS_PROP_ROW_BLOCK) of the W pixels from x on (row r's entries at
+ * ent + r es): every candidate evaluated, each pixel keeping its own set's. A tap's two rows of
+ * reads are shared by neighbouring output rows (row r's lower row is row r + 1's upper): each
+ * buffer row's horizontal interpolation is made once for both, the same value, so every lane is
+ * bilinear's formula bit for bit and 8 rows take 9 interpolations per tap instead of 16. */
+static inline __attribute__((always_inline)) void
+candidates_block(const ics_prop_taps *pt, const float *S, int stride, const uint32_t *ent, int es,
+                 int x, int R, float *D) {
+  int n = pt->ntaps, K = pt->entries;
+  vf out[ICS_PROP_ROW_BLOCK];
+  vi e[ICS_PROP_ROW_BLOCK];
+  for (int r = 0; r < R; r++) out[r] = splatf(0), e[r] = (vi)loadu(ent + (size_t)r * es + x);
+  for (int k = 0; k < K; k++) {
+    vf acc[ICS_PROP_ROW_BLOCK];
+    for (int r = 0; r < R; r++) acc[r] = splatf(0);
+    for (int j = k * n; j < (k + 1) * n; j++) {
+      vf fx = splatf(pt->fx[j]), fy = splatf(pt->fy[j]), wt = splatf(pt->w[j]);
+      const float *p = S + x + pt->off[j];
+      vf top = hlerp(p, fx);
+      for (int r = 0; r < R; r++) {
+        vf bot = hlerp(p + (size_t)(r + 1) * stride, fx);
+        acc[r] = madd(wt, madd(fy, bot - top, top), acc[r]);
+        top = bot;
+      }
+    }
+    for (int r = 0; r < R; r++) out[r] = blend(e[r] == k, acc[r], out[r]);
+  }
+  for (int r = 0; r < R; r++) storef(D + (size_t)r * stride + x, out[r]);
+}
+
+/* pixels [x0, x1) (at least W) of rows y .. y + R - 1 of a few tap sets: the rows' entries, then
+ * vectors of candidates_block, the span's end as in stencil_row. Inlined, so that where R is a
+ * constant the blocks' loops unroll and their vectors stay in registers (called, the arrays went
+ * through memory: 25 % slower). */
+static inline __attribute__((always_inline)) void
+candidates_rows(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
+                int nch, int y, int R, int x0, int x1, uint32_t *scratch) {
+  int es = L->w + 2, stride = L->stride;
+  for (int r = 0; r < R; r++) entries_row(pt, L->w, y + r, x0, x1, scratch + (size_t)r * es);
   for (int c = 0; c < nch; c++) {
     const float *S = src + (size_t)c * L->plane + ics_buf_index(L, 0, y);
     float *D = dst + (size_t)c * L->plane + ics_buf_index(L, 0, y);
-    if (x1 - x0 < W) {
-      for (int x = x0; x < x1; x++) D[x] = pixel_fma(pt, (int)ent[x], S + x, stride);
-      continue;
+    for (int x = x0;; x += W) {
+      if (x + W > x1) x = x1 - W;
+      candidates_block(pt, S, stride, scratch, es, x, R, D);
+      if (x + W == x1) break;
     }
-    int x = x0;
-    for (; x + 2 * W <= x1; x += 2 * W) candidates_vectors(pt, S, stride, ent, x, x + W, D);
-    if (x < x1) { /* one or two vectors more, the last ending at the span's end */
-      int xl = x1 - W;
-      candidates_vectors(pt, S, stride, ent, x < xl ? x : xl, xl, D);
-    }
+  }
+}
+
+/* a span narrower than a vector of a few tap sets (wider ones: candidates_rows), pixel by pixel */
+static void candidates_narrow(const ics_prop_taps *pt, const float *src, float *dst,
+                              const ics_buf_layout *L, int nch, int y, int x0, int x1,
+                              const uint32_t *ent) {
+  for (int c = 0; c < nch; c++) {
+    const float *S = src + (size_t)c * L->plane + ics_buf_index(L, 0, y);
+    float *D = dst + (size_t)c * L->plane + ics_buf_index(L, 0, y);
+    for (int x = x0; x < x1; x++) D[x] = pixel_fma(pt, (int)ent[x], S + x, L->stride);
   }
 }
 
@@ -521,6 +547,14 @@ static void classes_row(const ics_prop_taps *pt, const float *src, float *dst,
 
 void ICS_VEC_FN(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
                 int nch, int y0, int y1, int x0, int x1, uint32_t *scratch) {
+  if (!pt->classes && pt->entries > 1 && pt->run <= 1 && !pt->stencil &&
+      pt->entries <= ICS_PROP_CANDIDATES_MAX && x1 - x0 >= W) { /* blocks of rows */
+    int y = y0;
+    for (; y + ICS_PROP_ROW_BLOCK <= y1; y += ICS_PROP_ROW_BLOCK)
+      candidates_rows(pt, src, dst, L, nch, y, ICS_PROP_ROW_BLOCK, x0, x1, scratch);
+    if (y < y1) candidates_rows(pt, src, dst, L, nch, y, y1 - y, x0, x1, scratch);
+    return;
+  }
   for (int y = y0; y < y1; y++) {
     if (pt->classes) {
       classes_row(pt, src, dst, L, nch, y, x0, x1);
@@ -534,7 +568,7 @@ void ICS_VEC_FN(const ics_prop_taps *pt, const float *src, float *dst, const ics
     if (pt->stencil)
       stencil_row(pt, src, dst, L, nch, y, x0, x1);
     else if (pt->entries <= ICS_PROP_CANDIDATES_MAX)
-      candidates_row(pt, src, dst, L, nch, y, x0, x1, scratch);
+      candidates_narrow(pt, src, dst, L, nch, y, x0, x1, scratch);
     else
       table_row(pt, src, dst, L, nch, y, x0, x1, scratch);
   }
