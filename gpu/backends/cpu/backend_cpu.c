@@ -154,77 +154,55 @@ static void piece_light(const job_t *j, const float *arrive, int nv, const doubl
   }
 }
 
-static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, double za, double dz,
-                         const double L[3], const float *arrive, float *C, int inview, int t,
-                         const double *pre) {
+/* one volume's colour c and extinction scale in a piece: its material's own, or from its detail
+ * value through its transfer function; the value batched already (pre: the piece's one or two
+ * ends) or evaluated here at piece_points (timed one piece in DETAIL_SAMPLE: a clock read per
+ * piece cost more than a tenth of the detail itself) */
+static double volume_scale(job_t *j, int obj, size_t p, int bi, int bj, double za, double dz,
+                           const double *pre, int t, double c[3]) {
+  const ics_plan *P = j->p;
+  const ics_material *mat = &P->scene->materials[P->scene->objects[obj].material];
+  double scale = 1, v[2];
+  memcpy(c, mat->color, sizeof mat->color);
+  if (mat->detail.fn == ICS_DETAIL_NONE) return scale;
+  if (pre) {
+    v[0] = pre[0], v[1] = pre[1];
+  } else {
+    int timed = (p + (size_t)j->k) % DETAIL_SAMPLE == 0;
+    double t0 = timed ? ics_clock_s() : 0, o[3], d[3], pt[3], pt2[3];
+    piece_points(j, p, bi, bj, za, dz, o, d, pt, pt2);
+    v[0] = ics_detail_value(&P->detail[obj], pt);
+    v[1] = P->rs.preintegrate ? ics_detail_value(&P->detail[obj], pt2) : 0;
+    if (timed) j->detail_s[t] += DETAIL_SAMPLE * (ics_clock_s() - t0);
+  }
+  if (P->rs.preintegrate)
+    ics_material_preintegrate(mat, v[0], v[1], c, &scale);
+  else
+    ics_material_transfer(mat, v[0], c, &scale);
+  return scale;
+}
+
+/* a piece of nv volumes (extinctions sig, colours col, their sum `sum`) composited into the
+ * view pixel C, lit by L; dl the camera path per unit depth */
+static void piece_composite(int nv, const double *sig, const double (*col)[3], double sum,
+                            double dz, double dl, const double L[3], float *C) {
+  double rgb[3];
+  for (int c = 0; c < 3; c++) {
+    double cc = 0;
+    for (int i = 0; i < nv; i++) cc += sig[i] * col[i][c];
+    rgb[c] = cc / sum;
+  }
+  ics_k_composite(ics_k_piece_alpha(sum, dz, dl), rgb, L, C);
+}
+
+/* the light leaving a piece of nv volumes (extinctions sig) at buffer pixel q, per light: the
+ * buffers it occludes in times the piece's transmittance per channel (render.model blocker: the
+ * moment gains the first set's loss at the piece's middle) */
+static void piece_attenuate(job_t *j, size_t q, int nv, const double *sig, const int *objs,
+                            double za, double dz) {
   const ics_plan *P = j->p;
   const ics_scene *s = P->scene;
-  double sig[ICS_MAX_VOLUMES], col[ICS_MAX_VOLUMES][3];
-  int objs[ICS_MAX_VOLUMES], nv = 0;
-  double o[3], d[3], pt[3], pt2[3];
-  int have_ray = 0;
-  /* the detail's time, from one piece in DETAIL_SAMPLE timed (a clock read per piece cost more
-   * than a tenth of the detail itself) */
-  int timed = (p + (size_t)j->k) % DETAIL_SAMPLE == 0;
-  if (mask & P->solid_bits) { /* inside a solid object: no light in the first set (render.model
-                                 solid and surface; the second set is Patel's) */
-    size_t q = ics_buf_index(&P->buf, bi, bj);
-    for (int l = 0; l < P->nlights; l++) {
-      double v0 = j->moment ? first_mean(j, l, q) : 0;
-      for (int b = l; b < j->nb; b += P->nlights)
-        if (j->role[b] == ICS_SET_FIRST || j->role[b] == ICS_SET_SHARP)
-          for (int c = 0; c < P->nch; c++) j->dst[b][(size_t)c * P->buf.plane + q] = 0;
-      if (v0 > 0) moment_add(j, l, q, v0, za + dz / 2);
-    }
-    mask &= ~P->solid_bits;
-    if (!mask) return;
-  }
-  double t0 = 0;
-  double sum = 0;
-  for (uint64_t m = mask; m; m &= m - 1) {
-    int bit = __builtin_ctzll(m), obj = j->vol_obj[bit];
-    const ics_material *mat = &s->materials[s->objects[obj].material];
-    double scale = 1, c[3] = {mat->color[0], mat->color[1], mat->color[2]};
-    if (mat->detail.fn != ICS_DETAIL_NONE && pre) {
-      if (P->rs.preintegrate)
-        ics_material_preintegrate(mat, pre[0], pre[1], c, &scale);
-      else
-        ics_material_transfer(mat, pre[0], c, &scale);
-    } else if (mat->detail.fn != ICS_DETAIL_NONE) {
-      if (!have_ray) {
-        if (timed) t0 = ics_clock_s();
-        piece_points(j, p, bi, bj, za, dz, o, d, pt, pt2);
-        have_ray = 1;
-      }
-      double v = ics_detail_value(&P->detail[obj], pt);
-      if (P->rs.preintegrate)
-        ics_material_preintegrate(mat, v, ics_detail_value(&P->detail[obj], pt2), c, &scale);
-      else
-        ics_material_transfer(mat, v, c, &scale);
-    }
-    sig[nv] = mat->extinction * scale;
-    memcpy(col[nv], c, sizeof c);
-    objs[nv++] = obj;
-    sum += sig[nv - 1];
-  }
-  if (have_ray && timed) j->detail_s[t] += DETAIL_SAMPLE * (ics_clock_s() - t0);
-  if (!(sum > 0)) return;
-  if (inview && C[3] < 1) {
-    double dl = 1; /* camera path per unit depth */
-    if (P->cam.projection == ICS_PROJ_PERSPECTIVE) {
-      if (!have_ray) ics_plan_ray(P, bi, bj, o, d);
-      dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    }
-    double Lp[3], rgb[3];
-    if (arrive) piece_light(j, arrive, nv, sig, objs, sum * dl, dz, Lp);
-    for (int c = 0; c < 3; c++) {
-      double cc = 0;
-      for (int i = 0; i < nv; i++) cc += sig[i] * col[i][c];
-      rgb[c] = cc / sum;
-    }
-    ics_k_composite(ics_k_piece_alpha(sum, dz, dl), rgb, arrive ? Lp : L, C);
-  }
-  size_t plane = P->buf.plane, q = ics_buf_index(&P->buf, bi, bj);
+  size_t plane = P->buf.plane;
   for (int l = 0; l < P->nlights; l++) {
     double pass[3] = {1, 1, 1};
     for (int i = 0; i < nv; i++) {
@@ -239,6 +217,48 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
         for (int c = 0; c < P->nch; c++) j->dst[b][(size_t)c * plane + q] *= (float)pass[c];
     if (j->moment) moment_add(j, l, q, v0, za + dz / 2);
   }
+}
+
+static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, double za, double dz,
+                         const double L[3], const float *arrive, float *C, int inview, int t,
+                         const double *pre) {
+  const ics_plan *P = j->p;
+  double sig[ICS_MAX_VOLUMES], col[ICS_MAX_VOLUMES][3];
+  int objs[ICS_MAX_VOLUMES], nv = 0;
+  size_t q = ics_buf_index(&P->buf, bi, bj);
+  if (mask & P->solid_bits) { /* inside a solid object: no light in the first set (render.model
+                                 solid and surface; the second set is Patel's) */
+    for (int l = 0; l < P->nlights; l++) {
+      double v0 = j->moment ? first_mean(j, l, q) : 0;
+      for (int b = l; b < j->nb; b += P->nlights)
+        if (j->role[b] == ICS_SET_FIRST || j->role[b] == ICS_SET_SHARP)
+          for (int c = 0; c < P->nch; c++) j->dst[b][(size_t)c * P->buf.plane + q] = 0;
+      if (v0 > 0) moment_add(j, l, q, v0, za + dz / 2);
+    }
+    mask &= ~P->solid_bits;
+    if (!mask) return;
+  }
+  double sum = 0;
+  for (uint64_t m = mask; m; m &= m - 1) {
+    int obj = j->vol_obj[__builtin_ctzll(m)];
+    double scale = volume_scale(j, obj, p, bi, bj, za, dz, pre, t, col[nv]);
+    sig[nv] = P->scene->materials[P->scene->objects[obj].material].extinction * scale;
+    objs[nv] = obj;
+    sum += sig[nv++];
+  }
+  if (!(sum > 0)) return;
+  if (inview && C[3] < 1) {
+    double dl = 1; /* camera path per unit depth */
+    if (P->cam.projection == ICS_PROJ_PERSPECTIVE) {
+      double o[3], d[3];
+      ics_plan_ray(P, bi, bj, o, d);
+      dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    }
+    double Lp[3];
+    if (arrive) piece_light(j, arrive, nv, sig, objs, sum * dl, dz, Lp);
+    piece_composite(nv, sig, (const double(*)[3])col, sum, dz, dl, arrive ? Lp : L, C);
+  }
+  piece_attenuate(j, q, nv, sig, objs, za, dz);
 }
 
 /* a surface seen at this slab: its colour, lit by the light arriving here */
@@ -423,6 +443,50 @@ static void arriving_light(const job_t *j, size_t q, double z, float *arrive) {
   }
 }
 
+/* pixel bi's detail values batched by row_details (slot: the row's slots, or NULL for none):
+ * pre (the piece's one or two ends), or NULL where it has none */
+static const double *batched(const job_t *j, const int32_t *slot, const double *values, int bi,
+                             double pre[2]) {
+  int s0 = slot ? slot[bi] : -1;
+  if (s0 < 0) return NULL;
+  pre[0] = values[s0], pre[1] = j->p->rs.preintegrate ? values[j->p->Wb + s0] : 0;
+  return pre;
+}
+
+/* the light arriving (arrive: per buffered light and channel), weighted by each light's colour
+ * and weight, per colour channel */
+static void light_colour(const job_t *j, const float *arrive, double L[3]) {
+  const ics_plan *P = j->p;
+  L[0] = L[1] = L[2] = 0;
+  for (int l = 0; l < P->nlights; l++) {
+    const ics_light *lt = &P->scene->lights[l];
+    for (int c = 0; c < 3; c++) L[c] += lt->color[c] * lt->weight * arrive[l * P->nch + (P->nch == 3 ? c : 0)];
+  }
+}
+
+/* The common piece, without volume_piece's generality: buffer pixel p inside one volume `obj`
+ * that is no solid, no fragment in the slab (the piece is the whole slab [za, za + dz]), no
+ * surface occlusion due, Patel's or the solid model (no own terms), an orthographic camera; pre
+ * its batched detail values or NULL; C its view pixel or NULL. The same arithmetic as
+ * volume_piece for it (the same helpers), so the same bits. */
+static void single_volume_piece(job_t *j, size_t p, int bi, int bj, int obj, double za,
+                                double dz, float *C, int t, const double *pre) {
+  const ics_plan *P = j->p;
+  size_t q = ics_buf_index(&P->buf, bi, bj);
+  double col[1][3];
+  double sig = P->scene->materials[P->scene->objects[obj].material].extinction *
+               volume_scale(j, obj, p, bi, bj, za, dz, pre, t, col[0]);
+  if (!(sig > 0)) return;
+  if (C && C[3] < 1) {
+    float arrive[4 * ICS_SCENE_MAX_LIGHTS * 3];
+    double L[3];
+    arriving_light(j, q, za + P->e / 2, arrive);
+    light_colour(j, arrive, L);
+    piece_composite(1, &sig, (const double(*)[3])col, 0 + sig, dz, 1, L, C);
+  }
+  piece_attenuate(j, q, 1, &sig, &obj, za, dz);
+}
+
 /* rows [y0, y1) within this slab's shading rectangle; the tiles written into flagged in touched */
 static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
   const ics_plan *P = j->p;
@@ -439,6 +503,8 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
     for (int tx = tx0; tx <= tx1; tx++) busy |= seg[tx] <= k && need[tx] >= k;
     if (!busy) continue; /* nothing in this row before its segments' next slab */
     int batch = j->mask && P->any_detail;
+    /* single_volume_piece takes the common piece (no own terms, an orthographic camera) */
+    int single = P->rs.model <= ICS_MODEL_SOLID && P->cam.projection != ICS_PROJ_PERSPECTIVE;
     const int32_t *slot = NULL;
     const double *values = NULL;
     if (batch) {
@@ -465,16 +531,24 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       int inview = ii >= 0 && ii < P->W && jj >= 0 && jj < P->H;
       float dummy[4] = {0, 0, 0, 1};
       float *C = inview ? j->img->data + ((size_t)jj * P->W + ii) * 4 : dummy;
+      if (single && mask && !(mask & (mask - 1)) && !(mask & P->solid_bits) && !has &&
+          !(acur < end && ics_frag_slab(&ldi->frag[acur]) <= k)) {
+        /* inside one volume, nothing else due: the piece, and the pixel needs the next slab */
+        double pre[2];
+        touched[ics_tile_col(&j->p->tiles, bi)] = 1;
+        single_volume_piece(j, p, bi, bj, j->vol_obj[__builtin_ctzll(mask)], zf, zb - zf,
+                            inview ? C : NULL, t, batched(j, batch ? slot : NULL, values, bi, pre));
+        j->pnext[p] = 0;
+        next = k + 1;
+        continue;
+      }
       size_t q = ics_buf_index(&P->buf, bi, bj);
       /* every set's arriving light, per buffered light and channel; the first set's (render.model
        * blocker) blended with the sharp set's by this pixel's distance to its blockers */
       float arrive[4 * ICS_SCENE_MAX_LIGHTS * 3];
       if (inview) arriving_light(j, q, zf + P->e / 2, arrive);
       double L[3] = {0, 0, 0}; /* the light arriving, for the colour of what is in view */
-      for (int l = 0; inview && l < P->nlights; l++) {
-        const ics_light *lt = &s->lights[l];
-        for (int c = 0; c < 3; c++) L[c] += lt->color[c] * lt->weight * arrive[l * P->nch + (P->nch == 3 ? c : 0)];
-      }
+      if (inview) light_colour(j, arrive, L);
       float V[ICS_SCENE_MAX_LIGHTS * 3]; /* AOVs: the light arriving, per light and channel */
       if (j->aov && inview) memcpy(V, arrive, sizeof(float) * (size_t)P->nlights * P->nch);
       /* surface occlusions due at this slab (fragment slab + bias == k), after the light
@@ -494,9 +568,8 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       j->acursor[p] = acur;
       if (!has && !mask) goto next_pixel;
       /* without a fragment in the slab the one piece is the whole slab: its detail batched */
-      int s0 = batch && mask && !has ? slot[bi] : -1;
-      double pre[2] = {0, 0};
-      if (s0 >= 0) pre[0] = values[s0], pre[1] = P->rs.preintegrate ? values[P->Wb + s0] : 0;
+      double pre[2];
+      const double *pv = batched(j, batch && mask && !has ? slot : NULL, values, bi, pre);
       double za = zf;
       for (;;) {
         double zn = has ? ldi->frag[cur].z : zb;
@@ -505,7 +578,7 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
         if (mask && zn > za)
           volume_piece(j, p, bi, bj, mask, za, zn - za, L,
                        P->rs.model >= ICS_MODEL_SURFACE && inview ? arrive : NULL, C, inview, t,
-                       s0 >= 0 ? pre : NULL);
+                       pv);
         if (!has) break;
         int obj = ics_frag_obj(&ldi->frag[cur]), ib = P->inside_bit[obj];
         if (ib >= 0) mask ^= 1ull << ib; /* a volume's or a solid's boundary */
