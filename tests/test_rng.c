@@ -73,6 +73,16 @@ static void test_repro(void) {
   for (int i = 0; i < 100; i++)
     if (ics_rng_normal(&c) != ics_rng_normal(&d)) eq = 0;
   CHECK(eq, "normals reproducible");
+  /* a pair is the two uniforms at its indices */
+  int pairs = 1;
+  for (uint64_t b = 0; b < 1000; b += 7) {
+    uint64_t block = b * 0x9e3779b97f4a7c15ull >> 2, stream = 0x6a69747400000000ull | b;
+    double u[2];
+    ics_rng_uniform_pair_at(77, stream, block, u);
+    pairs &= u[0] == ics_rng_uniform_at(77, stream, 2 * block) &&
+             u[1] == ics_rng_uniform_at(77, stream, 2 * block + 1) && u[0] != u[1];
+  }
+  CHECK(pairs, "ics_rng_uniform_pair_at = the uniforms at 2 block and 2 block + 1");
 }
 
 static void test_stats(void) {

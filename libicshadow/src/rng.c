@@ -41,21 +41,34 @@ void ics_rng_philox4x32_10(const uint32_t ctr[4], const uint32_t key[2], uint32_
   out[3] = c3;
 }
 
-uint64_t ics_rng_u64_at(uint64_t seed, uint64_t stream, uint64_t index) {
-  uint64_t block = index >> 1;
+/* the two 64-bit words of counter block `block` (indices 2 block, 2 block + 1) */
+static void u64_pair(uint64_t seed, uint64_t stream, uint64_t block, uint64_t w[2]) {
   uint32_t ctr[4] = {(uint32_t)block, (uint32_t)(block >> 32), (uint32_t)stream,
                      (uint32_t)(stream >> 32)};
   uint32_t key[2] = {(uint32_t)seed, (uint32_t)(seed >> 32)};
   uint32_t out[4];
   ics_rng_philox4x32_10(ctr, key, out);
-  if (index & 1) return (uint64_t)out[2] | ((uint64_t)out[3] << 32);
-  return (uint64_t)out[0] | ((uint64_t)out[1] << 32);
+  w[0] = (uint64_t)out[0] | ((uint64_t)out[1] << 32);
+  w[1] = (uint64_t)out[2] | ((uint64_t)out[3] << 32);
+}
+
+uint64_t ics_rng_u64_at(uint64_t seed, uint64_t stream, uint64_t index) {
+  uint64_t w[2];
+  u64_pair(seed, stream, index >> 1, w);
+  return w[index & 1];
 }
 
 static double u64_to_uniform(uint64_t x) { return (double)(x >> 11) * 0x1p-53; }
 
 double ics_rng_uniform_at(uint64_t seed, uint64_t stream, uint64_t index) {
   return u64_to_uniform(ics_rng_u64_at(seed, stream, index));
+}
+
+void ics_rng_uniform_pair_at(uint64_t seed, uint64_t stream, uint64_t block, double out[2]) {
+  uint64_t w[2];
+  u64_pair(seed, stream, block, w);
+  out[0] = u64_to_uniform(w[0]);
+  out[1] = u64_to_uniform(w[1]);
 }
 
 void ics_rng_init(ics_rng *out, uint64_t seed, uint64_t stream) {

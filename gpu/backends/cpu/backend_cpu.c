@@ -110,24 +110,37 @@ static void moment_add(job_t *j, int l, size_t q, double v0, double z) {
       for (int c = 0; c < P->nch; c++) j->dst[b][(size_t)c * P->buf.plane + q] += (float)gain;
 }
 
+/* the last pair of jitters drawn: pixels 2 m and 2 m + 1 of a slab share one Philox call */
+typedef struct {
+  uint64_t block; /* m, or UINT64_MAX for none */
+  double u[2];
+} jitter_pair;
+
 /* where a piece's detail is sampled: its two ends (preintegrate: the detail varies linearly
- * between them) or one jittered point (Patel: the volume is constant within the slab), on the
- * camera ray o + z d of buffer pixel (bi, bj) = p */
+ * between them) or one jittered point (Patel: the volume is constant within the slab; the
+ * jitter ics_rng_uniform_at(seed, JITTER_STREAM | slab, p), through *pair where the caller
+ * keeps one, else NULL), on the camera ray o + z d of buffer pixel (bi, bj) = p */
 static void piece_points(const job_t *j, size_t p, int bi, int bj, double za, double dz,
-                         double o[3], double d[3], double pt[3], double pt2[3]) {
+                         jitter_pair *pair, double o[3], double d[3], double pt[3], double pt2[3]) {
   const ics_plan *P = j->p;
   ics_plan_ray(P, bi, bj, o, d);
   if (P->rs.preintegrate) {
     for (int i = 0; i < 3; i++) pt[i] = o[i] + za * d[i], pt2[i] = o[i] + (za + dz) * d[i];
-  } else {
-    double xi = ics_rng_uniform_at(P->rs.seed, JITTER_STREAM | (uint64_t)j->k, p);
-    double zs = za + xi * dz;
-    for (int i = 0; i < 3; i++) pt[i] = o[i] + zs * d[i];
+    return;
   }
+  uint64_t stream = JITTER_STREAM | (uint64_t)j->k;
+  double xi;
+  if (pair) {
+    if (pair->block != p >> 1) ics_rng_uniform_pair_at(P->rs.seed, stream, p >> 1, pair->u);
+    pair->block = p >> 1;
+    xi = pair->u[p & 1];
+  } else {
+    xi = ics_rng_uniform_at(P->rs.seed, stream, p);
+  }
+  double zs = za + xi * dz;
+  for (int i = 0; i < 3; i++) pt[i] = o[i] + zs * d[i];
 }
 
-/* one volume piece of depth extent dz ending the events at (pixel p, depth za..za+dz); pre: its
- * one volume's detail values (first and second end) evaluated already, or NULL */
 /* render.model surface: the light shading a volume piece of depth dz, seen at a = sigma dl
  * extinction per unit depth (sigma the pieces' sum), its own attenuation of the light inside it
  * included: light l's channel c falls off as exp(-b x) over the piece, b = sum_i sigma_i (1 -
@@ -170,7 +183,7 @@ static double volume_scale(job_t *j, int obj, size_t p, int bi, int bj, double z
   } else {
     int timed = (p + (size_t)j->k) % DETAIL_SAMPLE == 0;
     double t0 = timed ? ics_clock_s() : 0, o[3], d[3], pt[3], pt2[3];
-    piece_points(j, p, bi, bj, za, dz, o, d, pt, pt2);
+    piece_points(j, p, bi, bj, za, dz, NULL, o, d, pt, pt2);
     v[0] = ics_detail_value(&P->detail[obj], pt);
     v[1] = P->rs.preintegrate ? ics_detail_value(&P->detail[obj], pt2) : 0;
     if (timed) j->detail_s[t] += DETAIL_SAMPLE * (ics_clock_s() - t0);
@@ -219,6 +232,8 @@ static void piece_attenuate(job_t *j, size_t q, int nv, const double *sig, const
   }
 }
 
+/* one volume piece of depth extent dz ending the events at (pixel p, depth za..za+dz); pre: its
+ * one volume's detail values (first and second end) evaluated already, or NULL */
 static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, double za, double dz,
                          const double L[3], const float *arrive, float *C, int inview, int t,
                          const double *pre) {
@@ -366,8 +381,9 @@ static void record_aov(job_t *j, int ii, int jj, const float *V, double z) {
 /* row_details' pixel (bi, bj): 1 with its piece's points in *x .. *z2 when it joins the batch
  * (inside one volume with noise detail, the batch's volume *obj0, no fragment in the slab), else
  * 0; its slot -1 inside a volume (shade_rows reads a slot only there) */
-static int detail_point(job_t *j, int bj, int bi, double zf, double zb, int *obj0, double *x,
-                        double *y, double *z, double *x2, double *y2, double *z2, int32_t *slot) {
+static int detail_point(job_t *j, int bj, int bi, double zf, double zb, int *obj0,
+                        jitter_pair *pair, double *x, double *y, double *z, double *x2, double *y2,
+                        double *z2, int32_t *slot) {
   const ics_plan *P = j->p;
   const ics_scene *s = P->scene;
   size_t p = (size_t)bj * P->Wb + bi;
@@ -383,7 +399,7 @@ static int detail_point(job_t *j, int bj, int bi, double zf, double zb, int *obj
     return 0;
   *obj0 = obj;
   double o[3], d[3], a[3], b[3];
-  piece_points(j, p, bi, bj, zf, zb - zf, o, d, a, b);
+  piece_points(j, p, bi, bj, zf, zb - zf, pair, o, d, a, b);
   *x = a[0], *y = a[1], *z = a[2], *x2 = b[0], *y2 = b[1], *z2 = b[2];
   return 1;
 }
@@ -401,13 +417,15 @@ static void row_details(job_t *j, int bj, double zf, double zb, const int32_t *n
          *Z2 = Y2 + w, *V = Z2 + w, *V2 = V + w;
   int32_t *slot = j->dslot + (size_t)t * w;
   int n = 0, obj0 = -1;
+  jitter_pair pair = {UINT64_MAX, {0, 0}};
   for (int tx = tx0; tx <= tx1; tx++) { /* the tiles shade_rows steps (their pixels alone) */
     if (need[tx] < j->k || seg[tx] > j->k) continue;
     int x0 = ics_tile_x0(&P->tiles, tx), x1 = ics_tile_x1(&P->tiles, tx);
     if (x0 < j->shade.x0) x0 = j->shade.x0;
     if (x1 > j->shade.x1) x1 = j->shade.x1;
     for (int bi = x0; bi < x1; bi++)
-      if (detail_point(j, bj, bi, zf, zb, &obj0, X + n, Y + n, Z + n, X2 + n, Y2 + n, Z2 + n, slot))
+      if (detail_point(j, bj, bi, zf, zb, &obj0, &pair, X + n, Y + n, Z + n, X2 + n, Y2 + n, Z2 + n,
+                       slot))
         slot[bi] = n++;
   }
   if (!n) return;

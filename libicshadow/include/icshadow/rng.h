@@ -29,6 +29,9 @@ ICS_API void ics_rng_philox4x32_10(const uint32_t ctr[4], const uint32_t key[2],
 /* Stateless draws: the index-th 64-bit word / uniform of stream `stream` under `seed`. */
 ICS_API uint64_t ics_rng_u64_at(uint64_t seed, uint64_t stream, uint64_t index);
 ICS_API double ics_rng_uniform_at(uint64_t seed, uint64_t stream, uint64_t index);
+/* The uniforms at indices 2 block and 2 block + 1 (block < 2^63) into out[0], out[1]: the values
+ * of ics_rng_uniform_at there, from one Philox call. */
+ICS_API void ics_rng_uniform_pair_at(uint64_t seed, uint64_t stream, uint64_t block, double out[2]);
 
 /* A cursor over one stream: next draws words index, index + 1, ... (the state is only the
  * cursor; two cursors on the same (seed, stream, index) give the same numbers). */
