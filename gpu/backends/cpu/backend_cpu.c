@@ -48,14 +48,14 @@ typedef struct {
   uint32_t *acursor;     /* per pixel: first fragment whose occlusion may still be due */
   uint64_t *mask;        /* NULL without volumes */
   int vol_obj[ICS_MAX_VOLUMES]; /* per inside-mask bit: its object */
-  uint32_t *scratch;     /* per thread: ICS_PROP_SCRATCH(Wb) words (a row's entries or run choices) */
+  uint32_t *scratch;     /* per thread: ICS_PROP_SCRATCH(Wb) words (rows' entries or run choices) */
   ics_simd_path simd;    /* the propagation loops' vector path */
   ics_tile **tsrc, **tdst; /* per buffered light: what each tile of src and dst holds */
   uint8_t **ssrc, **sdst;  /* per buffered light of the second set: each tile of src and dst equal
                               to the first set's bit for bit (then it is copied, not stepped) */
   uint8_t *marks;        /* per thread: (1 + nb) x grid.nx flags for the row it works on: the
                             tiles shading wrote into, then per buffered light those filled (1),
-                            stepped (2) or copied from the first set (3) */
+                            stepped (2; 4 stepped grey) or copied from the first set (3) */
   ics_rect shade;        /* this slab: the pixels to shade (the lights' active regions joined) */
   atomic_int next_row;   /* the next row of tiles to take this slab */
   double active[256];    /* per thread: channel-pixel updates propagated */
@@ -635,8 +635,8 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
 }
 
 /* tiles [tx0, tx1] of row ty of buffered light b's dst stepped from src: one span, kind
- * ICS_TILE_GREY (one channel stepped and copied) or ICS_TILE_ANY (every channel); flagged 2 in
- * written */
+ * ICS_TILE_GREY (one channel stepped and copied) or ICS_TILE_ANY (every channel); flagged in
+ * written 4 (grey: its planes equal) or 2 */
 static void step_tiles(job_t *j, int b, int ty, int tx0, int tx1, int kind, int t,
                        uint8_t *written) {
   const ics_plan *P = j->p;
@@ -647,7 +647,7 @@ static void step_tiles(job_t *j, int b, int ty, int tx0, int tx1, int kind, int 
                 j->scratch + (size_t)t * ICS_PROP_SCRATCH(P->Wb), j->simd);
   if (planes < P->nch) ics_tile_copy_grey(&P->buf, j->dst[b], P->nch, x0, x1, y0, y1);
   j->active[t] += (double)(x1 - x0) * (y1 - y0) * planes;
-  memset(written + tx0, 2, (size_t)(tx1 - tx0 + 1));
+  memset(written + tx0, planes < P->nch ? 4 : 2, (size_t)(tx1 - tx0 + 1));
 }
 
 /* 1 when source tiles [tx0, tx1] x [ty0, ty1] of second-set buffer b all equal the first set's */
@@ -737,8 +737,9 @@ static void settle_row(job_t *j, int ty, const uint8_t *marks) {
     for (int tx = 0; tx < g->nx && !P->rs.dense; tx++) { /* (dense: nothing reads the states) */
       size_t i = (size_t)ty * g->nx + tx;
       int x0 = ics_tile_x0(g, tx), x1 = ics_tile_x1(g, tx);
-      if (shaded[tx] || written[tx] == 2 || signed_)
-        j->tdst[b][i] = ics_tile_scan(&P->buf, j->dst[b], P->nch, x0, x1, y0, y1);
+      if (shaded[tx] || written[tx] == 2 || written[tx] == 4 || signed_)
+        j->tdst[b][i] = ics_tile_scan(&P->buf, j->dst[b], P->nch, x0, x1, y0, y1,
+                                      written[tx] == 4 && !shaded[tx] && !signed_);
       if (j->role[b] != ICS_SET_PATEL) continue;
       /* the second set: a copied tile shading left alone still equals the first set's (and
        * holds what it holds, scanned there); a tile either set wrote is compared */

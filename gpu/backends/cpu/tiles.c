@@ -91,13 +91,13 @@ int ics_tile_equal(const ics_buf_layout *L, const float *a, const float *b, int 
 }
 
 ics_tile ics_tile_scan(const ics_buf_layout *L, const float *buf, int nch, int x0, int x1, int y0,
-                       int y1) {
+                       int y1, int grey_known) {
   ics_tile t = {ICS_TILE_CONST, {0, 0, 0}};
-  int cst = 1, grey = nch == 3, n = x1 - x0;
+  int cst = 1, grey = nch == 3, n = x1 - x0, planes = grey_known ? 1 : nch;
   for (int c = 0; c < nch; c++) t.c[c] = buf[(size_t)c * L->plane + ics_buf_index(L, x0, y0)];
-  for (int y = y0; y < y1 && (cst || grey); y++) {
+  for (int y = y0; y < y1 && (cst || (grey && !grey_known)); y++) {
     const float *row0 = buf + ics_buf_index(L, x0, y);
-    for (int c = 0; c < nch; c++) {
+    for (int c = 0; c < planes; c++) {
       const float *row = row0 + (size_t)c * L->plane;
       if (cst && differ_const(row, bits(t.c[c]), n)) cst = 0;
       if (grey && c && differ(row, row0, n)) grey = 0;
