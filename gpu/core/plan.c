@@ -9,6 +9,7 @@
  * the passes and omissions that `icshadow plan` prints. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,6 +24,7 @@
 #include "mesh.h"
 #include "own_term.h"
 #include "plan_internal.h"
+#include "pool.h"
 #include "scene_internal.h"
 
 /* the camera ray: the shared kernel source (gpu/kernel/camera.h, the text the cl and gl programs
@@ -271,8 +273,55 @@ static ics_status plan_limits(ics_plan *p, double *zlo, double *zhi, double *k_e
   return ICS_OK;
 }
 
+/* The slab kernels of plan_kernels built on a pool's threads, one task a kernel (task i < nlights:
+ * light i's; the rest: light i - nlights's sharp set's): the expected compensation iterates the
+ * ellipse's arc-length table, milliseconds a light. Each task keeps its own status and message. */
+typedef struct {
+  ics_plan *p;
+  const ics_scene *settings, *sharp; /* the scene with the settings in force; with d1 sharpened */
+  atomic_int next;
+  ics_status st[2 * ICS_SCENE_MAX_LIGHTS];
+  char msg[2 * ICS_SCENE_MAX_LIGHTS][256];
+} kernels_job;
+
+static void kernels_tasks(void *ctx, int t, int n) {
+  kernels_job *kj = ctx;
+  ics_plan *p = kj->p;
+  int nl = p->nlights, tasks = p->kernels_sharp ? 2 * nl : nl;
+  (void)t, (void)n;
+  for (int i; (i = atomic_fetch_add(&kj->next, 1)) < tasks;)
+    kj->st[i] = ics_slab_kernel_init(i < nl ? &p->kernels[i] : &p->kernels_sharp[i - nl],
+                                     i < nl ? kj->settings : kj->sharp, i % nl, p->q_ref,
+                                     kj->msg[i], sizeof kj->msg[i]);
+}
+
+/* every light's kernel (and its sharp set's), in parallel; the first failure in light order
+ * (a light's kernel before its sharp set's) is the one reported */
+static ics_status build_kernels(ics_plan *p, const ics_scene *settings, const ics_scene *sharp,
+                                int threads, char *msg, size_t msg_size) {
+  kernels_job *kj = calloc(1, sizeof *kj);
+  ics_pool *pool = ics_pool_create(threads);
+  if (!pool) pool = ics_pool_create(1);
+  if (!kj || !pool) {
+    free(kj);
+    ics_pool_destroy(pool);
+    return ICS_ERR_NOMEM;
+  }
+  kj->p = p, kj->settings = settings, kj->sharp = sharp;
+  atomic_init(&kj->next, 0);
+  ics_pool_run(pool, kernels_tasks, kj);
+  ics_pool_destroy(pool);
+  ics_status st = ICS_OK;
+  for (int k = 0; k < p->nlights && st == ICS_OK; k++)
+    for (int i = k; i < (p->kernels_sharp ? 2 : 1) * p->nlights && st == ICS_OK; i += p->nlights)
+      if ((st = kj->st[i]) != ICS_OK && msg) snprintf(msg, msg_size, "%s", kj->msg[i]);
+  free(kj);
+  return st;
+}
+
 /* each light's slab kernel (from the settings in force), and the perspective classes' work */
-static ics_status plan_kernels(ics_plan *p, double k_est, char *msg, size_t msg_size) {
+static ics_status plan_kernels(ics_plan *p, double k_est, int threads, char *msg,
+                               size_t msg_size) {
   const ics_scene *s = p->scene;
   p->kernels = calloc((size_t)p->nlights, sizeof *p->kernels);
   p->vol_bit = malloc(sizeof *p->vol_bit * (size_t)(s->nobjects ? s->nobjects : 1));
@@ -287,11 +336,9 @@ static ics_status plan_kernels(ics_plan *p, double k_est, char *msg, size_t msg_
     p->kernels_sharp = calloc((size_t)p->nlights, sizeof *p->kernels_sharp);
     if (!p->kernels_sharp && p->nlights) return ICS_ERR_NOMEM;
   }
+  ics_status st = build_kernels(p, &tmp, &sharp, threads, msg, msg_size);
+  if (st != ICS_OK) return st;
   for (int k = 0; k < p->nlights; k++) {
-    ics_status st = ics_slab_kernel_init(&p->kernels[k], &tmp, k, p->q_ref, msg, msg_size);
-    if (st == ICS_OK && p->kernels_sharp)
-      st = ics_slab_kernel_init(&p->kernels_sharp[k], &sharp, k, p->q_ref, msg, msg_size);
-    if (st != ICS_OK) return st;
     p->light_path[k] = sqrt(1 + s->lights[k].mean[0] * s->lights[k].mean[0] +
                             s->lights[k].mean[1] * s->lights[k].mean[1]);
     const ics_slab_kernel *sk = &p->kernels[k];
@@ -595,7 +642,7 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   double zlo, zhi, k_est;
   plan_bytes b = {0};
   ics_status st = plan_limits(p, &zlo, &zhi, &k_est, msg, msg_size);
-  if (st == ICS_OK) st = plan_kernels(p, k_est, msg, msg_size);
+  if (st == ICS_OK) st = plan_kernels(p, k_est, o.threads, msg, msg_size);
   if (st == ICS_OK) {
     plan_padding(p, zlo, zhi, k_est);
     st = plan_volumes(p, msg, msg_size);
