@@ -213,8 +213,8 @@ static void test_fused_equal(void) {
  * blended sets, the 384-entry table, runs of 16 at two phases), from every start of a 70-pixel
  * row spans of every width 1..8 and then of growing steps (9, 11, ...: vectors, their overlapping
  * ends, runs cut by the span), over one row and over rows that split into blocks of
- * ICS_PROP_ROW_BLOCK with every kind of remainder (21 rows: 8 + 8 + 5; 17 rows from 3: 8 + 8 +
- * 1; 9 rows from 5: 8 + 1; 2 rows) */
+ * ICS_PROP_ROW_BLOCK ending in a block of every size 1..8 (21 rows: 8 + 8 + 5; 17 from row 3:
+ * 8 + 8 + 1; 9 from row 5: 8 + 1; then 2, 3, 4, 6, 7 and 8 rows) */
 static void test_spans(path_t path) {
   ics_tap2d t[2 * ICS_SLAB_TABLE_M];
   for (int e = 0; e < ICS_SLAB_TABLE_M; e++) {
@@ -223,7 +223,8 @@ static void test_spans(path_t path) {
     t[2 * e + 1] = (ics_tap2d){0.31 - 1.3 * cos(a), -0.17 - 0.8 * sin(a), 0.5};
   }
   const int sets[] = {1, 4, 8, ICS_SLAB_TABLE_M, 4, 4, 2};
-  const int w = 70, h = 21, rows[][2] = {{1, 2}, {0, 21}, {3, 20}, {5, 14}, {10, 12}};
+  const int w = 70, h = 21, rows[][2] = {{1, 2},  {0, 21}, {3, 20}, {5, 14}, {10, 12},
+                                          {2, 5},  {4, 8},  {1, 7},  {0, 7},  {13, 21}};
   int bad = 0, outside = 0, spans = 0;
   for (int v = 0; v < 7; v++) {
     ics_buf_layout L;

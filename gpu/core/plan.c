@@ -281,42 +281,42 @@ typedef struct {
   const ics_scene *settings, *sharp; /* the scene with the settings in force; with d1 sharpened */
   atomic_int next;
   ics_status st[2 * ICS_SCENE_MAX_LIGHTS];
-  char msg[2 * ICS_SCENE_MAX_LIGHTS][256];
+  char msg[2 * ICS_SCENE_MAX_LIGHTS][512];
 } kernels_job;
+
+static int kernel_tasks(const ics_plan *p) {
+  return p->kernels_sharp ? 2 * p->nlights : p->nlights;
+}
 
 static void kernels_tasks(void *ctx, int t, int n) {
   kernels_job *kj = ctx;
   ics_plan *p = kj->p;
-  int nl = p->nlights, tasks = p->kernels_sharp ? 2 * nl : nl;
+  int nl = p->nlights;
   (void)t, (void)n;
-  for (int i; (i = atomic_fetch_add(&kj->next, 1)) < tasks;)
+  for (int i; (i = atomic_fetch_add(&kj->next, 1)) < kernel_tasks(p);)
     kj->st[i] = ics_slab_kernel_init(i < nl ? &p->kernels[i] : &p->kernels_sharp[i - nl],
                                      i < nl ? kj->settings : kj->sharp, i % nl, p->q_ref,
                                      kj->msg[i], sizeof kj->msg[i]);
 }
 
-/* every light's kernel (and its sharp set's), in parallel; the first failure in light order
- * (a light's kernel before its sharp set's) is the one reported */
-static ics_status build_kernels(ics_plan *p, const ics_scene *settings, const ics_scene *sharp,
-                                int threads, char *msg, size_t msg_size) {
+/* every light's kernel (and its sharp set's) built in parallel, on at most one thread a kernel;
+ * NULL when out of memory, else the job with each kernel's status and message (to free) */
+static kernels_job *build_kernels(ics_plan *p, const ics_scene *settings, const ics_scene *sharp,
+                                  int threads) {
+  int tasks = kernel_tasks(p);
   kernels_job *kj = calloc(1, sizeof *kj);
-  ics_pool *pool = ics_pool_create(threads);
+  ics_pool *pool = ics_pool_create(threads > 0 && threads < tasks ? threads : tasks);
   if (!pool) pool = ics_pool_create(1);
   if (!kj || !pool) {
     free(kj);
     ics_pool_destroy(pool);
-    return ICS_ERR_NOMEM;
+    return NULL;
   }
   kj->p = p, kj->settings = settings, kj->sharp = sharp;
   atomic_init(&kj->next, 0);
   ics_pool_run(pool, kernels_tasks, kj);
   ics_pool_destroy(pool);
-  ics_status st = ICS_OK;
-  for (int k = 0; k < p->nlights && st == ICS_OK; k++)
-    for (int i = k; i < (p->kernels_sharp ? 2 : 1) * p->nlights && st == ICS_OK; i += p->nlights)
-      if ((st = kj->st[i]) != ICS_OK && msg) snprintf(msg, msg_size, "%s", kj->msg[i]);
-  free(kj);
-  return st;
+  return kj;
 }
 
 /* each light's slab kernel (from the settings in force), and the perspective classes' work */
@@ -336,9 +336,14 @@ static ics_status plan_kernels(ics_plan *p, double k_est, int threads, char *msg
     p->kernels_sharp = calloc((size_t)p->nlights, sizeof *p->kernels_sharp);
     if (!p->kernels_sharp && p->nlights) return ICS_ERR_NOMEM;
   }
-  ics_status st = build_kernels(p, &tmp, &sharp, threads, msg, msg_size);
-  if (st != ICS_OK) return st;
-  for (int k = 0; k < p->nlights; k++) {
+  kernels_job *kj = p->nlights ? build_kernels(p, &tmp, &sharp, threads) : NULL;
+  if (p->nlights && !kj) return ICS_ERR_NOMEM;
+  ics_status st = ICS_OK;
+  /* the first failure in light order: a light's kernel, its sharp set's, then its size */
+  for (int k = 0; k < p->nlights && st == ICS_OK; k++) {
+    for (int i = k; i < kernel_tasks(p) && st == ICS_OK; i += p->nlights)
+      if ((st = kj->st[i]) != ICS_OK && msg) snprintf(msg, msg_size, "%s", kj->msg[i]);
+    if (st != ICS_OK) break;
     p->light_path[k] = sqrt(1 + s->lights[k].mean[0] * s->lights[k].mean[0] +
                             s->lights[k].mean[1] * s->lights[k].mean[1]);
     const ics_slab_kernel *sk = &p->kernels[k];
@@ -349,9 +354,11 @@ static ics_status plan_kernels(ics_plan *p, double k_est, int threads, char *msg
         snprintf(msg, msg_size, "light %d: its per-slab kernel is %.3g pixels (mean or variance) "
                  "at a pixel size of %.3g: the slab spacing, d1 or the light's spread is out of "
                  "proportion to the image", k, big, p->q_ref);
-      return ICS_ERR_RANGE;
+      st = ICS_ERR_RANGE;
     }
   }
+  free(kj);
+  if (st != ICS_OK) return st;
   if (p->cam.projection == ICS_PROJ_PERSPECTIVE) { /* the classes' compensation per slab */
     double work = plan_work(p, k_est, (double)p->W * p->H, 1);
     if (work > ICS_PLAN_MAX_WORK) {

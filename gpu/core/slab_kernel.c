@@ -103,13 +103,11 @@ static ics_status member_taps(const ics_slab_kernel *sk, const double cls[3], ic
 /* max over a 33 x 33 grid of frequencies in [-pi, pi]^2 of |sum_j w_j exp(i w . x_j)|: 1 for
  * non-negative weights summing to 1, more when signed weights amplify a frequency */
 double ics_taps_amplification(const ics_tap2d *t, int n) {
-  /* for integer taps (what compensation returns) the phase pi a x / 16 lives on 32 values */
-  static double ct[32], st[32];
-  static int ready;
-  if (!ready) {
-    for (int i = 0; i < 32; i++) ct[i] = cos(ICS_PI * i / 16), st[i] = sin(ICS_PI * i / 16);
-    ready = 1; /* the same values from any thread: a benign race */
-  }
+  /* for integer taps (what compensation returns) the phase pi a x / 16 lives on 32 values (a
+   * table of the call's own: the plan builds its lights' kernels on several threads, and 64
+   * sines and cosines are little beside the 33 x 33 x n sums below) */
+  double ct[32], st[32];
+  for (int i = 0; i < 32; i++) ct[i] = cos(ICS_PI * i / 16), st[i] = sin(ICS_PI * i / 16);
   int integer = 1;
   for (int j = 0; j < n && integer; j++) integer = t[j].x == floor(t[j].x) && t[j].y == floor(t[j].y);
   double worst = 0;

@@ -222,7 +222,8 @@ static void piece_attenuate(job_t *j, size_t q, int nv, const double *sig, const
       /* a volume's transport colour scales its extinction for the light, per channel, so the
        * pieces of any slab spacing multiply to the same transmittance */
       const double *T = s->materials[s->objects[objs[i]].material].transport;
-      for (int c = 0; c < P->nch; c++) pass[c] *= ics_k_piece_pass(sig[i], dz, P->light_path[l], T[c]);
+      for (int c = 0; c < P->nch; c++)
+        pass[c] *= ics_k_piece_pass(sig[i], dz, P->light_path[l], T[c]);
     }
     double v0 = j->moment ? first_mean(j, l, q) : 0;
     for (int b = l; b < j->nb; b += P->nlights)
@@ -478,7 +479,8 @@ static void light_colour(const job_t *j, const float *arrive, double L[3]) {
   L[0] = L[1] = L[2] = 0;
   for (int l = 0; l < P->nlights; l++) {
     const ics_light *lt = &P->scene->lights[l];
-    for (int c = 0; c < 3; c++) L[c] += lt->color[c] * lt->weight * arrive[l * P->nch + (P->nch == 3 ? c : 0)];
+    for (int c = 0; c < 3; c++)
+      L[c] += lt->color[c] * lt->weight * arrive[l * P->nch + (P->nch == 3 ? c : 0)];
   }
 }
 

@@ -11,12 +11,11 @@
  * e.g. the default 2 rotations per slab): every set evaluated for a vector of pixels in blocks of
  * ICS_PROP_ROW_BLOCK rows with unaligned loads, a buffer row's horizontal interpolation shared
  * by the two output rows that read it, each pixel keeping its own set's result (a masked blend).
- * Runs of 16 pixels
- * sharing a set: each run as vectors of its own set, the partial runs at the row's ends
- * evaluated over the row's first or last 16 pixels. Many tap sets (a per-pixel table): per lane
- * loads of the taps and corners. Tap-set choices come from a W-lane Philox-4x32-10 (the same
- * words as ics_slab_entry_block), packed as ics_slab_pixel_choice. Perspective steps: the
- * magnification classes (classes_row, below).
+ * Runs of 16 pixels sharing a set: each run as vectors of its own set, the partial runs at the
+ * row's ends evaluated over the row's first or last 16 pixels. Many tap sets (a per-pixel
+ * table): per lane loads of the taps and corners. Tap-set choices come from a W-lane
+ * Philox-4x32-10 (the same words as ics_slab_entry_block), packed as ics_slab_pixel_choice.
+ * Perspective steps: the magnification classes (classes_row, below).
  *
  * Arithmetic: a * b + c written once (madd, and madd1 for one pixel: pixel_fma and class_pixel
  * at the spans' ends), with the target's fused multiply-add where it has one (AVX2 + FMA,
@@ -306,8 +305,8 @@ candidates_block(const ics_prop_taps *pt, const float *S, int stride, const uint
 
 /* pixels [x0, x1) (at least W) of rows y .. y + R - 1 of a few tap sets: the rows' entries, then
  * vectors of candidates_block, the span's end as in stencil_row. Inlined, so that where R is a
- * constant the blocks' loops unroll and their vectors stay in registers (called, the arrays went
- * through memory: 25 % slower). */
+ * constant the blocks' loops unroll (called, the blocks' arrays were zeroed and kept in memory
+ * every vector: no faster than one row at a time). */
 static inline __attribute__((always_inline)) void
 candidates_rows(const ics_prop_taps *pt, const float *src, float *dst, const ics_buf_layout *L,
                 int nch, int y, int R, int x0, int x1, uint32_t *scratch) {

@@ -42,10 +42,10 @@ void ics_tile_copy(const ics_buf_layout *L, const float *src, float *dst, int nc
 /* 1 when pixels [x0, x1) x [y0, y1) of every plane of a and b are equal bit for bit. */
 int ics_tile_equal(const ics_buf_layout *L, const float *a, const float *b, int nch, int x0,
                    int x1, int y0, int y1);
-/* What pixels [x0, x1) x [y0, y1) of buf hold (a scan: after shading wrote into them). grey: the
- * caller knows the planes equal (a grey step that nothing wrote into since), so plane 0 alone is
- * read: CONST where it is constant, else GREY (what the full scan finds there). */
+/* What pixels [x0, x1) x [y0, y1) of buf hold (a scan: after shading wrote into them).
+ * grey_known: the caller knows the planes equal (a grey step that nothing wrote into since), so
+ * plane 0 alone is read: CONST where it is constant, else GREY (what the full scan finds). */
 ics_tile ics_tile_scan(const ics_buf_layout *L, const float *buf, int nch, int x0, int x1, int y0,
-                       int y1, int grey);
+                       int y1, int grey_known);
 
 #endif
