@@ -195,6 +195,14 @@ static double volume_scale(job_t *j, int obj, size_t p, int bi, int bj, double z
   return scale;
 }
 
+/* the camera ray's path per unit depth at buffer pixel (bi, bj): 1 for an orthographic camera */
+static double camera_path(const ics_plan *P, int bi, int bj) {
+  if (P->cam.projection != ICS_PROJ_PERSPECTIVE) return 1;
+  double o[3], d[3];
+  ics_plan_ray(P, bi, bj, o, d);
+  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
 /* a piece of nv volumes (extinctions sig, colours col, their sum `sum`) composited into the
  * view pixel C, lit by L; dl the camera path per unit depth */
 static void piece_composite(int nv, const double *sig, const double (*col)[3], double sum,
@@ -264,13 +272,7 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
   }
   if (!(sum > 0)) return;
   if (inview && C[3] < 1) {
-    double dl = 1; /* camera path per unit depth */
-    if (P->cam.projection == ICS_PROJ_PERSPECTIVE) {
-      double o[3], d[3];
-      ics_plan_ray(P, bi, bj, o, d);
-      dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    }
-    double Lp[3];
+    double dl = camera_path(P, bi, bj), Lp[3];
     if (arrive) piece_light(j, arrive, nv, sig, objs, sum * dl, dz, Lp);
     piece_composite(nv, sig, (const double(*)[3])col, sum, dz, dl, arrive ? Lp : L, C);
   }
@@ -486,9 +488,10 @@ static void light_colour(const job_t *j, const float *arrive, double L[3]) {
 
 /* The common piece, without volume_piece's generality: buffer pixel p inside one volume `obj`
  * that is no solid, no fragment in the slab (the piece is the whole slab [za, za + dz]), no
- * surface occlusion due, Patel's or the solid model (no own terms), an orthographic camera; pre
- * its batched detail values or NULL; C its view pixel or NULL. The same arithmetic as
- * volume_piece for it (the same helpers), so the same bits. */
+ * surface occlusion due; pre its batched detail values or NULL; C its view pixel or NULL. The
+ * same arithmetic as volume_piece and shade_rows for it (the same helpers: the light arriving,
+ * blended under render.model blocker, the piece's own term from render.model surface on), so the
+ * same bits. */
 static void single_volume_piece(job_t *j, size_t p, int bi, int bj, int obj, double za,
                                 double dz, float *C, int t, const double *pre) {
   const ics_plan *P = j->p;
@@ -499,10 +502,13 @@ static void single_volume_piece(job_t *j, size_t p, int bi, int bj, int obj, dou
   if (!(sig > 0)) return;
   if (C && C[3] < 1) {
     float arrive[4 * ICS_SCENE_MAX_LIGHTS * 3];
-    double L[3];
+    double L[3], dl = camera_path(P, bi, bj);
     arriving_light(j, q, za + P->e / 2, arrive);
-    light_colour(j, arrive, L);
-    piece_composite(1, &sig, (const double(*)[3])col, 0 + sig, dz, 1, L, C);
+    if (P->rs.model >= ICS_MODEL_SURFACE)
+      piece_light(j, arrive, 1, &sig, &obj, (0 + sig) * dl, dz, L);
+    else
+      light_colour(j, arrive, L);
+    piece_composite(1, &sig, (const double(*)[3])col, 0 + sig, dz, dl, L, C);
   }
   piece_attenuate(j, q, 1, &sig, &obj, za, dz);
 }
@@ -523,8 +529,6 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
     for (int tx = tx0; tx <= tx1; tx++) busy |= seg[tx] <= k && need[tx] >= k;
     if (!busy) continue; /* nothing in this row before its segments' next slab */
     int batch = j->mask && P->any_detail;
-    /* single_volume_piece takes the common piece (no own terms, an orthographic camera) */
-    int single = P->rs.model <= ICS_MODEL_SOLID && P->cam.projection != ICS_PROJ_PERSPECTIVE;
     const int32_t *slot = NULL;
     const double *values = NULL;
     if (batch) {
@@ -551,7 +555,7 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       int inview = ii >= 0 && ii < P->W && jj >= 0 && jj < P->H;
       float dummy[4] = {0, 0, 0, 1};
       float *C = inview ? j->img->data + ((size_t)jj * P->W + ii) * 4 : dummy;
-      if (single && mask && !(mask & (mask - 1)) && !(mask & P->solid_bits) && !has &&
+      if (mask && !(mask & (mask - 1)) && !(mask & P->solid_bits) && !has &&
           !(acur < end && ics_frag_slab(&ldi->frag[acur]) <= k)) {
         /* inside one volume, nothing else due: the piece, and the pixel needs the next slab */
         double pre[2];
