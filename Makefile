@@ -141,6 +141,8 @@ bench: deps-bench all
 	$(BUILD)/bin/icshadow bench minmax --scene noise
 	@echo "== icshadow bench minmax --svd-table (error of the N-term SVD integrand)"
 	$(BUILD)/bin/icshadow bench minmax --svd-table
+	@echo "== icshadow bench frame (the default scene: skipping, dense and Monte Carlo at 16 spp, side by side)"
+	$(BUILD)/bin/icshadow bench frame --resolution 320x240,768x768 --reps 5
 	@# cl when built and available; gl only where auto takes it (a GPU): on llvmpipe it would add
 	@# a quarter of an hour at 50-120 ns/px/slab (docs/backend_gl.md; `--backend cpu,gl` by hand)
 	@b=cpu; if $(BUILD)/bin/icshadow render --backends | grep '^cl ' | grep -qv 'not available'; then b=cpu,cl; fi; \
