@@ -166,6 +166,9 @@ static void ldi_rows(void *ctx, int t, int nt) {
   for (int bj = t; bj < l->h && !j->failed; bj += nt)
     for (int bi = 0; bi < l->w; bi++) {
       size_t px = (size_t)bj * l->w + bi;
+      /* filling: a ray the count found no crossing on has nothing to fill (nor a volume it
+       * starts inside, with no volume containing the eye) */
+      if (j->fill && l->offset[px] == l->offset[px + 1] && !l->inside0) continue;
       uint64_t inside;
       int n = pixel_hits(p, bi, bj, &h, &hv, &hcap, &inside, j->fill, j->cull);
       if (n < 0) {
