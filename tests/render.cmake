@@ -53,6 +53,14 @@ ics_add_render_test(test_render_aov fast)
 ics_add_render_test(test_render_bias medium) # 8.4 s under ASan (scalar path), 1 s Release
 ics_add_render_test(test_render_mc medium)
 ics_add_render_test(test_render_mc_embree fast ASSIMP EMBREE)
+# Under the sanitizers, LeakSanitizer's exit-time tracer crashes (SIGSEGV, "LeakSanitizer has
+# encountered a fatal error") in about half the runs of this test on a loaded machine, before
+# and after any change of ours: a known fault of the sanitizer runtime when it suspends many
+# threads (Embree's TBB workers; google/sanitizers#1353). Leak checking is off for this test
+# alone; AddressSanitizer still checks every access.
+if(TEST test_render_mc_embree)
+  set_tests_properties(test_render_mc_embree PROPERTIES ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0")
+endif()
 # the shared kernel source (gpu/kernel) compiled as C against the host's detail, transfer and rays
 ics_add_test(NAME test_kernel_c SOURCES test_kernel_c.c LABELS fast render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/scenes/volumes.json)
