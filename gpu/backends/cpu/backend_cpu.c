@@ -167,12 +167,18 @@ static void piece_light(const job_t *j, const float *arrive, int nv, const doubl
   }
 }
 
+/* a piece's sample points, found once for all its volumes (piece_points) */
+typedef struct {
+  int have;
+  double pt[3], pt2[3];
+} piece_at;
+
 /* one volume's colour c and extinction scale in a piece: its material's own, or from its detail
  * value through its transfer function; the value batched already (pre: the piece's one or two
- * ends) or evaluated here at piece_points (timed one piece in DETAIL_SAMPLE: a clock read per
- * piece cost more than a tenth of the detail itself) */
+ * ends) or evaluated here at the piece's points (*at, found on first use; timed one piece in
+ * DETAIL_SAMPLE: a clock read per piece cost more than a tenth of the detail itself) */
 static double volume_scale(job_t *j, int obj, size_t p, int bi, int bj, double za, double dz,
-                           const double *pre, int t, double c[3]) {
+                           const double *pre, piece_at *at, int t, double c[3]) {
   const ics_plan *P = j->p;
   const ics_material *mat = &P->scene->materials[P->scene->objects[obj].material];
   double scale = 1, v[2];
@@ -182,10 +188,10 @@ static double volume_scale(job_t *j, int obj, size_t p, int bi, int bj, double z
     v[0] = pre[0], v[1] = pre[1];
   } else {
     int timed = (p + (size_t)j->k) % DETAIL_SAMPLE == 0;
-    double t0 = timed ? ics_clock_s() : 0, o[3], d[3], pt[3], pt2[3];
-    piece_points(j, p, bi, bj, za, dz, NULL, o, d, pt, pt2);
-    v[0] = ics_detail_value(&P->detail[obj], pt);
-    v[1] = P->rs.preintegrate ? ics_detail_value(&P->detail[obj], pt2) : 0;
+    double t0 = timed ? ics_clock_s() : 0, o[3], d[3];
+    if (!at->have) piece_points(j, p, bi, bj, za, dz, NULL, o, d, at->pt, at->pt2), at->have = 1;
+    v[0] = ics_detail_value(&P->detail[obj], at->pt);
+    v[1] = P->rs.preintegrate ? ics_detail_value(&P->detail[obj], at->pt2) : 0;
     if (timed) j->detail_s[t] += DETAIL_SAMPLE * (ics_clock_s() - t0);
   }
   if (P->rs.preintegrate)
@@ -263,9 +269,10 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
     if (!mask) return;
   }
   double sum = 0;
+  piece_at at = {0};
   for (uint64_t m = mask; m; m &= m - 1) {
     int obj = j->vol_obj[__builtin_ctzll(m)];
-    double scale = volume_scale(j, obj, p, bi, bj, za, dz, pre, t, col[nv]);
+    double scale = volume_scale(j, obj, p, bi, bj, za, dz, pre, &at, t, col[nv]);
     sig[nv] = P->scene->materials[P->scene->objects[obj].material].extinction * scale;
     objs[nv] = obj;
     sum += sig[nv++];
@@ -497,8 +504,9 @@ static void single_volume_piece(job_t *j, size_t p, int bi, int bj, int obj, dou
   const ics_plan *P = j->p;
   size_t q = ics_buf_index(&P->buf, bi, bj);
   double col[1][3];
+  piece_at at = {0};
   double sig = P->scene->materials[P->scene->objects[obj].material].extinction *
-               volume_scale(j, obj, p, bi, bj, za, dz, pre, t, col[0]);
+               volume_scale(j, obj, p, bi, bj, za, dz, pre, &at, t, col[0]);
   if (!(sig > 0)) return;
   if (C && C[3] < 1) {
     float arrive[4 * ICS_SCENE_MAX_LIGHTS * 3];
