@@ -34,11 +34,12 @@
  *   0.07 and 0.29: within a relative 1e-4 (measured 6e-7 at worst); patel, which lights each piece
  *   with the light arriving at its slab, the control: off by more than 1e-3 at every spacing
  *   (measured 0.0043 to 0.12, growing with the spacing);
- * - blocker, blocker-aware penumbrae: a straight edge 0.3 and 0.5 above a receiver (d1 = 1), the
- *   light of mean (-1, 0) and sigma 0.3: the receiver's visibility against the closed form
- *   Phi((x / d - 1) / sigma) over its penumbra, RMS at most 0.02 (measured 0.0047 and 0.0109);
- *   surface, the control, widens the penumbra as sqrt(d d1) for d (Patel's d1 problem): more than
- *   0.05 (measured 0.114 and 0.065);
+ * - blocker, blocker-aware penumbrae: a straight edge 0.1, 0.3 and 0.5 above a receiver (d1 = 1),
+ *   the light of mean (-1, 0) and sigma 0.3: the receiver's visibility against the closed form
+ *   Phi((x / d - 1) / sigma) over its penumbra, RMS at most 0.06, 0.02, 0.02 (measured 0.0471,
+ *   0.0047 and 0.0109; at 0.1, below the sharp set's d1 / 4, the sharp set extrapolated: 0.0867
+ *   with the sharp set alone); surface, the control, widens the penumbra as sqrt(d d1) for d
+ *   (Patel's d1 problem): more than 0.05 (measured 0.203, 0.114 and 0.065);
  * - a scene without solid objects or open surfaces lit by their own term renders alike, bit for
  *   bit, under every model: the contract's disk (its receiver, seen head on, is left out, but its
  *   own term is 1 and nothing shaded lies behind it), and under solid a closed sphere whose
@@ -455,17 +456,18 @@ static double edge_penumbra_error(ics_render_model m, double d, int *n) {
 }
 
 static void test_blocker(void) {
-  const double heights[2] = {0.3, 0.5};
-  for (int h = 0; h < 2; h++)
+  /* 0.1 lies below the sharp set's d1 / 4, where it is extrapolated: 0.087 RMS without */
+  const double heights[3] = {0.1, 0.3, 0.5}, bound[3] = {0.06, 0.02, 0.02};
+  for (int h = 0; h < 3; h++)
     for (int m = ICS_MODEL_SURFACE; m <= ICS_MODEL_BLOCKER; m++) {
       int n;
       double e = edge_penumbra_error((ics_render_model)m, heights[h], &n);
       printf("an edge %.1f above a receiver, %s: %d penumbra pixels, RMS |V - exact| %.4f\n",
              heights[h], ics_render_model_name((ics_render_model)m), n, e);
-      CHECK(n > 1000, "the penumbra holds %d pixels", n);
+      CHECK(n > 500, "the penumbra holds %d pixels", n);
       if (m == ICS_MODEL_BLOCKER)
-        CHECK(e <= 0.02, "blocker, edge %.1f: the penumbra off the closed form by %.4f RMS (at most 0.02)",
-              heights[h], e);
+        CHECK(e <= bound[h], "blocker, edge %.1f: the penumbra off the closed form by %.4f RMS (at most %g)",
+              heights[h], e, bound[h]);
       else
         CHECK(e > 0.05, "the control (surface), edge %.1f, should widen the penumbra: %.4f RMS",
               heights[h], e);

@@ -446,10 +446,14 @@ static void row_details(job_t *j, int bj, double zf, double zb, const int32_t *n
 }
 
 /* The light arriving at pixel q (before this slab's occlusions) into arrive[b nch + c] for every
- * buffered light b. render.model blocker: the first set's (b < nlights) is the sharp set's where
- * the receiver, at depth z, lies within d1 ICS_BLOCKER_SHARP of the mean depth of its blockers
- * (the moment over the first set's occlusion 1 - V), the first set's beyond d1, and between them
- * a blend, linear in log distance (docs/renderer.md "Models": blocker-aware penumbrae). */
+ * buffered light b. render.model blocker: the first set's (b < nlights) becomes the blend
+ * sharp + t (first - sharp) of the sharp set (at d1 s, s = ICS_BLOCKER_SHARP) and the first set
+ * (d1) by the receiver's distance d to its blockers (its depth z less their mean depth, the
+ * moment over the first set's occlusion 1 - V): t = log(d / (d1 s)) / log(1 / s) between d1 s
+ * and d1 (within 0.05 of the t whose mixture of the two penumbrae fits the correct one best, least
+ * squares), 1 beyond d1, and below d1 s the sharp set extrapolated, t = 0.6 log(...) down to -0.5
+ * (about the least-squares t down to d = d1 s / 4), the result kept in [0, max(1, sharp)]
+ * (docs/renderer.md "Models": blocker-aware penumbrae). */
 static void arriving_light(const job_t *j, size_t q, double z, float *arrive) {
   const ics_plan *P = j->p;
   size_t plane = P->buf.plane;
@@ -466,8 +470,12 @@ static void arriving_light(const job_t *j, size_t q, double z, float *arrive) {
     occ /= P->nch;
     if (!(occ > 1e-4)) continue; /* no blocker: the sets agree */
     double zb = P->z0 + mom[0] / occ * P->K * P->e, d = z - zb;
-    double t = d <= d_sharp ? 0 : d >= P->rs.d1 ? 1 : log(d / d_sharp) / log(P->rs.d1 / d_sharp);
-    for (int c = 0; c < P->nch; c++) first[c] = (float)(sh[c] + t * (first[c] - sh[c]));
+    double t = d >= P->rs.d1 ? 1 : d <= 0 ? -0.5 : log(d / d_sharp) / log(P->rs.d1 / d_sharp);
+    if (t < 0) t = fmax(-0.5, 0.6 * t); /* below d1 s: extrapolated (above) */
+    for (int c = 0; c < P->nch; c++) {
+      double v = sh[c] + t * (first[c] - sh[c]);
+      first[c] = (float)(t >= 0 ? v : fmin(fmax(v, 0), fmax(1, sh[c])));
+    }
   }
 }
 
