@@ -10,7 +10,8 @@ images, not drawn from a model.
 
 The scene (scenes/patel_fig18.json; the constants below are read from it): an orthographic view
 along -z, 200 x 150 pixels of 0.02; the wall at z = 0 for y >= 0 and z = y below (45 degrees,
-receding); black boxes 0.5 wide and 0.02 deep spanning the image's height, front faces at
+receding); black boxes 0.5 wide and 0.02 deep reaching 1.2 beyond the image above and below (so
+no row sees light past a box's end: the closed forms below are an infinite edge's), front faces at
 z = 0.40 (x in [-1.7, -1.2]) and z = 1.00 (x in [0, 0.5]); one light of mean (-0.3, 0) and
 variance 0.003 on each axis, so each shadow is cast to the right by 0.3 d and a row at height y
 sees both boxes from one distance d(y) = z_box - z_wall(y). Every light direction leans left
