@@ -247,8 +247,22 @@ static void piece_attenuate(job_t *j, size_t q, int nv, const double *sig, const
   }
 }
 
+/* buffer pixel q inside a solid object at depth z: no light in the first set (and the sharp
+ * set; render.model solid and after; Patel's set keeps it), the light lost added to the moment */
+static void solid_interior(job_t *j, size_t q, double z) {
+  const ics_plan *P = j->p;
+  for (int l = 0; l < P->nlights; l++) {
+    double v0 = j->moment ? first_mean(j, l, q) : 0;
+    for (int b = l; b < j->nb; b += P->nlights)
+      if (j->role[b] == ICS_SET_FIRST || j->role[b] == ICS_SET_SHARP)
+        for (int c = 0; c < P->nch; c++) j->dst[b][(size_t)c * P->buf.plane + q] = 0;
+    if (v0 > 0) moment_add(j, l, q, v0, z);
+  }
+}
+
 /* one volume piece of depth extent dz ending the events at (pixel p, depth za..za+dz); pre: its
- * one volume's detail values (first and second end) evaluated already, or NULL */
+ * one volume's detail values (first and second end) evaluated already, or NULL; mask may hold
+ * solid objects too (solid_interior) */
 static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, double za, double dz,
                          const double L[3], const float *arrive, float *C, int inview, int t,
                          const double *pre) {
@@ -256,15 +270,8 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
   double sig[ICS_MAX_VOLUMES], col[ICS_MAX_VOLUMES][3];
   int objs[ICS_MAX_VOLUMES], nv = 0;
   size_t q = ics_buf_index(&P->buf, bi, bj);
-  if (mask & P->solid_bits) { /* inside a solid object: no light in the first set (render.model
-                                 solid and surface; the second set is Patel's) */
-    for (int l = 0; l < P->nlights; l++) {
-      double v0 = j->moment ? first_mean(j, l, q) : 0;
-      for (int b = l; b < j->nb; b += P->nlights)
-        if (j->role[b] == ICS_SET_FIRST || j->role[b] == ICS_SET_SHARP)
-          for (int c = 0; c < P->nch; c++) j->dst[b][(size_t)c * P->buf.plane + q] = 0;
-      if (v0 > 0) moment_add(j, l, q, v0, za + dz / 2);
-    }
+  if (mask & P->solid_bits) {
+    solid_interior(j, q, za + dz / 2);
     mask &= ~P->solid_bits;
     if (!mask) return;
   }
@@ -449,11 +456,10 @@ static void row_details(job_t *j, int bj, double zf, double zb, const int32_t *n
  * buffered light b. render.model blocker: the first set's (b < nlights) becomes the blend
  * sharp + t (first - sharp) of the sharp set (at d1 s, s = ICS_BLOCKER_SHARP) and the first set
  * (d1) by the receiver's distance d to its blockers (its depth z less their mean depth, the
- * moment over the first set's occlusion 1 - V): t = log(d / (d1 s)) / log(1 / s) between d1 s
- * and d1 (within 0.05 of the t whose mixture of the two penumbrae fits the correct one best, least
- * squares), 1 beyond d1, and below d1 s the sharp set extrapolated, t = 0.6 log(...) down to -0.5
- * (about the least-squares t down to d = d1 s / 4), the result kept in [0, max(1, sharp)]
- * (docs/renderer.md "Models": blocker-aware penumbrae). */
+ * moment over the first set's occlusion 1 - V): the sharp set's up to d1 s, the first set's from
+ * d1 on, and between them t = log(d / (d1 s)) / log(1 / s), within 0.05 of the t whose mixture of
+ * the two penumbrae fits the correct one best (least squares; docs/renderer.md "Models":
+ * blocker-aware penumbrae). */
 static void arriving_light(const job_t *j, size_t q, double z, float *arrive) {
   const ics_plan *P = j->p;
   size_t plane = P->buf.plane;
@@ -470,12 +476,8 @@ static void arriving_light(const job_t *j, size_t q, double z, float *arrive) {
     occ /= P->nch;
     if (!(occ > 1e-4)) continue; /* no blocker: the sets agree */
     double zb = P->z0 + mom[0] / occ * P->K * P->e, d = z - zb;
-    double t = d >= P->rs.d1 ? 1 : d <= 0 ? -0.5 : log(d / d_sharp) / log(P->rs.d1 / d_sharp);
-    if (t < 0) t = fmax(-0.5, 0.6 * t); /* below d1 s: extrapolated (above) */
-    for (int c = 0; c < P->nch; c++) {
-      double v = sh[c] + t * (first[c] - sh[c]);
-      first[c] = (float)(t >= 0 ? v : fmin(fmax(v, 0), fmax(1, sh[c])));
-    }
+    double t = d <= d_sharp ? 0 : d >= P->rs.d1 ? 1 : log(d / d_sharp) / log(P->rs.d1 / d_sharp);
+    for (int c = 0; c < P->nch; c++) first[c] = (float)(sh[c] + t * (first[c] - sh[c]));
   }
 }
 
@@ -611,18 +613,25 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       double pre[2];
       const double *pv = batched(j, batch && mask && !has ? slot : NULL, values, bi, pre);
       double za = zf;
+      uint64_t entered = 0; /* the solids entered in this slab: their interior is dark from the
+                               next slab on (or at once where the ray leaves them in this slab) */
       for (;;) {
         double zn = has ? ldi->frag[cur].z : zb;
         if (zn < za) zn = za;
         if (zn > zb) zn = zb;
-        if (mask && zn > za)
-          volume_piece(j, p, bi, bj, mask, za, zn - za, L,
+        if ((mask & ~entered) && zn > za)
+          volume_piece(j, p, bi, bj, mask & ~entered, za, zn - za, L,
                        P->rs.model >= ICS_MODEL_SURFACE && inview ? arrive : NULL, C, inview, t,
                        pv);
         if (!has) break;
         int obj = ics_frag_obj(&ldi->frag[cur]), ib = P->inside_bit[obj];
         if (ib >= 0) mask ^= 1ull << ib; /* a volume's or a solid's boundary */
         int solid = ib >= 0 && (P->solid_bits >> ib & 1);
+        if (solid && (mask >> ib & 1)) entered |= 1ull << ib;
+        else if (solid && (entered >> ib & 1)) { /* a solid thinner than this slab's rest */
+          entered &= ~(1ull << ib);
+          solid_interior(j, q, zn);
+        }
         if ((ib < 0 || solid) && inview) { /* a surface */
           double Lo[3];
           uint64_t lights = P->rs.model < ICS_MODEL_SURFACE ? 0 : solid ? ~0ull : P->own_lights[obj];
