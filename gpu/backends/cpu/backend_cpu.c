@@ -261,8 +261,8 @@ static void solid_interior(job_t *j, size_t q, double z) {
 }
 
 /* one volume piece of depth extent dz ending the events at (pixel p, depth za..za+dz); pre: its
- * one volume's detail values (first and second end) evaluated already, or NULL; mask may hold
- * solid objects too (solid_interior) */
+ * one volume's detail values (first and second end) evaluated already, or NULL (mask: volumes
+ * only; a solid's interior is solid_interior's) */
 static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, double za, double dz,
                          const double L[3], const float *arrive, float *C, int inview, int t,
                          const double *pre) {
@@ -270,11 +270,6 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
   double sig[ICS_MAX_VOLUMES], col[ICS_MAX_VOLUMES][3];
   int objs[ICS_MAX_VOLUMES], nv = 0;
   size_t q = ics_buf_index(&P->buf, bi, bj);
-  if (mask & P->solid_bits) {
-    solid_interior(j, q, za + dz / 2);
-    mask &= ~P->solid_bits;
-    if (!mask) return;
-  }
   double sum = 0;
   piece_at at = {0};
   for (uint64_t m = mask; m; m &= m - 1) {
@@ -613,21 +608,25 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       double pre[2];
       const double *pv = batched(j, batch && mask && !has ? slot : NULL, values, bi, pre);
       double za = zf;
-      uint64_t entered = 0; /* the solids entered in this slab: their interior is dark from the
-                               next slab on (or at once where the ray leaves them in this slab) */
+      /* a solid's interior is dark from the slab after the one its ray enters it in: from this
+       * slab's front for the solids held since an earlier slab (dark already: no piece darkens
+       * them again), from the next for those entered here, or at once where the ray leaves them
+       * in this slab */
+      uint64_t held = mask & P->solid_bits, entered = 0;
+      if (held) solid_interior(j, q, zf);
       for (;;) {
         double zn = has ? ldi->frag[cur].z : zb;
         if (zn < za) zn = za;
         if (zn > zb) zn = zb;
-        if ((mask & ~entered) && zn > za)
-          volume_piece(j, p, bi, bj, mask & ~entered, za, zn - za, L,
+        if ((mask & ~(held | entered)) && zn > za)
+          volume_piece(j, p, bi, bj, mask & ~(held | entered), za, zn - za, L,
                        P->rs.model >= ICS_MODEL_SURFACE && inview ? arrive : NULL, C, inview, t,
                        pv);
         if (!has) break;
         int obj = ics_frag_obj(&ldi->frag[cur]), ib = P->inside_bit[obj];
         if (ib >= 0) mask ^= 1ull << ib; /* a volume's or a solid's boundary */
         int solid = ib >= 0 && (P->solid_bits >> ib & 1);
-        if (solid && (mask >> ib & 1)) entered |= 1ull << ib;
+        if (solid && (mask >> ib & 1) && !(held >> ib & 1)) entered |= 1ull << ib;
         else if (solid && (entered >> ib & 1)) { /* a solid thinner than this slab's rest */
           entered &= ~(1ull << ib);
           solid_interior(j, q, zn);
