@@ -442,6 +442,18 @@ static void test_volume_own_term(void) {
     }
 }
 
+/* the scene (JSON, destroyed here) rendered under model m with the visibility AOV; *ch: light
+ * 0's channel in r.aov */
+static render_result visibility_render(const char *json, ics_render_model m, int *ch) {
+  ics_scene *s = scene_from_json(json);
+  ics_render_settings rs = *ics_scene_settings(s);
+  rs.model = m;
+  render_result r = render_scene_aovs(s, &rs, 2, ICS_AOV_VISIBILITY);
+  *ch = ics_exr_channel_index(r.aov, "light0.V");
+  ics_scene_destroy(s);
+  return r;
+}
+
 /* a straight edge at height d over a receiver, the light of mean (-1, 0) and variance 0.09 on
  * each axis (sigma 0.3): the receiver's visibility AOV against the closed form
  * V(x) = Phi((x / d - 1) / sigma) (a light direction X reaches x past the edge at x + X d),
@@ -457,11 +469,8 @@ static double edge_penumbra_error(ics_render_model m, double d, int *n) {
            " \"objects\": [{\"shape\": \"rect\", \"center\": [-2, 0, %g], \"normal\": [0, 0, 1], \"size\": [4, 8], \"material\": \"black\"},"
            "  {\"shape\": \"rect\", \"center\": [0, 0, 0], \"normal\": [0, 0, 1], \"size\": [8, 8], \"material\": \"white\"}]}",
            sigma * sigma, sigma * sigma, d);
-  ics_scene *s = scene_from_json(j);
-  ics_render_settings rs = *ics_scene_settings(s);
-  rs.model = m;
-  render_result r = render_scene_aovs(s, &rs, 2, ICS_AOV_VISIBILITY);
-  int ch = ics_exr_channel_index(r.aov, "light0.V");
+  int ch;
+  render_result r = visibility_render(j, m, &ch);
   double sum = 0, px = 2.0 / 96;
   *n = 0;
   for (int jj = 0; jj < 96; jj++)
@@ -473,7 +482,6 @@ static double edge_penumbra_error(ics_render_model m, double d, int *n) {
     }
   ics_image_destroy(r.img);
   ics_exr_channels_destroy(r.aov);
-  ics_scene_destroy(s);
   return sqrt(sum / *n);
 }
 
@@ -494,11 +502,8 @@ static double thin_solid_umbra(ics_render_model m, double thick) {
            " \"objects\": [%s"
            "  {\"shape\": \"rect\", \"center\": [0, 0, 0], \"normal\": [0, 0, 1], \"size\": [8, 8], \"material\": \"white\"}]}",
            box);
-  ics_scene *s = scene_from_json(j);
-  ics_render_settings rs = *ics_scene_settings(s);
-  rs.model = m;
-  render_result r = render_scene_aovs(s, &rs, 2, ICS_AOV_VISIBILITY);
-  int ch = ics_exr_channel_index(r.aov, "light0.V");
+  int ch;
+  render_result r = visibility_render(j, m, &ch);
   double worst = 0, px = 2.0 / 72;
   for (int jj = 0; jj < 72; jj++)
     for (int i = 0; i < 96; i++) {
@@ -508,7 +513,6 @@ static double thin_solid_umbra(ics_render_model m, double thick) {
     }
   ics_image_destroy(r.img);
   ics_exr_channels_destroy(r.aov);
-  ics_scene_destroy(s);
   return worst;
 }
 
