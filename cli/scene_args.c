@@ -56,7 +56,9 @@ void scene_args_help(FILE *f) {
           "  --model M           patel (Patel's slicing, the default), solid (+ closed opaque\n"
           "                      objects solid), surface (+ own light terms in closed form) or\n"
           "                      blocker (+ blocker-aware penumbrae); override render.model\n"
-          "                      (docs/renderer.md \"Models\"; the cpu backend)\n"
+          "                      (docs/renderer.md \"Models\"; the cpu backend). blocker is the\n"
+          "                      closest to the reference; with 2-3x the slab spacing it takes\n"
+          "                      about Patel's frame time (docs/results.md)\n"
           "  --allow-outside-paths  let the scene read files (lights_file, grids, meshes and the\n"
           "                      files they name) outside its own folder\n");
 }
