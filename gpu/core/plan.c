@@ -67,6 +67,17 @@ int ics_plan_light_sets(const ics_plan *p) {
   return 1 + has_patel_set(p) + (p->rs.model >= ICS_MODEL_BLOCKER ? 2 : 0);
 }
 
+int ics_plan_set_channels(const ics_plan *p, int set) {
+  return ics_plan_set_role(p, set) == ICS_SET_MOMENT ? 1 : p->nch;
+}
+
+/* every light-buffer set's channels, summed (the planes per light) */
+static int set_planes(const ics_plan *p) {
+  int n = 0;
+  for (int set = 0; set < ics_plan_light_sets(p); set++) n += ics_plan_set_channels(p, set);
+  return n;
+}
+
 ics_set_role ics_plan_set_role(const ics_plan *p, int set) {
   if (set == 0) return ICS_SET_FIRST;
   if (has_patel_set(p) && set == 1) return ICS_SET_PATEL;
@@ -510,7 +521,7 @@ static ics_status plan_memory(ics_plan *p, plan_bytes *b, char *msg, size_t msg_
       b->tap += cls * (4 * n + 9) * 36;
     }
   }
-  p->backend_bytes = (size_t)p->nlights * ics_plan_light_sets(p) * b->buf + b->state + b->image +
+  p->backend_bytes = (size_t)p->nlights * set_planes(p) * (b->buf / p->nch) + b->state + b->image +
                      b->tap;
   b->offset = (npx + 1) * sizeof(uint32_t);
   b->mesh = b->grid = 0;
@@ -608,7 +619,8 @@ static void plan_passes(ics_plan *p, const plan_bytes *b) {
     snprintf(d, sizeof d, "%d more light-buffer set(s) per light: %s%s%s", sets - 1,
              patel ? "Patel's (it lights the solids' surfaces)" : "", patel && blocker ? "; " : "",
              blocker ? "the sharp set (d1 / 4) and the blocker moment (render.model blocker)" : "");
-    add_pass(p, "light_buffer_sets", (size_t)p->nlights * (size_t)(sets - 1) * b->buf, -1, 0, d);
+    add_pass(p, "light_buffer_sets", (size_t)p->nlights * (size_t)(set_planes(p) - p->nch) * (b->buf / p->nch),
+             -1, 0, d);
   }
   if (p->any_detail) {
     snprintf(d, sizeof d, "detail functions of volumetric materials, one sample per slab piece");

@@ -136,6 +136,8 @@ typedef enum { ICS_SET_FIRST, ICS_SET_PATEL, ICS_SET_SHARP, ICS_SET_MOMENT } ics
 #define ICS_BLOCKER_SHARP 0.25
 int ics_plan_light_sets(const ics_plan *p);
 ics_set_role ics_plan_set_role(const ics_plan *p, int set);
+/* the channels of a set's buffers: the plan's nch, the moment's 1 (it is grey: only one is read) */
+int ics_plan_set_channels(const ics_plan *p, int set);
 /* The kernel of buffered light b's set (the sharp set's, or light l's) */
 const ics_slab_kernel *ics_plan_set_kernel(const ics_plan *p, int b);
 double ics_plan_window_max(const ics_plan *p);

@@ -39,6 +39,7 @@ typedef struct {
   int nb;                /* buffered lights: nlights x sets (ics_plan_light_sets: the first,
                             Patel's, the sharp and the moment set, as the model has them) */
   ics_set_role *role;    /* per buffered light: its set's role */
+  int chans[4 * ICS_SCENE_MAX_LIGHTS]; /* per buffered light: its channels (the moment's 1) */
   int patel_set;         /* Patel's set, which lights the solids' surfaces (0: none) */
   int sharp_set;         /* render.model blocker: the sharp set (the moment set follows it) */
   int moment;            /* render.model blocker: the sharp and moment sets are kept */
@@ -107,7 +108,7 @@ static void moment_add(job_t *j, int l, size_t q, double v0, double z) {
   double gain = (v0 - first_mean(j, l, q)) * (z - P->z0) / (P->K * P->e);
   for (int b = l; b < j->nb; b += P->nlights)
     if (j->role[b] == ICS_SET_MOMENT)
-      for (int c = 0; c < P->nch; c++) j->dst[b][(size_t)c * P->buf.plane + q] += (float)gain;
+      j->dst[b][q] += (float)gain;
 }
 
 /* the last pair of jitters drawn: pixels 2 m and 2 m + 1 of a slab share one Philox call */
@@ -459,7 +460,8 @@ static void arriving_light(const job_t *j, size_t q, double z, float *arrive) {
   const ics_plan *P = j->p;
   size_t plane = P->buf.plane;
   for (int b = 0; b < j->nb; b++)
-    for (int c = 0; c < P->nch; c++) arrive[b * P->nch + c] = j->dst[b][(size_t)c * plane + q];
+    for (int c = 0; c < P->nch; c++)
+      arrive[b * P->nch + c] = j->dst[b][(size_t)(c < j->chans[b] ? c : 0) * plane + q];
   if (P->rs.model < ICS_MODEL_BLOCKER) return;
   int nl = P->nlights, sharp = j->sharp_set;
   double d_sharp = P->rs.d1 * ICS_BLOCKER_SHARP;
@@ -672,12 +674,12 @@ static void step_tiles(job_t *j, int b, int ty, int tx0, int tx1, int kind, int 
   const ics_plan *P = j->p;
   int x0 = ics_tile_x0(&j->p->tiles, tx0), x1 = ics_tile_x1(&j->p->tiles, tx1);
   int y0 = ics_tile_y0(&j->p->tiles, ty), y1 = ics_tile_y1(&j->p->tiles, ty);
-  int planes = kind == ICS_TILE_GREY ? 1 : P->nch;
+  int nch = j->chans[b], planes = kind == ICS_TILE_GREY ? 1 : nch;
   ics_prop_span(taps_of(j, b), j->src[b], j->dst[b], &P->buf, planes, y0, y1, x0, x1,
                 j->scratch + (size_t)t * ICS_PROP_SCRATCH(P->Wb), j->simd);
-  if (planes < P->nch) ics_tile_copy_grey(&P->buf, j->dst[b], P->nch, x0, x1, y0, y1);
+  if (planes < nch) ics_tile_copy_grey(&P->buf, j->dst[b], nch, x0, x1, y0, y1);
   j->active[t] += (double)(x1 - x0) * (y1 - y0) * planes;
-  memset(written + tx0, planes < P->nch ? 4 : 2, (size_t)(tx1 - tx0 + 1));
+  memset(written + tx0, planes < nch ? 4 : 2, (size_t)(tx1 - tx0 + 1));
 }
 
 /* 1 when source tiles [tx0, tx1] x [ty0, ty1] of second-set buffer b all equal the first set's */
@@ -728,15 +730,16 @@ static void propagate_row(job_t *j, int b, int ty, int t, uint8_t *written) {
         written[tx] = 3;
         continue;
       }
-      want = ics_tile_classify(g, j->tsrc[b], P->nch, fx0, fx1, fy0, fy1);
+      want = ics_tile_classify(g, j->tsrc[b], j->chans[b], fx0, fx1, fy0, fy1);
     }
     if (run >= 0 && (want.kind == ICS_TILE_CONST || want.kind != run_kind)) {
       step_tiles(j, b, ty, run, tx - 1, run_kind, t, written);
       run = -1;
     }
     if (want.kind == ICS_TILE_CONST) {
-      if (!ics_tile_same_const(d, &want, P->nch)) {
-        ics_tile_fill(&P->buf, j->dst[b], P->nch, ics_tile_x0(g, tx), ics_tile_x1(g, tx), y0, y1, &want);
+      if (!ics_tile_same_const(d, &want, j->chans[b])) {
+        ics_tile_fill(&P->buf, j->dst[b], j->chans[b], ics_tile_x0(g, tx), ics_tile_x1(g, tx), y0, y1,
+                      &want);
         written[tx] = 1;
       }
     } else if (run < 0) {
@@ -758,7 +761,7 @@ static void settle_row(job_t *j, int ty, const uint8_t *marks) {
   for (int b = 0; b < j->nb; b++) {
     int signed_ = ics_plan_set_kernel(P, b)->comp == ICS_RC_SIGNED;
     if (signed_)
-      for (int c = 0; c < P->nch; c++)
+      for (int c = 0; c < j->chans[b]; c++)
         for (int y = y0; y < y1; y++) {
           float *row = j->dst[b] + (size_t)c * P->buf.plane + ics_buf_index(&P->buf, 0, y);
           for (int x = 0; x < P->Wb; x++) row[x] = row[x] < 0 ? 0 : row[x] > 1 ? 1 : row[x];
@@ -768,7 +771,7 @@ static void settle_row(job_t *j, int ty, const uint8_t *marks) {
       size_t i = (size_t)ty * g->nx + tx;
       int x0 = ics_tile_x0(g, tx), x1 = ics_tile_x1(g, tx);
       if (shaded[tx] || written[tx] == 2 || written[tx] == 4 || signed_)
-        j->tdst[b][i] = ics_tile_scan(&P->buf, j->dst[b], P->nch, x0, x1, y0, y1,
+        j->tdst[b][i] = ics_tile_scan(&P->buf, j->dst[b], j->chans[b], x0, x1, y0, y1,
                                       written[tx] == 4 && !shaded[tx] && !signed_);
       if (j->role[b] != ICS_SET_PATEL) continue;
       /* the second set: a copied tile shading left alone still equals the first set's (and
@@ -784,7 +787,7 @@ static void settle_row(job_t *j, int ty, const uint8_t *marks) {
     }
     int last = g->nx - 1;
     if (shaded[0] || written[0] || shaded[last] || written[last] || signed_)
-      ics_prop_apron(&P->buf, j->dst[b], P->nch, y0, y1, 0);
+      ics_prop_apron(&P->buf, j->dst[b], j->chans[b], y0, y1, 0);
   }
 }
 
@@ -814,7 +817,7 @@ static void start_job(void *ctx, int t, int n) {
   job_t *j = ctx;
   const ics_plan *P = j->p;
   const ics_ldi *ldi = &P->ldi;
-  size_t ntiles = (size_t)P->tiles.nx * P->tiles.ny, size = (size_t)P->nch * P->buf.plane;
+  size_t ntiles = (size_t)P->tiles.nx * P->tiles.ny;
   size_t npx = (size_t)P->Wb * P->Hb;
   for (size_t i = npx * t / n; i < npx * (t + 1) / n; i++) {
     j->cursor[i] = j->acursor[i] = ldi->offset[i];
@@ -827,6 +830,7 @@ static void start_job(void *ctx, int t, int n) {
     float v0 = j->role[i % j->nb] == ICS_SET_MOMENT ? 0.0f : 1.0f;
     const ics_tile lit = {ICS_TILE_CONST, {v0, v0, v0}};
     float *buf = i < j->nb ? j->src[i] : j->dst[i - j->nb];
+    size_t size = (size_t)j->chans[i % j->nb] * P->buf.plane;
     ics_tile *tiles = i < j->nb ? j->tsrc[i] : j->tdst[i - j->nb];
     uint8_t *same = i < j->nb ? j->ssrc[i] : j->sdst[i - j->nb];
     for (size_t x = size * t / n; x < size * (t + 1) / n; x++) buf[x] = v0;
@@ -882,6 +886,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->moment = P->rs.model >= ICS_MODEL_BLOCKER;
   for (int b = 0; b < nb; b++) {
     role[b] = ics_plan_set_role(P, b / nl);
+    j->chans[b] = ics_plan_set_channels(P, b / nl);
     if (role[b] == ICS_SET_PATEL) j->patel_set = b / nl;
     if (role[b] == ICS_SET_SHARP) j->sharp_set = b / nl;
   }
@@ -912,7 +917,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
       (aov && !j->aov_seen) || !j->marks || (P->any_detail && (!j->dpts || !j->dslot)))
     goto nomem;
   for (int i = 0; i < 2 * nb; i++) {
-    bufs[i] = malloc(sizeof(float) * (size_t)P->nch * P->buf.plane);
+    bufs[i] = malloc(sizeof(float) * (size_t)j->chans[i % nb] * P->buf.plane);
     tiles[i] = malloc(sizeof(ics_tile) * ntiles);
     sames[i] = malloc(ntiles);
     if (!bufs[i] || !tiles[i] || !sames[i]) goto nomem;
@@ -953,7 +958,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
     atomic_store(&j->next_row, 0);
     ics_pool_run(pool, slab_job, j);
     if (j->failed) goto nomem;
-    for (int b = 0; b < nb; b++) ics_prop_apron(&P->buf, j->dst[b], P->nch, 0, 0, 1);
+    for (int b = 0; b < nb; b++) ics_prop_apron(&P->buf, j->dst[b], j->chans[b], 0, 0, 1);
     for (int b = 0; b < nb; b++) {
       float *tmp = j->src[b];
       j->src[b] = j->dst[b];
@@ -979,7 +984,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
     stats->ms_detail += 1e3 * j->detail_s[t] / nt;
     stats->updates_active += j->active[t];
   }
-  stats->updates_dense = (double)npx * P->K * nb * P->nch;
+  for (int b = 0; b < nb; b++) stats->updates_dense += (double)npx * P->K * j->chans[b];
   if (nb && P->K)
     stats->ns_per_px_slab = 1e6 * stats->ms_convolution / ((double)npx * P->K * nb);
   stats->ms_total = 1e3 * (ics_clock_s() - t_start);
