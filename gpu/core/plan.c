@@ -238,7 +238,7 @@ static double geometry_work(const ics_plan *p, double rays) {
 
 /* the byte counts the plan's memory estimate and its passes are made of */
 typedef struct plan_bytes {
-  size_t buf, state, image, tap, offset, mesh, grid, ldi, region;
+  size_t plane2, buf, state, image, tap, offset, mesh, grid, ldi, region;
 } plan_bytes;
 
 /* resolution, settings, the slab count and the steps' work, before anything is allocated:
@@ -500,7 +500,8 @@ static void plan_apron(ics_plan *p) {
 static ics_status plan_memory(ics_plan *p, plan_bytes *b, char *msg, size_t msg_size) {
   const ics_scene *s = p->scene;
   size_t npx = (size_t)p->Wb * p->Hb, nimg = (size_t)p->W * p->H;
-  b->buf = 2 * (size_t)p->nch * p->buf.plane * sizeof(float);
+  b->plane2 = 2 * (size_t)p->buf.plane * sizeof(float); /* one channel, both ping-pong buffers */
+  b->buf = (size_t)p->nch * b->plane2;
   b->state = npx * (3 * sizeof(uint32_t) + (p->ninside ? sizeof(uint64_t) : 0));
   b->image = nimg * 4 * sizeof(float);
   b->tap = 0;
@@ -521,7 +522,7 @@ static ics_status plan_memory(ics_plan *p, plan_bytes *b, char *msg, size_t msg_
       b->tap += cls * (4 * n + 9) * 36;
     }
   }
-  p->backend_bytes = (size_t)p->nlights * set_planes(p) * (b->buf / p->nch) + b->state + b->image +
+  p->backend_bytes = (size_t)p->nlights * set_planes(p) * b->plane2 + b->state + b->image +
                      b->tap;
   b->offset = (npx + 1) * sizeof(uint32_t);
   b->mesh = b->grid = 0;
@@ -619,7 +620,7 @@ static void plan_passes(ics_plan *p, const plan_bytes *b) {
     snprintf(d, sizeof d, "%d more light-buffer set(s) per light: %s%s%s", sets - 1,
              patel ? "Patel's (it lights the solids' surfaces)" : "", patel && blocker ? "; " : "",
              blocker ? "the sharp set (d1 / 4) and the blocker moment (render.model blocker)" : "");
-    add_pass(p, "light_buffer_sets", (size_t)p->nlights * (size_t)(set_planes(p) - p->nch) * (b->buf / p->nch),
+    add_pass(p, "light_buffer_sets", (size_t)p->nlights * (size_t)(set_planes(p) - p->nch) * b->plane2,
              -1, 0, d);
   }
   if (p->any_detail) {

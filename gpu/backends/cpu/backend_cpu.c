@@ -449,19 +449,19 @@ static void row_details(job_t *j, int bj, double zf, double zb, const int32_t *n
 }
 
 /* The light arriving at pixel q (before this slab's occlusions) into arrive[b nch + c] for every
- * buffered light b. render.model blocker: the first set's (b < nlights) becomes the blend
- * sharp + t (first - sharp) of the sharp set (at d1 s, s = ICS_BLOCKER_SHARP) and the first set
- * (d1) by the receiver's distance d to its blockers (its depth z less their mean depth, the
- * moment over the first set's occlusion 1 - V): the sharp set's up to d1 s, the first set's from
- * d1 on, and between them t = log(d / (d1 s)) / log(1 / s), within 0.05 of the t whose mixture of
- * the two penumbrae fits the correct one best (least squares; docs/renderer.md "Models":
+ * buffered light b and channel c it has (the moment: c = 0 alone). render.model blocker: the
+ * first set's (b < nlights) becomes the blend sharp + t (first - sharp) of the sharp set (at
+ * d1 s, s = ICS_BLOCKER_SHARP) and the first set (d1) by the receiver's distance d to its
+ * blockers (its depth z less their mean depth, the moment over the first set's occlusion 1 - V):
+ * the sharp set's up to d1 s, the first set's from d1 on, and between them
+ * t = log(d / (d1 s)) / log(1 / s), within 0.05 of the t whose mixture of the two penumbrae fits
+ * the correct one best (least squares, analysis/blocker_blend.py; docs/renderer.md "Models":
  * blocker-aware penumbrae). */
 static void arriving_light(const job_t *j, size_t q, double z, float *arrive) {
   const ics_plan *P = j->p;
   size_t plane = P->buf.plane;
   for (int b = 0; b < j->nb; b++)
-    for (int c = 0; c < P->nch; c++)
-      arrive[b * P->nch + c] = j->dst[b][(size_t)(c < j->chans[b] ? c : 0) * plane + q];
+    for (int c = 0; c < j->chans[b]; c++) arrive[b * P->nch + c] = j->dst[b][(size_t)c * plane + q];
   if (P->rs.model < ICS_MODEL_BLOCKER) return;
   int nl = P->nlights, sharp = j->sharp_set;
   double d_sharp = P->rs.d1 * ICS_BLOCKER_SHARP;
@@ -520,10 +520,10 @@ static void single_volume_piece(job_t *j, size_t p, int bi, int bj, int obj, dou
     double L[3], dl = camera_path(P, bi, bj);
     arriving_light(j, q, za + P->e / 2, arrive);
     if (P->rs.model >= ICS_MODEL_SURFACE)
-      piece_light(j, arrive, 1, &sig, &obj, (0 + sig) * dl, dz, L);
+      piece_light(j, arrive, 1, &sig, &obj, sig * dl, dz, L);
     else
       light_colour(j, arrive, L);
-    piece_composite(1, &sig, (const double(*)[3])col, 0 + sig, dz, dl, L, C);
+    piece_composite(1, &sig, (const double(*)[3])col, sig, dz, dl, L, C);
   }
   piece_attenuate(j, q, 1, &sig, &obj, za, dz);
 }
