@@ -14,18 +14,16 @@ one's RMS misfit. Standard library only.
 usage: python3 analysis/blocker_blend.py
 """
 import math
+from statistics import NormalDist
 
 S = 0.25  # ICS_BLOCKER_SHARP (gpu/core/plan_internal.h)
 XS = [-6 + 12 * i / 4000 for i in range(4001)]  # in units of the correct standard deviation
 
 
-def cdf(x):
-    return 0.5 * (1 + math.erf(x / math.sqrt(2)))
-
-
 def profiles(r):
     """the sharp, first and correct penumbrae at d = r d1 s, sampled at XS"""
     s_sharp, s_first = math.sqrt(1 / r), math.sqrt(1 / (r * S))  # over the correct sd
+    cdf = NormalDist().cdf
     return ([cdf(x / s_sharp) for x in XS], [cdf(x / s_first) for x in XS], [cdf(x) for x in XS])
 
 
