@@ -173,13 +173,20 @@ def main():
     os.makedirs(os.path.dirname(os.path.abspath(a.csv)), exist_ok=True)
     tmp = tempfile.mkdtemp(prefix="evt")
     if a.scene is None:
+        # the default scene at Patel's spacing, the table's baseline since issue 26 (it ships with
+        # 0.045 under render.model auto); each task names its model and spacing (run_task: patel
+        # at e0 unless it says)
         base = icshadow.default_scene()
+        shipped_e = base["render"]["slab_spacing"]
+        base["render"]["slab_spacing"] = 0.015
+        base["render"].pop("model")
     else:
         try:
             with open(a.scene) as f:
                 base = json.load(f)
         except (OSError, ValueError) as e:
             die(f"--scene: {a.scene}: {e}")
+        shipped_e = base["render"]["slab_spacing"]
     if a.resolution:
         base["camera"]["resolution"] = [int(v) for v in a.resolution.split("x")]
     W0, H0 = base["camera"]["resolution"]
@@ -197,7 +204,7 @@ def main():
     def run_task(res, overrides, what):
         """a render of the scene (its file, so that its own files resolve, or the default) at res
         with the overrides of its render settings (backend, spp: the renderer's own options)"""
-        kw = dict(overrides)
+        kw = {"model": "patel", "slab_spacing": e0, **overrides}
         return render(what, scene=a.scene, resolution=tuple(int(v) for v in res.split("x")), **kw)
 
     def ref_path(res):
@@ -215,7 +222,7 @@ def main():
                       {"kernel": k, "samples": n, "compensate": comp}))
     if not a.quick:
         tasks.append(("slab", f"ellipse2 expected e={e0:g} run16", res0, {"rotation_run": 16}))
-        for f in (0.5, 2, 4):
+        for f in (0.5, 2, 3, 4):
             for pre in (False, True):
                 tasks.append(("slab", f"ellipse2 expected e={e0 * f:g}{' preint' if pre else ''}", res0,
                               {"slab_spacing": e0 * f, "preintegrate": pre}))
@@ -316,11 +323,12 @@ def main():
             plot(rows, ref_info.get("reference_spp"), ref_info["reference_noise"], a.reps, a.plot)
         if a.images and os.path.exists(ref_png):
             slab_png, diff_png = os.path.join(tmp, "slab.png"), os.path.join(tmp, "diff.png")
-            got = run_task(res0, {}, "the default configuration")
+            got = render("the scene's own settings", scene=a.scene, resolution=(W0, H0))
             got.write_png(slab_png)
             ref_rgb = np.stack([icshadow.read_exr(a.ref)[0][c] for c in "RGB"], -1)
             icshadow.write_png(diff_png, difference_image(got.rgba[:, :, :3], ref_rgb, 4))
-            images(slab_png, ref_png, diff_png, icshadow.compare(got, a.ref), a.images)
+            what = f"slab renderer (the scene's settings: model {got.summary['model']}, e = {shipped_e:g})"
+            images(slab_png, ref_png, diff_png, icshadow.compare(got, a.ref), a.images, what)
     shutil.rmtree(tmp, ignore_errors=True)
 
 
@@ -333,8 +341,8 @@ def difference_image(rgb, ref, scale):
     return out
 
 
-def images(slab_png, ref_png, diff_png, c, path):
-    """The default configuration, the reference and their difference side by side."""
+def images(slab_png, ref_png, diff_png, c, path, what):
+    """The scene as it ships, the reference and their difference side by side."""
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -344,7 +352,7 @@ def images(slab_png, ref_png, diff_png, c, path):
         print("error_vs_time: matplotlib not installed: no images", file=sys.stderr)
         return
     fig, ax = plt.subplots(1, 3, figsize=(12, 3.4))
-    titles = ("slab renderer (ellipse2, defaults)", "Monte-Carlo reference (%s spp)" % c.get("reference_spp"),
+    titles = (what, "Monte-Carlo reference (%s spp)" % c.get("reference_spp"),
               "render - reference, x4 (red brighter, blue darker)")
     for k, (png, t) in enumerate(zip((slab_png, ref_png, diff_png), titles)):
         ax[k].imshow(mpimg.imread(png))

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Per-pixel rotations against Monte Carlo (docs/renderer.md "The light buffers": why the default
-is 2): for the embedded default scene and every orthographic scene of scenes/, the slab renderer
-with render.pixel_rotations K (default 1, 2, 4) and render seeds 1..S, each compared with
+is 2): for the embedded default scene (at e = 0.015) and every orthographic scene of scenes/, the
+slab renderer under Patel's model with render.pixel_rotations K (default 1, 2, 4) and render seeds 1..S, each compared with
 `--compare` to a Monte-Carlo reference of the same scene (made once per scene in --out:
 `icshadow render SCENE --backend mc --spp N`; the default scene's may be given with --ref).
 Prints a CSV row per scene and K: the mean, min and max RMSE over the seeds and the mean max
@@ -71,7 +71,10 @@ def main():
             rmse, mx = [], []
             for seed in range(1, a.seeds + 1):
                 s = json.loads(json.dumps(scene))
-                s.setdefault("render", {}).update({"pixel_rotations": k, "seed": seed})
+                # Patel's model, the default scene at its spacing (it ships with 0.045 under auto)
+                s.setdefault("render", {}).update({"pixel_rotations": k, "seed": seed, "model": "patel"})
+                if name == "default":
+                    s["render"]["slab_spacing"] = 0.015
                 # beside the scene: it may read files relative to its folder
                 tmp = os.path.join(os.path.dirname(os.path.abspath(path)), f".rotations_{os.getpid()}.json")
                 try:

@@ -53,12 +53,13 @@ void scene_args_help(FILE *f) {
           "  --threads N         threads (0, the default: all cores)\n"
           "  --dense             propagate every light-buffer pixel at every slab (render.dense:\n"
           "                      no skipping of inactive regions and constant tiles)\n"
-          "  --model M           patel (Patel's slicing, the default), solid (+ closed opaque\n"
+          "  --model M           auto (the default: blocker on cpu, patel on cl and gl), patel\n"
+          "                      (Patel's slicing, as in the paper), solid (+ closed opaque\n"
           "                      objects solid), surface (+ own light terms in closed form) or\n"
           "                      blocker (+ blocker-aware penumbrae); override render.model\n"
-          "                      (docs/renderer.md \"Models\"; the cpu backend). blocker is the\n"
-          "                      closest to the reference; with 2-3x the slab spacing it takes\n"
-          "                      about Patel's frame time (docs/results.md)\n"
+          "                      (docs/renderer.md \"Models\"; cl and gl render patel only).\n"
+          "                      blocker is the closest to the reference; at 3x the slab\n"
+          "                      spacing it takes Patel's frame time (docs/results.md)\n"
           "  --allow-outside-paths  let the scene read files (lights_file, grids, meshes and the\n"
           "                      files they name) outside its own folder\n");
 }

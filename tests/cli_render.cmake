@@ -57,8 +57,15 @@ ics_cli_test(NAME cli_plan_print_scene_with_scene RC 2 ARGS "plan|${disk}|--prin
 ics_cli_test(NAME cli_plan_model RC 0 ARGS "plan|--model|surface|--resolution|32x24" OUT "\"model\": \"surface\"")
 ics_cli_test(NAME cli_render_model RC 0 ARGS "render|--model|solid|--resolution|32x24|-o|${rd}/model.exr"
   OUT "\"model\": \"solid\"")
+# render.model auto, the default: blocker on cpu, said in the plan and the summary
+ics_cli_test(NAME cli_plan_model_auto RC 0 ARGS "plan|--resolution|32x24"
+  OUT "\"model\": \"blocker\",\n  \"model_auto\": true")
+ics_cli_test(NAME cli_render_model_auto RC 0 ARGS "render|--resolution|32x24|-o|${rd}/model_auto.exr"
+  OUT "\"model\": \"blocker\", \"model_auto\": true")
+ics_cli_test(NAME cli_render_model_patel RC 0 ARGS "render|--model|patel|--resolution|32x24|-o|${rd}/model_patel.exr"
+  OUT "\"model\": \"patel\", \"model_auto\": false")
 ics_cli_test(NAME cli_render_model_bad RC 2 ARGS "render|--model|exact|--resolution|8x6|-o|${rd}/mb.exr"
-  ERR "--model: unknown value 'exact' \\(expected patel, solid, surface, blocker\\)" NOFILE ${rd}/mb.exr)
+  ERR "--model: unknown value 'exact' \\(expected patel, solid, surface, blocker, auto\\)" NOFILE ${rd}/mb.exr)
 ics_cli_test(NAME cli_render_model_blocker RC 0 ARGS "render|--model|blocker|--resolution|32x24|-o|${rd}/mblk.exr"
   OUT "\"model\": \"blocker\"")
 endif()

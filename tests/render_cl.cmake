@@ -16,7 +16,7 @@ if(ICS_HAVE_RENDER AND ICS_HAVE_OPENCL)
   file(MAKE_DIRECTORY ${rdc})
   ics_cli_test(NAME cli_render_cl RC 0 LABELS medium
     ARGS "render|--backend|cl|--resolution|64x48|-o|${rdc}/default.exr"
-    OUT "\"backend\": \"cl\", \"device\": \"OpenCL, [^\"]+\".*\"ns_per_px_slab\": [0-9.e+-]+")
+    OUT "\"backend\": \"cl\", \"device\": \"OpenCL, [^\"]+\".*\"model\": \"patel\", \"model_auto\": true.*\"ns_per_px_slab\": [0-9.e+-]+")
   # a model with solid objects is the cpu backend's so far: refused on cl, before any output
   ics_cli_test(NAME cli_render_cl_model RC 2 LABELS medium
     ARGS "render|--backend|cl|--model|surface|--resolution|32x24|-o|${rdc}/model.exr"

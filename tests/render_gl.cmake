@@ -40,10 +40,10 @@ endif()
 if(ICS_HAVE_RENDER AND ICS_HAVE_GL)
   set(rdg ${CMAKE_CURRENT_BINARY_DIR}/tmp/cli_render_gl)
   file(MAKE_DIRECTORY ${rdg})
-  # the context in the summary, for each kind
+  # the context in the summary, for each kind; the default scene's render.model auto as patel
   ics_cli_test(NAME cli_render_gl_egl RC 0 LABELS medium
     ARGS "render|--backend|gl|--gl-context|egl|--resolution|64x48|-o|${rdg}/egl.exr"
-    OUT "\"backend\": \"gl\", \"device\": \"OpenGL egl-[a-z]+[^\"]*: [^\"]+\".*\"ns_per_px_slab\": [0-9.e+-]+")
+    OUT "\"backend\": \"gl\", \"device\": \"OpenGL egl-[a-z]+[^\"]*: [^\"]+\".*\"model\": \"patel\", \"model_auto\": true.*\"ns_per_px_slab\": [0-9.e+-]+")
   ics_cli_test(NAME cli_render_gl_osmesa RC 0 LABELS medium
     ARGS "render|--backend|gl|--gl-context|osmesa|--resolution|64x48|-o|${rdg}/osmesa.exr"
     OUT "\"backend\": \"gl\", \"device\": \"OpenGL osmesa: [^\"]+\"")

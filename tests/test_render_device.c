@@ -122,7 +122,8 @@ static const char *const variants[][3] = {
 #define SCENE_FILE_SIDE 128
 
 /* cpu against the backend on scene s at width x height (0, 0: the scene's resolution); mode: the
- * path light 0 must run in (NULL: any) */
+ * path light 0 must run in (NULL: any). The backend renders the scene's render.model (auto, which
+ * it renders as patel, or patel), the cpu patel. */
 static void compare(const char *what, const char *mode, const ics_scene *s, int width,
                     int height) {
   if (mode) { /* the path this variant is for */
@@ -136,7 +137,9 @@ static void compare(const char *what, const char *mode, const ics_scene *s, int 
     CHECK(!strcmp(got, mode), "%s: light 0 runs in mode '%s', the variant is for '%s'", what, got, mode);
   }
   const unsigned aovs = ICS_AOV_VISIBILITY | ICS_AOV_DEPTH;
-  render_result a = render_scene_sized_on("cpu", s, NULL, 0, aovs, width, height),
+  ics_render_settings patel = *ics_scene_settings(s);
+  patel.model = ICS_MODEL_PATEL;
+  render_result a = render_scene_sized_on("cpu", s, &patel, 0, aovs, width, height),
                 b = render_scene_sized_on(backend, s, NULL, 0, aovs, width, height);
   double maxd = 0, sum = 0;
   int at = 0;
@@ -161,6 +164,7 @@ static void compare(const char *what, const char *mode, const ics_scene *s, int 
   CHECK(rms <= TOL_RMS, "%s: RMS difference %.3g > %.3g", what, rms, TOL_RMS);
   CHECK(amax <= TOL_MAX, "%s: AOVs differ by %.3g > %.3g", what, amax, TOL_MAX);
   CHECK(!strcmp(b.stats.backend, backend), "%s: backend %s", what, b.stats.backend);
+  CHECK(!strcmp(b.stats.model, "patel"), "%s: the backend rendered model %s", what, b.stats.model);
   const char *ldi = getenv("ICS_GL_LDI"); /* the device's layered depth image: it was built */
   if (!strcmp(backend, "gl") && ldi && !strcmp(ldi, "device"))
     CHECK(b.stats.ms_geometry_device > 0, "%s: ICS_GL_LDI=device, but no LDI built on the device",

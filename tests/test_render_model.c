@@ -77,7 +77,8 @@ static void test_patel_unchanged(void) {
    * choices were packed several to a Philox word (slab_choice.h), which changed the default's
    * random stream and nothing else (the default scene with 1 or 384 rotations, or runs of 16,
    * whose choices it left alone, rendered bit for bit as before it: icshadow render --compare
-   * of the two builds, RMSE 0, checked by hand at that commit) */
+   * of the two builds, RMSE 0, checked by hand at that commit); the default scene's slab spacing
+   * was 0.015 then (0.045 since its model became auto) */
   static const struct {
     ics_simd_path path;
     uint64_t hash;
@@ -88,6 +89,7 @@ static void test_patel_unchanged(void) {
   ics_scene *s = default_scene_96x72();
   ics_render_settings rs = *ics_scene_settings(s);
   rs.model = ICS_MODEL_PATEL;
+  rs.slab_spacing = 0.015;
   rs.dense = 1;
   rs.pixel_rotations = 4; /* the default before it became 2 */
   for (size_t i = 0; i < sizeof before / sizeof *before; i++) {
@@ -556,6 +558,7 @@ static void test_blocker(void) {
 
 static void no_solids(const char *name, ics_scene *s, ics_render_model last) {
   ics_render_settings rs = *ics_scene_settings(s);
+  rs.model = ICS_MODEL_PATEL;
   render_result a = render_scene(s, &rs, 2);
   for (int m = ICS_MODEL_SOLID; m <= (int)last; m++) {
     rs.model = (ics_render_model)m;
@@ -582,7 +585,45 @@ static void test_no_solids(const char *disk) {
             ICS_MODEL_SOLID);
 }
 
+/* render.model auto: blocker while the volumes and solids fit the inside mask (64 opaque spheres,
+ * or 70 with 6 of them tinted, which are not solid), patel beyond (65 opaque spheres, which
+ * blocker refuses), with the omission in the plan */
+static void test_auto(void) {
+  const struct {
+    int spheres, tinted;
+    ics_render_model want;
+  } cases[] = {{64, 0, ICS_MODEL_BLOCKER}, {70, 6, ICS_MODEL_BLOCKER}, {65, 0, ICS_MODEL_PATEL}};
+  for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
+    char json[16384];
+    int n = snprintf(json, sizeof json,
+                     "{\"camera\": {\"eye\": [0, 0, 3], \"target\": [0, 0, 0], \"height\": 4,"
+                     " \"resolution\": [32, 32]}, \"render\": {\"slab_spacing\": 0.05, \"d1\": 1},"
+                     " \"lights\": [{\"mean\": [0.1, 0.1], \"var\": [0.01, 0.01]}],"
+                     " \"materials\": {\"m\": {}, \"t\": {\"opacity\": 0.5}}, \"objects\": [");
+    for (int k = 0; k < cases[c].spheres; k++)
+      n += snprintf(json + n, sizeof json - (size_t)n,
+                    "%s{\"shape\": \"sphere\", \"center\": [%g, %g, 0], \"radius\": 0.1,"
+                    " \"material\": \"%s\"}", k ? ", " : "", -1.8 + 0.4 * (k % 10),
+                    -1.8 + 0.4 * (k / 10), k < cases[c].tinted ? "t" : "m");
+    snprintf(json + n, sizeof json - (size_t)n, "]}");
+    ics_scene *s = scene_from_json(json);
+    CHECK(ics_scene_settings(s)->model == ICS_MODEL_AUTO, "render.model absent: auto");
+    ics_plan *p = plan_or_exit(s, NULL, 1);
+    int omitted = 0;
+    for (int i = 0; i < ics_plan_omitted_count(p); i++)
+      omitted |= !strcmp(ics_plan_omitted_at(p, i)->name, "render.model blocker");
+    printf("auto, %d spheres (%d tinted): %s%s\n", cases[c].spheres, cases[c].tinted,
+           ics_render_model_name(p->rs.model), omitted ? ", omitted render.model blocker" : "");
+    CHECK(p->model_auto && p->rs.model == cases[c].want && omitted == (cases[c].want == ICS_MODEL_PATEL),
+          "auto, %d spheres: %s, want %s (omission listed: %d)", cases[c].spheres,
+          ics_render_model_name(p->rs.model), ics_render_model_name(cases[c].want), omitted);
+    ics_plan_destroy(p);
+    ics_scene_destroy(s);
+  }
+}
+
 int main(int argc, char **argv) {
+  test_auto();
   test_patel_unchanged();
   test_solid();
   test_own_term();

@@ -4,11 +4,13 @@
  * and "mc", the Monte-Carlo reference. "gl" comes first but auto picks it only on a GPU (an EGL
  * device that is not Mesa's software one); an entry passed over or failing to start leaves a
  * one-line note (ics_renderer_note). */
+#define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "backend.h"
+#include "clock.h"
 #include "own_term.h"
 #include "plan_internal.h"
 #include "pool.h"
@@ -276,9 +278,9 @@ static ics_status aov_create(const ics_plan *P, unsigned aovs, ics_exr_channels 
   return ICS_OK;
 }
 
-ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsigned aovs,
-                                    ics_image **out, ics_exr_channels **aov_out,
-                                    ics_render_stats *stats, char *msg, size_t msg_size) {
+static ics_status render_plan(ics_renderer *r, const ics_plan *plan, unsigned aovs,
+                              ics_image **out, ics_exr_channels **aov_out,
+                              ics_render_stats *stats, char *msg, size_t msg_size) {
   *out = NULL;
   if (aov_out) *aov_out = NULL;
   if (msg && msg_size) msg[0] = 0;
@@ -312,6 +314,7 @@ ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsig
   if (!stats) stats = &local;
   memset(stats, 0, sizeof *stats);
   snprintf(stats->backend, sizeof stats->backend, "%s", r->b->name);
+  snprintf(stats->model, sizeof stats->model, "%s", ics_render_model_name(plan->rs.model));
   ics_image *img;
   ics_status st = ics_image_create(&img, plan->W, plan->H, 4);
   if (st != ICS_OK) {
@@ -345,6 +348,31 @@ ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsig
   *out = img;
   if (aov_out) *aov_out = ch;
   return ICS_OK;
+}
+
+/* render.model auto resolves to blocker in the plan; a backend that renders patel only renders
+ * Patel's plan of the same scene, settings and size, made here (its geometry pass counted in
+ * the render's time) */
+ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsigned aovs,
+                                    ics_image **out, ics_exr_channels **aov_out,
+                                    ics_render_stats *stats, char *msg, size_t msg_size) {
+  if (!plan->model_auto || (r->b->models >> plan->rs.model & 1))
+    return render_plan(r, plan, aovs, out, aov_out, stats, msg, msg_size);
+  *out = NULL;
+  if (aov_out) *aov_out = NULL;
+  double t0 = ics_clock_s();
+  ics_render_settings rs = plan->rs;
+  rs.model = ICS_MODEL_PATEL;
+  ics_plan_opts po = {.settings = &rs, .width = plan->W, .height = plan->H,
+                      .threads = r->opts.threads};
+  ics_plan *patel;
+  ics_status st = ics_plan_create(&patel, plan->scene, &po, msg, msg_size);
+  if (st != ICS_OK) return st;
+  double ms_plan = 1e3 * (ics_clock_s() - t0);
+  st = render_plan(r, patel, aovs, out, aov_out, stats, msg, msg_size);
+  if (st == ICS_OK && stats) stats->ms_total += ms_plan;
+  ics_plan_destroy(patel);
+  return st;
 }
 
 ics_status ics_renderer_render(ics_renderer *r, const ics_plan *plan, ics_image **out,

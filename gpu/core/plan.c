@@ -204,6 +204,13 @@ static void estimate_depth(const ics_plan *p, double *zlo, double *zhi) {
 
 static int grey(const double t[3]) { return t[0] == t[1] && t[1] == t[2]; }
 
+/* an opaque surface material (opacity 1, black transport: one that lets light through, tinted,
+ * is not solid): a closed shape of it is solid under render.model solid and after */
+static int solid_candidate(const ics_material *m) {
+  return !m->volumetric && m->opacity == 1 && m->transport[0] == 0 && m->transport[1] == 0 &&
+         m->transport[2] == 0;
+}
+
 /* The work of a render in pixel-slab-light updates, every term that grows counted: the steps
  * (slabs x pixels x lights); volume detail, an update per octave of every volume with detail at
  * every pixel and slab (the worst case: every pixel inside every such volume); with perspective
@@ -437,9 +444,21 @@ static void plan_padding(ics_plan *p, double zlo, double zhi, double k_est) {
   }
 }
 
+/* render.model auto: blocker, or patel where the volumes and solids (solid_candidate) exceed
+ * the inside mask's ICS_MAX_VOLUMES bits, which blocker would refuse */
+static void resolve_model(ics_plan *p) {
+  p->model_auto = p->rs.model == ICS_MODEL_AUTO;
+  if (!p->model_auto) return;
+  const ics_scene *s = p->scene;
+  int n = 0;
+  for (int k = 0; k < s->nobjects; k++)
+    n += s->objects[k].closed && (s->materials[s->objects[k].material].volumetric ||
+                                  solid_candidate(&s->materials[s->objects[k].material]));
+  p->rs.model = n > ICS_MAX_VOLUMES ? ICS_MODEL_PATEL : ICS_MODEL_BLOCKER;
+}
+
 /* volumes, channels, detail, and the inside mask's bits: the volumes, then (render.model solid
- * and after) the solid objects, a closed shape of an opaque surface material (opacity 1, black
- * transport: one that lets light through, tinted, is not solid) */
+ * and after) the solid objects, a closed shape of a solid_candidate material */
 static ics_status plan_volumes(ics_plan *p, char *msg, size_t msg_size) {
   const ics_scene *s = p->scene;
   int coloured = 0, nvol = 0;
@@ -468,9 +487,7 @@ static ics_status plan_volumes(ics_plan *p, char *msg, size_t msg_size) {
   for (int k = 0; k < s->nobjects; k++) {
     const ics_material *m = &s->materials[s->objects[k].material];
     p->inside_bit[k] = p->vol_bit[k];
-    int opaque = !m->volumetric && m->opacity == 1 && m->transport[0] == 0 &&
-                 m->transport[1] == 0 && m->transport[2] == 0;
-    if (p->rs.model < ICS_MODEL_SOLID || !opaque || !s->objects[k].closed) continue;
+    if (p->rs.model < ICS_MODEL_SOLID || !solid_candidate(m) || !s->objects[k].closed) continue;
     if (nin == ICS_MAX_VOLUMES) {
       if (msg)
         snprintf(msg, msg_size, "more than %d volumetric and solid objects (render.model %s)",
@@ -613,6 +630,12 @@ static void plan_passes(ics_plan *p, const plan_bytes *b) {
       add_omitted(p, nm, "zero variance: integer shifts instead");
     }
   }
+  if (p->model_auto && p->rs.model == ICS_MODEL_PATEL) {
+    char why[sizeof p->omitted->reason];
+    snprintf(why, sizeof why, "render.model auto: more than %d volumetric and solid objects (the "
+             "inside mask's bits): patel", ICS_MAX_VOLUMES);
+    add_omitted(p, "render.model blocker", why);
+  }
   if (p->nch == 1) add_omitted(p, "colour light buffers", "every transport colour is grey: one channel per light");
   int sets = ics_plan_light_sets(p); /* the sets beyond the first (ics_set_role) */
   if (sets > 1) {
@@ -655,6 +678,7 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   if (!p) return ICS_ERR_NOMEM;
   p->scene = s;
   p->rs = o.settings ? *o.settings : s->settings;
+  resolve_model(p);
   p->cam = s->camera;
   p->tan_half_fov = tan(p->cam.fov_deg * (ICS_PI / 360));
   if (o.width > 0) p->cam.width = o.width;
@@ -729,7 +753,8 @@ ics_status ics_plan_write_json(const ics_plan *p, FILE *f) {
           p->pad[0], p->pad[1], p->pad[2], p->pad[3]);
   fprintf(f, "  \"slabs\": %d,\n  \"slab_spacing\": %.17g,\n  \"depth_range\": [%.17g, %.17g],\n",
           p->K, p->e, p->z0, p->z0 + p->K * p->e);
-  fprintf(f, "  \"model\": \"%s\",\n", ics_render_model_name(p->rs.model));
+  fprintf(f, "  \"model\": \"%s\",\n  \"model_auto\": %s,\n", ics_render_model_name(p->rs.model),
+          p->model_auto ? "true" : "false");
   fprintf(f, "  \"channels_per_light\": %d,\n  \"memory_bytes\": %zu,\n  \"passes\": [", p->nch,
           p->memory_bytes);
   for (int i = 0; i < p->npasses; i++) {

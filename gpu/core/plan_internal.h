@@ -60,7 +60,9 @@ typedef struct ics_ldi {
 
 struct ics_plan {
   const ics_scene *scene;
-  ics_render_settings rs; /* the settings in force (scene's or overridden) */
+  ics_render_settings rs; /* the settings in force (scene's or overridden; render.model auto
+                             resolved to blocker) */
+  int model_auto;         /* render.model was auto: a backend without blocker renders patel */
   ics_camera cam;         /* the camera in force (resolution overridden) */
   double tan_half_fov;    /* perspective: tan(fov / 2), computed once (every ray takes it) */
   double cam_rec[ICS_DEV_CAM]; /* the camera record (kernel/device_layout.h) rays are cast from */

@@ -17,8 +17,9 @@ void ics_render_summary_write(FILE *f, const ics_plan *plan, const ics_render_se
   fprintf(f, ", \"threads\": %d, \"resolution\": [%d, %d]", stats->threads, W, H);
   if (!mc)
     fprintf(f, ", \"light_buffer\": [%d, %d], \"slabs\": %d, \"kernel\": \"%s\", \"samples\": %d, "
-            "\"model\": \"%s\"", bw, bh, stats->slabs, ics_render_kernel_name(rs->kernel),
-            rs->samples, ics_render_model_name(rs->model));
+            "\"model\": \"%s\", \"model_auto\": %s", bw, bh, stats->slabs,
+            ics_render_kernel_name(rs->kernel), rs->samples, stats->model,
+            rs->model == ICS_MODEL_AUTO ? "true" : "false");
   fprintf(f, ", \"seed\": %llu, \"ms_plan\": %.17g, \"ms_geometry\": %.17g, \"ms_render\": %.17g",
           (unsigned long long)rs->seed, ms_plan, 1e3 * ics_plan_geometry_seconds(plan),
           stats->ms_total);

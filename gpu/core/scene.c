@@ -13,7 +13,8 @@
 static const char *const kernel_names[ICS_RK_COUNT_] = {"ellipse", "poisson", "gauss", "tophat"};
 static const char *const comp_names[ICS_RC_COUNT_] = {"default", "expected", "integer",
                                                       "nonneg",  "signed",   "none"};
-static const char *const model_names[ICS_MODEL_COUNT_] = {"patel", "solid", "surface", "blocker"};
+static const char *const model_names[ICS_MODEL_COUNT_] = {"patel", "solid", "surface", "blocker",
+                                                          "auto"};
 static const char *const shape_names[ICS_SHAPE_COUNT_] = {"rect",   "disk",  "box",
                                                           "sphere", "torus", "mesh"};
 
@@ -38,6 +39,7 @@ void ics_render_settings_defaults(ics_render_settings *s) {
   s->pixel_rotations = 2;
   s->rotation_run = 1;
   s->memory_limit_mib = 4096;
+  s->model = ICS_MODEL_AUTO;
 }
 
 static double dot3(const double a[3], const double b[3]) {
@@ -136,8 +138,8 @@ static const char default_json[] =
     "{\n"
     "  \"camera\": {\"projection\": \"orthographic\", \"eye\": [0, 1.0, 3], \"target\": [0, 0.25, 0],\n"
     "             \"up\": [0, 1, 0], \"height\": 2.4, \"resolution\": [320, 240]},\n"
-    "  \"render\": {\"slab_spacing\": 0.015, \"d1\": 1.0, \"kernel\": \"ellipse\", \"samples\": 2,\n"
-    "             \"seed\": 1, \"background\": [0.02, 0.02, 0.03]},\n"
+    "  \"render\": {\"model\": \"auto\", \"slab_spacing\": 0.045, \"d1\": 1.0, \"kernel\": \"ellipse\",\n"
+    "             \"samples\": 2, \"seed\": 1, \"background\": [0.02, 0.02, 0.03]},\n"
     "  \"lights\": [\n"
     "    {\"mean\": [-0.4, 0.5], \"var\": [0.012, 0.004], \"angle_deg\": 30, \"color\": [1.0, 0.78, 0.5],\n"
     "     \"weight\": 0.85},\n"

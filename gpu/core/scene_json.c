@@ -307,7 +307,7 @@ static int read_render(rctx *c, json_t *o) {
   }
   const char *mn[ICS_MODEL_COUNT_];
   for (int i = 0; i < ICS_MODEL_COUNT_; i++) mn[i] = ics_render_model_name((ics_render_model)i);
-  int model = 0;
+  int model = (int)r->model;
   if ((x = json_object_get(o, "model")) &&
       J(ics_jenum(&c->j, where_at(c, "render.model"), x, mn, ICS_MODEL_COUNT_, &model)))
     return -1;

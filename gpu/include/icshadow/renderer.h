@@ -66,6 +66,8 @@ typedef struct ics_render_stats {
    * lights x channels) and those propagated (the rest skipped: outside the active regions,
    * constant tiles, grey tiles' copies; docs/renderer.md); 0 for the other backends */
   double updates_dense, updates_active;
+  char model[16]; /* the render.model the backend rendered: the plan's ("blocker" for auto), or
+                     "patel" where auto met a backend that renders patel only */
 } ics_render_stats;
 
 typedef struct ics_renderer ics_renderer;
@@ -108,7 +110,8 @@ ICS_API ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *pla
 
 /* The render summary as JSON object members, without braces, each after the first preceded by
  * ", " (docs/renderer.md "The render summary"): "backend", "device", "threads", "resolution";
- * for the slab renderers "light_buffer", "slabs", "kernel", "samples", "model"; "seed",
+ * for the slab renderers "light_buffer", "slabs", "kernel", "samples", "model" (the model
+ * rendered) and "model_auto" (true when rs asked for auto); "seed",
  * "ms_plan" (as given), "ms_geometry", "ms_render"; for the slab renderers "ms_convolution",
  * "ms_shading", "ms_detail", "ns_per_px_slab", "memory_bytes"; "updates_dense" and
  * "updates_active" where reported, "ms_geometry_device" where the device built the layered

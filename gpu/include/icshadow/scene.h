@@ -75,6 +75,8 @@ typedef enum ics_render_model {
   ICS_MODEL_SURFACE,   /* + a surface's own term in closed form (the light on its lit side) */
   ICS_MODEL_BLOCKER,   /* + blocker-aware penumbrae: a sharper light-buffer set blended in by
                           each receiver's distance to its blockers */
+  ICS_MODEL_AUTO,      /* the closest model the backend renders: blocker on cpu, patel on cl and
+                          gl (the default; docs/renderer.md "Which model") */
   ICS_MODEL_COUNT_
 } ics_render_model;
 
@@ -91,7 +93,8 @@ typedef struct ics_render_settings {
                           or 384; default 2) */
   int rotation_run;    /* 1: every pixel chooses; 16: runs of 16 pixels of a row share a choice
                           (their start moved by a random phase each slab) */
-  ics_render_model model; /* default ICS_MODEL_PATEL */
+  ics_render_model model; /* a scene's default ICS_MODEL_AUTO (ics_plan_create resolves it); a
+                             zeroed struct says ICS_MODEL_PATEL */
   int dense;           /* 1: every light-buffer pixel propagated at every slab (the reference the
                           skipping is tested against); 0 (default): only the active regions, with
                           constant tiles skipped (docs/renderer.md "Work a frame does not need") */
