@@ -80,7 +80,6 @@ static ics_status frame(const ics_scene *s, const ics_render_settings *rs0, int 
                         size_t msg_size) {
   ics_render_settings rs = *rs0;
   rs.dense = w == WORK_DENSE;
-  ics_plan_opts po = {.settings = &rs, .width = width, .height = height, .threads = threads};
   ics_render_opts ro = {.backend = w == WORK_MC ? "mc" : "cpu", .threads = threads,
                         .spp = w == WORK_MC ? spp : 0};
   ics_plan *p = NULL;
@@ -88,10 +87,13 @@ static ics_status frame(const ics_scene *s, const ics_render_settings *rs0, int 
   ics_image *img = NULL;
   ics_render_stats st;
   memset(&st, 0, sizeof st);
+  /* the renderer first: the plan resolves render.model auto for its backend */
+  ics_status status = ics_renderer_create(&r, &ro, msg, msg_size);
+  ics_plan_opts po = {.settings = &rs, .width = width, .height = height, .threads = threads,
+                      .renderer = r};
   double t0 = cli_now_s();
-  ics_status status = ics_plan_create(&p, s, &po, msg, msg_size);
+  if (status == ICS_OK) status = ics_plan_create(&p, s, &po, msg, msg_size);
   double t1 = cli_now_s();
-  if (status == ICS_OK) status = ics_renderer_create(&r, &ro, msg, msg_size);
   if (status == ICS_OK) status = ics_renderer_render(r, p, &img, &st, msg, msg_size);
   if (status == ICS_OK && rep > 0) {
     double plan_ms = 1e3 * (t1 - t0);

@@ -155,7 +155,7 @@ static int bench_config(const config_t *c, cli_progress *prog, int *busy, int *c
                "\"size\": [%d, %d], \"material\": \"black\"}", -0.25 * n, n / 2, 2 * n);
     snprintf(json, sizeof json,
              "{\"camera\": {\"eye\": [0, 0, 1], \"target\": [0, 0, 0], \"height\": %d, \"resolution\": [%d, %d]},"
-             " \"render\": {\"slab_spacing\": 1, \"d1\": 1, \"kernel\": \"%s\", \"samples\": %d,"
+             " \"render\": {\"model\": \"patel\", \"slab_spacing\": 1, \"d1\": 1, \"kernel\": \"%s\", \"samples\": %d,"
              " \"compensate\": \"%s\", \"max_pad\": 0, \"seed\": 1, \"rotation_run\": %d,%s \"dense\": %s},"
              " \"lights\": [{\"mean\": [%.17g, %.17g], \"cov\": [[%.17g, %.17g], [%.17g, %.17g]]}],"
              " \"materials\": {\"black\": {\"color\": [0, 0, 0]}, \"white\": {}},"

@@ -259,30 +259,34 @@ static int parse_args(render_args *r, int argc, char **argv, int *listed) {
   return check_args(r);
 }
 
-/* the render on the backend asked for (progress, the auto note, the backend options' warnings);
+/* the renderer of the backend asked for, its progress into *sp (the backend options' warnings);
  * 0, or the exit status after the message */
-static int render_image(render_args *r, const ics_plan *plan, ics_image **img,
-                        ics_exr_channels **aov, ics_render_stats *stats) {
+static int open_renderer(render_args *r, slab_progress *sp, ics_renderer **rd) {
   char msg[CLI_MSG_MAX] = "";
-  slab_progress sp = {.t_last = cli_now_s()};
-  cli_progress_init(&sp.p, "render", r->force_progress);
+  sp->t_last = cli_now_s();
+  cli_progress_init(&sp->p, "render", r->force_progress);
   ics_render_opts ro = {.backend = r->backend, .threads = r->a.threads, .spp = r->spp,
                         .time_s = r->time_s, .noise = r->noise, .mc_mesh = r->mc_mesh,
                         .options = backend_options_list(&r->bo)};
-  if (sp.p.on) ro.progress = r->mc ? on_sample : on_slab, ro.progress_ctx = &sp;
-  ics_renderer *rd;
-  ics_status st = ics_renderer_create(&rd, &ro, msg, sizeof msg);
-  if (st == ICS_OK) {
-    backend_options_warn(&r->bo, CMD, ics_renderer_backend(rd), ics_renderer_note(rd));
-    st = ics_renderer_render_aovs(rd, plan, r->aovs, img, r->aovs ? aov : NULL, stats, msg,
-                                  sizeof msg);
-    /* quiet by default: the note is for a user who may care (a terminal, --verbose, a backend
-     * option) */
-    if (*ics_renderer_note(rd) && (r->verbose || backend_options_any(&r->bo) || isatty(2)))
-      fprintf(stderr, "icshadow render: note: %s\n", ics_renderer_note(rd));
-    ics_renderer_destroy(rd);
-  }
-  if (sp.p.on) cli_progress_done(&sp.p);
+  if (sp->p.on) ro.progress = r->mc ? on_sample : on_slab, ro.progress_ctx = sp;
+  ics_status st = ics_renderer_create(rd, &ro, msg, sizeof msg);
+  if (st != ICS_OK) return cli_status_error(CMD, st, "%s", msg);
+  backend_options_warn(&r->bo, CMD, ics_renderer_backend(*rd), ics_renderer_note(*rd));
+  return 0;
+}
+
+/* the render on renderer rd (progress sp, the auto note); 0, or the exit status after the
+ * message */
+static int render_image(render_args *r, ics_renderer *rd, slab_progress *sp, const ics_plan *plan,
+                        ics_image **img, ics_exr_channels **aov, ics_render_stats *stats) {
+  char msg[CLI_MSG_MAX] = "";
+  ics_status st = ics_renderer_render_aovs(rd, plan, r->aovs, img, r->aovs ? aov : NULL, stats,
+                                           msg, sizeof msg);
+  /* quiet by default: the note is for a user who may care (a terminal, --verbose, a backend
+   * option) */
+  if (*ics_renderer_note(rd) && (r->verbose || backend_options_any(&r->bo) || isatty(2)))
+    fprintf(stderr, "icshadow render: note: %s\n", ics_renderer_note(rd));
+  if (sp->p.on) cli_progress_done(&sp->p);
   return st == ICS_OK ? 0 : cli_status_error(CMD, st, "%s", msg);
 }
 
@@ -407,11 +411,20 @@ int cmd_render(int argc, char **argv) {
     ics_scene_destroy(s);
     return rc;
   }
+  /* the renderer first: the plan resolves render.model auto for its backend */
+  slab_progress sp = {0};
+  ics_renderer *rd;
+  if ((rc = open_renderer(&r, &sp, &rd))) {
+    ics_scene_destroy(s);
+    return rc;
+  }
+  po.renderer = rd;
   char msg[CLI_MSG_MAX] = "";
   double t0 = cli_now_s();
   ics_plan *plan;
   ics_status st = ics_plan_create(&plan, s, &po, msg, sizeof msg);
   if (st != ICS_OK) {
+    ics_renderer_destroy(rd);
     ics_scene_destroy(s);
     return cli_status_error(CMD, st, "%s", msg);
   }
@@ -421,8 +434,9 @@ int cmd_render(int argc, char **argv) {
   ics_render_stats stats;
   render_comparison cmp = {0};
   char *summary = NULL;
-  if (!(rc = render_image(&r, plan, &img, &aov, &stats)) &&
-      !(rc = compare_image(&r, plan, img, &cmp))) {
+  rc = render_image(&r, rd, &sp, plan, &img, &aov, &stats);
+  ics_renderer_destroy(rd);
+  if (!rc && !(rc = compare_image(&r, plan, img, &cmp))) {
     summary = summary_text(&r, plan, &rs, &stats, t_plan, aov, &cmp);
     rc = summary ? write_outputs(&r, img, aov, &cmp, summary) : cli_failure(CMD, "out of memory");
   }

@@ -585,26 +585,32 @@ static void test_no_solids(const char *disk) {
             ICS_MODEL_SOLID);
 }
 
-/* render.model auto: blocker while the volumes and solids fit the inside mask (64 opaque spheres,
- * or 70 with 6 of them tinted, which are not solid), patel beyond (65 opaque spheres, which
- * blocker refuses), with the omission in the plan */
-static void test_auto(void) {
+/* render.model auto: blocker while the volumes and solids fit the inside mask (64 opaque spheres;
+ * 70 with 6 of them translucent or tinted, which are not solid; 60 of smoke and 4 opaque), patel
+ * beyond (65 opaque spheres, or 60 of smoke and 5 opaque, which blocker refuses), with the
+ * omission in the plan */
+static void test_auto_solids(void) {
   const struct {
-    int spheres, tinted;
+    int spheres, other, smoke;
     ics_render_model want;
-  } cases[] = {{64, 0, ICS_MODEL_BLOCKER}, {70, 6, ICS_MODEL_BLOCKER}, {65, 0, ICS_MODEL_PATEL}};
+  } cases[] = {{64, 0, 0, ICS_MODEL_BLOCKER}, {70, 6, 0, ICS_MODEL_BLOCKER},
+               {64, 0, 60, ICS_MODEL_BLOCKER}, {65, 0, 0, ICS_MODEL_PATEL},
+               {65, 0, 60, ICS_MODEL_PATEL}};
   for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
     char json[16384];
     int n = snprintf(json, sizeof json,
                      "{\"camera\": {\"eye\": [0, 0, 3], \"target\": [0, 0, 0], \"height\": 4,"
                      " \"resolution\": [32, 32]}, \"render\": {\"slab_spacing\": 0.05, \"d1\": 1},"
                      " \"lights\": [{\"mean\": [0.1, 0.1], \"var\": [0.01, 0.01]}],"
-                     " \"materials\": {\"m\": {}, \"t\": {\"opacity\": 0.5}}, \"objects\": [");
-    for (int k = 0; k < cases[c].spheres; k++)
+                     " \"materials\": {\"m\": {}, \"t\": {\"opacity\": 0.5}, \"c\": {\"transport\": [0.5, 0.5, 0.5]},"
+                     " \"v\": {\"extinction\": 1}}, \"objects\": [");
+    for (int k = 0; k < cases[c].spheres; k++) { /* translucent and tinted by turns, smoke, opaque */
+      const char *m = k < cases[c].other ? (k % 2 ? "c" : "t") : k < cases[c].other + cases[c].smoke ? "v" : "m";
       n += snprintf(json + n, sizeof json - (size_t)n,
                     "%s{\"shape\": \"sphere\", \"center\": [%g, %g, 0], \"radius\": 0.1,"
                     " \"material\": \"%s\"}", k ? ", " : "", -1.8 + 0.4 * (k % 10),
-                    -1.8 + 0.4 * (k / 10), k < cases[c].tinted ? "t" : "m");
+                    -1.8 + 0.4 * (k / 10), m);
+    }
     snprintf(json + n, sizeof json - (size_t)n, "]}");
     ics_scene *s = scene_from_json(json);
     CHECK(ics_scene_settings(s)->model == ICS_MODEL_AUTO, "render.model absent: auto");
@@ -612,7 +618,7 @@ static void test_auto(void) {
     int omitted = 0;
     for (int i = 0; i < ics_plan_omitted_count(p); i++)
       omitted |= !strcmp(ics_plan_omitted_at(p, i)->name, "render.model blocker");
-    printf("auto, %d spheres (%d tinted): %s%s\n", cases[c].spheres, cases[c].tinted,
+    printf("auto, %d spheres (%d not solid, %d smoke): %s%s\n", cases[c].spheres, cases[c].other, cases[c].smoke,
            ics_render_model_name(p->rs.model), omitted ? ", omitted render.model blocker" : "");
     CHECK(p->model_auto && p->rs.model == cases[c].want && omitted == (cases[c].want == ICS_MODEL_PATEL),
           "auto, %d spheres: %s, want %s (omission listed: %d)", cases[c].spheres,
@@ -622,8 +628,47 @@ static void test_auto(void) {
   }
 }
 
+/* render.model auto planned for a renderer (ics_plan_opts.renderer): blocker for cpu, patel for
+ * mc (it ignores the model: the plan that costs least), with the plan's memory then Patel's;
+ * without a renderer, blocker */
+static void test_auto_renderer(void) {
+  ics_scene *s = default_scene_96x72();
+  ics_render_settings patel = *ics_scene_settings(s);
+  patel.model = ICS_MODEL_PATEL;
+  ics_plan *pp = plan_or_exit(s, &patel, 1);
+  const char *const backends[] = {"cpu", "mc", NULL};
+  const ics_render_model want[] = {ICS_MODEL_BLOCKER, ICS_MODEL_PATEL, ICS_MODEL_BLOCKER};
+  for (int b = 0; b < 3; b++) {
+    char msg[512] = "";
+    ics_renderer *r = NULL;
+    ics_render_opts ro = {.backend = backends[b]};
+    if (backends[b] && ics_renderer_create(&r, &ro, msg, sizeof msg) != ICS_OK) {
+      CHECK(0, "renderer %s: %s", backends[b], msg);
+      continue;
+    }
+    ics_plan_opts po = {.threads = 1, .width = 96, .height = 72, .renderer = r};
+    ics_plan *p = NULL;
+    CHECK(ics_plan_create(&p, s, &po, msg, sizeof msg) == ICS_OK, "plan: %s", msg);
+    if (p) {
+      printf("auto planned for %s: %s, %zu bytes (patel's %zu)\n", backends[b] ? backends[b] : "no renderer",
+             ics_render_model_name(p->rs.model), ics_plan_memory_bytes(p), ics_plan_memory_bytes(pp));
+      CHECK(p->model_auto && p->rs.model == want[b], "auto for %s: %s, want %s",
+            backends[b] ? backends[b] : "no renderer", ics_render_model_name(p->rs.model),
+            ics_render_model_name(want[b]));
+      CHECK((want[b] == ICS_MODEL_PATEL) == (ics_plan_memory_bytes(p) == ics_plan_memory_bytes(pp)),
+            "auto for %s: memory %zu, patel's %zu", backends[b] ? backends[b] : "no renderer",
+            ics_plan_memory_bytes(p), ics_plan_memory_bytes(pp));
+    }
+    ics_plan_destroy(p);
+    ics_renderer_destroy(r);
+  }
+  ics_plan_destroy(pp);
+  ics_scene_destroy(s);
+}
+
 int main(int argc, char **argv) {
-  test_auto();
+  test_auto_solids();
+  test_auto_renderer();
   test_patel_unchanged();
   test_solid();
   test_own_term();

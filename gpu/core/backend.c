@@ -237,6 +237,7 @@ void ics_renderer_destroy(ics_renderer *r) {
 
 const char *ics_renderer_backend(const ics_renderer *r) { return r->b->name; }
 const char *ics_renderer_note(const ics_renderer *r) { return r->note; }
+ics_render_model ics_renderer_model_auto(const ics_renderer *r) { return r->b->auto_model; }
 
 /* The AOV channels asked for: their names (one block: pointers, then the strings, as
  * ics_exr_channels_destroy frees it) and zeroed data. */

@@ -47,6 +47,7 @@ typedef struct ics_backend {
   const char *description;
   unsigned aovs; /* the ICS_AOV_* bits it makes */
   unsigned models; /* 1 << ics_render_model: the render.model values it renders (ICS_MODELS_ALL) */
+  ics_render_model auto_model; /* what render.model auto renders on it (ics_renderer_model_auto) */
   ics_backend_funcs f;
   const ics_backend_option *options; /* NULL, or entries up to one whose name is NULL */
 } ics_backend;
@@ -57,7 +58,8 @@ typedef struct ics_backend {
  * models, options), comes from ICS_MODULE_BACKEND in its folder's *_entry.c; its functions are
  * the module's table (ics_backend_funcs), loaded on the first call (a module that does not
  * load makes the backend unavailable, with the reason). AUTO_PICK: 1 when the module decides
- * whether auto takes it (its auto_pick), 0 when auto takes it whenever available. */
+ * whether auto takes it (its auto_pick), 0 when auto takes it whenever available. AUTO_MODEL:
+ * what render.model auto renders on it, one of MODELS. */
 int ics_module_backend_available(const char *module, const ics_render_opts *opts, char *why,
                                  size_t why_size);
 int ics_module_backend_auto_pick(const char *module, char *why, size_t why_size);
@@ -67,7 +69,7 @@ ics_status ics_module_backend_render(const char *module, void *state, const ics_
                                      const ics_render_opts *opts, ics_image *img, ics_aov_buf *aov,
                                      ics_render_stats *stats, char *msg, size_t msg_size);
 void ics_module_backend_destroy(const char *module, void *state);
-#define ICS_MODULE_BACKEND(NAME, DESCRIPTION, AOVS, MODELS, OPTIONS, AUTO_PICK)                   \
+#define ICS_MODULE_BACKEND(NAME, DESCRIPTION, AOVS, MODELS, AUTO_MODEL, OPTIONS, AUTO_PICK)       \
   static int NAME##_available_(const ics_render_opts *o, char *why, size_t n) {                \
     return ics_module_backend_available(#NAME, o, why, n);                                       \
   }                                                                                              \
@@ -84,7 +86,7 @@ void ics_module_backend_destroy(const char *module, void *state);
   }                                                                                              \
   static void NAME##_destroy_(void *st) { ics_module_backend_destroy(#NAME, st); }              \
   const ics_backend ics_backend_##NAME = {                                                      \
-      #NAME, DESCRIPTION, AOVS, MODELS,                                                          \
+      #NAME, DESCRIPTION, AOVS, MODELS, AUTO_MODEL,                                              \
       {NAME##_available_, AUTO_PICK ? NAME##_auto_pick_ : NULL, NAME##_create_, NAME##_render_, \
        NAME##_destroy_},                                                                         \
       OPTIONS};

@@ -20,6 +20,7 @@
 #include "icshadow/constants.h"
 #include "icshadow/conv.h"
 #include "icshadow/light.h"
+#include "icshadow/renderer.h"
 #include "device_scene.h"
 #include "mesh.h"
 #include "own_term.h"
@@ -444,17 +445,20 @@ static void plan_padding(ics_plan *p, double zlo, double zhi, double k_est) {
   }
 }
 
-/* render.model auto: blocker, or patel where the volumes and solids (solid_candidate) exceed
- * the inside mask's ICS_MAX_VOLUMES bits, which blocker would refuse */
-static void resolve_model(ics_plan *p) {
+/* render.model auto: what the renderer's backend renders (blocker without one), or patel where
+ * the volumes and solids (solid_candidate) exceed the inside mask's ICS_MAX_VOLUMES bits, which
+ * solid and after would refuse */
+static void resolve_model(ics_plan *p, const ics_renderer *r) {
   p->model_auto = p->rs.model == ICS_MODEL_AUTO;
   if (!p->model_auto) return;
+  p->rs.model = r ? ics_renderer_model_auto(r) : ICS_MODEL_BLOCKER;
+  if (p->rs.model < ICS_MODEL_SOLID) return;
   const ics_scene *s = p->scene;
   int n = 0;
   for (int k = 0; k < s->nobjects; k++)
     n += s->objects[k].closed && (s->materials[s->objects[k].material].volumetric ||
                                   solid_candidate(&s->materials[s->objects[k].material]));
-  p->rs.model = n > ICS_MAX_VOLUMES ? ICS_MODEL_PATEL : ICS_MODEL_BLOCKER;
+  if (n > ICS_MAX_VOLUMES) p->rs.model = ICS_MODEL_PATEL;
 }
 
 /* volumes, channels, detail, and the inside mask's bits: the volumes, then (render.model solid
@@ -678,7 +682,7 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   if (!p) return ICS_ERR_NOMEM;
   p->scene = s;
   p->rs = o.settings ? *o.settings : s->settings;
-  resolve_model(p);
+  resolve_model(p, o.renderer);
   p->cam = s->camera;
   p->tan_half_fov = tan(p->cam.fov_deg * (ICS_PI / 360));
   if (o.width > 0) p->cam.width = o.width;
@@ -698,6 +702,9 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   if (st == ICS_OK) st = plan_geometry(p, o.threads, &b, msg, msg_size);
   if (st != ICS_OK) {
     if (msg && msg_size && !msg[0]) snprintf(msg, msg_size, "cannot plan the render: %s", ics_status_str(st));
+    if (st == ICS_ERR_SIZE && p->model_auto && p->rs.model != ICS_MODEL_PATEL && msg && msg_size)
+      snprintf(msg + strlen(msg), msg_size - strlen(msg), " (render.model auto, planned as %s: "
+               "--model patel takes less)", ics_render_model_name(p->rs.model));
     ics_plan_destroy(p);
     return st;
   }

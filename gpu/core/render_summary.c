@@ -7,6 +7,7 @@
 
 #include "icshadow/renderer.h"
 #include "icshadow/json_text.h"
+#include "plan_internal.h"
 
 void ics_render_summary_write(FILE *f, const ics_plan *plan, const ics_render_settings *rs,
                               const ics_render_stats *stats, double ms_plan) {
@@ -19,7 +20,7 @@ void ics_render_summary_write(FILE *f, const ics_plan *plan, const ics_render_se
     fprintf(f, ", \"light_buffer\": [%d, %d], \"slabs\": %d, \"kernel\": \"%s\", \"samples\": %d, "
             "\"model\": \"%s\", \"model_auto\": %s", bw, bh, stats->slabs,
             ics_render_kernel_name(rs->kernel), rs->samples, stats->model,
-            rs->model == ICS_MODEL_AUTO ? "true" : "false");
+            plan->model_auto ? "true" : "false");
   fprintf(f, ", \"seed\": %llu, \"ms_plan\": %.17g, \"ms_geometry\": %.17g, \"ms_render\": %.17g",
           (unsigned long long)rs->seed, ms_plan, 1e3 * ics_plan_geometry_seconds(plan),
           stats->ms_total);

@@ -125,6 +125,7 @@ const char *ics_scene_default_json(void);
 void ics_scene_destroy(ics_scene *s);
 typedef struct {
   int width, height, threads;
+  const ics_renderer *renderer;
   ...;
 } ics_plan_opts;
 ics_status ics_plan_create(ics_plan **out, const ics_scene *scene, const ics_plan_opts *opts,

@@ -44,8 +44,10 @@ def _scene(scene, overrides, allow_outside_paths):
     return ffi.gc(out[0], lib.ics_scene_destroy), name
 
 
-def _plan(s, resolution, threads):
+def _plan(s, resolution, threads, renderer=ffi.NULL):
+    """the plan of scene s (render.model auto planned for `renderer`'s backend; NULL: blocker)"""
     po = ffi.new("ics_plan_opts *")
+    po.renderer = renderer
     if resolution is not None:
         w, h = resolution
         po.width, po.height = int(w), int(h)
@@ -115,9 +117,6 @@ def render(scene=None, backend="auto", resolution=None, aovs=(), threads=0, spp=
         raise ValueError("spp, time, noise: only the Monte-Carlo reference takes a stop "
                          f"(backend=\"mc\"; the backend is {backend!r})")
     s, name = _scene(scene, overrides, allow_outside_paths)
-    t0 = time_module.perf_counter()
-    p = _plan(s, resolution, threads)
-    ms_plan = 1e3 * (time_module.perf_counter() - t0)
     ro = ffi.new("ics_render_opts *")
     keep = ffi.new("char[]", str(backend).encode())
     ro.backend, ro.threads = keep, int(threads)
@@ -129,6 +128,9 @@ def render(scene=None, backend="auto", resolution=None, aovs=(), threads=0, spp=
     r, msg = ffi.new("ics_renderer **"), msg_buffer()
     check(lib.ics_renderer_create(r, ro, msg, len(msg)), msg)
     r = ffi.gc(r[0], lib.ics_renderer_destroy)
+    t0 = time_module.perf_counter()  # the renderer first: the plan resolves model auto for it
+    p = _plan(s, resolution, threads, r)
+    ms_plan = 1e3 * (time_module.perf_counter() - t0)
     img, ch = ffi.new("ics_image **"), ffi.new("ics_exr_channels **")
     stats = ffi.new("ics_render_stats *")
     check(lib.ics_renderer_render_aovs(r, p, bits, img, ch if bits else ffi.NULL, stats, msg,

@@ -9,4 +9,4 @@ static const ics_backend_option cl_options[] = {
     {NULL, NULL, NULL, NULL}};
 
 ICS_MODULE_BACKEND(cl, "the slab renderer on an OpenCL device (PoCL or any OpenCL 1.2 platform with fp64; not picked by auto)",
-                   ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, 1u << ICS_MODEL_PATEL, cl_options, 0)
+                   ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, 1u << ICS_MODEL_PATEL, ICS_MODEL_PATEL, cl_options, 0)

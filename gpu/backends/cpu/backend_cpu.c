@@ -1029,7 +1029,7 @@ done:
 
 const ics_backend ics_backend_cpu = {
     "cpu", "the slab renderer on the CPU (threads; always built)",
-    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, ICS_MODELS_ALL,
+    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, ICS_MODELS_ALL, ICS_MODEL_BLOCKER,
     {ics_backend_always_available, NULL, ics_backend_pool_create, cpu_render,
      ics_backend_pool_destroy},
     NULL};

@@ -13,4 +13,4 @@ static const ics_backend_option gl_options[] = {
     {NULL, NULL, NULL, NULL}};
 
 ICS_MODULE_BACKEND(gl, "the slab renderer as OpenGL 4.5 compute shaders (EGL or OSMesa; auto picks it on a GPU)",
-                   ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, 1u << ICS_MODEL_PATEL, gl_options, 1)
+                   ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, 1u << ICS_MODEL_PATEL, ICS_MODEL_PATEL, gl_options, 1)

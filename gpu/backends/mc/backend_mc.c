@@ -235,8 +235,9 @@ done:
 const ics_backend ics_backend_mc = {
     "mc", "the Monte-Carlo reference: exact shadows by light sampling, delta and ratio tracking "
           "(CPU threads; always built; never chosen by auto)",
-    /* the reference is the truth every model approximates: it renders them all alike */
-    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH | ICS_AOV_STDERR, ICS_MODELS_ALL,
+    /* the reference is the truth every model approximates: it renders them all alike, and auto
+     * takes the plan that costs least */
+    ICS_AOV_VISIBILITY | ICS_AOV_DEPTH | ICS_AOV_STDERR, ICS_MODELS_ALL, ICS_MODEL_PATEL,
     {ics_backend_always_available, NULL, ics_backend_pool_create, mc_render,
      ics_backend_pool_destroy},
     NULL};

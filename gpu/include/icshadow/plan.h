@@ -18,11 +18,16 @@
 extern "C" {
 #endif
 
+typedef struct ics_renderer ics_renderer; /* icshadow/renderer.h */
+
 /* Overrides of the scene's values; a zero-initialised struct changes nothing. */
 typedef struct ics_plan_opts {
   const ics_render_settings *settings; /* NULL: the scene's "render" block */
   int width, height;                   /* 0: the scene's resolution */
   int threads;                         /* geometry pass threads; 0: all cores */
+  const ics_renderer *renderer; /* the renderer it will render on: render.model auto is planned as
+                                   what its backend renders (ics_renderer_model_auto); NULL:
+                                   blocker, the cpu backend's */
 } ics_plan_opts;
 
 typedef struct ics_plan ics_plan;

@@ -70,7 +70,7 @@ typedef struct ics_render_stats {
                      "patel" where auto met a backend that renders patel only */
 } ics_render_stats;
 
-typedef struct ics_renderer ics_renderer;
+/* ics_renderer: declared in icshadow/plan.h, which plans for one (ics_plan_opts.renderer) */
 
 ICS_API ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts,
                                        char *msg, size_t msg_size);
@@ -79,6 +79,11 @@ ICS_API const char *ics_renderer_backend(const ics_renderer *r);
 /* With backend "auto": why it passed over an entry it prefers to the one it took (e.g. "auto
  * passed over gl: ..."), one line; "" when it took its first choice or the backend was named. */
 ICS_API const char *ics_renderer_note(const ics_renderer *r);
+/* What render.model auto renders on r's backend: ICS_MODEL_BLOCKER on cpu, ICS_MODEL_PATEL on cl
+ * and gl (they render patel only) and on mc (it ignores the model: the plan that costs least).
+ * ics_plan_opts.renderer = r plans auto so; a plan of auto made without it is blocker's, which
+ * a backend without blocker renders by making Patel's plan of the same scene itself. */
+ICS_API ics_render_model ics_renderer_model_auto(const ics_renderer *r);
 
 /* Renders the plan into a new RGBA image (*out; ics_image_destroy it). stats may be NULL. */
 ICS_API ics_status ics_renderer_render(ics_renderer *r, const ics_plan *plan, ics_image **out,
@@ -111,7 +116,7 @@ ICS_API ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *pla
 /* The render summary as JSON object members, without braces, each after the first preceded by
  * ", " (docs/renderer.md "The render summary"): "backend", "device", "threads", "resolution";
  * for the slab renderers "light_buffer", "slabs", "kernel", "samples", "model" (the model
- * rendered) and "model_auto" (true when rs asked for auto); "seed",
+ * rendered) and "model_auto" (true when the plan's render.model was auto); "seed",
  * "ms_plan" (as given), "ms_geometry", "ms_render"; for the slab renderers "ms_convolution",
  * "ms_shading", "ms_detail", "ns_per_px_slab", "memory_bytes"; "updates_dense" and
  * "updates_active" where reported, "ms_geometry_device" where the device built the layered
