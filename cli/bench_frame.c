@@ -19,31 +19,38 @@ static const char CMD[] = "bench frame";
 static void help(FILE *f) {
   fprintf(f,
           "usage: icshadow bench frame [SCENE] [--resolution WxH,...] [--threads T] [--reps R]\n"
-          "       [--spp N] [--work W,...] [--progress] [--allow-outside-paths]\n"
+          "       [--spp N] [--work W,...] [--model M] [--slab-spacing E] [--progress]\n"
+          "       [--allow-outside-paths]\n"
           "Whole frames of a scene (none: the embedded default scene), side by side in one run,\n"
           "repetitions interleaved after a warm-up round, as CSV:\n"
-          "  scene,width,height,work,threads,simd,cpu,ms_frame,ms_min,ms_max,ms_plan,ms_render,\n"
-          "  ms_convolution,ms_shading,ms_detail,active,vs_mc\n"
+          "  scene,width,height,work,model,threads,simd,cpu,ms_frame,ms_min,ms_max,ms_plan,\n"
+          "  ms_render,ms_convolution,ms_shading,ms_detail,active,vs_mc\n"
           "work: skip (the slab renderer on the cpu backend leaving out what the frame does not\n"
           "need), dense (render.dense) or mc (the Monte-Carlo reference at --spp samples per\n"
           "pixel). ms_frame: plan (with the geometry pass) plus render for skip and dense, the\n"
           "render for mc; the median over the repetitions with min and max; the other ms columns\n"
           "are medians of the summary's. active: channel-pixel updates made over the dense count.\n"
-          "vs_mc: ms_frame over mc's in the same run. cpu: the processor's model name; simd: the\n"
-          "cpu backend's vector path (ICS_SIMD=auto|scalar|sse2|avx2|avx512|neon).\n\n"
+          "vs_mc: ms_frame over mc's in the same run. model: the render.model rendered (\"-\" for\n"
+          "mc, which ignores it). cpu: the processor's model name; simd: the cpu backend's\n"
+          "vector path (ICS_SIMD=auto|scalar|sse2|avx2|avx512|neon).\n\n"
           "options:\n"
           "  --resolution L    WxH,... (default: the scene's)\n"
           "  --threads T       threads (default 0: all cores)\n"
           "  --reps R          repetitions (default 5; 1..50)\n"
-          "  --spp N           mc samples per pixel (default 16: where it reaches the slab\n"
-          "                    renderer's error on the default scene, docs/results.md)\n"
+          "  --spp N           mc samples per pixel (default 16: where it reaches the error of\n"
+          "                    Patel's model on the default scene at e = 0.015; the default\n"
+          "                    as it ships, auto at e = 0.045, needs about 86: docs/results.md)\n"
           "  --work W,...      of skip, dense, mc (default all three)\n"
+          "  --model M         render.model (default: the scene's; auto, patel, solid,\n"
+          "                    surface, blocker)\n"
+          "  --slab-spacing E  render.slab_spacing (> 0; default: the scene's)\n"
           "  --progress        progress on stderr even when it is not a terminal\n"
           "  --allow-outside-paths  let the scene read files outside its own folder\n");
 }
 
 #ifdef ICS_HAVE_RENDER
 #include "icshadow/render.h"
+#include "scene_args.h"
 
 enum { WORK_SKIP, WORK_DENSE, WORK_MC, WORKS };
 static const char *const work_names[WORKS] = {"skip", "dense", "mc"};
@@ -70,7 +77,7 @@ static void cpu_model(char *out, size_t n) {
 typedef struct {
   double ms[COLS][50];
   double active;
-  char simd[16];
+  char simd[16], model[16];
 } work_times;
 
 /* one frame of work w: its plan and render, the times into t at index rep - 1 (rep 0 is the
@@ -102,6 +109,7 @@ static ics_status frame(const ics_scene *s, const ics_render_settings *rs0, int 
     for (int c = 0; c < COLS; c++) t->ms[c][rep - 1] = v[c];
     t->active = st.updates_dense > 0 ? st.updates_active / st.updates_dense : 1;
     snprintf(t->simd, sizeof t->simd, "%s", st.simd[0] ? st.simd : "-");
+    snprintf(t->model, sizeof t->model, "%s", w == WORK_MC ? "-" : st.model);
   }
   ics_image_destroy(img);
   ics_renderer_destroy(r);
@@ -154,8 +162,9 @@ int bench_frame(int argc, char **argv) {
   (void)argc, (void)argv;
   return cli_no_renderer(CMD);
 #else
-  const char *scene_path = NULL, *res_s = NULL, *works_s = "skip,dense,mc";
-  int threads = 0, reps = 5, spp = 16, force = 0, scenes = 0, outside = 0;
+  const char *scene_path = NULL, *res_s = NULL, *works_s = "skip,dense,mc", *model = NULL;
+  int threads = 0, reps = 5, spp = 16, force = 0, scenes = 0, outside = 0, have_e = 0;
+  double e = 0;
   const cli_option opts[] = {
       {NULL, .kind = CLI_STRING, .dest = &scene_path, .given = &scenes},
       {"--resolution", .kind = CLI_STRING, .dest = &res_s},
@@ -163,6 +172,8 @@ int bench_frame(int argc, char **argv) {
       {"--reps", .kind = CLI_INT, .dest = &reps, .lo = 1, .hi = 50},
       {"--spp", .kind = CLI_INT, .dest = &spp, .lo = 1, .hi = 1 << 16},
       {"--work", .kind = CLI_STRING, .dest = &works_s},
+      {"--model", .kind = CLI_STRING, .dest = &model},
+      {"--slab-spacing", .kind = CLI_FINITE, .dest = &e, .given = &have_e},
       {"--progress", .kind = CLI_FLAG, .dest = &force},
       {"--allow-outside-paths", .kind = CLI_FLAG, .dest = &outside},
   };
@@ -175,6 +186,9 @@ int bench_frame(int argc, char **argv) {
   if (res_s && (nsizes = parse_sizes(res_s, sizes)) <= 0)
     return cli_error(CMD, "--resolution: expected WxH,... (up to 8, W and H in 1..%d), got '%s'",
                      ICS_SCENE_MAX_RES, res_s);
+  if (have_e && !(e > 0)) return cli_error(CMD, "--slab-spacing: must be > 0, got %g", e);
+  ics_render_model m = ICS_MODEL_AUTO;
+  if (model && (rc = scene_args_model(CMD, model, &m))) return rc;
   char msg[CLI_MSG_MAX] = "", cpu[128];
   ics_scene *s = NULL;
   ics_scene_opts so = {.allow_outside_paths = outside};
@@ -182,10 +196,13 @@ int bench_frame(int argc, char **argv) {
                              : ics_scene_create_default(&s);
   if (st != ICS_OK)
     return cli_status_error(CMD, st, "%s", scene_path ? msg : ics_status_str(st));
+  ics_render_settings rs = *ics_scene_settings(s);
+  if (model) rs.model = m;
+  if (have_e) rs.slab_spacing = e;
   cpu_model(cpu, sizeof cpu);
   cli_progress prog;
   cli_progress_init(&prog, "icshadow bench frame", force);
-  printf("scene,width,height,work,threads,simd,cpu,ms_frame,ms_min,ms_max,ms_plan,ms_render,"
+  printf("scene,width,height,work,model,threads,simd,cpu,ms_frame,ms_min,ms_max,ms_plan,ms_render,"
          "ms_convolution,ms_shading,ms_detail,active,vs_mc\n");
   int busy = 0;
   work_times *t = calloc(WORKS, sizeof *t);
@@ -196,8 +213,7 @@ int bench_frame(int argc, char **argv) {
       for (int w = 0; w < WORKS && st == ICS_OK; w++) {
         if (!use[w]) continue;
         cli_progress_say(&prog, "%s, round %d of %d", work_names[w], rep, reps);
-        st = frame(s, ics_scene_settings(s), w, width, height, threads, spp, rep, &t[w], msg,
-                   sizeof msg);
+        st = frame(s, &rs, w, width, height, threads, spp, rep, &t[w], msg, sizeof msg);
       }
     if (st != ICS_OK) break;
     double mc = use[WORK_MC] ? cli_spread_of(t[WORK_MC].ms[COL_FRAME], reps).median : 0;
@@ -207,8 +223,8 @@ int bench_frame(int argc, char **argv) {
       if (reps > 1 && cli_spread_busy(f)) busy = 1;
       int W = width, H = height;
       if (!W) W = ics_scene_camera(s)->width, H = ics_scene_camera(s)->height_px;
-      printf("%s,%d,%d,%s,%d,%s,%s,%.4g,%.4g,%.4g", scene_path ? scene_path : "default", W, H,
-             work_names[w], threads, t[w].simd, cpu, f.median, f.min, f.max);
+      printf("%s,%d,%d,%s,%s,%d,%s,%s,%.4g,%.4g,%.4g", scene_path ? scene_path : "default", W, H,
+             work_names[w], t[w].model, threads, t[w].simd, cpu, f.median, f.min, f.max);
       for (int c = COL_PLAN; c < COLS; c++)
         printf(",%.4g", w == WORK_MC && c != COL_RENDER ? 0 : cli_spread_of(t[w].ms[c], reps).median);
       printf(",%.4g,", w == WORK_MC ? 0 : t[w].active);

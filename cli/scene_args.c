@@ -86,6 +86,12 @@ static const char *comp_name(int i) { return ics_render_comp_name((ics_render_co
 static const char *radii_name(int i) { return i == 0 ? "exact" : i == 1 ? "lut" : NULL; }
 static const char *model_name(int i) { return ics_render_model_name((ics_render_model)i); }
 
+int scene_args_model(const char *cmd, const char *v, ics_render_model *model) {
+  int i = 0, rc = pick(cmd, "--model", v, model_name, 0, ICS_MODEL_COUNT_, &i);
+  if (!rc) *model = (ics_render_model)i;
+  return rc;
+}
+
 int scene_args_load(const char *cmd, const scene_args *a, ics_scene **s, ics_render_settings *rs,
                     ics_plan_opts *po) {
   char msg[CLI_MSG_MAX] = "";
@@ -117,8 +123,7 @@ int scene_args_load(const char *cmd, const scene_args *a, ics_scene **s, ics_ren
     rs->compensate = (ics_render_comp)v;
   if (!rc && a->radii && !(rc = pick(cmd, "--radii", a->radii, radii_name, 0, 2, &v)))
     rs->lut_radii = v;
-  if (!rc && a->model && !(rc = pick(cmd, "--model", a->model, model_name, 0, ICS_MODEL_COUNT_, &v)))
-    rs->model = (ics_render_model)v;
+  if (!rc && a->model) rc = scene_args_model(cmd, a->model, &rs->model);
   if (!rc && a->have_slab) {
     if (!(a->slab_spacing > 0)) rc = cli_error(cmd, "--slab-spacing: must be > 0, got %g", a->slab_spacing);
     rs->slab_spacing = a->slab_spacing;

@@ -29,6 +29,10 @@ typedef struct scene_args {
 /* Writes the shared option entries into opts[0 .. SCENE_ARGS_NOPTS - 1]. */
 void scene_args_options(scene_args *a, cli_option *opts);
 
+/* --model V: the render.model named V into *model; 0, or the exit status after the message (the
+ * names it takes) */
+int scene_args_model(const char *cmd, const char *v, ics_render_model *model);
+
 /* Reads the scene and applies the overrides into *rs and *po (po->settings points at rs).
  * Returns 0, or the exit status after the message. On success *s must be destroyed. */
 int scene_args_load(const char *cmd, const scene_args *a, ics_scene **s, ics_render_settings *rs,

@@ -351,9 +351,9 @@ static ics_status render_plan(ics_renderer *r, const ics_plan *plan, unsigned ao
   return ICS_OK;
 }
 
-/* render.model auto resolves to blocker in the plan; a backend that renders patel only renders
- * Patel's plan of the same scene, settings and size, made here (its geometry pass counted in
- * the render's time) */
+/* a plan of render.model auto made without this renderer (ics_plan_opts.renderer) is blocker's;
+ * a backend that renders patel only renders Patel's plan of the same scene, settings and size,
+ * made here (its geometry pass counted in the render's time) */
 ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsigned aovs,
                                     ics_image **out, ics_exr_channels **aov_out,
                                     ics_render_stats *stats, char *msg, size_t msg_size) {

@@ -66,8 +66,9 @@ typedef struct ics_render_stats {
    * lights x channels) and those propagated (the rest skipped: outside the active regions,
    * constant tiles, grey tiles' copies; docs/renderer.md); 0 for the other backends */
   double updates_dense, updates_active;
-  char model[16]; /* the render.model the backend rendered: the plan's ("blocker" for auto), or
-                     "patel" where auto met a backend that renders patel only */
+  char model[16]; /* the render.model the backend rendered: the plan's (auto resolved), or
+                     "patel" where a plan of auto made as blocker met a backend that renders
+                     patel only */
 } ics_render_stats;
 
 /* ics_renderer: declared in icshadow/plan.h, which plans for one (ics_plan_opts.renderer) */
