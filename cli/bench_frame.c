@@ -202,9 +202,7 @@ int bench_frame(int argc, char **argv) {
   cpu_model(cpu, sizeof cpu);
   cli_progress prog;
   cli_progress_init(&prog, "icshadow bench frame", force);
-  printf("scene,width,height,work,model,threads,simd,cpu,ms_frame,ms_min,ms_max,ms_plan,ms_render,"
-         "ms_convolution,ms_shading,ms_detail,active,vs_mc\n");
-  int busy = 0;
+  int busy = 0, header = 0; /* the header with the first rows: a refused frame writes nothing */
   work_times *t = calloc(WORKS, sizeof *t);
   if (!t) st = ICS_ERR_NOMEM;
   for (int si = 0; si < nsizes && st == ICS_OK; si++) {
@@ -216,6 +214,9 @@ int bench_frame(int argc, char **argv) {
         st = frame(s, &rs, w, width, height, threads, spp, rep, &t[w], msg, sizeof msg);
       }
     if (st != ICS_OK) break;
+    if (!header++)
+      printf("scene,width,height,work,model,threads,simd,cpu,ms_frame,ms_min,ms_max,ms_plan,"
+             "ms_render,ms_convolution,ms_shading,ms_detail,active,vs_mc\n");
     double mc = use[WORK_MC] ? cli_spread_of(t[WORK_MC].ms[COL_FRAME], reps).median : 0;
     for (int w = 0; w < WORKS; w++) {
       if (!use[w]) continue;

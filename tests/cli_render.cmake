@@ -45,7 +45,10 @@ ics_cli_test(NAME cli_render_negative_variance RC 2 ARGS "render|${rd}/negvar.js
   ERR "negvar.json: lights\\[0\\].var: expected \\[varx, vary\\], finite and >= 0" NOFILE ${rd}/v.exr)
 file(WRITE ${rd}/huge.json "{\"camera\": {\"eye\": [0, 0, 2], \"target\": [0, 0, 0], \"height\": 1, \"resolution\": [16384, 16384]}, \"render\": {\"slab_spacing\": 0.01, \"d1\": 1, \"memory_limit_mib\": 100}, \"lights\": [{\"mean\": [0, 0], \"var\": [1e-6, 1e-6]}], \"materials\": {\"m\": {}}, \"objects\": [{\"shape\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0.5, \"material\": \"m\"}]}\n")
 ics_cli_test(NAME cli_render_over_budget RC 2 ARGS "render|${rd}/huge.json|-o|${rd}/h.exr"
-  ERR "the plan needs at least [0-9.]+ MiB .* over render.memory_limit_mib = 100" NOFILE ${rd}/h.exr)
+  ERR "the plan needs at least [0-9.]+ MiB .* over render.memory_limit_mib = 100 \\(render.model auto, planned as blocker: render.model patel takes less\\)" NOFILE ${rd}/h.exr)
+# the hint only where a cheaper model may fit (memory, work): not on the slab count's limit
+ics_cli_test(NAME cli_render_slab_limit_no_hint RC 2 ARGS "render|--resolution|32x24|--slab-spacing|0.00001|-o|${rd}/sl.exr"
+  ERR "exceed the limit 65536: increase render.slab_spacing\n$" NOFILE ${rd}/sl.exr)
 ics_cli_test(NAME cli_plan_over_budget RC 2 ARGS "plan|${rd}/huge.json" ERR "over render.memory_limit_mib")
 # a limit of 1e-320 MiB under a 1 x 1 view: the plan's size in digits that are not all 0 (the
 # review's "needs at least 0.0 MiB")
@@ -84,6 +87,9 @@ ics_cli_test(NAME cli_bench_frame_model RC 0 ARGS "bench|frame|--resolution|32x2
   OUT "\ndefault,32,24,skip,patel,1,")
 ics_cli_test(NAME cli_bench_frame_bad_model RC 2 ARGS "bench|frame|--model|exact" ERR "--model: unknown value 'exact' \\(expected patel, solid, surface, blocker, auto\\)")
 ics_cli_test(NAME cli_bench_frame_bad_spacing RC 2 ARGS "bench|frame|--slab-spacing|0" ERR "--slab-spacing: must be > 0")
+# the spacing reaches the plan: 1e-5 asks for more slabs than the limit
+ics_cli_test(NAME cli_bench_frame_spacing_applied RC 2 ARGS "bench|frame|--resolution|32x24|--reps|1|--work|skip|--slab-spacing|0.00001"
+  ERR "slab_spacing 1e-05\\) exceed the limit 65536")
 ics_cli_test(NAME cli_bench_frame_help RC 0 ARGS "bench|frame|--help" OUT "Monte-Carlo reference")
 ics_cli_test(NAME cli_bench_frame_bad_work RC 2 ARGS "bench|frame|--work|skip,skip" ERR "--work: expected some of skip, dense, mc")
 ics_cli_test(NAME cli_bench_frame_bad_res RC 2 ARGS "bench|frame|--resolution|32x" ERR "--resolution: expected WxH")

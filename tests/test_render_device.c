@@ -176,6 +176,38 @@ static void compare(const char *what, const char *mode, const ics_scene *s, int 
   ics_exr_channels_destroy(b.aov);
 }
 
+/* render.model auto planned for a renderer of the backend (ics_plan_opts.renderer): Patel's plan
+ * (its memory), rendered as patel, no second plan needed */
+static void auto_planned(const ics_scene *s) {
+  char msg[1024] = "";
+  ics_render_opts ro = {.backend = backend};
+  ics_renderer *r = NULL;
+  CHECK(ics_renderer_create(&r, &ro, msg, sizeof msg) == ICS_OK, "renderer: %s", msg);
+  if (!r) return;
+  CHECK(ics_renderer_model_auto(r) == ICS_MODEL_PATEL, "auto on %s: %s", backend,
+        ics_render_model_name(ics_renderer_model_auto(r)));
+  ics_render_settings patel = *ics_scene_settings(s);
+  patel.model = ICS_MODEL_PATEL;
+  ics_plan_opts po = {.width = 64, .height = 48, .renderer = r}, pp = {.width = 64, .height = 48, .settings = &patel};
+  ics_plan *a = NULL, *b = NULL;
+  ics_image *img = NULL;
+  ics_render_stats st;
+  memset(&st, 0, sizeof st);
+  CHECK(ics_plan_create(&a, s, &po, msg, sizeof msg) == ICS_OK, "plan for %s: %s", backend, msg);
+  CHECK(ics_plan_create(&b, s, &pp, msg, sizeof msg) == ICS_OK, "Patel's plan: %s", msg);
+  if (a && b) {
+    CHECK(ics_plan_memory_bytes(a) == ics_plan_memory_bytes(b), "auto planned for %s: %zu bytes, Patel's %zu",
+          backend, ics_plan_memory_bytes(a), ics_plan_memory_bytes(b));
+    CHECK(ics_renderer_render(r, a, &img, &st, msg, sizeof msg) == ICS_OK, "render: %s", msg);
+    CHECK(!strcmp(st.model, "patel"), "auto planned for %s rendered %s", backend, st.model);
+    printf("auto planned for %s: %zu bytes (Patel's), rendered %s\n", backend, ics_plan_memory_bytes(a), st.model);
+  }
+  ics_image_destroy(img);
+  ics_plan_destroy(a);
+  ics_plan_destroy(b);
+  ics_renderer_destroy(r);
+}
+
 /* a render the backend refuses: status, message, no image */
 static void refused(const char *what, const char *json, ics_status want, const char *needle) {
   ics_scene *s = scene_from_json(json);
@@ -258,6 +290,7 @@ int main(int argc, char **argv) {
   }
   lifecycle(variants[3][2]);
   ics_scene *s = scene_from_json(ics_scene_default_json());
+  auto_planned(s);
   compare("the embedded default scene", "table", s, 0, 0);
   ics_scene_destroy(s);
   for (int i = 2; i < argc; i++) {

@@ -287,6 +287,7 @@ static ics_status plan_limits(ics_plan *p, double *zlo, double *zhi, double *k_e
                "volume detail's octaves) = %.3g updates exceed the work limit %.3g: increase "
                "render.slab_spacing, lower the resolution or the detail's octaves",
                *k_est, p->W, p->H, p->nlights * ics_plan_light_sets(p), work, ICS_PLAN_MAX_WORK);
+    p->over_cost = 1;
     return ICS_ERR_SIZE;
   }
   return ICS_OK;
@@ -559,6 +560,7 @@ static ics_status plan_memory(ics_plan *p, plan_bytes *b, char *msg, size_t msg_
                "light(s), %d channel(s)), over render.memory_limit_mib = %g",
                p->memory_bytes < 104858 ? 4 : 1, p->memory_bytes / 1048576.0, p->Wb, p->Hb,
                p->nlights, p->nch, p->rs.memory_limit_mib); /* (a small plan: 0.0130, not 0.0) */
+    p->over_cost = 1;
     return ICS_ERR_SIZE;
   }
   if (p->buf.plane > ICS_CONV_MAX_LEN) { /* the loops index a plane with 32-bit integers */
@@ -603,6 +605,7 @@ static ics_status plan_geometry(ics_plan *p, int threads, plan_bytes *b, char *m
                "volume detail's octaves, with the perspective classes) = %.3g updates exceed the "
                "work limit %.3g: increase render.slab_spacing or lower the resolution",
                p->K, p->Wb, p->Hb, p->nlights * ics_plan_light_sets(p), work, ICS_PLAN_MAX_WORK);
+    p->over_cost = 1;
     return ICS_ERR_SIZE;
   }
   return ics_active_regions_build(p, msg, msg_size);
@@ -702,9 +705,9 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   if (st == ICS_OK) st = plan_geometry(p, o.threads, &b, msg, msg_size);
   if (st != ICS_OK) {
     if (msg && msg_size && !msg[0]) snprintf(msg, msg_size, "cannot plan the render: %s", ics_status_str(st));
-    if (st == ICS_ERR_SIZE && p->model_auto && p->rs.model != ICS_MODEL_PATEL && msg && msg_size)
+    if (p->over_cost && p->model_auto && p->rs.model != ICS_MODEL_PATEL && msg && msg_size)
       snprintf(msg + strlen(msg), msg_size - strlen(msg), " (render.model auto, planned as %s: "
-               "--model patel takes less)", ics_render_model_name(p->rs.model));
+               "render.model patel takes less)", ics_render_model_name(p->rs.model));
     ics_plan_destroy(p);
     return st;
   }

@@ -63,6 +63,7 @@ struct ics_plan {
   ics_render_settings rs; /* the settings in force (scene's or overridden; render.model auto
                              resolved to blocker) */
   int model_auto;         /* render.model was auto: a backend without blocker renders patel */
+  int over_cost;          /* refused for its memory or work, which a cheaper model may fit */
   ics_camera cam;         /* the camera in force (resolution overridden) */
   double tan_half_fov;    /* perspective: tan(fov / 2), computed once (every ray takes it) */
   double cam_rec[ICS_DEV_CAM]; /* the camera record (kernel/device_layout.h) rays are cast from */

@@ -44,10 +44,9 @@ def _scene(scene, overrides, allow_outside_paths):
     return ffi.gc(out[0], lib.ics_scene_destroy), name
 
 
-def _plan(s, resolution, threads, renderer=ffi.NULL):
-    """the plan of scene s (render.model auto planned for `renderer`'s backend; NULL: blocker)"""
+def _plan_opts(resolution, threads):
+    """the plan's options, checked (its renderer NULL: render.model auto planned as blocker)"""
     po = ffi.new("ics_plan_opts *")
-    po.renderer = renderer
     if resolution is not None:
         w, h = resolution
         po.width, po.height = int(w), int(h)
@@ -56,6 +55,11 @@ def _plan(s, resolution, threads, renderer=ffi.NULL):
     if int(threads) < 0:
         raise ValueError(f"threads: expected 0 (all cores) or more, got {threads}")
     po.threads = int(threads)
+    return po
+
+
+def _plan(s, po):
+    """the plan of scene s with the options po (_plan_opts)"""
     out, msg = ffi.new("ics_plan **"), msg_buffer()
     check(lib.ics_plan_create(out, s, po, msg, len(msg)), msg)
     return ffi.gc(out[0], lib.ics_plan_destroy)
@@ -66,7 +70,7 @@ def plan(scene=None, resolution=None, threads=0, allow_outside_paths=False, **ov
     passes, omitted passes, memory, active fractions). overrides: keys of the scene's "render"
     object (model="solid", kernel="poisson", samples=4, ...), checked as in a scene file."""
     s, _ = _scene(scene, overrides, allow_outside_paths)
-    return json.loads(take_string(lib.icspy_plan_json(_plan(s, resolution, threads)), "plan"))
+    return json.loads(take_string(lib.icspy_plan_json(_plan(s, _plan_opts(resolution, threads))), "plan"))
 
 
 @dataclass
@@ -117,6 +121,7 @@ def render(scene=None, backend="auto", resolution=None, aovs=(), threads=0, spp=
         raise ValueError("spp, time, noise: only the Monte-Carlo reference takes a stop "
                          f"(backend=\"mc\"; the backend is {backend!r})")
     s, name = _scene(scene, overrides, allow_outside_paths)
+    po = _plan_opts(resolution, threads)
     ro = ffi.new("ics_render_opts *")
     keep = ffi.new("char[]", str(backend).encode())
     ro.backend, ro.threads = keep, int(threads)
@@ -129,7 +134,8 @@ def render(scene=None, backend="auto", resolution=None, aovs=(), threads=0, spp=
     check(lib.ics_renderer_create(r, ro, msg, len(msg)), msg)
     r = ffi.gc(r[0], lib.ics_renderer_destroy)
     t0 = time_module.perf_counter()  # the renderer first: the plan resolves model auto for it
-    p = _plan(s, resolution, threads, r)
+    po.renderer = r
+    p = _plan(s, po)
     ms_plan = 1e3 * (time_module.perf_counter() - t0)
     img, ch = ffi.new("ics_image **"), ffi.new("ics_exr_channels **")
     stats = ffi.new("ics_render_stats *")

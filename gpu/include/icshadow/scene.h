@@ -75,8 +75,9 @@ typedef enum ics_render_model {
   ICS_MODEL_SURFACE,   /* + a surface's own term in closed form (the light on its lit side) */
   ICS_MODEL_BLOCKER,   /* + blocker-aware penumbrae: a sharper light-buffer set blended in by
                           each receiver's distance to its blockers */
-  ICS_MODEL_AUTO,      /* the closest model the backend renders: blocker on cpu, patel on cl and
-                          gl (the default; docs/renderer.md "Which model") */
+  ICS_MODEL_AUTO,      /* the closest model the backend renders (ics_plan_opts.renderer's; none:
+                          blocker): blocker on cpu, patel on cl, gl and mc, patel beyond 64
+                          volumes and solids (the default; docs/renderer.md "Which model") */
   ICS_MODEL_COUNT_
 } ics_render_model;
 
