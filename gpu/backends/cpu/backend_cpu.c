@@ -583,13 +583,16 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       }
       size_t q = ics_buf_index(&P->buf, bi, bj);
       /* every set's arriving light, per buffered light and channel; the first set's (render.model
-       * blocker) blended with the sharp set's by this pixel's distance to its blockers */
+       * blocker) blended with the sharp set's by this pixel's distance to its blockers: read for
+       * a pixel in view with a fragment or a volume here (one with occlusions due only shades
+       * nothing) */
+      int lit = inview && (has || mask);
       float arrive[4 * ICS_SCENE_MAX_LIGHTS * 3];
-      if (inview) arriving_light(j, q, zf + P->e / 2, arrive);
+      if (lit) arriving_light(j, q, zf + P->e / 2, arrive);
       double L[3] = {0, 0, 0}; /* the light arriving, for the colour of what is in view */
-      if (inview) light_colour(j, arrive, L);
+      if (lit) light_colour(j, arrive, L);
       float V[ICS_SCENE_MAX_LIGHTS * 3]; /* AOVs: the light arriving, per light and channel */
-      if (j->aov && inview) memcpy(V, arrive, sizeof(float) * (size_t)P->nlights * P->nch);
+      if (j->aov && lit) memcpy(V, arrive, sizeof(float) * (size_t)P->nlights * P->nch);
       /* surface occlusions due at this slab (fragment slab + bias == k), after the light
        * arriving here was read: a surface never shadows its own slab */
       touched[ics_tile_col(&j->p->tiles, bi)] = 1;
