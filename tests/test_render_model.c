@@ -629,8 +629,9 @@ static void test_auto_solids(void) {
 }
 
 /* render.model auto planned for a renderer (ics_plan_opts.renderer): blocker for cpu, patel for
- * mc (it ignores the model: the plan that costs least), with the plan's memory then Patel's;
- * without a renderer, blocker */
+ * mc (it ignores the model: the plan that costs least), with the plan's memory then Patel's and
+ * no "render.model blocker" omission (that one is for too many volumes and solids); without a
+ * renderer, blocker */
 static void test_auto_renderer(void) {
   ics_scene *s = default_scene_96x72();
   ics_render_settings patel = *ics_scene_settings(s);
@@ -658,6 +659,10 @@ static void test_auto_renderer(void) {
       CHECK((want[b] == ICS_MODEL_PATEL) == (ics_plan_memory_bytes(p) == ics_plan_memory_bytes(pp)),
             "auto for %s: memory %zu, patel's %zu", backends[b] ? backends[b] : "no renderer",
             ics_plan_memory_bytes(p), ics_plan_memory_bytes(pp));
+      for (int i = 0; i < ics_plan_omitted_count(p); i++)
+        CHECK(strcmp(ics_plan_omitted_at(p, i)->name, "render.model blocker"),
+              "auto for %s: omits render.model blocker (%s)", backends[b] ? backends[b] : "no renderer",
+              ics_plan_omitted_at(p, i)->reason);
     }
     ics_plan_destroy(p);
     ics_renderer_destroy(r);

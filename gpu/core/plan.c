@@ -459,7 +459,8 @@ static void resolve_model(ics_plan *p, const ics_renderer *r) {
   for (int k = 0; k < s->nobjects; k++)
     n += s->objects[k].closed && (s->materials[s->objects[k].material].volumetric ||
                                   solid_candidate(&s->materials[s->objects[k].material]));
-  if (n > ICS_MAX_VOLUMES) p->rs.model = ICS_MODEL_PATEL;
+  p->auto_capped = n > ICS_MAX_VOLUMES;
+  if (p->auto_capped) p->rs.model = ICS_MODEL_PATEL;
 }
 
 /* volumes, channels, detail, and the inside mask's bits: the volumes, then (render.model solid
@@ -637,7 +638,7 @@ static void plan_passes(ics_plan *p, const plan_bytes *b) {
       add_omitted(p, nm, "zero variance: integer shifts instead");
     }
   }
-  if (p->model_auto && p->rs.model == ICS_MODEL_PATEL) {
+  if (p->auto_capped) {
     char why[sizeof p->omitted->reason];
     snprintf(why, sizeof why, "render.model auto: more than %d volumetric and solid objects (the "
              "inside mask's bits): patel", ICS_MAX_VOLUMES);

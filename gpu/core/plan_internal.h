@@ -63,6 +63,8 @@ struct ics_plan {
   ics_render_settings rs; /* the settings in force (scene's or overridden; render.model auto
                              resolved to blocker) */
   int model_auto;         /* render.model was auto: a backend without blocker renders patel */
+  int auto_capped;        /* auto took patel for more volumes and solids than the inside mask's
+                             bits (not for the backend) */
   int over_cost;          /* refused for its memory or work, which a cheaper model may fit */
   ics_camera cam;         /* the camera in force (resolution overridden) */
   double tan_half_fov;    /* perspective: tan(fov / 2), computed once (every ray takes it) */
