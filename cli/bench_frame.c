@@ -2,7 +2,9 @@
  * default scene without one), side by side in one run: the slab renderer on the cpu backend
  * skipping the work a frame does not need (work "skip"), the same with render.dense ("dense"),
  * and the Monte-Carlo reference at --spp samples per pixel ("mc"), their repetitions interleaved
- * after a warm-up round, so that all see the same machine. A slab frame is its plan (with the
+ * after a warm-up round, so that all see the same machine; each work renders on one renderer kept
+ * across its frames, as an application keeps it (the warm-up is reported apart: a renderer's
+ * first frame takes fresh memory). A slab frame is its plan (with the
  * geometry pass) plus its render, as a user waits for it; an mc frame is its render (its plan,
  * the same geometry pass, is not what it spends its time on; docs/results.md times it so). CSV,
  * one row per resolution and work, with the processor's name and the vector path. */
@@ -23,13 +25,15 @@ static void help(FILE *f) {
           "       [--allow-outside-paths]\n"
           "Whole frames of a scene (none: the embedded default scene), side by side in one run,\n"
           "repetitions interleaved after a warm-up round, as CSV:\n"
-          "  scene,width,height,work,model,threads,simd,cpu,ms_frame,ms_min,ms_max,ms_plan,\n"
-          "  ms_render,ms_convolution,ms_shading,ms_detail,active,vs_mc\n"
+          "  scene,width,height,work,model,threads,simd,cpu,ms_frame,ms_min,ms_max,ms_first,\n"
+          "  ms_plan,ms_render,ms_convolution,ms_shading,ms_detail,active,vs_mc\n"
           "work: skip (the slab renderer on the cpu backend leaving out what the frame does not\n"
           "need), dense (render.dense) or mc (the Monte-Carlo reference at --spp samples per\n"
-          "pixel). ms_frame: plan (with the geometry pass) plus render for skip and dense, the\n"
-          "render for mc; the median over the repetitions with min and max; the other ms columns\n"
-          "are medians of the summary's. active: channel-pixel updates made over the dense count.\n"
+          "pixel), each work on one renderer kept across its frames, as an application keeps\n"
+          "it. ms_frame: plan (with the geometry pass) plus render for skip and dense, the\n"
+          "render for mc; the median over the repetitions with min and max; ms_first: the\n"
+          "warm-up frame before them (a renderer's first takes fresh memory); the other ms\n"
+          "columns are medians of the summary's. active: channel-pixel updates made over the dense count.\n"
           "vs_mc: ms_frame over mc's in the same run. model: the render.model rendered (\"-\" for\n"
           "mc, which ignores it). cpu: the processor's model name; simd: the cpu backend's\n"
           "vector path (ICS_SIMD=auto|scalar|sse2|avx2|avx512|neon).\n\n"
@@ -76,45 +80,54 @@ static void cpu_model(char *out, size_t n) {
 
 typedef struct {
   double ms[COLS][50];
+  double first_ms; /* the renderer's first frame at this resolution (the warm-up) */
   double active;
   char simd[16], model[16];
 } work_times;
 
 /* one frame of work w: its plan and render, the times into t at index rep - 1 (rep 0 is the
  * warm-up); ICS_OK or the error with msg */
-static ics_status frame(const ics_scene *s, const ics_render_settings *rs0, int w, int width,
-                        int height, int threads, int spp, int rep, work_times *t, char *msg,
+static ics_status frame(ics_renderer *r, const ics_scene *s, const ics_render_settings *rs0, int w,
+                        int width, int height, int threads, int rep, work_times *t, char *msg,
                         size_t msg_size) {
   ics_render_settings rs = *rs0;
   rs.dense = w == WORK_DENSE;
-  ics_render_opts ro = {.backend = w == WORK_MC ? "mc" : "cpu", .threads = threads,
-                        .spp = w == WORK_MC ? spp : 0};
   ics_plan *p = NULL;
-  ics_renderer *r = NULL;
   ics_image *img = NULL;
   ics_render_stats st;
   memset(&st, 0, sizeof st);
-  /* the renderer first: the plan resolves render.model auto for its backend */
-  ics_status status = ics_renderer_create(&r, &ro, msg, msg_size);
+  /* the plan for the renderer: it resolves render.model auto for its backend */
   ics_plan_opts po = {.settings = &rs, .width = width, .height = height, .threads = threads,
                       .renderer = r};
   double t0 = cli_now_s();
-  if (status == ICS_OK) status = ics_plan_create(&p, s, &po, msg, msg_size);
+  ics_status status = ics_plan_create(&p, s, &po, msg, msg_size);
   double t1 = cli_now_s();
   if (status == ICS_OK) status = ics_renderer_render(r, p, &img, &st, msg, msg_size);
+  double plan_ms = 1e3 * (t1 - t0), frame_ms = w == WORK_MC ? st.ms_total : plan_ms + st.ms_total;
+  if (status == ICS_OK && rep == 0) t->first_ms = frame_ms;
   if (status == ICS_OK && rep > 0) {
-    double plan_ms = 1e3 * (t1 - t0);
-    const double v[COLS] = {w == WORK_MC ? st.ms_total : plan_ms + st.ms_total, plan_ms,
-                            st.ms_total, st.ms_convolution, st.ms_shading, st.ms_detail};
+    const double v[COLS] = {frame_ms, plan_ms, st.ms_total, st.ms_convolution, st.ms_shading,
+                            st.ms_detail};
     for (int c = 0; c < COLS; c++) t->ms[c][rep - 1] = v[c];
     t->active = st.updates_dense > 0 ? st.updates_active / st.updates_dense : 1;
     snprintf(t->simd, sizeof t->simd, "%s", st.simd[0] ? st.simd : "-");
     snprintf(t->model, sizeof t->model, "%s", w == WORK_MC ? "-" : st.model);
   }
   ics_image_destroy(img);
-  ics_renderer_destroy(r);
   ics_plan_destroy(p);
   return status;
+}
+
+/* one renderer per work, kept across its frames as an application keeps it */
+static ics_status renderers(ics_renderer **r, const int *use, int threads, int spp, char *msg,
+                            size_t msg_size) {
+  for (int w = 0; w < WORKS; w++) {
+    ics_render_opts ro = {.backend = w == WORK_MC ? "mc" : "cpu", .threads = threads,
+                          .spp = w == WORK_MC ? spp : 0};
+    ics_status st = use[w] ? ics_renderer_create(&r[w], &ro, msg, msg_size) : ICS_OK;
+    if (st != ICS_OK) return st;
+  }
+  return ICS_OK;
 }
 
 static int parse_works(const char *v, int *use) {
@@ -204,19 +217,21 @@ int bench_frame(int argc, char **argv) {
   cli_progress_init(&prog, "icshadow bench frame", force);
   int busy = 0, header = 0; /* the header with the first rows: a refused frame writes nothing */
   work_times *t = calloc(WORKS, sizeof *t);
+  ics_renderer *r[WORKS] = {NULL, NULL, NULL};
   if (!t) st = ICS_ERR_NOMEM;
+  else st = renderers(r, use, threads, spp, msg, sizeof msg);
   for (int si = 0; si < nsizes && st == ICS_OK; si++) {
     int width = sizes[si][0], height = sizes[si][1];
     for (int rep = 0; rep <= reps && st == ICS_OK; rep++)
       for (int w = 0; w < WORKS && st == ICS_OK; w++) {
         if (!use[w]) continue;
         cli_progress_say(&prog, "%s, round %d of %d", work_names[w], rep, reps);
-        st = frame(s, &rs, w, width, height, threads, spp, rep, &t[w], msg, sizeof msg);
+        st = frame(r[w], s, &rs, w, width, height, threads, rep, &t[w], msg, sizeof msg);
       }
     if (st != ICS_OK) break;
     if (!header++)
-      printf("scene,width,height,work,model,threads,simd,cpu,ms_frame,ms_min,ms_max,ms_plan,"
-             "ms_render,ms_convolution,ms_shading,ms_detail,active,vs_mc\n");
+      printf("scene,width,height,work,model,threads,simd,cpu,ms_frame,ms_min,ms_max,ms_first,"
+             "ms_plan,ms_render,ms_convolution,ms_shading,ms_detail,active,vs_mc\n");
     double mc = use[WORK_MC] ? cli_spread_of(t[WORK_MC].ms[COL_FRAME], reps).median : 0;
     for (int w = 0; w < WORKS; w++) {
       if (!use[w]) continue;
@@ -224,8 +239,9 @@ int bench_frame(int argc, char **argv) {
       if (reps > 1 && cli_spread_busy(f)) busy = 1;
       int W = width, H = height;
       if (!W) W = ics_scene_camera(s)->width, H = ics_scene_camera(s)->height_px;
-      printf("%s,%d,%d,%s,%s,%d,%s,%s,%.4g,%.4g,%.4g", scene_path ? scene_path : "default", W, H,
-             work_names[w], t[w].model, threads, t[w].simd, cpu, f.median, f.min, f.max);
+      printf("%s,%d,%d,%s,%s,%d,%s,%s,%.4g,%.4g,%.4g,%.4g", scene_path ? scene_path : "default",
+             W, H, work_names[w], t[w].model, threads, t[w].simd, cpu, f.median, f.min, f.max,
+             t[w].first_ms);
       for (int c = COL_PLAN; c < COLS; c++)
         printf(",%.4g", w == WORK_MC && c != COL_RENDER ? 0 : cli_spread_of(t[w].ms[c], reps).median);
       printf(",%.4g,", w == WORK_MC ? 0 : t[w].active);
@@ -235,6 +251,7 @@ int bench_frame(int argc, char **argv) {
     if (cli_stdout_failed(CMD)) st = ICS_ERR_IO;
   }
   cli_progress_done(&prog);
+  for (int w = 0; w < WORKS; w++) ics_renderer_destroy(r[w]);
   free(t);
   ics_scene_destroy(s);
   if (st == ICS_ERR_IO) return 1;

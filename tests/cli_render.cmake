@@ -81,7 +81,7 @@ ics_cli_test(NAME cli_bench_slab_work RC 0 ARGS "bench|slab|--sizes|64|--slabs|8
   OUT "\ncpu,ellipse2,2,[a-z]+,64,64,8,1,[^\n]*,-,1,[a-z0-9]+,dense,stripes,1,[^\n]*\ncpu,ellipse2,2,[a-z]+,64,64,8,1,[^\n]*,-,1,[a-z0-9]+,skip,stripes,(1|0[.][0-9]+),")
 # whole frames, the three works side by side (a small resolution, one repetition)
 ics_cli_test(NAME cli_bench_frame RC 0 ARGS "bench|frame|--resolution|32x24|--reps|1|--spp|1|--threads|1"
-  OUT "^scene,width,height,work,model,threads,simd,cpu,ms_frame,ms_min,ms_max,ms_plan,ms_render,ms_convolution,ms_shading,ms_detail,active,vs_mc\ndefault,32,24,skip,blocker,1,(scalar|sse2|neon|avx2|avx512),[^,]*,[^\n]*,0[.][0-9]+,[0-9.e+-]+\ndefault,32,24,dense,blocker,1,[a-z0-9]+,[^\n]*,1,[0-9.e+-]+\ndefault,32,24,mc,-,1,-,[^\n]*,1\n$")
+  OUT "^scene,width,height,work,model,threads,simd,cpu,ms_frame,ms_min,ms_max,ms_first,ms_plan,ms_render,ms_convolution,ms_shading,ms_detail,active,vs_mc\ndefault,32,24,skip,blocker,1,(scalar|sse2|neon|avx2|avx512),[^,]*,[^\n]*,0[.][0-9]+,[0-9.e+-]+\ndefault,32,24,dense,blocker,1,[a-z0-9]+,[^\n]*,1,[0-9.e+-]+\ndefault,32,24,mc,-,1,-,[^\n]*,1\n$")
 # --model and --slab-spacing override the scene's (the default scene as it was: Patel's at 0.015)
 ics_cli_test(NAME cli_bench_frame_model RC 0 ARGS "bench|frame|--resolution|32x24|--reps|1|--threads|1|--work|skip|--model|patel|--slab-spacing|0.015"
   OUT "\ndefault,32,24,skip,patel,1,")

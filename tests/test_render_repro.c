@@ -2,7 +2,9 @@
  * bits with 1, 2 and 3 threads (every per-pixel quantity is a function of (seed, slab, pixel)),
  * twice in a row, and a different seed changes the stochastic kernel's image (so the seed is
  * really used). The default scene at 96 x 72 (a volume with fBm detail, a torus, per-pixel
- * random ellipse taps for one light) and the contract example with per-pixel random taps. */
+ * random ellipse taps for one light) and the contract example with per-pixel random taps. One
+ * renderer rendering frames of several scenes, sizes and models in turn (its memory kept from
+ * frame to frame, grown and renewed) gives each the bits, AOVs included, of a new renderer. */
 #include <string.h>
 
 #include "render_util.h"
@@ -39,16 +41,74 @@ static void check_scene(const char *name, ics_scene *s, const ics_render_setting
   ics_image_destroy(r4.img);
 }
 
+static int same_aovs(const ics_exr_channels *a, const ics_exr_channels *b) {
+  return a->width == b->width && a->height == b->height && a->count == b->count &&
+         !memcmp(a->data, b->data, sizeof(float) * (size_t)a->count * a->width * a->height);
+}
+
+/* frames of (scene, settings, size) in turn on one renderer, each against a new renderer's */
+typedef struct {
+  const char *name;
+  const ics_scene *s;
+  const ics_render_settings *rs;
+  int w, h;
+} frame_case;
+
+static void check_one_renderer(const frame_case *c, int n) {
+  char msg[4096];
+  ics_render_opts ro;
+  memset(&ro, 0, sizeof ro);
+  ro.backend = "cpu";
+  ro.threads = 2;
+  ics_renderer *r;
+  if (ics_renderer_create(&r, &ro, msg, sizeof msg) != ICS_OK) {
+    fprintf(stderr, "renderer: %s\n", msg);
+    exit(2);
+  }
+  const unsigned aovs = ICS_AOV_VISIBILITY | ICS_AOV_DEPTH;
+  for (int i = 0; i < n; i++) {
+    ics_plan *p = plan_sized_or_exit(c[i].s, c[i].rs, 2, c[i].w, c[i].h);
+    ics_image *img;
+    ics_exr_channels *aov;
+    if (ics_renderer_render_aovs(r, p, aovs, &img, &aov, NULL, msg, sizeof msg) != ICS_OK) {
+      fprintf(stderr, "render: %s\n", msg);
+      exit(2);
+    }
+    render_result fresh = render_scene_sized_on("cpu", c[i].s, c[i].rs, 2, aovs, c[i].w, c[i].h);
+    CHECK(same(img, fresh.img) && same_aovs(aov, fresh.aov),
+          "frame %d (%s %dx%d) on one renderer differs from a new renderer's (max %.3g)", i + 1,
+          c[i].name, c[i].w, c[i].h, diff_max(img, fresh.img));
+    ics_image_destroy(img);
+    ics_image_destroy(fresh.img);
+    ics_exr_channels_destroy(aov);
+    ics_exr_channels_destroy(fresh.aov);
+    ics_plan_destroy(p);
+  }
+  ics_renderer_destroy(r);
+  printf("one renderer, %d frames in turn: each the bits of a new renderer's\n", n);
+}
+
 int main(int argc, char **argv) {
   ics_scene *s = default_scene_96x72();
   check_scene("default scene 96x72", s, NULL);
-  ics_scene_destroy(s);
   if (argc > 1) {
     ics_scene *d = scene_from_file(argv[1]);
     ics_render_settings rs = *ics_scene_settings(d);
     rs.compensate = ICS_RC_NONE; /* per-pixel random ellipse taps (the default falls back) */
     check_scene("contract example, per-pixel ellipse taps", d, &rs);
+    ics_render_settings patel = *ics_scene_settings(s);
+    patel.model = ICS_MODEL_PATEL;
+    /* grown, reused smaller (the volume's mask and detail arrays left from the default scene),
+     * renewed for a frame under half the memory, another model's sets */
+    const frame_case frames[] = {
+        {"default", s, NULL, 96, 72},   {"default", s, NULL, 160, 120},
+        {"contract", d, &rs, 0, 0},     {"default", s, NULL, 128, 96},
+        {"default", s, NULL, 32, 24},   {"default patel", s, &patel, 96, 72},
+        {"default", s, NULL, 96, 72},
+    };
+    check_one_renderer(frames, (int)(sizeof frames / sizeof *frames));
     ics_scene_destroy(d);
   }
+  ics_scene_destroy(s);
   return test_summary("test_render_repro");
 }

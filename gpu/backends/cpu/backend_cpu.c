@@ -861,10 +861,87 @@ static ics_rect shade_rect(const ics_plan *P, int k) {
   return u;
 }
 
+/* the renderer's state: its threads, and the memory of its last frame's arrays, kept for the
+ * next (memory taken again spares the page faults of fresh pages: docs/renderer.md "Speed") */
+typedef struct {
+  ics_pool *pool;
+  char *mem;
+  size_t cap;
+} cpu_state;
+
+static ics_status cpu_create(void **state, const ics_render_opts *opts, char *msg,
+                             size_t msg_size) {
+  cpu_state *st = calloc(1, sizeof *st);
+  if (!st) return ICS_ERR_NOMEM;
+  ics_status s = ics_backend_pool_create((void **)&st->pool, opts, msg, msg_size);
+  if (s != ICS_OK) free(st);
+  else *state = st;
+  return s;
+}
+
+static void cpu_destroy(void *state) {
+  cpu_state *st = state;
+  if (!st) return;
+  ics_backend_pool_destroy(st->pool);
+  free(st->mem);
+  free(st);
+}
+
+/* the next `bytes` of the arena at *used (64-byte aligned), NULL while only measuring (base
+ * NULL) */
+static void *take(char *base, size_t *used, size_t bytes) {
+  size_t at = (*used + 63) & ~(size_t)63;
+  *used = at + bytes;
+  return base ? base + at : NULL;
+}
+
+/* the frame's arrays, carved from base (NULL: only their size); returns the bytes taken */
+static size_t carve(job_t *j, char *base, int nt, float **bufs, ics_tile **tiles, uint8_t **sames) {
+  const ics_plan *P = j->p;
+  size_t npx = (size_t)P->Wb * P->Hb, used = 0, nx = (size_t)P->tiles.nx;
+  size_t ntiles = nx * (size_t)P->tiles.ny;
+  for (int i = 0; i < 2 * j->nb; i++) {
+    bufs[i] = take(base, &used, sizeof(float) * (size_t)j->chans[i % j->nb] * P->buf.plane);
+    tiles[i] = take(base, &used, sizeof(ics_tile) * ntiles);
+    sames[i] = take(base, &used, ntiles);
+  }
+  j->marks = take(base, &used, nx * (1 + (size_t)j->nb) * (size_t)nt);
+  j->dpts = P->any_detail ? take(base, &used, sizeof *j->dpts * 8 * (size_t)P->Wb * nt) : NULL;
+  j->dslot = P->any_detail ? take(base, &used, sizeof *j->dslot * (size_t)P->Wb * nt) : NULL;
+  j->cursor = take(base, &used, sizeof *j->cursor * npx);
+  j->acursor = take(base, &used, sizeof *j->acursor * npx);
+  j->pnext = take(base, &used, sizeof *j->pnext * npx);
+  j->scratch = take(base, &used, sizeof *j->scratch * ICS_PROP_SCRATCH(P->Wb) * (size_t)nt);
+  j->seg_next = take(base, &used, sizeof *j->seg_next * (size_t)P->Hb * nx);
+  j->mask = P->ninside ? take(base, &used, sizeof *j->mask * npx) : NULL;
+  j->aov_seen = j->aov ? take(base, &used, (size_t)P->W * P->H) : NULL;
+  return used;
+}
+
+/* the frame's arrays (j->src, ...; seg_next and aov_seen zeroed) in the state's memory, grown
+ * when the frame needs more and renewed when it needs less than half (a small frame after a
+ * large one does not keep the large one's memory); 0, or -1 when out of memory */
+static int frame_arrays(cpu_state *st, job_t *j, int nt) {
+  size_t bytes = carve(j, NULL, nt, j->src, j->tsrc, j->ssrc);
+  if (bytes > st->cap || bytes < st->cap / 2) {
+    free(st->mem);
+    st->cap = 0;
+    st->mem = malloc(bytes ? bytes : 1);
+    if (!st->mem) return -1;
+    st->cap = bytes;
+  }
+  carve(j, st->mem, nt, j->src, j->tsrc, j->ssrc);
+  memset(j->seg_next, 0, sizeof *j->seg_next * (size_t)j->p->Hb * j->p->tiles.nx); /* 0: look
+                                                                    at every segment first */
+  if (j->aov_seen) memset(j->aov_seen, 0, (size_t)j->p->W * j->p->H);
+  return 0;
+}
+
 static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_opts *o,
                              ics_image *img, ics_aov_buf *aov, ics_render_stats *stats, char *msg,
                              size_t msg_size) {
-  ics_pool *pool = state;
+  cpu_state *st = state;
+  ics_pool *pool = st->pool;
   double t_start = ics_clock_s();
   int nl = P->nlights, nt = ics_pool_size(pool), nb = nl * ics_plan_light_sets(P);
   int nk = P->kernels_sharp ? 2 * nl : nl; /* kernels: each light's, then its sharp set's */
@@ -899,32 +976,12 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   j->tdst = tiles + nb;
   j->ssrc = sames;
   j->sdst = sames + nb;
-  size_t ntiles = (size_t)j->p->tiles.nx * (size_t)j->p->tiles.ny;
-  j->marks = malloc((size_t)j->p->tiles.nx * (1 + (size_t)nb) * (size_t)nt);
-  j->dpts = P->any_detail ? malloc(sizeof *j->dpts * 8 * (size_t)P->Wb * (size_t)nt) : NULL;
-  j->dslot = P->any_detail ? malloc(sizeof *j->dslot * (size_t)P->Wb * (size_t)nt) : NULL;
   j->pt = calloc((size_t)(nk ? nk : 1), sizeof *j->pt);
-  j->cursor = malloc(sizeof *j->cursor * npx);
-  j->acursor = malloc(sizeof *j->acursor * npx);
-  j->pnext = malloc(sizeof *j->pnext * npx);
-  j->scratch = malloc(sizeof *j->scratch * ICS_PROP_SCRATCH(P->Wb) * (size_t)nt);
-  /* 0: look at every segment first */
-  j->seg_next = calloc((size_t)P->Hb * (size_t)j->p->tiles.nx, sizeof *j->seg_next);
-  j->mask = P->ninside ? malloc(sizeof *j->mask * npx) : NULL;
   j->aov = aov;
-  j->aov_seen = aov ? calloc((size_t)P->W * P->H, 1) : NULL;
+  if (!j->pt || frame_arrays(st, j, nt)) goto nomem;
   /* the largest pixel is the deepest slab's (perspective) */
   for (int l = 0; l < nl; l++) j->blur_world[l] = ics_plan_light_blur(P, l);
   j->window_max = ics_plan_window_max(P);
-  if (!j->pt || !j->cursor || !j->acursor || !j->pnext || !j->scratch || !j->seg_next || (P->ninside && !j->mask) ||
-      (aov && !j->aov_seen) || !j->marks || (P->any_detail && (!j->dpts || !j->dslot)))
-    goto nomem;
-  for (int i = 0; i < 2 * nb; i++) {
-    bufs[i] = malloc(sizeof(float) * (size_t)j->chans[i % nb] * P->buf.plane);
-    tiles[i] = malloc(sizeof(ics_tile) * ntiles);
-    sames[i] = malloc(ntiles);
-    if (!bufs[i] || !tiles[i] || !sames[i]) goto nomem;
-  }
   for (int i = 0; i < P->scene->nobjects; i++)
     if (P->inside_bit[i] >= 0) j->vol_obj[P->inside_bit[i]] = i;
   ics_pool_run(pool, start_job, j);
@@ -998,26 +1055,10 @@ nomem:
 done:
   if (j && j->pt)
     for (int i = 0; i < nk; i++) ics_prop_release(&j->pt[i]);
-  if (bufs)
-    for (int b = 0; b < 2 * nb; b++) free(bufs[b]);
-  if (tiles)
-    for (int b = 0; b < 2 * nb; b++) free(tiles[b]);
-  if (sames)
-    for (int b = 0; b < 2 * nb; b++) free(sames[b]);
   if (scratch)
     for (int i = 0; i < nk; i++) free(scratch[i]);
   if (j) {
     free(j->pt);
-    free(j->cursor);
-    free(j->acursor);
-    free(j->pnext);
-    free(j->scratch);
-    free(j->seg_next);
-    free(j->mask);
-    free(j->aov_seen);
-    free(j->marks);
-    free(j->dpts);
-    free(j->dslot);
     for (int t = 0; t < 256; t++) ics_hits_free(&j->hits[t]);
   }
   free(bufs);
@@ -1033,6 +1074,5 @@ done:
 const ics_backend ics_backend_cpu = {
     "cpu", "the slab renderer on the CPU (threads; always built)",
     ICS_AOV_VISIBILITY | ICS_AOV_DEPTH, ICS_MODELS_ALL, ICS_MODEL_BLOCKER,
-    {ics_backend_always_available, NULL, ics_backend_pool_create, cpu_render,
-     ics_backend_pool_destroy},
+    {ics_backend_always_available, NULL, cpu_create, cpu_render, cpu_destroy},
     NULL};
