@@ -33,7 +33,7 @@ static float *pack(const float *plain, int nch, const ics_buf_layout *L) {
       memcpy(b + (size_t)c * L->plane + ics_buf_index(L, 0, y), plain + ((size_t)c * H + y) * W,
              sizeof(float) * W);
   ics_prop_apron(L, b, nch, 0, H, 0);
-  ics_prop_apron(L, b, nch, 0, 0, 1);
+  ics_prop_apron(L, b, nch, 0, 0, ICS_APRON_TOP | ICS_APRON_BOTTOM);
   return b;
 }
 
@@ -336,7 +336,7 @@ static void test_classes(void) {
       ics_buf_layout_init(&L, W, H, a ? 1 : 8);
       float *src = calloc(3 * L.plane, sizeof *src), *out[ICS_SIMD_PATHS_] = {0};
       for (size_t i = 0; i < 3 * L.plane; i++) src[i] = (float)test_rng_unit();
-      for (int c = 0; c < 3; c++) ics_prop_apron(&L, src + c * L.plane, 1, 0, H, 1);
+      for (int c = 0; c < 3; c++) ics_prop_apron(&L, src + c * L.plane, 1, 0, H, ICS_APRON_TOP | ICS_APRON_BOTTOM);
       ics_prop_taps pt = {0};
       CHECK(ics_prop_prepare_perspective(&pt, t, 2, mags[v][0], mags[v][1], mags[v][2], &L) == 0,
             "prepare classes");

@@ -753,10 +753,19 @@ static void propagate_row(job_t *j, int b, int ty, int t, uint8_t *written) {
   if (run >= 0) step_tiles(j, b, ty, run, tx1, run_kind, t, written);
 }
 
+/* 1 when a tile of the row has a mark */
+static int any_mark(const uint8_t *m, int n) {
+  for (int i = 0; i < n; i++)
+    if (m[i]) return 1;
+  return 0;
+}
+
 /* after shading: signed weights can ring (values outside [0, 1] that the slabs amplify), so
  * those lights' buffers are clamped; the tiles stepped or shaded into are scanned for what they
  * hold (a stepped tile is often still constant: so the constants do not erode a tile a slab);
- * the apron is refreshed where an edge tile was written (elsewhere it holds its edge already) */
+ * the apron is refreshed where an edge tile was written (elsewhere it holds its edge already),
+ * above the first row and below the last where a tile of theirs was: by the thread settling
+ * that row (nothing reads dst's apron before the next slab) */
 static void settle_row(job_t *j, int ty, const uint8_t *marks) {
   const ics_plan *P = j->p;
   const ics_tile_grid *g = &j->p->tiles;
@@ -788,9 +797,11 @@ static void settle_row(job_t *j, int ty, const uint8_t *marks) {
                                                  P->nch, x0, x1, y0, y1);
       }
     }
-    int last = g->nx - 1;
-    if (shaded[0] || written[0] || shaded[last] || written[last] || signed_)
-      ics_prop_apron(&P->buf, j->dst[b], j->chans[b], y0, y1, 0);
+    int last = g->nx - 1, sides = shaded[0] || written[0] || shaded[last] || written[last] || signed_;
+    int edges = (ty == 0 ? ICS_APRON_TOP : 0) | (ty == g->ny - 1 ? ICS_APRON_BOTTOM : 0);
+    if (edges && !signed_ && !any_mark(shaded, g->nx) && !any_mark(written, g->nx))
+      edges = 0; /* the edge row as it was, and its apron with it */
+    if (sides || edges) ics_prop_apron(&P->buf, j->dst[b], j->chans[b], y0, sides ? y1 : y0, edges);
   }
 }
 
@@ -1018,7 +1029,6 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
     atomic_store(&j->next_row, 0);
     ics_pool_run(pool, slab_job, j);
     if (j->failed) goto nomem;
-    for (int b = 0; b < nb; b++) ics_prop_apron(&P->buf, j->dst[b], j->chans[b], 0, 0, 1);
     for (int b = 0; b < nb; b++) {
       float *tmp = j->src[b];
       j->src[b] = j->dst[b];

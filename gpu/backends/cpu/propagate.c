@@ -15,7 +15,7 @@
 #include "propagate_simd.h"
 #include "slab_choice.h"
 
-void ics_prop_apron(const ics_buf_layout *L, float *buf, int nch, int y0, int y1, int top_bottom) {
+void ics_prop_apron(const ics_buf_layout *L, float *buf, int nch, int y0, int y1, int edges) {
   int A = L->apron;
   if (!A) return;
   for (int c = 0; c < nch; c++) {
@@ -24,12 +24,12 @@ void ics_prop_apron(const ics_buf_layout *L, float *buf, int nch, int y0, int y1
       float *row = P + ics_buf_index(L, 0, y);
       for (int i = 1; i <= A; i++) row[-i] = row[0], row[L->w - 1 + i] = row[L->w - 1];
     }
-    if (top_bottom) {
-      const float *first = P + ics_buf_index(L, 0, 0) - A, *last = P + ics_buf_index(L, 0, L->h - 1) - A;
-      for (int i = 1; i <= A; i++) {
+    const float *first = P + ics_buf_index(L, 0, 0) - A, *last = P + ics_buf_index(L, 0, L->h - 1) - A;
+    for (int i = 1; i <= A; i++) {
+      if (edges & ICS_APRON_TOP)
         memcpy(P + ics_buf_index(L, 0, -i) - A, first, sizeof *P * (size_t)L->stride);
+      if (edges & ICS_APRON_BOTTOM)
         memcpy(P + ics_buf_index(L, 0, L->h - 1 + i) - A, last, sizeof *P * (size_t)L->stride);
-      }
     }
   }
 }

@@ -10,9 +10,12 @@
 #include "simd_path.h"
 #include "slab_taps.h"
 
-/* Refreshes the apron of rows [y0, y1) (left and right) of every plane; with top_bottom, also
- * the A rows above row 0 and below row h - 1 (after all rows are final). */
-void ics_prop_apron(const ics_buf_layout *L, float *buf, int nch, int y0, int y1, int top_bottom);
+/* Refreshes the apron of rows [y0, y1) (left and right) of every plane; then the A rows above
+ * row 0 (edges & ICS_APRON_TOP: after row 0 and its sides are final) and those below row h - 1
+ * (edges & ICS_APRON_BOTTOM). */
+#define ICS_APRON_TOP 1
+#define ICS_APRON_BOTTOM 2
+void ics_prop_apron(const ics_buf_layout *L, float *buf, int nch, int y0, int y1, int edges);
 
 /* Pixels [x0, x1) x [y0, y1) of the first nch planes of dst from src, nothing else written;
  * scratch holds ICS_PROP_SCRATCH(L->w) words (the entries of ICS_PROP_ROW_BLOCK rows, w + 2
