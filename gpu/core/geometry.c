@@ -213,6 +213,24 @@ int ics_object_hits(const ics_object *o, const double orig[3], const double dir[
   }
 }
 
+int ics_object_normal_near(const ics_object *o, const double orig[3], const double dir[3], double z,
+                           ics_hits *h, double n[3]) {
+  n[0] = n[1] = n[2] = 0;
+  if (o->shape == ICS_SHAPE_TORUS) {
+    double q[3], e[3];
+    to_local(o, orig, dir, q, e);
+    torus_normal(o, q, e, z, n);
+    return 0;
+  }
+  int behind = 0;
+  h->n = 0;
+  if (ics_object_hits(o, orig, dir, h, &behind)) return -1;
+  double best = INFINITY;
+  for (int i = 0; i < h->n; i++)
+    if (fabs(h->h[i].t - z) < best) best = fabs(h->h[i].t - z), memcpy(n, h->h[i].n, sizeof(double) * 3);
+  return 0;
+}
+
 void ics_object_bounds(const ics_object *o, double lo[3], double hi[3]) {
   if (o->shape == ICS_SHAPE_MESH) {
     ics_mesh_bounds(o->mesh, lo, hi);

@@ -296,8 +296,9 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
  * toward w = X_x r + X_y u - f, lights the surface iff w . n > 0, n its normal turned toward the
  * camera ray d, a half-plane of the light plane, so the fraction is
  * Phi((a . mu + b) / sqrt(a' Sigma a)), a = (r . n, u . n), b = -f . n (a step where
- * a' Sigma a = 0). The normal is the object's own at the fragment (its crossing of the pixel's
- * ray nearest the fragment's depth z), not the layered depth image's quantised depth gradient.
+ * a' Sigma a = 0). The normal is the object's own at the fragment (ics_object_normal_near: its
+ * crossing of the pixel's ray nearest the fragment's depth z), not the layered depth image's
+ * quantised depth gradient.
  * arrive: the buffers' values arriving at this slab (before its occlusions), per buffered light
  * and channel; the own term applies to the lights in `lights` (Phi = 1 for the others). Into L
  * the light (sum over lights of colour x weight x V Phi), into V the AOVs' V Phi per light and
@@ -305,14 +306,9 @@ static void volume_piece(job_t *j, size_t p, int bi, int bj, uint64_t mask, doub
 static int own_light(job_t *j, int obj, double z, int bi, int bj, const float *arrive, int set,
                      uint64_t lights, double L[3], float *V, int t) {
   const ics_plan *P = j->p;
-  double o[3], d[3], n[3] = {0, 0, 0}, best = INFINITY;
-  int behind = 0;
+  double o[3], d[3], n[3];
   ics_plan_ray(P, bi, bj, o, d);
-  ics_hits *h = &j->hits[t];
-  h->n = 0;
-  if (ics_object_hits(&P->scene->objects[obj], o, d, h, &behind)) return -1; /* out of memory */
-  for (int i = 0; i < h->n; i++)
-    if (fabs(h->h[i].t - z) < best) best = fabs(h->h[i].t - z), memcpy(n, h->h[i].n, sizeof n);
+  if (ics_object_normal_near(&P->scene->objects[obj], o, d, z, &j->hits[t], n)) return -1;
   if (n[0] * d[0] + n[1] * d[1] + n[2] * d[2] > 0) n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
   L[0] = L[1] = L[2] = 0;
   for (int l = 0; l < P->nlights; l++) {
