@@ -10,11 +10,11 @@ from .lut import lut, lut_header
 from .numerics import (EllipseKernel, ellint_e, ellint_e_m1, ellint_k, ellint_k_m1,
                        ellipse_kernel, ellipse_ratio, ellipse_ratio_to_t, ellipse_varx,
                        ellipse_vx, ellipse_vy)
-from .render import Render, backends, compare, default_scene, plan, render
+from .render import Render, Renderer, backends, compare, default_scene, plan, render
 from .theory import Light1D, isoline
 
 __all__ = ["Error", "Light", "fit_light", "lights_json", "read_lights", "write_lights", "lut",
            "lut_header", "EllipseKernel", "ellint_e", "ellint_e_m1", "ellint_k", "ellint_k_m1",
            "ellipse_kernel", "ellipse_ratio", "ellipse_ratio_to_t", "ellipse_varx", "ellipse_vx",
-           "ellipse_vy", "Render", "read_exr", "srgb", "write_exr", "write_png", "backends", "compare", "default_scene", "plan", "render", "Light1D", "isoline"]
+           "ellipse_vy", "Render", "Renderer", "read_exr", "srgb", "write_exr", "write_png", "backends", "compare", "default_scene", "plan", "render", "Light1D", "isoline"]
 __version__ = "0.2.0"

@@ -145,6 +145,7 @@ typedef struct {
 ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, char *msg,
                                size_t msg_size);
 void ics_renderer_destroy(ics_renderer *r);
+const char *ics_renderer_backend(const ics_renderer *r);
 ics_status ics_renderer_render_aovs(ics_renderer *r, const ics_plan *plan, unsigned aovs,
                                     ics_image **out, ics_exr_channels **aov_out,
                                     ics_render_stats *stats, char *msg, size_t msg_size);

@@ -107,6 +107,79 @@ def _aov_bits(aovs):
     return bits
 
 
+class Renderer:
+    """A backend's renderer kept for many frames, as an application keeps it: its threads, and on
+    the cpu backend the memory of its last frame, which the next takes again (no fresh pages:
+    docs/renderer.md "The frame's memory kept"). backend, threads, spp, time, noise,
+    backend_options: as `render` takes them. `close()` (or the end of a `with` block) releases
+    it; so does the garbage collector."""
+
+    def __init__(self, backend="auto", threads=0, spp=0, time=0.0, noise=0.0, backend_options=None):
+        if (spp or time or noise) and backend != "mc":
+            raise ValueError("spp, time, noise: only the Monte-Carlo reference takes a stop "
+                             f"(backend=\"mc\"; the backend is {backend!r})")
+        self.threads = int(threads)
+        ro = ffi.new("ics_render_opts *")
+        keep = ffi.new("char[]", str(backend).encode())
+        ro.backend, ro.threads = keep, self.threads
+        ro.spp, ro.time_s, ro.noise = int(spp), float(time), float(noise)
+        texts = [ffi.new("char[]", f"{k}={v}".encode()) for k, v in (backend_options or {}).items()]
+        option_list = ffi.new("const char *[]", texts + [ffi.NULL])
+        if texts:
+            ro.options = option_list
+        r, msg = ffi.new("ics_renderer **"), msg_buffer()
+        check(lib.ics_renderer_create(r, ro, msg, len(msg)), msg)
+        self._r = ffi.gc(r[0], lib.ics_renderer_destroy)
+
+    @property
+    def backend(self):
+        """the backend it renders on ("auto" resolved)"""
+        return ffi.string(lib.ics_renderer_backend(self._live())).decode()
+
+    def _live(self):
+        if self._r is None:
+            raise ValueError("this Renderer is closed")
+        return self._r
+
+    def close(self):
+        """Releases the renderer (its threads and memory) now."""
+        if self._r is not None:
+            ffi.release(self._r)  # its destructor, ics_renderer_destroy, now
+            self._r = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def render(self, scene=None, resolution=None, aovs=(), allow_outside_paths=False, **overrides):
+        """One frame of a scene (as `render` takes scene, resolution, aovs and overrides), planned
+        for this renderer and rendered by it. Returns a Render."""
+        r = self._live()
+        bits = _aov_bits(aovs)
+        s, name = _scene(scene, overrides, allow_outside_paths)
+        po = _plan_opts(resolution, self.threads)
+        t0 = time_module.perf_counter()  # the plan resolves model auto for the renderer
+        po.renderer = r
+        p = _plan(s, po)
+        ms_plan = 1e3 * (time_module.perf_counter() - t0)
+        img, ch, msg = ffi.new("ics_image **"), ffi.new("ics_exr_channels **"), msg_buffer()
+        stats = ffi.new("ics_render_stats *")
+        check(lib.ics_renderer_render_aovs(r, p, bits, img, ch if bits else ffi.NULL, stats, msg,
+                                           len(msg)), msg)
+        img = ffi.gc(img[0], lib.ics_image_destroy)
+        aov = {}
+        if bits:
+            aov = channels_to_dict(ffi.gc(ch[0], lib.ics_exr_channels_destroy))
+        summary = {"scene": name}
+        summary.update(json.loads(take_string(lib.icspy_render_summary(p, s, stats, ms_plan),
+                                              "render summary")))
+        if aov:
+            summary["aovs"] = list(aov)
+        return Render(image_to_array(img), aov, summary)
+
+
 def render(scene=None, backend="auto", resolution=None, aovs=(), threads=0, spp=0, time=0.0,
            noise=0.0, allow_outside_paths=False, backend_options=None, **overrides):
     """Renders a scene (None: the default scene; a path; a dict) on a backend ("auto", "cpu",
@@ -115,42 +188,11 @@ def render(scene=None, backend="auto", resolution=None, aovs=(), threads=0, spp=
     spp, time, noise: the Monte-Carlo reference's stop (docs/reference.md). backend_options:
     {"cl.device": "1", "gl.context": "egl", "gl.ldi": "device"} (`backends()` lists each
     backend's). overrides: keys of the scene's "render" object (model="solid", ...). Returns a
-    Render."""
-    bits = _aov_bits(aovs)
-    if (spp or time or noise) and backend != "mc":
-        raise ValueError("spp, time, noise: only the Monte-Carlo reference takes a stop "
-                         f"(backend=\"mc\"; the backend is {backend!r})")
-    s, name = _scene(scene, overrides, allow_outside_paths)
-    po = _plan_opts(resolution, threads)
-    ro = ffi.new("ics_render_opts *")
-    keep = ffi.new("char[]", str(backend).encode())
-    ro.backend, ro.threads = keep, int(threads)
-    ro.spp, ro.time_s, ro.noise = int(spp), float(time), float(noise)
-    texts = [ffi.new("char[]", f"{k}={v}".encode()) for k, v in (backend_options or {}).items()]
-    option_list = ffi.new("const char *[]", texts + [ffi.NULL])
-    if texts:
-        ro.options = option_list
-    r, msg = ffi.new("ics_renderer **"), msg_buffer()
-    check(lib.ics_renderer_create(r, ro, msg, len(msg)), msg)
-    r = ffi.gc(r[0], lib.ics_renderer_destroy)
-    t0 = time_module.perf_counter()  # the renderer first: the plan resolves model auto for it
-    po.renderer = r
-    p = _plan(s, po)
-    ms_plan = 1e3 * (time_module.perf_counter() - t0)
-    img, ch = ffi.new("ics_image **"), ffi.new("ics_exr_channels **")
-    stats = ffi.new("ics_render_stats *")
-    check(lib.ics_renderer_render_aovs(r, p, bits, img, ch if bits else ffi.NULL, stats, msg,
-                                       len(msg)), msg)
-    img = ffi.gc(img[0], lib.ics_image_destroy)
-    aov = {}
-    if bits:
-        aov = channels_to_dict(ffi.gc(ch[0], lib.ics_exr_channels_destroy))
-    summary = {"scene": name}
-    summary.update(json.loads(take_string(lib.icspy_render_summary(p, s, stats, ms_plan),
-                                          "render summary")))
-    if aov:
-        summary["aovs"] = list(aov)
-    return Render(image_to_array(img), aov, summary)
+    Render. One frame on a new renderer: `Renderer` keeps one for many."""
+    _aov_bits(aovs)
+    _plan_opts(resolution, threads)  # the arguments checked before the renderer starts
+    with Renderer(backend, threads, spp, time, noise, backend_options) as r:
+        return r.render(scene, resolution, aovs, allow_outside_paths, **overrides)
 
 
 def _reference(reference):

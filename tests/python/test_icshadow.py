@@ -209,6 +209,29 @@ class Lights(unittest.TestCase):
 
 
 class Renders(unittest.TestCase):
+    def test_renderer_keeps_frames_equal(self):
+        # frames of several sizes and models in turn on one Renderer: each the bits (AOVs
+        # included) of a render on a new renderer; closed, it refuses to render
+        frames = [dict(resolution=(64, 48)), dict(resolution=(96, 72)),
+                  dict(resolution=(64, 48), model="patel"), dict(resolution=(32, 24))]
+        with ic.Renderer(threads=2) as r:
+            self.assertEqual(r.backend, "cpu")
+            for f in frames:
+                mine = r.render(aovs=["visibility", "depth"], **f)
+                new = ic.render(aovs=["visibility", "depth"], threads=2, **f)
+                np.testing.assert_array_equal(mine.rgba, new.rgba, err_msg=str(f))
+                self.assertEqual(sorted(mine.aovs), sorted(new.aovs))
+                for name in new.aovs:
+                    np.testing.assert_array_equal(mine[name], new[name], err_msg=f"{f} {name}")
+                self.assertEqual(mine.summary["model"], new.summary["model"])
+        with self.assertRaisesRegex(ValueError, "closed"):
+            r.render()
+        r.close()  # twice: nothing more
+        with self.assertRaisesRegex(ValueError, "only the Monte-Carlo reference takes a stop"):
+            ic.Renderer(backend="cpu", spp=4)
+        with self.assertRaisesRegex(ic.Error, "nosuch"):
+            ic.Renderer(backend="nosuch")
+
     def test_render_equals_the_cli(self):
         exr = tmp("default.exr")
         summary = json.loads(cli("render", "--resolution", "64x48", "--aov", "visibility,depth",
