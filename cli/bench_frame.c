@@ -3,8 +3,8 @@
  * skipping the work a frame does not need (work "skip"), the same with render.dense ("dense"),
  * and the Monte-Carlo reference at --spp samples per pixel ("mc"), their repetitions interleaved
  * after a warm-up round, so that all see the same machine; each work renders on one renderer kept
- * across its frames, as an application keeps it (the warm-up is reported apart: a renderer's
- * first frame takes fresh memory). A slab frame is its plan (with the
+ * across its frames, as an application keeps it (the warm-up is reported apart: at the first
+ * resolution it is the renderer's first frame, in fresh memory). A slab frame is its plan (with the
  * geometry pass) plus its render, as a user waits for it; an mc frame is its render (its plan,
  * the same geometry pass, is not what it spends its time on; docs/results.md times it so). CSV,
  * one row per resolution and work, with the processor's name and the vector path. */
@@ -32,8 +32,8 @@ static void help(FILE *f) {
           "pixel), each work on one renderer kept across its frames, as an application keeps\n"
           "it. ms_frame: plan (with the geometry pass) plus render for skip and dense, the\n"
           "render for mc; the median over the repetitions with min and max; ms_first: the\n"
-          "warm-up frame before them (a renderer's first takes fresh memory); the other ms\n"
-          "columns are medians of the summary's. active: channel-pixel updates made over the dense count.\n"
+          "warm-up frame before them (at the first resolution, the renderer's first frame:\n"
+          "fresh memory); the other ms columns are medians of the summary's. active: channel-pixel updates made over the dense count.\n"
           "vs_mc: ms_frame over mc's in the same run. model: the render.model rendered (\"-\" for\n"
           "mc, which ignores it). cpu: the processor's model name; simd: the cpu backend's\n"
           "vector path (ICS_SIMD=auto|scalar|sse2|avx2|avx512|neon).\n\n"
@@ -80,7 +80,7 @@ static void cpu_model(char *out, size_t n) {
 
 typedef struct {
   double ms[COLS][50];
-  double first_ms; /* the renderer's first frame at this resolution (the warm-up) */
+  double first_ms; /* the warm-up frame at this resolution */
   double active;
   char simd[16], model[16];
 } work_times;

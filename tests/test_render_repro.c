@@ -98,13 +98,17 @@ int main(int argc, char **argv) {
     check_scene("contract example, per-pixel ellipse taps", d, &rs);
     ics_render_settings patel = *ics_scene_settings(s);
     patel.model = ICS_MODEL_PATEL;
-    /* grown, reused smaller (the volume's mask and detail arrays left from the default scene),
-     * renewed for a frame under half the memory, another model's sets */
+    ics_render_settings dense = *ics_scene_settings(s);
+    dense.dense = 1;
+    /* grown (160 x 120: 20 MB); its memory taken again, stale, by frames needing over half of
+     * it (128 x 96, 140 x 105 dense, 256 x 192 under patel: one set of buffers instead of
+     * four); renewed for a frame under half (the contract example), taken again by 32 x 24,
+     * grown again (96 x 72) */
     const frame_case frames[] = {
-        {"default", s, NULL, 96, 72},   {"default", s, NULL, 160, 120},
-        {"contract", d, &rs, 0, 0},     {"default", s, NULL, 128, 96},
-        {"default", s, NULL, 32, 24},   {"default patel", s, &patel, 96, 72},
-        {"default", s, NULL, 96, 72},
+        {"default", s, NULL, 96, 72},            {"default", s, NULL, 160, 120},
+        {"default", s, NULL, 128, 96},           {"default dense", s, &dense, 140, 105},
+        {"default patel", s, &patel, 256, 192},  {"contract", d, &rs, 0, 0},
+        {"default", s, NULL, 32, 24},            {"default", s, NULL, 96, 72},
     };
     check_one_renderer(frames, (int)(sizeof frames / sizeof *frames));
     ics_scene_destroy(d);

@@ -31,9 +31,10 @@ int ics_object_hits(const ics_object *o, const double orig[3], const double dir[
                     int *behind);
 
 /* The (unnormalised, outward) normal of object o where the ray orig + t dir crosses it nearest
- * t = z, into n: the crossing nearest z among ics_object_hits' (h their scratch), or for a torus,
- * whose crossings take a root search, the gradient at orig + z dir itself (z a crossing already:
- * a fragment's depth). n is 0 where the ray crosses nothing. 0, or -1 when out of memory. */
+ * t = z, into n: the crossing nearest z among ics_object_hits' (h their scratch; n is 0 where
+ * the ray crosses nothing), or for a torus, whose crossings take a root search, the gradient at
+ * the ray's point at z (z a crossing already, a fragment's float depth, taken onto the surface
+ * by one Newton step). 0, or -1 when out of memory. */
 int ics_object_normal_near(const ics_object *o, const double orig[3], const double dir[3], double z,
                            ics_hits *h, double n[3]);
 

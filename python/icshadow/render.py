@@ -3,6 +3,7 @@ compared with a reference (docs/reference.md), from Python. The slab renderer an
 reference run in C with the GIL released."""
 import json
 import os
+import threading
 import time as time_module
 from dataclasses import dataclass, field
 
@@ -111,8 +112,9 @@ class Renderer:
     """A backend's renderer kept for many frames, as an application keeps it: its threads, and on
     the cpu backend the memory of its last frame, which the next takes again (no fresh pages:
     docs/renderer.md "The frame's memory kept"). backend, threads, spp, time, noise,
-    backend_options: as `render` takes them. `close()` (or the end of a `with` block) releases
-    it; so does the garbage collector."""
+    backend_options: as `render` takes them. It renders one frame at a time (a lock: threads
+    sharing one wait for each other). `close()` (or the end of a `with` block) releases it; so
+    does the garbage collector."""
 
     def __init__(self, backend="auto", threads=0, spp=0, time=0.0, noise=0.0, backend_options=None):
         if (spp or time or noise) and backend != "mc":
@@ -130,6 +132,7 @@ class Renderer:
         r, msg = ffi.new("ics_renderer **"), msg_buffer()
         check(lib.ics_renderer_create(r, ro, msg, len(msg)), msg)
         self._r = ffi.gc(r[0], lib.ics_renderer_destroy)
+        self._lock = threading.Lock()  # the C renderer renders one frame at a time
 
     @property
     def backend(self):
@@ -143,9 +146,10 @@ class Renderer:
 
     def close(self):
         """Releases the renderer (its threads and memory) now."""
-        if self._r is not None:
-            ffi.release(self._r)  # its destructor, ics_renderer_destroy, now
-            self._r = None
+        with self._lock:
+            if self._r is not None:
+                ffi.release(self._r)  # its destructor, ics_renderer_destroy, now
+                self._r = None
 
     def __enter__(self):
         return self
@@ -156,6 +160,10 @@ class Renderer:
     def render(self, scene=None, resolution=None, aovs=(), allow_outside_paths=False, **overrides):
         """One frame of a scene (as `render` takes scene, resolution, aovs and overrides), planned
         for this renderer and rendered by it. Returns a Render."""
+        with self._lock:
+            return self._render(scene, resolution, aovs, allow_outside_paths, overrides)
+
+    def _render(self, scene, resolution, aovs, allow_outside_paths, overrides):
         r = self._live()
         bits = _aov_bits(aovs)
         s, name = _scene(scene, overrides, allow_outside_paths)
