@@ -938,8 +938,8 @@ static int frame_arrays(cpu_state *st, job_t *j, int nt) {
     st->cap = bytes;
   }
   carve(j, st->mem, nt, j->src, j->tsrc, j->ssrc);
-  memset(j->seg_next, 0, sizeof *j->seg_next * (size_t)j->p->Hb * j->p->tiles.nx); /* 0: look
-                                                                    at every segment first */
+  /* seg_next 0: look at every segment first */
+  memset(j->seg_next, 0, sizeof *j->seg_next * (size_t)j->p->Hb * j->p->tiles.nx);
   if (j->aov_seen) memset(j->aov_seen, 0, (size_t)j->p->W * j->p->H);
   return 0;
 }
