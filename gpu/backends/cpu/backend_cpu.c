@@ -29,6 +29,22 @@
 #include "scene_internal.h"
 #include "tiles.h"
 
+#if defined(__SANITIZE_ADDRESS__)
+#define ICS_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define ICS_ASAN 1
+#endif
+#endif
+#ifdef ICS_ASAN
+#include <sanitizer/asan_interface.h>
+#define ARENA_GUARD 64 /* AddressSanitizer: a poisoned guard after each array of a frame's block */
+#else
+#define ARENA_GUARD 0
+#define ASAN_POISON_MEMORY_REGION(a, n) ((void)(a), (void)(n))
+#define ASAN_UNPOISON_MEMORY_REGION(a, n) ((void)(a), (void)(n))
+#endif
+
 #define JITTER_STREAM 0x6a69747400000000ULL /* "jitt": the sample depth inside a slab piece */
 #define DETAIL_SAMPLE 16                     /* one volume piece in 16 timed (ms_detail) */
 
@@ -895,10 +911,12 @@ static void cpu_destroy(void *state) {
 }
 
 /* the next `bytes` of the arena at *used (64-byte aligned), NULL while only measuring (base
- * NULL) */
+ * NULL); under AddressSanitizer followed by a poisoned guard, so that an overrun into the next
+ * array is reported as one into another allocation's redzone was */
 static void *take(char *base, size_t *used, size_t bytes) {
   size_t at = (*used + 63) & ~(size_t)63;
-  *used = at + bytes;
+  *used = at + bytes + ARENA_GUARD;
+  if (base) ASAN_POISON_MEMORY_REGION(base + at + bytes, ARENA_GUARD);
   return base ? base + at : NULL;
 }
 
@@ -930,6 +948,7 @@ static size_t carve(job_t *j, char *base, int nt, float **bufs, ics_tile **tiles
  * large one does not keep the large one's memory); 0, or -1 when out of memory */
 static int frame_arrays(cpu_state *st, job_t *j, int nt) {
   size_t bytes = carve(j, NULL, nt, j->src, j->tsrc, j->ssrc);
+  if (st->mem) ASAN_UNPOISON_MEMORY_REGION(st->mem, st->cap); /* the last frame's guards */
   if (bytes > st->cap || bytes < st->cap / 2) {
     free(st->mem);
     st->cap = 0;
