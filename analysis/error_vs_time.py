@@ -14,9 +14,11 @@ Method (docs/results.md "Error against run time"):
    against exact ones, render.model surface at three slab spacings and blocker at five, resolution) and Monte-Carlo
    renders at 4..256 samples per pixel under the
    seed 7 + task, each run REPS times in an interleaved order (task by task, round by round) so
-   load drifts spread over all of them; `icshadow.render(...)` renders (the configuration as
-   overrides of the scene's render settings) and `icshadow.compare(render, REF.exr)` gives the
-   error, the render's summary the time. Time is ms_plan + ms_render (the frame: plan with its geometry pass,
+   load drifts spread over all of them; a frame on the sweep's `icshadow.Renderer` for the
+   backend (one for the slab renderer's tasks, one per Monte-Carlo sample count, kept across the
+   sweep as an application keeps its renderer: no fresh memory per frame) renders the
+   configuration as overrides of the scene's render settings, and
+   `icshadow.compare(render, REF.exr)` gives the error, the render's summary the time. Time is ms_plan + ms_render (the frame: plan with its geometry pass,
    then the render) for the slab renderer and ms_render for Monte Carlo (it uses no plan).
 3. CSV (task, method, parameters, resolution, ms median / min / max, rmse, rmse_beyond_noise,
    max_error, psnr, the reference's samples and noise, n_tasks) and a log-log plot of error
@@ -201,11 +203,22 @@ def main():
         s["camera"]["resolution"] = [int(v) for v in res.split("x")]
         return s
 
+    renderers = {}  # its options: a Renderer kept across the sweep, as an application keeps one
+
     def run_task(res, overrides, what):
         """a render of the scene (its file, so that its own files resolve, or the default) at res
-        with the overrides of its render settings (backend, spp: the renderer's own options)"""
+        with the overrides of its render settings (backend, spp, time, noise: the renderer's own
+        options), a frame on the sweep's renderer for those options"""
         kw = {"model": "patel", "slab_spacing": e0, **overrides}
-        return render(what, scene=a.scene, resolution=tuple(int(v) for v in res.split("x")), **kw)
+        opts = {k: kw.pop(k) for k in ("backend", "spp", "time", "noise") if k in kw}
+        key = tuple(sorted(opts.items()))
+        try:
+            if key not in renderers:
+                renderers[key] = icshadow.Renderer(**opts)
+            return renderers[key].render(scene=a.scene, resolution=tuple(int(v) for v in res.split("x")),
+                                         **kw)
+        except (icshadow.Error, MemoryError) as e:
+            die(f"{what}: {e}", 1)
 
     def ref_path(res):
         return a.ref if res == res0 else os.path.splitext(a.ref)[0] + f"_{res}.exr"
