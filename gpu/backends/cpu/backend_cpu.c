@@ -606,15 +606,17 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       float V[ICS_SCENE_MAX_LIGHTS * 3]; /* AOVs: the light arriving, per light and channel */
       if (j->aov && lit) memcpy(V, arrive, sizeof(float) * (size_t)P->nlights * P->nch);
       /* surface occlusions due at this slab (fragment slab + bias == k), after the light
-       * arriving here was read: a surface never shadows its own slab */
-      touched[ics_tile_col(&j->p->tiles, bi)] = 1;
+       * arriving here was read: a surface never shadows its own slab. The tile is flagged where
+       * the buffers are written (occlusions, volume pieces, solid interiors), not where only the
+       * view pixel is shaded: a tile shading left alone keeps what it holds */
+      uint8_t *wrote = &touched[ics_tile_col(&j->p->tiles, bi)];
       for (uint32_t f = acur; f < end && ics_frag_slab(&ldi->frag[f]) <= k; f++) {
         const ics_fragment *fr = &ldi->frag[f];
         int obj = ics_frag_obj(fr), first = ics_frag_slab(fr) + ics_frag_bias(fr), ib = P->inside_bit[obj];
         /* open surfaces occlude in every set; a solid's surface in Patel's set only */
         int solid = ib >= 0 && (P->solid_bits >> ib & 1); /* (a volume's boundary: no occlusion) */
         if ((ib < 0 || solid) && first <= k && k <= first + fr->span * j->window_max)
-          surface_occlusion(j, q, fr, k - first, solid);
+          surface_occlusion(j, q, fr, k - first, solid), *wrote = 1;
       }
       while (acur < end && ics_frag_slab(&ldi->frag[acur]) + ics_frag_bias(&ldi->frag[acur]) +
                                ldi->frag[acur].span * j->window_max <= k)
@@ -630,15 +632,17 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
        * them again), from the next for those entered here, or at once where the ray leaves them
        * in this slab */
       uint64_t held = mask & P->solid_bits, entered = 0;
-      if (held) solid_interior(j, q, zf);
+      if (held) solid_interior(j, q, zf), *wrote = 1;
       for (;;) {
         double zn = has ? ldi->frag[cur].z : zb;
         if (zn < za) zn = za;
         if (zn > zb) zn = zb;
-        if ((mask & ~(held | entered)) && zn > za)
+        if ((mask & ~(held | entered)) && zn > za) {
           volume_piece(j, p, bi, bj, mask & ~(held | entered), za, zn - za, L,
                        P->rs.model >= ICS_MODEL_SURFACE && inview ? arrive : NULL, C, inview, t,
                        pv);
+          *wrote = 1;
+        }
         if (!has) break;
         int obj = ics_frag_obj(&ldi->frag[cur]), ib = P->inside_bit[obj];
         if (ib >= 0) mask ^= 1ull << ib; /* a volume's or a solid's boundary */
@@ -647,6 +651,7 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
         else if (solid && (entered >> ib & 1)) { /* a solid thinner than this slab's rest */
           entered &= ~(1ull << ib);
           solid_interior(j, q, zn);
+          *wrote = 1;
         }
         if ((ib < 0 || solid) && inview) { /* a surface */
           double Lo[3];
