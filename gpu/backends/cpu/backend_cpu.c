@@ -86,6 +86,8 @@ typedef struct {
   double window[2 * ICS_SCENE_MAX_LIGHTS]; /* this slab, per light: 1 - its blur sigma in pixels,
                                               >= 0; then (blocker) its sharp set's */
   double window_max;                   /* the largest over lights and slabs (the cursor's reach) */
+  double blend_span;                   /* render.model blocker: log(d1 / (d1 s)), arriving_light's
+                                          blend's denominator */
   double blur_world[ICS_SCENE_MAX_LIGHTS]; /* per light: the per-slab blur's sigma, world units */
   double *dpts;          /* per thread: 8 x Wb doubles, a row's detail points (x, y, z of the
                             first and second ends) and their values (first, second) */
@@ -485,7 +487,7 @@ static void arriving_light(const job_t *j, size_t q, double z, float *arrive) {
     occ /= P->nch;
     if (!(occ > 1e-4)) continue; /* no blocker: the sets agree */
     double zb = P->z0 + mom[0] / occ * P->K * P->e, d = z - zb;
-    double t = d <= d_sharp ? 0 : d >= P->rs.d1 ? 1 : log(d / d_sharp) / log(P->rs.d1 / d_sharp);
+    double t = d <= d_sharp ? 0 : d >= P->rs.d1 ? 1 : log(d / d_sharp) / j->blend_span;
     for (int c = 0; c < P->nch; c++) first[c] = (float)(sh[c] + t * (first[c] - sh[c]));
   }
 }
@@ -1013,6 +1015,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   /* the largest pixel is the deepest slab's (perspective) */
   for (int l = 0; l < nl; l++) j->blur_world[l] = ics_plan_light_blur(P, l);
   j->window_max = ics_plan_window_max(P);
+  j->blend_span = log(P->rs.d1 / (P->rs.d1 * ICS_BLOCKER_SHARP));
   for (int i = 0; i < P->scene->nobjects; i++)
     if (P->inside_bit[i] >= 0) j->vol_obj[P->inside_bit[i]] = i;
   ics_pool_run(pool, start_job, j);
