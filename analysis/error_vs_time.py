@@ -16,8 +16,9 @@ Method (docs/results.md "Error against run time"):
    seed 7 + task, each run REPS times in an interleaved order (task by task, round by round) so
    load drifts spread over all of them; a frame on the sweep's `icshadow.Renderer` for the
    backend (one for the slab renderer's tasks, one per Monte-Carlo sample count, kept across the
-   sweep as an application keeps its renderer: no fresh memory per frame) renders the
-   configuration as overrides of the scene's render settings, and
+   sweep as an application keeps its renderer; a slab task's timed frame follows an untimed
+   frame of the same task, so that it takes no fresh memory) renders the configuration as
+   overrides of the scene's render settings, and
    `icshadow.compare(render, REF.exr)` gives the error, the render's summary the time. Time is ms_plan + ms_render (the frame: plan with its geometry pass,
    then the render) for the slab renderer and ms_render for Monte Carlo (it uses no plan).
 3. CSV (task, method, parameters, resolution, ms median / min / max, rmse, rmse_beyond_noise,
@@ -306,6 +307,8 @@ def main():
             method, params, res, overrides = tasks[k]
             print(f"round {r + 1}/{a.reps}: task {k}: {method} {params}", file=sys.stderr, flush=True)
             seed = {"seed": 7 + k} if method == "mc" else {}
+            if method == "slab":  # a warm-up frame: the timed one takes no fresh memory
+                run_task(res, overrides, f"task {k}")
             got = run_task(res, {**overrides, **seed}, f"task {k}")
             s = got.summary
             times[k].append(s["ms_render"] + (0 if method == "mc" else s["ms_plan"]))

@@ -15,6 +15,11 @@ ics_add_render_test(test_render_volume fast)
 # medium by cost (docs/testing.md): 15 s under ASan on the scalar path, 1.6 s Release
 ics_add_test(NAME test_render_repro SOURCES test_render_repro.c LABELS medium render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/scenes/disk.json)
+# its frames on one renderer alone, fast: the ASan run checks the kept memory's guards
+if(TARGET test_render_repro)
+  add_test(NAME test_render_frames COMMAND test_render_repro ${CMAKE_SOURCE_DIR}/scenes/disk.json --frames)
+  set_tests_properties(test_render_frames PROPERTIES LABELS "fast;render" SKIP_RETURN_CODE 77)
+endif()
 ics_add_render_test(test_render_plan medium)
 ics_add_render_test(test_render_propagate fast)
 ics_add_render_test(test_render_simd medium) # 42 renders: 5 s Release

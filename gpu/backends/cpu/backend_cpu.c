@@ -917,13 +917,14 @@ static void cpu_destroy(void *state) {
   free(st);
 }
 
-/* the next `bytes` of the arena at *used (64-byte aligned), NULL while only measuring (base
- * NULL); under AddressSanitizer followed by a poisoned guard, so that an overrun into the next
- * array is reported as one into another allocation's redzone was */
+/* the next `bytes` of the arena at *used (64-byte aligned, and under AddressSanitizer after a
+ * guard), NULL while only measuring (base NULL); under AddressSanitizer everything between it
+ * and the array before is poisoned, so that an overrun or underrun into a neighbour is reported
+ * as one into another allocation's redzone was */
 static void *take(char *base, size_t *used, size_t bytes) {
-  size_t at = (*used + 63) & ~(size_t)63;
-  *used = at + bytes + ARENA_GUARD;
-  if (base) ASAN_POISON_MEMORY_REGION(base + at + bytes, ARENA_GUARD);
+  size_t at = (*used + ARENA_GUARD + 63) & ~(size_t)63;
+  if (base) ASAN_POISON_MEMORY_REGION(base + *used, at - *used);
+  *used = at + bytes;
   return base ? base + at : NULL;
 }
 
@@ -964,6 +965,7 @@ static int frame_arrays(cpu_state *st, job_t *j, int nt) {
     st->cap = bytes;
   }
   carve(j, st->mem, nt, j->src, j->tsrc, j->ssrc);
+  ASAN_POISON_MEMORY_REGION(st->mem + bytes, st->cap - bytes); /* a larger frame's rest */
   /* seg_next 0: look at every segment first */
   memset(j->seg_next, 0, sizeof *j->seg_next * (size_t)j->p->Hb * j->p->tiles.nx);
   if (j->aov_seen) memset(j->aov_seen, 0, (size_t)j->p->W * j->p->H);
