@@ -108,13 +108,16 @@ int main(int argc, char **argv) {
      * it (128 x 96, 140 x 105 dense, 256 x 192 under patel: one set of buffers instead of
      * four); renewed for a frame under half (the contract example), taken again by 32 x 24,
      * grown again (96 x 72) */
-    const frame_case frames[] = {
+    frame_case frames[] = {
         {"default", s, NULL, 96, 72},            {"default", s, NULL, 160, 120},
         {"default", s, NULL, 128, 96},           {"default dense", s, &dense, 140, 105},
         {"default patel", s, &patel, 256, 192},  {"contract", d, &rs, 0, 0},
         {"default", s, NULL, 32, 24},            {"default", s, NULL, 96, 72},
     };
-    check_one_renderer(frames, (int)(sizeof frames / sizeof *frames));
+    int n = (int)(sizeof frames / sizeof *frames);
+    for (int i = 0; i < n && frames_only; i++) /* half the sides under ASan: three reuses */
+      frames[i].w /= 2, frames[i].h /= 2;
+    check_one_renderer(frames, n);
     ics_scene_destroy(d);
   }
   ics_scene_destroy(s);
