@@ -23,6 +23,7 @@ endif()
 ics_add_render_test(test_render_plan medium)
 ics_add_render_test(test_render_propagate fast)
 ics_add_render_test(test_render_simd medium) # 42 renders: 5 s Release
+ics_add_render_test(test_render_vec_math fast)
 ics_add_test(NAME test_render_model SOURCES test_render_model.c LABELS medium render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/scenes/disk.json)
 if(TARGET test_render_model)

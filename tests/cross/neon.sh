@@ -6,7 +6,8 @@
 # path against the engine, to 4 float ulps). The vector source is one file for every
 # instruction set, so this is how a change to it is checked on the architecture the machine
 # running the suite lacks. The detail functions' NEON build (detail_neon.c) is compiled too (its
-# values are checked against the scalar ones by test_render_detail on every path it runs on).
+# values are checked against the scalar ones by test_render_detail on every path it runs on), and
+# the batched volume pieces' vector exp, expm1 and log are run (test_render_vec_math).
 set -u
 src=$1 out=$2 cc=$3 qemu=$4
 mkdir -p "$out" || exit 1
@@ -29,8 +30,26 @@ done
   { echo "FAILED: detail_neon.c did not build its NEON loops"; exit 1; }
 "$cc" -o "$out/test_render_propagate" "${objs[@]}" "$out/propagate_neon.o" -lm -lpthread ||
   { echo "FAILED: linking for AArch64"; exit 1; }
+# the batched volume pieces' exp, expm1 and log (piece_neon.c, vec_math.h): test_render_vec_math
+# against long double (quadruple precision on AArch64)
+mobjs=()
+for f in "$src"/gpu/backends/cpu/piece_{batch,sse2,avx2,avx512,neon}.c "$src"/tests/test_render_vec_math.c; do
+  o=$out/$(basename "$f" .c).o
+  "$cc" -std=c11 -O2 -ffp-contract=off -Wall -Werror "${inc[@]}" -c "$f" -o "$o" ||
+    { echo "FAILED: $cc on $f"; exit 1; }
+  mobjs+=("$o")
+done
+"${cc%gcc}nm" "$out/piece_neon.o" | grep -q " t first_mean$" ||
+  { echo "FAILED: piece_neon.c did not build its NEON loops"; exit 1; }
+for o in "${objs[@]}"; do [[ $o == */test_render_propagate.o ]] || mobjs+=("$o"); done
+"$cc" -o "$out/test_render_vec_math" "${mobjs[@]}" "$out/propagate_neon.o" -lm -lpthread ||
+  { echo "FAILED: linking test_render_vec_math for AArch64"; exit 1; }
 sysroot=$(dirname "$(dirname "$("$cc" -print-file-name=libc.so.6)")")
 "$qemu" -L "$sysroot" "$out/test_render_propagate" > "$out/run.log" 2>&1; rc=$?
 cat "$out/run.log"
 grep -q "(neon, apron 8" "$out/run.log" || { echo "FAILED: the neon path did not run"; exit 1; }
-exit $rc
+"$qemu" -L "$sysroot" "$out/test_render_vec_math" > "$out/vec_math.log" 2>&1; mrc=$?
+cat "$out/vec_math.log"
+grep -q "^log, neon:" "$out/vec_math.log" || { echo "FAILED: the neon vec_math did not run"; exit 1; }
+[ $rc -ne 0 ] && exit $rc
+exit $mrc

@@ -23,6 +23,7 @@
 #include "kernel/occlusion.h"
 #include "icshadow/rng.h"
 #include "own_term.h"
+#include "piece_batch.h"
 #include "plan_internal.h"
 #include "pool.h"
 #include "propagate.h"
@@ -92,6 +93,8 @@ typedef struct {
   double *dpts;          /* per thread: 8 x Wb doubles, a row's detail points (x, y, z of the
                             first and second ends) and their values (first, second) */
   int32_t *dslot;        /* per thread: Wb, each pixel's slot in them, or -1 */
+  double *prow;          /* per thread: 10 x Wb, a row's lone pieces (ics_piece_row's arrays) */
+  ics_piece_params pp;   /* this slab's uniforms for the lone pieces (vector paths) */
   ics_hits hits[256];    /* per thread: a ray's crossings (the own term's normals) */
   int failed;            /* out of memory in a thread (the render fails) */
   int nk;                /* kernels: each light's, then (blocker) each light's sharp set's */
@@ -542,6 +545,77 @@ static void single_volume_piece(job_t *j, size_t p, int bi, int bj, int obj, dou
   piece_attenuate(j, q, 1, &sig, &obj, za, dz);
 }
 
+/* pixel p's volume when its piece at slab k is a lone one (single_volume_piece's: inside one
+ * volume that is no solid, no fragment in the slab, no surface occlusion due), else -1 */
+static int lone_piece(const job_t *j, size_t p, int k) {
+  const ics_plan *P = j->p;
+  uint64_t mask = j->mask ? j->mask[p] : 0;
+  uint32_t cur = j->cursor[p], end = P->ldi.offset[p + 1], acur = j->acursor[p];
+  if (!mask || (mask & (mask - 1)) || (mask & P->solid_bits) ||
+      (cur < end && ics_frag_slab(&P->ldi.frag[cur]) == k) ||
+      (acur < end && ics_frag_slab(&P->ldi.frag[acur]) <= k))
+    return -1;
+  return j->vol_obj[__builtin_ctzll(mask)];
+}
+
+/* the uniforms of slab k's lone pieces (piece_batch.h) */
+static void piece_params(job_t *j, int k) {
+  const ics_plan *P = j->p;
+  ics_piece_params *pp = &j->pp;
+  double zf = P->z0 + k * P->e, zb = zf + P->e;
+  pp->nlights = P->nlights, pp->nch = P->nch, pp->nb = j->nb, pp->plane = P->buf.plane;
+  pp->dst = j->dst;
+  for (int b = 0; b < j->nb; b++)
+    pp->attenuates[b] = (uint8_t)occludes_in(j, b, 0), pp->is_moment[b] = j->role[b] == ICS_SET_MOMENT;
+  pp->own = P->rs.model >= ICS_MODEL_SURFACE, pp->blend = P->rs.model >= ICS_MODEL_BLOCKER;
+  pp->moment = j->moment, pp->sharp_set = j->sharp_set;
+  for (int l = 0; l < P->nlights; l++) {
+    const ics_light *lt = &P->scene->lights[l];
+    for (int c = 0; c < 3; c++) pp->lcw[l][c] = lt->color[c] * lt->weight;
+    pp->lpath[l] = P->light_path[l];
+  }
+  pp->dz = zb - zf, pp->z_light = zf + P->e / 2, pp->z_moment = zf + pp->dz / 2;
+  pp->z0 = P->z0, pp->K = P->K, pp->e = P->e;
+  pp->d_sharp = P->rs.d1 * ICS_BLOCKER_SHARP, pp->d1 = P->rs.d1, pp->blend_span = j->blend_span;
+  pp->img = j->img->data;
+}
+
+/* Row bj's lone pieces at this slab, on the vector path in one batch (piece_batch.h): each
+ * piece's volume, extinction and colour here (its detail batched by row_details, or evaluated
+ * now), then the light, the view and the buffers in the batch. shade_rows passes them over. */
+static void row_pieces(job_t *j, int bj, const int32_t *need, const int *seg, int tx0, int tx1,
+                       const int32_t *slot, const double *values, int t) {
+  const ics_plan *P = j->p;
+  const ics_scene *s = P->scene;
+  size_t w = (size_t)P->Wb;
+  double *a = j->prow + (size_t)t * 10 * w, zf = P->z0 + j->k * P->e, zb = zf + P->e;
+  ics_piece_row r = {0, (int64_t *)a, (int64_t *)(a + w), a + 2 * w, a + 3 * w,
+                     {a + 4 * w, a + 5 * w, a + 6 * w}, {a + 7 * w, a + 8 * w, a + 9 * w}};
+  for (int tx = tx0; tx <= tx1; tx++) {
+    if (need[tx] < j->k || seg[tx] > j->k) continue;
+    int x0 = ics_tile_x0(&P->tiles, tx), x1 = ics_tile_x1(&P->tiles, tx);
+    if (x0 < j->shade.x0) x0 = j->shade.x0;
+    if (x1 > j->shade.x1) x1 = j->shade.x1;
+    for (int bi = x0; bi < x1; bi++) {
+      size_t p = (size_t)bj * P->Wb + bi;
+      int obj = j->pnext[p] > j->k ? -1 : lone_piece(j, p, j->k);
+      if (obj < 0) continue;
+      double pre[2], col[3];
+      piece_at at = {0};
+      const ics_material *mat = &s->materials[s->objects[obj].material];
+      double sig = mat->extinction * volume_scale(j, obj, p, bi, bj, zf, zb - zf,
+                                                  batched(j, slot, values, bi, pre), &at, t, col);
+      if (!(sig > 0)) continue;
+      int ii = bi - P->pad[0], jj = bj - P->pad[2], n = r.n++;
+      r.q[n] = (int64_t)ics_buf_index(&P->buf, bi, bj);
+      r.view[n] = ii >= 0 && ii < P->W && jj >= 0 && jj < P->H ? (int64_t)jj * P->W + ii : -1;
+      r.sig[n] = sig, r.dl[n] = camera_path(P, bi, bj);
+      for (int c = 0; c < 3; c++) r.col[c][n] = col[c], r.keep[c][n] = 1 - mat->transport[c];
+    }
+  }
+  if (r.n) ics_piece_batch(&j->pp, &r, j->simd);
+}
+
 /* rows [y0, y1) within this slab's shading rectangle; the tiles written into flagged in touched */
 static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
   const ics_plan *P = j->p;
@@ -565,6 +639,8 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       slot = j->dslot + (size_t)t * P->Wb;
       values = j->dpts + (size_t)t * 8 * P->Wb + 6 * (size_t)P->Wb;
     }
+    int lone_batched = j->mask && j->simd != ICS_SIMD_SCALAR; /* the portable path: one by one */
+    if (lone_batched) row_pieces(j, bj, need, seg, tx0, tx1, slot, values, t);
     for (int tx = tx0; tx <= tx1; tx++) {
     /* a segment no longer needed, or with nothing to do before its next slab, is passed over */
     if (need[tx] < k || seg[tx] > k) continue;
@@ -584,13 +660,15 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       int inview = ii >= 0 && ii < P->W && jj >= 0 && jj < P->H;
       float dummy[4] = {0, 0, 0, 1};
       float *C = inview ? j->img->data + ((size_t)jj * P->W + ii) * 4 : dummy;
-      if (mask && !(mask & (mask - 1)) && !(mask & P->solid_bits) && !has &&
-          !(acur < end && ics_frag_slab(&ldi->frag[acur]) <= k)) {
-        /* inside one volume, nothing else due: the piece, and the pixel needs the next slab */
+      int lone = lone_piece(j, p, k);
+      if (lone >= 0) {
+        /* inside one volume, nothing else due: the piece (row_pieces' already on a vector
+         * path), and the pixel needs the next slab */
         double pre[2];
         touched[ics_tile_col(&j->p->tiles, bi)] = 1;
-        single_volume_piece(j, p, bi, bj, j->vol_obj[__builtin_ctzll(mask)], zf, zb - zf,
-                            inview ? C : NULL, t, batched(j, batch ? slot : NULL, values, bi, pre));
+        if (!lone_batched)
+          single_volume_piece(j, p, bi, bj, lone, zf, zb - zf, inview ? C : NULL, t,
+                              batched(j, batch ? slot : NULL, values, bi, pre));
         j->pnext[p] = 0;
         next = k + 1;
         continue;
@@ -941,6 +1019,7 @@ static size_t carve(job_t *j, char *base, int nt, float **bufs, ics_tile **tiles
   j->marks = take(base, &used, nx * (1 + (size_t)j->nb) * (size_t)nt);
   j->dpts = P->any_detail ? take(base, &used, sizeof *j->dpts * 8 * (size_t)P->Wb * nt) : NULL;
   j->dslot = P->any_detail ? take(base, &used, sizeof *j->dslot * (size_t)P->Wb * nt) : NULL;
+  j->prow = P->ninside ? take(base, &used, sizeof *j->prow * 10 * (size_t)P->Wb * nt) : NULL;
   j->cursor = take(base, &used, sizeof *j->cursor * npx);
   j->acursor = take(base, &used, sizeof *j->acursor * npx);
   j->pnext = take(base, &used, sizeof *j->pnext * npx);
@@ -1051,6 +1130,7 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
         if (pending[i] >= 0) ics_prop_perspective_end(&j->pt[i]);
     }
     j->shade = shade_rect(P, k);
+    piece_params(j, k);
     atomic_store(&j->next_row, 0);
     ics_pool_run(pool, slab_job, j);
     if (j->failed) goto nomem;

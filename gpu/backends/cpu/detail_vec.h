@@ -6,26 +6,18 @@
  * multiply-adds), so every value is bit for bit ics_detail_value's; the permutation lookups are
  * per lane. */
 #include <math.h>
-#include <stdint.h>
-#include <string.h>
 
 #include "detail_batch.h"
 
 #if !defined(ICS_DVEC_W) || !defined(ICS_DVEC_FN)
 #error "define ICS_DVEC_W and ICS_DVEC_FN before including detail_vec.h"
 #endif
+#include "vec_double.h"
 
-#define W ICS_DVEC_W
-typedef double vd __attribute__((vector_size(8 * W)));
-typedef int64_t vl __attribute__((vector_size(8 * W)));
-
-static inline vd splat(double v) { return (vd){0} + v; }
-static inline vd blend(vl mask, vd a, vd b) { return (vd)(((vl)a & mask) | ((vl)b & ~mask)); }
 static inline vd vfloor(vd x) {
   for (int i = 0; i < W; i++) x[i] = floor(x[i]);
   return x;
 }
-static inline vd vfabs(vd x) { return (vd)((vl)x & ((vl){0} + INT64_MAX)); }
 
 static inline vd fade(vd t) { return t * t * t * (t * (t * 6 - 15) + 10); }
 static inline vd lerp(vd t, vd a, vd b) { return a + t * (b - a); }
@@ -123,12 +115,6 @@ static vd value(const ics_detail_eval *e, vd px, vd py, vd pz) {
     }
   }
   return d->bias + d->scale * f;
-}
-
-static inline vd load(const double *p) {
-  vd v;
-  memcpy(&v, p, sizeof v);
-  return v;
 }
 
 void ICS_DVEC_FN(const ics_detail_eval *e, const double *x, const double *y, const double *z,
