@@ -890,8 +890,10 @@ static void settle_row(job_t *j, int ty, const uint8_t *marks) {
         j->tdst[b][i] = j->tdst[b - P->nlights][i];
         j->sdst[b][i] = 1;
       } else if (written[tx] || shaded[tx] || written0[tx] || signed_) {
-        j->sdst[b][i] = (uint8_t)ics_tile_equal(&P->buf, j->dst[b], j->dst[b - P->nlights],
-                                                 P->nch, x0, x1, y0, y1);
+        /* two tiles of one constant are equal without a read (the scans above are exact) */
+        const ics_tile *t0 = &j->tdst[b - P->nlights][i];
+        j->sdst[b][i] = ics_tile_same_const(&j->tdst[b][i], t0, P->nch) ||
+                        ics_tile_equal(&P->buf, j->dst[b], j->dst[b - P->nlights], P->nch, x0, x1, y0, y1);
       }
     }
     int last = g->nx - 1, sides = shaded[0] || written[0] || shaded[last] || written[last] || signed_;
