@@ -3,10 +3,11 @@
  * piece_avx2.c, piece_avx512.c, piece_neon.c define ICS_DVEC_W and ICS_PIECE_ISA). Each lane
  * repeats backend_cpu.c's single_volume_piece (its helpers arriving_light, piece_light,
  * light_colour, piece_composite, piece_attenuate, moment_add) in its order, float operations as
- * double ones rounded to float (the same result: a double holds a float sum, difference or
- * product exactly, and rounds a quotient once more harmlessly), with vec_math.h's exp, expm1
- * and log; the buffers and the view are read and written lane by lane. Compiled without
- * contraction, so every path gives the same bits. */
+ * double ones rounded to float (the same result: with more than twice a float's bits plus two, a
+ * double's rounding before the float's never changes a sum, difference, product or quotient;
+ * Figueroa 1995), with vec_math.h's exp, expm1 and log. The buffers are read and written as vectors where the W pieces are consecutive
+ * pixels (most of a row), else lane by lane, as the view is. Compiled without contraction, so
+ * every path gives the same bits. */
 #include "piece_batch.h"
 
 #if !defined(ICS_DVEC_W) || !defined(ICS_PIECE_ISA)
@@ -28,9 +29,28 @@ static inline vd gather(const float *base, vl idx) {
   for (int k = 0; k < W; k++) v[k] = base[idx[k]];
   return v;
 }
-/* the first m lanes of v stored at base[idx] */
-static inline void scatter(float *base, vl idx, vd v, int m) {
-  for (int k = 0; k < m; k++) base[idx[k]] = (float)v[k];
+
+/* the pieces' places in the light buffers: their indices, how many lanes are pieces, and
+ * whether those are W consecutive pixels (a row's usual case: loaded and stored as a vector) */
+typedef struct {
+  vl q;
+  int m, run;
+} places;
+
+static inline vd load_at(const float *base, const places *at) {
+  if (!at->run) return gather(base, at->q);
+  vf v;
+  memcpy(&v, base + at->q[0], sizeof v);
+  return __builtin_convertvector(v, vd);
+}
+/* v rounded to float at the pieces' places (its first m lanes) */
+static inline void store_at(float *base, const places *at, vd v) {
+  if (at->run) {
+    vf f = __builtin_convertvector(v, vf);
+    memcpy(base + at->q[0], &f, sizeof f);
+    return;
+  }
+  for (int k = 0; k < at->m; k++) base[at->q[k]] = (float)v[k];
 }
 static inline vl gather_index(const int64_t *p, int i, int n) {
   vl v;
@@ -45,34 +65,35 @@ static inline vd gather_value(const double *p, int i, int n) {
 
 /* light l's first-set light at the pieces (q: their buffer indices), channel c: render.model
  * blocker blends it with the sharp set's (arriving_light) */
-static void arriving(const ics_piece_params *pp, int l, vl q, vd out[3]) {
+static void arriving(const ics_piece_params *pp, int l, const places *at, vd out[3]) {
   int nch = pp->nch, nl = pp->nlights;
-  for (int c = 0; c < nch; c++) out[c] = gather(pp->dst[l] + (size_t)c * pp->plane, q);
+  for (int c = 0; c < nch; c++) out[c] = load_at(pp->dst[l] + (size_t)c * pp->plane, at);
   if (!pp->blend) return;
   vd occ = splat(0);
   for (int c = 0; c < nch; c++) occ += to_float(1 - out[c]);
   occ /= nch;
   vl some = occ > 1e-4; /* no blocker elsewhere: the sets agree */
   if (!any(some)) return;
-  vd mom = gather(pp->dst[(pp->sharp_set + 1) * nl + l], q);
+  vd mom = load_at(pp->dst[(pp->sharp_set + 1) * nl + l], at);
   vd zb = pp->z0 + mom / blend(some, occ, splat(1)) * pp->K * pp->e, d = pp->z_light - zb;
   vl mid = (d > pp->d_sharp) & (d < pp->d1);
   vd t = vlog(blend(mid, d / pp->d_sharp, splat(1))) / pp->blend_span;
   t = blend(d <= pp->d_sharp, splat(0), blend(d >= pp->d1, splat(1), t));
   for (int c = 0; c < nch; c++) {
-    vd sh = gather(pp->dst[pp->sharp_set * nl + l] + (size_t)c * pp->plane, q);
+    vd sh = load_at(pp->dst[pp->sharp_set * nl + l] + (size_t)c * pp->plane, at);
     out[c] = blend(some, to_float(sh + t * to_float(out[c] - sh)), out[c]);
   }
 }
 
 /* the light on the pieces per colour channel (piece_light's own term, or light_colour) */
-static void light(const ics_piece_params *pp, vl q, vd sig, vd dl, const vd keep[3], vd L[3]) {
+static void light(const ics_piece_params *pp, const places *at, vd sig, vd dl, const vd keep[3],
+                  vd L[3]) {
   vd a = sig * dl, plain = -vexpm1(-a * pp->dz) / a, bc[3];
   for (int c = 0; c < pp->nch; c++) bc[c] = sig * keep[c];
   L[0] = L[1] = L[2] = splat(0);
   for (int l = 0; l < pp->nlights; l++) {
     vd F[3];
-    arriving(pp, l, q, F);
+    arriving(pp, l, at, F);
     for (int c = 0; c < 3; c++) {
       int ch = pp->nch == 3 ? c : 0;
       if (pp->own) {
@@ -100,36 +121,37 @@ static void composite(const ics_piece_params *pp, vl view, vl lit, vd sig, vd dl
 }
 
 /* render.model blocker: light l's first set's mean over its channels at the pieces */
-static vd first_mean(const ics_piece_params *pp, int l, vl q) {
+static vd first_mean(const ics_piece_params *pp, int l, const places *at) {
   vd v = splat(0);
-  for (int c = 0; c < pp->nch; c++) v += gather(pp->dst[l] + (size_t)c * pp->plane, q);
+  for (int c = 0; c < pp->nch; c++) v += load_at(pp->dst[l] + (size_t)c * pp->plane, at);
   return v / pp->nch;
 }
 
 /* every buffer the pieces occlude, attenuated (piece_attenuate) */
-static void attenuate(const ics_piece_params *pp, vl q, vd sig, const vd keep[3], int m) {
+static void attenuate(const ics_piece_params *pp, const places *at, vd sig, const vd keep[3]) {
   int nl = pp->nlights;
   for (int l = 0; l < nl; l++) {
     vd pass[3];
     for (int c = 0; c < pp->nch; c++) pass[c] = vexp(-sig * pp->dz * pp->lpath[l] * keep[c]);
-    vd v0 = pp->moment ? first_mean(pp, l, q) : splat(0);
+    vd v0 = pp->moment ? first_mean(pp, l, at) : splat(0);
     for (int b = l; b < pp->nb; b += nl)
       if (pp->attenuates[b])
         for (int c = 0; c < pp->nch; c++) {
           float *base = pp->dst[b] + (size_t)c * pp->plane;
-          scatter(base, q, gather(base, q) * to_float(pass[c]), m);
+          store_at(base, at, load_at(base, at) * to_float(pass[c]));
         }
     if (!pp->moment) continue;
-    vd gain = to_float((v0 - first_mean(pp, l, q)) * (pp->z_moment - pp->z0) / (pp->K * pp->e));
+    vd gain = to_float((v0 - first_mean(pp, l, at)) * (pp->z_moment - pp->z0) / (pp->K * pp->e));
     for (int b = l; b < pp->nb; b += nl)
-      if (pp->is_moment[b]) scatter(pp->dst[b], q, gather(pp->dst[b], q) + gain, m);
+      if (pp->is_moment[b]) store_at(pp->dst[b], at, load_at(pp->dst[b], at) + gain);
   }
 }
 
 void PV_CAT(ics_piece_batch_, ICS_PIECE_ISA)(const ics_piece_params *pp, const ics_piece_row *r) {
   for (int i = 0; i < r->n; i += W) {
-    int m = r->n - i < W ? r->n - i : W; /* lanes beyond repeat the last piece, not stored */
-    vl q = gather_index(r->q, i, r->n), view = gather_index(r->view, i, r->n);
+    places at = {gather_index(r->q, i, r->n), r->n - i < W ? r->n - i : W, 0};
+    at.run = at.m == W && at.q[W - 1] - at.q[0] == W - 1; /* (the indices only increase) */
+    vl view = gather_index(r->view, i, r->n); /* lanes beyond repeat the last piece, not stored */
     vd sig = gather_value(r->sig, i, r->n), dl = gather_value(r->dl, i, r->n), col[3], keep[3];
     for (int c = 0; c < 3; c++)
       col[c] = gather_value(r->col[c], i, r->n), keep[c] = gather_value(r->keep[c], i, r->n);
@@ -138,10 +160,10 @@ void PV_CAT(ics_piece_batch_, ICS_PIECE_ISA)(const ics_piece_params *pp, const i
     vl lit = in & (a3 < 1);
     if (any(lit)) {
       vd L[3];
-      light(pp, q, sig, dl, keep, L);
-      composite(pp, view, lit, sig, dl, col, L, m);
+      light(pp, &at, sig, dl, keep, L);
+      composite(pp, view, lit, sig, dl, col, L, at.m);
     }
-    attenuate(pp, q, sig, keep, m);
+    attenuate(pp, &at, sig, keep);
   }
 }
 
