@@ -545,16 +545,30 @@ static void single_volume_piece(job_t *j, size_t p, int bi, int bj, int obj, dou
   piece_attenuate(j, q, 1, &sig, &obj, za, dz);
 }
 
+/* whether fragment fr occludes at slab k: a surface (open, or a solid's; a volume's boundary
+ * occludes nothing) within its window of slabs from its first (its slab and bias); *solid: it
+ * is a solid's */
+static int occlusion_due(const job_t *j, const ics_fragment *fr, int k, int *solid) {
+  const ics_plan *P = j->p;
+  int first = ics_frag_slab(fr) + ics_frag_bias(fr), ib = P->inside_bit[ics_frag_obj(fr)];
+  *solid = ib >= 0 && (P->solid_bits >> ib & 1);
+  return (ib < 0 || *solid) && first <= k && k <= first + fr->span * j->window_max;
+}
+
 /* pixel p's volume when its piece at slab k is a lone one (single_volume_piece's: inside one
- * volume that is no solid, no fragment in the slab, no surface occlusion due), else -1 */
+ * volume that is no solid, no fragment in the slab, no surface occlusion due: the fragments
+ * from acur reaching this slab are volumes' boundaries, or their windows are over), else -1 */
 static int lone_piece(const job_t *j, size_t p, int k) {
   const ics_plan *P = j->p;
   uint64_t mask = j->mask ? j->mask[p] : 0;
-  uint32_t cur = j->cursor[p], end = P->ldi.offset[p + 1], acur = j->acursor[p];
+  uint32_t cur = j->cursor[p], end = P->ldi.offset[p + 1];
   if (!mask || (mask & (mask - 1)) || (mask & P->solid_bits) ||
-      (cur < end && ics_frag_slab(&P->ldi.frag[cur]) == k) ||
-      (acur < end && ics_frag_slab(&P->ldi.frag[acur]) <= k))
+      (cur < end && ics_frag_slab(&P->ldi.frag[cur]) == k))
     return -1;
+  for (uint32_t f = j->acursor[p]; f < end && ics_frag_slab(&P->ldi.frag[f]) <= k; f++) {
+    int solid;
+    if (occlusion_due(j, &P->ldi.frag[f], k, &solid)) return -1;
+  }
   return j->vol_obj[__builtin_ctzll(mask)];
 }
 
@@ -692,11 +706,9 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       uint8_t *wrote = &touched[ics_tile_col(&j->p->tiles, bi)];
       for (uint32_t f = acur; f < end && ics_frag_slab(&ldi->frag[f]) <= k; f++) {
         const ics_fragment *fr = &ldi->frag[f];
-        int obj = ics_frag_obj(fr), first = ics_frag_slab(fr) + ics_frag_bias(fr), ib = P->inside_bit[obj];
-        /* open surfaces occlude in every set; a solid's surface in Patel's set only */
-        int solid = ib >= 0 && (P->solid_bits >> ib & 1); /* (a volume's boundary: no occlusion) */
-        if ((ib < 0 || solid) && first <= k && k <= first + fr->span * j->window_max)
-          surface_occlusion(j, q, fr, k - first, solid), *wrote = 1;
+        int solid; /* open surfaces occlude in every set; a solid's surface in Patel's set only */
+        if (occlusion_due(j, fr, k, &solid))
+          surface_occlusion(j, q, fr, k - ics_frag_slab(fr) - ics_frag_bias(fr), solid), *wrote = 1;
       }
       while (acur < end && ics_frag_slab(&ldi->frag[acur]) + ics_frag_bias(&ldi->frag[acur]) +
                                ldi->frag[acur].span * j->window_max <= k)
