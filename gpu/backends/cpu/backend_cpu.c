@@ -935,15 +935,18 @@ static void slab_job(void *ctx, int t, int n) {
 }
 
 /* the render's start, a band of every array per thread (their pages touched on every thread):
- * both ping-pong buffers lit (1; the moment 0) and saying so, so that a pixel outside the active
- * regions keeps a value; the sets equal; each pixel's cursors at its first fragment, its volumes
- * those its ray starts inside, and its next slab to look at */
+ * the view cleared; both ping-pong buffers lit (1; the moment 0) and saying so, so that a pixel
+ * outside the active regions keeps a value; the sets equal; each pixel's cursors at its first
+ * fragment, its volumes those its ray starts inside, and its next slab to look at */
 static void start_job(void *ctx, int t, int n) {
   job_t *j = ctx;
   const ics_plan *P = j->p;
   const ics_ldi *ldi = &P->ldi;
   size_t ntiles = (size_t)P->tiles.nx * P->tiles.ny;
-  size_t npx = (size_t)P->Wb * P->Hb;
+  size_t npx = (size_t)P->Wb * P->Hb, nimg = 4 * (size_t)P->W * P->H;
+  /* the view, transparent black, written before shading reads it: a fresh page read first maps
+   * the shared zero page, and the write after it faults again and flushes every thread's TLB */
+  memset(j->img->data + nimg * t / n, 0, sizeof(float) * (nimg * (t + 1) / n - nimg * t / n));
   for (size_t i = npx * t / n; i < npx * (t + 1) / n; i++) {
     j->cursor[i] = j->acursor[i] = ldi->offset[i];
     if (j->mask) j->mask[i] = ldi->inside0 ? ldi->inside0[i] : 0;
