@@ -15,6 +15,9 @@ ics_add_render_test(test_render_volume fast)
 # medium by cost (docs/testing.md): 15 s under ASan on the scalar path, 1.6 s Release
 ics_add_test(NAME test_render_repro SOURCES test_render_repro.c LABELS medium render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/scenes/disk.json)
+if(TARGET test_render_repro)
+  target_include_directories(test_render_repro PRIVATE ${ICS_RENDER_PRIVATE_INCLUDES})
+endif()
 # its frames on one renderer alone, fast: the ASan run checks the kept memory's guards
 if(TARGET test_render_repro)
   add_test(NAME test_render_frames COMMAND test_render_repro ${CMAKE_SOURCE_DIR}/scenes/disk.json --frames)

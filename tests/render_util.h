@@ -19,10 +19,11 @@ typedef struct render_result {
   int slabs;
 } render_result;
 
-/* The plan of scene s (rs, threads, width and height as ics_plan_opts take them: NULL and 0 keep
- * the scene's); exits 2 with the message when it cannot be made. */
-static inline ics_plan *plan_sized_or_exit(const ics_scene *s, const ics_render_settings *rs,
-                                           int threads, int width, int height) {
+/* The plan of scene s for renderer r (rs, threads, width and height as ics_plan_opts take them:
+ * NULL and 0 keep the scene's; r may be NULL); exits 2 with the message when it cannot be made. */
+static inline ics_plan *plan_for_or_exit(const ics_scene *s, const ics_render_settings *rs,
+                                         int threads, int width, int height,
+                                         const ics_renderer *r) {
   char msg[4096];
   ics_plan_opts po;
   memset(&po, 0, sizeof po);
@@ -30,12 +31,18 @@ static inline ics_plan *plan_sized_or_exit(const ics_scene *s, const ics_render_
   po.threads = threads;
   po.width = width;
   po.height = height;
+  po.renderer = r;
   ics_plan *p;
   if (ics_plan_create(&p, s, &po, msg, sizeof msg) != ICS_OK) {
     fprintf(stderr, "render_util: plan: %s\n", msg);
     exit(2);
   }
   return p;
+}
+
+static inline ics_plan *plan_sized_or_exit(const ics_scene *s, const ics_render_settings *rs,
+                                           int threads, int width, int height) {
+  return plan_for_or_exit(s, rs, threads, width, height, NULL);
 }
 
 static inline ics_plan *plan_or_exit(const ics_scene *s, const ics_render_settings *rs,

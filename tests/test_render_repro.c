@@ -4,11 +4,14 @@
  * really used). The default scene at 96 x 72 (a volume with fBm detail, a torus, per-pixel
  * random ellipse taps for one light) and the contract example with per-pixel random taps. One
  * renderer rendering frames of several scenes, sizes and models in turn (its memory kept from
- * frame to frame, grown and renewed) gives each the bits, AOVs included, of a new renderer;
+ * frame to frame, grown and renewed; its slab kernels kept where a frame's lights, pixel size
+ * and kernel settings are the last frame's, and only there) gives each the bits, AOVs
+ * included, of a new renderer;
  * `test_render_repro DISK.json --frames` runs that part alone (CTest test_render_frames, fast:
  * the AddressSanitizer run sees the kept memory's guards). */
 #include <string.h>
 
+#include "plan_internal.h"
 #include "render_util.h"
 #include "testutil.h"
 
@@ -54,6 +57,7 @@ typedef struct {
   const ics_scene *s;
   const ics_render_settings *rs;
   int w, h;
+  int kept; /* the slab kernels its plan takes from the renderer's last (kernel_cache.h) */
 } frame_case;
 
 static void check_one_renderer(const frame_case *c, int n) {
@@ -69,7 +73,9 @@ static void check_one_renderer(const frame_case *c, int n) {
   }
   const unsigned aovs = ICS_AOV_VISIBILITY | ICS_AOV_DEPTH;
   for (int i = 0; i < n; i++) {
-    ics_plan *p = plan_sized_or_exit(c[i].s, c[i].rs, 2, c[i].w, c[i].h);
+    ics_plan *p = plan_for_or_exit(c[i].s, c[i].rs, 2, c[i].w, c[i].h, r);
+    CHECK(p->kernels_kept == c[i].kept, "frame %d (%s %dx%d): %d slab kernels kept from the last "
+          "frame, expected %d", i + 1, c[i].name, c[i].w, c[i].h, p->kernels_kept, c[i].kept);
     ics_image *img;
     ics_exr_channels *aov;
     if (ics_renderer_render_aovs(r, p, aovs, &img, &aov, NULL, msg, sizeof msg) != ICS_OK) {
@@ -102,17 +108,27 @@ int main(int argc, char **argv) {
     if (!frames_only) check_scene("contract example, per-pixel ellipse taps", d, &rs);
     ics_render_settings patel = *ics_scene_settings(s);
     patel.model = ICS_MODEL_PATEL;
-    ics_render_settings dense = *ics_scene_settings(s);
+    ics_render_settings dense = *ics_scene_settings(s), far = *ics_scene_settings(s),
+                        seed = *ics_scene_settings(s), four = *ics_scene_settings(s);
     dense.dense = 1;
+    far.d1 *= 1.5, seed.seed += 1, four.samples = 4; /* each changes every kernel */
     /* grown (160 x 120: 20 MB); its memory taken again, stale, by frames needing over half of
      * it (128 x 96, 140 x 105 dense, 256 x 192 under patel: one set of buffers instead of
      * four); renewed for a frame under half (the contract example), taken again by 32 x 24,
-     * grown again (96 x 72) */
+     * grown again (96 x 72). The kernels: a light's and its sharp set's under blocker (patel:
+     * the light's alone, the sharp sets' left as they were, so the blocker frame after it
+     * finds all four); kept where only the frame repeats, the model or render.dense changes,
+     * none where the size (the pixel), d1, the seed, the samples or the lights do */
     frame_case frames[] = {
-        {"default", s, NULL, 96, 72},            {"default", s, NULL, 160, 120},
-        {"default", s, NULL, 128, 96},           {"default dense", s, &dense, 140, 105},
-        {"default patel", s, &patel, 256, 192},  {"contract", d, &rs, 0, 0},
-        {"default", s, NULL, 32, 24},            {"default", s, NULL, 96, 72},
+        {"default", s, NULL, 96, 72, 0},           {"default", s, NULL, 160, 120, 0},
+        {"default", s, NULL, 128, 96, 0},          {"default dense", s, &dense, 140, 105, 0},
+        {"default patel", s, &patel, 256, 192, 0}, {"contract", d, &rs, 0, 0, 0},
+        {"default", s, NULL, 32, 24, 0},           {"default", s, NULL, 96, 72, 0},
+        {"default", s, NULL, 96, 72, 4},           {"default dense", s, &dense, 96, 72, 4},
+        {"default patel", s, &patel, 96, 72, 2},   {"default", s, NULL, 96, 72, 4},
+        {"default d1 x 1.5", s, &far, 96, 72, 0},  {"default", s, NULL, 96, 72, 0},
+        {"default seed + 1", s, &seed, 96, 72, 0}, {"default", s, NULL, 96, 72, 0},
+        {"default 4 samples", s, &four, 96, 72, 0}, {"default", s, NULL, 96, 72, 0},
     };
     int n = (int)(sizeof frames / sizeof *frames);
     for (int i = 0; i < n && frames_only; i++) /* half the sides under ASan: three reuses */

@@ -11,6 +11,7 @@
 
 #include "backend.h"
 #include "clock.h"
+#include "kernel_cache.h"
 #include "own_term.h"
 #include "plan_internal.h"
 #include "pool.h"
@@ -172,6 +173,7 @@ struct ics_renderer {
   void *state;
   ics_render_opts opts;
   char note[512]; /* why auto passed over an entry before the one it took ("" if none) */
+  ics_kernel_cache *kernels; /* the last plan's slab kernels (NULL: none kept) */
 };
 
 ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, char *msg,
@@ -225,6 +227,7 @@ ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, 
       return st;
     }
   }
+  r->kernels = ics_kernel_cache_create(); /* (without one, every plan resolves its kernels) */
   *out = r;
   return ICS_OK;
 }
@@ -232,8 +235,11 @@ ics_status ics_renderer_create(ics_renderer **out, const ics_render_opts *opts, 
 void ics_renderer_destroy(ics_renderer *r) {
   if (!r) return;
   r->b->f.destroy(r->state);
+  ics_kernel_cache_destroy(r->kernels);
   free(r);
 }
+
+ics_kernel_cache *ics_renderer_kernel_cache(const ics_renderer *r) { return r ? r->kernels : NULL; }
 
 const char *ics_renderer_backend(const ics_renderer *r) { return r->b->name; }
 const char *ics_renderer_note(const ics_renderer *r) { return r->note; }

@@ -5,6 +5,7 @@
 #define ICS_RENDER_BACKEND_H
 
 #include "icshadow/renderer.h"
+#include "kernel_cache.h"
 #include "list.h"
 
 /* The AOV channels a backend fills beside the image (docs/renderer.md "AOVs"): W x H pixels of
@@ -112,5 +113,9 @@ int ics_backend_always_available(const ics_render_opts *opts, char *why, size_t 
 #define ICS_BACKEND_DECLARE_(name) extern const ics_backend ics_backend_##name;
 ICS_BACKEND_LIST(ICS_BACKEND_DECLARE_)
 #undef ICS_BACKEND_DECLARE_
+
+/* The renderer's kept slab kernels (ics_plan_opts.renderer's: plan.c takes the unchanged ones
+ * from it), or NULL */
+ics_kernel_cache *ics_renderer_kernel_cache(const ics_renderer *r);
 
 #endif

@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "backend.h"
 #include "clock.h"
 #include "geometry.h"
 #include "icshadow/json_text.h"
@@ -295,17 +296,25 @@ static ics_status plan_limits(ics_plan *p, double *zlo, double *zhi, double *k_e
 
 /* The slab kernels of plan_kernels built on a pool's threads, one task a kernel (task i < nlights:
  * light i's; the rest: light i - nlights's sharp set's): the expected compensation iterates the
- * ellipse's arc-length table, milliseconds a light. Each task keeps its own status and message. */
+ * ellipse's arc-length table, milliseconds a light. Each task keeps its own status and message.
+ * A task whose kernel the renderer kept from its last plan, resolved from the same inputs, takes
+ * a copy of it instead (kernel_cache.h). */
 typedef struct {
   ics_plan *p;
   const ics_scene *settings, *sharp; /* the scene with the settings in force; with d1 sharpened */
   atomic_int next;
   ics_status st[2 * ICS_SCENE_MAX_LIGHTS];
   char msg[2 * ICS_SCENE_MAX_LIGHTS][512];
+  ics_slab_kernel_key key[2 * ICS_SCENE_MAX_LIGHTS];
+  uint8_t kept[2 * ICS_SCENE_MAX_LIGHTS]; /* taken from the renderer's */
 } kernels_job;
 
 static int kernel_tasks(const ics_plan *p) {
   return p->kernels_sharp ? 2 * p->nlights : p->nlights;
+}
+
+static ics_slab_kernel *task_kernel(ics_plan *p, int i) {
+  return i < p->nlights ? &p->kernels[i] : &p->kernels_sharp[i - p->nlights];
 }
 
 static void kernels_tasks(void *ctx, int t, int n) {
@@ -314,34 +323,44 @@ static void kernels_tasks(void *ctx, int t, int n) {
   int nl = p->nlights;
   (void)t, (void)n;
   for (int i; (i = atomic_fetch_add(&kj->next, 1)) < kernel_tasks(p);)
-    kj->st[i] = ics_slab_kernel_init(i < nl ? &p->kernels[i] : &p->kernels_sharp[i - nl],
-                                     i < nl ? kj->settings : kj->sharp, i % nl, p->q_ref,
-                                     kj->msg[i], sizeof kj->msg[i]);
+    if (!kj->kept[i])
+      kj->st[i] = ics_slab_kernel_init(task_kernel(p, i), i < nl ? kj->settings : kj->sharp, i % nl,
+                                       p->q_ref, kj->msg[i], sizeof kj->msg[i]);
 }
 
-/* every light's kernel (and its sharp set's) built in parallel, on at most one thread a kernel;
- * NULL when out of memory, else the job with each kernel's status and message (to free) */
+/* every light's kernel (and its sharp set's): those the cache (may be NULL) holds for the same
+ * inputs copied, the others built in parallel, on at most one thread a kernel, and kept in the
+ * cache; NULL when out of memory, else the job with each kernel's status and message (to free) */
 static kernels_job *build_kernels(ics_plan *p, const ics_scene *settings, const ics_scene *sharp,
-                                  int threads) {
-  int tasks = kernel_tasks(p);
+                                  int threads, ics_kernel_cache *cache) {
+  int tasks = kernel_tasks(p), todo = 0;
   kernels_job *kj = calloc(1, sizeof *kj);
-  ics_pool *pool = ics_pool_create(threads > 0 && threads < tasks ? threads : tasks);
-  if (!pool) pool = ics_pool_create(1);
-  if (!kj || !pool) {
-    free(kj);
-    ics_pool_destroy(pool);
-    return NULL;
-  }
+  if (!kj) return NULL;
   kj->p = p, kj->settings = settings, kj->sharp = sharp;
   atomic_init(&kj->next, 0);
+  for (int i = 0; i < tasks; i++) {
+    ics_slab_kernel_key_of(i < p->nlights ? settings : sharp, i % p->nlights, p->q_ref, &kj->key[i]);
+    kj->kept[i] = (uint8_t)ics_kernel_cache_get(cache, i, &kj->key[i], task_kernel(p, i));
+    todo += !kj->kept[i];
+    p->kernels_kept += kj->kept[i];
+  }
+  if (!todo) return kj;
+  ics_pool *pool = ics_pool_create(threads > 0 && threads < todo ? threads : todo);
+  if (!pool) pool = ics_pool_create(1);
+  if (!pool) {
+    free(kj);
+    return NULL;
+  }
   ics_pool_run(pool, kernels_tasks, kj);
   ics_pool_destroy(pool);
+  for (int i = 0; i < tasks; i++)
+    if (!kj->kept[i] && kj->st[i] == ICS_OK) ics_kernel_cache_put(cache, i, &kj->key[i], task_kernel(p, i));
   return kj;
 }
 
 /* each light's slab kernel (from the settings in force), and the perspective classes' work */
-static ics_status plan_kernels(ics_plan *p, double k_est, int threads, char *msg,
-                               size_t msg_size) {
+static ics_status plan_kernels(ics_plan *p, double k_est, int threads, ics_kernel_cache *cache,
+                               char *msg, size_t msg_size) {
   const ics_scene *s = p->scene;
   p->kernels = calloc((size_t)p->nlights, sizeof *p->kernels);
   p->vol_bit = malloc(sizeof *p->vol_bit * (size_t)(s->nobjects ? s->nobjects : 1));
@@ -356,7 +375,7 @@ static ics_status plan_kernels(ics_plan *p, double k_est, int threads, char *msg
     p->kernels_sharp = calloc((size_t)p->nlights, sizeof *p->kernels_sharp);
     if (!p->kernels_sharp && p->nlights) return ICS_ERR_NOMEM;
   }
-  kernels_job *kj = p->nlights ? build_kernels(p, &tmp, &sharp, threads) : NULL;
+  kernels_job *kj = p->nlights ? build_kernels(p, &tmp, &sharp, threads, cache) : NULL;
   if (p->nlights && !kj) return ICS_ERR_NOMEM;
   ics_status st = ICS_OK;
   /* the first failure in light order: a light's kernel, its sharp set's, then its size */
@@ -694,7 +713,8 @@ ics_status ics_plan_create(ics_plan **out, const ics_scene *s, const ics_plan_op
   double zlo, zhi, k_est;
   plan_bytes b = {0};
   ics_status st = plan_limits(p, &zlo, &zhi, &k_est, msg, msg_size);
-  if (st == ICS_OK) st = plan_kernels(p, k_est, o.threads, msg, msg_size);
+  if (st == ICS_OK)
+    st = plan_kernels(p, k_est, o.threads, ics_renderer_kernel_cache(o.renderer), msg, msg_size);
   if (st == ICS_OK) {
     plan_padding(p, zlo, zhi, k_est);
     st = plan_volumes(p, msg, msg_size);

@@ -66,6 +66,7 @@ struct ics_plan {
   int auto_capped;        /* auto took patel for more volumes and solids than the inside mask's
                              bits (not for the backend) */
   int over_cost;          /* refused for its memory or work, which a cheaper model may fit */
+  int kernels_kept;       /* slab kernels copied from the renderer's last plan (kernel_cache.h) */
   ics_camera cam;         /* the camera in force (resolution overridden) */
   double tan_half_fov;    /* perspective: tan(fov / 2), computed once (every ray takes it) */
   double cam_rec[ICS_DEV_CAM]; /* the camera record (kernel/device_layout.h) rays are cast from */

@@ -393,6 +393,37 @@ void ics_slab_kernel_release(ics_slab_kernel *sk) {
   sk->base = sk->fixed = NULL;
 }
 
+void ics_slab_kernel_key_of(const ics_scene *s, int k, double q, ics_slab_kernel_key *key) {
+  const ics_render_settings *rs = ics_scene_settings(s);
+  const ics_light *L = ics_scene_light(s, k);
+  memset(key, 0, sizeof *key);
+  memcpy(key->mean, L->mean, sizeof key->mean);
+  memcpy(key->cov, L->cov, sizeof key->cov);
+  key->q = q, key->slab_spacing = rs->slab_spacing, key->d1 = rs->d1, key->seed = rs->seed;
+  key->light = k, key->projection = (int)ics_scene_camera(s)->projection;
+  key->kernel = (int)rs->kernel, key->samples = rs->samples, key->lut_radii = rs->lut_radii;
+  key->compensate = (int)rs->compensate, key->pixel_rotations = rs->pixel_rotations;
+}
+
+/* n taps of src in a new array (NULL for none), *ok 0 when out of memory */
+static ics_tap2d *taps_copy(const ics_tap2d *src, size_t n, int *ok) {
+  if (!src || !n) return NULL;
+  ics_tap2d *t = malloc(sizeof *t * n);
+  if (t) memcpy(t, src, sizeof *t * n);
+  else *ok = 0;
+  return t;
+}
+
+ics_status ics_slab_kernel_copy(ics_slab_kernel *dst, const ics_slab_kernel *src) {
+  int ok = 1;
+  *dst = *src;
+  dst->base = taps_copy(src->base, (size_t)src->entries * (size_t)src->base_taps, &ok);
+  dst->fixed = taps_copy(src->fixed, (size_t)src->nfixed, &ok);
+  if (ok) return ICS_OK;
+  ics_slab_kernel_release(dst);
+  return ICS_ERR_NOMEM;
+}
+
 static double round_half_up(double x) { return floor(x + 0.5); }
 
 ics_status ics_slab_kernel_taps(const ics_slab_kernel *sk, uint64_t slab, double q,

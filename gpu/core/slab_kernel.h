@@ -61,6 +61,18 @@ ics_status ics_slab_kernel_init(ics_slab_kernel *sk, const ics_scene *s, int k, 
                                 char *msg, size_t msg_size);
 void ics_slab_kernel_release(ics_slab_kernel *sk);
 
+/* Everything ics_slab_kernel_init reads, so that equal keys resolve to the same kernel
+ * (kernel_cache.h): the light's index, mean and covariance, the pixel size, the projection and
+ * the settings the kernel takes. Compared bit for bit (padding zeroed). */
+typedef struct ics_slab_kernel_key {
+  double mean[2], cov[3], q, slab_spacing, d1;
+  uint64_t seed;
+  int light, projection, kernel, samples, lut_radii, compensate, pixel_rotations;
+} ics_slab_kernel_key;
+void ics_slab_kernel_key_of(const ics_scene *s, int k, double q, ics_slab_kernel_key *key);
+/* dst as a copy of src (its own taps); ICS_ERR_NOMEM leaves dst released */
+ics_status ics_slab_kernel_copy(ics_slab_kernel *dst, const ics_slab_kernel *src);
+
 /* Taps of slab `slab` for pixel size q (perspective: the slab's depth) into out (capacity
  * sk->entries * sk->cap; *nout gets the count); the mean is included. cum_mean[2] carries the integer-shift
  * schedule's cumulative mean between slabs (start at {0, 0}, update in place). */

@@ -27,7 +27,10 @@ typedef struct ics_plan_opts {
   int threads;                         /* geometry pass threads; 0: all cores */
   const ics_renderer *renderer; /* the renderer it will render on: render.model auto is planned as
                                    what its backend renders (ics_renderer_model_auto); NULL:
-                                   blocker, the cpu backend's. Read by ics_plan_create only: the
+                                   blocker, the cpu backend's. The plan takes copies of the
+                                   slab kernels the renderer kept from its last plan where their
+                                   lights, pixel size and kernel settings are unchanged, and
+                                   leaves its own with it. Used by ics_plan_create only: the
                                    plan keeps no reference to it */
 } ics_plan_opts;
 

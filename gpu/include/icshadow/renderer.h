@@ -89,7 +89,9 @@ ICS_API ics_render_model ics_renderer_model_auto(const ics_renderer *r);
 /* Renders the plan into a new RGBA image (*out; ics_image_destroy it). stats may be NULL. A
  * renderer renders one frame at a time (call it from one thread at a time); the cpu backend's
  * keeps its last frame's memory (light buffers, per-pixel arrays) for the next frame until
- * ics_renderer_destroy, which spares a frame the page faults of fresh memory. */
+ * ics_renderer_destroy, which spares a frame the page faults of fresh memory. Every renderer
+ * keeps its last plans' slab kernels, which a plan made for it (ics_plan_opts.renderer) copies
+ * where its lights, pixel size and kernel settings are unchanged. */
 ICS_API ics_status ics_renderer_render(ics_renderer *r, const ics_plan *plan, ics_image **out,
                                        ics_render_stats *stats, char *msg, size_t msg_size);
 
