@@ -27,6 +27,10 @@ ics_add_render_test(test_render_plan medium)
 ics_add_render_test(test_render_propagate fast)
 ics_add_render_test(test_render_simd medium) # 42 renders: 5 s Release
 ics_add_render_test(test_render_vec_math fast)
+ics_add_render_test(test_render_piece_batch medium)
+if(TARGET test_render_piece_batch)
+  set_tests_properties(test_render_piece_batch PROPERTIES SKIP_RETURN_CODE 77)
+endif()
 ics_add_test(NAME test_render_model SOURCES test_render_model.c LABELS medium render
   LIBS ${ICS_RENDER_TEST_LIBS} NEEDS RENDER ARGS ${CMAKE_SOURCE_DIR}/scenes/disk.json)
 if(TARGET test_render_model)

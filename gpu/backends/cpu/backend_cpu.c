@@ -94,6 +94,7 @@ typedef struct {
                             first and second ends) and their values (first, second) */
   int32_t *dslot;        /* per thread: Wb, each pixel's slot in them, or -1 */
   double *prow;          /* per thread: 10 x Wb, a row's lone pieces (ics_piece_row's arrays) */
+  int lone_batched;      /* the lone pieces shaded a row at a time (the vector paths) */
   ics_piece_params pp;   /* this slab's uniforms for the lone pieces (vector paths) */
   ics_hits hits[256];    /* per thread: a ray's crossings (the own term's normals) */
   int failed;            /* out of memory in a thread (the render fails) */
@@ -653,7 +654,7 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       slot = j->dslot + (size_t)t * P->Wb;
       values = j->dpts + (size_t)t * 8 * P->Wb + 6 * (size_t)P->Wb;
     }
-    int lone_batched = j->mask && j->simd != ICS_SIMD_SCALAR; /* the portable path: one by one */
+    int lone_batched = j->mask && j->lone_batched;
     if (lone_batched) row_pieces(j, bj, need, seg, tx0, tx1, slot, values, t);
     for (int tx = tx0; tx <= tx1; tx++) {
     /* a segment no longer needed, or with nothing to do before its next slab, is passed over */
@@ -1036,7 +1037,8 @@ static size_t carve(job_t *j, char *base, int nt, float **bufs, ics_tile **tiles
   j->marks = take(base, &used, nx * (1 + (size_t)j->nb) * (size_t)nt);
   j->dpts = P->any_detail ? take(base, &used, sizeof *j->dpts * 8 * (size_t)P->Wb * nt) : NULL;
   j->dslot = P->any_detail ? take(base, &used, sizeof *j->dslot * (size_t)P->Wb * nt) : NULL;
-  j->prow = P->ninside ? take(base, &used, sizeof *j->prow * 10 * (size_t)P->Wb * nt) : NULL;
+  j->prow = P->ninside && j->lone_batched ? take(base, &used, sizeof *j->prow * 10 * (size_t)P->Wb * nt)
+                                          : NULL;
   j->cursor = take(base, &used, sizeof *j->cursor * npx);
   j->acursor = take(base, &used, sizeof *j->acursor * npx);
   j->pnext = take(base, &used, sizeof *j->pnext * npx);
@@ -1088,6 +1090,10 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   if (!j || !bufs || !tiles || !sames || !scratch || !cum || !role) goto nomem;
   status = ics_simd_choose(&j->simd, msg, msg_size);
   if (status != ICS_OK) goto done;
+  /* the lone volume pieces a row at a time on a vector path (ICS_PIECE_BATCH=0: one by one, as
+   * the portable path does, to compare: docs/renderer.md "Volume pieces in batches") */
+  const char *batch = getenv("ICS_PIECE_BATCH");
+  j->lone_batched = j->simd != ICS_SIMD_SCALAR && !(batch && !strcmp(batch, "0"));
   j->p = P;
   j->img = img;
   j->nb = nb;

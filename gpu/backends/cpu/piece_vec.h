@@ -76,9 +76,9 @@ static void arriving(const ics_piece_params *pp, int l, const places *at, vd out
   if (!any(some)) return;
   vd mom = load_at(pp->dst[(pp->sharp_set + 1) * nl + l], at);
   vd zb = pp->z0 + mom / blend(some, occ, splat(1)) * pp->K * pp->e, d = pp->z_light - zb;
-  vl mid = (d > pp->d_sharp) & (d < pp->d1);
-  vd t = vlog(blend(mid, d / pp->d_sharp, splat(1))) / pp->blend_span;
-  t = blend(d <= pp->d_sharp, splat(0), blend(d >= pp->d1, splat(1), t));
+  vl lo = d <= pp->d_sharp, hi = d >= pp->d1; /* (neither where d is NaN: t NaN, as in C) */
+  vd t = vlog(blend(lo | hi, splat(1), d / pp->d_sharp)) / pp->blend_span;
+  t = blend(lo, splat(0), blend(hi, splat(1), t));
   for (int c = 0; c < nch; c++) {
     vd sh = load_at(pp->dst[pp->sharp_set * nl + l] + (size_t)c * pp->plane, at);
     out[c] = blend(some, to_float(sh + t * to_float(out[c] - sh)), out[c]);

@@ -1,15 +1,15 @@
 /* vec_math.h — exp, expm1 and log over vectors of doubles (vec_double.h), for the batched volume
  * pieces (piece_vec.h), where libm's one call per value cost more than the rest of a piece.
  * Written with separate multiplies and adds (the including files are compiled without
- * contraction), so every build, the portable one included, gives the same bits; the error
- * against a 64-bit-mantissa reference is measured by test_render_vec_math (docs/renderer.md
- * "Volume pieces in batches"). Method:
+ * contraction), so every vector build gives the same bits; the error against a long double
+ * reference is measured by test_render_vec_math (docs/renderer.md "Volume pieces in batches").
+ * Method:
  *   exp, expm1: x = n ln2 + r, n = rint(x / ln2), |r| <= ln2 / 2 (ln2 in two parts, the first
  *     with 11 trailing zero bits so that n ln2_hi is exact); p = expm1(r) = r + r^2/2! + ... +
  *     r^13/13! by Horner (the first term left out: 8e-18 relative); exp(x) = 2^n (1 + p),
- *     expm1(x) = p where n = 0, else ((2^n - 1) + 2^n r) + 2^n (p - r); 2^n as
- *     2^(n/2) 2^(n - n/2) so that subnormal results come out right; x is clamped to [-746, 710]
- *     first (0 or -1 below, +inf above); NaN gives NaN.
+ *     expm1(x) = p where n = 0, ((2^n - 1) + 2^n r) + 2^n (p - r) up to n = 56, 2^n (1 + p)
+ *     above; 2^n as 2^(n/2) 2^(n - n/2) so that subnormal results come out right; x is clamped
+ *     to [-746, 710] first (0 or -1 below, +inf above); NaN gives NaN, expm1(+-0) +-0.
  *   log: x = 2^e m, m in [sqrt(1/2), sqrt(2)) (subnormals scaled by 2^54 first); f = m - 1
  *     (exact), s = f / (2 + f), log m = 2 atanh s = f - h + s (h + R), h = f^2 / 2,
  *     R = 2 s^2/3 + 2 s^4/5 + ... + 2 s^20/21 (|s| <= 0.1716: the first term left out is 2e-18
@@ -73,14 +73,18 @@ static inline vd vexp(vd x) {
 }
 
 /* 2^n (1 + p) - 1 as ((2^n - 1) + 2^n r) + 2^n r^2 tail(r): the first two terms exact (2^n a
- * power of two, |n| <= 53 where they matter), so only their sum and the small last term round */
+ * power of two), so only their sum and the small last term round; above n = 56 the 1 is below
+ * half an ulp and 2^n overflows first at n = 1024: exp's 2^n1 (2^n2 (1 + p)); x = 0 keeps its
+ * sign */
 static inline vd vexpm1(vd x) {
   vd n, a, b;
   vl ni;
   vd r = vm_reduce(vm_clamp(x), &n, &ni), t = (r * r) * vm_expm1_tail(r);
   vm_pow2(ni, &a, &b);
   vd s = a * b; /* 2^n: 0 only where the result is -1 to the last bit */
-  return blend(x != x, x, blend(ni == 0, r + t, ((s - 1) + s * r) + s * t));
+  vd big = ((1 + (r + t)) * a) * b, mid = ((s - 1) + s * r) + s * t;
+  vd y = blend(ni == 0, r + t, blend(ni > 56, big, mid));
+  return blend((x != x) | (x == 0), x, y);
 }
 
 static inline vd vlog(vd x) {
