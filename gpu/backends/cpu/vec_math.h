@@ -34,20 +34,20 @@ static inline vd vm_reduce(vd x, vd *n, vl *ni) {
   return (x - *n * VM_LN2_HI) - *n * VM_LN2_LO;
 }
 
-/* (expm1(r) - r) / r^2 for |r| <= ln2 / 2 */
+/* c[0] x^(n-1) + ... + c[n-1] by Horner's rule */
+static inline vd vm_poly(vd x, const double *c, int n) {
+  vd p = splat(c[0]);
+  for (int i = 1; i < n; i++) p = p * x + c[i];
+  return p;
+}
+
+/* (expm1(r) - r) / r^2 for |r| <= ln2 / 2: 1/2! + r/3! + ... + r^11/13! */
 static inline vd vm_expm1_tail(vd r) {
-  vd p = splat(1.0 / 6227020800.0); /* 1/13! */
-  p = p * r + 1.0 / 479001600.0;
-  p = p * r + 1.0 / 39916800.0;
-  p = p * r + 1.0 / 3628800.0;
-  p = p * r + 1.0 / 362880.0;
-  p = p * r + 1.0 / 40320.0;
-  p = p * r + 1.0 / 5040.0;
-  p = p * r + 1.0 / 720.0;
-  p = p * r + 1.0 / 120.0;
-  p = p * r + 1.0 / 24.0;
-  p = p * r + 1.0 / 6.0;
-  return p * r + 0.5;
+  static const double c[] = {1.0 / 6227020800.0, 1.0 / 479001600.0, 1.0 / 39916800.0,
+                             1.0 / 3628800.0,    1.0 / 362880.0,    1.0 / 40320.0,
+                             1.0 / 5040.0,       1.0 / 720.0,       1.0 / 120.0,
+                             1.0 / 24.0,         1.0 / 6.0,         0.5};
+  return vm_poly(r, c, (int)(sizeof c / sizeof *c));
 }
 
 /* 2^n1 and 2^n2 with n1 + n2 = n, each a normal double for n in [-1077, 1025] */
@@ -97,16 +97,9 @@ static inline vd vlog(vd x) {
   m = blend(big, m * 0.5, m);
   e -= big; /* a mask: -1 where set */
   vd f = m - 1, s = f / (2 + f), z = s * s, hfsq = 0.5 * f * f; /* f exact */
-  vd R = splat(2.0 / 21);
-  R = R * z + 2.0 / 19;
-  R = R * z + 2.0 / 17;
-  R = R * z + 2.0 / 15;
-  R = R * z + 2.0 / 13;
-  R = R * z + 2.0 / 11;
-  R = R * z + 2.0 / 9;
-  R = R * z + 2.0 / 7;
-  R = R * z + 2.0 / 5;
-  R = (R * z + 2.0 / 3) * z;
+  static const double c[] = {2.0 / 21, 2.0 / 19, 2.0 / 17, 2.0 / 15, 2.0 / 13,
+                             2.0 / 11, 2.0 / 9,  2.0 / 7,  2.0 / 5,  2.0 / 3};
+  vd R = vm_poly(z, c, (int)(sizeof c / sizeof *c)) * z;
   vd ed = __builtin_convertvector(e, vd);
   vd r = ed * VM_LN2_HI - ((hfsq - (s * (hfsq + R) + ed * VM_LN2_LO)) - f);
   r = blend(x == 0, splat(-HUGE_VAL), r);
