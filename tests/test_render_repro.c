@@ -60,6 +60,23 @@ typedef struct {
   int kept; /* the slab kernels its plan takes from the renderer's last (kernel_cache.h) */
 } frame_case;
 
+/* the default scene at 96 x 72 with its first light's mean moved (its text edited; exits 2 when
+ * that text has changed shape) */
+static ics_scene *default_light_moved(void) {
+  const char *txt = ics_scene_default_json();
+  char *t = malloc(strlen(txt) + 1), *res = NULL, *mean = NULL;
+  if (t) strcpy(t, txt), res = strstr(t, "[320, 240]"), mean = strstr(t, "\"mean\": [-0.4, 0.5]");
+  if (!res || !mean) {
+    fprintf(stderr, "test_render_repro: the default scene's resolution or first light not found\n");
+    exit(2);
+  }
+  memcpy(res, "[ 96,  72]", 10);
+  memcpy(mean, "\"mean\": [-0.3, 0.5]", 19);
+  ics_scene *s = scene_from_json(t);
+  free(t);
+  return s;
+}
+
 static void check_one_renderer(const frame_case *c, int n) {
   char msg[4096];
   ics_render_opts ro;
@@ -109,16 +126,25 @@ int main(int argc, char **argv) {
     ics_render_settings patel = *ics_scene_settings(s);
     patel.model = ICS_MODEL_PATEL;
     ics_render_settings dense = *ics_scene_settings(s), far = *ics_scene_settings(s),
-                        seed = *ics_scene_settings(s), four = *ics_scene_settings(s);
+                        seed = *ics_scene_settings(s), four = *ics_scene_settings(s),
+                        nonneg = *ics_scene_settings(s), integer = *ics_scene_settings(s),
+                        lut = *ics_scene_settings(s), rot4 = *ics_scene_settings(s),
+                        wide = *ics_scene_settings(s), poisson = *ics_scene_settings(s);
     dense.dense = 1;
-    far.d1 *= 1.5, seed.seed += 1, four.samples = 4; /* each changes every kernel */
+    /* each changes every kernel (the settings ics_slab_kernel_key_of reads, one at a time) */
+    far.d1 *= 1.5, seed.seed += 1, four.samples = 4, nonneg.compensate = ICS_RC_NONNEG;
+    integer.compensate = ICS_RC_INTEGER, lut.lut_radii = 1, rot4.pixel_rotations = 4;
+    wide.slab_spacing *= 1.2, poisson.kernel = ICS_RK_POISSON;
+    ics_scene *moved = default_light_moved();
     /* grown (160 x 120: 20 MB); its memory taken again, stale, by frames needing over half of
      * it (128 x 96, 140 x 105 dense, 256 x 192 under patel: one set of buffers instead of
      * four); renewed for a frame under half (the contract example), taken again by 32 x 24,
      * grown again (96 x 72). The kernels: a light's and its sharp set's under blocker (patel:
      * the light's alone, the sharp sets' left as they were, so the blocker frame after it
      * finds all four); kept where only the frame repeats, the model or render.dense changes,
-     * none where the size (the pixel), d1, the seed, the samples or the lights do */
+     * none where the size (the pixel), d1, the seed, the samples, a light, the compensation,
+     * the LUT radii, the rotations per pixel, the slab spacing or the kernel do; copies of
+     * every kind of kernel (table, taps with fixed compensated taps, integer) kept and used */
     frame_case frames[] = {
         {"default", s, NULL, 96, 72, 0},           {"default", s, NULL, 160, 120, 0},
         {"default", s, NULL, 128, 96, 0},          {"default dense", s, &dense, 140, 105, 0},
@@ -129,11 +155,21 @@ int main(int argc, char **argv) {
         {"default d1 x 1.5", s, &far, 96, 72, 0},  {"default", s, NULL, 96, 72, 0},
         {"default seed + 1", s, &seed, 96, 72, 0}, {"default", s, NULL, 96, 72, 0},
         {"default 4 samples", s, &four, 96, 72, 0}, {"default", s, NULL, 96, 72, 0},
+        {"default, light 0 moved", moved, NULL, 96, 72, 2}, {"default", s, NULL, 96, 72, 2},
+        {"default nonneg", s, &nonneg, 96, 72, 0}, {"default nonneg", s, &nonneg, 96, 72, 4},
+        {"default", s, NULL, 96, 72, 0},           {"default integer", s, &integer, 96, 72, 0},
+        {"default integer", s, &integer, 96, 72, 4}, {"default", s, NULL, 96, 72, 0},
+        {"default LUT radii", s, &lut, 96, 72, 0}, {"default", s, NULL, 96, 72, 0},
+        {"default 4 rotations", s, &rot4, 96, 72, 0}, {"default", s, NULL, 96, 72, 0},
+        {"default e x 1.2", s, &wide, 96, 72, 0},  {"default", s, NULL, 96, 72, 0},
+        {"default poisson", s, &poisson, 96, 72, 0}, {"default poisson", s, &poisson, 96, 72, 4},
+        {"default", s, NULL, 96, 72, 0},
     };
     int n = (int)(sizeof frames / sizeof *frames);
     for (int i = 0; i < n && frames_only; i++) /* half the sides under ASan: three reuses */
       frames[i].w /= 2, frames[i].h /= 2;
     check_one_renderer(frames, n);
+    ics_scene_destroy(moved);
     ics_scene_destroy(d);
   }
   ics_scene_destroy(s);

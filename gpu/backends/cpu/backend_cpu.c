@@ -556,6 +556,17 @@ static int occlusion_due(const job_t *j, const ics_fragment *fr, int k, int *sol
   return (ib < 0 || *solid) && first <= k && k <= first + fr->span * j->window_max;
 }
 
+/* pixel p's occlusion cursor past the fragments whose windows ended before slab k (end: its
+ * fragments' end); returns it */
+static uint32_t advance_acursor(job_t *j, size_t p, uint32_t end, int k) {
+  const ics_fragment *fr = j->p->ldi.frag;
+  uint32_t acur = j->acursor[p];
+  while (acur < end &&
+         ics_frag_slab(&fr[acur]) + ics_frag_bias(&fr[acur]) + fr[acur].span * j->window_max <= k)
+    acur++;
+  return j->acursor[p] = acur;
+}
+
 /* pixel p's volume when its piece at slab k is a lone one (single_volume_piece's: inside one
  * volume that is no solid, no fragment in the slab, no surface occlusion due: the fragments
  * from acur reaching this slab are volumes' boundaries, or their windows are over), else -1 */
@@ -684,6 +695,7 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
         if (!lone_batched)
           single_volume_piece(j, p, bi, bj, lone, zf, zb - zf, inview ? C : NULL, t,
                               batched(j, batch ? slot : NULL, values, bi, pre));
+        advance_acursor(j, p, end, k); /* (as the other pixels' below) */
         j->pnext[p] = 0;
         next = k + 1;
         continue;
@@ -711,10 +723,7 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
         if (occlusion_due(j, fr, k, &solid))
           surface_occlusion(j, q, fr, k - ics_frag_slab(fr) - ics_frag_bias(fr), solid), *wrote = 1;
       }
-      while (acur < end && ics_frag_slab(&ldi->frag[acur]) + ics_frag_bias(&ldi->frag[acur]) +
-                               ldi->frag[acur].span * j->window_max <= k)
-        acur++;
-      j->acursor[p] = acur;
+      acur = advance_acursor(j, p, end, k);
       if (!has && !mask) goto next_pixel;
       /* without a fragment in the slab the one piece is the whole slab: its detail batched */
       double pre[2];

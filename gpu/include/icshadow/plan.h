@@ -30,8 +30,9 @@ typedef struct ics_plan_opts {
                                    blocker, the cpu backend's. The plan takes copies of the
                                    slab kernels the renderer kept from its last plan where their
                                    lights, pixel size and kernel settings are unchanged, and
-                                   leaves its own with it. Used by ics_plan_create only: the
-                                   plan keeps no reference to it */
+                                   leaves its own with it (under the renderer's lock: plans
+                                   may be made for it on several threads). Used by
+                                   ics_plan_create only: the plan keeps no reference to it */
 } ics_plan_opts;
 
 typedef struct ics_plan ics_plan;
