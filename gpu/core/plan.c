@@ -339,7 +339,8 @@ static kernels_job *build_kernels(ics_plan *p, const ics_scene *settings, const 
   kj->p = p, kj->settings = settings, kj->sharp = sharp;
   atomic_init(&kj->next, 0);
   for (int i = 0; i < tasks; i++) {
-    ics_slab_kernel_key_of(i < p->nlights ? settings : sharp, i % p->nlights, p->q_ref, &kj->key[i]);
+    ics_slab_kernel_key_of(i < p->nlights ? settings : sharp, i % p->nlights, p->q_ref,
+                           &kj->key[i]);
     kj->kept[i] = (uint8_t)ics_kernel_cache_get(cache, i, &kj->key[i], task_kernel(p, i));
     todo += !kj->kept[i];
     p->kernels_kept += kj->kept[i];
@@ -354,7 +355,8 @@ static kernels_job *build_kernels(ics_plan *p, const ics_scene *settings, const 
   ics_pool_run(pool, kernels_tasks, kj);
   ics_pool_destroy(pool);
   for (int i = 0; i < tasks; i++)
-    if (!kj->kept[i] && kj->st[i] == ICS_OK) ics_kernel_cache_put(cache, i, &kj->key[i], task_kernel(p, i));
+    if (!kj->kept[i] && kj->st[i] == ICS_OK)
+      ics_kernel_cache_put(cache, i, &kj->key[i], task_kernel(p, i));
   return kj;
 }
 

@@ -591,8 +591,10 @@ static void piece_params(job_t *j, int k) {
   double zf = P->z0 + k * P->e, zb = zf + P->e;
   pp->nlights = P->nlights, pp->nch = P->nch, pp->nb = j->nb, pp->plane = P->buf.plane;
   pp->dst = j->dst;
-  for (int b = 0; b < j->nb; b++)
-    pp->attenuates[b] = (uint8_t)occludes_in(j, b, 0), pp->is_moment[b] = j->role[b] == ICS_SET_MOMENT;
+  for (int b = 0; b < j->nb; b++) {
+    pp->attenuates[b] = (uint8_t)occludes_in(j, b, 0);
+    pp->is_moment[b] = j->role[b] == ICS_SET_MOMENT;
+  }
   pp->own = P->rs.model >= ICS_MODEL_SURFACE, pp->blend = P->rs.model >= ICS_MODEL_BLOCKER;
   pp->moment = j->moment, pp->sharp_set = j->sharp_set;
   for (int l = 0; l < P->nlights; l++) {
@@ -915,7 +917,8 @@ static void settle_row(job_t *j, int ty, const uint8_t *marks) {
         /* two tiles of one constant are equal without a read (the scans above are exact) */
         const ics_tile *t0 = &j->tdst[b - P->nlights][i];
         j->sdst[b][i] = ics_tile_same_const(&j->tdst[b][i], t0, P->nch) ||
-                        ics_tile_equal(&P->buf, j->dst[b], j->dst[b - P->nlights], P->nch, x0, x1, y0, y1);
+                        ics_tile_equal(&P->buf, j->dst[b], j->dst[b - P->nlights], P->nch, x0,
+                                       x1, y0, y1);
       }
     }
     int last = g->nx - 1, sides = shaded[0] || written[0] || shaded[last] || written[last] || signed_;
@@ -1046,8 +1049,9 @@ static size_t carve(job_t *j, char *base, int nt, float **bufs, ics_tile **tiles
   j->marks = take(base, &used, nx * (1 + (size_t)j->nb) * (size_t)nt);
   j->dpts = P->any_detail ? take(base, &used, sizeof *j->dpts * 8 * (size_t)P->Wb * nt) : NULL;
   j->dslot = P->any_detail ? take(base, &used, sizeof *j->dslot * (size_t)P->Wb * nt) : NULL;
-  j->prow = P->ninside && j->lone_batched ? take(base, &used, sizeof *j->prow * 10 * (size_t)P->Wb * nt)
-                                          : NULL;
+  j->prow = P->ninside && j->lone_batched
+                ? take(base, &used, sizeof *j->prow * 10 * (size_t)P->Wb * nt)
+                : NULL;
   j->cursor = take(base, &used, sizeof *j->cursor * npx);
   j->acursor = take(base, &used, sizeof *j->acursor * npx);
   j->pnext = take(base, &used, sizeof *j->pnext * npx);

@@ -1,4 +1,5 @@
-/* piece_sse2.c — a row's single-volume pieces (piece_vec.h) for SSE2 (the x86-64 baseline): 2 lanes of doubles.
+/* piece_sse2.c — a row's single-volume pieces (piece_vec.h) for SSE2 (the x86-64 baseline):
+ * 2 lanes of doubles.
  * gpu/CMakeLists.txt compiles this file with the instruction set's flags where the compiler
  * targets it (the same as propagate_sse2.c, whose built flag says whether the path exists);
  * elsewhere it builds entry points nothing calls. */

@@ -5,9 +5,9 @@
  * light_colour, piece_composite, piece_attenuate, moment_add) in its order, float operations as
  * double ones rounded to float (the same result: with more than twice a float's bits plus two, a
  * double's rounding before the float's never changes a sum, difference, product or quotient;
- * Figueroa 1995), with vec_math.h's exp, expm1 and log. The buffers are read and written as vectors where the W pieces are consecutive
- * pixels (most of a row), else lane by lane, as the view is. Compiled without contraction, so
- * every path gives the same bits. */
+ * Figueroa 1995), with vec_math.h's exp, expm1 and log. The buffers are read and written as
+ * vectors where the W pieces are consecutive pixels (most of a row), else lane by lane, as the
+ * view is. Compiled without contraction, so every path gives the same bits. */
 #include "piece_batch.h"
 
 #if !defined(ICS_DVEC_W) || !defined(ICS_PIECE_ISA)
