@@ -281,4 +281,11 @@ foreach(simd "bogus;2;no such path [(]this processor has: auto, scalar" "scalar;
     -DRC=${rc} "-D${stream}=${re}" -P ${CMAKE_SOURCE_DIR}/tests/cli/expect.cmake)
   set_tests_properties(cli_render_simd_${name} PROPERTIES LABELS fast)
 endforeach()
+# ICS_PIECE_BATCH takes 0 or 1 (the lone volume pieces one by one, or a row at a time): anything
+# else is refused, naming both, and nothing is written
+add_test(NAME cli_render_piece_batch_bogus COMMAND ${CMAKE_COMMAND} -E env ICS_PIECE_BATCH=yes
+  ${CMAKE_COMMAND} -DCLI=$<TARGET_FILE:icshadow_cli> "-DARGS=render|--resolution|16x12|-o|${rd}/piece_batch.exr"
+  -DRC=2 "-DERR=ICS_PIECE_BATCH=yes: 0 [(]the lone volume pieces one by one[)] or 1"
+  -DNOFILE=${rd}/piece_batch.exr -P ${CMAKE_SOURCE_DIR}/tests/cli/expect.cmake)
+set_tests_properties(cli_render_piece_batch_bogus PROPERTIES LABELS fast)
 endif()

@@ -317,6 +317,11 @@ static ics_slab_kernel *task_kernel(ics_plan *p, int i) {
   return i < p->nlights ? &p->kernels[i] : &p->kernels_sharp[i - p->nlights];
 }
 
+/* the scene (its settings in force) task i's kernel is resolved from */
+static const ics_scene *task_scene(const kernels_job *kj, int i) {
+  return i < kj->p->nlights ? kj->settings : kj->sharp;
+}
+
 static void kernels_tasks(void *ctx, int t, int n) {
   kernels_job *kj = ctx;
   ics_plan *p = kj->p;
@@ -324,8 +329,8 @@ static void kernels_tasks(void *ctx, int t, int n) {
   (void)t, (void)n;
   for (int i; (i = atomic_fetch_add(&kj->next, 1)) < kernel_tasks(p);)
     if (!kj->kept[i])
-      kj->st[i] = ics_slab_kernel_init(task_kernel(p, i), i < nl ? kj->settings : kj->sharp, i % nl,
-                                       p->q_ref, kj->msg[i], sizeof kj->msg[i]);
+      kj->st[i] = ics_slab_kernel_init(task_kernel(p, i), task_scene(kj, i), i % nl, p->q_ref,
+                                       kj->msg[i], sizeof kj->msg[i]);
 }
 
 /* every light's kernel (and its sharp set's): those the cache (may be NULL) holds for the same
@@ -339,8 +344,7 @@ static kernels_job *build_kernels(ics_plan *p, const ics_scene *settings, const 
   kj->p = p, kj->settings = settings, kj->sharp = sharp;
   atomic_init(&kj->next, 0);
   for (int i = 0; i < tasks; i++) {
-    ics_slab_kernel_key_of(i < p->nlights ? settings : sharp, i % p->nlights, p->q_ref,
-                           &kj->key[i]);
+    ics_slab_kernel_key_of(task_scene(kj, i), i % p->nlights, p->q_ref, &kj->key[i]);
     kj->kept[i] = (uint8_t)ics_kernel_cache_get(cache, i, &kj->key[i], task_kernel(p, i));
     todo += !kj->kept[i];
     p->kernels_kept += kj->kept[i];

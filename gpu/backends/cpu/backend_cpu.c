@@ -94,6 +94,7 @@ typedef struct {
                             first and second ends) and their values (first, second) */
   int32_t *dslot;        /* per thread: Wb, each pixel's slot in them, or -1 */
   double *prow;          /* per thread: 10 x Wb, a row's lone pieces (ics_piece_row's arrays) */
+  uint8_t *lone_mark;    /* per thread: Wb, 1 where a row's pixel was a lone piece (row_pieces) */
   int lone_batched;      /* the lone pieces shaded a row at a time (the vector paths) */
   ics_piece_params pp;   /* this slab's uniforms for the lone pieces (vector paths) */
   ics_hits hits[256];    /* per thread: a ray's crossings (the own term's normals) */
@@ -409,6 +410,18 @@ static void record_aov(job_t *j, int ii, int jj, const float *V, double z) {
   if (a->z >= 0) o[a->z] = (float)z;
 }
 
+/* the pixels [*x0, *x1) of row segment tx that shading steps at this slab (the tile's within the
+ * shading rectangle), or 0 where the segment is passed over: no longer needed (need, the last
+ * slab it is), or nothing to do in it before its next slab (seg) */
+static int segment_pixels(const job_t *j, int tx, const int32_t *need, const int *seg, int *x0,
+                          int *x1) {
+  if (need[tx] < j->k || seg[tx] > j->k) return 0;
+  *x0 = ics_tile_x0(&j->p->tiles, tx), *x1 = ics_tile_x1(&j->p->tiles, tx);
+  if (*x0 < j->shade.x0) *x0 = j->shade.x0;
+  if (*x1 > j->shade.x1) *x1 = j->shade.x1;
+  return 1;
+}
+
 /* row_details' pixel (bi, bj): 1 with its piece's points in *x .. *z2 when it joins the batch
  * (inside one volume with noise detail, the batch's volume *obj0, no fragment in the slab), else
  * 0; its slot -1 inside a volume (shade_rows reads a slot only there) */
@@ -449,11 +462,8 @@ static void row_details(job_t *j, int bj, double zf, double zb, const int32_t *n
   int32_t *slot = j->dslot + (size_t)t * w;
   int n = 0, obj0 = -1;
   jitter_pair pair = {UINT64_MAX, {0, 0}};
-  for (int tx = tx0; tx <= tx1; tx++) { /* the tiles shade_rows steps (their pixels alone) */
-    if (need[tx] < j->k || seg[tx] > j->k) continue;
-    int x0 = ics_tile_x0(&P->tiles, tx), x1 = ics_tile_x1(&P->tiles, tx);
-    if (x0 < j->shade.x0) x0 = j->shade.x0;
-    if (x1 > j->shade.x1) x1 = j->shade.x1;
+  for (int tx = tx0, x0, x1; tx <= tx1; tx++) { /* the pixels shade_rows steps alone */
+    if (!segment_pixels(j, tx, need, seg, &x0, &x1)) continue;
     for (int bi = x0; bi < x1; bi++)
       if (detail_point(j, bj, bi, zf, zb, &obj0, &pair, X + n, Y + n, Z + n, X2 + n, Y2 + n, Z2 + n,
                        slot))
@@ -610,23 +620,22 @@ static void piece_params(job_t *j, int k) {
 
 /* Row bj's lone pieces at this slab, on the vector path in one batch (piece_batch.h): each
  * piece's volume, extinction and colour here (its detail batched by row_details, or evaluated
- * now), then the light, the view and the buffers in the batch. shade_rows passes them over. */
+ * now), then the light, the view and the buffers in the batch; lone[bi] says which pixels were
+ * lone pieces, for shade_rows to pass over. */
 static void row_pieces(job_t *j, int bj, const int32_t *need, const int *seg, int tx0, int tx1,
-                       const int32_t *slot, const double *values, int t) {
+                       const int32_t *slot, const double *values, int t, uint8_t *lone) {
   const ics_plan *P = j->p;
   const ics_scene *s = P->scene;
   size_t w = (size_t)P->Wb;
   double *a = j->prow + (size_t)t * 10 * w, zf = P->z0 + j->k * P->e, zb = zf + P->e;
   ics_piece_row r = {0, (int64_t *)a, (int64_t *)(a + w), a + 2 * w, a + 3 * w,
                      {a + 4 * w, a + 5 * w, a + 6 * w}, {a + 7 * w, a + 8 * w, a + 9 * w}};
-  for (int tx = tx0; tx <= tx1; tx++) {
-    if (need[tx] < j->k || seg[tx] > j->k) continue;
-    int x0 = ics_tile_x0(&P->tiles, tx), x1 = ics_tile_x1(&P->tiles, tx);
-    if (x0 < j->shade.x0) x0 = j->shade.x0;
-    if (x1 > j->shade.x1) x1 = j->shade.x1;
+  for (int tx = tx0, x0, x1; tx <= tx1; tx++) {
+    if (!segment_pixels(j, tx, need, seg, &x0, &x1)) continue;
     for (int bi = x0; bi < x1; bi++) {
       size_t p = (size_t)bj * P->Wb + bi;
       int obj = j->pnext[p] > j->k ? -1 : lone_piece(j, p, j->k);
+      lone[bi] = obj >= 0;
       if (obj < 0) continue;
       double pre[2], col[3];
       piece_at at = {0};
@@ -668,13 +677,11 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       values = j->dpts + (size_t)t * 8 * P->Wb + 6 * (size_t)P->Wb;
     }
     int lone_batched = j->mask && j->lone_batched;
-    if (lone_batched) row_pieces(j, bj, need, seg, tx0, tx1, slot, values, t);
-    for (int tx = tx0; tx <= tx1; tx++) {
-    /* a segment no longer needed, or with nothing to do before its next slab, is passed over */
-    if (need[tx] < k || seg[tx] > k) continue;
-    int next = INT_MAX, x0 = ics_tile_x0(&j->p->tiles, tx), x1 = ics_tile_x1(&j->p->tiles, tx);
-    if (x0 < j->shade.x0) x0 = j->shade.x0;
-    if (x1 > j->shade.x1) x1 = j->shade.x1;
+    uint8_t *lone_mark = lone_batched ? j->lone_mark + (size_t)t * P->Wb : NULL;
+    if (lone_batched) row_pieces(j, bj, need, seg, tx0, tx1, slot, values, t, lone_mark);
+    for (int tx = tx0, x0, x1; tx <= tx1; tx++) {
+    if (!segment_pixels(j, tx, need, seg, &x0, &x1)) continue;
+    int next = INT_MAX;
     for (int bi = x0; bi < x1; bi++) {
       size_t p = (size_t)bj * P->Wb + bi;
       if (j->pnext[p] > k) { /* nothing here yet (no fragment or volume mask read) */
@@ -688,10 +695,10 @@ static void shade_rows(job_t *j, int y0, int y1, int t, uint8_t *touched) {
       int inview = ii >= 0 && ii < P->W && jj >= 0 && jj < P->H;
       float dummy[4] = {0, 0, 0, 1};
       float *C = inview ? j->img->data + ((size_t)jj * P->W + ii) * 4 : dummy;
-      int lone = lone_piece(j, p, k);
+      /* inside one volume, nothing else due: the piece (row_pieces' already on a vector path),
+       * and the pixel needs the next slab */
+      int lone = lone_batched ? (lone_mark[bi] ? 0 : -1) : lone_piece(j, p, k);
       if (lone >= 0) {
-        /* inside one volume, nothing else due: the piece (row_pieces' already on a vector
-         * path), and the pixel needs the next slab */
         double pre[2];
         touched[ics_tile_col(&j->p->tiles, bi)] = 1;
         if (!lone_batched)
@@ -1049,9 +1056,9 @@ static size_t carve(job_t *j, char *base, int nt, float **bufs, ics_tile **tiles
   j->marks = take(base, &used, nx * (1 + (size_t)j->nb) * (size_t)nt);
   j->dpts = P->any_detail ? take(base, &used, sizeof *j->dpts * 8 * (size_t)P->Wb * nt) : NULL;
   j->dslot = P->any_detail ? take(base, &used, sizeof *j->dslot * (size_t)P->Wb * nt) : NULL;
-  j->prow = P->ninside && j->lone_batched
-                ? take(base, &used, sizeof *j->prow * 10 * (size_t)P->Wb * nt)
-                : NULL;
+  int lone = P->ninside && j->lone_batched;
+  j->prow = lone ? take(base, &used, sizeof *j->prow * 10 * (size_t)P->Wb * nt) : NULL;
+  j->lone_mark = lone ? take(base, &used, (size_t)P->Wb * nt) : NULL;
   j->cursor = take(base, &used, sizeof *j->cursor * npx);
   j->acursor = take(base, &used, sizeof *j->acursor * npx);
   j->pnext = take(base, &used, sizeof *j->pnext * npx);
@@ -1106,6 +1113,13 @@ static ics_status cpu_render(void *state, const ics_plan *P, const ics_render_op
   /* the lone volume pieces a row at a time on a vector path (ICS_PIECE_BATCH=0: one by one, as
    * the portable path does, to compare: docs/renderer.md "Volume pieces in batches") */
   const char *batch = getenv("ICS_PIECE_BATCH");
+  if (batch && *batch && strcmp(batch, "0") && strcmp(batch, "1")) {
+    if (msg)
+      snprintf(msg, msg_size, "ICS_PIECE_BATCH=%.40s: 0 (the lone volume pieces one by one) or 1 "
+               "(a row at a time on a vector path, the default)", batch);
+    status = ICS_ERR_INVALID_ARG;
+    goto done;
+  }
   j->lone_batched = j->simd != ICS_SIMD_SCALAR && !(batch && !strcmp(batch, "0"));
   j->p = P;
   j->img = img;
